@@ -1,0 +1,19 @@
+//! Subcommands, one file each. Each parses its flags into library types, calls the library
+//! and prints; errors bubble up to `main` as one message and exit code 2.
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser, Debug)]
+#[command(name = "tribofe", version, about = "2D plane-strain FE verifier for frictional interfaces (SI units)")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+}
+
+pub fn run(cli: Cli) -> tribofe::Result<()> {
+    match cli.command {}
+}
