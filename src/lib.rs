@@ -10,5 +10,11 @@ pub mod error;
 pub mod material;
 pub mod mesh;
 pub mod mesher;
+pub mod assembly;
+pub mod constraints;
+pub mod solve;
+pub mod recovery;
+pub mod loads;
+pub mod problem;
 
 pub use error::{Error, Result};

@@ -1,0 +1,176 @@
+//! The linear static pipeline in order: reduce the constraints, build the pattern, assemble,
+//! analyse, factorise, solve all load cases at once, expand to full displacements.
+//! Each phase is timed so benchmarks and convergence runs can report where time goes.
+
+use crate::assembly::{Assembler, Model};
+use crate::constraints::{Constraints, Reduction};
+use crate::error::{Error, Result};
+use crate::recovery::internal_forces;
+use crate::solve::{SolveReport, Solver, SolverOptions};
+use std::time::Instant;
+
+/// One load case: the prescribed values (one per fixed DOF, in `Constraints::fix` order) and
+/// external nodal forces (full length, or empty for none), N.
+#[derive(Debug, Clone, Default)]
+pub struct LoadCase {
+    pub prescribed: Vec<f64>,
+    pub forces: Vec<f64>,
+}
+
+/// Wall time of each phase, s.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Timings {
+    pub pattern: f64,
+    pub assembly: f64,
+    pub symbolic: f64,
+    pub numeric: f64,
+    pub solve: f64,
+}
+
+impl Timings {
+    pub fn total(&self) -> f64 {
+        self.pattern + self.assembly + self.symbolic + self.numeric + self.solve
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Solution {
+    pub reduction: Reduction,
+    /// Full displacement per case (node DOFs then extra DOFs), m (rad for rotations).
+    pub u: Vec<Vec<f64>>,
+    pub report: SolveReport,
+    pub timings: Timings,
+    pub n_unknowns: usize,
+    pub matrix_nnz: usize,
+    pub factor_nnz: usize,
+}
+
+/// Solves every load case with one factorisation. `hint` is appended to the error when
+/// the residual check rejects the answer (e.g. suggest a better-conditioned model).
+pub fn solve(model: &Model, constraints: &Constraints, cases: &[LoadCase], opts: &SolverOptions, hint: &str) -> Result<Solution> {
+    let mut t = Timings::default();
+    let clock = Instant::now();
+    let red = constraints.reduce()?;
+    let asm = Assembler::new(model.mesh, &red)?;
+    t.pattern = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let prescribed: Vec<Vec<f64>> = cases.iter().map(|c| c.prescribed.clone()).collect();
+    let loads: Vec<Vec<f64>> = cases.iter().map(|c| c.forces.clone()).collect();
+    if let Some(bad) = loads.iter().find(|f| !f.is_empty() && f.len() != red.n_full) {
+        return Err(Error::input("load case", format!("force vector has {} entries, the model has {} DOFs", bad.len(), red.n_full)));
+    }
+    let (values, rhs) = asm.assemble(model, &red, &loads, &prescribed)?;
+    t.assembly = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let solver = Solver::analyse(&asm.pattern, opts.clone())?;
+    t.symbolic = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let factor = solver.factorize(&asm.pattern, &values).map_err(|k| singular(model, constraints, &red, k))?;
+    t.numeric = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let n = red.n_free();
+    let nc = cases.len();
+    // One extra column, a fixed pseudo-random probe b, rides along in the same solve: the
+    // size of K^-1 b bounds the condition number from below, and for a singular K it is
+    // dominated by the free rigid-body motion, which we can then name.
+    let mut rhs = rhs;
+    let probe = probe_vector(n);
+    rhs.extend_from_slice(&probe);
+    factor.solve_in_place(&mut rhs[nc * n..], 1);
+    let condition = norm_1_sym(&asm.pattern, &values) * rhs[nc * n..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(condition < 1e15) {
+        let g0 = vec![0.0; red.n_fixed()];
+        let mode = red.expand(&rhs[nc * n..], &g0);
+        if let Some(what) = rigid_mode(model, &mode) {
+            return Err(Error::Singular { detail: format!("the solution contains an unresisted {what} (condition estimate {condition:.1e}); prescribe enough displacements to stop both translations and the rotation of every separate body") });
+        }
+    }
+    let (x, mut report) = factor.solve_checked(&asm.pattern, &values, &rhs[..nc * n], nc, hint)?;
+    report.condition_estimate = condition;
+    let u = cases.iter().enumerate().map(|(c, case)| red.expand(&x[c * n..(c + 1) * n], &case.prescribed)).collect();
+    t.solve = clock.elapsed().as_secs_f64();
+    Ok(Solution { reduction: red, u, report, timings: t, n_unknowns: n, matrix_nnz: asm.pattern.nnz(), factor_nnz: solver.factor_nnz() })
+}
+
+/// Deterministic values in [-1, 1] (a linear congruential sequence), the same every run.
+fn probe_vector(n: usize) -> Vec<f64> {
+    let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
+    (0..n)
+        .map(|_| {
+            s = s.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            (s >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        })
+        .collect()
+}
+
+/// max_j sum_i |K_ij| (= the infinity norm) of the symmetric matrix stored by its lower triangle.
+fn norm_1_sym(p: &crate::assembly::Pattern, values: &[f64]) -> f64 {
+    let mut col = vec![0.0; p.n];
+    for j in 0..p.n {
+        for k in p.col_ptr[j]..p.col_ptr[j + 1] {
+            let i = p.row_idx[k];
+            col[j] += values[k].abs();
+            if i != j {
+                col[i] += values[k].abs();
+            }
+        }
+    }
+    col.into_iter().fold(0.0, f64::max)
+}
+
+/// If the nodal field is (to 1 %) a rigid motion u = a - w y, v = b + w x, names its
+/// dominant part; otherwise None.
+fn rigid_mode(model: &Model, u: &[f64]) -> Option<String> {
+    let nodes = &model.mesh.nodes;
+    let n = nodes.len() as f64;
+    let c = nodes.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n]);
+    // Least squares for (a, b, w) about the centroid: the three columns are orthogonal there.
+    let (mut su, mut sv, mut sw, mut rr) = (0.0, 0.0, 0.0, 0.0);
+    for (k, p) in nodes.iter().enumerate() {
+        let (x, y) = (p[0] - c[0], p[1] - c[1]);
+        su += u[2 * k];
+        sv += u[2 * k + 1];
+        sw += -y * u[2 * k] + x * u[2 * k + 1];
+        rr += x * x + y * y;
+    }
+    let (a, b, w) = (su / n, sv / n, if rr > 0.0 { sw / rr } else { 0.0 });
+    let (mut res, mut tot) = (0.0, 0.0);
+    for (k, p) in nodes.iter().enumerate() {
+        let (x, y) = (p[0] - c[0], p[1] - c[1]);
+        res += (u[2 * k] - (a - w * y)).powi(2) + (u[2 * k + 1] - (b + w * x)).powi(2);
+        tot += u[2 * k].powi(2) + u[2 * k + 1].powi(2);
+    }
+    if !(tot > 0.0) || res > 1e-4 * tot {
+        return None;
+    }
+    let size = (rr / n).sqrt();
+    let parts = [(a.abs(), "translation along x"), (b.abs(), "translation along y"), ((w * size).abs(), "rotation")];
+    let names: Vec<&str> = parts.iter().filter(|(m, _)| *m > 0.05 * parts.iter().fold(0.0f64, |x, p| x.max(p.0))).map(|p| p.1).collect();
+    Some(format!("rigid-body motion ({})", names.join(" and ")))
+}
+
+fn singular(model: &Model, c: &Constraints, red: &Reduction, k: usize) -> Error {
+    let which = red.free_to_full.get(k).map_or("an unknown".to_string(), |&d| c.describe_dof(model.mesh, d));
+    Error::Singular {
+        detail: format!(
+            "the stiffness matrix is not positive definite (first bad pivot at {which}); prescribe enough displacements to stop both translations and the rotation of every separate body"
+        ),
+    }
+}
+
+impl Solution {
+    /// Consistent reactions (K u - f) at every full DOF for case `c`, computed from the given
+    /// elements only (pass the elements touching the constrained DOFs of interest).
+    pub fn residual_forces(&self, model: &Model, case: &LoadCase, c: usize, elements: &[usize]) -> Result<Vec<f64>> {
+        let mut r = internal_forces(model, &self.u[c], elements)?;
+        r.resize(self.reduction.n_full, 0.0);
+        if !case.forces.is_empty() {
+            r.iter_mut().zip(&case.forces).for_each(|(a, f)| *a -= f);
+        }
+        Ok(r)
+    }
+}
