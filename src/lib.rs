@@ -16,5 +16,8 @@ pub mod solve;
 pub mod recovery;
 pub mod loads;
 pub mod problem;
+pub mod scene;
+pub mod check;
+pub mod report;
 
 pub use error::{Error, Result};

@@ -1,6 +1,8 @@
 //! Subcommands, one file each. Each parses its flags into library types, calls the library
 //! and prints; errors bubble up to `main` as one message and exit code 2.
 
+mod check;
+
 use clap::{Parser, Subcommand};
 
 #[derive(Parser, Debug)]
@@ -12,8 +14,12 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
+    /// The paper's check: interface pressure and shear under the plate against the model (fig. 2).
+    Check(check::Args),
 }
 
 pub fn run(cli: Cli) -> tribofe::Result<()> {
-    match cli.command {}
+    match cli.command {
+        Command::Check(a) => check::run(a),
+    }
 }

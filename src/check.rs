@@ -1,0 +1,268 @@
+//! The paper's check: solve the scene's two unit load cases (normal, tangential) with one
+//! factorisation, combine them to hit each requested F/N exactly, recover the interface
+//! tractions, and measure how far they are from the model's assumptions
+//! p/(N/L) = 1 + 12 (F/N)(H/L)(x/L) and tau/(N/L) = F/N.
+
+use crate::error::{Error, Result};
+use crate::problem::{solve, LoadCase, Solution, Timings};
+use crate::recovery::{elements_touching, nodal_stresses};
+use crate::scene::{PlateModel, Scene, SceneModel};
+use crate::solve::{SolveReport, SolverOptions};
+
+/// Interface fields of the two unit cases, per unit N and per unit F (the input of the
+/// FE-fed precursor model). Pressures and shears are divided by (force / L).
+#[derive(Debug, Clone)]
+pub struct UnitProfiles {
+    pub x_over_l: Vec<f64>,
+    /// Tributary width of each interface node divided by L.
+    pub w_over_l: Vec<f64>,
+    pub p_per_n: Vec<f64>,
+    pub tau_per_n: Vec<f64>,
+    pub p_per_f: Vec<f64>,
+    pub tau_per_f: Vec<f64>,
+}
+
+/// Figures of one load case (all stresses divided by the mean pressure N/L).
+#[derive(Debug, Clone)]
+pub struct CaseResult {
+    pub fn_ratio: f64,
+    /// Normal and tangential force per unit width, N/m.
+    pub n: f64,
+    pub f: f64,
+    /// Plate tilt, rad (positive counter-clockwise).
+    pub tilt: f64,
+    pub x_over_l: Vec<f64>,
+    /// From the consistent nodal reactions (default).
+    pub p: Vec<f64>,
+    pub tau: Vec<f64>,
+    /// From integration-point stresses extrapolated to the nodes and averaged.
+    pub p_extrap: Vec<f64>,
+    pub tau_extrap: Vec<f64>,
+    pub p_model: Vec<f64>,
+    pub tau_model: Vec<f64>,
+    pub metrics: Metrics,
+}
+
+#[derive(Debug, Clone)]
+pub struct Metrics {
+    /// Least-squares slope of p/(N/L) against x/L over |x| < L/2 - 10 t, and the model's 12 (F/N)(H/L).
+    pub slope_interior: f64,
+    pub slope_model: f64,
+    /// Largest |deviation from the model| over the interior, in units of N/L.
+    pub interior_dev_p: f64,
+    pub interior_dev_tau: f64,
+    pub tau_center: f64,
+    /// Values at the two end nodes (mesh-dependent: the corners are singular).
+    pub p_ends: [f64; 2],
+    pub tau_ends: [f64; 2],
+    /// Edge-zone widths in units of t (left, right); None where the model value is zero.
+    pub edge_p_t: [Option<f64>; 2],
+    pub edge_tau_t: [Option<f64>; 2],
+    /// Relative errors of the global balances: sum of interface forces vs N and F, moment vs F H.
+    pub balance_n: f64,
+    pub balance_f: f64,
+    pub balance_moment: f64,
+}
+
+#[derive(Debug, Clone)]
+pub struct CheckResult {
+    pub scene: Scene,
+    pub cases: Vec<CaseResult>,
+    pub unit: UnitProfiles,
+    pub n_nodes: usize,
+    pub n_elements: usize,
+    pub n_unknowns: usize,
+    pub factor_nnz: usize,
+    pub timings: Timings,
+    pub solve_report: SolveReport,
+    /// Full displacements of each combined case (for field output) and the model used.
+    pub displacements: Vec<Vec<f64>>,
+}
+
+/// Runs the paper's check on a scene.
+pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneModel)> {
+    let sm = scene.build()?;
+    let model = sm.model();
+    let (l, t, hgt) = (scene.block.length, scene.block.thickness, scene.loading.height);
+    // Unit cases: A presses the plate down by d, B moves it sideways by d (d small vs t).
+    let d = 1e-3 * t;
+    let nf = sm.constraints.n_fixed();
+    let (ju, jv) = (sm.constraints.fixed_slot(sm.dof_u).unwrap(), sm.constraints.fixed_slot(sm.dof_v).unwrap());
+    let mut ga = vec![0.0; nf];
+    ga[jv] = -d;
+    let mut gb = vec![0.0; nf];
+    gb[ju] = d;
+    let cases = [LoadCase { prescribed: ga, forces: vec![] }, LoadCase { prescribed: gb, forces: vec![] }];
+    let hint = match scene.plate.model {
+        PlateModel::Elastic => format!(
+            "the elastic plate (E_plate / E_block = {:.1e}) makes the system too ill-conditioned for double precision; use the exact rigid plate (--plate rigid)",
+            scene.plate.young / scene.block.young
+        ),
+        PlateModel::Rigid => "check the mesh and the material values".to_string(),
+    };
+    let sol = solve(&model, &sm.constraints, &cases, opts, &hint)?;
+
+    // Interface reactions of each unit case, and the generalised reactions at U and V.
+    let near = elements_touching(&model, &sm.interface);
+    let plate_elems: Vec<usize> = match sm.dof_theta {
+        Some(_) => elements_touching(&model, &sm.mesh.set_nodes("top")?),
+        None => elements_touching(&model, &[sm.dof_u / 2, sm.dof_v / 2]),
+    };
+    let mut unit = Vec::new();
+    for c in 0..2 {
+        let r_int = sol.residual_forces(&model, &cases[c], c, &near)?;
+        let r_plate = sol.residual_forces(&model, &cases[c], c, &plate_elems)?;
+        let fixed = sol.reduction.fixed_reactions(&r_plate);
+        let (n, f) = (-fixed[jv], fixed[ju]);
+        let rx: Vec<f64> = sm.interface.iter().map(|&k| r_int[2 * k]).collect();
+        let ry: Vec<f64> = sm.interface.iter().map(|&k| r_int[2 * k + 1]).collect();
+        unit.push((n, f, rx, ry));
+    }
+    let (na, fa) = (unit[0].0, unit[0].1);
+    let (nb, fb) = (unit[1].0, unit[1].1);
+    let det = na * fb - nb * fa;
+    if !(det.abs() > 0.0) || !(na > 0.0) {
+        return Err(Error::input("scene", "the unit load cases are degenerate (no normal force from pressing the plate)"));
+    }
+    let widths = tributary_widths(&sm);
+    let xs: Vec<f64> = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
+    let x_over_l: Vec<f64> = xs.iter().map(|x| x / l).collect();
+    // Unit fields: combination giving (N, F) = (1, 0) and (0, 1).
+    let combo = |n_t: f64, f_t: f64| -> (f64, f64) { ((n_t * fb - f_t * nb) / det, (na * f_t - fa * n_t) / det) };
+    let profile = |a: f64, b: f64| -> (Vec<f64>, Vec<f64>) {
+        let p = (0..xs.len()).map(|i| (a * unit[0].3[i] + b * unit[1].3[i]) / widths[i]).collect();
+        let tau = (0..xs.len()).map(|i| -(a * unit[0].2[i] + b * unit[1].2[i]) / widths[i]).collect();
+        (p, tau)
+    };
+    let (a1, b1) = combo(1.0, 0.0);
+    let (a2, b2) = combo(0.0, 1.0);
+    let (pn, tn) = profile(a1, b1);
+    let (pf, tf) = profile(a2, b2);
+    let unit_profiles = UnitProfiles {
+        x_over_l: x_over_l.clone(),
+        w_over_l: widths.iter().map(|w| w / l).collect(),
+        p_per_n: pn.iter().map(|v| v * l).collect(),
+        tau_per_n: tn.iter().map(|v| v * l).collect(),
+        p_per_f: pf.iter().map(|v| v * l).collect(),
+        tau_per_f: tf.iter().map(|v| v * l).collect(),
+    };
+
+    let mut results = Vec::new();
+    let mut displacements = Vec::new();
+    for &ratio in &scene.loading.fn_ratios {
+        // N = N_A (the normal force of case A alone), F = ratio N.
+        let (a, b) = combo(na, ratio * na);
+        let (n, f) = (a * na + b * nb, a * fa + b * fb);
+        let pmean = n / l;
+        let (p, tau) = profile(a, b);
+        let u: Vec<f64> = sol.u[0].iter().zip(&sol.u[1]).map(|(x, y)| a * x + b * y).collect();
+        let s = nodal_stresses(&model, &u);
+        let p_extrap: Vec<f64> = sm.interface.iter().map(|&k| -s[k][1] / pmean).collect();
+        let tau_extrap: Vec<f64> = sm.interface.iter().map(|&k| s[k][2] / pmean).collect();
+        let p: Vec<f64> = p.iter().map(|v| v / pmean).collect();
+        let tau: Vec<f64> = tau.iter().map(|v| v / pmean).collect();
+        let slope_model = 12.0 * (f / n) * (hgt / l);
+        let p_model: Vec<f64> = x_over_l.iter().map(|x| 1.0 + slope_model * x).collect();
+        let tau_model = vec![f / n; xs.len()];
+        // Global balances from the interface forces.
+        let sum_ry: f64 = (0..xs.len()).map(|i| a * unit[0].3[i] + b * unit[1].3[i]).sum();
+        let sum_rx: f64 = (0..xs.len()).map(|i| a * unit[0].2[i] + b * unit[1].2[i]).sum();
+        let moment: f64 = (0..xs.len()).map(|i| xs[i] * (a * unit[0].3[i] + b * unit[1].3[i])).sum();
+        let tilt = match sm.dof_theta {
+            Some(th) => u[th],
+            None => plate_tilt(&sm, &u),
+        };
+        let metrics = Metrics {
+            balance_n: (sum_ry - n).abs() / n,
+            balance_f: (sum_rx + f).abs() / n,
+            balance_moment: (moment - f * hgt).abs() / (n * hgt),
+            ..metrics(&x_over_l, &p, &tau, &p_model, &tau_model, slope_model, f / n, l, t, scene.report.tol)
+        };
+        results.push(CaseResult { fn_ratio: ratio, n, f, tilt, x_over_l: x_over_l.clone(), p, tau, p_extrap, tau_extrap, p_model, tau_model, metrics });
+        displacements.push(u);
+    }
+    let res = CheckResult {
+        scene: scene.clone(),
+        cases: results,
+        unit: unit_profiles,
+        n_nodes: sm.mesh.n_nodes(),
+        n_elements: sm.mesh.n_elements(),
+        n_unknowns: sol.n_unknowns,
+        factor_nnz: sol.factor_nnz,
+        timings: sol.timings,
+        solve_report: sol.report.clone(),
+        displacements,
+    };
+    drop(sol_keep(sol));
+    Ok((res, sm))
+}
+
+fn sol_keep(s: Solution) -> Solution {
+    s
+}
+
+/// Rotation of an elastic plate from the vertical displacements of its top corners, rad.
+fn plate_tilt(sm: &SceneModel, u: &[f64]) -> f64 {
+    let top = sm.mesh.nodes.iter().fold(f64::MIN, |m, p| m.max(p[1]));
+    let corners: Vec<usize> = (0..sm.mesh.n_nodes()).filter(|&k| sm.mesh.nodes[k][1] == top).collect();
+    let (l, r) = corners.iter().fold((corners[0], corners[0]), |(l, r), &k| {
+        (if sm.mesh.nodes[k][0] < sm.mesh.nodes[l][0] { k } else { l }, if sm.mesh.nodes[k][0] > sm.mesh.nodes[r][0] { k } else { r })
+    });
+    (u[2 * r + 1] - u[2 * l + 1]) / (sm.mesh.nodes[r][0] - sm.mesh.nodes[l][0])
+}
+
+/// Integral of each interface node's shape function along the interface (m): the width
+/// over which its consistent nodal force is spread (half the neighbouring edges for linear
+/// elements; L/6 and 2L/3 per edge for quadratic ones).
+fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
+    let mut w = vec![0.0; sm.mesh.n_nodes()];
+    let mut f = vec![0.0; 2 * sm.mesh.n_nodes()];
+    // A unit normal traction's consistent forces are exactly these integrals.
+    crate::loads::add_edge_traction(&sm.mesh, "interface", &|_| [0.0, 1.0], &mut f).expect("interface edges exist");
+    for k in 0..sm.mesh.n_nodes() {
+        w[k] = f[2 * k + 1];
+    }
+    sm.interface.iter().map(|&k| w[k]).collect()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn metrics(x: &[f64], p: &[f64], tau: &[f64], pm: &[f64], tm: &[f64], slope_model: f64, fn_ratio: f64, l: f64, t: f64, tol: f64) -> Metrics {
+    let interior: Vec<usize> = (0..x.len()).filter(|&i| x[i].abs() * l < l / 2.0 - 10.0 * t).collect();
+    let (sx, sy, sxx, sxy) = interior.iter().fold((0.0, 0.0, 0.0, 0.0), |(a, b, c, d), &i| (a + x[i], b + p[i], c + x[i] * x[i], d + x[i] * p[i]));
+    let m = interior.len() as f64;
+    let slope = if interior.len() >= 2 { (m * sxy - sx * sy) / (m * sxx - sx * sx) } else { f64::NAN };
+    let dev = |v: &[f64], model: &[f64]| interior.iter().map(|&i| (v[i] - model[i]).abs()).fold(0.0, f64::max);
+    let tau_center = interpolate(x, tau, 0.0);
+    let n = x.len();
+    let width = |v: &[f64], model: &[f64], left: bool| -> Option<f64> {
+        let end = if left { x[0] } else { x[n - 1] };
+        let half: Vec<usize> = (0..n).filter(|&i| if left { x[i] <= 0.0 } else { x[i] >= 0.0 }).collect();
+        if half.iter().any(|&i| model[i].abs() == 0.0) {
+            return None;
+        }
+        let w = half.iter().filter(|&&i| (v[i] - model[i]).abs() > tol * model[i].abs()).map(|&i| (x[i] - end).abs()).fold(0.0, f64::max);
+        Some(w * l / t)
+    };
+    let _ = fn_ratio;
+    Metrics {
+        slope_interior: slope,
+        slope_model,
+        interior_dev_p: dev(p, pm),
+        interior_dev_tau: dev(tau, tm),
+        tau_center,
+        p_ends: [p[0], p[n - 1]],
+        tau_ends: [tau[0], tau[n - 1]],
+        edge_p_t: [width(p, pm, true), width(p, pm, false)],
+        edge_tau_t: [width(tau, tm, true), width(tau, tm, false)],
+        balance_n: 0.0,
+        balance_f: 0.0,
+        balance_moment: 0.0,
+    }
+}
+
+/// Linear interpolation of v(x) at x0 (x sorted).
+fn interpolate(x: &[f64], v: &[f64], x0: f64) -> f64 {
+    let i = x.partition_point(|&a| a < x0).clamp(1, x.len() - 1);
+    let s = (x0 - x[i - 1]) / (x[i] - x[i - 1]);
+    v[i - 1] + s * (v[i] - v[i - 1])
+}

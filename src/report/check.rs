@@ -1,0 +1,155 @@
+//! Outputs of the paper's check: one profile CSV per load case, the summary CSV, a readable
+//! table, and fig. 2 of the paper redrawn with zooms on both edge zones.
+
+use super::{csv, ratio_label, write_atomic};
+use crate::check::CheckResult;
+use crate::error::{Error, Result};
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::Path;
+
+pub const PROFILE_HEADER: &str = "x_over_L,p_over_pmean,tau_over_pmean,p_model,tau_model,p_extrap,tau_extrap";
+pub const SUMMARY_HEADER: &str = "FN,N,F,slope_interior,slope_model,tau_center,edge_p_left_t,edge_p_right_t,edge_tau_left_t,edge_tau_right_t,interior_dev_p,interior_dev_tau,p_end_left,p_end_right,tau_end_left,tau_end_right,tilt_rad,balance_N,balance_F,balance_moment";
+
+/// Writes profile_FN<ratio>.csv, summary.csv and fig2.svg into `dir`.
+pub fn write(res: &CheckResult, dir: &Path) -> Result<()> {
+    for c in &res.cases {
+        let rows: Vec<Vec<f64>> = (0..c.x_over_l.len())
+            .map(|i| vec![c.x_over_l[i], c.p[i], c.tau[i], c.p_model[i], c.tau_model[i], c.p_extrap[i], c.tau_extrap[i]])
+            .collect();
+        write_atomic(&dir.join(format!("profile_FN{}.csv", ratio_label(c.fn_ratio))), csv(PROFILE_HEADER, &rows)?.as_bytes())?;
+    }
+    write_atomic(&dir.join("summary.csv"), summary_csv(res)?.as_bytes())?;
+    write_atomic(&dir.join("fig2.svg"), fig2(res)?.as_bytes())
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map_or(String::new(), |w| format!("{w:.6e}"))
+}
+
+/// Summary table; an edge width the model cannot define (zero model shear) is left empty.
+pub fn summary_csv(res: &CheckResult) -> Result<String> {
+    let mut s = String::from(SUMMARY_HEADER);
+    s.push('\n');
+    for c in &res.cases {
+        let m = &c.metrics;
+        let nums = [c.fn_ratio, c.n, c.f, m.slope_interior, m.slope_model, m.tau_center];
+        let tail = [m.interior_dev_p, m.interior_dev_tau, m.p_ends[0], m.p_ends[1], m.tau_ends[0], m.tau_ends[1], c.tilt, m.balance_n, m.balance_f, m.balance_moment];
+        if let Some(v) = nums.iter().chain(&tail).find(|v| !v.is_finite()) {
+            return Err(Error::input("summary", format!("F/N = {}: a figure is {v}; refusing to write it", c.fn_ratio)));
+        }
+        let mut cells: Vec<String> = nums.iter().map(|v| format!("{v:.6e}")).collect();
+        cells.extend([m.edge_p_t[0], m.edge_p_t[1], m.edge_tau_t[0], m.edge_tau_t[1]].map(opt));
+        cells.extend(tail.iter().map(|v| format!("{v:.6e}")));
+        s.push_str(&cells.join(","));
+        s.push('\n');
+    }
+    Ok(s)
+}
+
+/// The readable summary printed by `tribofe check`.
+pub fn table(res: &CheckResult) -> String {
+    let sc = &res.scene;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "tribofe check: block L = {} m, t = {} m, E = {} Pa, nu = {}; {:?} plate; H = {} m; {} elements ({}), {} nodes, {} unknowns",
+        sc.block.length, sc.block.thickness, sc.block.young, sc.block.poisson, sc.plate.model, sc.loading.height, res.n_elements, sc.mesh.element, res.n_nodes, res.n_unknowns
+    );
+    let _ = writeln!(s, "stresses in units of the mean pressure N/L; widths in units of t; forces per unit width (N/m)");
+    let _ = writeln!(s, "{:>6} {:>11} {:>11} {:>9} {:>9} {:>9} {:>9} {:>9} | {:>13} {:>13}", "F/N", "N", "F", "slope", "model", "tau(0)", "dev p", "dev tau", "edge p L/R", "edge tau L/R");
+    for c in &res.cases {
+        let m = &c.metrics;
+        let w = |v: [Option<f64>; 2]| format!("{}/{}", v[0].map_or("-".into(), |x| format!("{x:.2}")), v[1].map_or("-".into(), |x| format!("{x:.2}")));
+        let _ = writeln!(
+            s,
+            "{:>6} {:>11.4e} {:>11.4e} {:>9.5} {:>9.5} {:>9.5} {:>9.2e} {:>9.2e} | {:>13} {:>13}",
+            c.fn_ratio, c.n, c.f, m.slope_interior, m.slope_model, m.tau_center, m.interior_dev_p, m.interior_dev_tau, w(m.edge_p_t), w(m.edge_tau_t)
+        );
+    }
+    let _ = writeln!(s, "paper (Cast3M, 1 mm QUA4): edge zones ~1 t for pressure and ~3 t for shear (tolerance here: {} of the local model value)", sc.report.tol);
+    let _ = writeln!(s, "end-node values (NOT converged: the clamped-free corners are singular, they grow without bound under refinement):");
+    for c in &res.cases {
+        let m = &c.metrics;
+        let _ = writeln!(s, "  F/N = {:<5} p ends {:.4}/{:.4}  tau ends {:.4}/{:.4}  plate tilt {:.4e} rad", c.fn_ratio, m.p_ends[0], m.p_ends[1], m.tau_ends[0], m.tau_ends[1], c.tilt);
+    }
+    let worst = res.cases.iter().map(|c| c.metrics.balance_n.max(c.metrics.balance_f).max(c.metrics.balance_moment)).fold(0.0, f64::max);
+    let _ = writeln!(s, "global balance (sum of interface forces vs N, F; moment vs F H): worst relative error {worst:.1e} {}", if worst < 1e-9 { "(ok, < 1e-9)" } else { "(FAILED, > 1e-9)" });
+    let r = &res.solve_report;
+    let _ = writeln!(
+        s,
+        "solver: relative residual {:.1e} (after {} refinement steps), condition estimate {:.1e}; time {:.1} ms (pattern {:.1}, assembly {:.1}, symbolic {:.1}, numeric {:.1}, solve {:.1})",
+        r.residual.iter().cloned().fold(0.0, f64::max),
+        r.refinement_steps,
+        r.condition_estimate,
+        res.timings.total() * 1e3,
+        res.timings.pattern * 1e3,
+        res.timings.assembly * 1e3,
+        res.timings.symbolic * 1e3,
+        res.timings.numeric * 1e3,
+        res.timings.solve * 1e3
+    );
+    s
+}
+
+const COLORS: [RGBColor; 6] = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189), RGBColor(255, 127, 14), RGBColor(23, 190, 207)];
+
+fn err(e: impl std::fmt::Display) -> Error {
+    Error::input("fig2.svg", e.to_string())
+}
+
+/// Fig. 2 of the paper redrawn: p/(N/L) open symbols, tau/(N/L) full symbols, model dashed;
+/// below, the two edge zones (10 t wide) with every node.
+pub fn fig2(res: &CheckResult) -> Result<String> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (1000, 820)).into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        let (top, bottom) = root.split_vertically(470);
+        let halves = bottom.split_evenly((1, 2));
+        let l = res.scene.block.length;
+        let t = res.scene.block.thickness;
+        let ymax = res.cases.iter().flat_map(|c| c.p.iter().chain(&c.tau)).fold(1.0f64, |m, &v| m.max(v));
+        let ymin = res.cases.iter().flat_map(|c| c.p.iter().chain(&c.tau)).fold(0.0f64, |m, &v| m.min(v));
+        let main_y = (ymin.max(-0.2) - 0.05)..(ymax.min(2.5) + 0.1);
+        panel(&top, res, -0.5..0.5, main_y, "Interface stresses (fig. 2 of the paper): open = pressure p/(N/L), full = shear tau/(N/L), dashed = model", 9)?;
+        let zone = 10.0 * t / l;
+        let zy = (ymin - 0.05)..(ymax + 0.1);
+        panel(&halves[0], res, -0.5..(-0.5 + zone), zy.clone(), "Trailing edge zone (10 t)", 1)?;
+        panel(&halves[1], res, (0.5 - zone)..0.5, zy, "Leading edge zone (10 t)", 1)?;
+        root.present().map_err(err)?;
+    }
+    Ok(svg)
+}
+
+fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>, res: &CheckResult, xr: std::ops::Range<f64>, yr: std::ops::Range<f64>, title: &str, every: usize) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 15))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(55)
+        .build_cartesian_2d(xr.clone(), yr)
+        .map_err(err)?;
+    chart.configure_mesh().x_desc("x/L (dimensionless)").y_desc("stress / (N/L) (dimensionless)").light_line_style(WHITE.mix(0.0)).draw().map_err(err)?;
+    for (k, c) in res.cases.iter().enumerate() {
+        let col = COLORS[k % COLORS.len()];
+        let pts: Vec<usize> = (0..c.x_over_l.len()).filter(|&i| c.x_over_l[i] >= xr.start && c.x_over_l[i] <= xr.end).collect();
+        let sel: Vec<usize> = pts.iter().copied().enumerate().filter(|(j, _)| j % every == 0).map(|(_, i)| i).collect();
+        let model_p: Vec<(f64, f64)> = pts.iter().map(|&i| (c.x_over_l[i], c.p_model[i])).collect();
+        let model_t: Vec<(f64, f64)> = pts.iter().map(|&i| (c.x_over_l[i], c.tau_model[i])).collect();
+        chart.draw_series(DashedLineSeries::new(model_p, 6, 4, col.stroke_width(1))).map_err(err)?;
+        chart.draw_series(DashedLineSeries::new(model_t, 6, 4, col.stroke_width(1))).map_err(err)?;
+        let label = format!("F/N = {}", c.fn_ratio);
+        chart
+            .draw_series(sel.iter().map(|&i| Circle::new((c.x_over_l[i], c.p[i]), 3, col.stroke_width(1))))
+            .map_err(err)?
+            .label(label)
+            .legend(move |(x, y)| Circle::new((x, y), 4, col.filled()));
+        chart.draw_series(sel.iter().map(|&i| Circle::new((c.x_over_l[i], c.tau[i]), 3, col.filled()))).map_err(err)?;
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).position(SeriesLabelPosition::UpperMiddle).draw().map_err(err)?;
+    Ok(())
+}

@@ -1,0 +1,314 @@
+//! The paper's scene (Scheibert & Dysthe, EPL 2010, fig. 1 and the paragraph before fig. 2):
+//! an elastic block bonded at y = 0, a plate bonded on its top, the plate's normal
+//! displacement prescribed at the centre of its top and its tangential displacement at
+//! height H on its left side. Every key of the TOML scene defaults to the paper's value.
+//!
+//! ```text
+//!        V (normal, centre of plate top)
+//!        v
+//!   +-----------------------------+  y = t + plate thickness (elastic plate only)
+//! U>|            plate            |  U applied at height H on the left side
+//!   +-----------------------------+  y = t   (top, bonded)
+//!   |            block            |
+//!   +-----------------------------+  y = 0   (interface, u = v = 0)
+//!  x = -L/2                     x = L/2
+//! ```
+
+use crate::assembly::Model;
+use crate::constraints::{dof, Constraints};
+use crate::element::stiffness::ElementChoice;
+use crate::error::{Error, Result};
+use crate::material::Material;
+use crate::mesh::Mesh;
+use crate::mesher::Rectangle;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum PlateModel {
+    /// Exactly rigid: three unknowns (U, V, theta), every top node tied to them.
+    Rigid,
+    /// Meshed with its own elements and modulus, as Cast3M did in the paper.
+    Elastic,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Block {
+    /// L, m.
+    pub length: f64,
+    /// t, m.
+    pub thickness: f64,
+    /// E, Pa.
+    pub young: f64,
+    pub poisson: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Plate {
+    pub model: PlateModel,
+    /// m (elastic plate only; the default makes its left side reach height H).
+    pub thickness: f64,
+    /// Pa (elastic plate only).
+    pub young: f64,
+    pub poisson: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Loading {
+    /// H, height of the tangential loading point above the interface, m.
+    pub height: f64,
+    /// Requested load cases as ratios F/N (dimensionless).
+    pub fn_ratios: Vec<f64>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MeshSpec {
+    /// Element size in the block, m (structured mesh).
+    pub h: f64,
+    /// Element formulation by name (qua4, qua8, qua9, tri3, tri6).
+    pub element: String,
+    /// A Gmsh mesh of the block instead of the structured one.
+    pub file: Option<PathBuf>,
+    /// Physical-group names in a Gmsh file.
+    pub interface: String,
+    pub top: String,
+    pub block: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Report {
+    /// Edge-zone tolerance: relative deviation from the local model value (dimensionless).
+    pub tol: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scene {
+    pub block: Block,
+    pub plate: Plate,
+    pub loading: Loading,
+    pub mesh: MeshSpec,
+    pub report: Report,
+}
+
+impl Default for Block {
+    fn default() -> Self {
+        Self { length: 0.4, thickness: 0.002, young: 2e3, poisson: 0.4 }
+    }
+}
+impl Default for Plate {
+    fn default() -> Self {
+        Self { model: PlateModel::Rigid, thickness: 0.048, young: 2e15, poisson: 0.4 }
+    }
+}
+impl Default for Loading {
+    fn default() -> Self {
+        Self { height: 0.04, fn_ratios: vec![0.0, 0.41, 0.82] }
+    }
+}
+impl Default for MeshSpec {
+    fn default() -> Self {
+        Self { h: 0.001, element: "qua4".into(), file: None, interface: "interface".into(), top: "top".into(), block: "block".into() }
+    }
+}
+impl Default for Report {
+    fn default() -> Self {
+        Self { tol: 0.05 }
+    }
+}
+
+/// The FE model of a scene, ready to solve: mesh, materials, constraints, and the DOFs the
+/// loading acts on.
+pub struct SceneModel {
+    pub mesh: Mesh,
+    pub materials: Vec<Material>,
+    pub element_material: Vec<u32>,
+    pub constraints: Constraints,
+    /// Interface nodes sorted by x.
+    pub interface: Vec<usize>,
+    /// Full DOFs where U (tangential, at height H) and V (normal) are prescribed.
+    pub dof_u: usize,
+    pub dof_v: usize,
+    /// Plate rotation DOF (rigid plate), for the tilt angle.
+    pub dof_theta: Option<usize>,
+}
+
+impl SceneModel {
+    pub fn model(&self) -> Model<'_> {
+        Model { mesh: &self.mesh, materials: self.materials.clone(), element_material: self.element_material.clone() }
+    }
+}
+
+impl Scene {
+    /// Reads a scene file; unknown keys and bad values are errors naming the file and line.
+    pub fn from_file(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let scene: Scene = toml::from_str(&text).map_err(|e| {
+            let line = e.span().map(|s| text[..s.start].lines().count().max(1)).unwrap_or(0);
+            Error::Parse { file: path.to_path_buf(), at: format!("line {line}"), msg: e.message().to_string() }
+        })?;
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    pub fn validate(&self) -> Result<()> {
+        let pos = |what: &str, v: f64| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(Error::input(what, format!("{v} must be a positive number"))) };
+        pos("block.length (m)", self.block.length)?;
+        pos("block.thickness (m)", self.block.thickness)?;
+        pos("loading.height (m)", self.loading.height)?;
+        pos("mesh.h (m)", self.mesh.h)?;
+        pos("report.tol", self.report.tol)?;
+        Material::plane_strain(self.block.young, self.block.poisson)?;
+        if self.plate.model == PlateModel::Elastic {
+            Material::plane_strain(self.plate.young, self.plate.poisson)?;
+            pos("plate.thickness (m)", self.plate.thickness)?;
+            if self.loading.height > self.block.thickness + self.plate.thickness || self.loading.height <= self.block.thickness {
+                return Err(Error::input("loading.height", format!("H = {} m must lie on the elastic plate's left side, in ({}, {}] m", self.loading.height, self.block.thickness, self.block.thickness + self.plate.thickness)));
+            }
+        }
+        if self.mesh.h > self.block.thickness {
+            return Err(Error::input("mesh.h", format!("{} m is larger than the block thickness {} m: use at most t", self.mesh.h, self.block.thickness)));
+        }
+        if self.loading.fn_ratios.is_empty() || self.loading.fn_ratios.iter().any(|r| !r.is_finite()) {
+            return Err(Error::input("loading.fn_ratios", "need at least one finite F/N ratio"));
+        }
+        self.element()?;
+        Ok(())
+    }
+
+    pub fn element(&self) -> Result<ElementChoice> {
+        self.mesh.element.parse()
+    }
+
+    /// Builds the structured mesh (or reads the Gmsh one) and the constraints.
+    pub fn build(&self) -> Result<SceneModel> {
+        self.validate()?;
+        let (l, t, hgt) = (self.block.length, self.block.thickness, self.loading.height);
+        let kind = self.element()?.kind;
+        let block_mat = Material::plane_strain(self.block.young, self.block.poisson)?;
+        let nx = even((l / self.mesh.h).round().max(2.0) as usize);
+        let ny = ((t / self.mesh.h).round() as usize).max(1);
+        let (mesh, interface_name, top_name) = match &self.mesh.file {
+            Some(_) => return Err(Error::input("mesh.file", "Gmsh meshes are not supported by this build yet")),
+            None => {
+                let mut m = Rectangle::new(-l / 2.0, l / 2.0, 0.0, t, nx, ny).kind(kind).build()?;
+                m.edge_sets.insert("interface".into(), m.edge_sets["bottom"].clone());
+                m.element_sets.insert("block".into(), m.element_sets["all"].clone());
+                (m, "interface".to_string(), "top".to_string())
+            }
+        };
+        match self.plate.model {
+            PlateModel::Rigid => {
+                let mut c = Constraints::new(mesh.n_nodes());
+                let du = c.add_extra_dof("plate U (tangential displacement at height H)");
+                let dv = c.add_extra_dof("plate V (normal displacement)");
+                let dth = c.add_extra_dof("plate rotation theta");
+                let interface = sorted_by_x(&mesh, mesh.set_nodes(&interface_name)?);
+                for &n in &interface {
+                    c.fix(dof(n, 0));
+                    c.fix(dof(n, 1));
+                }
+                c.fix(du);
+                c.fix(dv);
+                // Small rotation about (0, H): u = U - theta (y - H), v = V + theta x.
+                for n in mesh.set_nodes(&top_name)? {
+                    let [x, y] = mesh.nodes[n];
+                    c.tie(dof(n, 0), &[(du, 1.0), (dth, hgt - y)]);
+                    c.tie(dof(n, 1), &[(dv, 1.0), (dth, x)]);
+                }
+                let n_el = mesh.n_elements();
+                Ok(SceneModel { mesh, materials: vec![block_mat], element_material: vec![0; n_el], constraints: c, interface, dof_u: du, dof_v: dv, dof_theta: Some(dth) })
+            }
+            PlateModel::Elastic => self.build_elastic(mesh, &interface_name, block_mat, nx),
+        }
+    }
+
+    /// Block plus a meshed plate sharing the top nodes; rows of the plate are placed so that
+    /// a node lies exactly at height H on the left side.
+    fn build_elastic(&self, block: Mesh, interface_name: &str, block_mat: Material, nx: usize) -> Result<SceneModel> {
+        if self.mesh.file.is_some() {
+            return Err(Error::input("plate.model", "the elastic plate needs the structured mesh"));
+        }
+        let (l, t, hgt, tp) = (self.block.length, self.block.thickness, self.loading.height, self.plate.thickness);
+        let kind = self.element()?.kind;
+        let row = (t / 2.0).max(self.mesh.h);
+        let n1 = (((hgt - t) / row).round() as usize).max(1);
+        let n2 = ((t + tp - hgt) / row).round() as usize;
+        let mut plate = Rectangle::new(-l / 2.0, l / 2.0, t, hgt, nx, n1).kind(kind).build()?;
+        if n2 > 0 {
+            let upper = Rectangle::new(-l / 2.0, l / 2.0, hgt, t + tp, nx, n2).kind(kind).build()?;
+            plate = merge(&plate, &upper);
+        }
+        let mesh = merge(&block, &plate);
+        let nb = block.n_elements();
+        let element_material: Vec<u32> = (0..mesh.n_elements()).map(|e| u32::from(e >= nb)).collect();
+        let plate_mat = Material::plane_strain(self.plate.young, self.plate.poisson)?;
+        let mut c = Constraints::new(mesh.n_nodes());
+        let interface = sorted_by_x(&mesh, mesh.set_nodes(interface_name)?);
+        for &n in &interface {
+            c.fix(dof(n, 0));
+            c.fix(dof(n, 1));
+        }
+        let find = |x: f64, y: f64| -> Result<usize> {
+            mesh.nodes
+                .iter()
+                .position(|p| (p[0] - x).abs() < 1e-9 * l && (p[1] - y).abs() < 1e-9 * l)
+                .ok_or_else(|| Error::Mesh(format!("no plate node at ({x}, {y}) m")))
+        };
+        let du = dof(find(-l / 2.0, hgt)?, 0);
+        let dv = dof(find(0.0, t + tp)?, 1);
+        c.fix(du);
+        c.fix(dv);
+        Ok(SceneModel { mesh, materials: vec![block_mat, plate_mat], element_material, constraints: c, interface, dof_u: du, dof_v: dv, dof_theta: None })
+    }
+}
+
+fn even(n: usize) -> usize {
+    n + n % 2
+}
+
+fn cmp_x(m: &Mesh, a: usize, b: usize) -> std::cmp::Ordering {
+    m.nodes[a][0].total_cmp(&m.nodes[b][0])
+}
+
+fn sorted_by_x(m: &Mesh, mut v: Vec<usize>) -> Vec<usize> {
+    v.sort_by(|&a, &b| cmp_x(m, a, b));
+    v
+}
+
+/// Union of two meshes whose coincident nodes (to 1e-12 of the size) are merged; sets of
+/// the first mesh are kept.
+fn merge(a: &Mesh, b: &Mesh) -> Mesh {
+    let scale = a.nodes.iter().chain(&b.nodes).fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    let key = |p: &[f64; 2]| ((p[0] / scale * 1e12).round() as i64, (p[1] / scale * 1e12).round() as i64);
+    let mut index: std::collections::HashMap<(i64, i64), usize> = a.nodes.iter().enumerate().map(|(i, p)| (key(p), i)).collect();
+    let mut nodes = a.nodes.clone();
+    let map: Vec<usize> = b
+        .nodes
+        .iter()
+        .map(|p| {
+            *index.entry(key(p)).or_insert_with(|| {
+                nodes.push(*p);
+                nodes.len() - 1
+            })
+        })
+        .collect();
+    let mut m = Mesh::new(nodes);
+    for (k, v) in a.elements() {
+        m.push_element(k, v);
+    }
+    for (k, v) in b.elements() {
+        let v: Vec<usize> = v.iter().map(|&n| map[n]).collect();
+        m.push_element(k, &v);
+    }
+    m.node_sets = a.node_sets.clone();
+    m.edge_sets = a.edge_sets.clone();
+    m.element_sets = a.element_sets.clone();
+    m
+}
