@@ -22,8 +22,8 @@ pub enum Error {
     Singular { detail: String },
 
     /// The solve went through but its residual says the answer cannot be trusted.
-    #[error("untrustworthy solution: relative residual {residual:.3e} exceeds {limit:.1e}; {hint}")]
-    Untrustworthy { residual: f64, limit: f64, hint: String },
+    #[error("untrustworthy solution: {detail}; {hint}")]
+    Untrustworthy { detail: String, hint: String },
 
     #[error("{}: {source}", path.display())]
     Io { path: PathBuf, source: std::io::Error },

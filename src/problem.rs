@@ -89,6 +89,15 @@ pub fn solve(model: &Model, constraints: &Constraints, cases: &[LoadCase], opts:
             return Err(Error::Singular { detail: format!("the solution contains an unresisted {what} (condition estimate {condition:.1e}); prescribe enough displacements to stop both translations and the rotation of every separate body") });
         }
     }
+    let expected = condition * f64::EPSILON;
+    if !(expected <= opts.max_error_estimate) {
+        let detail = format!(
+            "the stiffness matrix is ill-conditioned (condition estimate {condition:.1e}): about {:.0} of 16 digits are lost, so results can be wrong by {expected:.1e} relative (limit {:.1e})",
+            condition.log10(),
+            opts.max_error_estimate
+        );
+        return Err(Error::Untrustworthy { detail, hint: hint.to_string() });
+    }
     let (x, mut report) = factor.solve_checked(&asm.pattern, &values, &rhs[..nc * n], nc, hint)?;
     report.condition_estimate = condition;
     let u = cases.iter().enumerate().map(|(c, case)| red.expand(&x[c * n..(c + 1) * n], &case.prescribed)).collect();

@@ -25,8 +25,11 @@ pub enum Ordering {
 #[derive(Debug, Clone)]
 pub struct SolverOptions {
     pub ordering: Ordering,
-    /// Largest accepted relative residual ||K x - f|| / ||f|| after refinement.
+    /// Largest accepted componentwise backward error after refinement.
     pub residual_limit: f64,
+    /// Largest accepted forward-error estimate, condition estimate x machine epsilon: the
+    /// relative accuracy the solution can be expected to have.
+    pub max_error_estimate: f64,
     /// Refinement steps tried (each one solve with the same factor) when the residual exceeds `refine_above`.
     pub max_refinement: usize,
     pub refine_above: f64,
@@ -38,16 +41,16 @@ pub struct SolverOptions {
 
 impl Default for SolverOptions {
     fn default() -> Self {
-        Self { ordering: Ordering::Amd, residual_limit: 1e-8, max_refinement: 2, refine_above: 1e-12, threads: 1, supernodal: None }
+        Self { ordering: Ordering::Amd, residual_limit: 1e-8, max_error_estimate: 1e-4, max_refinement: 2, refine_above: 1e-12, threads: 1, supernodal: None }
     }
 }
 
 /// What a solve achieved, for reports and stability studies.
 #[derive(Debug, Clone, Default)]
 pub struct SolveReport {
-    /// Relative residual per right-hand side before refinement.
+    /// Componentwise backward error max_i |f - K x|_i / (|K||x| + |f|)_i per right-hand side, before refinement.
     pub residual_initial: Vec<f64>,
-    /// Relative residual per right-hand side after refinement.
+    /// The same after refinement.
     pub residual: Vec<f64>,
     pub refinement_steps: usize,
     /// Lower bound of the 1-norm condition number of the reduced matrix (log10 = digits lost).
@@ -142,24 +145,33 @@ impl Factor<'_> {
         let mut x = f.to_vec();
         self.solve_in_place(&mut x, k);
         let mut kx = vec![0.0; n * k];
-        let residuals = |x: &[f64], kx: &mut [f64]| -> (Vec<f64>, Vec<f64>) {
+        let mut akx = vec![0.0; n * k];
+        let abs_values: Vec<f64> = values.iter().map(|v| v.abs()).collect();
+        // Componentwise (Oettli-Prager) backward error max_i |f - K x|_i / (|K| |x| + |f|)_i:
+        // unlike ||r|| / ||f|| it is not hidden by a few very stiff rows (a stiff plate).
+        let residuals = |x: &[f64], kx: &mut [f64], akx: &mut [f64]| -> (Vec<f64>, Vec<f64>) {
             pattern.sym_mul(values, x, kx, k);
+            let ax: Vec<f64> = x.iter().map(|v| v.abs()).collect();
+            pattern.sym_mul(&abs_values, &ax, akx, k);
             let r: Vec<f64> = f.iter().zip(kx.iter()).map(|(a, b)| a - b).collect();
             let rel = (0..k)
                 .map(|c| {
-                    let fc = norm(&f[c * n..(c + 1) * n]);
-                    let rc = norm(&r[c * n..(c + 1) * n]);
-                    if fc > 0.0 { rc / fc } else if rc == 0.0 { 0.0 } else { f64::INFINITY }
+                    (c * n..(c + 1) * n)
+                        .map(|i| {
+                            let den = akx[i] + f[i].abs();
+                            if den > 0.0 { r[i].abs() / den } else if r[i] == 0.0 { 0.0 } else { f64::INFINITY }
+                        })
+                        .fold(0.0, f64::max)
                 })
                 .collect();
             (r, rel)
         };
-        let (mut r, rel0) = residuals(&x, &mut kx);
+        let (mut r, rel0) = residuals(&x, &mut kx, &mut akx);
         let mut report = SolveReport { residual_initial: rel0.clone(), residual: rel0, ..Default::default() };
         while report.refinement_steps < opts.max_refinement && report.residual.iter().any(|&v| !(v <= opts.refine_above)) {
             self.solve_in_place(&mut r, k);
             let trial: Vec<f64> = x.iter().zip(&r).map(|(a, b)| a + b).collect();
-            let (r2, rel2) = residuals(&trial, &mut kx);
+            let (r2, rel2) = residuals(&trial, &mut kx, &mut akx);
             report.refinement_steps += 1;
             if rel2.iter().zip(&report.residual).all(|(new, old)| new <= old) {
                 x = trial;
@@ -171,7 +183,8 @@ impl Factor<'_> {
         }
         let worst = report.residual.iter().cloned().fold(0.0, f64::max);
         if !(worst <= opts.residual_limit) || x.iter().any(|v| !v.is_finite()) {
-            return Err(Error::Untrustworthy { residual: worst, limit: opts.residual_limit, hint: hint.to_string() });
+            let detail = format!("componentwise backward error {worst:.2e} exceeds {:.1e} after {} refinement steps", opts.residual_limit, report.refinement_steps);
+            return Err(Error::Untrustworthy { detail, hint: hint.to_string() });
         }
         Ok((x, report))
     }

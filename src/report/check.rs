@@ -78,7 +78,7 @@ pub fn table(res: &CheckResult) -> String {
     let r = &res.solve_report;
     let _ = writeln!(
         s,
-        "solver: relative residual {:.1e} (after {} refinement steps), condition estimate {:.1e}; time {:.1} ms (pattern {:.1}, assembly {:.1}, symbolic {:.1}, numeric {:.1}, solve {:.1})",
+        "solver: componentwise backward error {:.1e} (after {} refinement steps), condition estimate {:.1e}; time {:.1} ms (pattern {:.1}, assembly {:.1}, symbolic {:.1}, numeric {:.1}, solve {:.1})",
         r.residual.iter().cloned().fold(0.0, f64::max),
         r.refinement_steps,
         r.condition_estimate,
