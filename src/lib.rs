@@ -10,5 +10,7 @@ pub mod error;
 pub mod material;
 pub mod mesh;
 pub mod mesher;
+pub mod precursors;
+pub mod report;
 
 pub use error::{Error, Result};

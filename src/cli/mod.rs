@@ -1,6 +1,8 @@
 //! Subcommands, one file each. Each parses its flags into library types, calls the library
 //! and prints; errors bubble up to `main` as one message and exit code 2.
 
+mod precursors;
+
 use clap::{Parser, Subcommand};
 
 #[derive(Parser, Debug)]
@@ -12,8 +14,12 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
+    /// Precursors to sliding (Scheibert & Dysthe model): event table, fig. 4, or the n(r, g) map (fig. 5).
+    Precursors(precursors::Args),
 }
 
 pub fn run(cli: Cli) -> tribofe::Result<()> {
-    match cli.command {}
+    match cli.command {
+        Command::Precursors(args) => precursors::run(args),
+    }
 }
