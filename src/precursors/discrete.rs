@@ -19,6 +19,8 @@
 //! relaxed shear r + 2 g F_i x below eq. (Fic)), and so do we, so that the paper's linear
 //! fields reproduce eqs. (xi), (Fi*) and (Fi+1) up to the discretisation.
 //! An event whose slipped region contains the leading-edge cell is stick-slip.
+//! Shear is taken positive in the loading direction: back-slip (sigma_k < -mu p_k) is not
+//! modelled.
 
 use super::Params;
 use crate::{Error, Result};
@@ -51,6 +53,16 @@ pub fn uniform_cells(n: usize) -> (Vec<f64>, Vec<f64>) {
     ((0..n).map(|k| -0.5 + (k as f64 + 0.5) * h).collect(), vec![h; n])
 }
 
+/// `n` (>= 2) equally spaced nodes from -1/2 to 1/2 with tributary widths (half at the two ends):
+/// the layout of FE interface nodes. A node sits on the trailing edge, where the paper's
+/// threshold is first reached, so the linear fields nucleate exactly as in eq. (F1).
+pub fn tributary_nodes(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let h = 1.0 / (n as f64 - 1.0);
+    let x = (0..n).map(|k| if k + 1 == n { 0.5 } else { -0.5 + k as f64 * h }).collect();
+    let w = (0..n).map(|k| if k == 0 || k + 1 == n { h / 2.0 } else { h }).collect();
+    (x, w)
+}
+
 impl Interface {
     /// The paper's fields on the given cells: p = 1/mu_s + (2g/mu_d) F x with
     /// mu_d = r mu_s, uniform shear increment s = 1 and no initial shear.
@@ -68,12 +80,6 @@ impl Interface {
             mu_s,
             mu_d,
         }
-    }
-
-    /// The paper's fields on `n` uniform cells, with mu_s = 1 (only r and g matter).
-    pub fn linear_uniform(p: &Params, n: usize) -> Interface {
-        let (x, w) = uniform_cells(n);
-        Interface::linear(p, 1.0, x, w)
     }
 
     pub fn validate(&self) -> Result<()> {

@@ -43,10 +43,11 @@ pub struct UnitFields {
 const TAU_SUM_TOL: f64 = 0.05;
 
 impl UnitFields {
-    /// The paper's linear fields on `n` uniform cells (p_per_n = 1, p_per_f = 12 (H/L) x/L,
-    /// tau_per_f = 1, tau_per_n = 0): a stand-in for the FE scene and a test fixture.
+    /// The paper's linear fields on `n` equally spaced nodes laid out like FE interface
+    /// nodes (p_per_n = 1, p_per_f = 12 (H/L) x/L, tau_per_f = 1, tau_per_n = 0): a
+    /// stand-in for the FE scene and a test fixture.
     pub fn linear(n: usize, h_over_l: f64, t_over_l: f64) -> UnitFields {
-        let (x, w) = discrete::uniform_cells(n);
+        let (x, w) = discrete::tributary_nodes(n);
         UnitFields {
             p_per_f: x.iter().map(|&xk| 12.0 * h_over_l * xk).collect(),
             p_per_n: vec![1.0; n],
