@@ -75,6 +75,7 @@ impl UnitFields {
             }
         }
         let tau_sum: f64 = self.w_over_l.iter().zip(&self.tau_per_f).map(|(w, t)| w * t).sum();
+        // Negated so that a NaN sum is rejected too.
         if !((tau_sum - 1.0).abs() <= TAU_SUM_TOL) {
             return Err(Error::input(
                 "FE unit fields",

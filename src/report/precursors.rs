@@ -240,6 +240,7 @@ pub fn fe_extents_svg(c: &Comparison) -> Result<String> {
         chart
             .configure_mesh()
             .x_desc("precursor index i")
+            .x_label_formatter(&|v| format!("{v:.0}"))
             .y_desc("arrest position x_i / L  (dimensionless; trailing edge -1/2)")
             .draw()?;
         chart
