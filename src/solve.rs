@@ -189,7 +189,3 @@ impl Factor<'_> {
         Ok((x, report))
     }
 }
-
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|a| a * a).sum::<f64>().sqrt()
-}

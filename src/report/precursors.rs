@@ -1,0 +1,331 @@
+//! Precursor outputs: CSV tables and SVG figures (the paper's figs. 4 and 5, and the
+//! FE-fed comparison). All quantities are the paper's dimensionless ones: positions in units
+//! of L, forces in units of mu_s N.
+
+use super::{finite, write_atomic};
+use crate::precursors::discrete::{CellEvent, Run};
+use crate::precursors::fe::{self, Comparison, SweepRow, UnitFields};
+use crate::precursors::{loading_curve, Event, MapPoint, Params};
+use crate::{Error, Result};
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+const FONT: &str = "sans-serif";
+
+fn plot_err(figure: &str) -> impl Fn(Box<dyn std::error::Error>) -> Error + '_ {
+    move |e| Error::io(figure, std::io::Error::other(e.to_string()))
+}
+
+/// Runs a plotting closure on an in-memory SVG of the given size.
+fn render(figure: &str, size: (u32, u32), draw: impl FnOnce(&DrawingArea<SVGBackend, plotters::coord::Shift>) -> std::result::Result<(), Box<dyn std::error::Error>>) -> Result<String> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| plot_err(figure)(e.into()))?;
+        draw(&root).map_err(plot_err(figure))?;
+        root.present().map_err(|e| plot_err(figure)(e.into()))?;
+    }
+    Ok(svg)
+}
+
+fn opt<T: std::fmt::Display>(v: Option<T>) -> String {
+    v.map_or(String::new(), |v| v.to_string())
+}
+
+/// `events.csv`: header `i,F,Fc,x,Fstar,stick_slip`, stick_slip 0 for a precursor, 1 after.
+pub fn events_csv(events: &[Event]) -> Result<String> {
+    let mut s = String::from("i,F,Fc,x,Fstar,stick_slip\n");
+    for e in events {
+        let (f, fc, x, fs) = (finite("F", e.f)?, finite("Fc", e.fc)?, finite("x", e.x)?, finite("Fstar", e.fstar)?);
+        let _ = writeln!(s, "{},{f},{fc},{x},{fs},{}", e.i, u8::from(e.stick_slip));
+    }
+    Ok(s)
+}
+
+/// `loading.csv`: the vertices of the loading curve F(F^c), header `Fc,F`.
+pub fn loading_csv(curve: &[(f64, f64)]) -> Result<String> {
+    let mut s = String::from("Fc,F\n");
+    for &(fc, f) in curve {
+        let _ = writeln!(s, "{},{}", finite("Fc", fc)?, finite("F", f)?);
+    }
+    Ok(s)
+}
+
+/// The paper's fig. 4: loading curve F(F^c) (red), ideal elastic line F = F^c (black),
+/// F_max (dashed) and each precursor's extent [-1/2, x_i] at its force F_i (blue, top axis).
+pub fn fig4_svg(p: &Params, events: &[Event]) -> Result<String> {
+    let curve = loading_curve(events);
+    for &(fc, f) in &curve {
+        finite("loading curve", fc)?;
+        finite("loading curve", f)?;
+    }
+    let fc_top = curve.iter().fold(0.0_f64, |m, c| m.max(c.0)).max(1.0) * 1.02;
+    let f_top = curve.iter().fold(p.f_max(), |m, c| m.max(c.1)) * 1.08;
+    let f_max = p.f_max();
+    render("fig4.svg", (900, 650), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(format!("Loading curve and precursors, r = {}, g = {} (paper fig. 4)", p.r(), p.g()), (FONT, 20))
+            .margin(15)
+            .x_label_area_size(45)
+            .top_x_label_area_size(45)
+            .y_label_area_size(65)
+            .build_cartesian_2d(0.0..fc_top, 0.0..f_top)?
+            .set_secondary_coord(-0.5..0.5, 0.0..f_top);
+        chart
+            .configure_mesh()
+            .x_desc("elastic force F^c / (mu_s N)  (dimensionless)")
+            .y_desc("friction force F / (mu_s N)  (dimensionless)")
+            .draw()?;
+        chart
+            .configure_secondary_axes()
+            .x_desc("blue: precursor extent along the contact, x / L  (dimensionless)")
+            .draw()?;
+        let m = fc_top.min(f_top);
+        chart
+            .draw_series(LineSeries::new([(0.0, 0.0), (m, m)], BLACK.stroke_width(1)))?
+            .label("ideal elastic loading F = F^c")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLACK));
+        chart
+            .draw_series(LineSeries::new(curve.iter().copied(), RED.stroke_width(2)))?
+            .label("loading curve F(F^c)")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(2)));
+        chart
+            .draw_series(DashedLineSeries::new([(0.0, f_max), (fc_top, f_max)], 6, 4, BLACK.mix(0.6).stroke_width(1)))?
+            .label(format!("F_max = {f_max:.4}"))
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLACK.mix(0.6)));
+        let blue = BLUE.stroke_width(2);
+        chart
+            .draw_secondary_series(events.iter().filter(|e| !e.stick_slip).map(|e| PathElement::new([(-0.5, e.f), (e.x, e.f)], blue)))?
+            .label("precursor i: from x = -1/2 to x_i, at height F_i")
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], blue));
+        chart.draw_secondary_series(events.iter().filter(|e| !e.stick_slip).map(|e| Circle::new((e.x, e.f), 3, BLUE.filled())))?;
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT, 14))
+            .draw()?;
+        Ok(())
+    })
+}
+
+fn ensure_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))
+}
+
+/// Writes `events.csv`, `loading.csv` and `fig4.svg` into `dir` (created if needed);
+/// returns the paths written.
+pub fn write_events(dir: &Path, p: &Params, events: &[Event]) -> Result<Vec<PathBuf>> {
+    ensure_dir(dir)?;
+    let files = [
+        ("events.csv", events_csv(events)?),
+        ("loading.csv", loading_csv(&loading_curve(events))?),
+        ("fig4.svg", fig4_svg(p, events)?),
+    ];
+    write_all(dir, &files)
+}
+
+fn write_all(dir: &Path, files: &[(&str, String)]) -> Result<Vec<PathBuf>> {
+    files
+        .iter()
+        .map(|(name, body)| {
+            let path = dir.join(name);
+            write_atomic(&path, body.as_bytes()).map(|_| path)
+        })
+        .collect()
+}
+
+/// `n_map.csv`: header `r,g,n`.
+pub fn n_map_csv(map: &[MapPoint]) -> Result<String> {
+    let mut s = String::from("r,g,n\n");
+    for m in map {
+        let _ = writeln!(s, "{},{},{}", finite("r", m.r)?, finite("g", m.g)?, m.n);
+    }
+    Ok(s)
+}
+
+/// Viridis, linearly interpolated between five anchors; `c` in [0, 1].
+fn viridis(c: f64) -> RGBColor {
+    const A: [(f64, f64, f64); 5] = [(68., 1., 84.), (59., 82., 139.), (33., 145., 140.), (94., 201., 98.), (253., 231., 37.)];
+    let t = c.clamp(0.0, 1.0) * 4.0;
+    let k = (t.floor() as usize).min(3);
+    let u = t - k as f64;
+    let mix = |a: f64, b: f64| (a + (b - a) * u).round() as u8;
+    RGBColor(mix(A[k].0, A[k + 1].0), mix(A[k].1, A[k + 1].1), mix(A[k].2, A[k + 1].2))
+}
+
+/// The paper's fig. 5: n(r, g) as a colour map (logarithmic in 1 + n, since n runs from 0
+/// to thousands near (1, 1)), with a colour key and the no-precursor line g = (1-r)/2.
+pub fn fig5_svg(map: &[MapPoint], resolution: usize) -> Result<String> {
+    let n_max = map.iter().map(|m| m.n).max().unwrap_or(0);
+    let colour = |n: usize| viridis(if n_max == 0 { 0.0 } else { (n as f64).ln_1p() / (n_max as f64).ln_1p() });
+    let half = 0.5 / resolution as f64;
+    render("fig5.svg", (900, 720), |root| {
+        let (main, key) = root.split_horizontally(760);
+        let mut chart = ChartBuilder::on(&main)
+            .caption("Number of precursors n(r, g) (paper fig. 5)", (FONT, 20))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0..1.0, 0.0..1.0)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("r = mu_d / mu_s  (dimensionless)")
+            .y_desc("g = 6 mu_d H / L  (dimensionless)")
+            .draw()?;
+        chart.draw_series(map.iter().map(|m| Rectangle::new([(m.r - half, m.g - half), (m.r + half, m.g + half)], colour(m.n).filled())))?;
+        chart
+            .draw_series(LineSeries::new([(0.0, 0.5), (1.0, 0.0)], RED.stroke_width(3)))?
+            .label("g = (1 - r)/2: no precursor below")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(3)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT, 14))
+            .draw()?;
+        key.draw(&Text::new("n (log colour scale)", (0, 40), (FONT, 14)))?;
+        let mut shown: Vec<usize> = [0, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000]
+            .into_iter()
+            .filter(|&v| v < n_max)
+            .collect();
+        shown.push(n_max);
+        for (row, &v) in shown.iter().enumerate() {
+            let y = 60 + 28 * row as i32;
+            key.draw(&Rectangle::new([(10, y), (40, y + 22)], colour(v).filled()))?;
+            key.draw(&Text::new(if v == n_max { format!("{v} (max)") } else { v.to_string() }, (48, y + 5), (FONT, 14)))?;
+        }
+        Ok(())
+    })
+}
+
+/// Writes `n_map.csv` and `fig5.svg` into `dir` (created if needed); returns the paths.
+pub fn write_map(dir: &Path, map: &[MapPoint], resolution: usize) -> Result<Vec<PathBuf>> {
+    ensure_dir(dir)?;
+    write_all(dir, &[("n_map.csv", n_map_csv(map)?), ("fig5.svg", fig5_svg(map, resolution)?)])
+}
+
+/// Precursor extents x_i against event index: the paper's analytic iteration vs the
+/// discrete model fed with FE fields.
+pub fn fe_extents_svg(c: &Comparison) -> Result<String> {
+    let analytic: Vec<(f64, f64)> = c.analytic.iter().filter(|e| !e.stick_slip).map(|e| (e.i as f64, e.x)).collect();
+    let fed: Vec<(f64, f64)> = c.fe.precursors().iter().map(|e| (e.i as f64, e.x)).collect();
+    for &(_, x) in analytic.iter().chain(&fed) {
+        finite("precursor extent", x)?;
+    }
+    let i_top = analytic.len().max(fed.len()).max(1) as f64 + 0.5;
+    let n_text = |n: Option<usize>| n.map_or("not reached".to_string(), |n| n.to_string());
+    render("fe_extents.svg", (900, 600), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                format!(
+                    "Precursor extents, r = {}, g = {}, H/L = {}, t/L = {}: analytic n = {}, FE-fed n = {}",
+                    c.params.r(),
+                    c.params.g(),
+                    c.h_over_l,
+                    c.t_over_l,
+                    n_text(c.analytic.iter().position(|e| e.stick_slip)),
+                    n_text(c.fe.n_precursors())
+                ),
+                (FONT, 16),
+            )
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(65)
+            .build_cartesian_2d(0.5..i_top, -0.5..0.5)?;
+        chart
+            .configure_mesh()
+            .x_desc("precursor index i")
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_desc("arrest position x_i / L  (dimensionless; trailing edge -1/2)")
+            .draw()?;
+        chart
+            .draw_series(LineSeries::new(analytic.iter().copied(), BLUE.stroke_width(2)).point_size(4))?
+            .label("analytic (paper's iteration)")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+        chart
+            .draw_series(LineSeries::new(fed.iter().copied(), RED.stroke_width(2)))?
+            .label("discrete model on FE fields")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(2)));
+        chart.draw_series(fed.iter().map(|&(i, x)| Cross::new((i, x), 5, RED.stroke_width(2))))?;
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT, 14))
+            .draw()?;
+        Ok(())
+    })
+}
+
+fn run_csv_rows(s: &mut String, model: &str, run: &Run) -> Result<()> {
+    for e in &run.events {
+        let CellEvent { i, f, fc, x_nucleation, x, fstar, stick_slip, .. } = *e;
+        let _ = writeln!(
+            s,
+            "{model},{i},{},{},{},{},{},{}",
+            finite("F", f)?,
+            finite("Fc", fc)?,
+            finite("x_nucleation", x_nucleation)?,
+            finite("x", x)?,
+            finite("Fstar", fstar)?,
+            u8::from(stick_slip)
+        );
+    }
+    Ok(())
+}
+
+/// Both discrete runs of a comparison, long format:
+/// `model,i,F,Fc,x_nucleation,x,Fstar,stick_slip` with model `fe` or `linear`.
+pub fn comparison_csv(c: &Comparison) -> Result<String> {
+    let mut s = String::from("model,i,F,Fc,x_nucleation,x,Fstar,stick_slip\n");
+    run_csv_rows(&mut s, "fe", &c.fe)?;
+    run_csv_rows(&mut s, "linear", &c.linear)?;
+    Ok(s)
+}
+
+/// Writes `fe_events.csv` and `fe_extents.svg` for a comparison into `dir` (created if
+/// needed); returns the paths.
+pub fn write_comparison(dir: &Path, c: &Comparison) -> Result<Vec<PathBuf>> {
+    ensure_dir(dir)?;
+    write_all(dir, &[("fe_events.csv", comparison_csv(c)?), ("fe_extents.svg", fe_extents_svg(c)?)])
+}
+
+/// Runs [`fe::sweep`] and writes it to `path` as CSV with header
+/// `H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length`
+/// (forces in units of mu_s N, lengths in units of L; an empty n or Fmax field means the
+/// run did not reach stick-slip within `n_events`).
+pub fn sweep_table(
+    path: &Path,
+    h_over_l: &[f64],
+    t_over_l: &[f64],
+    r: f64,
+    g: f64,
+    n_events: usize,
+    fields: impl FnMut(f64, f64) -> Result<UnitFields>,
+) -> Result<Vec<SweepRow>> {
+    let rows = fe::sweep(h_over_l, t_over_l, r, g, n_events, fields)?;
+    let mut s = String::from("H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length\n");
+    for w in &rows {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{}",
+            finite("H/L", w.h_over_l)?,
+            finite("t/L", w.t_over_l)?,
+            opt(w.n_fe),
+            opt(w.n_linear),
+            finite("F1_fe", w.f1_fe)?,
+            finite("F1_linear", w.f1_linear)?,
+            opt(w.f_max_fe.map(|v| finite("Fmax_fe", v)).transpose()?),
+            opt(w.f_max_linear.map(|v| finite("Fmax_linear", v)).transpose()?),
+            finite("max_abs_d_length", w.max_abs_d_length)?
+        );
+    }
+    write_atomic(path, s.as_bytes())?;
+    Ok(rows)
+}
