@@ -4,7 +4,7 @@
 //! p/(N/L) = 1 + 12 (F/N)(H/L)(x/L) and tau/(N/L) = F/N.
 
 use crate::error::{Error, Result};
-use crate::problem::{solve, LoadCase, Solution, Timings};
+use crate::problem::{solve, LoadCase, Timings};
 use crate::recovery::{elements_touching, nodal_stresses};
 use crate::scene::{PlateModel, Scene, SceneModel};
 use crate::solve::{SolveReport, SolverOptions};
@@ -31,6 +31,10 @@ pub struct CaseResult {
     pub f: f64,
     /// Plate tilt, rad (positive counter-clockwise).
     pub tilt: f64,
+    /// The prescribed plate displacements that produce this case: U (tangential, at height H)
+    /// and V (normal), m.
+    pub plate_u: f64,
+    pub plate_v: f64,
     pub x_over_l: Vec<f64>,
     /// From the consistent nodal reactions (default).
     pub p: Vec<f64>,
@@ -176,9 +180,9 @@ pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneMod
             balance_n: (sum_ry - n).abs() / n,
             balance_f: (sum_rx + f).abs() / n,
             balance_moment: (moment - f * hgt).abs() / (n * hgt),
-            ..metrics(&x_over_l, &p, &tau, &p_model, &tau_model, slope_model, f / n, l, t, scene.report.tol)
+            ..metrics(&x_over_l, &p, &tau, &p_model, &tau_model, slope_model, l, t, scene.report.tol)
         };
-        results.push(CaseResult { fn_ratio: ratio, n, f, tilt, x_over_l: x_over_l.clone(), p, tau, p_extrap, tau_extrap, p_model, tau_model, metrics });
+        results.push(CaseResult { fn_ratio: ratio, n, f, tilt, plate_u: b * d, plate_v: -a * d, x_over_l: x_over_l.clone(), p, tau, p_extrap, tau_extrap, p_model, tau_model, metrics });
         displacements.push(u);
     }
     let res = CheckResult {
@@ -193,12 +197,7 @@ pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneMod
         solve_report: sol.report.clone(),
         displacements,
     };
-    drop(sol_keep(sol));
     Ok((res, sm))
-}
-
-fn sol_keep(s: Solution) -> Solution {
-    s
 }
 
 /// Rotation of an elastic plate from the vertical displacements of its top corners, rad.
@@ -226,7 +225,7 @@ fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn metrics(x: &[f64], p: &[f64], tau: &[f64], pm: &[f64], tm: &[f64], slope_model: f64, fn_ratio: f64, l: f64, t: f64, tol: f64) -> Metrics {
+fn metrics(x: &[f64], p: &[f64], tau: &[f64], pm: &[f64], tm: &[f64], slope_model: f64, l: f64, t: f64, tol: f64) -> Metrics {
     let interior: Vec<usize> = (0..x.len()).filter(|&i| x[i].abs() * l < l / 2.0 - 10.0 * t).collect();
     let (sx, sy, sxx, sxy) = interior.iter().fold((0.0, 0.0, 0.0, 0.0), |(a, b, c, d), &i| (a + x[i], b + p[i], c + x[i] * x[i], d + x[i] * p[i]));
     let m = interior.len() as f64;
@@ -243,7 +242,6 @@ fn metrics(x: &[f64], p: &[f64], tau: &[f64], pm: &[f64], tm: &[f64], slope_mode
         let w = half.iter().filter(|&&i| (v[i] - model[i]).abs() > tol * model[i].abs()).map(|&i| (x[i] - end).abs()).fold(0.0, f64::max);
         Some(w * l / t)
     };
-    let _ = fn_ratio;
     Metrics {
         slope_interior: slope,
         slope_model,

@@ -150,7 +150,7 @@ impl Scene {
     pub fn from_file(path: &Path) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
         let scene: Scene = toml::from_str(&text).map_err(|e| {
-            let line = e.span().map(|s| text[..s.start].lines().count().max(1)).unwrap_or(0);
+            let line = e.span().map_or(0, |s| text[..s.start].matches('\n').count() + 1);
             Error::Parse { file: path.to_path_buf(), at: format!("line {line}"), msg: e.message().to_string() }
         })?;
         scene.validate()?;
