@@ -4,23 +4,11 @@
 //! p/(N/L) = 1 + 12 (F/N)(H/L)(x/L) and tau/(N/L) = F/N.
 
 use crate::error::{Error, Result};
+use crate::precursors::fe::UnitFields;
 use crate::problem::{solve, LoadCase, Timings};
 use crate::recovery::{elements_touching, nodal_stresses};
 use crate::scene::{PlateModel, Scene, SceneModel};
 use crate::solve::{SolveReport, SolverOptions};
-
-/// Interface fields of the two unit cases, per unit N and per unit F (the input of the
-/// FE-fed precursor model). Pressures and shears are divided by (force / L).
-#[derive(Debug, Clone)]
-pub struct UnitProfiles {
-    pub x_over_l: Vec<f64>,
-    /// Tributary width of each interface node divided by L.
-    pub w_over_l: Vec<f64>,
-    pub p_per_n: Vec<f64>,
-    pub tau_per_n: Vec<f64>,
-    pub p_per_f: Vec<f64>,
-    pub tau_per_f: Vec<f64>,
-}
 
 /// Figures of one load case (all stresses divided by the mean pressure N/L).
 #[derive(Debug, Clone)]
@@ -72,7 +60,8 @@ pub struct Metrics {
 pub struct CheckResult {
     pub scene: Scene,
     pub cases: Vec<CaseResult>,
-    pub unit: UnitProfiles,
+    /// Interface fields per unit N and per unit F (input of the FE-fed precursor model).
+    pub unit: UnitFields,
     pub n_nodes: usize,
     pub n_elements: usize,
     pub n_unknowns: usize,
@@ -142,7 +131,9 @@ pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneMod
     let (a2, b2) = combo(0.0, 1.0);
     let (pn, tn) = profile(a1, b1);
     let (pf, tf) = profile(a2, b2);
-    let unit_profiles = UnitProfiles {
+    let unit_profiles = UnitFields {
+        h_over_l: hgt / l,
+        t_over_l: t / l,
         x_over_l: x_over_l.clone(),
         w_over_l: widths.iter().map(|w| w / l).collect(),
         p_per_n: pn.iter().map(|v| v * l).collect(),

@@ -5,8 +5,9 @@ use std::path::PathBuf;
 use tribofe::scene::{PlateModel, Scene};
 use tribofe::solve::SolverOptions;
 
+/// The scene options shared by every subcommand that runs the paper's scene.
 #[derive(ClapArgs, Debug)]
-pub struct Args {
+pub struct SceneArgs {
     /// Scene file (TOML); every key defaults to the paper's value.
     #[arg(long)]
     pub scene: Option<PathBuf>,
@@ -28,13 +29,19 @@ pub struct Args {
     /// Edge-zone tolerance, relative to the local model value (default 0.05).
     #[arg(long)]
     pub tol: Option<f64>,
+}
+
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// Output directory.
     #[arg(long, default_value = "out/check")]
     pub out: PathBuf,
 }
 
 /// Applies the command-line overrides to the scene (file or defaults).
-pub fn scene(args: &Args) -> tribofe::Result<Scene> {
+pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
     let mut s = match &args.scene {
         Some(p) => Scene::from_file(p)?,
         None => Scene::default(),
@@ -62,7 +69,7 @@ pub fn scene(args: &Args) -> tribofe::Result<Scene> {
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
-    let scene = scene(&args)?;
+    let scene = scene(&args.scene)?;
     let (res, _) = tribofe::check::run(&scene, &SolverOptions::default())?;
     tribofe::report::check::write(&res, &args.out)?;
     print!("{}", tribofe::report::check::table(&res));
