@@ -45,7 +45,9 @@ def write_inp(ny: int, path: str, tie: str):
     lines = ["*HEADING", f"tribofe check peer: {nx} x {ny} CPE4, tie={tie}", "*NODE"]
     for j in range(ny + 1):
         for i in range(nx + 1):
-            lines.append(f"{node_id(i, j, nx)},{-pl.L/2 + i*h:.15g},{j*h:.15g}")
+            # CalculiX reads at most 20 characters per field: keep it short,
+            # and make the centre node exactly x = 0.
+            lines.append(f"{node_id(i, j, nx)},{(i - nx/2)*h:.14g},{j*h:.14g}")
     lines.append(f"{P},0,{pl.H:.15g}")
     lines.append(f"{Q},0,{pl.H:.15g}")
     lines.append("*ELEMENT,TYPE=CPE4,ELSET=EALL")
@@ -75,12 +77,12 @@ def write_inp(ny: int, path: str, tie: str):
         lines.append("*EQUATION")
         for i in range(nx + 1):
             n = node_id(i, ny, nx)
-            lines += ["3", f"{n},1,1.,{P},1,-1.,{Q},1,{-(pl.H - pl.T):.15g}"]
-            x = -pl.L / 2 + i * h
-            if abs(x) < 1e-12 * pl.L:
+            lines += ["3", f"{n},1,1.,{P},1,-1.,{Q},1,{-(pl.H - pl.T):.14g}"]
+            x = (i - nx / 2) * h
+            if x == 0.0:
                 lines += ["2", f"{n},2,1.,{P},2,-1."]
             else:
-                lines += ["3", f"{n},2,1.,{P},2,-1.,{Q},1,{-x:.15g}"]
+                lines += ["3", f"{n},2,1.,{P},2,-1.,{Q},1,{-x:.14g}"]
 
     def bcs(U, V):
         b = ["*BOUNDARY,OP=NEW", "BOTTOM,1,2,0.", f"{P},1,1,{U:.15g}",
@@ -138,7 +140,7 @@ def unit_from_dat(path: str, ny: int, tie: str):
     if len(steps) != 2:
         pl.die(f"{path}: expected 2 steps of output, found {len(steps)}")
     bottom = [node_id(i, 0, nx) for i in range(nx + 1)]
-    unit = {"xb": -pl.L / 2 + h * np.arange(nx + 1), "nx": nx, "ny": ny,
+    unit = {"xb": (np.arange(nx + 1) - nx / 2) * h, "nx": nx, "ny": ny,
             "ndof": 2 * nn}
     for case, st in zip("AB", steps):
         rf = st.get(("forces", "BOTTOM"))

@@ -181,10 +181,13 @@ def main(argv=None):
     except ValueError:
         pl.die(f"--sizes must be comma-separated integers, got {a.sizes!r}")
     skip = {s.strip() for s in a.skip.split(",") if s.strip()}
+    # code@ny skips one code at one size only (e.g. calculix@50).
+    skip_at = {s for s in skip if "@" in s}
+    skip -= skip_at
     # 'skfem' skips both scikit-fem variants.
     if "skfem" in skip:
         skip |= {"skfem-cholmod", "skfem-splu"}
-    bad = skip - set(CODES) - {"skfem"}
+    bad = (skip | {s.split("@")[0] for s in skip_at}) - set(CODES) - {"skfem"}
     if bad:
         pl.die(f"--skip: unknown code(s) {sorted(bad)}; known: {CODES}")
     for ny in sizes:
@@ -225,6 +228,9 @@ def main(argv=None):
                 os.makedirs(work, exist_ok=True)
                 row = dict(code=code, ny=ny, nx=nx, dofs=dofs, wall_s=math.nan,
                            peak_rss_mib=math.nan, max_dp=math.nan, max_dtau=math.nan)
+                if f"{code}@{ny}" in skip_at:
+                    notes.append(f"{code} ny={ny} skipped on request (--skip {code}@{ny})")
+                    continue
                 if code == "calculix" and not a.force_calculix:
                     need = CCX_GIB_PER_MDOF * dofs / 1e6
                     have = mem_available_gib()
@@ -234,12 +240,18 @@ def main(argv=None):
                         print("NOTE: " + msg)
                         notes.append(msg)
                         continue
-                print(f"[{code} ny={ny} nx={nx} dofs={dofs}] ...", end=" ", flush=True)
+                row["load1"] = os.getloadavg()[0]
+                print(f"[{code} ny={ny} nx={nx} dofs={dofs}] load {row['load1']:.1f} ...",
+                      end=" ", flush=True)
                 try:
                     row["wall_s"], row["peak_rss_mib"] = timed(
                         command(code, ny, outdir, work, tribofe),
                         os.path.join(work, "run.log"), a.timeout)
                 except RuntimeError as e:
+                    ccxlog = os.path.join(work, "ccx.log")
+                    if os.path.isfile(ccxlog):
+                        e = RuntimeError(f"{e}\nccx.log tail:\n"
+                                         + "".join(open(ccxlog).readlines()[-6:]))
                     print(f"FAILED: {e}")
                     notes.append(f"{code} ny={ny} failed: {str(e).splitlines()[0]}")
                     rows.append(row)
@@ -276,7 +288,7 @@ def main(argv=None):
 
     cols = ["code", "ny", "nx", "dofs", "wall_s", "peak_rss_mib", "max_dp", "max_dtau"]
     csv_path = os.path.join(a.results, f"peers_{date}.csv")
-    pl.write_csv_atomic(csv_path, cols, rows)
+    pl.write_csv_atomic(csv_path, cols, [{k: r[k] for k in cols} for r in rows])
     title = f"peers {date}, {mach}"
     md = [f"# Peer timings {date}", "",
           f"Machine: {mach}", "",
@@ -288,12 +300,14 @@ def main(argv=None):
           f"<= {TOL:g} (CalculiX: + {CCX_REL:g} x max|p|, its .dat has 7 significant "
           "digits). calculix = write .inp (Python) + ccx (SPOOLES, 1 thread) + parse "
           ".dat (Python) in one shell; skfem-* = one Python process.", "",
-          "| code | ny | nx | DOFs | wall [s] | peak RSS [MiB] | max dp | max dtau |",
-          "|---|---:|---:|---:|---:|---:|---:|---:|"]
+          "load1 = 1-min load average just before the run (2 cores; other users' "
+          "jobs share the machine, so timings at load > 1 are inflated).", "",
+          "| code | ny | nx | DOFs | wall [s] | peak RSS [MiB] | max dp | max dtau | load1 |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         md.append(f"| {r['code']} | {r['ny']} | {r['nx']} | {r['dofs']} | "
                   f"{r['wall_s']:.2f} | {r['peak_rss_mib']:.0f} | "
-                  f"{r['max_dp']:.1e} | {r['max_dtau']:.1e} |")
+                  f"{r['max_dp']:.1e} | {r['max_dtau']:.1e} | {r.get('load1', math.nan):.1f} |")
     md += ["", "Fitted exponents (wall ~ DOFs^k, least squares on log-log):", ""]
     for code in codes:
         r = [x for x in rows if x["code"] == code and not math.isnan(x["wall_s"])]

@@ -60,8 +60,8 @@ def solve_unit_cases(ny: int, solver: str, log=print):
 
     h, nx = pl.mesh_size(ny)
     t0 = time.perf_counter()
-    # Exact node coordinates -L/2 + i h, 0 + j h.
-    xs = -pl.L / 2 + h * np.arange(nx + 1)
+    # Node coordinates (i - nx/2) h, j h: the centre node is exactly x = 0.
+    xs = (np.arange(nx + 1) - nx / 2) * h
     ys = h * np.arange(ny + 1)
     mesh = MeshQuad.init_tensor(xs, ys)
     basis = Basis(mesh, ElementVector(ElementQuad1()), intorder=2)
