@@ -36,6 +36,7 @@ sys.path.insert(0, HERE)
 import peerlib as pl  # noqa: E402
 
 CODES = ["skfem-cholmod", "skfem-splu", "calculix", "tribofe"]
+REF_CODE = "skfem-cholmod"
 TOL = 1e-6           # agreement required in p/(N/L), tau/(N/L)
 # CalculiX's .dat prints 7 significant digits, so its tractions carry a
 # rounding error of ~5e-7 relative; allow that on top of TOL.
@@ -172,6 +173,9 @@ def main(argv=None):
                     help="tribofe binary (default: <repo>/target/release/tribofe)")
     ap.add_argument("--timeout", type=float, default=1800, help="per run [s]")
     ap.add_argument("--results", default=os.path.join(HERE, "results"))
+    ap.add_argument("--append", action="store_true",
+                    help="merge into today's peers_<date>.csv (new rows replace "
+                         "rows of the same code and ny)")
     ap.add_argument("--force-calculix", action="store_true",
                     help="run CalculiX even if MemAvailable looks too small")
     a = ap.parse_args(argv)
@@ -209,6 +213,15 @@ def main(argv=None):
     if not codes:
         pl.die("nothing to run")
 
+    global REF_CODE
+    if ver_ok := subprocess.run([sys.executable, "-c", "import sksparse.cholmod"],
+                                capture_output=True).returncode == 0:
+        REF_CODE = "skfem-cholmod"
+    else:
+        REF_CODE = "skfem-splu"
+        notes.append("scikit-sparse missing: reference is skfem-splu; skfem-cholmod skipped")
+        codes = [c for c in codes if c != "skfem-cholmod"]
+    del ver_ok
     ver = versions(tribofe)
     mach = machine()
     date = dt.date.today().isoformat()
@@ -221,7 +234,17 @@ def main(argv=None):
         for ny in sizes:
             h, nx = pl.mesh_size(ny)
             dofs = 2 * (nx + 1) * (ny + 1)
-            ref_dir = None
+            # The reference is always scikit-fem + CHOLMOD (SuperLU if
+            # scikit-sparse is missing); if it is not timed in this run, it
+            # is still run (untimed) so that every row is checked against it.
+            ref_code = REF_CODE
+            ref_dir = os.path.join(tmproot, f"{ref_code}_ny{ny}")
+            if ref_code not in codes or f"{ref_code}@{ny}" in skip_at:
+                print(f"[{ref_code} ny={ny}] reference run (untimed) ...", flush=True)
+                r = subprocess.run(command(ref_code, ny, ref_dir, tmproot, tribofe),
+                                   capture_output=True, text=True)
+                if r.returncode != 0:
+                    pl.die(f"reference {ref_code} ny={ny} failed:\n{r.stderr[-2000:]}")
             for code in codes:
                 outdir = os.path.join(tmproot, f"{code}_ny{ny}")
                 work = os.path.join(tmproot, f"work_{code}_ny{ny}")
@@ -256,9 +279,7 @@ def main(argv=None):
                     notes.append(f"{code} ny={ny} failed: {str(e).splitlines()[0]}")
                     rows.append(row)
                     continue
-                if ref_dir is None:
-                    ref_dir = outdir
-                    ref_code = code
+                if code == ref_code:
                     row["max_dp"] = row["max_dtau"] = 0.0
                 else:
                     # Reference profiles re-read from the reference code's CSVs.
@@ -288,6 +309,19 @@ def main(argv=None):
 
     cols = ["code", "ny", "nx", "dofs", "wall_s", "peak_rss_mib", "max_dp", "max_dtau"]
     csv_path = os.path.join(a.results, f"peers_{date}.csv")
+    if a.append and os.path.isfile(csv_path):
+        import csv
+        new_keys = {(r["code"], r["ny"]) for r in rows}
+        old = []
+        with open(csv_path, newline="") as f:
+            for r in csv.DictReader(f):
+                r = {k: (r[k] if k == "code" else
+                         int(r[k]) if k in ("ny", "nx", "dofs") else float(r[k]))
+                     for k in cols}
+                if (r["code"], r["ny"]) not in new_keys:
+                    old.append(r)
+        rows = sorted(old + rows, key=lambda r: (r["ny"], CODES.index(r["code"])))
+        codes = [c for c in CODES if any(r["code"] == c for r in rows)]
     pl.write_csv_atomic(csv_path, cols, [{k: r[k] for k in cols} for r in rows])
     title = f"peers {date}, {mach}"
     md = [f"# Peer timings {date}", "",
@@ -296,7 +330,7 @@ def main(argv=None):
           "Strip L/t = 200, square QUA4 elements, 3 load cases (2 unit solves, one "
           "factorisation), interface reactions. Wall time and peak RSS of the whole "
           "process (GNU time). max_dp, max_dtau: max abs difference of p/(N/L), "
-          f"tau/(N/L) vs {codes[0]} on the same mesh (dimensionless); required "
+          f"tau/(N/L) vs {REF_CODE} on the same mesh (dimensionless); required "
           f"<= {TOL:g} (CalculiX: + {CCX_REL:g} x max|p|, its .dat has 7 significant "
           "digits). calculix = write .inp (Python) + ccx (SPOOLES, 1 thread) + parse "
           ".dat (Python) in one shell; skfem-* = one Python process.", "",
@@ -307,7 +341,8 @@ def main(argv=None):
     for r in rows:
         md.append(f"| {r['code']} | {r['ny']} | {r['nx']} | {r['dofs']} | "
                   f"{r['wall_s']:.2f} | {r['peak_rss_mib']:.0f} | "
-                  f"{r['max_dp']:.1e} | {r['max_dtau']:.1e} | {r.get('load1', math.nan):.1f} |")
+                  f"{r['max_dp']:.1e} | {r['max_dtau']:.1e} | "
+                  + (f"{r['load1']:.1f} |" if "load1" in r else "see earlier run |"))
     md += ["", "Fitted exponents (wall ~ DOFs^k, least squares on log-log):", ""]
     for code in codes:
         r = [x for x in rows if x["code"] == code and not math.isnan(x["wall_s"])]
