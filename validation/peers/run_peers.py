@@ -309,9 +309,9 @@ def main(argv=None):
 
     cols = ["code", "ny", "nx", "dofs", "wall_s", "peak_rss_mib", "max_dp", "max_dtau"]
     csv_path = os.path.join(a.results, f"peers_{date}.csv")
+    new_keys = {(r["code"], r["ny"]) for r in rows}
     if a.append and os.path.isfile(csv_path):
         import csv
-        new_keys = {(r["code"], r["ny"]) for r in rows}
         old = []
         with open(csv_path, newline="") as f:
             for r in csv.DictReader(f):
@@ -348,9 +348,21 @@ def main(argv=None):
         r = [x for x in rows if x["code"] == code and not math.isnan(x["wall_s"])]
         k = fit_exponent([x["dofs"] for x in r], [x["wall_s"] for x in r])
         md.append(f"- {code}: k = {k:.2f} ({len(r)} sizes)")
+    md_path = os.path.join(a.results, f"peers_{date}.md")
+    if a.append and os.path.isfile(md_path):
+        # Keep the earlier run's notes (minus those about what this run redid).
+        old_md = open(md_path).read().split("\nNotes:\n", 1)
+        if len(old_md) == 2:
+            for line in old_md[1].splitlines():
+                n = line[2:] if line.startswith("- ") else None
+                if not n or n in notes:
+                    continue
+                m = re.match(r"(\S+) ny=(\d+) ", n)
+                if m and (m.group(1), int(m.group(2))) in new_keys:
+                    continue
+                notes.insert(0, n)
     if notes:
         md += ["", "Notes:", ""] + [f"- {n}" for n in notes]
-    md_path = os.path.join(a.results, f"peers_{date}.md")
     pl.write_text_atomic(md_path, "\n".join(md) + "\n")
     plot(rows, os.path.join(a.results, "scaling.svg"), title)
     print("\n".join(md))
