@@ -38,9 +38,9 @@ pub fn summary_csv(res: &CheckResult) -> Result<String> {
         if let Some(v) = nums.iter().chain(&tail).find(|v| !v.is_finite()) {
             return Err(Error::input("summary", format!("F/N = {}: a figure is {v}; refusing to write it", c.fn_ratio)));
         }
-        let mut cells: Vec<String> = nums.iter().map(|v| format!("{v:.6e}")).collect();
+        let mut cells: Vec<String> = nums.iter().map(|v| format!("{v:.12e}")).collect();
         cells.extend([m.edge_p_t[0], m.edge_p_t[1], m.edge_tau_t[0], m.edge_tau_t[1]].map(opt));
-        cells.extend(tail.iter().map(|v| format!("{v:.6e}")));
+        cells.extend(tail.iter().map(|v| format!("{v:.12e}")));
         s.push_str(&cells.join(","));
         s.push('\n');
     }
@@ -111,12 +111,12 @@ pub fn fig2(res: &CheckResult) -> Result<String> {
         let t = res.scene.block.thickness;
         let ymax = res.cases.iter().flat_map(|c| c.p.iter().chain(&c.tau)).fold(1.0f64, |m, &v| m.max(v));
         let ymin = res.cases.iter().flat_map(|c| c.p.iter().chain(&c.tau)).fold(0.0f64, |m, &v| m.min(v));
-        let main_y = (ymin.max(-0.2) - 0.05)..(ymax.min(2.5) + 0.1);
+        let main_y = (ymin - 0.05)..(ymax + 0.1);
         panel(&top, res, -0.5..0.5, main_y, "Interface stresses (fig. 2 of the paper): open = pressure p/(N/L), full = shear tau/(N/L), dashed = model", 9)?;
         let zone = 10.0 * t / l;
         let zy = (ymin - 0.05)..(ymax + 0.1);
-        panel(&halves[0], res, -0.5..(-0.5 + zone), zy.clone(), "Trailing edge zone (10 t)", 1)?;
-        panel(&halves[1], res, (0.5 - zone)..0.5, zy, "Leading edge zone (10 t)", 1)?;
+        panel(&halves[0], res, (-0.5 - 0.05 * zone)..(-0.5 + zone), zy.clone(), "Trailing edge zone (10 t)", 1)?;
+        panel(&halves[1], res, (0.5 - zone)..(0.5 + 0.05 * zone), zy, "Leading edge zone (10 t)", 1)?;
         root.present().map_err(err)?;
     }
     Ok(svg)
