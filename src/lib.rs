@@ -18,6 +18,7 @@ pub mod loads;
 pub mod problem;
 pub mod scene;
 pub mod check;
+pub mod convergence;
 pub mod precursors;
 pub mod report;
 

@@ -20,7 +20,7 @@ use crate::element::stiffness::ElementChoice;
 use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::mesh::Mesh;
-use crate::mesher::Rectangle;
+use crate::mesher::{Grading, Rectangle};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -68,8 +68,13 @@ pub struct Loading {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct MeshSpec {
-    /// Element size in the block, m (structured mesh).
+    /// Element size in the block, m (structured mesh); with `grading`, the size at both ends.
     pub h: f64,
+    /// Geometric growth ratio of the element length along x from both ends towards the
+    /// middle (dimensionless, >= 1); none = uniform mesh.
+    pub grading: Option<f64>,
+    /// Largest element length along x with grading, m (default: 2 t).
+    pub h_max: Option<f64>,
     /// Element formulation by name (qua4, qua8, qua9, tri3, tri6).
     pub element: String,
     /// A Gmsh mesh of the block instead of the structured one.
@@ -114,7 +119,7 @@ impl Default for Loading {
 }
 impl Default for MeshSpec {
     fn default() -> Self {
-        Self { h: 0.001, element: "qua4".into(), file: None, interface: "interface".into(), top: "top".into(), block: "block".into() }
+        Self { h: 0.001, grading: None, h_max: None, element: "qua4".into(), file: None, interface: "interface".into(), top: "top".into(), block: "block".into() }
     }
 }
 impl Default for Report {
@@ -190,14 +195,13 @@ impl Scene {
     pub fn build(&self) -> Result<SceneModel> {
         self.validate()?;
         let (l, t, hgt) = (self.block.length, self.block.thickness, self.loading.height);
-        let kind = self.element()?.kind;
         let block_mat = Material::plane_strain(self.block.young, self.block.poisson)?;
         let nx = even((l / self.mesh.h).round().max(2.0) as usize);
         let ny = ((t / self.mesh.h).round() as usize).max(1);
         let (mesh, interface_name, top_name) = match &self.mesh.file {
             Some(_) => return Err(Error::input("mesh.file", "Gmsh meshes are not supported by this build yet")),
             None => {
-                let mut m = Rectangle::new(-l / 2.0, l / 2.0, 0.0, t, nx, ny).kind(kind).build()?;
+                let mut m = self.layer(0.0, t, ny, nx)?;
                 m.edge_sets.insert("interface".into(), m.edge_sets["bottom"].clone());
                 m.element_sets.insert("block".into(), m.element_sets["all"].clone());
                 (m, "interface".to_string(), "top".to_string())
@@ -229,6 +233,17 @@ impl Scene {
         }
     }
 
+    /// A layer y0 < y < y1 spanning the block's length, with the block's spacing along x
+    /// (uniform with nx elements, or graded) and ny uniform rows.
+    fn layer(&self, y0: f64, y1: f64, ny: usize, nx: usize) -> Result<Mesh> {
+        let l = self.block.length;
+        let mut r = Rectangle::new(-l / 2.0, l / 2.0, y0, y1, nx, ny).kind(self.element()?.kind);
+        if let Some(ratio) = self.mesh.grading {
+            r = r.graded_x(Grading { end: self.mesh.h, ratio, max: Some(self.mesh.h_max.unwrap_or(2.0 * self.block.thickness)) });
+        }
+        r.build()
+    }
+
     /// Block plus a meshed plate sharing the top nodes; rows of the plate are placed so that
     /// a node lies exactly at height H on the left side.
     fn build_elastic(&self, block: Mesh, interface_name: &str, block_mat: Material, nx: usize) -> Result<SceneModel> {
@@ -236,13 +251,12 @@ impl Scene {
             return Err(Error::input("plate.model", "the elastic plate needs the structured mesh"));
         }
         let (l, t, hgt, tp) = (self.block.length, self.block.thickness, self.loading.height, self.plate.thickness);
-        let kind = self.element()?.kind;
         let row = (t / 2.0).max(self.mesh.h);
         let n1 = (((hgt - t) / row).round() as usize).max(1);
         let n2 = ((t + tp - hgt) / row).round() as usize;
-        let mut plate = Rectangle::new(-l / 2.0, l / 2.0, t, hgt, nx, n1).kind(kind).build()?;
+        let mut plate = self.layer(t, hgt, n1, nx)?;
         if n2 > 0 {
-            let upper = Rectangle::new(-l / 2.0, l / 2.0, hgt, t + tp, nx, n2).kind(kind).build()?;
+            let upper = self.layer(hgt, t + tp, n2, nx)?;
             plate = merge(&plate, &upper);
         }
         let mesh = merge(&block, &plate);

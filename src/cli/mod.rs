@@ -2,6 +2,7 @@
 //! and prints; errors bubble up to `main` as one message and exit code 2.
 
 mod check;
+mod converge;
 mod precursors;
 
 use clap::{Parser, Subcommand};
@@ -17,6 +18,8 @@ pub struct Cli {
 pub enum Command {
     /// The paper's check: interface pressure and shear under the plate against the model (fig. 2).
     Check(check::Args),
+    /// Mesh convergence of the check: errors per zone, orders, edge widths, accuracy against time.
+    Converge(converge::Args),
     /// Precursors to sliding (Scheibert & Dysthe model): event table, fig. 4, or the n(r, g) map (fig. 5).
     Precursors(precursors::Args),
 }
@@ -24,6 +27,7 @@ pub enum Command {
 pub fn run(cli: Cli) -> tribofe::Result<()> {
     match cli.command {
         Command::Check(a) => check::run(a),
+        Command::Converge(a) => converge::run(a),
         Command::Precursors(args) => precursors::run(args),
     }
 }

@@ -2,6 +2,7 @@
 //! name in the same directory and renamed, so a failure never leaves a partial result.
 
 pub mod check;
+pub mod convergence;
 pub mod precursors;
 
 use crate::{Error, Result};

@@ -1,0 +1,52 @@
+//! `tribofe converge`: the paper's scene over families of meshes and elements.
+
+use clap::Args as ClapArgs;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use tribofe::convergence::{study, Family, StudyOptions};
+
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    pub scene: super::check::SceneArgs,
+    /// Elements to compare, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "qua4")]
+    pub elements: Vec<String>,
+    /// Mesh families: uniform, graded.
+    #[arg(long, value_delimiter = ',', default_value = "uniform,graded")]
+    pub families: Vec<String>,
+    /// Elements through the thickness of each mesh (h = t / n).
+    #[arg(long, value_delimiter = ',', default_value = "1,2,4,8,16,32,64")]
+    pub n_thick: Vec<usize>,
+    /// Skip runs above this many DOFs.
+    #[arg(long, default_value_t = 3_000_000)]
+    pub max_dofs: usize,
+    /// The load case compared, as F/N.
+    #[arg(long, default_value_t = 0.82)]
+    pub case: f64,
+    /// Target edge-zone error in units of N/L: name the cheapest run that reaches it.
+    #[arg(long = "target")]
+    pub target: Option<f64>,
+    /// Run one mesh at a time (honest per-run times) instead of concurrently.
+    #[arg(long)]
+    pub serial: bool,
+    #[arg(long, default_value = "out/converge")]
+    pub out: PathBuf,
+}
+
+pub fn run(args: Args) -> tribofe::Result<()> {
+    let scene = super::check::scene(&args.scene)?;
+    let families = args.families.iter().map(|f| f.parse::<Family>()).collect::<tribofe::Result<Vec<_>>>()?;
+    let o = StudyOptions { elements: args.elements.clone(), families, n_thick: args.n_thick.clone(), max_dofs: args.max_dofs, fn_ratio: args.case, parallel: !args.serial, ..Default::default() };
+    let total = (o.elements.len() * o.families.len() * o.n_thick.len()) as u64;
+    let bar = ProgressBar::new(total).with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} {msg}").unwrap());
+    let st = study(&scene, &o, &|r| {
+        bar.set_message(format!("last: {} {} t/{}", r.family.name(), r.element, r.n_thick));
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    tribofe::report::convergence::write(&st, &args.out)?;
+    print!("{}", tribofe::report::convergence::summary(&st, args.target));
+    println!("wrote {}/{{convergence.csv, error_vs_dofs.svg, error_vs_time.svg, summary.txt}}", args.out.display());
+    Ok(())
+}

@@ -1,0 +1,345 @@
+//! Mesh convergence of the paper's check: the scene solved over families of meshes and
+//! elements, errors against the most accurate run in three zones that converge differently
+//! (the smooth interior, the edge zones, the singular end nodes), observed orders, converged
+//! edge-zone widths, and the cost of each run for the accuracy-versus-time chart.
+
+use crate::check::{self, CheckResult};
+use crate::error::{Error, Result};
+use crate::problem::Timings;
+use crate::scene::Scene;
+use crate::solve::SolverOptions;
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// How a family spaces its elements along x (through the thickness both are uniform).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Family {
+    /// Square elements of size h everywhere.
+    Uniform,
+    /// Size h at both ends, growing geometrically towards the middle up to `h_max`: elongated
+    /// elements where the fields are smooth.
+    Graded,
+}
+
+impl Family {
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Uniform => "uniform",
+            Family::Graded => "graded",
+        }
+    }
+}
+
+impl std::str::FromStr for Family {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "uniform" => Ok(Family::Uniform),
+            "graded" => Ok(Family::Graded),
+            _ => Err(Error::input("mesh family", format!("'{s}' is not known; choose uniform or graded"))),
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct StudyOptions {
+    pub elements: Vec<String>,
+    pub families: Vec<Family>,
+    /// Elements through the thickness of each run: h = t / n.
+    pub n_thick: Vec<usize>,
+    /// Runs whose estimated DOF count exceeds this are skipped.
+    pub max_dofs: usize,
+    /// The load case (F/N) whose profiles are compared.
+    pub fn_ratio: f64,
+    /// Growth ratio and largest element length (in units of t) of the graded family.
+    pub grading_ratio: f64,
+    pub graded_h_max_over_t: f64,
+    /// Run the meshes concurrently (faster overall; per-run times then share the cores).
+    pub parallel: bool,
+}
+
+impl Default for StudyOptions {
+    fn default() -> Self {
+        Self {
+            elements: vec!["qua4".into()],
+            families: vec![Family::Uniform, Family::Graded],
+            n_thick: vec![1, 2, 4, 8, 16, 32, 64],
+            max_dofs: 3_000_000,
+            fn_ratio: 0.82,
+            grading_ratio: 1.15,
+            graded_h_max_over_t: 4.0,
+            parallel: true,
+        }
+    }
+}
+
+/// Largest |error| in units of N/L, per zone, for pressure and shear.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ZoneErrors {
+    pub interior: [f64; 2],
+    pub edge: [f64; 2],
+    pub end: [f64; 2],
+}
+
+#[derive(Debug, Clone)]
+pub struct Run {
+    pub family: Family,
+    pub element: String,
+    pub n_thick: usize,
+    pub dofs: usize,
+    pub n_elements: usize,
+    pub timings: Timings,
+    /// Whole run in the process (mesh, solve, recovery), s.
+    pub wall: f64,
+    /// Memory of the Cholesky factor, MiB.
+    pub factor_mib: f64,
+    pub x: Vec<f64>,
+    pub p: Vec<f64>,
+    pub tau: Vec<f64>,
+    pub slope: f64,
+    pub tau_center: f64,
+    pub p_end: [f64; 2],
+    pub tau_end: [f64; 2],
+    /// Edge widths in units of t: pressure left/right, shear left/right.
+    pub widths: [Option<f64>; 4],
+    pub errors: ZoneErrors,
+}
+
+#[derive(Debug, Clone)]
+pub struct Study {
+    pub runs: Vec<Run>,
+    /// Index of the reference run (most accurate), against which errors are measured.
+    pub reference: usize,
+    pub skipped: Vec<String>,
+}
+
+/// The scene variant of one run.
+pub fn run_scene(base: &Scene, o: &StudyOptions, family: Family, element: &str, n: usize) -> Scene {
+    let mut s = base.clone();
+    let t = s.block.thickness;
+    s.mesh.h = t / n as f64;
+    s.mesh.element = element.to_string();
+    s.loading.fn_ratios = vec![o.fn_ratio];
+    if family == Family::Graded {
+        s.mesh.grading = Some(o.grading_ratio);
+        s.mesh.h_max = Some(o.graded_h_max_over_t * t);
+    }
+    s
+}
+
+/// DOFs of a run estimated from the element counts (nodes of a structured grid).
+fn estimate_dofs(s: &Scene) -> Result<usize> {
+    let t = s.block.thickness;
+    let ny = (t / s.mesh.h).round().max(1.0) as usize;
+    let nx = match s.mesh.grading {
+        Some(r) => crate::mesher::spacing(s.block.length, 0, Some(crate::mesher::Grading { end: s.mesh.h, ratio: r, max: s.mesh.h_max }))?.len(),
+        None => (s.block.length / s.mesh.h).round() as usize,
+    };
+    let p = s.element()?.kind.order();
+    Ok(2 * (p * nx + 1) * (p * ny + 1))
+}
+
+/// Runs the study; `progress` is called after each run (from any thread).
+pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -> Result<Study> {
+    if o.elements.is_empty() || o.families.is_empty() || o.n_thick.is_empty() {
+        return Err(Error::input("convergence study", "need at least one element, family and mesh"));
+    }
+    let mut specs = Vec::new();
+    let mut skipped = Vec::new();
+    for e in &o.elements {
+        for &f in &o.families {
+            for &n in &o.n_thick {
+                let s = run_scene(base, o, f, e, n);
+                s.validate()?;
+                let dofs = estimate_dofs(&s)?;
+                if dofs > o.max_dofs {
+                    skipped.push(format!("{} {e} h = t/{n} (~{dofs} DOFs > {})", f.name(), o.max_dofs));
+                } else {
+                    specs.push((f, e.clone(), n, s));
+                }
+            }
+        }
+    }
+    // Largest first, so the long runs start early when running concurrently.
+    specs.sort_by_key(|(_, _, n, s)| std::cmp::Reverse(estimate_dofs(s).unwrap_or(0) + n));
+    let one = |(f, e, n, s): &(Family, String, usize, Scene)| -> Result<Run> {
+        let clock = Instant::now();
+        let (r, _) = check::run(s, &SolverOptions::default())?;
+        let run = to_run(*f, e, *n, &r, clock.elapsed().as_secs_f64());
+        progress(&run);
+        Ok(run)
+    };
+    let mut runs: Vec<Run> = if o.parallel { specs.par_iter().map(one).collect::<Result<_>>()? } else { specs.iter().map(one).collect::<Result<_>>()? };
+    runs.sort_by(|a, b| (a.element.as_str(), a.family.name(), a.n_thick).cmp(&(b.element.as_str(), b.family.name(), b.n_thick)));
+    let reference = pick_reference(&runs);
+    let t_over_l = base.block.thickness / base.block.length;
+    let samples = Samples::new(t_over_l);
+    let (rx, rp, rt) = (runs[reference].x.clone(), runs[reference].p.clone(), runs[reference].tau.clone());
+    for r in &mut runs {
+        r.errors = samples.errors(&r.x, &r.p, &r.tau, &rx, &rp, &rt);
+    }
+    Ok(Study { runs, reference, skipped })
+}
+
+fn to_run(family: Family, element: &str, n: usize, r: &CheckResult, wall: f64) -> Run {
+    let c = &r.cases[0];
+    let m = &c.metrics;
+    Run {
+        family,
+        element: element.to_string(),
+        n_thick: n,
+        dofs: 2 * r.n_nodes,
+        n_elements: r.n_elements,
+        timings: r.timings,
+        wall,
+        factor_mib: r.factor_nnz as f64 * 8.0 / (1u64 << 20) as f64,
+        x: c.x_over_l.clone(),
+        p: c.p.clone(),
+        tau: c.tau.clone(),
+        slope: m.slope_interior,
+        tau_center: m.tau_center,
+        p_end: m.p_ends,
+        tau_end: m.tau_ends,
+        widths: [m.edge_p_t[0], m.edge_p_t[1], m.edge_tau_t[0], m.edge_tau_t[1]],
+        errors: ZoneErrors::default(),
+    }
+}
+
+/// The reference: the finest uniform run of the highest-order element present (quadratic
+/// elements converge fastest in the smooth zones), else the run with the most DOFs.
+fn pick_reference(runs: &[Run]) -> usize {
+    let order = |r: &Run| r.element.parse::<crate::element::stiffness::ElementChoice>().map_or(1, |c| c.kind.order());
+    (0..runs.len())
+        .max_by_key(|&i| (order(&runs[i]), runs[i].family == Family::Uniform, runs[i].dofs))
+        .unwrap_or(0)
+}
+
+/// Sample positions (in units of L) of the three zones.
+struct Samples {
+    interior: Vec<f64>,
+    edge: Vec<f64>,
+}
+
+impl Samples {
+    fn new(t_over_l: f64) -> Self {
+        let a = 0.5 - 10.0 * t_over_l;
+        let interior = (0..=200).map(|i| -a + 2.0 * a * i as f64 / 200.0).collect();
+        // Distances t/4 .. 10 t from each end, geometrically spaced.
+        let d: Vec<f64> = (0..=60).map(|i| 0.25 * t_over_l * 40f64.powf(i as f64 / 60.0)).collect();
+        let edge = d.iter().map(|d| -0.5 + d).chain(d.iter().map(|d| 0.5 - d)).collect();
+        Self { interior, edge }
+    }
+
+    fn errors(&self, x: &[f64], p: &[f64], tau: &[f64], rx: &[f64], rp: &[f64], rt: &[f64]) -> ZoneErrors {
+        let max_err = |pts: &[f64], v: &[f64], rv: &[f64]| pts.iter().map(|&s| (interp(x, v, s) - interp(rx, rv, s)).abs()).fold(0.0, f64::max);
+        let n = x.len();
+        let rn = rx.len();
+        let end = |v: &[f64], rv: &[f64]| (v[0] - rv[0]).abs().max((v[n - 1] - rv[rn - 1]).abs());
+        ZoneErrors {
+            interior: [max_err(&self.interior, p, rp), max_err(&self.interior, tau, rt)],
+            edge: [max_err(&self.edge, p, rp), max_err(&self.edge, tau, rt)],
+            end: [end(p, rp), end(tau, rt)],
+        }
+    }
+}
+
+/// Piecewise-linear interpolation of v(x) at s (x sorted, s inside).
+pub fn interp(x: &[f64], v: &[f64], s: f64) -> f64 {
+    let i = x.partition_point(|&a| a < s).clamp(1, x.len() - 1);
+    let w = (s - x[i - 1]) / (x[i] - x[i - 1]);
+    v[i - 1] + w * (v[i] - v[i - 1])
+}
+
+/// Observed order of convergence between two runs: log(e1/e2) / log(h1/h2).
+pub fn observed_order(e1: f64, h1: f64, e2: f64, h2: f64) -> f64 {
+    (e1 / e2).ln() / (h1 / h2).ln()
+}
+
+/// Indices of the runs on the Pareto front of (wall time, error): no other run is both
+/// faster and more accurate. Sorted by time.
+pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
+    let mut idx: Vec<usize> = (0..points.len()).filter(|&i| points[i].0 > 0.0 && points[i].1 > 0.0).collect();
+    idx.sort_by(|&a, &b| points[a].0.total_cmp(&points[b].0).then(points[a].1.total_cmp(&points[b].1)));
+    let mut front = Vec::new();
+    let mut best = f64::INFINITY;
+    for i in idx {
+        if points[i].1 < best {
+            best = points[i].1;
+            front.push(i);
+        }
+    }
+    front
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn pareto_keeps_only_non_dominated_points() {
+        let pts = [(1.0, 1.0), (2.0, 0.5), (1.5, 2.0), (3.0, 0.5), (4.0, 0.1)];
+        assert_eq!(pareto_front(&pts), vec![0, 1, 4]);
+        assert!((observed_order(4.0, 2.0, 1.0, 1.0) - 2.0).abs() < 1e-15);
+    }
+}
+
+/// Runs of one (element, family) series, sorted from coarse to fine.
+pub fn series(study: &Study) -> Vec<Vec<usize>> {
+    let mut keys: Vec<(String, Family)> = study.runs.iter().map(|r| (r.element.clone(), r.family)).collect();
+    keys.dedup();
+    keys.iter()
+        .map(|(e, f)| {
+            let mut v: Vec<usize> = (0..study.runs.len()).filter(|&i| &study.runs[i].element == e && study.runs[i].family == *f).collect();
+            v.sort_by_key(|&i| study.runs[i].n_thick);
+            v
+        })
+        .collect()
+}
+
+/// Observed orders between the two finest runs of a series that are not the reference, per
+/// zone: [interior p, interior tau, edge p, edge tau]; None where fewer than two runs.
+pub fn orders(study: &Study, s: &[usize]) -> Option<[f64; 4]> {
+    let v: Vec<&Run> = s.iter().filter(|&&i| i != study.reference).map(|&i| &study.runs[i]).collect();
+    let (a, b) = (v.get(v.len().checked_sub(2)?)?, v.last()?);
+    let (ha, hb) = (1.0 / a.n_thick as f64, 1.0 / b.n_thick as f64);
+    let o = |ea: f64, eb: f64| observed_order(ea, ha, eb, hb);
+    Some([o(a.errors.interior[0], b.errors.interior[0]), o(a.errors.interior[1], b.errors.interior[1]), o(a.errors.edge[0], b.errors.edge[0]), o(a.errors.edge[1], b.errors.edge[1])])
+}
+
+/// Largest edge-zone error of a run (pressure or shear, either end), units of N/L.
+pub fn edge_error(r: &Run) -> f64 {
+    r.errors.edge[0].max(r.errors.edge[1])
+}
+
+/// The fastest run (other than the reference) whose edge-zone error is at most `tol`.
+pub fn cheapest(study: &Study, tol: f64) -> Option<&Run> {
+    (0..study.runs.len())
+        .filter(|&i| i != study.reference && edge_error(&study.runs[i]) <= tol)
+        .map(|i| &study.runs[i])
+        .min_by(|a, b| a.wall.total_cmp(&b.wall))
+}
+
+/// Rounds to two significant digits.
+pub fn two_digits(v: f64) -> f64 {
+    if v == 0.0 {
+        return 0.0;
+    }
+    let m = 10f64.powf(v.abs().log10().floor() - 1.0);
+    (v / m).round() * m
+}
+
+/// For each of the four widths: the coarsest run of the series from which on every finer run
+/// agrees with the finest to two significant digits.
+pub fn first_converged_width(study: &Study, s: &[usize]) -> [Option<usize>; 4] {
+    std::array::from_fn(|k| {
+        let finest = study.runs[*s.last()?].widths[k]?;
+        let target = two_digits(finest);
+        let mut first = None;
+        for &i in s.iter().rev() {
+            match study.runs[i].widths[k] {
+                Some(w) if two_digits(w) == target => first = Some(i),
+                _ => break,
+            }
+        }
+        first
+    })
+}
