@@ -25,6 +25,8 @@ pub enum Technology {
 }
 
 impl Technology {
+    pub const ALL: [Technology; 3] = [Self::Full, Self::SelectiveReduced, Self::IncompatibleModes];
+
     /// Name suffix after the kind (`qua4-sri`).
     pub const fn suffix(self) -> &'static str {
         match self {
@@ -57,10 +59,7 @@ impl std::str::FromStr for ElementChoice {
         let (kind_name, suffix) = lower.split_at(lower.find('-').unwrap_or(lower.len()));
         let unknown = || crate::Error::input("element", format!("'{s}' is not known; choose one of {}", Self::NAMES.join(", ")));
         let kind = ElementKind::ALL.into_iter().find(|k| k.name() == kind_name).ok_or_else(unknown)?;
-        let tech = [Technology::Full, Technology::SelectiveReduced, Technology::IncompatibleModes]
-            .into_iter()
-            .find(|t| t.suffix() == suffix)
-            .ok_or_else(unknown)?;
+        let tech = Technology::ALL.into_iter().find(|t| t.suffix() == suffix).ok_or_else(unknown)?;
         if tech != Technology::Full && kind != ElementKind::Qua4 {
             return Err(crate::Error::input("element", format!("'{s}': '{}' is only available for qua4 (try qua4{suffix}, or {} with full integration)", &suffix[1..], kind.name())));
         }
