@@ -4,24 +4,33 @@
 //! in one colour share a node unknown). The full matrix is never formed.
 
 use crate::constraints::{Reduction, Target};
-use crate::element::stiffness::{stiffness, MAX_DOFS};
+use crate::element::qua4::{stiffness_bbar, stiffness_im};
+use crate::element::stiffness::{stiffness, Technology, MAX_DOFS};
+use crate::element::ElementKind;
 use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::mesh::Mesh;
 use rayon::prelude::*;
 
-/// What is assembled: a mesh, its materials, and which material each element has.
+/// What is assembled: a mesh, its materials, which material each element has, and the
+/// QUA4 technology.
 #[derive(Debug, Clone)]
 pub struct Model<'a> {
     pub mesh: &'a Mesh,
     pub materials: Vec<Material>,
     /// Material index per element; empty means every element uses `materials[0]`.
     pub element_material: Vec<u32>,
+    /// Technology of QUA4 elements (other kinds always integrate fully).
+    pub tech: Technology,
 }
 
 impl<'a> Model<'a> {
     pub fn new(mesh: &'a Mesh, material: Material) -> Self {
-        Self { mesh, materials: vec![material], element_material: Vec::new() }
+        Self { mesh, materials: vec![material], element_material: Vec::new(), tech: Technology::Full }
+    }
+    /// Technology element `e` uses: `tech` for QUA4, `Full` otherwise.
+    pub fn technology(&self, e: usize) -> Technology {
+        if self.mesh.kind(e) == ElementKind::Qua4 { self.tech } else { Technology::Full }
     }
     pub fn material(&self, e: usize) -> &Material {
         &self.materials[self.element_material.get(e).map_or(0, |&m| m as usize)]
@@ -37,7 +46,12 @@ impl<'a> Model<'a> {
         for (a, &n) in nodes.iter().enumerate() {
             x[a] = mesh.nodes[n];
         }
-        let det = stiffness(mesh.kind(e), &x[..nodes.len()], &self.material(e).d_matrix(), k);
+        let (x, d) = (&x[..nodes.len()], &self.material(e).d_matrix());
+        let det = match self.technology(e) {
+            Technology::Full => stiffness(mesh.kind(e), x, d, k),
+            Technology::SelectiveReduced => stiffness_bbar(x, d, k),
+            Technology::IncompatibleModes => stiffness_im(x, d, k),
+        };
         if det > 0.0 {
             Ok(())
         } else {

@@ -4,6 +4,7 @@
 //! error norms against exact fields.
 
 use crate::assembly::Model;
+use crate::element::qua4::StrainCorrection;
 use crate::element::stiffness::{accurate_rule, map_point, stiffness_rule, strain, MAX_DOFS, MAX_NODES};
 use crate::element::ElementKind;
 use nalgebra::DMatrix;
@@ -30,18 +31,20 @@ fn element_dofs(model: &Model, e: usize, u: &[f64]) -> ([[f64; 2]; MAX_NODES], [
     (x, ue)
 }
 
-/// Stresses at the stiffness integration points of element `e` (in rule order).
+/// Stresses at the stiffness integration points of element `e` (in rule order), from the
+/// strains the element itself uses (B-bar strains for SRI, modes included for IM).
 pub fn gauss_stresses(model: &Model, e: usize, u: &[f64]) -> Vec<Stress> {
     let kind = model.mesh.kind(e);
     let nn = kind.n_nodes();
     let (x, ue) = element_dofs(model, e, u);
     let mat = model.material(e);
     let d = mat.d_matrix();
+    let corr = StrainCorrection::new(model.technology(e), &x[..nn], &d, &ue);
     stiffness_rule(kind)
         .iter()
         .map(|q| {
             let p = map_point(kind, &x[..nn], q.xi);
-            let eps = strain(&p, nn, &ue);
+            let eps = corr.apply(&p, q.xi, strain(&p, nn, &ue));
             let s = d * nalgebra::Vector3::from(eps);
             [s[0], s[1], s[2], mat.sigma_zz(eps[0], eps[1])]
         })
@@ -136,7 +139,9 @@ pub fn elements_touching(model: &Model, nodes: &[usize]) -> Vec<usize> {
 }
 
 /// L2 norm of (u_h - u) and energy norm of the error, sqrt(int (eps_h - eps)^T D (eps_h - eps)),
-/// with an accurate quadrature; `exact` returns (u, eps) at a point.
+/// with an accurate quadrature; `exact` returns (u, eps) at a point. eps_h is the strain the
+/// element uses (B-bar, or with the incompatible modes); u_h is the compatible nodal
+/// interpolation only (for IM the modes are element-internal, not part of the field).
 pub fn error_norms(model: &Model, u: &[f64], exact: &(dyn Fn([f64; 2]) -> ([f64; 2], [f64; 3]) + Sync)) -> (f64, f64) {
     let mesh = model.mesh;
     let (l2, en) = (0..mesh.n_elements())
@@ -146,12 +151,13 @@ pub fn error_norms(model: &Model, u: &[f64], exact: &(dyn Fn([f64; 2]) -> ([f64;
             let nn = kind.n_nodes();
             let (x, ue) = element_dofs(model, e, u);
             let d = model.material(e).d_matrix();
+            let corr = StrainCorrection::new(model.technology(e), &x[..nn], &d, &ue);
             let (mut l2, mut en) = (0.0, 0.0);
             for q in accurate_rule(kind) {
                 let p = map_point(kind, &x[..nn], q.xi);
                 let (uex, eex) = exact(p.x);
                 let uh: [f64; 2] = std::array::from_fn(|c| (0..nn).map(|a| p.n[a] * ue[2 * a + c]).sum());
-                let eh = strain(&p, nn, &ue);
+                let eh = corr.apply(&p, q.xi, strain(&p, nn, &ue));
                 let de = nalgebra::Vector3::new(eh[0] - eex[0], eh[1] - eex[1], eh[2] - eex[2]);
                 let w = q.w * p.det_j;
                 l2 += w * ((uh[0] - uex[0]).powi(2) + (uh[1] - uex[1]).powi(2));

@@ -16,7 +16,7 @@
 
 use crate::assembly::Model;
 use crate::constraints::{dof, Constraints};
-use crate::element::stiffness::ElementChoice;
+use crate::element::stiffness::{ElementChoice, Technology};
 use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::mesh::Mesh;
@@ -75,7 +75,7 @@ pub struct MeshSpec {
     pub grading: Option<f64>,
     /// Largest element length along x with grading, m (default: 2 t).
     pub h_max: Option<f64>,
-    /// Element formulation by name (qua4, qua8, qua9, tri3, tri6).
+    /// Element formulation by name (qua4, qua4-sri, qua4-im, qua8, qua9, tri3, tri6).
     pub element: String,
     /// A Gmsh mesh of the block instead of the structured one.
     pub file: Option<PathBuf>,
@@ -134,6 +134,8 @@ pub struct SceneModel {
     pub mesh: Mesh,
     pub materials: Vec<Material>,
     pub element_material: Vec<u32>,
+    /// QUA4 technology from `mesh.element`.
+    pub tech: Technology,
     pub constraints: Constraints,
     /// Interface nodes sorted by x.
     pub interface: Vec<usize>,
@@ -146,7 +148,7 @@ pub struct SceneModel {
 
 impl SceneModel {
     pub fn model(&self) -> Model<'_> {
-        Model { mesh: &self.mesh, materials: self.materials.clone(), element_material: self.element_material.clone() }
+        Model { mesh: &self.mesh, materials: self.materials.clone(), element_material: self.element_material.clone(), tech: self.tech }
     }
 }
 
@@ -195,6 +197,7 @@ impl Scene {
     pub fn build(&self) -> Result<SceneModel> {
         self.validate()?;
         let (l, t, hgt) = (self.block.length, self.block.thickness, self.loading.height);
+        let tech = self.element()?.tech;
         let block_mat = Material::plane_strain(self.block.young, self.block.poisson)?;
         let nx = even((l / self.mesh.h).round().max(2.0) as usize);
         let ny = ((t / self.mesh.h).round() as usize).max(1);
@@ -227,9 +230,9 @@ impl Scene {
                     c.tie(dof(n, 1), &[(dv, 1.0), (dth, x)]);
                 }
                 let n_el = mesh.n_elements();
-                Ok(SceneModel { mesh, materials: vec![block_mat], element_material: vec![0; n_el], constraints: c, interface, dof_u: du, dof_v: dv, dof_theta: Some(dth) })
+                Ok(SceneModel { mesh, materials: vec![block_mat], element_material: vec![0; n_el], tech, constraints: c, interface, dof_u: du, dof_v: dv, dof_theta: Some(dth) })
             }
-            PlateModel::Elastic => self.build_elastic(mesh, &interface_name, block_mat, nx),
+            PlateModel::Elastic => self.build_elastic(mesh, &interface_name, block_mat, nx, tech),
         }
     }
 
@@ -246,7 +249,7 @@ impl Scene {
 
     /// Block plus a meshed plate sharing the top nodes; rows of the plate are placed so that
     /// a node lies exactly at height H on the left side.
-    fn build_elastic(&self, block: Mesh, interface_name: &str, block_mat: Material, nx: usize) -> Result<SceneModel> {
+    fn build_elastic(&self, block: Mesh, interface_name: &str, block_mat: Material, nx: usize, tech: Technology) -> Result<SceneModel> {
         if self.mesh.file.is_some() {
             return Err(Error::input("plate.model", "the elastic plate needs the structured mesh"));
         }
@@ -279,7 +282,7 @@ impl Scene {
         let dv = dof(find(0.0, t + tp)?, 1);
         c.fix(du);
         c.fix(dv);
-        Ok(SceneModel { mesh, materials: vec![block_mat, plate_mat], element_material, constraints: c, interface, dof_u: du, dof_v: dv, dof_theta: None })
+        Ok(SceneModel { mesh, materials: vec![block_mat, plate_mat], element_material, tech, constraints: c, interface, dof_u: du, dof_v: dv, dof_theta: None })
     }
 }
 

@@ -23,7 +23,7 @@ pub struct SceneArgs {
     /// Load cases as F/N ratios, comma separated (paper: 0,0.41,0.82).
     #[arg(long, value_delimiter = ',')]
     pub fn_ratios: Option<Vec<f64>>,
-    /// Element formulation (qua4, qua8, qua9, tri3, tri6).
+    /// Element formulation (qua4, qua4-sri, qua4-im, qua8, qua9, tri3, tri6).
     #[arg(long)]
     pub element: Option<String>,
     /// Edge-zone tolerance, relative to the local model value (default 0.05).

@@ -13,6 +13,7 @@
 //! ```
 
 pub mod quadrature;
+pub mod qua4;
 pub mod shape;
 pub mod stiffness;
 

@@ -5,19 +5,39 @@
 use super::quadrature::{gauss_1d, gauss_quad, gauss_tri, QPoint};
 use super::{shape, ElementKind};
 use nalgebra::Matrix3;
+use std::sync::LazyLock;
 
 /// Largest element (QUA9): 9 nodes, 18 DOFs.
 pub const MAX_NODES: usize = 9;
 pub const MAX_DOFS: usize = 2 * MAX_NODES;
 
-/// How the element integrates its stiffness. Chosen by name with [`ElementChoice`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+/// How a QUA4 element integrates its stiffness; other kinds are always `Full`. Chosen by
+/// name with [`ElementChoice`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Technology {
     /// Full Gauss integration: 2x2 on QUA4, 3x3 on QUA8/QUA9, 1 point on TRI3, 3 on TRI6.
+    #[default]
     Full,
+    /// Mean-dilatation B-bar (`qua4-sri`), see [`super::qua4::stiffness_bbar`].
+    SelectiveReduced,
+    /// Incompatible modes QM6 (`qua4-im`), see [`super::qua4::stiffness_im`].
+    IncompatibleModes,
 }
 
-/// An element formulation as users name it: `qua4`, `qua8`, `qua9`, `tri3`, `tri6`.
+impl Technology {
+    pub const ALL: [Technology; 3] = [Self::Full, Self::SelectiveReduced, Self::IncompatibleModes];
+
+    /// Name suffix after the kind (`qua4-sri`).
+    pub const fn suffix(self) -> &'static str {
+        match self {
+            Self::Full => "",
+            Self::SelectiveReduced => "-sri",
+            Self::IncompatibleModes => "-im",
+        }
+    }
+}
+
+/// An element formulation as users name it, see [`ElementChoice::NAMES`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ElementChoice {
     pub kind: ElementKind,
@@ -25,37 +45,43 @@ pub struct ElementChoice {
 }
 
 impl ElementChoice {
-    pub const NAMES: [&'static str; 5] = ["qua4", "qua8", "qua9", "tri3", "tri6"];
+    pub const NAMES: [&'static str; 7] = ["qua4", "qua4-sri", "qua4-im", "qua8", "qua9", "tri3", "tri6"];
 
     pub fn name(&self) -> String {
-        self.kind.name().to_string()
+        format!("{}{}", self.kind.name(), self.tech.suffix())
     }
 }
 
 impl std::str::FromStr for ElementChoice {
     type Err = crate::Error;
     fn from_str(s: &str) -> crate::Result<Self> {
-        let kind = ElementKind::ALL.into_iter().find(|k| k.name() == s.to_ascii_lowercase());
-        match kind {
-            Some(kind) => Ok(Self { kind, tech: Technology::Full }),
-            None => Err(crate::Error::input("element", format!("'{s}' is not known; choose one of {}", Self::NAMES.join(", ")))),
+        let lower = s.to_ascii_lowercase();
+        let (kind_name, suffix) = lower.split_at(lower.find('-').unwrap_or(lower.len()));
+        let unknown = || crate::Error::input("element", format!("'{s}' is not known; choose one of {}", Self::NAMES.join(", ")));
+        let kind = ElementKind::ALL.into_iter().find(|k| k.name() == kind_name).ok_or_else(unknown)?;
+        let tech = Technology::ALL.into_iter().find(|t| t.suffix() == suffix).ok_or_else(unknown)?;
+        if tech != Technology::Full && kind != ElementKind::Qua4 {
+            return Err(crate::Error::input("element", format!("'{s}': '{}' is only available for qua4 (try qua4{suffix}, or {} with full integration)", &suffix[1..], kind.name())));
         }
+        Ok(Self { kind, tech })
     }
 }
 
-/// Quadrature rule used for the stiffness of a kind (full integration).
-pub fn stiffness_rule(kind: ElementKind) -> Vec<QPoint> {
-    match kind {
-        ElementKind::Qua4 => gauss_quad(2),
-        ElementKind::Qua8 | ElementKind::Qua9 => gauss_quad(3),
-        ElementKind::Tri3 => gauss_tri(1),
-        ElementKind::Tri6 => gauss_tri(2),
-    }
+/// Quadrature rule used for the stiffness of a kind (full integration), built once.
+pub fn stiffness_rule(kind: ElementKind) -> &'static [QPoint] {
+    static RULES: LazyLock<[Vec<QPoint>; 4]> = LazyLock::new(|| [gauss_quad(2), gauss_quad(3), gauss_tri(1), gauss_tri(2)]);
+    &RULES[match kind {
+        ElementKind::Qua4 => 0,
+        ElementKind::Qua8 | ElementKind::Qua9 => 1,
+        ElementKind::Tri3 => 2,
+        ElementKind::Tri6 => 3,
+    }]
 }
 
-/// A rule exact enough for error norms and body forces on each kind.
-pub fn accurate_rule(kind: ElementKind) -> Vec<QPoint> {
-    if kind.is_quad() { gauss_quad(4) } else { gauss_tri(4) }
+/// A rule exact enough for error norms and body forces on each kind, built once.
+pub fn accurate_rule(kind: ElementKind) -> &'static [QPoint] {
+    static RULES: LazyLock<[Vec<QPoint>; 2]> = LazyLock::new(|| [gauss_quad(4), gauss_tri(4)]);
+    &RULES[usize::from(!kind.is_quad())]
 }
 
 /// Shape functions at one point, mapped to physical space.
