@@ -72,6 +72,20 @@ pub struct CheckResult {
     pub displacements: Vec<Vec<f64>>,
 }
 
+/// The cheapest model the convergence study (`validation/convergence/`) shows to match the
+/// finest meshes: quadratic QUA8, t/16 at both ends, growing by 1.15 per element to 4 t in the
+/// smooth middle. Used by `tribofe check` for the "converged" figures next to the paper's mesh.
+pub fn converged_scene(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    let t = s.block.thickness;
+    s.mesh.element = "qua8".into();
+    s.mesh.h = t / 16.0;
+    s.mesh.grading = Some(1.15);
+    s.mesh.h_max = Some(4.0 * t);
+    s.mesh.file = None;
+    s
+}
+
 /// Runs the paper's check on a scene.
 pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneModel)> {
     let sm = scene.build()?;

@@ -38,6 +38,9 @@ pub struct Args {
     /// Output directory.
     #[arg(long, default_value = "out/check")]
     pub out: PathBuf,
+    /// Skip the converged run (graded QUA8) printed next to the scene's mesh.
+    #[arg(long)]
+    pub no_converged: bool,
 }
 
 /// Applies the command-line overrides to the scene (file or defaults).
@@ -70,9 +73,18 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
 
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = scene(&args.scene)?;
-    let (res, _) = tribofe::check::run(&scene, &SolverOptions::default())?;
-    tribofe::report::check::write(&res, &args.out)?;
+    let opts = SolverOptions::default();
+    let (res, _) = tribofe::check::run(&scene, &opts)?;
+    // The converged figures need the exact rigid plate and the structured mesh of the scene.
+    let converged = match (scene.plate.model, &scene.mesh.file, args.no_converged) {
+        (PlateModel::Rigid, None, false) => Some(tribofe::check::run(&tribofe::check::converged_scene(&scene), &opts)?.0),
+        _ => None,
+    };
+    tribofe::report::check::write(&res, converged.as_ref(), &args.out)?;
     print!("{}", tribofe::report::check::table(&res));
+    if let Some(c) = &converged {
+        print!("{}", tribofe::report::check::converged_table(&res, c));
+    }
     println!("wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg}}", args.out.display());
     Ok(())
 }

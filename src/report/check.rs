@@ -11,8 +11,13 @@ use std::path::Path;
 pub const PROFILE_HEADER: &str = "x_over_L,p_over_pmean,tau_over_pmean,p_model,tau_model,p_extrap,tau_extrap";
 pub const SUMMARY_HEADER: &str = "FN,N,F,slope_interior,slope_model,tau_center,edge_p_left_t,edge_p_right_t,edge_tau_left_t,edge_tau_right_t,interior_dev_p,interior_dev_tau,p_end_left,p_end_right,tau_end_left,tau_end_right,tilt_rad,balance_N,balance_F,balance_moment";
 
-/// Writes profile_FN<ratio>.csv, summary.csv and fig2.svg into `dir`.
-pub fn write(res: &CheckResult, dir: &Path) -> Result<()> {
+/// Writes profile_FN<ratio>.csv, summary.csv and fig2.svg into `dir`, and with a converged
+/// run, `summary_converged.csv` and its profiles under `converged/`.
+pub fn write(res: &CheckResult, converged: Option<&CheckResult>, dir: &Path) -> Result<()> {
+    if let Some(c) = converged {
+        write(c, None, &dir.join("converged"))?;
+        write_atomic(&dir.join("summary_converged.csv"), summary_csv(c)?.as_bytes())?;
+    }
     for c in &res.cases {
         let rows: Vec<Vec<f64>> = (0..c.x_over_l.len())
             .map(|i| vec![c.x_over_l[i], c.p[i], c.tau[i], c.p_model[i], c.tau_model[i], c.p_extrap[i], c.tau_extrap[i]])
@@ -45,6 +50,23 @@ pub fn summary_csv(res: &CheckResult) -> Result<String> {
         s.push('\n');
     }
     Ok(s)
+}
+
+/// The converged figures next to the paper-mesh ones (stresses / (N/L), widths / t).
+pub fn converged_table(paper: &CheckResult, conv: &CheckResult) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "converged answer (graded {} mesh, t/16 at the ends, {} unknowns; shown by validation/convergence to match the finest meshes):",
+        conv.scene.mesh.element, conv.n_unknowns
+    );
+    let _ = writeln!(s, "{:>6} {:>10} {:>10} {:>10} {:>10} | {:>13} {:>13}", "F/N", "slope", "(mesh)", "tau(0)", "(mesh)", "edge p L/R", "edge tau L/R");
+    for (c, p) in conv.cases.iter().zip(&paper.cases) {
+        let w = |v: [Option<f64>; 2]| format!("{}/{}", v[0].map_or("-".into(), |x| format!("{x:.2}")), v[1].map_or("-".into(), |x| format!("{x:.2}")));
+        let (m, pm) = (&c.metrics, &p.metrics);
+        let _ = writeln!(s, "{:>6} {:>10.5} {:>10.5} {:>10.5} {:>10.5} | {:>13} {:>13}", c.fn_ratio, m.slope_interior, pm.slope_interior, m.tau_center, pm.tau_center, w(m.edge_p_t), w(m.edge_tau_t));
+    }
+    s
 }
 
 /// The readable summary printed by `tribofe check`.
