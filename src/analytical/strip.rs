@@ -33,7 +33,7 @@
 //! i.e. a monotone, non-oscillating decay. As ν → 1/2, w² → 6(κ−1)/κ → 12μ/λ_Lamé → 0:
 //! an incompressible layer squeezed between rigid plates carries a pressure that never decays
 //! from the ends (Gent & Lindley). The shear roots are complex (oscillating decay) for
-//! ν > −0.4 or so.
+//! ν > −0.40 (real ones need κ > 4.60).
 //!
 //! With traction-free faces the same parities give Papkovich–Fadle: sin 2z + 2z = 0
 //! (compression/symmetric class, first root z = 2.1062 + 1.1254 i) and sin 2z − 2z = 0
@@ -124,11 +124,16 @@ pub fn decay_distance_over_t(nu: f64, family: Family, tol: f64) -> Result<f64> {
     Ok((1.0 / tol).ln() * decay_length_over_t(nu, family)?)
 }
 
+/// λ/μ = 2ν/(1 − 2ν).
+fn lame_over_mu(nu: f64) -> f64 {
+    2.0 * nu / (1.0 - 2.0 * nu)
+}
+
 /// The 4×4 first-order system X' = M X, X = (U, U', V, V'), that Navier's plane-strain
 /// equations become for u = U(y) e^(−w x/t), v = V(y) e^(−w x/t), y in units of t, μ = 1:
 /// (λ+2) w² U + U'' − (λ+1) w V' = 0 and w² V + (λ+2) V'' − (λ+1) w U' = 0.
 fn navier_system(w: Complex, nu: f64) -> [[Complex; 4]; 4] {
-    let lam = 2.0 * nu / (1.0 - 2.0 * nu);
+    let lam = lame_over_mu(nu);
     let z = Complex::ZERO;
     let one = Complex::ONE;
     let w2 = w * w;
@@ -192,7 +197,7 @@ fn transfer(w: Complex, nu: f64, y: f64) -> [[Complex; 4]; 4] {
 /// The two boundary quantities of state X = (U, U', V, V') on a face: (U, V) if clamped,
 /// (σ_xy, σ_yy)/μ = (U' − wV, (λ+2)V' − λwU) if traction-free.
 fn face_rows(faces: Faces, w: Complex, nu: f64, x: [Complex; 4]) -> [Complex; 2] {
-    let lam = 2.0 * nu / (1.0 - 2.0 * nu);
+    let lam = lame_over_mu(nu);
     match faces {
         Faces::Clamped => [x[0], x[2]],
         Faces::TractionFree => [x[1] - w * x[2], (lam + 2.0) * x[3] - lam * w * x[0]],
@@ -253,24 +258,6 @@ mod tests {
                 }
             }
         }
-    }
-
-    #[test]
-    fn values_at_the_scene_and_at_nu_0_3() {
-        // Reference values from an independent 20-digit solve (mpmath findroot).
-        let w = slowest_decay(0.4, Compression).unwrap();
-        assert!(close(w, Complex::new(1.372_589_846_084_879, 0.0), 1e-12), "{w:?}");
-        let w = slowest_decay(0.4, Shear).unwrap();
-        assert!(close(w, Complex::new(4.280_417_305_554_925, 1.884_255_988_335_758), 1e-12), "{w:?}");
-        let w = slowest_decay(0.3, Compression).unwrap();
-        assert!(close(w, Complex::new(1.765_862_664_169_832, 0.0), 1e-12), "{w:?}");
-        let w = slowest_decay(0.3, Shear).unwrap();
-        assert!(close(w, Complex::new(4.330_069_931_420_756, 1.606_428_292_372_090), 1e-12), "{w:?}");
-        let d = decay_distance_over_t(0.4, Compression, 0.05).unwrap();
-        assert!((d - 2.182_540_022_497_543).abs() < 1e-12, "{d}");
-        let d = decay_distance_over_t(0.4, Shear, 0.05).unwrap();
-        assert!((d - 0.699_869_208_935_837).abs() < 1e-12, "{d}");
-        assert!((decay_length_over_t(0.4, Compression).unwrap() - 1.0 / 1.372_589_846_084_879).abs() < 1e-12);
     }
 
     #[test]
