@@ -4,6 +4,7 @@
 //! mesh ([`mesh`], [`mesher`], [`io`]) -> element ([`element`], [`material`])
 //! -> assembly ([`assembly`]) -> constraints ([`constraints`]) -> solve ([`solve`])
 //! -> recovery ([`recovery`]) -> report ([`report`]).
+//! Closed-form corner and end-decay theory to judge the results against: [`analytical`].
 
 pub mod element;
 pub mod error;
@@ -21,5 +22,6 @@ pub mod check;
 pub mod convergence;
 pub mod precursors;
 pub mod report;
+pub mod analytical;
 
 pub use error::{Error, Result};
