@@ -107,6 +107,9 @@ pub struct Run {
 
 #[derive(Debug, Clone)]
 pub struct Study {
+    /// Poisson ratio and t/L of the scene (for the theory the study is compared with).
+    pub nu: f64,
+    pub t_over_l: f64,
     pub runs: Vec<Run>,
     /// Index of the reference run (most accurate), against which errors are measured.
     pub reference: usize,
@@ -178,7 +181,7 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
     for r in &mut runs {
         r.errors = samples.errors(&r.x, &r.p, &r.tau, &rx, &rp, &rt);
     }
-    Ok(Study { runs, reference, skipped })
+    Ok(Study { nu: base.block.poisson, t_over_l, runs, reference, skipped })
 }
 
 fn to_run(family: Family, element: &str, n: usize, r: &CheckResult, wall: f64) -> Run {
@@ -342,4 +345,39 @@ pub fn first_converged_width(study: &Study, s: &[usize]) -> [Option<usize>; 4] {
         }
         first
     })
+}
+
+/// Decay rates k (in units of 1/t) of the end disturbances, fitted as |dev| ~ exp(-k d / t) over
+/// distances d from each end where the disturbance is above `floor` (units of N/L), for
+/// [p left, p right, tau left, tau right]. The disturbance is measured from the run's own far
+/// field (least-squares line of p, mean of tau over the interior), not from the model.
+pub fn decay_rates(r: &Run, t_over_l: f64, floor: f64) -> [Option<f64>; 4] {
+    let n = r.x.len();
+    let interior: Vec<usize> = (0..n).filter(|&i| r.x[i].abs() < 0.5 - 10.0 * t_over_l).collect();
+    let m = interior.len() as f64;
+    let (sx, sp, sxx, sxp, st) = interior.iter().fold((0.0, 0.0, 0.0, 0.0, 0.0), |a, &i| (a.0 + r.x[i], a.1 + r.p[i], a.2 + r.x[i] * r.x[i], a.3 + r.x[i] * r.p[i], a.4 + r.tau[i]));
+    let b = (m * sxp - sx * sp) / (m * sxx - sx * sx);
+    let a = (sp - b * sx) / m;
+    let tau_far = st / m;
+    let fit = |v: &dyn Fn(usize) -> f64, left: bool| -> Option<f64> {
+        // Points from d = t/2 inwards while the disturbance stays above the floor.
+        let order: Vec<usize> = if left { (0..n).collect() } else { (0..n).rev().collect() };
+        let end = r.x[order[0]];
+        let pts: Vec<(f64, f64)> = order
+            .iter()
+            .map(|&i| ((r.x[i] - end).abs() / t_over_l, v(i).abs()))
+            .skip_while(|&(d, _)| d < 0.5)
+            .take_while(|&(d, dev)| dev > floor && d < 10.0)
+            .map(|(d, dev)| (d, dev.ln()))
+            .collect();
+        if pts.len() < 4 {
+            return None;
+        }
+        let k = pts.len() as f64;
+        let (sd, sl, sdd, sdl) = pts.iter().fold((0.0, 0.0, 0.0, 0.0), |q, &(d, l)| (q.0 + d, q.1 + l, q.2 + d * d, q.3 + d * l));
+        Some(-(k * sdl - sd * sl) / (k * sdd - sd * sd))
+    };
+    let dp = |i: usize| r.p[i] - (a + b * r.x[i]);
+    let dt = |i: usize| r.tau[i] - tau_far;
+    [fit(&dp, true), fit(&dp, false), fit(&dt, true), fit(&dt, false)]
 }
