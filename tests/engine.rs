@@ -166,18 +166,9 @@ fn bonded_layer_closed_forms() {
 fn manufactured_solution_rates_qua4() {
     // u = v = sin(pi x) sin(pi y) on the unit square, u = 0 on the boundary, body force b = -div sigma.
     let m = Material::plane_strain(1.0, 0.3).unwrap();
-    let (l, mu) = (m.lambda(), m.shear_modulus());
-    let pi = std::f64::consts::PI;
-    let body = move |p: [f64; 2]| {
-        let (phi, psi) = ((pi * p[0]).sin() * (pi * p[1]).sin(), (pi * p[0]).cos() * (pi * p[1]).cos());
-        let div = (l + mu) * pi * pi * (psi - phi) - 2.0 * mu * pi * pi * phi;
-        [-div, -div]
-    };
-    let exact = move |p: [f64; 2]| {
-        let phi = (pi * p[0]).sin() * (pi * p[1]).sin();
-        let (px, py) = (pi * (pi * p[0]).cos() * (pi * p[1]).sin(), pi * (pi * p[0]).sin() * (pi * p[1]).cos());
-        ([phi, phi], [px, py, px + py])
-    };
+    let sol = tribofe::analytical::manufactured::SineSolution::new(&m);
+    let body = move |p: [f64; 2]| sol.body_force(p);
+    let exact = move |p: [f64; 2]| sol.exact(p);
     let mut errs = Vec::new();
     for n in [4, 8, 16, 32, 64] {
         let mut mesh = Rectangle::new(0.0, 1.0, 0.0, 1.0, n, n).build().unwrap();

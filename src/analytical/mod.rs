@@ -14,6 +14,7 @@
 //!
 //! Throughout, κ = 3 − 4ν (plane strain) and μ is the shear modulus.
 
+pub mod manufactured;
 pub mod roots;
 pub mod strip;
 pub mod williams;
