@@ -13,6 +13,7 @@ pub mod mesher;
 pub mod assembly;
 pub mod constraints;
 pub mod solve;
+pub mod ordering;
 pub mod recovery;
 pub mod loads;
 pub mod problem;
@@ -20,5 +21,6 @@ pub mod scene;
 pub mod check;
 pub mod precursors;
 pub mod report;
+pub mod bench;
 
 pub use error::{Error, Result};
