@@ -8,7 +8,8 @@ use crate::constraints::Reduction;
 use crate::mesh::Mesh;
 
 /// Regions with at most this many grid points are ordered line by line (short side fastest).
-const LEAF: usize = 16;
+/// Measured on the 1e6-DOF strip: 4 gives the least fill (16: +8 %, 256: +58 %).
+const LEAF: usize = 4;
 
 /// Fill-reducing permutation of the reduced unknowns (`perm[new] = old`), or None when the
 /// nodes do not form a grid (then use AMD). The reduced numbering is node DOFs in node order,
