@@ -220,9 +220,11 @@ impl Assembler {
             a.f.iter_mut().zip(&b.f).for_each(|(x, y)| *x += y);
             Ok(a)
         };
+        // Extra-DOF sums over fixed chunks merged in order: bitwise the same for any thread count.
         let mut total = init();
         for color in &self.colors {
-            total = merge(total, color.par_iter().try_fold(init, step).try_reduce(init, merge)?)?;
+            let parts = color.par_chunks(EXTRA_CHUNK).map(|c| c.iter().try_fold(init(), step)).collect::<Result<Vec<_>>>()?;
+            total = parts.into_iter().try_fold(total, merge)?;
         }
         total = self.serial.iter().try_fold(total, step)?;
         for i in 0..nx {
@@ -289,6 +291,9 @@ impl Assembler {
         }
     }
 }
+
+/// Elements per chunk of the per-chunk extra-DOF accumulators.
+const EXTRA_CHUNK: usize = 2048;
 
 struct Extra {
     k: Vec<f64>,
