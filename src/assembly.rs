@@ -170,7 +170,7 @@ impl Assembler {
             len.iter().for_each(|l| col_ptr.push(col_ptr.last().unwrap() + l));
             row_idx.extend_from_slice(rows);
         }
-        // Greedy colouring on node unknowns (extra DOFs are accumulated per thread instead).
+        // Greedy colouring on node unknowns (extra DOFs are accumulated per chunk instead).
         let first_extra = red.n_free_nodes;
         let mut used = vec![0u64; first_extra];
         let mut colors: Vec<Vec<usize>> = Vec::new();

@@ -132,7 +132,6 @@ pub fn run_case(case: Case, cfg: &Config) -> Result<Row> {
         Case::Strip(ny) => strip(ny, &opts),
         Case::Square(n) => square(n, &opts),
     })?;
-    row.threads = cfg.threads;
     row.ordering = ordering_name(&cfg.ordering).into();
     row.peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
     eprintln!("bench: {} done in {:.1} s", case.name(), clock.elapsed().as_secs_f64());

@@ -5,10 +5,10 @@
 
 use crate::error::{Error, Result};
 use crate::problem::{solve, LoadCase, Timings};
-use std::time::Instant;
 use crate::recovery::{elements_touching, nodal_stresses};
 use crate::scene::{PlateModel, Scene, SceneModel};
 use crate::solve::{SolveReport, SolverOptions};
+use std::time::Instant;
 
 /// Interface fields of the two unit cases, per unit N and per unit F (the input of the
 /// FE-fed precursor model). Pressures and shears are divided by (force / L).
