@@ -14,6 +14,7 @@ pub mod mesher;
 pub mod assembly;
 pub mod constraints;
 pub mod solve;
+pub mod ordering;
 pub mod recovery;
 pub mod loads;
 pub mod problem;
@@ -23,5 +24,6 @@ pub mod convergence;
 pub mod precursors;
 pub mod report;
 pub mod analytical;
+pub mod bench;
 
 pub use error::{Error, Result};

@@ -6,7 +6,8 @@ use crate::assembly::{Assembler, Model};
 use crate::constraints::{Constraints, Reduction};
 use crate::error::{Error, Result};
 use crate::recovery::internal_forces;
-use crate::solve::{SolveReport, Solver, SolverOptions};
+use crate::ordering::nested_dissection;
+use crate::solve::{Ordering, SolveReport, Solver, SolverOptions};
 use std::time::Instant;
 
 /// One load case: the prescribed values (one per fixed DOF, in `Constraints::fix` order) and
@@ -20,16 +21,22 @@ pub struct LoadCase {
 /// Wall time of each phase, s.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Timings {
+    /// Mesh and constraints construction (set by callers that build them, e.g. `check::run`).
+    pub mesh: f64,
+    /// Constraint reduction, sparsity pattern and element colouring.
     pub pattern: f64,
     pub assembly: f64,
     pub symbolic: f64,
     pub numeric: f64,
+    /// All load cases, the condition probe and the residual check with refinement.
     pub solve: f64,
+    /// Post-processing (e.g. interface tractions; set by callers).
+    pub recovery: f64,
 }
 
 impl Timings {
     pub fn total(&self) -> f64 {
-        self.pattern + self.assembly + self.symbolic + self.numeric + self.solve
+        self.mesh + self.pattern + self.assembly + self.symbolic + self.numeric + self.solve + self.recovery
     }
 }
 
@@ -43,6 +50,8 @@ pub struct Solution {
     pub n_unknowns: usize,
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
+    pub factor_flops: f64,
+    pub supernodal: bool,
 }
 
 /// Solves every load case with one factorisation. `hint` is appended to the error when
@@ -64,7 +73,13 @@ pub fn solve(model: &Model, constraints: &Constraints, cases: &[LoadCase], opts:
     t.assembly = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
-    let solver = Solver::analyse(&asm.pattern, opts.clone())?;
+    let mut options = opts.clone();
+    if options.ordering == Ordering::Auto {
+        if let Some(p) = nested_dissection(model.mesh, &red) {
+            options.ordering = Ordering::Custom(p);
+        }
+    }
+    let solver = Solver::analyse(&asm.pattern, options)?;
     t.symbolic = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
@@ -102,7 +117,17 @@ pub fn solve(model: &Model, constraints: &Constraints, cases: &[LoadCase], opts:
     report.condition_estimate = condition;
     let u = cases.iter().enumerate().map(|(c, case)| red.expand(&x[c * n..(c + 1) * n], &case.prescribed)).collect();
     t.solve = clock.elapsed().as_secs_f64();
-    Ok(Solution { reduction: red, u, report, timings: t, n_unknowns: n, matrix_nnz: asm.pattern.nnz(), factor_nnz: solver.factor_nnz() })
+    Ok(Solution {
+        reduction: red,
+        u,
+        report,
+        timings: t,
+        n_unknowns: n,
+        matrix_nnz: asm.pattern.nnz(),
+        factor_nnz: solver.factor_nnz(),
+        factor_flops: solver.factor_flops(),
+        supernodal: solver.is_supernodal(),
+    })
 }
 
 /// Deterministic values in [-1, 1] (a linear congruential sequence), the same every run.

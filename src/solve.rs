@@ -15,8 +15,11 @@ use faer::{Conj, MatMut, Par, Side};
 /// Fill-reducing ordering handed to faer.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub enum Ordering {
-    /// faer's approximate minimum degree.
+    /// Geometric nested dissection when the mesh is a grid ([`crate::ordering`]), AMD
+    /// otherwise; resolved by [`crate::problem::solve`], which knows the mesh.
     #[default]
+    Auto,
+    /// faer's approximate minimum degree.
     Amd,
     /// Our own permutation: `perm[new] = old`.
     Custom(Vec<usize>),
@@ -41,7 +44,7 @@ pub struct SolverOptions {
 
 impl Default for SolverOptions {
     fn default() -> Self {
-        Self { ordering: Ordering::Amd, residual_limit: 1e-8, max_error_estimate: 1e-4, max_refinement: 2, refine_above: 1e-12, threads: 1, supernodal: None }
+        Self { ordering: Ordering::Auto, residual_limit: 1e-8, max_error_estimate: 1e-4, max_refinement: 2, refine_above: 1e-12, threads: 1, supernodal: None }
     }
 }
 
@@ -75,7 +78,7 @@ impl Solver {
         };
         let inv;
         let ordering = match &options.ordering {
-            Ordering::Amd => SymmetricOrdering::Amd,
+            Ordering::Auto | Ordering::Amd => SymmetricOrdering::Amd,
             Ordering::Custom(fwd) => {
                 if fwd.len() != pattern.n {
                     return Err(Error::input("ordering", format!("permutation has {} entries for {} unknowns", fwd.len(), pattern.n)));
@@ -99,6 +102,19 @@ impl Solver {
     /// Non-zeros of the Cholesky factor L.
     pub fn factor_nnz(&self) -> usize {
         self.symbolic.len_val()
+    }
+
+    /// Flop count of the numeric factorisation, sum over the columns of L of (column count)^2
+    /// (one multiply-add = 2 flops; exact up to lower-order terms).
+    pub fn factor_flops(&self) -> f64 {
+        let sq = |c: usize| (c * c) as f64;
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => s.col_ptr().windows(2).map(|w| sq(w[1] - w[0])).sum(),
+            SymbolicCholeskyRaw::Supernodal(s) => {
+                let (begin, end, rows) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_row_idx());
+                (0..s.n_supernodes()).map(|k| (begin[k]..end[k]).map(|j| sq(end[k] - j + rows[k + 1] - rows[k])).sum::<f64>()).sum()
+            }
+        }
     }
 
     pub fn is_supernodal(&self) -> bool {

@@ -1,6 +1,7 @@
 //! Subcommands, one file each. Each parses its flags into library types, calls the library
 //! and prints; errors bubble up to `main` as one message and exit code 2.
 
+mod bench;
 mod check;
 mod converge;
 mod precursors;
@@ -22,6 +23,8 @@ pub enum Command {
     Converge(converge::Args),
     /// Precursors to sliding (Scheibert & Dysthe model): event table, fig. 4, or the n(r, g) map (fig. 5).
     Precursors(precursors::Args),
+    /// Pipeline benchmark: phase times, sizes, GFLOP/s and peak memory on ~1e6-DOF problems.
+    Bench(bench::Args),
 }
 
 pub fn run(cli: Cli) -> tribofe::Result<()> {
@@ -29,5 +32,6 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Check(a) => check::run(a),
         Command::Converge(a) => converge::run(a),
         Command::Precursors(args) => precursors::run(args),
+        Command::Bench(a) => bench::run(a),
     }
 }

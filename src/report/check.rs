@@ -100,16 +100,18 @@ pub fn table(res: &CheckResult) -> String {
     let r = &res.solve_report;
     let _ = writeln!(
         s,
-        "solver: componentwise backward error {:.1e} (after {} refinement steps), condition estimate {:.1e}; time {:.1} ms (pattern {:.1}, assembly {:.1}, symbolic {:.1}, numeric {:.1}, solve {:.1})",
+        "solver: componentwise backward error {:.1e} (after {} refinement steps), condition estimate {:.1e}; time {:.1} ms (mesh {:.1}, pattern {:.1}, assembly {:.1}, symbolic {:.1}, numeric {:.1}, solve {:.1}, recovery {:.1})",
         r.residual.iter().cloned().fold(0.0, f64::max),
         r.refinement_steps,
         r.condition_estimate,
         res.timings.total() * 1e3,
+        res.timings.mesh * 1e3,
         res.timings.pattern * 1e3,
         res.timings.assembly * 1e3,
         res.timings.symbolic * 1e3,
         res.timings.numeric * 1e3,
-        res.timings.solve * 1e3
+        res.timings.solve * 1e3,
+        res.timings.recovery * 1e3
     );
     s
 }

@@ -1,0 +1,280 @@
+//! Benchmarks of the whole pipeline on two ~1e6-DOF problems: the paper's thin strip (aspect
+//! 200, rigid plate, `check::run`) and a square (`problem::solve`), with the phase breakdown,
+//! sizes, the factorisation's flop rate against the dense DGEMM rate of the machine, and the
+//! peak memory. Peak memory is per process, so callers run each case in a fresh process
+//! ([`run_isolated`]).
+
+use crate::check;
+use crate::constraints::{dof, Constraints};
+use crate::error::{Error, Result};
+use crate::material::Material;
+use crate::mesher::Rectangle;
+use crate::problem::{solve, LoadCase, Timings};
+use crate::scene::Scene;
+use crate::solve::{Ordering, SolverOptions};
+use std::fmt::Write;
+use std::path::Path;
+use std::time::Instant;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Case {
+    /// The paper's scene with h = t / ny (200 ny x ny QUA4).
+    Strip(usize),
+    /// n x n QUA4 on [0, 1]^2, bottom clamped, uniform traction on top.
+    Square(usize),
+}
+
+impl Case {
+    pub fn name(&self) -> String {
+        match self {
+            Case::Strip(ny) => format!("strip{ny}"),
+            Case::Square(n) => format!("square{n}"),
+        }
+    }
+}
+
+impl std::str::FromStr for Case {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        let num = |p: &str| s.strip_prefix(p).and_then(|v| v.parse::<usize>().ok()).filter(|&v| v > 0);
+        num("strip").map(Case::Strip).or_else(|| num("square").map(Case::Square)).ok_or_else(|| Error::input("bench case", format!("'{s}': expected stripNY or squareN, e.g. strip50, square707")))
+    }
+}
+
+/// Solver settings of one run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Config {
+    /// faer threads for the factorisation and rayon threads for the assembly.
+    pub threads: usize,
+    /// None = faer's choice.
+    pub supernodal: Option<bool>,
+    pub ordering: Ordering,
+}
+
+/// One benchmark run. Times in s; `output` is None where the case writes nothing.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub case: String,
+    pub threads: usize,
+    pub factor: String,
+    pub ordering: String,
+    pub dofs: usize,
+    pub nnz_k: usize,
+    pub nnz_l: usize,
+    pub flops: f64,
+    pub t: Timings,
+    pub output: Option<f64>,
+    /// VmHWM of the process that ran the case, MiB.
+    pub peak_mib: f64,
+}
+
+impl Row {
+    pub fn dofs_per_s(&self) -> f64 {
+        self.dofs as f64 / self.t.total()
+    }
+    pub fn gflops(&self) -> f64 {
+        self.flops / self.t.numeric / 1e9
+    }
+
+    pub const CSV_HEADER: &'static str = "case,threads,factor,ordering,dofs,nnz_k,nnz_l,gflop,mesh_s,pattern_s,assembly_s,symbolic_s,numeric_s,solve_s,recovery_s,total_s,output_s,dofs_per_s,gflops,peak_mib";
+
+    pub fn to_csv(&self) -> String {
+        let t = &self.t;
+        let out = self.output.map_or(String::new(), |v| format!("{v:.4}"));
+        format!(
+            "{},{},{},{},{},{},{},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{out},{:.0},{:.3},{:.1}",
+            self.case, self.threads, self.factor, self.ordering, self.dofs, self.nnz_k, self.nnz_l, self.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery,
+            t.total(), self.dofs_per_s(), self.gflops(), self.peak_mib
+        )
+    }
+
+    /// Parses a line written by [`Row::to_csv`] (derived columns are recomputed).
+    pub fn from_csv(line: &str) -> Result<Self> {
+        let f: Vec<&str> = line.trim().split(',').collect();
+        let bad = || Error::input("bench row", format!("cannot parse '{}'", line.trim()));
+        if f.len() != Self::CSV_HEADER.split(',').count() {
+            return Err(bad());
+        }
+        let num = |i: usize| f[i].parse::<f64>().map_err(|_| bad());
+        let int = |i: usize| f[i].parse::<usize>().map_err(|_| bad());
+        let t = Timings { mesh: num(8)?, pattern: num(9)?, assembly: num(10)?, symbolic: num(11)?, numeric: num(12)?, solve: num(13)?, recovery: num(14)? };
+        Ok(Row {
+            case: f[0].into(),
+            threads: int(1)?,
+            factor: f[2].into(),
+            ordering: f[3].into(),
+            dofs: int(4)?,
+            nnz_k: int(5)?,
+            nnz_l: int(6)?,
+            flops: num(7)? * 1e9,
+            t,
+            output: if f[16].is_empty() { None } else { Some(num(16)?) },
+            peak_mib: num(19)?,
+        })
+    }
+}
+
+pub fn ordering_name(o: &Ordering) -> &'static str {
+    match o {
+        Ordering::Auto => "auto",
+        Ordering::Amd => "amd",
+        Ordering::Custom(_) => "custom",
+    }
+}
+
+/// Runs one case in this process, with a rayon pool of `cfg.threads` threads.
+pub fn run_case(case: Case, cfg: &Config) -> Result<Row> {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build().map_err(|e| Error::input("threads", e.to_string()))?;
+    let opts = SolverOptions { ordering: cfg.ordering.clone(), threads: cfg.threads, supernodal: cfg.supernodal, ..Default::default() };
+    eprintln!("bench: {} ({} thread(s), {}, {}) ...", case.name(), cfg.threads, cfg.supernodal.map_or("auto", |s| if s { "supernodal" } else { "simplicial" }), ordering_name(&cfg.ordering));
+    let clock = Instant::now();
+    let mut row = pool.install(|| match case {
+        Case::Strip(ny) => strip(ny, &opts),
+        Case::Square(n) => square(n, &opts),
+    })?;
+    row.ordering = ordering_name(&cfg.ordering).into();
+    row.peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
+    eprintln!("bench: {} done in {:.1} s", case.name(), clock.elapsed().as_secs_f64());
+    Ok(row)
+}
+
+fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
+    let mut scene = Scene::default();
+    scene.mesh.h = scene.block.thickness / ny as f64;
+    let (res, _) = check::run(&scene, opts)?;
+    // Outputs go to a private temporary directory, removed afterwards.
+    let dir = std::env::temp_dir().join(format!("tribofe-bench-{}", std::process::id()));
+    let clock = Instant::now();
+    let written = crate::report::check::write(&res, &dir);
+    let output = clock.elapsed().as_secs_f64();
+    let _ = std::fs::remove_dir_all(&dir);
+    written?;
+    Ok(Row {
+        case: Case::Strip(ny).name(),
+        threads: opts.threads,
+        factor: factor_name(res.supernodal),
+        ordering: String::new(),
+        dofs: res.n_unknowns,
+        nnz_k: res.matrix_nnz,
+        nnz_l: res.factor_nnz,
+        flops: res.factor_flops,
+        t: res.timings,
+        output: Some(output),
+        peak_mib: 0.0,
+    })
+}
+
+fn square(n: usize, opts: &SolverOptions) -> Result<Row> {
+    let clock = Instant::now();
+    let mesh = Rectangle::new(0.0, 1.0, 0.0, 1.0, n, n).build()?;
+    let mut c = Constraints::new(mesh.n_nodes());
+    for k in mesh.set_nodes("bottom")? {
+        c.fix(dof(k, 0));
+        c.fix(dof(k, 1));
+    }
+    let mut f = vec![0.0; 2 * mesh.n_nodes()];
+    crate::loads::add_edge_traction(&mesh, "top", &|_| [1e3, -1e3], &mut f)?;
+    let case = LoadCase { prescribed: vec![0.0; c.n_fixed()], forces: f };
+    let model = crate::assembly::Model::new(&mesh, Material::plane_strain(1e6, 0.3)?);
+    let mesh_time = clock.elapsed().as_secs_f64();
+    let sol = solve(&model, &c, std::slice::from_ref(&case), opts, "check the square benchmark")?;
+    let clock = Instant::now();
+    let stresses = crate::recovery::nodal_stresses(&model, &sol.u[0]);
+    std::hint::black_box(stresses);
+    let t = Timings { mesh: mesh_time, recovery: clock.elapsed().as_secs_f64(), ..sol.timings };
+    Ok(Row {
+        case: Case::Square(n).name(),
+        threads: opts.threads,
+        factor: factor_name(sol.supernodal),
+        ordering: String::new(),
+        dofs: sol.n_unknowns,
+        nnz_k: sol.matrix_nnz,
+        nnz_l: sol.factor_nnz,
+        flops: sol.factor_flops,
+        t,
+        output: None,
+        peak_mib: 0.0,
+    })
+}
+
+fn factor_name(supernodal: bool) -> String {
+    if supernodal { "supernodal" } else { "simplicial" }.into()
+}
+
+/// Peak resident memory of this process so far (VmHWM), MiB; None off Linux.
+pub fn peak_memory_mib() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let kb: f64 = s.lines().find_map(|l| l.strip_prefix("VmHWM:"))?.trim().trim_end_matches("kB").trim().parse().ok()?;
+    Some(kb / 1024.0)
+}
+
+/// Runs `exe bench --row` for one case in a fresh process (so its peak memory is its own)
+/// and parses the row it prints.
+pub fn run_isolated(exe: &Path, case: Case, cfg: &Config) -> Result<Row> {
+    let factor = cfg.supernodal.map_or("auto", |s| if s { "supernodal" } else { "simplicial" });
+    let out = std::process::Command::new(exe)
+        .args(["bench", "--row", "--case", &case.name(), "--threads", &cfg.threads.to_string(), "--factor", factor, "--ordering", ordering_name(&cfg.ordering)])
+        .stderr(std::process::Stdio::inherit())
+        .output()
+        .map_err(|e| Error::io(exe, e))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    if !out.status.success() {
+        return Err(Error::input(format!("bench case {}", case.name()), format!("child process failed ({}): {}", out.status, text.trim())));
+    }
+    Row::from_csv(text.lines().last().unwrap_or(""))
+}
+
+/// Dense matrix product rate of faer on n x n f64 matrices, GFLOP/s (best of 3).
+pub fn dgemm_gflops(n: usize, threads: usize) -> f64 {
+    let a = faer::Mat::<f64>::from_fn(n, n, |i, j| ((i * 7 + j * 13) % 17) as f64 - 8.0);
+    let b = faer::Mat::<f64>::from_fn(n, n, |i, j| ((i * 5 + j * 3) % 11) as f64 - 5.0);
+    let mut c = faer::Mat::<f64>::zeros(n, n);
+    let par = if threads > 1 { faer::Par::rayon(threads) } else { faer::Par::Seq };
+    let best = (0..3)
+        .map(|_| {
+            let clock = Instant::now();
+            faer::linalg::matmul::matmul(c.as_mut(), faer::Accum::Replace, a.as_ref(), b.as_ref(), 1.0, par);
+            clock.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min);
+    std::hint::black_box(&c);
+    2.0 * (n as f64).powi(3) / best / 1e9
+}
+
+/// Of several runs of the same case and settings, the one with the smallest in-process time.
+pub fn best(rows: Vec<Row>) -> Option<Row> {
+    rows.into_iter().min_by(|a, b| a.t.total().total_cmp(&b.t.total()))
+}
+
+/// Readable table of the runs; `dgemm` (threads, GFLOP/s) sets the ceiling each
+/// factorisation's rate is compared with.
+pub fn table(rows: &[Row], dgemm: &[(usize, f64)]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6} | {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>6} {:>6} | {:>8} {:>6} {:>5} {:>7}",
+        "case", "th", "factor", "ord", "DOFs", "nnz(K)", "nnz(L)", "GFLOP", "mesh", "patt", "asm", "symb", "numer", "solve", "recov", "total", "output", "DOF/s", "GF/s", "%peak", "MiB");
+    for r in rows {
+        let t = &r.t;
+        let ceiling = dgemm.iter().find(|d| d.0 == r.threads).map_or(f64::NAN, |d| 100.0 * r.gflops() / d.1);
+        let _ = writeln!(
+            s,
+            "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6.2} | {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} | {:>6.2} {:>6} | {:>8.2e} {:>6.2} {:>5.1} {:>7.0}",
+            r.case, r.threads, r.factor, r.ordering, r.dofs, r.nnz_k, r.nnz_l, r.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery, t.total(),
+            r.output.map_or("-".into(), |v| format!("{v:.3}")), r.dofs_per_s(), r.gflops(), ceiling, r.peak_mib
+        );
+    }
+    let _ = writeln!(s, "times in s; symb = ordering + symbolic analysis; solve = all load cases + condition probe + residual check; %peak = numeric GFLOP/s / DGEMM GFLOP/s at the same thread count");
+    for (th, g) in dgemm {
+        let _ = writeln!(s, "dense DGEMM (faer matmul): {th} thread(s) {g:.1} GFLOP/s");
+    }
+    s
+}
+
+/// Writes `bench.csv` (one line per run) and `dgemm.csv` into `dir`.
+pub fn write_csv(rows: &[Row], dgemm: &[(usize, f64)], dir: &Path) -> Result<()> {
+    let mut s = format!("{}\n", Row::CSV_HEADER);
+    rows.iter().for_each(|r| s.push_str(&(r.to_csv() + "\n")));
+    crate::report::write_atomic(&dir.join("bench.csv"), s.as_bytes())?;
+    let mut d = String::from("threads,gflops\n");
+    dgemm.iter().for_each(|(t, g)| d.push_str(&format!("{t},{g:.2}\n")));
+    crate::report::write_atomic(&dir.join("dgemm.csv"), d.as_bytes())
+}

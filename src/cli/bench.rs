@@ -1,0 +1,103 @@
+//! `tribofe bench`: the pipeline's phase times on the thin strip and a square of ~1e6 DOFs,
+//! each run in a fresh process so that its peak memory is its own.
+
+use clap::Args as ClapArgs;
+use std::path::PathBuf;
+use tribofe::bench::{self, Case, Config, Row};
+use tribofe::solve::Ordering;
+
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    /// Cases to run (stripNY = the paper's scene with h = t/NY; squareN = N x N QUA4).
+    #[arg(long, value_delimiter = ',', default_value = "strip50,square707")]
+    pub case: Vec<Case>,
+    /// Also run the strip family with these NY (no value: 5,16,50; 100 = 4e6 DOFs).
+    #[arg(long, value_delimiter = ',', num_args = 0..)]
+    pub sizes: Option<Vec<usize>>,
+    /// Threads for the factorisation and the assembly; a list runs each.
+    #[arg(long, value_delimiter = ',', default_value = "1")]
+    pub threads: Vec<usize>,
+    /// Factorisation: auto (faer's choice), supernodal, simplicial; a list runs each.
+    #[arg(long, value_delimiter = ',', default_value = "auto")]
+    pub factor: Vec<String>,
+    /// Ordering: auto (nested dissection on grids), amd; a list runs each.
+    #[arg(long, value_delimiter = ',', default_value = "auto")]
+    pub ordering: Vec<String>,
+    /// Runs per setting; the best (smallest in-process time) is reported.
+    #[arg(long, default_value_t = 1)]
+    pub repeat: usize,
+    /// Size of the DGEMM that measures the machine's dense rate (0 = skip).
+    #[arg(long, default_value_t = 2000)]
+    pub dgemm: usize,
+    /// Writes bench.csv and dgemm.csv here.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Runs the cases in this process (peak memory is then cumulative).
+    #[arg(long)]
+    pub in_process: bool,
+    /// Internal: run the single case here and print its CSV row only.
+    #[arg(long, hide = true)]
+    pub row: bool,
+}
+
+fn parse_factor(s: &str) -> tribofe::Result<Option<bool>> {
+    match s {
+        "auto" => Ok(None),
+        "supernodal" => Ok(Some(true)),
+        "simplicial" => Ok(Some(false)),
+        _ => Err(tribofe::Error::input("--factor", format!("'{s}': expected auto, supernodal or simplicial"))),
+    }
+}
+
+fn parse_ordering(s: &str) -> tribofe::Result<Ordering> {
+    match s {
+        "auto" => Ok(Ordering::Auto),
+        "amd" => Ok(Ordering::Amd),
+        _ => Err(tribofe::Error::input("--ordering", format!("'{s}': expected auto or amd"))),
+    }
+}
+
+pub fn run(args: Args) -> tribofe::Result<()> {
+    let mut configs = Vec::new();
+    for &threads in &args.threads {
+        for f in &args.factor {
+            for o in &args.ordering {
+                configs.push(Config { threads, supernodal: parse_factor(f)?, ordering: parse_ordering(o)? });
+            }
+        }
+    }
+    if args.row {
+        let row = bench::run_case(args.case[0], &configs[0])?;
+        println!("{}", row.to_csv());
+        return Ok(());
+    }
+    let mut cases = args.case.clone();
+    if let Some(sizes) = &args.sizes {
+        let ny = if sizes.is_empty() { vec![5, 16, 50] } else { sizes.clone() };
+        cases.retain(|c| !matches!(c, Case::Strip(_)));
+        cases.splice(0..0, ny.into_iter().map(Case::Strip));
+    }
+    let exe = std::env::current_exe().map_err(|e| tribofe::Error::io("current executable", e))?;
+    let mut rows: Vec<Row> = Vec::new();
+    for &case in &cases {
+        for cfg in &configs {
+            let runs = (0..args.repeat.max(1))
+                .map(|_| if args.in_process { bench::run_case(case, cfg) } else { bench::run_isolated(&exe, case, cfg) })
+                .collect::<tribofe::Result<Vec<_>>>()?;
+            rows.extend(bench::best(runs));
+        }
+    }
+    let mut dgemm = Vec::new();
+    if args.dgemm > 0 {
+        for &t in &args.threads {
+            eprintln!("bench: dense {n} x {n} matmul on {t} thread(s) ...", n = args.dgemm);
+            dgemm.push((t, bench::dgemm_gflops(args.dgemm, t)));
+        }
+    }
+    print!("{}", bench::table(&rows, &dgemm));
+    if let Some(dir) = &args.out {
+        bench::write_csv(&rows, &dgemm, dir)?;
+        println!("wrote {}/{{bench.csv, dgemm.csv}}", dir.display());
+    }
+    Ok(())
+}
