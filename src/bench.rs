@@ -145,7 +145,7 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
     // Outputs go to a private temporary directory, removed afterwards.
     let dir = std::env::temp_dir().join(format!("tribofe-bench-{}", std::process::id()));
     let clock = Instant::now();
-    let written = crate::report::check::write(&res, &dir);
+    let written = crate::report::check::write(&res, None, &dir);
     let output = clock.elapsed().as_secs_f64();
     let _ = std::fs::remove_dir_all(&dir);
     written?;
