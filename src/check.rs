@@ -6,7 +6,7 @@
 use crate::error::{Error, Result};
 use crate::precursors::fe::UnitFields;
 use crate::problem::{solve, LoadCase, Timings};
-use crate::recovery::{elements_touching, nodal_stresses};
+use crate::recovery::{elements_touching, nodal_stresses_from};
 use crate::scene::{PlateModel, Scene, SceneModel};
 use crate::solve::{SolveReport, SolverOptions};
 use std::time::Instant;
@@ -173,7 +173,7 @@ pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneMod
         let pmean = n / l;
         let (p, tau) = profile(a, b);
         let u: Vec<f64> = sol.u[0].iter().zip(&sol.u[1]).map(|(x, y)| a * x + b * y).collect();
-        let s = nodal_stresses(&model, &u);
+        let s = nodal_stresses_from(&model, &u, &near);
         let p_extrap: Vec<f64> = sm.interface.iter().map(|&k| -s[k][1] / pmean).collect();
         let tau_extrap: Vec<f64> = sm.interface.iter().map(|&k| s[k][2] / pmean).collect();
         let p: Vec<f64> = p.iter().map(|v| v / pmean).collect();

@@ -92,14 +92,13 @@ pub fn solve(model: &Model, constraints: &Constraints, cases: &[LoadCase], opts:
     // One extra column, a fixed pseudo-random probe b, rides along in the same solve: the
     // size of K^-1 b bounds the condition number from below, and for a singular K it is
     // dominated by the free rigid-body motion, which we can then name.
-    let mut rhs = rhs;
-    let probe = probe_vector(n);
-    rhs.extend_from_slice(&probe);
-    factor.solve_in_place(&mut rhs[nc * n..], 1);
-    let condition = norm_1_sym(&asm.pattern, &values) * rhs[nc * n..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut x = rhs.clone();
+    x.extend_from_slice(&probe_vector(n));
+    factor.solve_in_place(&mut x, nc + 1);
+    let condition = norm_1_sym(&asm.pattern, &values) * x[nc * n..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
     if !(condition < 1e15) {
         let g0 = vec![0.0; red.n_fixed()];
-        let mode = red.expand(&rhs[nc * n..], &g0);
+        let mode = red.expand(&x[nc * n..], &g0);
         if let Some(what) = rigid_mode(model, &mode) {
             return Err(Error::Singular { detail: format!("the solution contains an unresisted {what} (condition estimate {condition:.1e}); prescribe enough displacements to stop both translations and the rotation of every separate body") });
         }
@@ -113,7 +112,8 @@ pub fn solve(model: &Model, constraints: &Constraints, cases: &[LoadCase], opts:
         );
         return Err(Error::Untrustworthy { detail, hint: hint.to_string() });
     }
-    let (x, mut report) = factor.solve_checked(&asm.pattern, &values, &rhs[..nc * n], nc, hint)?;
+    x.truncate(nc * n);
+    let (x, mut report) = factor.check_and_refine(&asm.pattern, &values, &rhs, x, nc, hint)?;
     report.condition_estimate = condition;
     let u = cases.iter().enumerate().map(|(c, case)| red.expand(&x[c * n..(c + 1) * n], &case.prescribed)).collect();
     t.solve = clock.elapsed().as_secs_f64();

@@ -81,10 +81,17 @@ pub fn extrapolation_matrix(kind: ElementKind) -> &'static DMatrix<f64> {
 /// Nodal stresses: integration-point stresses extrapolated to each element's nodes, then
 /// averaged over the elements sharing the node.
 pub fn nodal_stresses(model: &Model, u: &[f64]) -> Vec<Stress> {
+    let all: Vec<usize> = (0..model.mesh.n_elements()).collect();
+    nodal_stresses_from(model, u, &all)
+}
+
+/// [`nodal_stresses`] from the given elements only: exact at nodes all of whose elements are
+/// given (e.g. the interface nodes and [`elements_touching`] them), zero at nodes none touches.
+pub fn nodal_stresses_from(model: &Model, u: &[f64], elements: &[usize]) -> Vec<Stress> {
     let mesh = model.mesh;
-    let per_elem: Vec<Vec<Stress>> = (0..mesh.n_elements())
-        .into_par_iter()
-        .map(|e| {
+    let per_elem: Vec<Vec<Stress>> = elements
+        .par_iter()
+        .map(|&e| {
             let g = gauss_stresses(model, e, u);
             let ex = extrapolation_matrix(mesh.kind(e));
             (0..ex.nrows())
@@ -102,7 +109,7 @@ pub fn nodal_stresses(model: &Model, u: &[f64]) -> Vec<Stress> {
         .collect();
     let mut sum = vec![[0.0; 4]; mesh.n_nodes()];
     let mut count = vec![0u32; mesh.n_nodes()];
-    for (e, vals) in per_elem.iter().enumerate() {
+    for (&e, vals) in elements.iter().zip(&per_elem) {
         for (&n, s) in mesh.element_nodes(e).iter().zip(vals) {
             for c in 0..4 {
                 sum[n][c] += s[c];
