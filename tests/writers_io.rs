@@ -141,7 +141,7 @@ fn refused_fields_leave_no_file() {
     let mut values = vec![0.0; m.n_nodes()];
     values[7] = f64::NAN;
     let cases = [
-        (Field::scalar("pressure", values), "field 'pressure'", "value NaN at points 7 component 0 is not finite"),
+        (Field::scalar("pressure", values), "field 'pressure'", "value NaN at point 7 component 0 is not finite"),
         (Field::new("u", 2, vec![0.0; 3]), "field 'u'", "has 3 values"),
         (Field::scalar("a\"b", vec![0.0; m.n_nodes()]), "field 'a\"b'", "without quotes"),
         (Field::scalar("node_tag", vec![0.0; m.n_nodes()]), "field 'node_tag'", "used twice"),

@@ -261,7 +261,7 @@ impl<'a> Parser<'a> {
                 }
                 "Elements" => {
                     if self.nodes.is_empty() {
-                        return Err(self.r.err(at, "$Elements before $Nodes"));
+                        return Err(self.r.err(at, "$Elements before any node was defined in $Nodes"));
                     }
                     self.elements_at = Some(at);
                     self.r.end_line()?;
@@ -438,17 +438,14 @@ impl<'a> Parser<'a> {
         }
         for _ in 0..n {
             let at = self.r.pos;
-            let (tag, x, y) = if self.r.binary {
+            let tag = if self.r.binary {
                 let tag = self.r.bin_i32("a node tag")?;
-                let (x, y) = (self.r.bin_f64("x")?, self.r.bin_f64("y")?);
-                self.r.bin_f64("z")?;
-                (u64::try_from(tag).map_err(|_| self.r.err(at, format!("negative node tag {tag}")))?, x, y)
+                u64::try_from(tag).map_err(|_| self.r.err(at, format!("negative node tag {tag}")))?
             } else {
-                let tag = self.r.ascii("a node tag")?;
-                let (x, y) = (self.r.real("x")?, self.r.real("y")?);
-                self.r.real("z")?;
-                (tag, x, y)
+                self.r.ascii("a node tag")?
             };
+            let (x, y) = (self.r.real("x")?, self.r.real("y")?);
+            self.r.real("z")?;
             if parametric {
                 let dim = self.r.int("the entity dimension")?;
                 self.r.int("the entity tag")?;
@@ -498,7 +495,7 @@ impl<'a> Parser<'a> {
                     let t = self.r.size("a node tag")?;
                     nodes.push(self.node(at, t)?);
                 }
-                self.add_element(at, shape, tag, &nodes, &groups)?;
+                self.add_element(at, shape, tag, &nodes, &groups);
             }
             read = read.saturating_add(n);
         }
@@ -522,7 +519,7 @@ impl<'a> Parser<'a> {
                 let n_tags: u64 = self.r.ascii("the number of tags")?;
                 tags.clear();
                 for _ in 0..n_tags {
-                    tags.push(self.r.ascii::<i64>("an element tag")?);
+                    tags.push(self.r.ascii::<i64>("a physical or entity tag")?);
                 }
                 nodes.clear();
                 for _ in 0..shape.n_nodes() {
@@ -530,7 +527,7 @@ impl<'a> Parser<'a> {
                     let t = self.r.ascii("a node tag")?;
                     nodes.push(self.node(at, t)?);
                 }
-                self.add_element_22(at, shape, tag, &nodes, &tags)?;
+                self.add_element_22(at, shape, tag, &nodes, &tags);
             }
             return Ok(());
         }
@@ -552,7 +549,7 @@ impl<'a> Parser<'a> {
                 let tag = self.r.bin_i32("an element tag")?;
                 tags.clear();
                 for _ in 0..n_tags {
-                    tags.push(self.r.bin_i32("an element tag")?);
+                    tags.push(self.r.bin_i32("a physical or entity tag")?);
                 }
                 nodes.clear();
                 for _ in 0..shape.n_nodes() {
@@ -561,7 +558,7 @@ impl<'a> Parser<'a> {
                     nodes.push(self.node(at, t as u64)?);
                 }
                 let tag = u64::try_from(tag).map_err(|_| self.r.err(at, format!("negative element tag {tag}")))?;
-                self.add_element_22(at, shape, tag, &nodes, &tags)?;
+                self.add_element_22(at, shape, tag, &nodes, &tags);
             }
             read += count as u64;
         }
@@ -569,7 +566,7 @@ impl<'a> Parser<'a> {
     }
 
     /// MSH 2.2: the first tag is the physical group (0 = none).
-    fn add_element_22(&mut self, at: usize, shape: Shape, tag: u64, nodes: &[usize], tags: &[i64]) -> Result<()> {
+    fn add_element_22(&mut self, at: usize, shape: Shape, tag: u64, nodes: &[usize], tags: &[i64]) {
         let groups: &[i64] = match tags.first() {
             Some(&p) if p != 0 => &tags[..1],
             _ => &[],
@@ -577,7 +574,8 @@ impl<'a> Parser<'a> {
         self.add_element(at, shape, tag, nodes, groups)
     }
 
-    fn add_element(&mut self, at: usize, shape: Shape, tag: u64, nodes: &[usize], groups: &[i64]) -> Result<()> {
+    /// Records a 2D element (once) and the sets the element adds to; `at` locates it for messages.
+    fn add_element(&mut self, at: usize, shape: Shape, tag: u64, nodes: &[usize], groups: &[i64]) {
         let dim = shape.dim();
         match shape {
             Shape::Surface(kind) => {
@@ -607,7 +605,6 @@ impl<'a> Parser<'a> {
                 }
             }
         }
-        Ok(())
     }
 
     fn group_name(&self, key: (i64, i64)) -> String {

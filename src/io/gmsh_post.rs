@@ -17,8 +17,8 @@ use std::path::Path;
 
 /// Writes `mesh` and its fields (one view each) as a Gmsh MSH 4.1 ASCII file.
 pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[Field]) -> Result<()> {
-    check_fields(node_data, mesh.n_nodes(), "nodes", &[])?;
-    check_fields(element_data, mesh.n_elements(), "elements", &[])?;
+    check_fields(node_data, mesh.n_nodes(), "node", &[])?;
+    check_fields(element_data, mesh.n_elements(), "element", &[])?;
     if let Some(f) = node_data.iter().chain(element_data).find(|f| ![1, 3, 9].contains(&f.components)) {
         return Err(Error::input(
             format!("field '{}'", f.name),

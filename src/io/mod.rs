@@ -46,12 +46,9 @@ impl Field {
         Self::new(name, 9, full)
     }
 
-    pub fn n_entries(&self) -> usize {
-        self.values.len() / self.components.max(1)
-    }
-
-    /// Checks the field fits `n` points or cells and holds finite numbers only. Names are kept
-    /// free of quotes, markup and control characters so no writer needs escaping.
+    /// Checks the field fits `n` entries of kind `over` ("point", "cell"...) and holds finite
+    /// numbers only. Names are kept free of quotes, markup and control characters, so no
+    /// writer needs to escape them.
     pub fn check(&self, n: usize, over: &str) -> Result<()> {
         let what = || format!("field '{}'", self.name);
         if self.name.is_empty() || self.name.chars().any(|c| c.is_control() || matches!(c, '"' | '<' | '>' | '&' | '\'')) {
@@ -60,7 +57,7 @@ impl Field {
         if self.components == 0 || self.values.len() != n * self.components {
             return Err(Error::input(
                 what(),
-                format!("has {} values, but {n} {over} x {} components need {}", self.values.len(), self.components, n * self.components),
+                format!("has {} values, but {n} {over}s x {} components need {}", self.values.len(), self.components, n * self.components),
             ));
         }
         if let Some(i) = self.values.iter().position(|v| !v.is_finite()) {

@@ -20,8 +20,8 @@ pub const CELL_ARRAYS: [&str; 2] = ["element_tag", "element_kind"];
 
 /// Writes `mesh` with its point and cell fields as a VTK XML `.vtu` file.
 pub fn write_vtu(path: &Path, mesh: &Mesh, point_data: &[Field], cell_data: &[Field]) -> Result<()> {
-    check_fields(point_data, mesh.n_nodes(), "points", &POINT_ARRAYS)?;
-    check_fields(cell_data, mesh.n_elements(), "cells", &CELL_ARRAYS)?;
+    check_fields(point_data, mesh.n_nodes(), "point", &POINT_ARRAYS)?;
+    check_fields(cell_data, mesh.n_elements(), "cell", &CELL_ARRAYS)?;
     let (np, nc) = (mesh.n_nodes(), mesh.n_elements());
     write_atomic(path, |w| {
         let e = io_err(path);
