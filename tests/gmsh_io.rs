@@ -343,7 +343,7 @@ fn clockwise_elements_are_reoriented() {
 
 #[test]
 fn msh22_element_in_two_groups_is_one_element() {
-    let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n$Elements\n2\n1 2 2 4 1 1 2 3\n1 2 2 6 1 1 2 3\n$EndElements\n";
+    let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n$Elements\n2\n1 2 2 4 1 1 2 3\n2 2 2 6 1 1 2 3\n$EndElements\n";
     let m = parse(text).unwrap();
     assert_eq!(m.n_elements(), 1);
     assert_eq!(m.element_set("physical_2_4").unwrap(), &[0]);

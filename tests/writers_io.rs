@@ -156,6 +156,11 @@ fn refused_fields_leave_no_file() {
     let msg = gmsh_post::write_msh(&dir.path().join("bad.msh"), &m, &[Field::new("u", 2, vec![0.0; 2 * m.n_nodes()])], &[]).unwrap_err().to_string();
     assert!(msg.contains("Gmsh views take 1, 3 or 9 components"), "{msg}");
     assert!(vtu::write_pvd(&dir.path().join("c.pvd"), &[(f64::INFINITY, &path)]).is_err());
+    let mut moved = m.clone();
+    moved.nodes[3][1] = f64::NAN;
+    let msg = vtu::write_vtu(&path, &moved, &[], &[]).unwrap_err().to_string();
+    assert!(msg.contains("node 4 has the non-finite coordinates"), "{msg}");
+    assert!(gmsh_post::write_msh(&dir.path().join("bad.msh"), &moved, &[], &[]).is_err());
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "no file, no temporary left behind");
     // A directory that does not exist: an I/O error naming the temporary path, nothing written.
     let msg = vtu::write_vtu(&dir.path().join("missing/out.vtu"), &m, &[], &[]).unwrap_err().to_string();

@@ -9,7 +9,7 @@
 //! membership (one surface entity per distinct membership) and kind, in mesh order; each edge
 //! set gets its own curve entity, each node of a node set its own point entity.
 
-use super::{check_fields, io_err, write_atomic, Field};
+use super::{check_fields, check_mesh, io_err, write_atomic, Field};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use std::collections::{BTreeMap, HashSet};
@@ -17,6 +17,7 @@ use std::path::Path;
 
 /// Writes `mesh` and its fields (one view each) as a Gmsh MSH 4.1 ASCII file.
 pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[Field]) -> Result<()> {
+    check_mesh(mesh)?;
     check_fields(node_data, mesh.n_nodes(), "node", &[])?;
     check_fields(element_data, mesh.n_elements(), "element", &[])?;
     if let Some(f) = node_data.iter().chain(element_data).find(|f| ![1, 3, 9].contains(&f.components)) {

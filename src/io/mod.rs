@@ -13,6 +13,7 @@ pub mod gmsh_post;
 pub mod vtu;
 
 use crate::error::{Error, Result};
+use crate::mesh::Mesh;
 use std::io::Write;
 use std::path::Path;
 
@@ -77,6 +78,17 @@ fn check_fields(fields: &[Field], n: usize, over: &str, reserved: &[&str]) -> Re
         if reserved.contains(&f.name.as_str()) || fields[..i].iter().any(|g| g.name == f.name) {
             return Err(Error::input(format!("field '{}'", f.name), format!("the name is used twice among the {over} fields")));
         }
+    }
+    Ok(())
+}
+
+/// Writers refuse what would make a broken file: non-finite coordinates, nodes out of range.
+fn check_mesh(mesh: &Mesh) -> Result<()> {
+    if let Some(n) = mesh.nodes.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+        return Err(Error::Mesh(format!("node {} has the non-finite coordinates {:?}", mesh.node_tag(n), mesh.nodes[n])));
+    }
+    if let Some(e) = (0..mesh.n_elements()).find(|&e| mesh.element_nodes(e).iter().any(|&n| n >= mesh.n_nodes())) {
+        return Err(Error::Mesh(format!("{} refers to a node index beyond the {} nodes", mesh.describe_element(e), mesh.n_nodes())));
     }
     Ok(())
 }

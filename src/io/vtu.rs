@@ -8,7 +8,7 @@
 //! (VTK file format, "XML File Formats", binary inline data).
 //! [`write_pvd`] writes a `.pvd` collection, one data set per load case or time.
 
-use super::{check_fields, io_err, write_atomic, Field};
+use super::{check_fields, check_mesh, io_err, write_atomic, Field};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use std::io::Write;
@@ -20,6 +20,7 @@ pub const CELL_ARRAYS: [&str; 2] = ["element_tag", "element_kind"];
 
 /// Writes `mesh` with its point and cell fields as a VTK XML `.vtu` file.
 pub fn write_vtu(path: &Path, mesh: &Mesh, point_data: &[Field], cell_data: &[Field]) -> Result<()> {
+    check_mesh(mesh)?;
     check_fields(point_data, mesh.n_nodes(), "point", &POINT_ARRAYS)?;
     check_fields(cell_data, mesh.n_elements(), "cell", &CELL_ARRAYS)?;
     let (np, nc) = (mesh.n_nodes(), mesh.n_elements());
