@@ -90,9 +90,8 @@ fn mutate(rng: &mut Rng, seed: &[u8], other: &[u8]) -> Vec<u8> {
                 // Binary counts and tags: overwrite 4 or 8 bytes with an extreme value.
                 let w = WORDS[rng.below(WORDS.len())].to_le_bytes();
                 let len = if rng.below(2) == 0 { 4 } else { 8 };
-                for i in 0..len.min(b.len() - at) {
-                    b[at + i] = w[i];
-                }
+                let len = len.min(b.len() - at);
+                b[at..at + len].copy_from_slice(&w[..len]);
             }
             5 => {
                 let end = (at + rng.below(64)).min(b.len());

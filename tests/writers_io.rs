@@ -147,10 +147,10 @@ fn refused_fields_leave_no_file() {
         (Field::scalar("node_tag", vec![0.0; m.n_nodes()]), "field 'node_tag'", "used twice"),
     ];
     for (f, what, why) in cases {
-        let msg = vtu::write_vtu(&path, &m, &[f.clone()], &[]).unwrap_err().to_string();
+        let msg = vtu::write_vtu(&path, &m, std::slice::from_ref(&f), &[]).unwrap_err().to_string();
         assert!(msg.contains(what) && msg.contains(why), "{msg}");
         // `node_tag` is reserved in .vtu only.
-        assert_eq!(gmsh_post::write_msh(&dir.path().join("bad.msh"), &m, &[f.clone()], &[]).is_err(), f.name != "node_tag");
+        assert_eq!(gmsh_post::write_msh(&dir.path().join("bad.msh"), &m, std::slice::from_ref(&f), &[]).is_err(), f.name != "node_tag");
         let _ = std::fs::remove_file(dir.path().join("bad.msh"));
     }
     let msg = gmsh_post::write_msh(&dir.path().join("bad.msh"), &m, &[Field::new("u", 2, vec![0.0; 2 * m.n_nodes()])], &[]).unwrap_err().to_string();

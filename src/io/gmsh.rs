@@ -203,14 +203,17 @@ impl<'a> Cursor<'a> {
     }
 }
 
+/// A physical group or an entity: (dimension, tag).
+type Group = (i64, i64);
+
 /// What the file holds, in file numbering, before renumbering into a [`Mesh`].
 #[derive(Default)]
 struct Parser<'a> {
     r: Cursor<'a>,
     version: u8,
-    names: HashMap<(i64, i64), String>,
+    names: HashMap<Group, String>,
     /// MSH 4.1 entities (dim, tag) -> physical tags.
-    entity_groups: HashMap<(i64, i64), Vec<i64>>,
+    entity_groups: HashMap<Group, Vec<i64>>,
     nodes: Vec<[f64; 2]>,
     node_tags: Vec<u64>,
     node_index: HashMap<u64, usize>,
@@ -219,10 +222,11 @@ struct Parser<'a> {
     conn: Vec<usize>,
     elem_tags: Vec<u64>,
     elem_index: HashMap<(ElementKind, [usize; 9]), usize>,
-    /// Physical groups (dim, tag) -> members, each with the position of the element that added it.
-    element_groups: BTreeMap<(i64, i64), Vec<usize>>,
-    edge_groups: BTreeMap<(i64, i64), Vec<([usize; 3], usize)>>,
-    node_groups: BTreeMap<(i64, i64), Vec<(usize, usize)>>,
+    /// Physical groups (dim, tag) -> elements; edges and nodes with the position of the
+    /// element that added them.
+    element_groups: BTreeMap<Group, Vec<usize>>,
+    edge_groups: BTreeMap<Group, Vec<([usize; 3], usize)>>,
+    node_groups: BTreeMap<Group, Vec<(usize, usize)>>,
     /// Where `$Elements` started, for messages about the mesh as a whole.
     elements_at: Option<usize>,
 }
@@ -607,7 +611,7 @@ impl<'a> Parser<'a> {
         }
     }
 
-    fn group_name(&self, key: (i64, i64)) -> String {
+    fn group_name(&self, key: Group) -> String {
         self.names.get(&key).cloned().unwrap_or_else(|| format!("physical_{}_{}", key.0, key.1))
     }
 

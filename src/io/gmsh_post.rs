@@ -116,34 +116,37 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
         }
         writeln!(w, "$EndNodes").map_err(&e)?;
 
-        // Blocks: (dim, entity, Gmsh type, [(element tag, node indices)]).
-        let mut blocks: Vec<(u8, usize, u32, Vec<(u64, Vec<usize>)>)> = Vec::new();
-        let mut push = |dim: u8, entity: usize, ty: u32, tag: u64, nodes: Vec<usize>| match blocks.last_mut() {
-            Some(b) if (b.0, b.1, b.2) == (dim, entity, ty) => b.3.push((tag, nodes)),
-            _ => blocks.push((dim, entity, ty, vec![(tag, nodes)])),
+        // Blocks in file order: (dim, entity, Gmsh type) and rows [element tag, node tags...].
+        type Key = (u8, usize, u32);
+        let mut blocks: Vec<(Key, Vec<Vec<u64>>)> = Vec::new();
+        let mut push = |key: Key, tag: u64, nodes: &mut dyn Iterator<Item = usize>| {
+            let row = std::iter::once(tag).chain(nodes.map(|n| node_tags[n])).collect();
+            match blocks.last_mut() {
+                Some((k, rows)) if *k == key => rows.push(row),
+                _ => blocks.push((key, vec![row])),
+            }
         };
         for (el, (kind, nodes)) in mesh.elements().enumerate() {
-            push(2, elem_entity[el], kind.gmsh_type(), elem_tags[el], nodes.to_vec());
+            push((2, elem_entity[el], kind.gmsh_type()), elem_tags[el], &mut nodes.iter().copied());
         }
         let mut next_tag = elem_tags.iter().max().map_or(1, |t| t + 1);
         for (g, edges) in mesh.edge_sets.values().enumerate() {
             for edge in edges {
-                push(1, g + 1, if edge.mid.is_some() { 8 } else { 1 }, next_tag, edge.nodes().collect());
+                push((1, g + 1, if edge.mid.is_some() { 8 } else { 1 }), next_tag, &mut edge.nodes());
                 next_tag += 1;
             }
         }
         for (i, &n) in points.keys().enumerate() {
-            push(0, i + 1, 15, next_tag, vec![n]);
+            push((0, i + 1, 15), next_tag, &mut std::iter::once(n));
             next_tag += 1;
         }
-        let total: usize = blocks.iter().map(|b| b.3.len()).sum();
+        let total: usize = blocks.iter().map(|b| b.1.len()).sum();
         let first = elem_tags.iter().min().copied().unwrap_or(1); // line and point tags follow the largest
         writeln!(w, "$Elements\n{} {total} {first} {}", blocks.len(), next_tag - 1).map_err(&e)?;
-        for (dim, entity, ty, elems) in &blocks {
-            writeln!(w, "{dim} {entity} {ty} {}", elems.len()).map_err(&e)?;
-            for (tag, nodes) in elems {
-                let nodes: String = nodes.iter().map(|&n| format!(" {}", node_tags[n])).collect();
-                writeln!(w, "{tag}{nodes}").map_err(&e)?;
+        for ((dim, entity, ty), rows) in &blocks {
+            writeln!(w, "{dim} {entity} {ty} {}", rows.len()).map_err(&e)?;
+            for row in rows {
+                writeln!(w, "{}", row.iter().map(u64::to_string).collect::<Vec<_>>().join(" ")).map_err(&e)?;
             }
         }
         writeln!(w, "$EndElements").map_err(&e)?;

@@ -114,8 +114,9 @@ scalar!(i32, "Int32");
 scalar!(u8, "UInt8");
 
 fn array<T: Scalar>(w: &mut dyn Write, name: &str, components: usize, values: &[T]) -> std::io::Result<()> {
-    let mut raw = Vec::with_capacity(8 + values.len() * std::mem::size_of::<T>());
-    raw.extend_from_slice(&((values.len() * std::mem::size_of::<T>()) as u64).to_le_bytes());
+    let bytes = std::mem::size_of_val(values);
+    let mut raw = Vec::with_capacity(8 + bytes);
+    raw.extend_from_slice(&(bytes as u64).to_le_bytes());
     values.iter().for_each(|v| v.put(&mut raw));
     writeln!(
         w,
