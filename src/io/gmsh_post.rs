@@ -9,7 +9,7 @@
 //! membership (one surface entity per distinct membership) and kind, in mesh order; each edge
 //! set gets its own curve entity, each node of a node set its own point entity.
 
-use super::{check_fields, check_mesh, io_err, write_atomic, Field};
+use super::{check_fields, check_mesh, element_tag, io_err, write_atomic, Field};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use std::collections::{BTreeMap, HashSet};
@@ -30,7 +30,7 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
         return Err(Error::input("set name", format!("'{name}' cannot be a Gmsh physical name (empty, quote or line break)")));
     }
     let node_tags: Vec<u64> = (0..mesh.n_nodes()).map(|n| mesh.node_tag(n)).collect();
-    let elem_tags: Vec<u64> = (0..mesh.n_elements()).map(|e| mesh.element_tags.as_ref().map_or(e as u64 + 1, |t| t[e])).collect();
+    let elem_tags: Vec<u64> = (0..mesh.n_elements()).map(|e| element_tag(mesh, e)).collect();
     for (tags, what) in [(&node_tags, "node"), (&elem_tags, "element")] {
         let mut seen = HashSet::with_capacity(tags.len());
         if let Some(t) = tags.iter().find(|&&t| !seen.insert(t)) {

@@ -82,6 +82,11 @@ fn check_fields(fields: &[Field], n: usize, over: &str, reserved: &[&str]) -> Re
     Ok(())
 }
 
+/// The user's number of element `e` (1-based index when the mesh has no tags), as in messages.
+fn element_tag(mesh: &Mesh, e: usize) -> u64 {
+    mesh.element_tags.as_ref().map_or(e as u64 + 1, |t| t[e])
+}
+
 /// Writers refuse what would make a broken file: non-finite coordinates, nodes out of range.
 fn check_mesh(mesh: &Mesh) -> Result<()> {
     if let Some(n) = mesh.nodes.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {

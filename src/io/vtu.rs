@@ -8,7 +8,7 @@
 //! (VTK file format, "XML File Formats", binary inline data).
 //! [`write_pvd`] writes a `.pvd` collection, one data set per load case or time.
 
-use super::{check_fields, check_mesh, io_err, write_atomic, Field};
+use super::{check_fields, check_mesh, element_tag, io_err, write_atomic, Field};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use std::io::Write;
@@ -40,7 +40,7 @@ pub fn write_vtu(path: &Path, mesh: &Mesh, point_data: &[Field], cell_data: &[Fi
         for f in cell_data {
             array(w, &f.name, f.components, &f.values).map_err(&e)?;
         }
-        let elem_tags: Vec<i64> = (0..nc).map(|c| mesh.element_tags.as_ref().map_or(c as u64 + 1, |t| t[c]) as i64).collect();
+        let elem_tags: Vec<i64> = (0..nc).map(|c| element_tag(mesh, c) as i64).collect();
         array(w, "element_tag", 1, &elem_tags).map_err(&e)?;
         let kinds: Vec<i32> = (0..nc).map(|c| mesh.kind(c).gmsh_type() as i32).collect();
         array(w, "element_kind", 1, &kinds).map_err(&e)?;
