@@ -8,6 +8,7 @@
 
 pub mod element;
 pub mod error;
+pub mod io;
 pub mod material;
 pub mod mesh;
 pub mod mesher;

@@ -1,0 +1,26 @@
+// Small test mesh: 4 mm x 2 mm block, second order (TRI6 left, QUA9 right, LINE3 edges).
+Point(1) = {0, 0, 0, 1e-3};
+Point(2) = {0.004, 0, 0, 1e-3};
+Point(3) = {0.004, 0.002, 0, 1e-3};
+Point(4) = {0, 0.002, 0, 1e-3};
+Point(5) = {0.002, 0, 0, 1e-3};
+Point(6) = {0.002, 0.002, 0, 1e-3};
+Line(1) = {1, 5};
+Line(2) = {5, 2};
+Line(3) = {2, 3};
+Line(4) = {3, 6};
+Line(5) = {6, 4};
+Line(6) = {4, 1};
+Line(7) = {5, 6};
+Curve Loop(1) = {1, 7, 5, 6};
+Plane Surface(1) = {1};
+Curve Loop(2) = {2, 3, 4, -7};
+Plane Surface(2) = {2};
+Transfinite Curve{2, 4} = 3;
+Transfinite Curve{3, 7} = 2;
+Transfinite Surface{2};
+Recombine Surface{2};
+Mesh.ElementOrder = 2;
+Physical Curve("interface") = {1, 2};
+Physical Curve("left") = {6};
+Physical Surface("block") = {1, 2};
