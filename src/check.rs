@@ -120,7 +120,7 @@ pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneMod
     // Interface reactions of each unit case, and the generalised reactions at U and V.
     let near = elements_touching(&model, &sm.interface);
     let plate_elems: Vec<usize> = match sm.dof_theta {
-        Some(_) => elements_touching(&model, &sm.mesh.set_nodes("top")?),
+        Some(_) => elements_touching(&model, &sm.mesh.set_nodes(&sm.top_set)?),
         None => elements_touching(&model, &[sm.dof_u / 2, sm.dof_v / 2]),
     };
     let mut unit = Vec::new();
@@ -235,7 +235,7 @@ fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
     let mut w = vec![0.0; sm.mesh.n_nodes()];
     let mut f = vec![0.0; 2 * sm.mesh.n_nodes()];
     // A unit normal traction's consistent forces are exactly these integrals.
-    crate::loads::add_edge_traction(&sm.mesh, "interface", &|_| [0.0, 1.0], &mut f).expect("interface edges exist");
+    crate::loads::add_edge_traction(&sm.mesh, &sm.interface_set, &|_| [0.0, 1.0], &mut f).expect("interface edges exist");
     for k in 0..sm.mesh.n_nodes() {
         w[k] = f[2 * k + 1];
     }

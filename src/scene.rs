@@ -137,8 +137,10 @@ pub struct SceneModel {
     /// QUA4 technology from `mesh.element`.
     pub tech: Technology,
     pub constraints: Constraints,
-    /// Interface nodes sorted by x.
+    /// Interface nodes sorted by x, and the names of the interface and top edge sets.
     pub interface: Vec<usize>,
+    pub interface_set: String,
+    pub top_set: String,
     /// Full DOFs where U (tangential, at height H) and V (normal) are prescribed.
     pub dof_u: usize,
     pub dof_v: usize,
@@ -160,6 +162,12 @@ impl Scene {
             let line = e.span().map_or(0, |s| text[..s.start].matches('\n').count() + 1);
             Error::Parse { file: path.to_path_buf(), at: format!("line {line}"), msg: e.message().to_string() }
         })?;
+        let mut scene = scene;
+        if let (Some(f), Some(dir)) = (&scene.mesh.file, path.parent()) {
+            if f.is_relative() {
+                scene.mesh.file = Some(dir.join(f));
+            }
+        }
         scene.validate()?;
         Ok(scene)
     }
@@ -201,13 +209,16 @@ impl Scene {
         let block_mat = Material::plane_strain(self.block.young, self.block.poisson)?;
         let nx = even((l / self.mesh.h).round().max(2.0) as usize);
         let ny = ((t / self.mesh.h).round() as usize).max(1);
-        let (mesh, interface_name, top_name) = match &self.mesh.file {
-            Some(_) => return Err(Error::input("mesh.file", "Gmsh meshes are not supported by this build yet")),
+        let (interface_name, top_name) = (self.mesh.interface.clone(), self.mesh.top.clone());
+        let mesh = match &self.mesh.file {
+            Some(path) => self.read_mesh(path)?,
             None => {
                 let mut m = self.layer(0.0, t, ny, nx)?;
-                m.edge_sets.insert("interface".into(), m.edge_sets["bottom"].clone());
-                m.element_sets.insert("block".into(), m.element_sets["all"].clone());
-                (m, "interface".to_string(), "top".to_string())
+                let (bottom, top) = (m.edge_sets["bottom"].clone(), m.edge_sets["top"].clone());
+                m.edge_sets.insert(interface_name.clone(), bottom);
+                m.edge_sets.insert(top_name.clone(), top);
+                m.element_sets.insert(self.mesh.block.clone(), m.element_sets["all"].clone());
+                m
             }
         };
         match self.plate.model {
@@ -230,10 +241,33 @@ impl Scene {
                     c.tie(dof(n, 1), &[(dv, 1.0), (dth, x)]);
                 }
                 let n_el = mesh.n_elements();
-                Ok(SceneModel { mesh, materials: vec![block_mat], element_material: vec![0; n_el], tech, constraints: c, interface, dof_u: du, dof_v: dv, dof_theta: Some(dth) })
+                Ok(SceneModel { mesh, materials: vec![block_mat], element_material: vec![0; n_el], tech, constraints: c, interface, interface_set: interface_name, top_set: top_name, dof_u: du, dof_v: dv, dof_theta: Some(dth) })
             }
             PlateModel::Elastic => self.build_elastic(mesh, &interface_name, block_mat, nx, tech),
         }
+    }
+
+    /// The block from a Gmsh file: its element set `mesh.block`, with the edge sets
+    /// `mesh.interface` and `mesh.top`; the element kind comes from the file, the element name
+    /// chooses only the integration technology.
+    fn read_mesh(&self, path: &Path) -> Result<Mesh> {
+        let full = crate::io::gmsh::read(path)?;
+        let m = full.restrict_to(&self.mesh.block).map_err(|e| Error::Mesh(format!("{}: {e}", path.display())))?;
+        for name in [&self.mesh.interface, &self.mesh.top] {
+            m.edges(name).map_err(|e| Error::Mesh(format!("{}: {e}", path.display())))?;
+        }
+        let mut used = vec![false; m.n_nodes()];
+        m.elements().for_each(|(_, v)| v.iter().for_each(|&n| used[n] = true));
+        if let Some(n) = used.iter().position(|u| !u) {
+            return Err(Error::Mesh(format!("{}: node {} does not belong to the '{}' surface; the file must hold the block only", path.display(), m.node_tag(n), self.mesh.block)));
+        }
+        let want = self.element()?;
+        let kinds = m.kinds_present();
+        if !kinds.contains(&want.kind) {
+            let names: Vec<&str> = kinds.iter().map(|k| k.name()).collect();
+            return Err(Error::input("mesh.element", format!("'{}' but {} holds {} elements; the kind comes from the mesh file", self.mesh.element, path.display(), names.join(" and "))));
+        }
+        Ok(m)
     }
 
     /// A layer y0 < y < y1 spanning the block's length, with the block's spacing along x
@@ -282,7 +316,7 @@ impl Scene {
         let dv = dof(find(0.0, t + tp)?, 1);
         c.fix(du);
         c.fix(dv);
-        Ok(SceneModel { mesh, materials: vec![block_mat, plate_mat], element_material, tech, constraints: c, interface, dof_u: du, dof_v: dv, dof_theta: None })
+        Ok(SceneModel { mesh, materials: vec![block_mat, plate_mat], element_material, tech, constraints: c, interface, interface_set: self.mesh.interface.clone(), top_set: self.mesh.top.clone(), dof_u: du, dof_v: dv, dof_theta: None })
     }
 }
 

@@ -138,3 +138,24 @@ fn bad_scene_values_are_clear_errors() {
     assert!(e.contains("bad.toml") && e.contains("line 3") && e.contains("thicknes"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn gmsh_regular_mesh_gives_the_structured_result_in_every_format() {
+    let built = paper();
+    for f in ["block_regular_v41_ascii", "block_regular_v41_bin", "block_regular_v22_ascii", "block_regular_v22_bin"] {
+        let mut s = Scene::default();
+        s.mesh.file = Some(format!("{}/meshes/{f}.msh", env!("CARGO_MANIFEST_DIR")).into());
+        let r = run(&s, &SolverOptions::default()).unwrap().0;
+        for (a, b) in r.cases.iter().zip(&built.cases) {
+            // Gmsh writes coordinates with ~5e-13 m round-off (1.3e-12 of L); profiles agree to that order.
+            assert!(max_diff(&a.x_over_l, &b.x_over_l) < 1e-11, "{f}: x differs by {}", max_diff(&a.x_over_l, &b.x_over_l));
+            assert!(max_diff(&a.p, &b.p) < 1e-9 && max_diff(&a.tau, &b.tau) < 1e-9, "{f}: {} {}", max_diff(&a.p, &b.p), max_diff(&a.tau, &b.tau));
+        }
+    }
+    // A group the mesh lacks is named with the groups it has.
+    let mut s = Scene::default();
+    s.mesh.file = Some(format!("{}/meshes/block_regular_v41_ascii.msh", env!("CARGO_MANIFEST_DIR")).into());
+    s.mesh.interface = "bottom".into();
+    let e = run(&s, &SolverOptions::default()).err().unwrap().to_string();
+    assert!(e.contains("'bottom'") && e.contains("interface") && e.contains("block_regular"), "{e}");
+}

@@ -29,6 +29,9 @@ pub struct SceneArgs {
     /// Edge-zone tolerance, relative to the local model value (default 0.05).
     #[arg(long)]
     pub tol: Option<f64>,
+    /// A Gmsh mesh (.msh 4.1 or 2.2) of the block with physical groups interface, top, block.
+    #[arg(long)]
+    pub mesh: Option<PathBuf>,
 }
 
 #[derive(ClapArgs, Debug)]
@@ -38,6 +41,9 @@ pub struct Args {
     /// Output directory.
     #[arg(long, default_value = "out/check")]
     pub out: PathBuf,
+    /// Skip the field files (fields_FN*.vtu/.msh, fields.pvd) of the whole mesh.
+    #[arg(long)]
+    pub no_fields: bool,
     /// Skip the converged run (graded QUA8) printed next to the scene's mesh.
     #[arg(long)]
     pub no_converged: bool,
@@ -67,6 +73,9 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
     if let Some(t) = args.tol {
         s.report.tol = t;
     }
+    if let Some(m) = &args.mesh {
+        s.mesh.file = Some(m.clone());
+    }
     s.validate()?;
     Ok(s)
 }
@@ -74,17 +83,20 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = scene(&args.scene)?;
     let opts = SolverOptions::default();
-    let (res, _) = tribofe::check::run(&scene, &opts)?;
+    let (res, sm) = tribofe::check::run(&scene, &opts)?;
     // The converged figures need the exact rigid plate and the structured mesh of the scene.
     let converged = match (scene.plate.model, &scene.mesh.file, args.no_converged) {
         (PlateModel::Rigid, None, false) => Some(tribofe::check::run(&tribofe::check::converged_scene(&scene), &opts)?.0),
         _ => None,
     };
     tribofe::report::check::write(&res, converged.as_ref(), &args.out)?;
+    if !args.no_fields {
+        tribofe::report::check::write_fields(&res, &sm, &args.out)?;
+    }
     print!("{}", tribofe::report::check::table(&res));
     if let Some(c) = &converged {
         print!("{}", tribofe::report::check::converged_table(&res, c));
     }
-    println!("wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg}}", args.out.display());
+    println!("wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg{}}}", args.out.display(), if args.no_fields { "" } else { ", fields_FN*.vtu/.msh, fields.pvd" });
     Ok(())
 }

@@ -177,3 +177,45 @@ where
     chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).position(SeriesLabelPosition::UpperMiddle).draw().map_err(err)?;
     Ok(())
 }
+
+/// Field files of every load case for ParaView (`fields_FN<ratio>.vtu` and `fields.pvd`) and
+/// Gmsh (`fields_FN<ratio>.msh`): displacement, nodal stresses (extrapolated and averaged),
+/// von Mises, and the mean integration-point stress of each element.
+pub fn write_fields(res: &CheckResult, sm: &crate::scene::SceneModel, dir: &Path) -> Result<Vec<std::path::PathBuf>> {
+    use crate::io::{gmsh_post::write_msh, vtu, Field};
+    use crate::recovery::{gauss_stresses, nodal_stresses, von_mises};
+    let model = sm.model();
+    let nn = sm.mesh.n_nodes();
+    let mut written = Vec::new();
+    let mut pvd = Vec::new();
+    for (c, u) in res.cases.iter().zip(&res.displacements) {
+        let disp: Vec<[f64; 2]> = (0..nn).map(|k| [u[2 * k], u[2 * k + 1]]).collect();
+        let s = nodal_stresses(&model, u);
+        // Field::tensor_2d takes (xx, yy, zz, xy).
+        let tensor = |v: &[[f64; 4]]| -> Vec<[f64; 4]> { v.iter().map(|s| [s[0], s[1], s[3], s[2]]).collect() };
+        let mean: Vec<[f64; 4]> = (0..sm.mesh.n_elements())
+            .map(|e| {
+                let g = gauss_stresses(&model, e, u);
+                let k = g.len() as f64;
+                std::array::from_fn(|i| g.iter().map(|q| q[i]).sum::<f64>() / k)
+            })
+            .collect();
+        let point = [
+            Field::vector_2d("displacement_m", &disp),
+            Field::tensor_2d("stress_Pa", &tensor(&s)),
+            Field::scalar("von_mises_Pa", s.iter().map(von_mises).collect()),
+        ];
+        let cell = [Field::tensor_2d("stress_mean_Pa", &tensor(&mean))];
+        let stem = format!("fields_FN{}", ratio_label(c.fn_ratio));
+        let vtu_path = dir.join(format!("{stem}.vtu"));
+        vtu::write_vtu(&vtu_path, &sm.mesh, &point, &cell)?;
+        write_msh(&dir.join(format!("{stem}.msh")), &sm.mesh, &point, &cell)?;
+        written.push(vtu_path);
+        pvd.push(c.fn_ratio);
+    }
+    // The collection's "timestep" is the load case's F/N.
+    let entries: Vec<(f64, &Path)> = pvd.iter().zip(&written).map(|(r, p)| (*r, p.as_path())).collect();
+    vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
+    written.push(dir.join("fields.pvd"));
+    Ok(written)
+}
