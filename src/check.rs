@@ -66,6 +66,8 @@ pub struct CheckResult {
     pub n_elements: usize,
     pub n_unknowns: usize,
     pub factor_nnz: usize,
+    /// Non-zeros of the reduced stiffness matrix (lower triangle), for the fill nnz(L)/nnz(K).
+    pub matrix_nnz: usize,
     pub timings: Timings,
     pub solve_report: SolveReport,
     /// Full displacements of each combined case (for field output) and the model used.
@@ -74,7 +76,12 @@ pub struct CheckResult {
 
 /// Runs the paper's check on a scene.
 pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneModel)> {
-    let sm = scene.build()?;
+    run_model(scene, scene.build()?, opts)
+}
+
+/// Runs the check on a model built from `scene` and then altered (e.g. interior nodes moved
+/// by the stability study); the interface, top and loading DOFs must be those of the scene.
+pub fn run_model(scene: &Scene, sm: SceneModel, opts: &SolverOptions) -> Result<(CheckResult, SceneModel)> {
     let model = sm.model();
     let (l, t, hgt) = (scene.block.length, scene.block.thickness, scene.loading.height);
     // Unit cases: A presses the plate down by d, B moves it sideways by d (the problem is linear;
@@ -186,6 +193,7 @@ pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneMod
         n_elements: sm.mesh.n_elements(),
         n_unknowns: sol.n_unknowns,
         factor_nnz: sol.factor_nnz,
+        matrix_nnz: sol.matrix_nnz,
         timings: sol.timings,
         solve_report: sol.report.clone(),
         displacements,
