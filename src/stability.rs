@@ -542,6 +542,7 @@ pub struct CornerStudy {
     /// Williams' exponent of the clamped-free right-angle corner (plane strain) and 2^(1 - lambda).
     pub lambda_williams: f64,
     pub factor_williams: f64,
+    pub nu: f64,
 }
 
 /// Smallest root in (0.5, 1) of (3 - 4 nu) sin^2(lambda pi/2) = 4 (1 - nu)^2 - lambda^2, the
@@ -572,7 +573,7 @@ pub fn corners(base: &Scene, o: &Options, progress: Progress) -> Result<CornerSt
     let tail = &increment_ratios[increment_ratios.len().saturating_sub(2)..];
     let factor = tail.iter().sum::<f64>() / tail.len().max(1) as f64;
     let lw = williams_clamped_free(base.block.poisson);
-    Ok(CornerStudy { study, p_end, increment_ratios, factor, lambda_measured: 1.0 - factor.log2(), lambda_williams: lw, factor_williams: 2f64.powf(1.0 - lw) })
+    Ok(CornerStudy { study, p_end, increment_ratios, factor, lambda_measured: 1.0 - factor.log2(), lambda_williams: lw, factor_williams: 2f64.powf(1.0 - lw), nu: base.block.poisson })
 }
 
 /// All selected studies.

@@ -4,6 +4,7 @@
 mod check;
 mod converge;
 mod precursors;
+mod stability;
 
 use clap::{Parser, Subcommand};
 
@@ -22,6 +23,8 @@ pub enum Command {
     Converge(converge::Args),
     /// Precursors to sliding (Scheibert & Dysthe model): event table, fig. 4, or the n(r, g) map (fig. 5).
     Precursors(precursors::Args),
+    /// Numerical stability: stiff elastic plate, near-incompressibility, element shape, thin layers, singular corners.
+    Stability(stability::Args),
 }
 
 pub fn run(cli: Cli) -> tribofe::Result<()> {
@@ -29,5 +32,6 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Check(a) => check::run(a),
         Command::Converge(a) => converge::run(a),
         Command::Precursors(args) => precursors::run(args),
+        Command::Stability(a) => stability::run(a),
     }
 }
