@@ -85,24 +85,24 @@ pub fn nu_csv(n: &NuStudy) -> Result<String> {
     let mut rows = Vec::new();
     for q in &n.points {
         let mut r = vec![num("nu", q.nu)?, q.element.clone()];
-        for v in [q.err, q.errors.interior[0], q.errors.interior[1], q.errors.edge[0], q.errors.edge[1], q.oscillation, q.p0_closed, q.modulus_ratio] {
+        for v in [q.err, q.err_edge_far, q.errors.interior[0], q.errors.interior[1], q.errors.edge[0], q.errors.edge[1], q.oscillation, q.p0_closed, q.modulus_ratio] {
             r.push(num("nu.csv", v)?);
         }
         rows.push(r);
     }
-    Ok(table("nu,element,err_max_over_pmean,err_interior_p,err_interior_tau,err_edge_p,err_edge_tau,oscillation_over_pmean,p0_over_closed_form,N_over_L_strain_over_lambda_plus_2G", rows))
+    Ok(table("nu,element,err_interior_max_over_pmean,err_edge_t_to_10t_over_pmean,err_interior_p,err_interior_tau,err_edge_p,err_edge_tau,oscillation_over_pmean,p0_over_closed_form,N_over_L_strain_over_lambda_plus_2G", rows))
 }
 
 pub fn shape_csv(s: &[ShapePoint]) -> Result<String> {
     let mut rows = Vec::new();
     for q in s {
         let mut r = vec![q.case.name().to_string(), q.element.clone(), num("shape", q.param)?, q.n_elements.to_string()];
-        for v in [q.err, q.errors.interior[0], q.errors.interior[1], q.errors.edge[0], q.errors.edge[1], q.min_jacobian_rel] {
+        for v in [q.err, q.err_edge_far, q.errors.interior[0], q.errors.interior[1], q.errors.edge[0], q.errors.edge[1], q.min_jacobian_rel] {
             r.push(num("shape.csv", v)?);
         }
         rows.push(r);
     }
-    Ok(table("case,element,aspect_or_distortion_over_h,elements,err_max_over_pmean,err_interior_p,err_interior_tau,err_edge_p,err_edge_tau,min_jacobian_rel", rows))
+    Ok(table("case,element,aspect_or_distortion_over_h,elements,err_interior_max_over_pmean,err_edge_t_to_10t_over_pmean,err_interior_p,err_interior_tau,err_edge_p,err_edge_tau,min_jacobian_rel", rows))
 }
 
 pub fn thin_csv(t: &[ThinPoint]) -> Result<String> {
@@ -174,29 +174,29 @@ pub fn summary(res: &Results) -> String {
         let _ = writeln!(s, "symbolic analysis: {:.0} % of the solve time, redone at each point (not reused across the sweep)\n", 100.0 * p.symbolic_share);
     }
     if let Some(n) = &res.nu {
-        let _ = writeln!(s, "== nu: max interior/edge-zone error against qua9 references (units of N/L) | edge oscillation | p(0) / closed form");
+        let _ = writeln!(s, "== nu: max error against qua9 references (units of N/L): interior, edge t..10 t | edge-zone oscillation of p, tau | p(0) / closed form (F/N = 0)");
         let els: Vec<&String> = n.points.iter().map(|q| &q.element).fold(Vec::new(), |mut v, x| {
             if !v.contains(&x) {
                 v.push(x)
             }
             v
         });
-        let _ = writeln!(s, "{:>7} {}", "nu", els.iter().map(|x| format!("{x:>26}")).collect::<String>());
+        let _ = writeln!(s, "{:>7} {}", "nu", els.iter().map(|x| format!("{x:>35}")).collect::<String>());
         for &(nu, p0) in &n.reference_p0 {
-            let cells: String = n.points.iter().filter(|q| q.nu == nu).map(|q| format!("{:>9} {:>8} {:>7.4}", e(q.err), e(q.oscillation), q.p0_closed)).map(|c| format!("{c:>26}")).collect();
+            let cells: String = n.points.iter().filter(|q| q.nu == nu).map(|q| format!("{:>8} {:>8} {:>8} {:>7.4}", e(q.err), e(q.err_edge_far), e(q.oscillation), q.p0_closed)).map(|c| format!("{c:>35}")).collect();
             let _ = writeln!(s, "{nu:>7} {cells}   (reference p(0)/closed form {p0:.5})");
         }
         s.push('\n');
     }
     if let Some(sh) = &res.shape {
-        let _ = writeln!(s, "== shape: max interior/edge-zone error against the qua9 reference (units of N/L)");
+        let _ = writeln!(s, "== shape: max error against the qua9 reference, interior / edge zone t..10 t from the ends (units of N/L)");
         for case in [ShapeCase::Graded, ShapeCase::Uniform, ShapeCase::Distorted] {
             let what = if case == ShapeCase::Distorted { "amplitude/h" } else { "aspect" };
             let mut els: Vec<&str> = sh.iter().map(|q| q.element.as_str()).collect();
             els.dedup();
             let _ = writeln!(s, "{} ({what}):", case.name());
             for el in els {
-                let cells: Vec<String> = sh.iter().filter(|q| q.case == case && q.element == el).map(|q| format!("{}: {}", q.param, e(q.err))).collect();
+                let cells: Vec<String> = sh.iter().filter(|q| q.case == case && q.element == el).map(|q| format!("{}: {}/{}", q.param, e(q.err), e(q.err_edge_far))).collect();
                 let _ = writeln!(s, "  {el:<9} {}", cells.join("  "));
             }
         }
@@ -294,20 +294,23 @@ pub fn nu_svg(n: &NuStudy) -> Result<String> {
     let by = |f: &dyn Fn(&crate::stability::NuPoint) -> f64| -> Vec<Series> { els.iter().map(|el| (el.to_string(), n.points.iter().filter(|q| &q.element == *el).map(|q| (0.5 - q.nu, f(q))).collect())).collect() };
     panels(
         (1300, 480),
-        &[("Interface-profile error vs incompressibility", "0.5 - nu", "max |error| / (N/L)", by(&|q| q.err)), ("Edge-zone oscillation (excess over reference)", "0.5 - nu", "max |2nd difference of p| / (N/L)", by(&|q| q.oscillation))],
+        &[("Interior profile error vs incompressibility", "0.5 - nu", "max |error| / (N/L)", by(&|q| q.err)), ("Edge-zone oscillation (excess over reference)", "0.5 - nu", "max |2nd difference of p| / (N/L)", by(&|q| q.oscillation))],
     )
 }
 
 pub fn shape_svg(s: &[ShapePoint]) -> Result<String> {
     let mut els: Vec<&str> = s.iter().map(|q| q.element.as_str()).collect();
     els.dedup();
-    let by = |case: ShapeCase, shift: f64| -> Vec<Series> { els.iter().map(|el| (el.to_string(), s.iter().filter(|q| q.case == case && q.element == *el).map(|q| (q.param + shift, q.err)).collect())).collect() };
+    // Interior error, or the edge error (t .. 10 t) where the ends are elongated too.
+    let by = |case: ShapeCase, shift: f64, edge: bool| -> Vec<Series> {
+        els.iter().map(|el| (el.to_string(), s.iter().filter(|q| q.case == case && q.element == *el).map(|q| (q.param + shift, if edge { q.err_edge_far } else { q.err })).collect())).collect()
+    };
     panels(
         (1500, 480),
         &[
-            ("Graded: elongated only in the interior", "largest aspect ratio", "max |error| / (N/L)", by(ShapeCase::Graded, 0.0)),
-            ("Uniform: elongated everywhere", "aspect ratio", "max |error| / (N/L)", by(ShapeCase::Uniform, 0.0)),
-            ("Distorted quads (x axis: 0.01 + amplitude/h)", "0.01 + amplitude / h", "max |error| / (N/L)", by(ShapeCase::Distorted, 0.01)),
+            ("Graded: elongated only in the interior", "largest aspect ratio", "interior max |error| / (N/L)", by(ShapeCase::Graded, 0.0, false)),
+            ("Uniform: elongated everywhere", "aspect ratio", "edge (t..10 t) max |error| / (N/L)", by(ShapeCase::Uniform, 0.0, true)),
+            ("Distorted quads (x axis: 0.01 + amplitude/h)", "0.01 + amplitude / h", "interior max |error| / (N/L)", by(ShapeCase::Distorted, 0.01, false)),
         ],
     )
 }
