@@ -95,6 +95,13 @@ pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneMod
     let clock = Instant::now();
     let sm = scene.build()?;
     let mesh_time = clock.elapsed().as_secs_f64();
+    run_model(scene, sm, mesh_time, opts)
+}
+
+/// Runs the check on a model built from `scene` and then altered (e.g. interior nodes moved
+/// by the stability study); the interface, top and loading DOFs must be those of the scene.
+/// `mesh_time` (s) is reported as the mesh phase.
+pub fn run_model(scene: &Scene, sm: SceneModel, mesh_time: f64, opts: &SolverOptions) -> Result<(CheckResult, SceneModel)> {
     let model = sm.model();
     let (l, t, hgt) = (scene.block.length, scene.block.thickness, scene.loading.height);
     // Unit cases: A presses the plate down by d, B moves it sideways by d (the problem is linear;

@@ -102,6 +102,8 @@ pub struct Run {
     pub tau_end: [f64; 2],
     /// Edge widths in units of t: pressure left/right, shear left/right.
     pub widths: [Option<f64>; 4],
+    /// Worst relative error of the global balances (N, F, moment F H).
+    pub balance: f64,
     pub errors: ZoneErrors,
 }
 
@@ -204,6 +206,7 @@ fn to_run(family: Family, element: &str, n: usize, r: &CheckResult, wall: f64) -
         p_end: m.p_ends,
         tau_end: m.tau_ends,
         widths: [m.edge_p_t[0], m.edge_p_t[1], m.edge_tau_t[0], m.edge_tau_t[1]],
+        balance: m.balance_n.max(m.balance_f).max(m.balance_moment),
         errors: ZoneErrors::default(),
     }
 }
@@ -244,6 +247,12 @@ impl Samples {
             end: [end(p, rp), end(tau, rt)],
         }
     }
+}
+
+/// Zone errors (interior, edge zones, end nodes) of profiles (x/L, p, tau) against a
+/// reference on another mesh, in units of N/L.
+pub fn zone_errors(t_over_l: f64, x: &[f64], p: &[f64], tau: &[f64], rx: &[f64], rp: &[f64], rt: &[f64]) -> ZoneErrors {
+    Samples::new(t_over_l).errors(x, p, tau, rx, rp, rt)
 }
 
 /// Piecewise-linear interpolation of v(x) at s (x sorted, s inside).

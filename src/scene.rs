@@ -75,6 +75,9 @@ pub struct MeshSpec {
     pub grading: Option<f64>,
     /// Largest element length along x with grading, m (default: 2 t).
     pub h_max: Option<f64>,
+    /// Elements through the thickness (default round(t / h)); with it, h sets only the size
+    /// along x, so elements can be elongated (aspect h n_thick / t).
+    pub n_thick: Option<usize>,
     /// Element formulation by name (qua4, qua4-sri, qua4-im, qua8, qua9, tri3, tri6).
     pub element: String,
     /// A Gmsh mesh of the block instead of the structured one.
@@ -119,7 +122,7 @@ impl Default for Loading {
 }
 impl Default for MeshSpec {
     fn default() -> Self {
-        Self { h: 0.001, grading: None, h_max: None, element: "qua4".into(), file: None, interface: "interface".into(), top: "top".into(), block: "block".into() }
+        Self { h: 0.001, grading: None, h_max: None, n_thick: None, element: "qua4".into(), file: None, interface: "interface".into(), top: "top".into(), block: "block".into() }
     }
 }
 impl Default for Report {
@@ -187,7 +190,10 @@ impl Scene {
                 return Err(Error::input("loading.height", format!("H = {} m must lie on the elastic plate's left side, in ({}, {}] m", self.loading.height, self.block.thickness, self.block.thickness + self.plate.thickness)));
             }
         }
-        if self.mesh.h > self.block.thickness {
+        if self.mesh.n_thick == Some(0) {
+            return Err(Error::input("mesh.n_thick", "need at least one element through the thickness"));
+        }
+        if self.mesh.h > self.block.thickness && self.mesh.n_thick.is_none() {
             return Err(Error::input("mesh.h", format!("{} m is larger than the block thickness {} m: use at most t", self.mesh.h, self.block.thickness)));
         }
         if self.loading.fn_ratios.is_empty() || self.loading.fn_ratios.iter().any(|r| !r.is_finite()) {
@@ -208,7 +214,7 @@ impl Scene {
         let tech = self.element()?.tech;
         let block_mat = Material::plane_strain(self.block.young, self.block.poisson)?;
         let nx = even((l / self.mesh.h).round().max(2.0) as usize);
-        let ny = ((t / self.mesh.h).round() as usize).max(1);
+        let ny = self.mesh.n_thick.unwrap_or(((t / self.mesh.h).round() as usize).max(1));
         let (interface_name, top_name) = (self.mesh.interface.clone(), self.mesh.top.clone());
         let mesh = match &self.mesh.file {
             Some(path) => self.read_mesh(path)?,

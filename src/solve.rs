@@ -15,8 +15,9 @@ use faer::{Conj, MatMut, Par, Side};
 /// Fill-reducing ordering handed to faer.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub enum Ordering {
-    /// Geometric nested dissection when the mesh is a grid ([`crate::ordering`]), AMD
-    /// otherwise; resolved by [`crate::problem::solve`], which knows the mesh.
+    /// Geometric nested dissection when the mesh is a grid with at least
+    /// [`crate::problem::ND_FROM`] unknowns ([`crate::ordering`]), AMD otherwise; resolved by
+    /// [`crate::problem::solve`], which knows the mesh.
     #[default]
     Auto,
     /// faer's approximate minimum degree.

@@ -5,6 +5,7 @@ mod bench;
 mod check;
 mod converge;
 mod precursors;
+mod stability;
 
 use clap::{Parser, Subcommand};
 
@@ -25,6 +26,8 @@ pub enum Command {
     Precursors(precursors::Args),
     /// Pipeline benchmark: phase times, sizes, GFLOP/s and peak memory on ~1e6-DOF problems.
     Bench(bench::Args),
+    /// Numerical stability: stiff elastic plate, near-incompressibility, element shape, thin layers, singular corners.
+    Stability(stability::Args),
 }
 
 pub fn run(cli: Cli) -> tribofe::Result<()> {
@@ -33,5 +36,6 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Converge(a) => converge::run(a),
         Command::Precursors(args) => precursors::run(args),
         Command::Bench(a) => bench::run(a),
+        Command::Stability(a) => stability::run(a),
     }
 }

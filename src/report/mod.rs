@@ -4,6 +4,7 @@
 pub mod check;
 pub mod convergence;
 pub mod precursors;
+pub mod stability;
 
 use crate::{Error, Result};
 use std::io::Write;

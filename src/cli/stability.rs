@@ -1,0 +1,40 @@
+//! `tribofe stability`: the numerical stability studies of the paper's check (issue 7).
+
+use clap::Args as ClapArgs;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use tribofe::stability::{run as run_studies, Options, STUDIES};
+
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    pub scene: super::check::SceneArgs,
+    /// Studies to run, comma separated: plate, nu, shape, thin, corners (default: all).
+    #[arg(long, value_delimiter = ',')]
+    pub study: Vec<String>,
+    /// Finest corner mesh: elements through the thickness (1, 2, 4, .. up to this).
+    #[arg(long, default_value_t = 32)]
+    pub corner_max: usize,
+    /// Reference qua9 mesh of the nu and shape studies: elements through the thickness.
+    #[arg(long, default_value_t = 16)]
+    pub n_ref: usize,
+    #[arg(long, default_value = "validation/stability")]
+    pub out: PathBuf,
+}
+
+pub fn run(args: Args) -> tribofe::Result<()> {
+    let scene = super::check::scene(&args.scene)?;
+    let studies: Vec<String> = if args.study.is_empty() { STUDIES.iter().map(|s| s.to_string()).collect() } else { args.study.clone() };
+    let corner_n_thick = std::iter::successors(Some(1usize), |n| Some(2 * n)).take_while(|&n| n <= args.corner_max).collect();
+    let o = Options { n_ref: args.n_ref, corner_n_thick, ..Default::default() };
+    let bar = ProgressBar::new_spinner().with_style(ProgressStyle::with_template("{spinner} {pos} runs, {elapsed} {msg}").unwrap());
+    let res = run_studies(&scene, &studies, &o, &|m| {
+        bar.set_message(format!("last: {m}"));
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    let files = tribofe::report::stability::write(&res, &args.out)?;
+    print!("{}", tribofe::report::stability::summary(&res));
+    println!("wrote {}/{{{}}}", args.out.display(), files.join(", "));
+    Ok(())
+}
