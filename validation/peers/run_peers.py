@@ -7,7 +7,7 @@ process, peak RSS):
   skfem-cholmod  skfem_check.py --solver cholmod   (reference for the checks)
   skfem-splu     skfem_check.py --solver splu      (SciPy SuperLU, COLAMD)
   calculix       ccx_model.py write; ccx; ccx_model.py post  (one shell)
-  tribofe        tribofe check --h <t/ny> --out <tmp>
+  tribofe        tribofe check --h <t/ny> --out <tmp> --no-fields --no-converged
 Every code solves the two unit cases with one factorisation, combines them into
 F/N = 0, 0.41, 0.82 and writes the interface profiles; run_peers compares each
 code's profiles with skfem-cholmod's (max abs diff of p/(N/L), tau/(N/L)).
@@ -129,7 +129,8 @@ def command(code, ny, outdir, work, tribofe):
                   f"{q(py)} {m} post --ny {ny} --dir {q(work)} --out {q(outdir)} --quiet")
         return ["bash", "-c", script]
     h = pl.T / ny
-    return [tribofe, "check", "--h", repr(h), "--out", outdir]
+    # The same work as the peers: 3 load cases and interface tractions (no field files).
+    return [tribofe, "check", "--h", repr(h), "--out", outdir, "--no-fields", "--no-converged"]
 
 
 def fit_exponent(dofs, t):

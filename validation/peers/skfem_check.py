@@ -139,6 +139,8 @@ def main(argv=None):
     ap.add_argument("--out", help="directory for profile_FN*.csv and summary.csv "
                     "(default validation/peers/results/skfem_ny<ny>)")
     ap.add_argument("--tribofe-out", help="tribofe --out directory to compare with")
+    ap.add_argument("--fail-above", type=float, default=None,
+                    help="with --tribofe-out: exit 1 if a profile differs by more than this (units of N/L)")
     ap.add_argument("--quiet", action="store_true", help="no summary table")
     a = ap.parse_args(argv)
 
@@ -166,6 +168,11 @@ def main(argv=None):
         path = os.path.join(HERE, "results", f"skfem_vs_tribofe_ny{ny}.csv")
         pl.write_csv_atomic(path, pl.COMPARE_COLS, cmp_rows)
         print(f"wrote {path}")
+        worst = max(max(c["max_dp"], c["max_dtau"]) for c in cmp_rows)
+        if a.fail_above is not None and not worst <= a.fail_above:
+            pl.die(f"tribofe and scikit-fem differ by {worst:.3e} N/L > {a.fail_above:g}")
+        if a.fail_above is not None:
+            print(f"OK: tribofe and scikit-fem agree to {worst:.3e} N/L (<= {a.fail_above:g})")
 
 
 if __name__ == "__main__":
