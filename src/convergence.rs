@@ -212,11 +212,18 @@ fn to_run(family: Family, element: &str, n: usize, r: &CheckResult, wall: f64) -
 }
 
 /// The reference: the finest uniform run of the highest-order element present (quadratic
-/// elements converge fastest in the smooth zones), else the run with the most DOFs.
+/// elements converge fastest in the smooth zones; among equals QUA9, then QUA8, then TRI6,
+/// the most accurate per DOF in the study), else the run with the most DOFs.
 fn pick_reference(runs: &[Run]) -> usize {
-    let order = |r: &Run| r.element.parse::<crate::element::stiffness::ElementChoice>().map_or(1, |c| c.kind.order());
+    let choice = |r: &Run| r.element.parse::<crate::element::stiffness::ElementChoice>().ok();
+    let order = |r: &Run| choice(r).map_or(1, |c| c.kind.order());
+    let rank = |r: &Run| match choice(r).map(|c| c.kind) {
+        Some(crate::element::ElementKind::Qua9) => 3,
+        Some(crate::element::ElementKind::Qua8) => 2,
+        _ => 1,
+    };
     (0..runs.len())
-        .max_by_key(|&i| (order(&runs[i]), runs[i].family == Family::Uniform, runs[i].dofs))
+        .max_by_key(|&i| (order(&runs[i]), runs[i].family == Family::Uniform, runs[i].dofs, rank(&runs[i])))
         .unwrap_or(0)
 }
 
@@ -307,14 +314,21 @@ pub fn series(study: &Study) -> Vec<Vec<usize>> {
         .collect()
 }
 
-/// Observed orders between the two finest runs of a series that are not the reference, per
-/// zone: [interior p, interior tau, edge p, edge tau]; None where fewer than two runs.
+/// Observed orders of a series by self-convergence, independent of the reference: with
+/// d_k = max |f_k - f_(k+1)| between successive meshes (zones as for the errors), the order
+/// from the last three meshes is log(d_(k-1)/d_k) / log(h_(k-1)/h_k), per zone
+/// [interior p, interior tau, edge p, edge tau]; None with fewer than three meshes.
 pub fn orders(study: &Study, s: &[usize]) -> Option<[f64; 4]> {
-    let v: Vec<&Run> = s.iter().filter(|&&i| i != study.reference).map(|&i| &study.runs[i]).collect();
-    let (a, b) = (v.get(v.len().checked_sub(2)?)?, v.last()?);
-    let (ha, hb) = (1.0 / a.n_thick as f64, 1.0 / b.n_thick as f64);
-    let o = |ea: f64, eb: f64| observed_order(ea, ha, eb, hb);
-    Some([o(a.errors.interior[0], b.errors.interior[0]), o(a.errors.interior[1], b.errors.interior[1]), o(a.errors.edge[0], b.errors.edge[0]), o(a.errors.edge[1], b.errors.edge[1])])
+    if s.len() < 3 {
+        return None;
+    }
+    let samples = Samples::new(study.t_over_l);
+    let diff = |a: &Run, b: &Run| samples.errors(&a.x, &a.p, &a.tau, &b.x, &b.p, &b.tau);
+    let r: Vec<&Run> = s[s.len() - 3..].iter().map(|&i| &study.runs[i]).collect();
+    let (d1, d2) = (diff(r[0], r[1]), diff(r[1], r[2]));
+    let ratio = r[1].n_thick as f64 / r[0].n_thick as f64;
+    let o = |a: f64, b: f64| (a / b).ln() / ratio.ln();
+    Some([o(d1.interior[0], d2.interior[0]), o(d1.interior[1], d2.interior[1]), o(d1.edge[0], d2.edge[0]), o(d1.edge[1], d2.edge[1])])
 }
 
 /// Largest edge-zone error of a run (pressure or shear, either end), units of N/L.

@@ -122,6 +122,17 @@ impl Mesh {
         Ok(v)
     }
 
+    /// Sorted, unique nodes of several named sets together (e.g. all four sides of a rectangle).
+    pub fn nodes_of_sets(&self, names: &[&str]) -> Result<Vec<usize>> {
+        let mut v = Vec::new();
+        for name in names {
+            v.extend(self.set_nodes(name)?);
+        }
+        v.sort_unstable();
+        v.dedup();
+        Ok(v)
+    }
+
     /// Keeps only the elements of `set` (e.g. the solid block of a mesh that also holds other surfaces).
     pub fn restrict_to(&self, set: &str) -> Result<Mesh> {
         let keep = self.element_set(set)?;

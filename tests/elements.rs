@@ -28,10 +28,7 @@ fn model(mesh: &Mesh, m: Material, c: ElementChoice) -> Model<'_> {
 }
 
 fn boundary(m: &Mesh) -> Vec<usize> {
-    let mut b: Vec<usize> = ["bottom", "right", "top", "left"].iter().flat_map(|s| m.set_nodes(s).unwrap()).collect();
-    b.sort_unstable();
-    b.dedup();
-    b
+    m.nodes_of_sets(&["bottom", "right", "top", "left"]).unwrap()
 }
 
 /// Moves interior corner nodes by up to +-`amp` in each direction (deterministic

@@ -21,10 +21,7 @@ fn mat() -> Material {
 
 /// Boundary nodes of a rectangle mesh (all four named edges).
 fn boundary(m: &Mesh) -> Vec<usize> {
-    let mut b: Vec<usize> = ["bottom", "right", "top", "left"].iter().flat_map(|s| m.set_nodes(s).unwrap()).collect();
-    b.sort_unstable();
-    b.dedup();
-    b
+    m.nodes_of_sets(&["bottom", "right", "top", "left"]).unwrap()
 }
 
 /// Moves interior nodes by a deterministic pseudo-random amount (up to 20 % of h).
