@@ -374,7 +374,8 @@ fn sweep_table_runs_every_geometry() {
     assert_eq!(rows.len(), 6);
     assert!(rows.iter().all(|r| r.n_fe == Some(10) && r.n_linear == Some(10) && r.max_abs_d_length < EXACT));
     let csv = std::fs::read_to_string(&path).unwrap();
-    assert!(csv.starts_with("H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length\n"));
+    assert!(csv.starts_with("H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length,outside_model\n"));
+    assert!(rows.iter().all(|r| r.outside_model.is_none()));
     assert_eq!(csv.lines().count(), 7);
     // A closure returning fields for the wrong geometry is caught.
     let wrong = report::sweep_table(&path, &hs, &ts, 0.9, 0.35, 200, |_, t| Ok(UnitFields::linear(201, 0.2, t)));

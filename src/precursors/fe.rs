@@ -168,6 +168,9 @@ pub struct SweepRow {
     pub f_max_linear: Option<f64>,
     /// Largest |difference| in precursor length (x_i + 1/2) over the common precursors.
     pub max_abs_d_length: f64,
+    /// Why the model could not be run on this geometry (e.g. the FE pressure opens the
+    /// contact at the trailing edge); the figures above are then meaningless (zero).
+    pub outside_model: Option<String>,
 }
 
 /// [`compare`] over every (H/L, t/L) pair, at fixed (r, g). `fields(h, t)` returns the FE unit
@@ -190,7 +193,14 @@ pub fn sweep(
                     format!("asked for H/L = {h}, t/L = {t}, got fields for H/L = {}, t/L = {}", uf.h_over_l, uf.t_over_l),
                 ));
             }
-            let c = compare(&uf, r, g, n_events)?;
+            // A geometry outside the model (contact opening) is a finding, not a failure.
+            let c = match compare(&uf, r, g, n_events) {
+                Ok(c) => c,
+                Err(e) => {
+                    rows.push(SweepRow { h_over_l: h, t_over_l: t, n_fe: None, n_linear: None, f1_fe: 0.0, f1_linear: 0.0, f_max_fe: None, f_max_linear: None, max_abs_d_length: 0.0, outside_model: Some(e.to_string()) });
+                    continue;
+                }
+            };
             rows.push(SweepRow {
                 h_over_l: h,
                 t_over_l: t,
@@ -201,6 +211,7 @@ pub fn sweep(
                 f_max_fe: c.fe.f_limit(),
                 f_max_linear: c.linear.f_limit(),
                 max_abs_d_length: c.d_lengths.iter().fold(0.0, |m, d| m.max(d.abs())),
+                outside_model: None,
             });
         }
     }

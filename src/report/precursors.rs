@@ -297,9 +297,10 @@ pub fn write_comparison(dir: &Path, c: &Comparison) -> Result<Vec<PathBuf>> {
 }
 
 /// Runs [`fe::sweep`] and writes it to `path` as CSV with header
-/// `H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length`
+/// `H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length,outside_model`
 /// (forces in units of mu_s N, lengths in units of L; an empty n or Fmax field means the
-/// run did not reach stick-slip within `n_events`).
+/// run did not reach stick-slip within `n_events`; `outside_model` says why a geometry could
+/// not be run, its figures then left empty).
 pub fn sweep_table(
     path: &Path,
     h_over_l: &[f64],
@@ -310,11 +311,15 @@ pub fn sweep_table(
     fields: impl FnMut(f64, f64) -> Result<UnitFields>,
 ) -> Result<Vec<SweepRow>> {
     let rows = fe::sweep(h_over_l, t_over_l, r, g, n_events, fields)?;
-    let mut s = String::from("H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length\n");
+    let mut s = String::from("H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length,outside_model\n");
     for w in &rows {
+        if let Some(why) = &w.outside_model {
+            let _ = writeln!(s, "{},{},,,,,,,,\"{}\"", finite("H/L", w.h_over_l)?, finite("t/L", w.t_over_l)?, why.replace('"', "'"));
+            continue;
+        }
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},",
             finite("H/L", w.h_over_l)?,
             finite("t/L", w.t_over_l)?,
             opt(w.n_fe),
