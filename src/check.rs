@@ -5,7 +5,7 @@
 
 use crate::error::{Error, Result};
 use crate::precursors::fe::UnitFields;
-use crate::problem::{solve, LoadCase, Timings};
+use crate::problem::{solve, LoadCase, Prepared, Timings};
 use crate::recovery::{elements_touching, nodal_stresses_from};
 use crate::scene::{PlateModel, Scene, SceneModel};
 use crate::solve::{SolveReport, SolverOptions};
@@ -90,18 +90,26 @@ pub fn converged_scene(scene: &Scene) -> Scene {
     s
 }
 
+/// The reusable part of the check's solve for `scene`: valid for every scene that differs
+/// only in material values or loading (a sweep of the plate modulus, of nu, of F/N).
+pub fn prepare(scene: &Scene, opts: &SolverOptions) -> Result<Prepared> {
+    let sm = scene.build()?;
+    Prepared::new(&sm.mesh, &sm.constraints, opts)
+}
+
 /// Runs the paper's check on a scene.
 pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneModel)> {
     let clock = Instant::now();
     let sm = scene.build()?;
     let mesh_time = clock.elapsed().as_secs_f64();
-    run_model(scene, sm, mesh_time, opts)
+    run_model(scene, sm, mesh_time, opts, None)
 }
 
 /// Runs the check on a model built from `scene` and then altered (e.g. interior nodes moved
 /// by the stability study); the interface, top and loading DOFs must be those of the scene.
-/// `mesh_time` (s) is reported as the mesh phase.
-pub fn run_model(scene: &Scene, sm: SceneModel, mesh_time: f64, opts: &SolverOptions) -> Result<(CheckResult, SceneModel)> {
+/// `mesh_time` (s) is reported as the mesh phase. With `prepared` (built on the same mesh and
+/// constraint structure, see [`prepare`]) the pattern and symbolic analysis are reused.
+pub fn run_model(scene: &Scene, sm: SceneModel, mesh_time: f64, opts: &SolverOptions, prepared: Option<&Prepared>) -> Result<(CheckResult, SceneModel)> {
     let model = sm.model();
     let (l, t, hgt) = (scene.block.length, scene.block.thickness, scene.loading.height);
     // Unit cases: A presses the plate down by d, B moves it sideways by d (the problem is linear;
@@ -121,7 +129,10 @@ pub fn run_model(scene: &Scene, sm: SceneModel, mesh_time: f64, opts: &SolverOpt
         ),
         PlateModel::Rigid => "check the mesh and the material values".to_string(),
     };
-    let sol = solve(&model, &sm.constraints, &cases, opts, &hint)?;
+    let sol = match prepared {
+        Some(p) => p.solve(&model, &sm.constraints, &cases, opts, &hint)?,
+        None => solve(&model, &sm.constraints, &cases, opts, &hint)?,
+    };
     let clock = Instant::now();
 
     // Interface reactions of each unit case, and the generalised reactions at U and V.

@@ -60,79 +60,108 @@ pub struct Solution {
 /// Solves every load case with one factorisation. `hint` is appended to the error when
 /// the residual check rejects the answer (e.g. suggest a better-conditioned model).
 pub fn solve(model: &Model, constraints: &Constraints, cases: &[LoadCase], opts: &SolverOptions, hint: &str) -> Result<Solution> {
-    let mut t = Timings::default();
-    let clock = Instant::now();
-    let red = constraints.reduce()?;
-    let asm = Assembler::new(model.mesh, &red)?;
-    t.pattern = clock.elapsed().as_secs_f64();
+    let prepared = Prepared::new(model.mesh, constraints, opts)?;
+    let mut sol = prepared.solve(model, constraints, cases, opts, hint)?;
+    sol.timings.pattern = prepared.pattern_time;
+    sol.timings.symbolic = prepared.symbolic_time;
+    Ok(sol)
+}
 
-    let clock = Instant::now();
-    let prescribed: Vec<Vec<f64>> = cases.iter().map(|c| c.prescribed.clone()).collect();
-    let loads: Vec<Vec<f64>> = cases.iter().map(|c| c.forces.clone()).collect();
-    if let Some(bad) = loads.iter().find(|f| !f.is_empty() && f.len() != red.n_full) {
-        return Err(Error::input("load case", format!("force vector has {} entries, the model has {} DOFs", bad.len(), red.n_full)));
-    }
-    let (values, rhs) = asm.assemble(model, &red, &loads, &prescribed)?;
-    t.assembly = clock.elapsed().as_secs_f64();
+/// What a solve needs that depends only on the mesh and the structure of the constraints: the
+/// reduction, the sparsity pattern with its element colouring, and the symbolic Cholesky
+/// analysis (ordering included). Built once, it serves any materials, prescribed values and
+/// loads on that mesh (parameter sweeps): [`Prepared::solve`] only assembles, factorises and
+/// solves, and reports zero pattern and symbolic time.
+pub struct Prepared {
+    red: Reduction,
+    asm: Assembler,
+    solver: Solver,
+    /// Time spent building the pattern and in the ordering + symbolic analysis, s.
+    pub pattern_time: f64,
+    pub symbolic_time: f64,
+}
 
-    let clock = Instant::now();
-    let mut options = opts.clone();
-    // Nested dissection pays from ~1e5 unknowns (symbolic 3x faster, fill equal or less);
-    // below that AMD gives 1.1-1.5x less fill at no measurable cost (validation/bench).
-    if options.ordering == Ordering::Auto && red.n_free() >= ND_FROM {
-        if let Some(p) = nested_dissection(model.mesh, &red) {
-            options.ordering = Ordering::Custom(p);
+impl Prepared {
+    pub fn new(mesh: &crate::mesh::Mesh, constraints: &Constraints, opts: &SolverOptions) -> Result<Self> {
+        let clock = Instant::now();
+        let red = constraints.reduce()?;
+        let asm = Assembler::new(mesh, &red)?;
+        let pattern_time = clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let mut options = opts.clone();
+        // Nested dissection pays from ~1e5 unknowns (symbolic 3x faster, fill equal or less);
+        // below that AMD gives 1.1-1.5x less fill at no measurable cost (validation/bench).
+        if options.ordering == Ordering::Auto && red.n_free() >= ND_FROM {
+            if let Some(p) = nested_dissection(mesh, &red) {
+                options.ordering = Ordering::Custom(p);
+            }
         }
+        let solver = Solver::analyse(&asm.pattern, options)?;
+        Ok(Self { red, asm, solver, pattern_time, symbolic_time: clock.elapsed().as_secs_f64() })
     }
-    let solver = Solver::analyse(&asm.pattern, options)?;
-    t.symbolic = clock.elapsed().as_secs_f64();
 
-    let clock = Instant::now();
-    let factor = solver.factorize(&asm.pattern, &values).map_err(|k| singular(model, constraints, &red, k))?;
-    t.numeric = clock.elapsed().as_secs_f64();
-
-    let clock = Instant::now();
-    let n = red.n_free();
-    let nc = cases.len();
-    // One extra column, a fixed pseudo-random probe b, rides along in the same solve: the
-    // size of K^-1 b bounds the condition number from below, and for a singular K it is
-    // dominated by the free rigid-body motion, which we can then name.
-    let mut x = rhs.clone();
-    x.extend_from_slice(&probe_vector(n));
-    factor.solve_in_place(&mut x, nc + 1);
-    let condition = norm_1_sym(&asm.pattern, &values) * x[nc * n..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if !(condition < 1e15) {
-        let g0 = vec![0.0; red.n_fixed()];
-        let mode = red.expand(&x[nc * n..], &g0);
-        if let Some(what) = rigid_mode(model, &mode) {
-            return Err(Error::Singular { detail: format!("the solution contains an unresisted {what} (condition estimate {condition:.1e}); prescribe enough displacements to stop both translations and the rotation of every separate body") });
+    /// Assembles `model` (same mesh and constraint structure as at [`Prepared::new`]),
+    /// factorises, and solves every load case, with the checks of [`solve`]; the accuracy
+    /// limits come from `opts`.
+    pub fn solve(&self, model: &Model, constraints: &Constraints, cases: &[LoadCase], opts: &SolverOptions, hint: &str) -> Result<Solution> {
+        let (red, asm, solver) = (&self.red, &self.asm, &self.solver);
+        let mut t = Timings::default();
+        let clock = Instant::now();
+        let prescribed: Vec<Vec<f64>> = cases.iter().map(|c| c.prescribed.clone()).collect();
+        let loads: Vec<Vec<f64>> = cases.iter().map(|c| c.forces.clone()).collect();
+        if let Some(bad) = loads.iter().find(|f| !f.is_empty() && f.len() != red.n_full) {
+            return Err(Error::input("load case", format!("force vector has {} entries, the model has {} DOFs", bad.len(), red.n_full)));
         }
+        let (values, rhs) = asm.assemble(model, red, &loads, &prescribed)?;
+        t.assembly = clock.elapsed().as_secs_f64();
+
+        let clock = Instant::now();
+        let factor = solver.factorize(&asm.pattern, &values).map_err(|k| singular(model, constraints, red, k))?;
+        t.numeric = clock.elapsed().as_secs_f64();
+
+        let clock = Instant::now();
+        let n = red.n_free();
+        let nc = cases.len();
+        // One extra column, a fixed pseudo-random probe b, rides along in the same solve: the
+        // size of K^-1 b bounds the condition number from below, and for a singular K it is
+        // dominated by the free rigid-body motion, which we can then name.
+        let mut x = rhs.clone();
+        x.extend_from_slice(&probe_vector(n));
+        factor.solve_in_place(&mut x, nc + 1);
+        let condition = norm_1_sym(&asm.pattern, &values) * x[nc * n..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if !(condition < 1e15) {
+            let g0 = vec![0.0; red.n_fixed()];
+            let mode = red.expand(&x[nc * n..], &g0);
+            if let Some(what) = rigid_mode(model, &mode) {
+                return Err(Error::Singular { detail: format!("the solution contains an unresisted {what} (condition estimate {condition:.1e}); prescribe enough displacements to stop both translations and the rotation of every separate body") });
+            }
+        }
+        let expected = condition * f64::EPSILON;
+        if !(expected <= opts.max_error_estimate) {
+            let detail = format!(
+                "the stiffness matrix is ill-conditioned (condition estimate {condition:.1e}): about {:.0} of 16 digits are lost, so results can be wrong by {expected:.1e} relative (limit {:.1e})",
+                condition.log10(),
+                opts.max_error_estimate
+            );
+            return Err(Error::Untrustworthy { detail, hint: hint.to_string() });
+        }
+        x.truncate(nc * n);
+        let (x, mut report) = factor.check_and_refine(&asm.pattern, &values, &rhs, x, nc, opts, hint)?;
+        report.condition_estimate = condition;
+        let u = cases.iter().enumerate().map(|(c, case)| red.expand(&x[c * n..(c + 1) * n], &case.prescribed)).collect();
+        t.solve = clock.elapsed().as_secs_f64();
+        Ok(Solution {
+            reduction: red.clone(),
+            u,
+            report,
+            timings: t,
+            n_unknowns: n,
+            matrix_nnz: asm.pattern.nnz(),
+            factor_nnz: solver.factor_nnz(),
+            factor_flops: solver.factor_flops(),
+            supernodal: solver.is_supernodal(),
+        })
     }
-    let expected = condition * f64::EPSILON;
-    if !(expected <= opts.max_error_estimate) {
-        let detail = format!(
-            "the stiffness matrix is ill-conditioned (condition estimate {condition:.1e}): about {:.0} of 16 digits are lost, so results can be wrong by {expected:.1e} relative (limit {:.1e})",
-            condition.log10(),
-            opts.max_error_estimate
-        );
-        return Err(Error::Untrustworthy { detail, hint: hint.to_string() });
-    }
-    x.truncate(nc * n);
-    let (x, mut report) = factor.check_and_refine(&asm.pattern, &values, &rhs, x, nc, hint)?;
-    report.condition_estimate = condition;
-    let u = cases.iter().enumerate().map(|(c, case)| red.expand(&x[c * n..(c + 1) * n], &case.prescribed)).collect();
-    t.solve = clock.elapsed().as_secs_f64();
-    Ok(Solution {
-        reduction: red,
-        u,
-        report,
-        timings: t,
-        n_unknowns: n,
-        matrix_nnz: asm.pattern.nnz(),
-        factor_nnz: solver.factor_nnz(),
-        factor_flops: solver.factor_flops(),
-        supernodal: solver.is_supernodal(),
-    })
 }
 
 /// Deterministic values in [-1, 1] (a linear congruential sequence), the same every run.

@@ -156,18 +156,18 @@ impl Factor<'_> {
 
     /// Solves K x = f for the k columns of `f`, checks each residual, refines if needed.
     /// Returns x and the report; errors when the residual stays above the limit or x is not finite.
-    pub fn solve_checked(&self, pattern: &Pattern, values: &[f64], f: &[f64], k: usize, hint: &str) -> Result<(Vec<f64>, SolveReport)> {
+    pub fn solve_checked(&self, pattern: &Pattern, values: &[f64], f: &[f64], k: usize, opts: &SolverOptions, hint: &str) -> Result<(Vec<f64>, SolveReport)> {
         let mut x = f.to_vec();
         self.solve_in_place(&mut x, k);
-        self.check_and_refine(pattern, values, f, x, k, hint)
+        self.check_and_refine(pattern, values, f, x, k, opts, hint)
     }
 
     /// Checks an already computed solution x of K x = f (k columns) by its componentwise
     /// (Oettli-Prager) backward error max_i |f - K x|_i / (|K| |x| + |f|)_i, which unlike
     /// ||r|| / ||f|| is not hidden by a few very stiff rows (a stiff plate); refines with the
     /// same factor while that helps; errors when it stays above the limit or x is not finite.
-    pub fn check_and_refine(&self, pattern: &Pattern, values: &[f64], f: &[f64], mut x: Vec<f64>, k: usize, hint: &str) -> Result<(Vec<f64>, SolveReport)> {
-        let opts = &self.solver.options;
+    #[allow(clippy::too_many_arguments)]
+    pub fn check_and_refine(&self, pattern: &Pattern, values: &[f64], f: &[f64], mut x: Vec<f64>, k: usize, opts: &SolverOptions, hint: &str) -> Result<(Vec<f64>, SolveReport)> {
         let (mut r, rel0) = backward_errors(pattern, values, f, &x, k);
         let mut report = SolveReport { residual_initial: rel0.clone(), residual: rel0, ..Default::default() };
         while report.refinement_steps < opts.max_refinement && report.residual.iter().any(|&v| !(v <= opts.refine_above)) {

@@ -148,7 +148,8 @@ pub struct PlateFinding {
 pub struct PlateStudy {
     pub points: Vec<PlatePoint>,
     pub findings: Vec<PlateFinding>,
-    /// Share of the solve time spent in the symbolic analysis (it is redone at each point).
+    /// Share of a point's solve that the pattern + symbolic analysis (built once per mesh and
+    /// reused along the sweep) would cost if redone.
     pub symbolic_share: f64,
 }
 
@@ -158,34 +159,43 @@ pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy
     let raw_opts = SolverOptions { max_error_estimate: f64::INFINITY, residual_limit: f64::INFINITY, max_refinement: 0, ..Default::default() };
     let refine_opts = SolverOptions { max_refinement: 3, refine_above: 0.0, ..raw_opts.clone() };
     let mut points = Vec::new();
+    let mut prepare_time = 0.0;
     for &n in &o.plate_n_thick {
         let mut s = base.clone();
         s.mesh.h = t / n as f64;
         s.plate.model = PlateModel::Rigid;
         let (rigid, _) = check::run(&s, &SolverOptions::default())?;
         progress(&format!("plate rigid t/{n}"));
+        // Only the plate modulus changes along the sweep: one pattern and symbolic analysis.
+        let mut e0 = s.clone();
+        e0.plate.model = PlateModel::Elastic;
+        let prepared = check::prepare(&e0, &SolverOptions::default())?;
+        prepare_time += prepared.pattern_time + prepared.symbolic_time;
+        let run = |e: &Scene, opts: &SolverOptions| check::run_model(e, e.build()?, 0.0, opts, Some(&prepared));
         for &ratio in &o.plate_ratios {
-            let mut e = s.clone();
-            e.plate.model = PlateModel::Elastic;
+            let mut e = e0.clone();
             e.plate.young = ratio * base.block.young;
             let clock = Instant::now();
-            let (raw, failure) = match check::run(&e, &raw_opts) {
+            let (raw, failure) = match run(&e, &raw_opts) {
                 Ok((r, _)) => (Some(plate_raw(&r, &rigid, clock.elapsed().as_secs_f64(), o.fn_ratio)), None),
                 Err(err) => (None, Some(err.to_string())),
             };
             let refined = if o.plate_refine && raw.is_some() {
-                check::run(&e, &refine_opts).ok().map(|(r, _)| (plate_raw(&r, &rigid, 0.0, o.fn_ratio).err(), r.solve_report.refinement_steps))
+                run(&e, &refine_opts).ok().map(|(r, _)| (plate_raw(&r, &rigid, 0.0, o.fn_ratio).err(), r.solve_report.refinement_steps))
             } else {
                 None
             };
-            let refused = check::run(&e, &SolverOptions::default()).err().map(|e| e.to_string());
+            let refused = run(&e, &SolverOptions::default()).err().map(|e| e.to_string());
             progress(&format!("plate t/{n} ratio {ratio:.0e}"));
             points.push(PlatePoint { n_thick: n, ratio, raw, failure, refined, refused });
         }
     }
     let findings = o.plate_n_thick.iter().map(|&n| plate_finding(n, &points)).collect();
-    let (sym, tot) = points.iter().filter_map(|p| p.raw.as_ref()).fold((0.0, 0.0), |(a, b), r| (a + r.symbolic_time, b + r.time));
-    Ok(PlateStudy { points, findings, symbolic_share: if tot > 0.0 { sym / tot } else { 0.0 } })
+    // Share of each point's solve that the reused pattern + symbolic analysis would have cost.
+    let times: Vec<f64> = points.iter().filter_map(|p| p.raw.as_ref()).map(|r| r.time).collect();
+    let per_mesh = prepare_time / o.plate_n_thick.len().max(1) as f64;
+    let mean = times.iter().sum::<f64>() / times.len().max(1) as f64;
+    Ok(PlateStudy { points, findings, symbolic_share: if per_mesh + mean > 0.0 { per_mesh / (per_mesh + mean) } else { 0.0 } })
 }
 
 fn plate_raw(r: &CheckResult, rigid: &CheckResult, time: f64, fn_ratio: f64) -> PlateRaw {
@@ -473,7 +483,7 @@ pub fn shape(base: &Scene, o: &Options, refs: &mut References, progress: Progres
             let j0 = (0..sm.mesh.n_elements()).map(|k| sm.mesh.min_jacobian(k)).fold(f64::INFINITY, f64::min);
             distort(&mut sm.mesh, amp * h, o.seed)?;
             let j1 = (0..sm.mesh.n_elements()).map(|k| sm.mesh.min_jacobian(k)).fold(f64::INFINITY, f64::min);
-            let (r, _) = check::run_model(&s, sm, 0.0, &SolverOptions::default())?;
+            let (r, _) = check::run_model(&s, sm, 0.0, &SolverOptions::default(), None)?;
             let errors = errors_against(&r, &rf);
             progress(&format!("shape distorted {e} {amp}"));
             out.push(ShapePoint { case: ShapeCase::Distorted, element: e.clone(), param: amp, n_elements: r.n_elements, err: interior_max(&errors), err_edge_far: edge_far(&r, &rf), errors, min_jacobian_rel: j1 / j0 });

@@ -159,3 +159,21 @@ fn gmsh_regular_mesh_gives_the_structured_result_in_every_format() {
     let e = run(&s, &SolverOptions::default()).err().unwrap().to_string();
     assert!(e.contains("'bottom'") && e.contains("interface") && e.contains("block_regular"), "{e}");
 }
+
+#[test]
+fn reused_symbolic_analysis_gives_the_fresh_result() {
+    // One pattern + symbolic analysis serves every plate modulus of a sweep.
+    let mut s = Scene::default();
+    s.plate.model = PlateModel::Elastic;
+    let prepared = tribofe::check::prepare(&s, &SolverOptions::default()).unwrap();
+    for e in [2e9, 2e11] {
+        s.plate.young = e;
+        let fresh = run(&s, &SolverOptions::default()).unwrap().0;
+        let reused = tribofe::check::run_model(&s, s.build().unwrap(), 0.0, &SolverOptions::default(), Some(&prepared)).unwrap().0;
+        assert_eq!(reused.timings.symbolic, 0.0);
+        for (a, b) in fresh.cases.iter().zip(&reused.cases) {
+            // Same pattern and ordering: the same arithmetic, so the same numbers.
+            assert!(max_diff(&a.p, &b.p) < 1e-14 && max_diff(&a.tau, &b.tau) < 1e-14);
+        }
+    }
+}

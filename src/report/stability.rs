@@ -171,7 +171,7 @@ pub fn summary(res: &Results) -> String {
                 f.digits_lost_1e12.map_or("-".into(), |d| format!("{d:.1}"))
             );
         }
-        let _ = writeln!(s, "symbolic analysis: {:.0} % of the solve time, redone at each point (not reused across the sweep)\n", 100.0 * p.symbolic_share);
+        let _ = writeln!(s, "pattern + symbolic analysis: built once per mesh and reused at every point of the sweep (redone at each point it would cost {:.0} % of each solve)\n", 100.0 * p.symbolic_share);
     }
     if let Some(n) = &res.nu {
         let _ = writeln!(s, "== nu: max error against qua9 references (units of N/L): interior, edge t..10 t | edge-zone oscillation of p, tau | p(0) / closed form (F/N = 0)");
