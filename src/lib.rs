@@ -22,6 +22,7 @@ pub mod problem;
 pub mod scene;
 pub mod check;
 pub mod convergence;
+pub mod rectangle;
 pub mod stability;
 pub mod precursors;
 pub mod report;

@@ -265,3 +265,20 @@ fn stiffness_pattern_and_values_reused_across_materials() {
         assert!((b - 10.0 * a).abs() <= 1e-13 * scale, "{a} {b}");
     }
 }
+
+#[test]
+fn rectangle_problem_balances_and_rejects_bad_sides() {
+    use tribofe::rectangle::{RectangleProblem, Side};
+    // Clamped bottom, rollers left and right, uniform pressure on top: the bottom carries it all.
+    let p = RectangleProblem {
+        rect: Rectangle::new(0.0, 1.0, 0.0, 0.1, 20, 4),
+        material: mat(),
+        element: "qua9".parse().unwrap(),
+        sides: [Side::Clamped, Side::Roller, Side::Traction([0.0, -1e3]), Side::Roller],
+    };
+    let r = p.solve().unwrap();
+    assert!((r.applied[1] + 1e3).abs() < 1e-9);
+    assert!((r.total_reaction[1] - 1e3).abs() < 1e-9 && r.total_reaction[0].abs() < 1e-9);
+    assert!("u=1".parse::<Side>().is_err() && "glued".parse::<Side>().is_err());
+    assert_eq!("t=0,-5".parse::<Side>().unwrap(), Side::Traction([0.0, -5.0]));
+}

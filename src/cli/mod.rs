@@ -3,6 +3,7 @@
 
 mod bench;
 mod check;
+mod solve;
 mod converge;
 mod precursors;
 mod stability;
@@ -18,6 +19,8 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
+    /// A rectangle with one condition per side (clamped, roller, displaced, traction, free), any element.
+    Solve(solve::Args),
     /// The paper's check: interface pressure and shear under the plate against the model (fig. 2).
     Check(check::Args),
     /// Mesh convergence of the check: errors per zone, orders, edge widths, accuracy against time.
@@ -32,6 +35,7 @@ pub enum Command {
 
 pub fn run(cli: Cli) -> tribofe::Result<()> {
     match cli.command {
+        Command::Solve(a) => solve::run(a),
         Command::Check(a) => check::run(a),
         Command::Converge(a) => converge::run(a),
         Command::Precursors(args) => precursors::run(args),

@@ -1,0 +1,66 @@
+//! `tribofe solve`: a rectangle with one condition per side, any element; prints the reactions
+//! per side and writes the fields for ParaView and Gmsh.
+
+use clap::Args as ClapArgs;
+use std::path::PathBuf;
+use tribofe::io::{gmsh_post::write_msh, vtu::write_vtu, Field};
+use tribofe::material::Material;
+use tribofe::mesher::Rectangle;
+use tribofe::rectangle::{RectangleProblem, Side, SIDES};
+use tribofe::recovery::{nodal_stresses, von_mises};
+
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    /// Width along x, m.
+    #[arg(long, default_value_t = 1.0)]
+    pub lx: f64,
+    /// Height along y, m.
+    #[arg(long, default_value_t = 0.1)]
+    pub ly: f64,
+    #[arg(long, default_value_t = 40)]
+    pub nx: usize,
+    #[arg(long, default_value_t = 4)]
+    pub ny: usize,
+    /// Element (qua4, qua4-sri, qua4-im, qua8, qua9, tri3, tri6).
+    #[arg(long, default_value = "qua4")]
+    pub element: String,
+    /// Young's modulus, Pa.
+    #[arg(long, default_value_t = 2e3)]
+    pub young: f64,
+    #[arg(long, default_value_t = 0.4)]
+    pub poisson: f64,
+    /// Bottom side: free, clamped, roller, u=UX,UY (m) or t=TX,TY (Pa).
+    #[arg(long, default_value = "clamped")]
+    pub bottom: String,
+    #[arg(long, default_value = "free")]
+    pub right: String,
+    #[arg(long, default_value = "u=0.001,0")]
+    pub top: String,
+    #[arg(long, default_value = "free")]
+    pub left: String,
+    #[arg(long, default_value = "out/solve")]
+    pub out: PathBuf,
+}
+
+pub fn run(a: Args) -> tribofe::Result<()> {
+    let sides: [Side; 4] = [a.bottom.parse()?, a.right.parse()?, a.top.parse()?, a.left.parse()?];
+    let p = RectangleProblem { rect: Rectangle::new(0.0, a.lx, 0.0, a.ly, a.nx, a.ny), material: Material::plane_strain(a.young, a.poisson)?, element: a.element.parse()?, sides };
+    let r = p.solve()?;
+    let model = tribofe::assembly::Model { tech: p.element.tech, ..tribofe::assembly::Model::new(&r.mesh, p.material) };
+    let u = &r.solution.u[0];
+    println!("rectangle {} x {} m, {} x {} {} elements, {} unknowns; forces in N per metre of width", a.lx, a.ly, a.nx, a.ny, a.element, r.solution.n_unknowns);
+    for (name, f) in SIDES.iter().zip(&r.side_reactions) {
+        println!("  reaction on {name:<6}: Fx = {:>12.5e}, Fy = {:>12.5e}", f[0], f[1]);
+    }
+    let bal = [r.total_reaction[0] + r.applied[0], r.total_reaction[1] + r.applied[1]];
+    println!("  applied tractions: Fx = {:.5e}, Fy = {:.5e}; balance (reactions + applied): {:.1e}, {:.1e}", r.applied[0], r.applied[1], bal[0], bal[1]);
+    let s = nodal_stresses(&model, u);
+    let disp: Vec<[f64; 2]> = (0..r.mesh.n_nodes()).map(|k| [u[2 * k], u[2 * k + 1]]).collect();
+    let tensor: Vec<[f64; 4]> = s.iter().map(|s| [s[0], s[1], s[3], s[2]]).collect();
+    let fields = [Field::vector_2d("displacement_m", &disp), Field::tensor_2d("stress_Pa", &tensor), Field::scalar("von_mises_Pa", s.iter().map(von_mises).collect())];
+    std::fs::create_dir_all(&a.out).map_err(|e| tribofe::Error::io(&a.out, e))?;
+    write_vtu(&a.out.join("fields.vtu"), &r.mesh, &fields, &[])?;
+    write_msh(&a.out.join("fields.msh"), &r.mesh, &fields, &[])?;
+    println!("wrote {}/{{fields.vtu, fields.msh}}", a.out.display());
+    Ok(())
+}
