@@ -93,6 +93,9 @@ pub struct Run {
     pub wall: f64,
     /// Memory of the Cholesky factor, MiB.
     pub factor_mib: f64,
+    /// Peak heap of the run above what was in use before it, MiB (serial studies only: runs in
+    /// parallel share the heap).
+    pub peak_mib: Option<f64>,
     pub x: Vec<f64>,
     pub p: Vec<f64>,
     pub tau: Vec<f64>,
@@ -168,9 +171,16 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
     // Largest first, so the long runs start early when running concurrently.
     specs.sort_by_key(|(_, _, n, s)| std::cmp::Reverse(estimate_dofs(s).unwrap_or(0) + n));
     let one = |(f, e, n, s): &(Family, String, usize, Scene)| -> Result<Run> {
+        let base = crate::memory::in_use_bytes();
+        if !o.parallel {
+            crate::memory::reset_peak();
+        }
         let clock = Instant::now();
         let (r, _) = check::run(s, &SolverOptions::default())?;
-        let run = to_run(*f, e, *n, &r, clock.elapsed().as_secs_f64());
+        let mut run = to_run(*f, e, *n, &r, clock.elapsed().as_secs_f64());
+        if !o.parallel {
+            run.peak_mib = Some(crate::memory::peak_bytes().saturating_sub(base) as f64 / (1u64 << 20) as f64);
+        }
         progress(&run);
         Ok(run)
     };
@@ -198,6 +208,7 @@ fn to_run(family: Family, element: &str, n: usize, r: &CheckResult, wall: f64) -
         timings: r.timings,
         wall,
         factor_mib: r.factor_nnz as f64 * 8.0 / (1u64 << 20) as f64,
+        peak_mib: None,
         x: c.x_over_l.clone(),
         p: c.p.clone(),
         tau: c.tau.clone(),

@@ -10,6 +10,7 @@ pub mod element;
 pub mod error;
 pub mod io;
 pub mod material;
+pub mod memory;
 pub mod mesh;
 pub mod mesher;
 pub mod assembly;

@@ -8,7 +8,7 @@ use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
 
-pub const HEADER: &str = "family,element,n_thick,h_over_t,dofs,elements,t_pattern_s,t_assembly_s,t_symbolic_s,t_numeric_s,t_solve_s,t_run_s,factor_mib,err_interior_p,err_interior_tau,err_edge_p,err_edge_tau,err_end_p,err_end_tau,slope,tau_center,edge_p_left_t,edge_p_right_t,edge_tau_left_t,edge_tau_right_t,p_end_right,tau_end_right,is_reference";
+pub const HEADER: &str = "family,element,n_thick,h_over_t,dofs,elements,t_pattern_s,t_assembly_s,t_symbolic_s,t_numeric_s,t_solve_s,t_run_s,factor_mib,peak_heap_mib,err_interior_p,err_interior_tau,err_edge_p,err_edge_tau,err_end_p,err_end_tau,slope,tau_center,edge_p_left_t,edge_p_right_t,edge_tau_left_t,edge_tau_right_t,p_end_right,tau_end_right,is_reference";
 
 pub fn csv(study: &Study) -> Result<String> {
     let mut s = String::from(HEADER);
@@ -23,6 +23,8 @@ pub fn csv(study: &Study) -> Result<String> {
         for v in nums {
             cells.push(format!("{:.6e}", super::finite("convergence.csv", v)?));
         }
+        // Peak heap sits after factor_mib (index 6 + 6 leading text cells); empty when parallel.
+        cells.insert(13, r.peak_mib.map_or(String::new(), |m| format!("{m:.6e}")));
         cells.extend(r.widths.iter().map(|w| w.map_or(String::new(), |w| format!("{w:.6e}"))));
         cells.push(format!("{:.6e}", r.p_end[1]));
         cells.push(format!("{:.6e}", r.tau_end[1]));
