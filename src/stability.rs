@@ -38,6 +38,8 @@ pub struct Options {
     /// Distortion amplitudes, fractions of h, and the seed of the perturbation.
     pub distortions: Vec<f64>,
     pub seed: u64,
+    /// Unstructured Gmsh mesh of the block for the shape study (skipped if the file is absent).
+    pub unstructured_mesh: Option<std::path::PathBuf>,
     pub thin_ratios: Vec<f64>,
     /// thin: elements through the thickness; meshes above `max_dofs` are graded instead.
     pub thin_n_thick: usize,
@@ -61,6 +63,7 @@ impl Default for Options {
             grading_ratio: 1.1,
             distortions: vec![0.0, 0.1, 0.2, 0.3],
             seed: 7,
+            unstructured_mesh: Some("meshes/block_unstructured_v41_bin.msh".into()),
             thin_ratios: vec![1e-1, 1e-2, 1e-3, 1e-4],
             thin_n_thick: 4,
             max_dofs: 600_000,
@@ -373,6 +376,9 @@ pub enum ShapeCase {
     Uniform,
     /// Square structured mesh with interior nodes moved at random (`aspect` = amplitude / h).
     Distorted,
+    /// The unstructured quad-dominant Gmsh mesh of the block (`meshes/`), QUA4-family
+    /// elements only (the file holds QUA4 and TRI3).
+    Unstructured,
 }
 
 impl ShapeCase {
@@ -381,6 +387,7 @@ impl ShapeCase {
             ShapeCase::Graded => "graded",
             ShapeCase::Uniform => "uniform",
             ShapeCase::Distorted => "distorted",
+            ShapeCase::Unstructured => "unstructured",
         }
     }
 }
@@ -488,8 +495,32 @@ pub fn shape(base: &Scene, o: &Options, refs: &mut References, progress: Progres
             progress(&format!("shape distorted {e} {amp}"));
             out.push(ShapePoint { case: ShapeCase::Distorted, element: e.clone(), param: amp, n_elements: r.n_elements, err: interior_max(&errors), err_edge_far: edge_far(&r, &rf), errors, min_jacobian_rel: j1 / j0 });
         }
+        let qua4_family = s.element()?.kind == crate::element::ElementKind::Qua4;
+        if let (Some(path), true) = (o.unstructured_mesh.as_ref().filter(|p| p.exists()), qua4_family) {
+            let mut v = s.clone();
+            v.mesh.file = Some(path.clone());
+            let sm = v.build()?;
+            let quality = (0..sm.mesh.n_elements()).map(|k| jacobian_quality(&sm.mesh, k)).fold(f64::INFINITY, f64::min);
+            let (r, _) = check::run_model(&v, sm, 0.0, &SolverOptions::default(), None)?;
+            let errors = errors_against(&r, &rf);
+            progress(&format!("shape unstructured {e}"));
+            out.push(ShapePoint { case: ShapeCase::Unstructured, element: e.clone(), param: 0.0, n_elements: r.n_elements, err: interior_max(&errors), err_edge_far: edge_far(&r, &rf), errors, min_jacobian_rel: quality });
+        }
     }
     Ok(out)
+}
+
+/// Smallest Jacobian determinant of an element over its mean one (area / reference area):
+/// 1 for parallelograms and triangles, smaller the more a quad is distorted.
+fn jacobian_quality(mesh: &crate::mesh::Mesh, e: usize) -> f64 {
+    let nodes = mesh.element_nodes(e);
+    let nc = mesh.kind(e).n_corners();
+    let area = 0.5 * (0..nc).map(|i| {
+        let (a, b) = (mesh.nodes[nodes[i]], mesh.nodes[nodes[(i + 1) % nc]]);
+        a[0] * b[1] - b[0] * a[1]
+    }).sum::<f64>();
+    let reference_area = if mesh.kind(e).is_quad() { 4.0 } else { 0.5 };
+    mesh.min_jacobian(e) / (area / reference_area)
 }
 
 // ---------------------------------------------------------------- thin

@@ -190,13 +190,21 @@ pub fn summary(res: &Results) -> String {
     }
     if let Some(sh) = &res.shape {
         let _ = writeln!(s, "== shape: max error against the qua9 reference, interior / edge zone t..10 t from the ends (units of N/L)");
-        for case in [ShapeCase::Graded, ShapeCase::Uniform, ShapeCase::Distorted] {
-            let what = if case == ShapeCase::Distorted { "amplitude/h" } else { "aspect" };
+        for case in [ShapeCase::Graded, ShapeCase::Uniform, ShapeCase::Distorted, ShapeCase::Unstructured] {
+            let what = match case {
+                ShapeCase::Distorted => "amplitude/h",
+                ShapeCase::Unstructured => "Gmsh mesh; the number is the worst min/mean Jacobian",
+                _ => "aspect",
+            };
             let mut els: Vec<&str> = sh.iter().map(|q| q.element.as_str()).collect();
             els.dedup();
             let _ = writeln!(s, "{} ({what}):", case.name());
             for el in els {
-                let cells: Vec<String> = sh.iter().filter(|q| q.case == case && q.element == el).map(|q| format!("{}: {}/{}", q.param, e(q.err), e(q.err_edge_far))).collect();
+                let label = |q: &crate::stability::ShapePoint| if case == ShapeCase::Unstructured { format!("{:.2}", q.min_jacobian_rel) } else { format!("{}", q.param) };
+                let cells: Vec<String> = sh.iter().filter(|q| q.case == case && q.element == el).map(|q| format!("{}: {}/{}", label(q), e(q.err), e(q.err_edge_far))).collect();
+                if cells.is_empty() {
+                    continue;
+                }
                 let _ = writeln!(s, "  {el:<9} {}", cells.join("  "));
             }
         }
