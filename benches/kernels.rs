@@ -1,0 +1,54 @@
+//! Kernel benchmarks (`cargo bench`): element matrices, assembly, symbolic and numeric
+//! Cholesky, and the solve, on a strip of the paper's scene small enough to repeat. The whole
+//! pipeline at 1e6 DOFs is `tribofe bench`.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+use tribofe::assembly::Assembler;
+use tribofe::element::stiffness::{stiffness, MAX_DOFS};
+use tribofe::element::ElementKind;
+use tribofe::material::Material;
+use tribofe::problem::LoadCase;
+use tribofe::scene::Scene;
+use tribofe::solve::{Solver, SolverOptions};
+
+fn kernels(c: &mut Criterion) {
+    let d = Material::plane_strain(2e3, 0.4).unwrap().d_matrix();
+    let mut k = [0.0; MAX_DOFS * MAX_DOFS];
+    for kind in [ElementKind::Qua4, ElementKind::Qua8, ElementKind::Tri6] {
+        let x: Vec<[f64; 2]> = kind.reference_nodes().iter().map(|&[a, b]| [1e-3 * (1.0 + a + 0.1 * b), 1e-3 * (0.5 + b)]).collect();
+        c.bench_function(&format!("element stiffness {}", kind.name()), |b| b.iter(|| stiffness(kind, black_box(&x), &d, &mut k)));
+    }
+
+    // The paper's scene at h = t/8: 3200 x 8 QUA4, ~2.9e4 unknowns, rigid plate.
+    let mut scene = Scene::default();
+    scene.mesh.h = scene.block.thickness / 8.0;
+    let sm = scene.build().unwrap();
+    let model = sm.model();
+    let red = sm.constraints.reduce().unwrap();
+    let nf = sm.constraints.n_fixed();
+    let cases = [LoadCase { prescribed: vec![1e-6; nf], forces: vec![] }];
+    let g: Vec<Vec<f64>> = cases.iter().map(|c| c.prescribed.clone()).collect();
+    let f = vec![vec![]];
+    let mut group = c.benchmark_group("strip t/8");
+    group.sample_size(10);
+    group.bench_function("pattern", |b| b.iter(|| Assembler::new(&sm.mesh, &red).unwrap()));
+    let asm = Assembler::new(&sm.mesh, &red).unwrap();
+    group.bench_function("assembly", |b| b.iter(|| asm.assemble(&model, &red, &f, &g).unwrap()));
+    let (values, rhs) = asm.assemble(&model, &red, &f, &g).unwrap();
+    group.bench_function("ordering + symbolic (AMD)", |b| b.iter(|| Solver::analyse(&asm.pattern, SolverOptions::default()).unwrap()));
+    let solver = Solver::analyse(&asm.pattern, SolverOptions::default()).unwrap();
+    group.bench_function("numeric factorisation", |b| b.iter(|| solver.factorize(&asm.pattern, &values).ok().unwrap()));
+    let factor = solver.factorize(&asm.pattern, &values).ok().unwrap();
+    group.bench_function("solve, 3 right-hand sides", |b| {
+        b.iter(|| {
+            let mut x: Vec<f64> = rhs.iter().chain(&rhs).chain(&rhs).copied().collect();
+            factor.solve_in_place(&mut x, 3);
+            x
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, kernels);
+criterion_main!(benches);
