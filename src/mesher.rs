@@ -87,42 +87,36 @@ impl Rectangle {
         let (gx, gy) = (xs.len(), ys.len());
         // Grid points are numbered row by row; nodes no element uses (QUA8 centres) are dropped.
         let grid = |i: usize, j: usize| j * gx + i;
-        let mut cells: Vec<(ElementKind, Vec<usize>)> = Vec::new();
+        let per_cell = if self.kind.is_quad() { 1 } else { 2 };
+        let nn = self.kind.n_nodes();
+        let mut conn: Vec<usize> = Vec::with_capacity(nx * ny * per_cell * nn);
         for cj in 0..ny {
             for ci in 0..nx {
                 let (i, j) = (ci * p, cj * p);
                 let c = [grid(i, j), grid(i + p, j), grid(i + p, j + p), grid(i, j + p)];
                 match self.kind {
-                    ElementKind::Qua4 => cells.push((self.kind, c.to_vec())),
-                    ElementKind::Tri3 => {
-                        cells.push((self.kind, vec![c[0], c[1], c[2]]));
-                        cells.push((self.kind, vec![c[0], c[2], c[3]]));
-                    }
+                    ElementKind::Qua4 => conn.extend_from_slice(&c),
+                    ElementKind::Tri3 => conn.extend_from_slice(&[c[0], c[1], c[2], c[0], c[2], c[3]]),
                     ElementKind::Qua8 | ElementKind::Qua9 => {
-                        let mut v = c.to_vec();
-                        v.extend([grid(i + 1, j), grid(i + 2, j + 1), grid(i + 1, j + 2), grid(i, j + 1)]);
+                        conn.extend_from_slice(&c);
+                        conn.extend_from_slice(&[grid(i + 1, j), grid(i + 2, j + 1), grid(i + 1, j + 2), grid(i, j + 1)]);
                         if self.kind == ElementKind::Qua9 {
-                            v.push(grid(i + 1, j + 1));
+                            conn.push(grid(i + 1, j + 1));
                         }
-                        cells.push((self.kind, v));
                     }
                     ElementKind::Tri6 => {
                         let m = grid(i + 1, j + 1);
-                        cells.push((self.kind, vec![c[0], c[1], c[2], grid(i + 1, j), grid(i + 2, j + 1), m]));
-                        cells.push((self.kind, vec![c[0], c[2], c[3], m, grid(i + 1, j + 2), grid(i, j + 1)]));
+                        conn.extend_from_slice(&[c[0], c[1], c[2], grid(i + 1, j), grid(i + 2, j + 1), m]);
+                        conn.extend_from_slice(&[c[0], c[2], c[3], m, grid(i + 1, j + 2), grid(i, j + 1)]);
                     }
                 }
             }
         }
         let mut new_index = vec![usize::MAX; gx * gy];
-        let mut nodes = Vec::new();
-        for (_, v) in &cells {
-            for &g in v {
-                if new_index[g] == usize::MAX {
-                    new_index[g] = usize::MAX - 1; // mark used
-                }
-            }
+        for &g in &conn {
+            new_index[g] = 0; // used
         }
+        let mut nodes = Vec::new();
         for j in 0..gy {
             for i in 0..gx {
                 if new_index[grid(i, j)] != usize::MAX {
@@ -132,9 +126,12 @@ impl Rectangle {
             }
         }
         let mut mesh = Mesh::new(nodes);
-        for (kind, v) in &cells {
-            let v: Vec<usize> = v.iter().map(|&g| new_index[g]).collect();
-            mesh.push_element(*kind, &v);
+        let mut v = [0usize; 9];
+        for cell in conn.chunks_exact(nn) {
+            for (a, &g) in cell.iter().enumerate() {
+                v[a] = new_index[g];
+            }
+            mesh.push_element(self.kind, &v[..nn]);
         }
         let edge = |a: usize, b: usize, m: usize| Edge { ends: [new_index[a], new_index[b]], mid: (p == 2).then(|| new_index[m]) };
         let bottom = (0..nx).map(|c| edge(grid(c * p, 0), grid((c + 1) * p, 0), grid(c * p + 1, 0))).collect();
