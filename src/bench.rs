@@ -254,10 +254,10 @@ pub fn table(rows: &[Row], dgemm: &[(usize, f64)]) -> String {
         "case", "th", "factor", "ord", "DOFs", "nnz(K)", "nnz(L)", "GFLOP", "mesh", "patt", "asm", "symb", "numer", "solve", "recov", "total", "output", "DOF/s", "GF/s", "%peak", "MiB");
     for r in rows {
         let t = &r.t;
-        let ceiling = dgemm.iter().find(|d| d.0 == r.threads).map_or(f64::NAN, |d| 100.0 * r.gflops() / d.1);
+        let ceiling = dgemm.iter().find(|d| d.0 == r.threads).map_or("-".to_string(), |d| format!("{:.1}", 100.0 * r.gflops() / d.1));
         let _ = writeln!(
             s,
-            "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6.2} | {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} | {:>6.2} {:>6} | {:>8.2e} {:>6.2} {:>5.1} {:>7.0}",
+            "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6.2} | {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} | {:>6.2} {:>6} | {:>8.2e} {:>6.2} {:>5} {:>7.0}",
             r.case, r.threads, r.factor, r.ordering, r.dofs, r.nnz_k, r.nnz_l, r.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery, t.total(),
             r.output.map_or("-".into(), |v| format!("{v:.3}")), r.dofs_per_s(), r.gflops(), ceiling, r.peak_mib
         );

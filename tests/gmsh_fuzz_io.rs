@@ -6,42 +6,13 @@
 //! A panicking input is saved under `target/tmp/` to become a regression test.
 //! (The coverage-guided counterpart is `fuzz/fuzz_targets/parse.rs`.)
 
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::time::{Duration, Instant};
 use tribofe::io::gmsh;
 use tribofe::Error;
 
-/// Counts live heap bytes and their peak, to bound what a parse allocates. This file holds one
-/// test, so no other thread allocates meanwhile.
-struct Counting;
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        let live = LIVE.fetch_add(l.size(), Relaxed) + l.size();
-        PEAK.fetch_max(live, Relaxed);
-        System.alloc(l)
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        LIVE.fetch_sub(l.size(), Relaxed);
-        System.dealloc(p, l)
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, new: usize) -> *mut u8 {
-        if new > l.size() {
-            let live = LIVE.fetch_add(new - l.size(), Relaxed) + new - l.size();
-            PEAK.fetch_max(live, Relaxed);
-        } else {
-            LIVE.fetch_sub(l.size() - new, Relaxed);
-        }
-        System.realloc(p, l, new)
-    }
-}
-
-#[global_allocator]
-static ALLOC: Counting = Counting;
+// Heap accounting comes from the library's counting allocator (tribofe::memory). This file
+// holds one test, so no other thread allocates meanwhile.
 
 /// xorshift64*: small, deterministic, good enough to pick mutations.
 struct Rng(u64);
@@ -145,12 +116,12 @@ fn mutated_meshes_never_panic() {
         let other = &seeds[rng.below(seeds.len())].1;
         let input = mutate(&mut rng, seed, other);
 
-        let base = LIVE.load(Relaxed);
-        PEAK.store(base, Relaxed);
+        let base = tribofe::memory::in_use_bytes();
+        tribofe::memory::reset_peak();
         let t = Instant::now();
         let result = std::panic::catch_unwind(|| gmsh::parse(&input, Path::new("m.msh")));
         let dt = t.elapsed();
-        let peak = PEAK.load(Relaxed) - base;
+        let peak = tribofe::memory::peak_bytes() - base;
 
         let Ok(result) = result else {
             std::panic::set_hook(quiet);
