@@ -152,6 +152,9 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
     if o.elements.is_empty() || o.families.is_empty() || o.n_thick.is_empty() {
         return Err(Error::input("convergence study", "need at least one element, family and mesh"));
     }
+    if o.n_thick.contains(&0) {
+        return Err(Error::input("n-thick", "elements through the thickness must be at least 1"));
+    }
     let mut specs = Vec::new();
     let mut skipped = Vec::new();
     for e in &o.elements {

@@ -17,19 +17,26 @@ pub struct Cli {
     pub command: Command,
 }
 
+// Negative numbers are values, not flags, so a value like `--h -1` reaches the range checks.
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// A rectangle with one condition per side (clamped, roller, displaced, traction, free), any element.
+    #[command(allow_negative_numbers = true)]
     Solve(solve::Args),
     /// The paper's check: interface pressure and shear under the plate against the model (fig. 2).
+    #[command(allow_negative_numbers = true)]
     Check(check::Args),
     /// Mesh convergence of the check: errors per zone, orders, edge widths, accuracy against time.
+    #[command(allow_negative_numbers = true)]
     Converge(converge::Args),
     /// Precursors to sliding (Scheibert & Dysthe model): event table, fig. 4, or the n(r, g) map (fig. 5).
+    #[command(allow_negative_numbers = true)]
     Precursors(precursors::Args),
     /// Pipeline benchmark: phase times, sizes, GFLOP/s and peak memory on ~1e6-DOF problems.
+    #[command(allow_negative_numbers = true)]
     Bench(bench::Args),
     /// Numerical stability: stiff elastic plate, near-incompressibility, element shape, thin layers, singular corners.
+    #[command(allow_negative_numbers = true)]
     Stability(stability::Args),
 }
 
