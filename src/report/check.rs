@@ -4,6 +4,7 @@
 use super::{csv, ratio_label, write_atomic};
 use crate::check::CheckResult;
 use crate::error::{Error, Result};
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -167,12 +168,10 @@ where
         chart.draw_series(DashedLineSeries::new(model_p, 6, 4, col.stroke_width(1))).map_err(err)?;
         chart.draw_series(DashedLineSeries::new(model_t, 6, 4, col.stroke_width(1))).map_err(err)?;
         let label = format!("F/N = {}", c.fn_ratio);
-        chart
-            .draw_series(sel.iter().map(|&i| Circle::new((c.x_over_l[i], c.p[i]), 3, col.stroke_width(1))))
-            .map_err(err)?
-            .label(label)
-            .legend(move |(x, y)| Circle::new((x, y), 4, col.filled()));
-        chart.draw_series(sel.iter().map(|&i| Circle::new((c.x_over_l[i], c.tau[i]), 3, col.filled()))).map_err(err)?;
+        markers(&mut chart, sel.iter().map(|&i| (c.x_over_l[i], c.p[i])).collect(), k, col, false)?;
+        markers(&mut chart, sel.iter().map(|&i| (c.x_over_l[i], c.tau[i])).collect(), k, col, true)?;
+        // Legend entry: the case's colour (the marker shape follows the case order).
+        chart.draw_series(std::iter::empty::<Circle<(f64, f64), i32>>()).map_err(err)?.label(label).legend(move |(x, y)| Circle::new((x, y), 4, col.filled()));
     }
     chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).position(SeriesLabelPosition::UpperMiddle).draw().map_err(err)?;
     Ok(())
@@ -218,4 +217,21 @@ pub fn write_fields(res: &CheckResult, sm: &crate::scene::SceneModel, dir: &Path
     vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
     written.push(dir.join("fields.pvd"));
     Ok(written)
+}
+
+/// The paper's markers: circle, square, diamond for the successive load cases; open for the
+/// pressure, full for the shear.
+fn markers<DB: DrawingBackend>(chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>, pts: Vec<(f64, f64)>, k: usize, col: RGBColor, filled: bool) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let style = if filled { col.filled() } else { col.stroke_width(1) };
+    let diamond = [(0, -4), (4, 0), (0, 4), (-4, 0)];
+    match (k % 3, filled) {
+        (0, _) => chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, style))).map(|_| ()),
+        (1, _) => chart.draw_series(pts.into_iter().map(|p| EmptyElement::at(p) + Rectangle::new([(-3, -3), (3, 3)], style))).map(|_| ()),
+        (_, true) => chart.draw_series(pts.into_iter().map(|p| EmptyElement::at(p) + Polygon::new(diamond.to_vec(), style))).map(|_| ()),
+        (_, false) => chart.draw_series(pts.into_iter().map(|p| EmptyElement::at(p) + PathElement::new([&diamond[..], &diamond[..1]].concat(), style))).map(|_| ()),
+    }
+    .map_err(err)
 }
