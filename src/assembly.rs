@@ -79,24 +79,6 @@ impl Pattern {
         let rows = &self.row_idx[s..self.col_ptr[col + 1]];
         s + rows.binary_search(&row).expect("entry outside the assembled pattern")
     }
-
-    /// y = A x for the symmetric matrix stored by its lower triangle, for n x k column-major x.
-    pub fn sym_mul(&self, values: &[f64], x: &[f64], y: &mut [f64], k: usize) {
-        let n = self.n;
-        y.iter_mut().for_each(|v| *v = 0.0);
-        for c in 0..k {
-            let (xc, yc) = (&x[c * n..(c + 1) * n], &mut y[c * n..(c + 1) * n]);
-            for j in 0..n {
-                for p in self.col_ptr[j]..self.col_ptr[j + 1] {
-                    let i = self.row_idx[p];
-                    yc[i] += values[p] * xc[j];
-                    if i != j {
-                        yc[j] += values[p] * xc[i];
-                    }
-                }
-            }
-        }
-    }
 }
 
 /// Pattern and element colouring for one mesh and one set of constraints; reused for any

@@ -263,9 +263,7 @@ fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
 #[allow(clippy::too_many_arguments)]
 fn metrics(x: &[f64], p: &[f64], tau: &[f64], pm: &[f64], tm: &[f64], slope_model: f64, l: f64, t: f64, tol: f64) -> Metrics {
     let interior: Vec<usize> = (0..x.len()).filter(|&i| x[i].abs() * l < l / 2.0 - 10.0 * t).collect();
-    let (sx, sy, sxx, sxy) = interior.iter().fold((0.0, 0.0, 0.0, 0.0), |(a, b, c, d), &i| (a + x[i], b + p[i], c + x[i] * x[i], d + x[i] * p[i]));
-    let m = interior.len() as f64;
-    let slope = if interior.len() >= 2 { (m * sxy - sx * sy) / (m * sxx - sx * sx) } else { f64::NAN };
+    let slope = line_fit(interior.iter().map(|&i| (x[i], p[i]))).map_or(f64::NAN, |l| l.1);
     let dev = |v: &[f64], model: &[f64]| interior.iter().map(|&i| (v[i] - model[i]).abs()).fold(0.0, f64::max);
     let tau_center = interpolate(x, tau, 0.0);
     let n = x.len();
@@ -305,9 +303,26 @@ fn metrics(x: &[f64], p: &[f64], tau: &[f64], pm: &[f64], tm: &[f64], slope_mode
     }
 }
 
-/// Linear interpolation of v(x) at x0 (x sorted).
-fn interpolate(x: &[f64], v: &[f64], x0: f64) -> f64 {
+/// Linear interpolation of a profile v(x) at x0 (x sorted; extrapolates linearly outside).
+pub fn interpolate(x: &[f64], v: &[f64], x0: f64) -> f64 {
     let i = x.partition_point(|&a| a < x0).clamp(1, x.len() - 1);
     let s = (x0 - x[i - 1]) / (x[i] - x[i - 1]);
     v[i - 1] + s * (v[i] - v[i - 1])
+}
+
+/// Least-squares line through the points: (intercept, slope); None with fewer than two points.
+pub fn line_fit(points: impl IntoIterator<Item = (f64, f64)>) -> Option<(f64, f64)> {
+    let (mut m, mut sx, mut sy, mut sxx, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (x, y) in points {
+        m += 1.0;
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+    }
+    if m < 2.0 {
+        return None;
+    }
+    let slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+    Some(((sy - slope * sx) / m, slope))
 }

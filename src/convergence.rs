@@ -3,7 +3,7 @@
 //! (the smooth interior, the edge zones, the singular end nodes), observed orders, converged
 //! edge-zone widths, and the cost of each run for the accuracy-versus-time chart.
 
-use crate::check::{self, CheckResult};
+use crate::check::{self, interpolate, line_fit, CheckResult};
 use crate::error::{Error, Result};
 use crate::problem::Timings;
 use crate::scene::Scene;
@@ -258,7 +258,7 @@ impl Samples {
     }
 
     fn errors(&self, x: &[f64], p: &[f64], tau: &[f64], rx: &[f64], rp: &[f64], rt: &[f64]) -> ZoneErrors {
-        let max_err = |pts: &[f64], v: &[f64], rv: &[f64]| pts.iter().map(|&s| (interp(x, v, s) - interp(rx, rv, s)).abs()).fold(0.0, f64::max);
+        let max_err = |pts: &[f64], v: &[f64], rv: &[f64]| pts.iter().map(|&s| (interpolate(x, v, s) - interpolate(rx, rv, s)).abs()).fold(0.0, f64::max);
         let n = x.len();
         let rn = rx.len();
         let end = |v: &[f64], rv: &[f64]| (v[0] - rv[0]).abs().max((v[n - 1] - rv[rn - 1]).abs());
@@ -276,12 +276,6 @@ pub fn zone_errors(t_over_l: f64, x: &[f64], p: &[f64], tau: &[f64], rx: &[f64],
     Samples::new(t_over_l).errors(x, p, tau, rx, rp, rt)
 }
 
-/// Piecewise-linear interpolation of v(x) at s (x sorted, s inside).
-pub fn interp(x: &[f64], v: &[f64], s: f64) -> f64 {
-    let i = x.partition_point(|&a| a < s).clamp(1, x.len() - 1);
-    let w = (s - x[i - 1]) / (x[i] - x[i - 1]);
-    v[i - 1] + w * (v[i] - v[i - 1])
-}
 
 /// Observed order of convergence between two runs: log(e1/e2) / log(h1/h2).
 pub fn observed_order(e1: f64, h1: f64, e2: f64, h2: f64) -> f64 {
@@ -391,11 +385,8 @@ pub fn first_converged_width(study: &Study, s: &[usize]) -> [Option<usize>; 4] {
 pub fn decay_rates(r: &Run, t_over_l: f64, floor: f64) -> [Option<f64>; 4] {
     let n = r.x.len();
     let interior: Vec<usize> = (0..n).filter(|&i| r.x[i].abs() < 0.5 - 10.0 * t_over_l).collect();
-    let m = interior.len() as f64;
-    let (sx, sp, sxx, sxp, st) = interior.iter().fold((0.0, 0.0, 0.0, 0.0, 0.0), |a, &i| (a.0 + r.x[i], a.1 + r.p[i], a.2 + r.x[i] * r.x[i], a.3 + r.x[i] * r.p[i], a.4 + r.tau[i]));
-    let b = (m * sxp - sx * sp) / (m * sxx - sx * sx);
-    let a = (sp - b * sx) / m;
-    let tau_far = st / m;
+    let Some((a, b)) = line_fit(interior.iter().map(|&i| (r.x[i], r.p[i]))) else { return [None; 4] };
+    let tau_far = interior.iter().map(|&i| r.tau[i]).sum::<f64>() / interior.len() as f64;
     let fit = |v: &dyn Fn(usize) -> f64, left: bool| -> Option<f64> {
         // Points from d = t/2 inwards while the disturbance stays above the floor.
         let order: Vec<usize> = if left { (0..n).collect() } else { (0..n).rev().collect() };
@@ -410,9 +401,7 @@ pub fn decay_rates(r: &Run, t_over_l: f64, floor: f64) -> [Option<f64>; 4] {
         if pts.len() < 4 {
             return None;
         }
-        let k = pts.len() as f64;
-        let (sd, sl, sdd, sdl) = pts.iter().fold((0.0, 0.0, 0.0, 0.0), |q, &(d, l)| (q.0 + d, q.1 + l, q.2 + d * d, q.3 + d * l));
-        Some(-(k * sdl - sd * sl) / (k * sdd - sd * sd))
+        line_fit(pts).map(|(_, slope)| -slope)
     };
     let dp = |i: usize| r.p[i] - (a + b * r.x[i]);
     let dt = |i: usize| r.tau[i] - tau_far;

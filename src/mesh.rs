@@ -199,16 +199,7 @@ impl Mesh {
         for e in 0..self.n_elements() {
             let kind = self.kind(e);
             let nc = kind.n_corners();
-            let area2: f64 = {
-                let nodes = self.element_nodes(e);
-                (0..nc)
-                    .map(|i| {
-                        let (a, b) = (self.nodes[nodes[i]], self.nodes[nodes[(i + 1) % nc]]);
-                        a[0] * b[1] - b[0] * a[1]
-                    })
-                    .sum()
-            };
-            if area2 < 0.0 {
+            if self.signed_area(e) < 0.0 {
                 // Mirror the local numbering: swap corners 1 <-> nc-1 and the matching mid nodes.
                 let nodes = self.element_nodes_mut(e);
                 nodes.swap(1, nc - 1);
@@ -222,20 +213,22 @@ impl Mesh {
         flipped
     }
 
-    /// Area of each element's corner polygon (m^2); exact for straight-sided elements.
-    pub fn total_area(&self) -> f64 {
-        (0..self.n_elements())
-            .map(|e| {
-                let nodes = self.element_nodes(e);
-                let nc = self.kind(e).n_corners();
-                0.5 * (0..nc)
-                    .map(|i| {
-                        let (a, b) = (self.nodes[nodes[i]], self.nodes[nodes[(i + 1) % nc]]);
-                        a[0] * b[1] - b[0] * a[1]
-                    })
-                    .sum::<f64>()
+    /// Signed area of an element's corner polygon (m^2), positive when counter-clockwise; exact
+    /// for straight-sided elements.
+    pub fn signed_area(&self, e: usize) -> f64 {
+        let nodes = self.element_nodes(e);
+        let nc = self.kind(e).n_corners();
+        0.5 * (0..nc)
+            .map(|i| {
+                let (a, b) = (self.nodes[nodes[i]], self.nodes[nodes[(i + 1) % nc]]);
+                a[0] * b[1] - b[0] * a[1]
             })
-            .sum()
+            .sum::<f64>()
+    }
+
+    /// Total area of the elements (m^2).
+    pub fn total_area(&self) -> f64 {
+        (0..self.n_elements()).map(|e| self.signed_area(e)).sum()
     }
 }
 

@@ -5,7 +5,8 @@
 //! `corners` (singular end nodes vs converging integrated quantities).
 
 use crate::check::{self, CheckResult};
-use crate::convergence::{self, interp, zone_errors, Family, StudyOptions, ZoneErrors};
+use crate::check::interpolate;
+use crate::convergence::{self, zone_errors, Family, StudyOptions, ZoneErrors};
 use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::mesh::Mesh;
@@ -87,8 +88,8 @@ fn edge_far(r: &CheckResult, reference: &CheckResult) -> f64 {
         .map(|i| tl * 10f64.powf(i as f64 / 40.0))
         .flat_map(|d| [-0.5 + d, 0.5 - d])
         .map(|s| {
-            let dp = (interp(&c.x_over_l, &c.p, s) - interp(&rc.x_over_l, &rc.p, s)).abs();
-            dp.max((interp(&c.x_over_l, &c.tau, s) - interp(&rc.x_over_l, &rc.tau, s)).abs())
+            let dp = (interpolate(&c.x_over_l, &c.p, s) - interpolate(&rc.x_over_l, &rc.p, s)).abs();
+            dp.max((interpolate(&c.x_over_l, &c.tau, s) - interpolate(&rc.x_over_l, &rc.tau, s)).abs())
         })
         .fold(0.0, f64::max)
 }
@@ -319,7 +320,7 @@ fn closed_form(r: &CheckResult) -> Result<(f64, f64)> {
     let c = &r.cases[0];
     let strain = c.plate_v.abs() / s.block.thickness;
     let pmean = c.n / s.block.length;
-    let p0 = interp(&c.x_over_l, &c.p, 0.0) * pmean;
+    let p0 = interpolate(&c.x_over_l, &c.p, 0.0) * pmean;
     let m = mat.lambda() + 2.0 * mat.shear_modulus();
     Ok((p0 / thin_layer_p0(&mat, strain, s.block.length, s.block.thickness), pmean / (m * strain)))
 }
@@ -337,7 +338,7 @@ fn oscillation(r: &CheckResult, reference: &CheckResult) -> f64 {
         let second = |v: &dyn Fn(usize) -> f64| v(i - 1) - 2.0 * v(i) + v(i + 1);
         for (own, rv) in [(&c.p, &rc.p), (&c.tau, &rc.tau)] {
             let a = second(&|k| own[k]);
-            let b = second(&|k| interp(&rc.x_over_l, rv, x[k]));
+            let b = second(&|k| interpolate(&rc.x_over_l, rv, x[k]));
             worst = worst.max((a.abs() - b.abs()).max(0.0));
         }
     }
@@ -513,14 +514,8 @@ pub fn shape(base: &Scene, o: &Options, refs: &mut References, progress: Progres
 /// Smallest Jacobian determinant of an element over its mean one (area / reference area):
 /// 1 for parallelograms and triangles, smaller the more a quad is distorted.
 fn jacobian_quality(mesh: &crate::mesh::Mesh, e: usize) -> f64 {
-    let nodes = mesh.element_nodes(e);
-    let nc = mesh.kind(e).n_corners();
-    let area = 0.5 * (0..nc).map(|i| {
-        let (a, b) = (mesh.nodes[nodes[i]], mesh.nodes[nodes[(i + 1) % nc]]);
-        a[0] * b[1] - b[0] * a[1]
-    }).sum::<f64>();
     let reference_area = if mesh.kind(e).is_quad() { 4.0 } else { 0.5 };
-    mesh.min_jacobian(e) / (area / reference_area)
+    mesh.min_jacobian(e) / (mesh.signed_area(e) / reference_area)
 }
 
 // ---------------------------------------------------------------- thin
@@ -567,9 +562,7 @@ pub fn thin(base: &Scene, o: &Options, progress: Progress) -> Result<Vec<ThinPoi
         let time = clock.elapsed().as_secs_f64();
         let c = &r.cases[0];
         let mid: Vec<usize> = (0..c.x_over_l.len()).filter(|&i| c.x_over_l[i].abs() < 0.25).collect();
-        let m = mid.len() as f64;
-        let (sx, sy, sxx, sxy) = mid.iter().fold((0.0, 0.0, 0.0, 0.0), |(a, b, cc, d), &i| (a + c.x_over_l[i], b + c.p[i], cc + c.x_over_l[i].powi(2), d + c.x_over_l[i] * c.p[i]));
-        let slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+        let slope = check::line_fit(mid.iter().map(|&i| (c.x_over_l[i], c.p[i]))).map_or(f64::NAN, |l| l.1);
         let model = c.metrics.slope_model;
         let mt = &c.metrics;
         progress(&format!("thin t/L {tl:.0e}"));
