@@ -118,7 +118,9 @@ pub fn ordering_name(o: &Ordering) -> &'static str {
     match o {
         Ordering::Auto => "auto",
         Ordering::Amd => "amd",
+        Ordering::NestedDissection => "nd",
         Ordering::Custom(_) => "custom",
+        Ordering::TwoDomain(_) => "2dom",
     }
 }
 

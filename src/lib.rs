@@ -16,6 +16,7 @@ pub mod mesher;
 pub mod assembly;
 pub mod constraints;
 pub mod solve;
+pub mod substructure;
 pub mod ordering;
 pub mod recovery;
 pub mod loads;

@@ -18,16 +18,51 @@ pub fn nested_dissection(mesh: &Mesh, red: &Reduction) -> Option<Vec<usize>> {
     let grid = Grid::new(mesh)?;
     let mut nodes = Vec::with_capacity(mesh.n_nodes());
     grid.dissect([0, grid.gx], [0, grid.gy], &mut nodes);
+    let mut perm = free_unknowns(red, &nodes);
+    perm.extend(red.n_free_nodes..red.n_free());
+    (perm.len() == red.n_free()).then_some(perm)
+}
+
+/// The first cut of [`nested_dissection`]: the reduced unknowns of the two halves, each in
+/// elimination order, and the separator (one grid line, then every extra DOF).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bisection {
+    pub parts: [Vec<usize>; 2],
+    pub separator: Vec<usize>,
+}
+
+/// The grid's first nested-dissection cut, or None when the nodes do not form a grid or a
+/// half would be empty.
+pub fn bisection(mesh: &Mesh, red: &Reduction) -> Option<Bisection> {
+    let grid = Grid::new(mesh)?;
+    let (x, y) = ([0, grid.gx], [0, grid.gy]);
+    let (mut a, mut b, mut s) = (Vec::new(), Vec::new(), Vec::new());
+    match grid.split(x, y)? {
+        (true, c) => {
+            grid.dissect([x[0], c], y, &mut a);
+            grid.dissect([c + 1, x[1]], y, &mut b);
+            grid.emit([c, c + 1], y, &mut s);
+        }
+        (false, c) => {
+            grid.dissect(x, [y[0], c], &mut a);
+            grid.dissect(x, [c + 1, y[1]], &mut b);
+            grid.emit(x, [c, c + 1], &mut s);
+        }
+    }
+    let parts = [free_unknowns(red, &a), free_unknowns(red, &b)];
+    let mut separator = free_unknowns(red, &s);
+    separator.extend(red.n_free_nodes..red.n_free());
+    let complete = parts[0].len() + parts[1].len() + separator.len() == red.n_free();
+    (complete && parts.iter().all(|p| !p.is_empty())).then_some(Bisection { parts, separator })
+}
+
+/// The free unknowns of `nodes`, in that order (x before y).
+fn free_unknowns(red: &Reduction, nodes: &[usize]) -> Vec<usize> {
     let mut free = vec![usize::MAX; red.n_full];
     for (k, &d) in red.free_to_full.iter().enumerate() {
         free[d] = k;
     }
-    let mut perm = Vec::with_capacity(red.n_free());
-    for n in nodes {
-        perm.extend((0..2).map(|c| free[2 * n + c]).filter(|&k| k != usize::MAX));
-    }
-    perm.extend(red.n_free_nodes..red.n_free());
-    (perm.len() == red.n_free()).then_some(perm)
+    nodes.iter().flat_map(|&n| [free[2 * n], free[2 * n + 1]]).filter(|&k| k != usize::MAX).collect()
 }
 
 struct Grid {
@@ -78,21 +113,24 @@ impl Grid {
         Some(Self { gx, gy, at, sep_x, sep_y })
     }
 
+    /// The separator line nearest the middle of the longer side (the other side if none):
+    /// (true, i) for grid column i, (false, j) for grid row j.
+    fn split(&self, x: [usize; 2], y: [usize; 2]) -> Option<(bool, usize)> {
+        let pick = |r: [usize; 2], ok: &[bool]| (r[0] + 1..r[1].saturating_sub(1)).filter(|&s| ok[s]).min_by_key(|&s| (2 * s).abs_diff(r[0] + r[1] - 1));
+        if x[1] - x[0] >= y[1] - y[0] {
+            pick(x, &self.sep_x).map(|s| (true, s)).or_else(|| pick(y, &self.sep_y).map(|s| (false, s)))
+        } else {
+            pick(y, &self.sep_y).map(|s| (false, s)).or_else(|| pick(x, &self.sep_x).map(|s| (true, s)))
+        }
+    }
+
     /// Appends the nodes of region [x0, x1) x [y0, y1) in elimination order.
     fn dissect(&self, x: [usize; 2], y: [usize; 2], out: &mut Vec<usize>) {
         let (w, h) = (x[1] - x[0], y[1] - y[0]);
         if w == 0 || h == 0 {
             return;
         }
-        // Separator line nearest the middle of the longer side (the other side if none).
-        let pick = |r: [usize; 2], ok: &[bool]| (r[0] + 1..r[1].saturating_sub(1)).filter(|&s| ok[s]).min_by_key(|&s| (2 * s).abs_diff(r[0] + r[1] - 1));
-        let split = if w * h <= LEAF {
-            None
-        } else if w >= h {
-            pick(x, &self.sep_x).map(|s| (true, s)).or_else(|| pick(y, &self.sep_y).map(|s| (false, s)))
-        } else {
-            pick(y, &self.sep_y).map(|s| (false, s)).or_else(|| pick(x, &self.sep_x).map(|s| (true, s)))
-        };
+        let split = if w * h <= LEAF { None } else { self.split(x, y) };
         match split {
             Some((true, s)) => {
                 self.dissect([x[0], s], y, out);

@@ -6,7 +6,7 @@ use crate::assembly::{Assembler, Model};
 use crate::constraints::{Constraints, Reduction};
 use crate::error::{Error, Result};
 use crate::recovery::internal_forces;
-use crate::ordering::nested_dissection;
+use crate::ordering::{bisection, nested_dissection};
 use crate::solve::{Ordering, SolveReport, Solver, SolverOptions};
 use std::time::Instant;
 
@@ -18,7 +18,7 @@ pub struct LoadCase {
     pub forces: Vec<f64>,
 }
 
-/// Unknowns from which `Ordering::Auto` uses our nested dissection instead of AMD.
+/// Unknowns from which `Ordering::Auto` uses our nested dissection (as two domains) instead of AMD.
 pub const ND_FROM: usize = 100_000;
 
 /// Wall time of each phase, s.
@@ -91,10 +91,20 @@ impl Prepared {
         let mut options = opts.clone();
         // Nested dissection pays from ~1e5 unknowns (symbolic 3x faster, fill equal or less);
         // below that AMD gives 1.1-1.5x less fill at no measurable cost (validation/bench).
-        if options.ordering == Ordering::Auto && red.n_free() >= ND_FROM {
-            if let Some(p) = nested_dissection(mesh, &red) {
-                options.ordering = Ordering::Custom(p);
+        // Its first cut solved as two domains uses both cores (validation/bench).
+        let large = red.n_free() >= ND_FROM;
+        match options.ordering {
+            Ordering::Auto if large => {
+                if let Some(split) = bisection(mesh, &red) {
+                    options.ordering = Ordering::TwoDomain(split);
+                }
             }
+            Ordering::NestedDissection => {
+                if let Some(p) = nested_dissection(mesh, &red) {
+                    options.ordering = Ordering::Custom(p);
+                }
+            }
+            _ => {}
         }
         let solver = Solver::analyse(&asm.pattern, options)?;
         Ok(Self { red, asm, solver, pattern_time, symbolic_time: clock.elapsed().as_secs_f64() })

@@ -5,6 +5,8 @@
 
 use crate::assembly::Pattern;
 use crate::error::{Error, Result};
+use crate::ordering::Bisection;
+use crate::substructure::{supernodal_flops, TwoDomain, TwoDomainFactor};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering};
@@ -15,15 +17,21 @@ use faer::{Conj, MatMut, Par, Side};
 /// Fill-reducing ordering handed to faer.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub enum Ordering {
-    /// Geometric nested dissection when the mesh is a grid with at least
-    /// [`crate::problem::ND_FROM`] unknowns ([`crate::ordering`]), AMD otherwise; resolved by
+    /// [`Ordering::TwoDomain`] when the mesh is a grid with at least
+    /// [`crate::problem::ND_FROM`] unknowns, AMD otherwise; resolved by
     /// [`crate::problem::solve`], which knows the mesh.
     #[default]
     Auto,
     /// faer's approximate minimum degree.
     Amd,
+    /// Our geometric nested dissection ([`crate::ordering`]) in one factorisation on grids,
+    /// AMD otherwise; resolved like `Auto`.
+    NestedDissection,
     /// Our own permutation: `perm[new] = old`.
     Custom(Vec<usize>),
+    /// Nested dissection whose first cut is solved by substructuring: both halves factorised
+    /// at once, one per thread ([`crate::substructure`]).
+    TwoDomain(Bisection),
 }
 
 #[derive(Debug, Clone)]
@@ -63,7 +71,7 @@ pub struct SolveReport {
 
 /// Symbolic analysis of a pattern; reusable across values and right-hand sides.
 pub struct Solver {
-    symbolic: SymbolicCholesky<usize>,
+    backend: Backend,
     par: Par,
     pub options: SolverOptions,
 }
@@ -79,7 +87,11 @@ impl Solver {
         };
         let inv;
         let ordering = match &options.ordering {
-            Ordering::Auto | Ordering::Amd => SymmetricOrdering::Amd,
+            Ordering::TwoDomain(split) => {
+                let backend = Backend::TwoDomain(TwoDomain::analyse(pattern, split)?);
+                return Ok(Self { backend, par: Par::Seq, options });
+            }
+            Ordering::Auto | Ordering::Amd | Ordering::NestedDissection => SymmetricOrdering::Amd,
             Ordering::Custom(fwd) => {
                 if fwd.len() != pattern.n {
                     return Err(Error::input("ordering", format!("permutation has {} entries for {} unknowns", fwd.len(), pattern.n)));
@@ -97,58 +109,83 @@ impl Solver {
         };
         let symbolic = factorize_symbolic_cholesky(sym, Side::Lower, ordering, params).map_err(|e| Error::input("symbolic factorisation", format!("{e:?}")))?;
         let par = if options.threads > 1 { Par::rayon(options.threads) } else { Par::Seq };
-        Ok(Self { symbolic, par, options })
+        Ok(Self { backend: Backend::Direct(symbolic), par, options })
     }
 
-    /// Non-zeros of the Cholesky factor L.
+    /// Non-zeros of the Cholesky factor L (of both halves and the separator for two domains).
     pub fn factor_nnz(&self) -> usize {
-        self.symbolic.len_val()
+        match &self.backend {
+            Backend::Direct(s) => s.len_val(),
+            Backend::TwoDomain(t) => t.factor_nnz(),
+        }
     }
 
     /// Flop count of the numeric factorisation, sum over the columns of L of (column count)^2
     /// (one multiply-add = 2 flops; exact up to lower-order terms).
     pub fn factor_flops(&self) -> f64 {
-        let sq = |c: usize| (c * c) as f64;
-        match self.symbolic.raw() {
-            SymbolicCholeskyRaw::Simplicial(s) => s.col_ptr().windows(2).map(|w| sq(w[1] - w[0])).sum(),
-            SymbolicCholeskyRaw::Supernodal(s) => {
-                let (begin, end, rows) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_row_idx());
-                (0..s.n_supernodes()).map(|k| (begin[k]..end[k]).map(|j| sq(end[k] - j + rows[k + 1] - rows[k])).sum::<f64>()).sum()
-            }
+        let symbolic = match &self.backend {
+            Backend::Direct(s) => s,
+            Backend::TwoDomain(t) => return t.factor_flops(),
+        };
+        match symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => s.col_ptr().windows(2).map(|w| ((w[1] - w[0]) as f64).powi(2)).sum(),
+            SymbolicCholeskyRaw::Supernodal(s) => supernodal_flops(s),
         }
     }
 
     pub fn is_supernodal(&self) -> bool {
-        matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
+        match &self.backend {
+            Backend::Direct(s) => matches!(s.raw(), SymbolicCholeskyRaw::Supernodal(_)),
+            Backend::TwoDomain(_) => true,
+        }
     }
 
     /// Numeric factorisation. A non-positive pivot is mapped back to the unknown it belongs
     /// to (in the reduced numbering) so the caller can name the node.
     pub fn factorize(&self, pattern: &Pattern, values: &[f64]) -> std::result::Result<Factor<'_>, usize> {
+        let symbolic = match &self.backend {
+            Backend::Direct(s) => s,
+            Backend::TwoDomain(t) => return Ok(Factor { solver: self, values: FactorValues::TwoDomain(t.factorize(values)?) }),
+        };
         let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
         let a = SparseColMatRef::new(sym, values);
-        let mut l = vec![0.0; self.symbolic.len_val()];
-        let mut mem = MemBuffer::new(self.symbolic.factorize_numeric_llt_scratch::<f64>(self.par, Default::default()));
-        let res = self.symbolic.factorize_numeric_llt(&mut l, a, Side::Lower, LltRegularization::default(), self.par, MemStack::new(&mut mem), Default::default());
+        let mut l = vec![0.0; symbolic.len_val()];
+        let mut mem = MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(self.par, Default::default()));
+        let res = symbolic.factorize_numeric_llt(&mut l, a, Side::Lower, LltRegularization::default(), self.par, MemStack::new(&mut mem), Default::default());
         match res {
-            Ok(_) => Ok(Factor { solver: self, l }),
-            Err(LltError::NonPositivePivot { index }) => Err(self.symbolic.perm().map_or(index, |p| p.arrays().0[index.min(pattern.n - 1)])),
+            Ok(_) => Ok(Factor { solver: self, values: FactorValues::Direct(l) }),
+            Err(LltError::NonPositivePivot { index }) => Err(symbolic.perm().map_or(index, |p| p.arrays().0[index.min(pattern.n - 1)])),
         }
     }
+}
+
+enum Backend {
+    /// One faer factorisation.
+    Direct(SymbolicCholesky<usize>),
+    TwoDomain(TwoDomain),
+}
+
+enum FactorValues {
+    Direct(Vec<f64>),
+    TwoDomain(TwoDomainFactor),
 }
 
 /// Numeric Cholesky factor.
 pub struct Factor<'a> {
     solver: &'a Solver,
-    l: Vec<f64>,
+    values: FactorValues,
 }
 
 impl Factor<'_> {
     /// Solves in place for `k` right-hand sides stored column-major in `b` (n x k).
     pub fn solve_in_place(&self, b: &mut [f64], k: usize) {
-        let s = &self.solver.symbolic;
+        let (s, l) = match (&self.solver.backend, &self.values) {
+            (Backend::Direct(s), FactorValues::Direct(l)) => (s, l),
+            (Backend::TwoDomain(t), FactorValues::TwoDomain(f)) => return t.solve_in_place(f, b, k),
+            _ => unreachable!("a factor comes from its own solver"),
+        };
         let n = s.nrows();
-        let llt = LltRef::<'_, usize, f64>::new(s, &self.l);
+        let llt = LltRef::<'_, usize, f64>::new(s, l);
         let mut mem = MemBuffer::new(s.solve_in_place_scratch::<f64>(k, self.solver.par));
         let rhs = MatMut::from_column_major_slice_mut(b, n, k);
         llt.solve_in_place_with_conj(Conj::No, rhs, self.solver.par, MemStack::new(&mut mem));

@@ -4,10 +4,11 @@
 //! every node entry is summed in the same order whatever the thread count; the rigid plate's
 //! extra-DOF entries are summed over fixed chunks merged in order. Hence bitwise equality.
 //! The factorisation with 2 faer threads may reorder dense kernel sums: 1e-14 relative.
+//! The two-domain solver does the same work on any thread count: bitwise again.
 
 use tribofe::assembly::Assembler;
 use tribofe::check::{self, CheckResult};
-use tribofe::ordering::nested_dissection;
+use tribofe::ordering::{bisection, nested_dissection};
 use tribofe::scene::Scene;
 use tribofe::solve::{Ordering, SolverOptions};
 
@@ -80,4 +81,46 @@ fn nested_dissection_is_a_permutation_and_matches_amd() {
         let d = rel_diff(&run(Ordering::Amd), &run(Ordering::Custom(p)));
         assert!(d <= 1e-10, "{element}: relative difference {d:.2e}");
     }
+}
+
+#[test]
+fn two_domains_match_one_factorisation_bitwise_on_any_thread_count() {
+    for element in ["qua4", "qua8", "tri3"] {
+        let scene = strip(6, element);
+        let sm = scene.build().unwrap();
+        let red = sm.constraints.reduce().unwrap();
+        let split = bisection(&sm.mesh, &red).expect("structured mesh");
+        // The separator: one grid line (x and y of each node but the fixed bottom and the
+        // tied top one) and the plate's free DOFs.
+        let line = 6 * if element == "qua8" { 2 } else { 1 };
+        assert_eq!(split.separator.len(), 2 * (line - 1) + red.n_free() - red.n_free_nodes, "{element}");
+        let run = |ordering: Ordering, k: usize| pool(k).install(|| check::run(&scene, &SolverOptions { ordering, ..Default::default() }).unwrap().0);
+        let one = run(Ordering::TwoDomain(split.clone()), 1);
+        let two = run(Ordering::TwoDomain(split), 2);
+        let bits = |r: &CheckResult| r.displacements.concat().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&one), bits(&two), "{element}: thread count changed the result");
+        // Same system, another elimination order: agreement to round-off (cond ~1e6 here).
+        let d = rel_diff(&run(Ordering::Amd, 1), &one);
+        assert!(d <= 1e-10, "{element}: relative difference {d:.2e}");
+    }
+}
+
+#[test]
+fn two_domains_name_a_free_body() {
+    use tribofe::assembly::Model;
+    use tribofe::constraints::{dof, Constraints};
+    use tribofe::material::Material;
+    use tribofe::problem::{solve, LoadCase};
+    let mesh = tribofe::mesher::Rectangle::new(0.0, 2.0, 0.0, 0.1, 40, 2).build().unwrap();
+    let mut c = Constraints::new(mesh.n_nodes());
+    for n in mesh.set_nodes("bottom").unwrap() {
+        c.fix(dof(n, 1)); // free to slide in x
+    }
+    let split = bisection(&mesh, &c.reduce().unwrap()).unwrap();
+    let mut f = vec![0.0; 2 * mesh.n_nodes()];
+    f[0] = 1.0;
+    let model = Model::new(&mesh, Material::plane_strain(2e3, 0.4).unwrap());
+    let opts = SolverOptions { ordering: Ordering::TwoDomain(split), ..Default::default() };
+    let err = solve(&model, &c, &[LoadCase { prescribed: vec![0.0; c.n_fixed()], forces: f }], &opts, "").unwrap_err().to_string();
+    assert!(err.contains("free to move"), "{err}");
 }

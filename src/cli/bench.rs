@@ -20,7 +20,7 @@ pub struct Args {
     /// Factorisation: auto (faer's choice), supernodal, simplicial; a list runs each.
     #[arg(long, value_delimiter = ',', default_value = "auto")]
     pub factor: Vec<String>,
-    /// Ordering: auto (nested dissection on grids), amd; a list runs each.
+    /// Ordering: auto (two-domain nested dissection on large grids), nd (nested dissection, one factorisation), amd; a list runs each.
     #[arg(long, value_delimiter = ',', default_value = "auto")]
     pub ordering: Vec<String>,
     /// Runs per setting; the best (smallest in-process time) is reported.
@@ -53,7 +53,8 @@ fn parse_ordering(s: &str) -> tribofe::Result<Ordering> {
     match s {
         "auto" => Ok(Ordering::Auto),
         "amd" => Ok(Ordering::Amd),
-        _ => Err(tribofe::Error::input("--ordering", format!("'{s}': expected auto or amd"))),
+        "nd" => Ok(Ordering::NestedDissection),
+        _ => Err(tribofe::Error::input("--ordering", format!("'{s}': expected auto (two domains on large grids), nd (one factorisation, nested dissection) or amd"))),
     }
 }
 

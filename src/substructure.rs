@@ -1,0 +1,299 @@
+//! Two-domain substructuring: the reduced unknowns split into two halves and the separator
+//! between them ([`crate::ordering::bisection`]). Each half with the separator ordered last is
+//! a principal submatrix of K, hence positive definite, and faer factorises the two at once,
+//! one per core: faer's own threads only help inside large dense fronts, which a thin strip
+//! lacks. The trailing block L_ss of each factor gives that half's condensation onto the
+//! separator, L_ss L_ss^T = A_ss - A_sk A_kk^-1 A_ks; their sum less A_ss (counted twice) is
+//! the separator's Schur complement, a small dense matrix. The work done does not depend on
+//! the thread count, so neither do the results.
+
+use crate::assembly::Pattern;
+use crate::error::{Error, Result};
+use crate::ordering::Bisection;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt;
+use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
+use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
+use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Accum, Conj, Mat, MatMut, Par, Side};
+
+/// Symbolic analysis of both halves; reusable for any values on the same pattern.
+pub struct TwoDomain {
+    parts: [Part; 2],
+    separator: Vec<usize>,
+    /// (row, column, position in the global values) of the separator block's lower triangle.
+    sep_entries: Vec<(usize, usize, usize)>,
+}
+
+struct Part {
+    /// Reduced unknown of each local one: the half in elimination order, then the separator.
+    unknowns: Vec<usize>,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// Position in the global values of each local entry.
+    gather: Vec<usize>,
+    symbolic: SymbolicCholesky<usize>,
+}
+
+/// Numeric factors of both halves and of the separator's Schur complement.
+pub struct TwoDomainFactor {
+    l: [Vec<f64>; 2],
+    /// Trailing separator x separator block of each half's factor (lower triangular).
+    l_ss: [Mat<f64>; 2],
+    /// Cholesky factor of the Schur complement (lower triangle).
+    schur: Mat<f64>,
+}
+
+impl TwoDomain {
+    /// Analyses both halves. Errors when the split is not a partition of the unknowns or a
+    /// matrix entry couples the two halves directly.
+    pub fn analyse(pattern: &Pattern, split: &Bisection) -> Result<Self> {
+        let n = pattern.n;
+        const SEP: u8 = 2;
+        let mut label = vec![u8::MAX; n];
+        let groups = [&split.parts[0], &split.parts[1], &split.separator];
+        for (g, list) in groups.iter().enumerate() {
+            for &k in list.iter() {
+                if k >= n || std::mem::replace(&mut label[k], g as u8) != u8::MAX {
+                    return Err(Error::input("two-domain split", format!("unknown {k} is out of range or listed twice")));
+                }
+            }
+        }
+        if let Some(k) = label.iter().position(|&l| l == u8::MAX) {
+            return Err(Error::input("two-domain split", format!("unknown {k} is in no part")));
+        }
+        for j in 0..n {
+            for &i in &pattern.row_idx[pattern.col_ptr[j]..pattern.col_ptr[j + 1]] {
+                if label[i] != label[j] && label[i] != SEP && label[j] != SEP {
+                    return Err(Error::input("two-domain split", format!("unknowns {j} and {i} couple the two halves directly")));
+                }
+            }
+        }
+        let (a, b) = rayon::join(|| Part::analyse(pattern, &split.parts[0], &split.separator), || Part::analyse(pattern, &split.parts[1], &split.separator));
+        let mut local = vec![usize::MAX; n];
+        split.separator.iter().enumerate().for_each(|(s, &k)| local[k] = s);
+        let mut sep_entries = Vec::new();
+        for &j in &split.separator {
+            for p in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
+                let i = pattern.row_idx[p];
+                if label[i] == SEP {
+                    let (r, c) = (local[i], local[j]);
+                    sep_entries.push((r.max(c), r.min(c), p));
+                }
+            }
+        }
+        Ok(Self { parts: [a?, b?], separator: split.separator.clone(), sep_entries })
+    }
+
+    pub fn factor_nnz(&self) -> usize {
+        self.parts.iter().map(|p| p.symbolic.len_val()).sum::<usize>() + self.separator.len() * (self.separator.len() + 1) / 2
+    }
+
+    /// Flops of both halves' factorisations plus the dense Schur complement's.
+    pub fn factor_flops(&self) -> f64 {
+        let m = self.separator.len() as f64;
+        self.parts.iter().map(|p| supernodal_flops(supernodal(&p.symbolic))).sum::<f64>() + m * m * m / 3.0
+    }
+
+    /// Numeric factorisation; a non-positive pivot is returned as its reduced unknown.
+    pub fn factorize(&self, values: &[f64]) -> std::result::Result<TwoDomainFactor, usize> {
+        let m = self.separator.len();
+        let (a, b) = rayon::join(|| self.parts[0].factorize(values, m), || self.parts[1].factorize(values, m));
+        let ((la, sa), (lb, sb)) = (a?, b?);
+        // S = L_ss,a L_ss,a^T + L_ss,b L_ss,b^T - A_ss.
+        let mut schur = Mat::<f64>::zeros(m, m);
+        for &(r, c, p) in &self.sep_entries {
+            schur[(r, c)] -= values[p];
+            if r != c {
+                schur[(c, r)] -= values[p];
+            }
+        }
+        for l in [&sa, &sb] {
+            faer::linalg::matmul::matmul(schur.as_mut(), Accum::Add, l.as_ref(), l.transpose(), 1.0, Par::Seq);
+        }
+        let mut mem = MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(m, Par::Seq, Default::default()));
+        match llt::factor::cholesky_in_place(schur.as_mut(), LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()) {
+            Ok(_) => Ok(TwoDomainFactor { l: [la, lb], l_ss: [sa, sb], schur }),
+            Err(LltError::NonPositivePivot { index }) => Err(self.separator[index.min(m - 1)]),
+        }
+    }
+
+    /// Solves in place for `k` right-hand sides stored column-major in `b` (n x k).
+    pub fn solve_in_place(&self, f: &TwoDomainFactor, b: &mut [f64], k: usize) {
+        let n = b.len() / k.max(1);
+        let m = self.separator.len();
+        let forward = |h: usize| {
+            let part = &self.parts[h];
+            let nl = part.unknowns.len();
+            let mut y = vec![0.0; nl * k];
+            for c in 0..k {
+                for (l, &g) in part.unknowns.iter().enumerate() {
+                    y[c * nl + l] = b[c * n + g];
+                }
+            }
+            part.solve(&f.l[h], &mut y, k, true);
+            // c_h = L_ss y_s = b_s - A_sh A_hh^-1 b_h, this half's condensed right-hand side.
+            let mut ys = Mat::<f64>::from_fn(m, k, |i, c| y[c * nl + nl - m + i]);
+            llt_lower_times(&f.l_ss[h], ys.as_mut());
+            (y, ys)
+        };
+        let ((mut ya, ca), (mut yb, cb)) = rayon::join(|| forward(0), || forward(1));
+        let mut xs = Mat::<f64>::from_fn(m, k, |i, c| ca[(i, c)] + cb[(i, c)] - b[c * n + self.separator[i]]);
+        let mut mem = MemBuffer::new(llt::solve::solve_in_place_scratch::<f64>(m, k, Par::Seq));
+        llt::solve::solve_in_place_with_conj(f.schur.as_ref(), Conj::No, xs.as_mut(), Par::Seq, MemStack::new(&mut mem));
+        // With the separator part of y set to L_ss^T x_s, the backward solve returns the
+        // half's unknowns for the separator fixed at x_s.
+        let backward = |h: usize, y: &mut Vec<f64>| {
+            let part = &self.parts[h];
+            let nl = part.unknowns.len();
+            let mut t = Mat::<f64>::zeros(m, k);
+            faer::linalg::matmul::matmul(t.as_mut(), Accum::Replace, f.l_ss[h].transpose(), xs.as_ref(), 1.0, Par::Seq);
+            for c in 0..k {
+                for i in 0..m {
+                    y[c * nl + nl - m + i] = t[(i, c)];
+                }
+            }
+            part.solve(&f.l[h], y, k, false);
+        };
+        rayon::join(|| backward(0, &mut ya), || backward(1, &mut yb));
+        for (h, y) in [ya, yb].iter().enumerate() {
+            let part = &self.parts[h];
+            let nl = part.unknowns.len();
+            for c in 0..k {
+                for (l, &g) in part.unknowns[..nl - m].iter().enumerate() {
+                    b[c * n + g] = y[c * nl + l];
+                }
+            }
+        }
+        for c in 0..k {
+            for (i, &g) in self.separator.iter().enumerate() {
+                b[c * n + g] = xs[(i, c)];
+            }
+        }
+    }
+}
+
+/// x := L x for lower-triangular L (the Cholesky factor's own triangle only).
+fn llt_lower_times(l: &Mat<f64>, mut x: MatMut<'_, f64>) {
+    let m = l.nrows();
+    for c in 0..x.ncols() {
+        for i in (0..m).rev() {
+            let mut s = 0.0;
+            for j in 0..=i {
+                s += l[(i, j)] * x[(j, c)];
+            }
+            x[(i, c)] = s;
+        }
+    }
+}
+
+fn supernodal(s: &SymbolicCholesky<usize>) -> &SymbolicSupernodalCholesky<usize> {
+    match s.raw() {
+        SymbolicCholeskyRaw::Supernodal(s) => s,
+        SymbolicCholeskyRaw::Simplicial(_) => unreachable!("halves are analysed as supernodal"),
+    }
+}
+
+/// Sum over the columns of L of (column count)^2.
+pub fn supernodal_flops(s: &SymbolicSupernodalCholesky<usize>) -> f64 {
+    let (begin, end, rows) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_row_idx());
+    (0..s.n_supernodes()).map(|k| (begin[k]..end[k]).map(|j| ((end[k] - j + rows[k + 1] - rows[k]) as f64).powi(2)).sum::<f64>()).sum()
+}
+
+impl Part {
+    fn analyse(pattern: &Pattern, half: &[usize], separator: &[usize]) -> Result<Self> {
+        let unknowns: Vec<usize> = half.iter().chain(separator).copied().collect();
+        let nl = unknowns.len();
+        let mut local = vec![usize::MAX; pattern.n];
+        unknowns.iter().enumerate().for_each(|(l, &g)| local[g] = l);
+        // Global lower-triangle entries inside this part, moved to the local lower triangle.
+        let mut col_ptr = vec![0usize; nl + 1];
+        let each = |f: &mut dyn FnMut(usize, usize, usize)| {
+            for (jl, &j) in unknowns.iter().enumerate() {
+                for p in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
+                    let il = local[pattern.row_idx[p]];
+                    if il != usize::MAX {
+                        f(il.max(jl), il.min(jl), p);
+                    }
+                }
+            }
+        };
+        each(&mut |_, c, _| col_ptr[c + 1] += 1);
+        for c in 0..nl {
+            col_ptr[c + 1] += col_ptr[c];
+        }
+        let nnz = col_ptr[nl];
+        let (mut row_idx, mut gather, mut fill) = (vec![0usize; nnz], vec![0usize; nnz], col_ptr.clone());
+        each(&mut |r, c, p| {
+            row_idx[fill[c]] = r;
+            gather[fill[c]] = p;
+            fill[c] += 1;
+        });
+        for c in 0..nl {
+            let (s, e) = (col_ptr[c], col_ptr[c + 1]);
+            let mut pairs: Vec<(usize, usize)> = row_idx[s..e].iter().copied().zip(gather[s..e].iter().copied()).collect();
+            pairs.sort_unstable();
+            for (q, (r, g)) in pairs.into_iter().enumerate() {
+                row_idx[s + q] = r;
+                gather[s + q] = g;
+            }
+        }
+        let sym = SymbolicSparseColMatRef::new_checked(nl, nl, &col_ptr, None, &row_idx);
+        let mut params = CholeskySymbolicParams::default();
+        params.supernodal_flop_ratio_threshold = SupernodalThreshold::FORCE_SUPERNODAL;
+        // The local numbering is already the elimination order, but faer 0.24 analyses a
+        // lower triangle under `Identity` as if it were the upper one: pass it as a custom
+        // (identity) permutation instead.
+        let id: Vec<usize> = (0..nl).collect();
+        let ordering = SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&id, &id, nl));
+        let symbolic = factorize_symbolic_cholesky(sym, Side::Lower, ordering, params).map_err(|e| Error::input("symbolic factorisation", format!("{e:?}")))?;
+        Ok(Self { unknowns, col_ptr, row_idx, gather, symbolic })
+    }
+
+    /// Factor values and the trailing m x m block of L, or the reduced unknown of a bad pivot.
+    fn factorize(&self, values: &[f64], m: usize) -> std::result::Result<(Vec<f64>, Mat<f64>), usize> {
+        let nl = self.unknowns.len();
+        let local: Vec<f64> = self.gather.iter().map(|&p| values[p]).collect();
+        let sym = SymbolicSparseColMatRef::new_checked(nl, nl, &self.col_ptr, None, &self.row_idx);
+        let a = SparseColMatRef::new(sym, &local);
+        let mut l = vec![0.0; self.symbolic.len_val()];
+        let mut mem = MemBuffer::new(self.symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()));
+        if let Err(LltError::NonPositivePivot { index }) = self.symbolic.factorize_numeric_llt(&mut l, a, Side::Lower, LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()) {
+            return Err(self.unknowns[index.min(nl - 1)]);
+        }
+        // Trailing block: every column >= nl - m, rows from the supernodes holding them.
+        let s = supernodal(&self.symbolic);
+        let llt = SupernodalLltRef::new(s, &l);
+        let first = nl - m;
+        let mut l_ss = Mat::<f64>::zeros(m, m);
+        for sn in (0..s.n_supernodes()).rev() {
+            let node = llt.supernode(sn);
+            let (begin, width) = (node.start(), node.val().ncols());
+            if begin + width <= first {
+                break;
+            }
+            let rows: Vec<usize> = (begin..begin + width).chain(node.pattern().iter().copied()).collect();
+            for j in begin.max(first)..begin + width {
+                for (q, &r) in rows.iter().enumerate().filter(|(_, &r)| r >= j) {
+                    l_ss[(r - first, j - first)] = node.val()[(q, j - begin)];
+                }
+            }
+        }
+        Ok((l, l_ss))
+    }
+
+    /// Forward (L y = b) or backward (L^T x = y) solve in place, k columns of local length.
+    fn solve(&self, l: &[f64], y: &mut [f64], k: usize, forward: bool) {
+        let s = supernodal(&self.symbolic);
+        let llt = SupernodalLltRef::new(s, l);
+        let mut mem = MemBuffer::new(s.solve_in_place_scratch::<f64>(k, Par::Seq));
+        let rhs = MatMut::from_column_major_slice_mut(y, self.unknowns.len(), k);
+        if forward {
+            llt.l_solve_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
+        } else {
+            llt.l_transpose_solve_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
+        }
+    }
+}
