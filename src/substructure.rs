@@ -175,6 +175,26 @@ impl TwoDomain {
     }
 }
 
+/// The transpose of a square CSC pattern with one payload per entry; rows come out sorted.
+fn transpose(ptr: &[usize], idx: &[usize], pay: &[usize]) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
+    let n = ptr.len() - 1;
+    let mut t_ptr = vec![0usize; n + 1];
+    idx.iter().for_each(|&r| t_ptr[r + 1] += 1);
+    for c in 0..n {
+        t_ptr[c + 1] += t_ptr[c];
+    }
+    let (mut t_idx, mut t_pay, mut next) = (vec![0usize; idx.len()], vec![0usize; idx.len()], t_ptr.clone());
+    for c in 0..n {
+        for q in ptr[c]..ptr[c + 1] {
+            let r = idx[q];
+            t_idx[next[r]] = c;
+            t_pay[next[r]] = pay[q];
+            next[r] += 1;
+        }
+    }
+    (t_ptr, t_idx, t_pay)
+}
+
 /// x := L x for lower-triangular L (the Cholesky factor's own triangle only).
 fn llt_lower_times(l: &Mat<f64>, mut x: MatMut<'_, f64>) {
     let m = l.nrows();
@@ -231,24 +251,15 @@ impl Part {
             gather[fill[c]] = p;
             fill[c] += 1;
         });
-        for c in 0..nl {
-            let (s, e) = (col_ptr[c], col_ptr[c + 1]);
-            let mut pairs: Vec<(usize, usize)> = row_idx[s..e].iter().copied().zip(gather[s..e].iter().copied()).collect();
-            pairs.sort_unstable();
-            for (q, (r, g)) in pairs.into_iter().enumerate() {
-                row_idx[s + q] = r;
-                gather[s + q] = g;
-            }
-        }
-        let sym = SymbolicSparseColMatRef::new_checked(nl, nl, &col_ptr, None, &row_idx);
+        // Two transposes sort the rows of every column (counting sort, no comparisons). faer
+        // 0.24 analyses an unpermuted (`Identity`) matrix as an upper triangle but factorises
+        // the lower one as is: the analysis gets the upper pattern, the factorisation no copy.
+        let (up_ptr, up_idx, up_gather) = transpose(&col_ptr, &row_idx, &gather);
+        let (col_ptr, row_idx, gather) = transpose(&up_ptr, &up_idx, &up_gather);
+        let upper = SymbolicSparseColMatRef::new_checked(nl, nl, &up_ptr, None, &up_idx);
         let mut params = CholeskySymbolicParams::default();
         params.supernodal_flop_ratio_threshold = SupernodalThreshold::FORCE_SUPERNODAL;
-        // The local numbering is already the elimination order, but faer 0.24 analyses a
-        // lower triangle under `Identity` as if it were the upper one: pass it as a custom
-        // (identity) permutation instead.
-        let id: Vec<usize> = (0..nl).collect();
-        let ordering = SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&id, &id, nl));
-        let symbolic = factorize_symbolic_cholesky(sym, Side::Lower, ordering, params).map_err(|e| Error::input("symbolic factorisation", format!("{e:?}")))?;
+        let symbolic = factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params).map_err(|e| Error::input("symbolic factorisation", format!("{e:?}")))?;
         Ok(Self { unknowns, col_ptr, row_idx, gather, symbolic })
     }
 
