@@ -29,6 +29,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
@@ -41,8 +42,10 @@ TOL = 1e-6           # agreement required in p/(N/L), tau/(N/L)
 # CalculiX's .dat prints 7 significant digits, so its tractions carry a
 # rounding error of ~5e-7 relative; allow that on top of TOL.
 CCX_REL = 1e-6
-# Peak RSS of CalculiX measured here at ~1M DOFs was 14.7 GiB; scale linearly.
-CCX_GIB_PER_MDOF = 15.0
+# Peak RSS (GiB) of the memory-hungry peers at 1.02M DOFs, measured here, and how it grows
+# with DOFs (fill of a 2D factorisation ~ n log n: exponent ~1.1; 1.2 to stay on the safe side).
+PEAK_GIB_1M = {"calculix": 15.0, "skfem-splu": 4.4}
+PEAK_EXPONENT = 1.2
 
 
 def machine():
@@ -99,8 +102,12 @@ def timed(cmd, log, timeout):
     full = ["/usr/bin/time", "-v", "-o", tfile] + cmd
     with open(log, "w") as f:
         try:
+            # Wall time from here (GNU time prints 10 ms steps); GNU time's own start-up
+            # (~1 ms) is included, the same for every code.
+            t0 = time.perf_counter()
             rc = subprocess.run(full, stdout=f, stderr=subprocess.STDOUT,
                                 timeout=timeout).returncode
+            wall = time.perf_counter() - t0
         except subprocess.TimeoutExpired:
             raise RuntimeError(f"timed out after {timeout} s")
     if rc != 0:
@@ -108,12 +115,8 @@ def timed(cmd, log, timeout):
             tail = "".join(f.readlines()[-8:])
         raise RuntimeError(f"exit code {rc}; log {log}:\n{tail}")
     txt = open(tfile).read()
-    w = re.search(r"Elapsed \(wall clock\) time.*: (\S+)", txt).group(1)
-    sec = 0.0
-    for part in w.split(":"):
-        sec = 60 * sec + float(part)
     rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", txt).group(1))
-    return sec, rss / 1024
+    return wall, rss / 1024
 
 
 def command(code, ny, outdir, work, tribofe):
@@ -141,24 +144,38 @@ def fit_exponent(dofs, t):
 
 
 def plot(rows, path, title):
+    """Time and peak memory against DOFs, log-log, one line per code; each peer's point at
+    the largest size tribofe ran is labelled with its ratio to tribofe."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.4, 4.8))
-    for code in CODES:
-        r = [x for x in rows if x["code"] == code and not math.isnan(x["wall_s"])]
-        if not r:
-            continue
-        d = [x["dofs"] for x in r]
-        t = [x["wall_s"] for x in r]
-        k = fit_exponent(d, t)
-        lab = code + (f" (slope {k:.2f})" if not math.isnan(k) else "")
-        ax.loglog(d, t, "o-", label=lab)
-    ax.set_xlabel("DOFs (2 x nodes)")
-    ax.set_ylabel("wall time of the whole process [s]")
-    ax.set_title(title, fontsize=9)
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.8))
+    ok = [x for x in rows if not math.isnan(x["wall_s"])]
+    tf = {x["ny"]: x for x in ok if x["code"] == "tribofe"}
+    for ax, key, ylabel in ((axes[0], "wall_s", "wall time of the whole process [s]"),
+                            (axes[1], "peak_rss_mib", "peak resident memory [MiB]")):
+        for code in CODES:
+            r = [x for x in ok if x["code"] == code]
+            if not r:
+                continue
+            d = [x["dofs"] for x in r]
+            v = [x[key] for x in r]
+            lab = code
+            if key == "wall_s" and len(r) >= 2:
+                lab += f" (slope {fit_exponent(d, v):.2f})"
+            ax.loglog(d, v, "o-", label=lab)
+            if code != "tribofe":
+                top = max((x for x in r if x["ny"] in tf), key=lambda x: x["dofs"], default=None)
+                if top is not None:
+                    ratio = top[key] / tf[top["ny"]][key]
+                    ax.annotate(f"{ratio:.1f}x", (top["dofs"], top[key]), fontsize=8,
+                                xytext=(4, 0), textcoords="offset points", va="center")
+        ax.set_xlabel("DOFs (2 x nodes)")
+        ax.set_ylabel(ylabel)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=8)
+    axes[1].set_title("labels: peer / tribofe at the largest size both ran", fontsize=8)
+    fig.suptitle(title, fontsize=9)
     fig.tight_layout()
     tmp = path + ".tmp.svg"
     fig.savefig(tmp, format="svg")
@@ -177,8 +194,8 @@ def main(argv=None):
     ap.add_argument("--append", action="store_true",
                     help="merge into today's peers_<date>.csv (new rows replace "
                          "rows of the same code and ny)")
-    ap.add_argument("--force-calculix", action="store_true",
-                    help="run CalculiX even if MemAvailable looks too small")
+    ap.add_argument("--force-memory", action="store_true",
+                    help="run CalculiX and SuperLU even if MemAvailable looks too small")
     a = ap.parse_args(argv)
 
     try:
@@ -255,12 +272,12 @@ def main(argv=None):
                 if f"{code}@{ny}" in skip_at:
                     notes.append(f"{code} ny={ny} skipped on request (--skip {code}@{ny})")
                     continue
-                if code == "calculix" and not a.force_calculix:
-                    need = CCX_GIB_PER_MDOF * dofs / 1e6
+                if code in PEAK_GIB_1M and not a.force_memory:
+                    need = PEAK_GIB_1M[code] * (dofs / 1.02e6) ** PEAK_EXPONENT
                     have = mem_available_gib()
                     if need > 0.8 * have:
-                        msg = (f"calculix ny={ny} skipped: needs ~{need:.1f} GiB, "
-                               f"MemAvailable {have:.1f} GiB (use --force-calculix)")
+                        msg = (f"{code} ny={ny} skipped: needs ~{need:.1f} GiB, "
+                               f"MemAvailable {have:.1f} GiB (use --force-memory)")
                         print("NOTE: " + msg)
                         notes.append(msg)
                         continue
@@ -341,14 +358,32 @@ def main(argv=None):
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         md.append(f"| {r['code']} | {r['ny']} | {r['nx']} | {r['dofs']} | "
-                  f"{r['wall_s']:.2f} | {r['peak_rss_mib']:.0f} | "
+                  f"{r['wall_s']:.3f} | {r['peak_rss_mib']:.0f} | "
                   f"{r['max_dp']:.1e} | {r['max_dtau']:.1e} | "
                   + (f"{r['load1']:.1f} |" if "load1" in r else "see earlier run |"))
+    # Ratios to tribofe at each size: how many times longer (and more memory) each peer takes.
+    tf = {r["ny"]: r for r in rows if r["code"] == "tribofe" and not math.isnan(r["wall_s"])}
+    peers = [c for c in codes if c != "tribofe"]
+    if tf and peers:
+        md += ["", "Ratios to tribofe at the same size (peer wall time / tribofe wall time; "
+               "peak RSS likewise):", "",
+               "| DOFs | " + " | ".join(peers) + " |",
+               "|---:|" + "---:|" * len(peers)]
+        for ny, t in sorted(tf.items()):
+            cells = []
+            for c in peers:
+                r = next((x for x in rows if x["code"] == c and x["ny"] == ny
+                          and not math.isnan(x["wall_s"])), None)
+                cells.append("-" if r is None else
+                             f"{r['wall_s'] / t['wall_s']:.1f}x time, "
+                             f"{r['peak_rss_mib'] / t['peak_rss_mib']:.1f}x memory")
+            md.append(f"| {t['dofs']} | " + " | ".join(cells) + " |")
     md += ["", "Fitted exponents (wall ~ DOFs^k, least squares on log-log):", ""]
     for code in codes:
         r = [x for x in rows if x["code"] == code and not math.isnan(x["wall_s"])]
-        k = fit_exponent([x["dofs"] for x in r], [x["wall_s"] for x in r])
-        md.append(f"- {code}: k = {k:.2f} ({len(r)} sizes)")
+        if len(r) >= 2:
+            k = fit_exponent([x["dofs"] for x in r], [x["wall_s"] for x in r])
+            md.append(f"- {code}: k = {k:.2f} ({len(r)} sizes)")
     md_path = os.path.join(a.results, f"peers_{date}.md")
     if a.append and os.path.isfile(md_path):
         # Keep the earlier run's notes (minus those about what this run redid).
