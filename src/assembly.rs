@@ -128,6 +128,7 @@ fn join_columns(n: usize, chunks: Vec<(Vec<usize>, Vec<usize>)>) -> Pattern {
     let mut col_ptr = Vec::with_capacity(n + 1);
     col_ptr.push(0);
     let mut row_idx = Vec::with_capacity(chunks.iter().map(|c| c.1.len()).sum());
+    crate::memory::advise_huge_pages(&row_idx);
     for (len, rows) in &chunks {
         len.iter().for_each(|l| col_ptr.push(col_ptr.last().unwrap() + l));
         row_idx.extend_from_slice(rows);
@@ -371,6 +372,7 @@ impl Assembler {
             return Err(Error::input("load cases", format!("need {} prescribed values and one load vector per case", red.n_fixed())));
         }
         let mut values = vec![0.0; self.pattern.nnz()];
+        crate::memory::advise_huge_pages(&values);
         let mut rhs = vec![0.0; n * nc];
         let nx = n - self.first_extra;
         let (vptr, rptr) = (SyncPtr(values.as_mut_ptr()), SyncPtr(rhs.as_mut_ptr()));
