@@ -24,12 +24,20 @@ fn main() {
         std::hint::black_box(Assembler::new(&sm.mesh, &red).unwrap());
         c.elapsed().as_secs_f64()
     });
+    let t_red = best(&mut || {
+        let c = Instant::now();
+        std::hint::black_box(sm.constraints.reduce().unwrap());
+        c.elapsed().as_secs_f64()
+    });
+    if args.get(3).is_some_and(|a| a == "patt") {
+        return; // profile the pattern phase alone
+    }
     let red = sm.constraints.reduce().unwrap();
     let asm = Assembler::new(&sm.mesh, &red).unwrap();
     let model = sm.model();
     let g: Vec<Vec<f64>> = (0..2).map(|c| (0..red.n_fixed()).map(|j| ((j * 7 + c * 3) % 5) as f64 - 2.0).collect()).collect();
     let f: Vec<Vec<f64>> = vec![vec![], vec![]];
-    let mut line = format!("ny={ny} n={} nnz={} colours={} | mesh {t_mesh:.4} patt {t_patt:.4}", asm.pattern.n, asm.pattern.nnz(), asm.n_colors());
+    let mut line = format!("ny={ny} n={} nnz={} colours={} | mesh {t_mesh:.4} patt {t_patt:.4} (reduce {t_red:.4})", asm.pattern.n, asm.pattern.nnz(), asm.n_colors());
     let mut hash = 0u64;
     for th in [1, 2] {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(th).build().unwrap();

@@ -123,17 +123,21 @@ fn element_unknowns(mesh: &Mesh, red: &Reduction, e: usize, out: &mut Vec<usize>
 /// per column cost 3x more at 1e6 columns).
 const COLS: usize = 8192;
 
-/// Joins per-chunk (column lengths, rows) into a pattern.
+/// Joins per-chunk (column lengths, rows) into a pattern, copying the rows in parallel.
 fn join_columns(n: usize, chunks: Vec<(Vec<usize>, Vec<usize>)>) -> Pattern {
     let mut col_ptr = Vec::with_capacity(n + 1);
     col_ptr.push(0);
-    let mut row_idx = Vec::with_capacity(chunks.iter().map(|c| c.1.len()).sum());
-    crate::memory::advise_huge_pages(&row_idx);
-    for (len, rows) in &chunks {
-        len.iter().for_each(|l| col_ptr.push(col_ptr.last().unwrap() + l));
-        row_idx.extend_from_slice(rows);
-    }
+    chunks.iter().flat_map(|c| &c.0).for_each(|l| col_ptr.push(col_ptr.last().unwrap() + l));
     debug_assert_eq!(col_ptr.len(), n + 1);
+    let mut row_idx = vec![0; col_ptr[n]];
+    crate::memory::advise_huge_pages(&row_idx);
+    let (mut outs, mut rest) = (Vec::with_capacity(chunks.len()), row_idx.as_mut_slice());
+    for (_, rows) in &chunks {
+        let (head, tail) = rest.split_at_mut(rows.len());
+        outs.push(head);
+        rest = tail;
+    }
+    chunks.into_par_iter().zip(outs).for_each(|((_, rows), out)| out.copy_from_slice(&rows));
     Pattern { n, col_ptr, row_idx }
 }
 
