@@ -17,6 +17,11 @@ fn main() {
         std::hint::black_box(scene.build().unwrap());
         c.elapsed().as_secs_f64()
     });
+    let t_rect = best(&mut || {
+        let c = Instant::now();
+        std::hint::black_box(tribofe::mesher::Rectangle::new(-0.2, 0.2, 0.0, 0.002, 200 * ny, ny).build().unwrap());
+        c.elapsed().as_secs_f64()
+    });
     let sm = scene.build().unwrap();
     let t_patt = best(&mut || {
         let c = Instant::now();
@@ -37,7 +42,7 @@ fn main() {
     let model = sm.model();
     let g: Vec<Vec<f64>> = (0..2).map(|c| (0..red.n_fixed()).map(|j| ((j * 7 + c * 3) % 5) as f64 - 2.0).collect()).collect();
     let f: Vec<Vec<f64>> = vec![vec![], vec![]];
-    let mut line = format!("ny={ny} n={} nnz={} colours={} | mesh {t_mesh:.4} patt {t_patt:.4} (reduce {t_red:.4})", asm.pattern.n, asm.pattern.nnz(), asm.n_colors());
+    let mut line = format!("ny={ny} n={} nnz={} colours={} | mesh {t_mesh:.4} (rectangle {t_rect:.4}) patt {t_patt:.4} (reduce {t_red:.4})", asm.pattern.n, asm.pattern.nnz(), asm.n_colors());
     let mut hash = 0u64;
     for th in [1, 2] {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(th).build().unwrap();
