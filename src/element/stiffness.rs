@@ -138,7 +138,8 @@ pub fn stiffness(kind: ElementKind, coords: &[[f64; 2]], d: &Matrix3<f64>, k: &m
 /// Weight and reference shape derivatives at each point of a kind's stiffness rule, built
 /// once (they do not depend on the element).
 fn stiffness_table(kind: ElementKind) -> &'static [(f64, [[f64; 2]; MAX_NODES])] {
-    static TABLES: LazyLock<Vec<Vec<(f64, [[f64; 2]; MAX_NODES])>>> = LazyLock::new(|| {
+    type Table = Vec<(f64, [[f64; 2]; MAX_NODES])>;
+    static TABLES: LazyLock<Vec<Table>> = LazyLock::new(|| {
         ElementKind::ALL
             .iter()
             .map(|&kind| {
@@ -160,6 +161,7 @@ fn stiffness_table(kind: ElementKind) -> &'static [(f64, [[f64; 2]; MAX_NODES])]
 /// [`stiffness`] for `NN`-node kinds; the same operations in the same order as
 /// [`map_point`] followed by the B^T D B sum, so results are bitwise those of the generic form.
 #[inline(always)]
+#[allow(clippy::needless_range_loop)] // indexed as in the generic form it must match bitwise
 fn stiffness_n<const NN: usize>(kind: ElementKind, coords: &[[f64; 2]], d: &Matrix3<f64>, k: &mut [f64]) -> f64 {
     let x: &[[f64; 2]; NN] = coords[..NN].try_into().expect("one coordinate pair per node");
     let nd = 2 * NN;
