@@ -14,7 +14,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// Full DOF index of component `comp` (0 = x, 1 = y) of node `node`.
 pub const fn dof(node: usize, comp: usize) -> usize {
@@ -36,6 +36,8 @@ pub struct Constraints {
     n_node_dofs: usize,
     extra: Vec<String>,
     fixed: Vec<usize>,
+    /// Slot of each fixed DOF: a linear search per `fix` cost 0.05 s for 2e4 fixed DOFs.
+    slot: HashMap<usize, usize>,
     ties: BTreeMap<usize, Vec<(usize, f64)>>,
 }
 
@@ -56,16 +58,17 @@ impl Constraints {
 
     /// Prescribes `dof`; returns its slot j in each load case's prescribed values.
     pub fn fix(&mut self, dof: usize) -> usize {
-        if let Some(j) = self.fixed.iter().position(|&d| d == dof) {
-            return j;
+        let next = self.fixed.len();
+        let j = *self.slot.entry(dof).or_insert(next);
+        if j == next {
+            self.fixed.push(dof);
         }
-        self.fixed.push(dof);
-        self.fixed.len() - 1
+        j
     }
 
     /// Slot of an already prescribed DOF.
     pub fn fixed_slot(&self, dof: usize) -> Option<usize> {
-        self.fixed.iter().position(|&d| d == dof)
+        self.slot.get(&dof).copied()
     }
 
     pub fn n_fixed(&self) -> usize {
@@ -116,7 +119,7 @@ impl Constraints {
         }
         // Free unknowns: node DOFs first, extra DOFs last (they couple to many nodes).
         let mut free_index = vec![usize::MAX; n_full];
-        let mut free_to_full = Vec::new();
+        let mut free_to_full = Vec::with_capacity(n_full);
         for d in 0..n_full {
             if is_fixed[d] == usize::MAX && tie_of[d].is_none() {
                 free_index[d] = free_to_full.len();
@@ -125,8 +128,10 @@ impl Constraints {
         }
         let n_free_nodes = free_to_full.iter().filter(|&&d| d < self.n_node_dofs).count();
         let target = |d: usize| if is_fixed[d] != usize::MAX { Target::Fixed(is_fixed[d]) } else { Target::Free(free_index[d]) };
+        // Sized exactly: growing the 24 MB entries at 1e6 DOFs cost a copy and fresh pages.
         let mut ptr = Vec::with_capacity(n_full + 1);
-        let mut entries = Vec::with_capacity(n_full);
+        let mut entries = Vec::with_capacity(n_full - self.ties.len() + self.ties.values().map(|t| t.len()).sum::<usize>());
+        crate::memory::advise_huge_pages(&entries);
         ptr.push(0);
         for d in 0..n_full {
             match tie_of[d] {

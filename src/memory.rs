@@ -20,6 +20,16 @@ unsafe impl GlobalAlloc for Counting {
         }
         p
     }
+    // Forwarded so that large zeroed blocks come from calloc's fresh zero pages: the default
+    // writes the zeros itself, touching every page once more (20 ms per 74 MB array).
+    unsafe fn alloc_zeroed(&self, l: Layout) -> *mut u8 {
+        let p = System.alloc_zeroed(l);
+        if !p.is_null() {
+            let now = IN_USE.fetch_add(l.size(), Relaxed) + l.size();
+            PEAK.fetch_max(now, Relaxed);
+        }
+        p
+    }
     unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
         System.dealloc(p, l);
         IN_USE.fetch_sub(l.size(), Relaxed);
@@ -54,4 +64,25 @@ pub fn peak_bytes() -> usize {
 /// Heap in use now, bytes.
 pub fn in_use_bytes() -> usize {
     IN_USE.load(Relaxed)
+}
+
+/// Asks Linux to back the not yet touched pages of a large vector's buffer with transparent
+/// huge pages (the system is in `madvise` mode): first-touch page faults cost ~60 ms per
+/// 74 MB with 4 KiB pages, twice that when two threads fault concurrently, ~15 ms with 2 MiB
+/// pages. Only a hint: contents and layout are unchanged; no-op below 8 MiB or elsewhere.
+pub fn advise_huge_pages<T>(v: &Vec<T>) {
+    let bytes = v.capacity() * std::mem::size_of::<T>();
+    if bytes < 8 << 20 {
+        return;
+    }
+    #[cfg(target_os = "linux")]
+    {
+        const PAGE: usize = 4096;
+        let p = v.as_ptr() as usize;
+        let (start, end) = ((p + PAGE - 1) & !(PAGE - 1), (p + bytes) & !(PAGE - 1));
+        // SAFETY: [start, end) lies inside the vector's own allocation and is page aligned;
+        // MADV_HUGEPAGE only changes how its pages are backed, never their contents, and a
+        // failure (e.g. THP disabled) just leaves normal pages.
+        unsafe { libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE) };
+    }
 }

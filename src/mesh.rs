@@ -38,6 +38,15 @@ impl Mesh {
         Self { nodes, offsets: vec![0], ..Default::default() }
     }
 
+    /// A mesh of elements of one kind from their flat connectivity (`kind.n_nodes()` node
+    /// indices each, checked by [`Mesh::validate`]): no per-element growth of the arrays.
+    pub fn with_elements(nodes: Vec<[f64; 2]>, kind: ElementKind, conn: Vec<usize>) -> Self {
+        let nn = kind.n_nodes();
+        assert_eq!(conn.len() % nn, 0, "connectivity of whole elements");
+        let ne = conn.len() / nn;
+        Self { nodes, kinds: vec![kind; ne], offsets: (0..=ne).map(|e| e * nn).collect(), conn, ..Default::default() }
+    }
+
     /// Appends an element; returns its index. Node indices are checked by [`Mesh::validate`].
     pub fn push_element(&mut self, kind: ElementKind, nodes: &[usize]) -> usize {
         debug_assert_eq!(nodes.len(), kind.n_nodes());

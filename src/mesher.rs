@@ -116,7 +116,7 @@ impl Rectangle {
         for &g in &conn {
             new_index[g] = 0; // used
         }
-        let mut nodes = Vec::new();
+        let mut nodes = Vec::with_capacity(gx * gy);
         for j in 0..gy {
             for i in 0..gx {
                 if new_index[grid(i, j)] != usize::MAX {
@@ -125,14 +125,8 @@ impl Rectangle {
                 }
             }
         }
-        let mut mesh = Mesh::new(nodes);
-        let mut v = [0usize; 9];
-        for cell in conn.chunks_exact(nn) {
-            for (a, &g) in cell.iter().enumerate() {
-                v[a] = new_index[g];
-            }
-            mesh.push_element(self.kind, &v[..nn]);
-        }
+        conn.iter_mut().for_each(|g| *g = new_index[*g]);
+        let mut mesh = Mesh::with_elements(nodes, self.kind, conn);
         let edge = |a: usize, b: usize, m: usize| Edge { ends: [new_index[a], new_index[b]], mid: (p == 2).then(|| new_index[m]) };
         let bottom = (0..nx).map(|c| edge(grid(c * p, 0), grid((c + 1) * p, 0), grid(c * p + 1, 0))).collect();
         let top = (0..nx).map(|c| edge(grid((c + 1) * p, gy - 1), grid(c * p, gy - 1), grid(c * p + 1, gy - 1))).collect();
