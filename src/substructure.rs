@@ -27,14 +27,16 @@ pub struct TwoDomain {
     sep_entries: Vec<(usize, usize, usize)>,
 }
 
+/// One half with the separator, in 32-bit indices (half the index traffic of usize in faer's
+/// analysis and factorisation; 4e9 entries of L per half is far beyond this machine's memory).
 struct Part {
     /// Reduced unknown of each local one: the half in elimination order, then the separator.
     unknowns: Vec<usize>,
-    col_ptr: Vec<usize>,
-    row_idx: Vec<usize>,
+    col_ptr: Vec<u32>,
+    row_idx: Vec<u32>,
     /// Position in the global values of each local entry.
-    gather: Vec<usize>,
-    symbolic: SymbolicCholesky<usize>,
+    gather: Vec<u32>,
+    symbolic: SymbolicCholesky<u32>,
 }
 
 /// Numeric factors of both halves and of the separator's Schur complement.
@@ -176,19 +178,19 @@ impl TwoDomain {
 }
 
 /// The transpose of a square CSC pattern with one payload per entry; rows come out sorted.
-fn transpose(ptr: &[usize], idx: &[usize], pay: &[usize]) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
+fn transpose(ptr: &[u32], idx: &[u32], pay: &[u32]) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
     let n = ptr.len() - 1;
-    let mut t_ptr = vec![0usize; n + 1];
-    idx.iter().for_each(|&r| t_ptr[r + 1] += 1);
+    let mut t_ptr = vec![0u32; n + 1];
+    idx.iter().for_each(|&r| t_ptr[r as usize + 1] += 1);
     for c in 0..n {
         t_ptr[c + 1] += t_ptr[c];
     }
-    let (mut t_idx, mut t_pay, mut next) = (vec![0usize; idx.len()], vec![0usize; idx.len()], t_ptr.clone());
+    let (mut t_idx, mut t_pay, mut next) = (vec![0u32; idx.len()], vec![0u32; idx.len()], t_ptr.clone());
     for c in 0..n {
-        for q in ptr[c]..ptr[c + 1] {
-            let r = idx[q];
-            t_idx[next[r]] = c;
-            t_pay[next[r]] = pay[q];
+        for q in ptr[c] as usize..ptr[c + 1] as usize {
+            let r = idx[q] as usize;
+            t_idx[next[r] as usize] = c as u32;
+            t_pay[next[r] as usize] = pay[q];
             next[r] += 1;
         }
     }
@@ -209,7 +211,7 @@ fn llt_lower_times(l: &Mat<f64>, mut x: MatMut<'_, f64>) {
     }
 }
 
-fn supernodal(s: &SymbolicCholesky<usize>) -> &SymbolicSupernodalCholesky<usize> {
+fn supernodal(s: &SymbolicCholesky<u32>) -> &SymbolicSupernodalCholesky<u32> {
     match s.raw() {
         SymbolicCholeskyRaw::Supernodal(s) => s,
         SymbolicCholeskyRaw::Simplicial(_) => unreachable!("halves are analysed as supernodal"),
@@ -217,56 +219,69 @@ fn supernodal(s: &SymbolicCholesky<usize>) -> &SymbolicSupernodalCholesky<usize>
 }
 
 /// Sum over the columns of L of (column count)^2.
-pub fn supernodal_flops(s: &SymbolicSupernodalCholesky<usize>) -> f64 {
+pub fn supernodal_flops<I: faer::Index>(s: &SymbolicSupernodalCholesky<I>) -> f64 {
     let (begin, end, rows) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_row_idx());
-    (0..s.n_supernodes()).map(|k| (begin[k]..end[k]).map(|j| ((end[k] - j + rows[k + 1] - rows[k]) as f64).powi(2)).sum::<f64>()).sum()
+    (0..s.n_supernodes()).map(|k| (begin[k].zx()..end[k].zx()).map(|j| ((end[k].zx() - j + rows[k + 1].zx() - rows[k].zx()) as f64).powi(2)).sum::<f64>()).sum()
 }
 
 impl Part {
     fn analyse(pattern: &Pattern, half: &[usize], separator: &[usize]) -> Result<Self> {
         let unknowns: Vec<usize> = half.iter().chain(separator).copied().collect();
         let nl = unknowns.len();
-        let mut local = vec![usize::MAX; pattern.n];
-        unknowns.iter().enumerate().for_each(|(l, &g)| local[g] = l);
-        // Global lower-triangle entries inside this part, moved to the local lower triangle.
-        let mut col_ptr = vec![0usize; nl + 1];
-        let each = |f: &mut dyn FnMut(usize, usize, usize)| {
-            for (jl, &j) in unknowns.iter().enumerate() {
-                for p in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
-                    let il = local[pattern.row_idx[p]];
-                    if il != usize::MAX {
-                        f(il.max(jl), il.min(jl), p);
-                    }
+        let too_big = || Error::input("two-domain split", format!("a half with {nl} unknowns exceeds 32-bit indices"));
+        if pattern.nnz() >= u32::MAX as usize {
+            return Err(too_big());
+        }
+        let mut local = vec![u32::MAX; pattern.n];
+        unknowns.iter().enumerate().for_each(|(l, &g)| local[g] = l as u32);
+        // Global lower-triangle entries inside this part, moved to the local lower triangle
+        // (column = the smaller local index): count, then fill.
+        let mut col_ptr = vec![0u32; nl + 1];
+        for (jl, &j) in unknowns.iter().enumerate() {
+            for &i in &pattern.row_idx[pattern.col_ptr[j]..pattern.col_ptr[j + 1]] {
+                let il = local[i];
+                if il != u32::MAX {
+                    col_ptr[il.min(jl as u32) as usize + 1] += 1;
                 }
             }
-        };
-        each(&mut |_, c, _| col_ptr[c + 1] += 1);
+        }
         for c in 0..nl {
             col_ptr[c + 1] += col_ptr[c];
         }
-        let nnz = col_ptr[nl];
-        let (mut row_idx, mut gather, mut fill) = (vec![0usize; nnz], vec![0usize; nnz], col_ptr.clone());
-        each(&mut |r, c, p| {
-            row_idx[fill[c]] = r;
-            gather[fill[c]] = p;
-            fill[c] += 1;
-        });
+        let nnz = col_ptr[nl] as usize;
+        let (mut row_idx, mut gather, mut fill) = (vec![0u32; nnz], vec![0u32; nnz], col_ptr.clone());
+        for (jl, &j) in unknowns.iter().enumerate() {
+            let jl = jl as u32;
+            for p in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
+                let il = local[pattern.row_idx[p]];
+                if il != u32::MAX {
+                    let c = il.min(jl) as usize;
+                    row_idx[fill[c] as usize] = il.max(jl);
+                    gather[fill[c] as usize] = p as u32;
+                    fill[c] += 1;
+                }
+            }
+        }
         // Two transposes sort the rows of every column (counting sort, no comparisons). faer
         // 0.24 analyses an unpermuted (`Identity`) matrix as an upper triangle but factorises
         // the lower one as is: the analysis gets the upper pattern, the factorisation no copy.
         let (up_ptr, up_idx, up_gather) = transpose(&col_ptr, &row_idx, &gather);
         let (col_ptr, row_idx, gather) = transpose(&up_ptr, &up_idx, &up_gather);
+        drop(up_gather);
         let upper = SymbolicSparseColMatRef::new_checked(nl, nl, &up_ptr, None, &up_idx);
         let mut params = CholeskySymbolicParams::default();
         params.supernodal_flop_ratio_threshold = SupernodalThreshold::FORCE_SUPERNODAL;
-        let symbolic = factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params).map_err(|e| Error::input("symbolic factorisation", format!("{e:?}")))?;
+        let symbolic = factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params).map_err(|e| match e {
+            faer::sparse::FaerError::IndexOverflow => too_big(),
+            e => Error::input("symbolic factorisation", format!("{e:?}")),
+        })?;
         Ok(Self { unknowns, col_ptr, row_idx, gather, symbolic })
     }
 
     /// Factor values and the trailing m x m block of L, or the reduced unknown of a bad pivot.
     fn factorize(&self, values: &[f64], m: usize) -> std::result::Result<(Vec<f64>, Mat<f64>), usize> {
         let nl = self.unknowns.len();
-        let local: Vec<f64> = self.gather.iter().map(|&p| values[p]).collect();
+        let local: Vec<f64> = self.gather.iter().map(|&p| values[p as usize]).collect();
         let sym = SymbolicSparseColMatRef::new_checked(nl, nl, &self.col_ptr, None, &self.row_idx);
         let a = SparseColMatRef::new(sym, &local);
         let mut l = vec![0.0; self.symbolic.len_val()];
@@ -285,7 +300,7 @@ impl Part {
             if begin + width <= first {
                 break;
             }
-            let rows: Vec<usize> = (begin..begin + width).chain(node.pattern().iter().copied()).collect();
+            let rows: Vec<usize> = (begin..begin + width).chain(node.pattern().iter().map(|&r| r as usize)).collect();
             for j in begin.max(first)..begin + width {
                 for (q, &r) in rows.iter().enumerate().filter(|(_, &r)| r >= j) {
                     l_ss[(r - first, j - first)] = node.val()[(q, j - begin)];
