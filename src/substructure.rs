@@ -177,24 +177,22 @@ impl TwoDomain {
     }
 }
 
-/// The transpose of a square CSC pattern with one payload per entry; rows come out sorted.
-fn transpose(ptr: &[u32], idx: &[u32], pay: &[u32]) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
+/// The transpose of a square CSC pattern.
+fn transpose(ptr: &[u32], idx: &[u32]) -> (Vec<u32>, Vec<u32>) {
     let n = ptr.len() - 1;
     let mut t_ptr = vec![0u32; n + 1];
     idx.iter().for_each(|&r| t_ptr[r as usize + 1] += 1);
     for c in 0..n {
         t_ptr[c + 1] += t_ptr[c];
     }
-    let (mut t_idx, mut t_pay, mut next) = (vec![0u32; idx.len()], vec![0u32; idx.len()], t_ptr.clone());
+    let (mut t_idx, mut next) = (vec![0u32; idx.len()], t_ptr.clone());
     for c in 0..n {
-        for q in ptr[c] as usize..ptr[c + 1] as usize {
-            let r = idx[q] as usize;
-            t_idx[next[r] as usize] = c as u32;
-            t_pay[next[r] as usize] = pay[q];
-            next[r] += 1;
+        for &r in &idx[ptr[c] as usize..ptr[c + 1] as usize] {
+            t_idx[next[r as usize] as usize] = c as u32;
+            next[r as usize] += 1;
         }
     }
-    (t_ptr, t_idx, t_pay)
+    (t_ptr, t_idx)
 }
 
 /// x := L x for lower-triangular L (the Cholesky factor's own triangle only).
@@ -262,13 +260,12 @@ impl Part {
                 }
             }
         }
-        // Two transposes sort the rows of every column (counting sort, no comparisons). faer
-        // 0.24 analyses an unpermuted (`Identity`) matrix as an upper triangle but factorises
-        // the lower one as is: the analysis gets the upper pattern, the factorisation no copy.
-        let (up_ptr, up_idx, up_gather) = transpose(&col_ptr, &row_idx, &gather);
-        let (col_ptr, row_idx, gather) = transpose(&up_ptr, &up_idx, &up_gather);
-        drop(up_gather);
-        let upper = SymbolicSparseColMatRef::new_checked(nl, nl, &up_ptr, None, &up_idx);
+        // Rows stay unsorted: faer's analysis and factorisation do not need them sorted (they
+        // get unsorted ones from their own permutation). faer 0.24 analyses an unpermuted
+        // (`Identity`) matrix as an upper triangle but factorises the lower one as is: the
+        // analysis gets the transposed pattern, the factorisation no copy.
+        let (up_ptr, up_idx) = transpose(&col_ptr, &row_idx);
+        let upper = SymbolicSparseColMatRef::new_unsorted_checked(nl, nl, &up_ptr, None, &up_idx);
         let mut params = CholeskySymbolicParams::default();
         params.supernodal_flop_ratio_threshold = SupernodalThreshold::FORCE_SUPERNODAL;
         let symbolic = factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params).map_err(|e| match e {
@@ -282,7 +279,7 @@ impl Part {
     fn factorize(&self, values: &[f64], m: usize) -> std::result::Result<(Vec<f64>, Mat<f64>), usize> {
         let nl = self.unknowns.len();
         let local: Vec<f64> = self.gather.iter().map(|&p| values[p as usize]).collect();
-        let sym = SymbolicSparseColMatRef::new_checked(nl, nl, &self.col_ptr, None, &self.row_idx);
+        let sym = SymbolicSparseColMatRef::new_unsorted_checked(nl, nl, &self.col_ptr, None, &self.row_idx);
         let a = SparseColMatRef::new(sym, &local);
         let mut l = vec![0.0; self.symbolic.len_val()];
         let mut mem = MemBuffer::new(self.symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()));
