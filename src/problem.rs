@@ -85,26 +85,23 @@ impl Prepared {
     pub fn new(mesh: &crate::mesh::Mesh, constraints: &Constraints, opts: &SolverOptions) -> Result<Self> {
         let clock = Instant::now();
         let red = constraints.reduce()?;
-        let asm = Assembler::new(mesh, &red)?;
-        let pattern_time = clock.elapsed().as_secs_f64();
-        let clock = Instant::now();
         let mut options = opts.clone();
         // Nested dissection pays from ~1e5 unknowns (symbolic 3x faster, fill equal or less);
         // below that AMD gives 1.1-1.5x less fill at no measurable cost (validation/bench).
-        // Its first cut solved as two domains uses both cores (validation/bench).
-        let large = red.n_free() >= ND_FROM;
-        match options.ordering {
-            Ordering::Auto if large => {
-                if let Some(split) = bisection(mesh, &red) {
-                    options.ordering = Ordering::TwoDomain(split);
-                }
+        // Its first cut solved as two domains uses both cores (validation/bench). The grid
+        // bisection needs only the mesh, so it runs alongside the pattern build (and is
+        // timed with it).
+        let two_domains = options.ordering == Ordering::Auto && red.n_free() >= ND_FROM;
+        let (asm, split) = rayon::join(|| Assembler::new(mesh, &red), || if two_domains { bisection(mesh, &red) } else { None });
+        let asm = asm?;
+        let pattern_time = clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        if let Some(split) = split {
+            options.ordering = Ordering::TwoDomain(split);
+        } else if options.ordering == Ordering::NestedDissection {
+            if let Some(p) = nested_dissection(mesh, &red) {
+                options.ordering = Ordering::Custom(p);
             }
-            Ordering::NestedDissection => {
-                if let Some(p) = nested_dissection(mesh, &red) {
-                    options.ordering = Ordering::Custom(p);
-                }
-            }
-            _ => {}
         }
         let solver = Solver::analyse(&asm.pattern, options)?;
         Ok(Self { red, asm, solver, pattern_time, symbolic_time: clock.elapsed().as_secs_f64() })
