@@ -93,10 +93,11 @@ impl TwoDomain {
         self.parts.iter().map(|p| p.symbolic.len_val()).sum::<usize>() + self.separator.len() * (self.separator.len() + 1) / 2
     }
 
-    /// Flops of both halves' factorisations plus the dense Schur complement's.
+    /// Flops of both halves' factorisations plus the Schur complement's: two triangular
+    /// products and one dense Cholesky, m^3 / 3 each.
     pub fn factor_flops(&self) -> f64 {
         let m = self.separator.len() as f64;
-        self.parts.iter().map(|p| supernodal_flops(supernodal(&p.symbolic))).sum::<f64>() + m * m * m / 3.0
+        self.parts.iter().map(|p| supernodal_flops(supernodal(&p.symbolic))).sum::<f64>() + m * m * m
     }
 
     /// Numeric factorisation; a non-positive pivot is returned as its reduced unknown.
@@ -104,16 +105,15 @@ impl TwoDomain {
         let m = self.separator.len();
         let (a, b) = rayon::join(|| self.parts[0].factorize(values, m), || self.parts[1].factorize(values, m));
         let ((la, sa), (lb, sb)) = (a?, b?);
-        // S = L_ss,a L_ss,a^T + L_ss,b L_ss,b^T - A_ss.
+        // S = L_ss,a L_ss,a^T + L_ss,b L_ss,b^T - A_ss, lower triangle only (triangular
+        // products: m^3/3 flops each instead of 2 m^3).
         let mut schur = Mat::<f64>::zeros(m, m);
         for &(r, c, p) in &self.sep_entries {
             schur[(r, c)] -= values[p];
-            if r != c {
-                schur[(c, r)] -= values[p];
-            }
         }
         for l in [&sa, &sb] {
-            faer::linalg::matmul::matmul(schur.as_mut(), Accum::Add, l.as_ref(), l.transpose(), 1.0, Par::Seq);
+            use faer::linalg::matmul::triangular::{matmul, BlockStructure};
+            matmul(schur.as_mut(), BlockStructure::TriangularLower, Accum::Add, l.as_ref(), BlockStructure::TriangularLower, l.transpose(), BlockStructure::TriangularUpper, 1.0, Par::Seq);
         }
         let mut mem = MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(m, Par::Seq, Default::default()));
         match llt::factor::cholesky_in_place(schur.as_mut(), LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()) {

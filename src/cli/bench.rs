@@ -14,8 +14,9 @@ pub struct Args {
     /// Also run the strip family with these NY (no value: 5,16,50; 100 = 4e6 DOFs).
     #[arg(long, value_delimiter = ',', num_args = 0..)]
     pub sizes: Option<Vec<usize>>,
-    /// Threads for the factorisation and the assembly; a list runs each.
-    #[arg(long, value_delimiter = ',', default_value = "1")]
+    /// Threads (rayon pool: assembly, the two halves of the factorisation, faer's dense
+    /// kernels); a list runs each [default: all cores].
+    #[arg(long, value_delimiter = ',')]
     pub threads: Vec<usize>,
     /// Factorisation: auto (faer's choice), supernodal, simplicial; a list runs each.
     #[arg(long, value_delimiter = ',', default_value = "auto")]
@@ -58,7 +59,10 @@ fn parse_ordering(s: &str) -> tribofe::Result<Ordering> {
     }
 }
 
-pub fn run(args: Args) -> tribofe::Result<()> {
+pub fn run(mut args: Args) -> tribofe::Result<()> {
+    if args.threads.is_empty() {
+        args.threads.push(std::thread::available_parallelism().map_or(1, |n| n.get()));
+    }
     let mut configs = Vec::new();
     for &threads in &args.threads {
         for f in &args.factor {
