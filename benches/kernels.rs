@@ -1,6 +1,6 @@
 //! Kernel benchmarks (`cargo bench`): element matrices, assembly, symbolic and numeric
-//! Cholesky, and the solve, on a strip of the paper's scene small enough to repeat. The whole
-//! pipeline at 1e6 DOFs is `tribofe bench`.
+//! Cholesky, and the solve (one factorisation and two domains), on a strip of the paper's
+//! scene small enough to repeat. The whole pipeline at 1e6 DOFs is `tribofe bench`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -10,7 +10,8 @@ use tribofe::element::ElementKind;
 use tribofe::material::Material;
 use tribofe::problem::LoadCase;
 use tribofe::scene::Scene;
-use tribofe::solve::{Solver, SolverOptions};
+use tribofe::ordering::bisection;
+use tribofe::solve::{Ordering, Solver, SolverOptions};
 
 fn kernels(c: &mut Criterion) {
     let d = Material::plane_strain(2e3, 0.4).unwrap().d_matrix();
@@ -40,9 +41,23 @@ fn kernels(c: &mut Criterion) {
     let solver = Solver::analyse(&asm.pattern, SolverOptions::default()).unwrap();
     group.bench_function("numeric factorisation", |b| b.iter(|| solver.factorize(&asm.pattern, &values).ok().unwrap()));
     let factor = solver.factorize(&asm.pattern, &values).ok().unwrap();
+    let rhs3: Vec<f64> = rhs.iter().chain(&rhs).chain(&rhs).copied().collect();
     group.bench_function("solve, 3 right-hand sides", |b| {
         b.iter(|| {
-            let mut x: Vec<f64> = rhs.iter().chain(&rhs).chain(&rhs).copied().collect();
+            let mut x = rhs3.clone();
+            factor.solve_in_place(&mut x, 3);
+            x
+        })
+    });
+    // The same system as two domains (both halves at once on the rayon pool).
+    let two = SolverOptions { ordering: Ordering::TwoDomain(bisection(&sm.mesh, &red).unwrap()), ..Default::default() };
+    group.bench_function("two domains: symbolic", |b| b.iter(|| Solver::analyse(&asm.pattern, two.clone()).unwrap()));
+    let solver = Solver::analyse(&asm.pattern, two).unwrap();
+    group.bench_function("two domains: numeric factorisation", |b| b.iter(|| solver.factorize(&asm.pattern, &values).ok().unwrap()));
+    let factor = solver.factorize(&asm.pattern, &values).ok().unwrap();
+    group.bench_function("two domains: solve, 3 right-hand sides", |b| {
+        b.iter(|| {
+            let mut x = rhs3.clone();
             factor.solve_in_place(&mut x, 3);
             x
         })

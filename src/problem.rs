@@ -18,8 +18,9 @@ pub struct LoadCase {
     pub forces: Vec<f64>,
 }
 
-/// Unknowns from which `Ordering::Auto` uses our nested dissection (as two domains) instead of AMD.
-pub const ND_FROM: usize = 100_000;
+/// Unknowns from which `Ordering::Auto` solves grids as two domains instead of with AMD: from
+/// ~1e4 on it is faster (1.3x at 3.6e4, 2x at 9.6e4, validation/bench); below, equal.
+pub const TWO_DOMAINS_FROM: usize = 10_000;
 
 /// Wall time of each phase, s.
 #[derive(Debug, Clone, Copy, Default)]
@@ -86,12 +87,10 @@ impl Prepared {
         let clock = Instant::now();
         let red = constraints.reduce()?;
         let mut options = opts.clone();
-        // Nested dissection pays from ~1e5 unknowns (symbolic 3x faster, fill equal or less);
-        // below that AMD gives 1.1-1.5x less fill at no measurable cost (validation/bench).
-        // Its first cut solved as two domains uses both cores (validation/bench). The grid
+        // Nested dissection's first cut solved as two domains uses both cores. The grid
         // bisection needs only the mesh, so it runs alongside the pattern build (and is
         // timed with it).
-        let two_domains = options.ordering == Ordering::Auto && red.n_free() >= ND_FROM;
+        let two_domains = options.ordering == Ordering::Auto && red.n_free() >= TWO_DOMAINS_FROM;
         let (asm, split) = rayon::join(|| Assembler::new(mesh, &red), || if two_domains { bisection(mesh, &red) } else { None });
         let asm = asm?;
         let pattern_time = clock.elapsed().as_secs_f64();

@@ -18,7 +18,7 @@ use faer::{Conj, MatMut, Par, Side};
 #[derive(Debug, Clone, Default, PartialEq)]
 pub enum Ordering {
     /// [`Ordering::TwoDomain`] when the mesh is a grid with at least
-    /// [`crate::problem::ND_FROM`] unknowns, AMD otherwise; resolved by
+    /// [`crate::problem::TWO_DOMAINS_FROM`] unknowns, AMD otherwise; resolved by
     /// [`crate::problem::solve`], which knows the mesh.
     #[default]
     Auto,

@@ -99,9 +99,11 @@ fn thin_layers_keep_the_model_slope_and_edge_widths_in_units_of_t() {
     // Interior slope within 3.4e-2 of 12 (F/N)(H/L) at t/L = 1e-2 and 3.3e-3 at 1e-3: the
     // model error falls like t/L.
     assert!(a.slope_rel_err < 0.05 && b.slope_rel_err < 0.005 && b.slope_rel_err < 0.15 * a.slope_rel_err);
-    // Conditioning grows like L/t (2.0e2, 2.3e3) with no loss in the backward error; fill 1.25.
+    // Conditioning grows like L/t (2.0e2, 2.3e3) with no loss in the backward error. Stored
+    // factor entries per matrix entry: 1.25 at 1e-2 (AMD, simplicial); 2.87 at 1e-3, solved as
+    // two domains whose supernodes store their diagonal blocks whole, zeros included.
     assert!(b.condition / a.condition > 5.0 && b.condition / a.condition < 20.0);
-    assert!(a.backward_error < 1e-13 && b.backward_error < 1e-13 && a.fill < 1.3 && b.fill < 1.3);
+    assert!(a.backward_error < 1e-13 && b.backward_error < 1e-13 && a.fill < 1.3 && b.fill < 3.0);
     // Edge widths in units of t do not depend on t/L (right end: p 1.81/1.71, tau 1.95/1.98).
     for k in [1, 3] {
         let (wa, wb) = (a.widths[k].unwrap(), b.widths[k].unwrap());
