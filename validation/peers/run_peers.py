@@ -15,7 +15,7 @@ code's profiles with skfem-cholmod's (max abs diff of p/(N/L), tau/(N/L)).
 Outputs (atomic): results/peers_<date>.csv, results/peers_<date>.md,
 results/scaling.svg.
 
-  python3 run_peers.py --sizes 5,16,50,100 --repeat 2 [--skip calculix] [--tribofe PATH]
+  python3 run_peers.py --install --sizes 5,16,50,100 --repeat 2 [--skip calculix] [--tribofe PATH]
 """
 from __future__ import annotations
 
@@ -185,7 +185,9 @@ def plot(rows, path, title):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--sizes", default="5,16,50", help="comma-separated ny values")
+    ap.add_argument("--sizes", default="5,16,50,100", help="comma-separated ny values")
+    ap.add_argument("--install", action="store_true",
+                    help="first run install.sh (apt + pip: CalculiX, scikit-fem, scikit-sparse)")
     ap.add_argument("--skip", default="", help=f"comma-separated codes to skip: {CODES}")
     ap.add_argument("--tribofe", default=os.path.join(REPO, "target", "release", "tribofe"),
                     help="tribofe binary (default: <repo>/target/release/tribofe)")
@@ -199,6 +201,8 @@ def main(argv=None):
     ap.add_argument("--force-memory", action="store_true",
                     help="run CalculiX and SuperLU even if MemAvailable looks too small")
     a = ap.parse_args(argv)
+    if a.install:
+        subprocess.run(["bash", os.path.join(HERE, "install.sh")], check=True)
 
     try:
         sizes = [int(s) for s in a.sizes.split(",") if s.strip()]
