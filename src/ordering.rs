@@ -19,7 +19,7 @@ pub fn nested_dissection(mesh: &Mesh, red: &Reduction) -> Option<Vec<usize>> {
     let grid = Grid::new(mesh)?;
     let mut nodes = Vec::with_capacity(mesh.n_nodes());
     grid.dissect([0, grid.gx], [0, grid.gy], &mut nodes);
-    let mut perm = free_unknowns(red, &nodes);
+    let mut perm = free_unknowns(&free_index(red), &nodes);
     perm.extend(red.n_free_nodes..red.n_free());
     (perm.len() == red.n_free()).then_some(perm)
 }
@@ -37,32 +37,30 @@ pub struct Bisection {
 pub fn bisection(mesh: &Mesh, red: &Reduction) -> Option<Bisection> {
     let grid = Grid::new(mesh)?;
     let (x, y) = ([0, grid.gx], [0, grid.gy]);
+    let [ra, rb, rs] = Grid::regions(x, y, grid.split(x, y)?);
     let (mut a, mut b, mut s) = (Vec::new(), Vec::new(), Vec::new());
-    match grid.split(x, y)? {
-        (true, c) => {
-            grid.dissect([x[0], c], y, &mut a);
-            grid.dissect([c + 1, x[1]], y, &mut b);
-            grid.emit([c, c + 1], y, &mut s);
-        }
-        (false, c) => {
-            grid.dissect(x, [y[0], c], &mut a);
-            grid.dissect(x, [c + 1, y[1]], &mut b);
-            grid.emit(x, [c, c + 1], &mut s);
-        }
-    }
-    let parts = [free_unknowns(red, &a), free_unknowns(red, &b)];
-    let mut separator = free_unknowns(red, &s);
+    grid.dissect(ra[0], ra[1], &mut a);
+    grid.dissect(rb[0], rb[1], &mut b);
+    grid.emit(rs[0], rs[1], &mut s);
+    let free = free_index(red);
+    let parts = [free_unknowns(&free, &a), free_unknowns(&free, &b)];
+    let mut separator = free_unknowns(&free, &s);
     separator.extend(red.n_free_nodes..red.n_free());
     let complete = parts[0].len() + parts[1].len() + separator.len() == red.n_free();
     (complete && parts.iter().all(|p| !p.is_empty())).then_some(Bisection { parts, separator })
 }
 
-/// The free unknowns of `nodes`, in that order (x before y).
-fn free_unknowns(red: &Reduction, nodes: &[usize]) -> Vec<usize> {
+/// The free unknown of each full DOF, usize::MAX for none.
+fn free_index(red: &Reduction) -> Vec<usize> {
     let mut free = vec![usize::MAX; red.n_full];
     for (k, &d) in red.free_to_full.iter().enumerate() {
         free[d] = k;
     }
+    free
+}
+
+/// The free unknowns of `nodes`, in that order (x before y); `free` from [`free_index`].
+fn free_unknowns(free: &[usize], nodes: &[usize]) -> Vec<usize> {
     nodes.iter().flat_map(|&n| [free[2 * n], free[2 * n + 1]]).filter(|&k| k != usize::MAX).collect()
 }
 
@@ -131,19 +129,23 @@ impl Grid {
         if w == 0 || h == 0 {
             return;
         }
-        let split = if w * h <= LEAF { None } else { self.split(x, y) };
-        match split {
-            Some((true, s)) => {
-                self.dissect([x[0], s], y, out);
-                self.dissect([s + 1, x[1]], y, out);
-                self.emit([s, s + 1], y, out);
-            }
-            Some((false, s)) => {
-                self.dissect(x, [y[0], s], out);
-                self.dissect(x, [s + 1, y[1]], out);
-                self.emit(x, [s, s + 1], out);
+        match if w * h <= LEAF { None } else { self.split(x, y) } {
+            Some(cut) => {
+                let [a, b, s] = Self::regions(x, y, cut);
+                self.dissect(a[0], a[1], out);
+                self.dissect(b[0], b[1], out);
+                self.emit(s[0], s[1], out);
             }
             None => self.emit(x, y, out),
+        }
+    }
+
+    /// The two halves and the separator line of region [x0, x1) x [y0, y1) cut by `cut`
+    /// (from [`Grid::split`]), each as its (x range, y range).
+    fn regions(x: [usize; 2], y: [usize; 2], cut: (bool, usize)) -> [[[usize; 2]; 2]; 3] {
+        match cut {
+            (true, s) => [[[x[0], s], y], [[s + 1, x[1]], y], [[s, s + 1], y]],
+            (false, s) => [[x, [y[0], s]], [x, [s + 1, y[1]]], [x, [s, s + 1]]],
         }
     }
 
