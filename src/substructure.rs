@@ -12,6 +12,7 @@ use crate::error::{Error, Result};
 use crate::ordering::Bisection;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
+use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering};
@@ -112,8 +113,7 @@ impl TwoDomain {
             schur[(r, c)] -= values[p];
         }
         for l in [&sa, &sb] {
-            use faer::linalg::matmul::triangular::{matmul, BlockStructure};
-            matmul(schur.as_mut(), BlockStructure::TriangularLower, Accum::Add, l.as_ref(), BlockStructure::TriangularLower, l.transpose(), BlockStructure::TriangularUpper, 1.0, Par::Seq);
+            triangular::matmul(schur.as_mut(), BlockStructure::TriangularLower, Accum::Add, l.as_ref(), BlockStructure::TriangularLower, l.transpose(), BlockStructure::TriangularUpper, 1.0, Par::Seq);
         }
         let mut mem = MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(m, Par::Seq, Default::default()));
         match llt::factor::cholesky_in_place(schur.as_mut(), LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()) {
@@ -137,9 +137,10 @@ impl TwoDomain {
             }
             part.solve(&f.l[h], &mut y, k, true);
             // c_h = L_ss y_s = b_s - A_sh A_hh^-1 b_h, this half's condensed right-hand side.
-            let mut ys = Mat::<f64>::from_fn(m, k, |i, c| y[c * nl + nl - m + i]);
-            llt_lower_times(&f.l_ss[h], ys.as_mut());
-            (y, ys)
+            let ys = Mat::<f64>::from_fn(m, k, |i, c| y[c * nl + nl - m + i]);
+            let mut ch = Mat::<f64>::zeros(m, k);
+            triangular::matmul(ch.as_mut(), BlockStructure::Rectangular, Accum::Replace, f.l_ss[h].as_ref(), BlockStructure::TriangularLower, ys.as_ref(), BlockStructure::Rectangular, 1.0, Par::Seq);
+            (y, ch)
         };
         let ((mut ya, ca), (mut yb, cb)) = rayon::join(|| forward(0), || forward(1));
         let mut xs = Mat::<f64>::from_fn(m, k, |i, c| ca[(i, c)] + cb[(i, c)] - b[c * n + self.separator[i]]);
@@ -193,20 +194,6 @@ fn transpose(ptr: &[u32], idx: &[u32]) -> (Vec<u32>, Vec<u32>) {
         }
     }
     (t_ptr, t_idx)
-}
-
-/// x := L x for lower-triangular L (the Cholesky factor's own triangle only).
-fn llt_lower_times(l: &Mat<f64>, mut x: MatMut<'_, f64>) {
-    let m = l.nrows();
-    for c in 0..x.ncols() {
-        for i in (0..m).rev() {
-            let mut s = 0.0;
-            for j in 0..=i {
-                s += l[(i, j)] * x[(j, c)];
-            }
-            x[(i, c)] = s;
-        }
-    }
 }
 
 fn supernodal(s: &SymbolicCholesky<u32>) -> &SymbolicSupernodalCholesky<u32> {
