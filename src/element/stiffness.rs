@@ -167,7 +167,6 @@ fn stiffness_n<const NN: usize>(kind: ElementKind, coords: &[[f64; 2]], d: &Matr
     let nd = 2 * NN;
     let k = &mut k[..nd * nd];
     k.fill(0.0);
-    let (d11, d12, d22, d33) = (d[(0, 0)], d[(0, 1)], d[(1, 1)], d[(2, 2)]);
     let mut min_det = f64::INFINITY;
     for (qw, dn) in stiffness_table(kind) {
         let mut j = [[0.0; 2]; 2];
@@ -187,21 +186,27 @@ fn stiffness_n<const NN: usize>(kind: ElementKind, coords: &[[f64; 2]], d: &Matr
             }
         }
         min_det = min_det.min(det_j);
-        let w = qw * det_j;
-        for a in 0..NN {
-            let [ax, ay] = dndx[a];
-            for b in 0..NN {
-                let [bx, by] = dndx[b];
-                let r0 = 2 * a * nd + 2 * b;
-                let r1 = r0 + nd;
-                k[r0] += w * (ax * d11 * bx + ay * d33 * by);
-                k[r0 + 1] += w * (ax * d12 * by + ay * d33 * bx);
-                k[r1] += w * (ay * d12 * bx + ax * d33 * by);
-                k[r1 + 1] += w * (ay * d22 * by + ax * d33 * bx);
-            }
-        }
+        add_btdb(k, &dndx, qw * det_j, d);
     }
     min_det
+}
+
+/// k += w B^T D B at one integration point, B from the shape derivatives `dndx`. D has no
+/// normal-shear coupling (isotropic material), so only its four non-zero entries are used.
+#[inline(always)]
+fn add_btdb(k: &mut [f64], dndx: &[[f64; 2]], w: f64, d: &Matrix3<f64>) {
+    let nd = 2 * dndx.len();
+    let (d11, d12, d22, d33) = (d[(0, 0)], d[(0, 1)], d[(1, 1)], d[(2, 2)]);
+    for (a, &[ax, ay]) in dndx.iter().enumerate() {
+        for (b, &[bx, by]) in dndx.iter().enumerate() {
+            let r0 = 2 * a * nd + 2 * b;
+            let r1 = r0 + nd;
+            k[r0] += w * (ax * d11 * bx + ay * d33 * by);
+            k[r0 + 1] += w * (ax * d12 * by + ay * d33 * bx);
+            k[r1] += w * (ay * d12 * bx + ax * d33 * by);
+            k[r1 + 1] += w * (ay * d22 * by + ax * d33 * bx);
+        }
+    }
 }
 
 /// The generic form [`stiffness`] specialises, kept to check it against.
@@ -210,24 +215,11 @@ fn stiffness_generic(kind: ElementKind, coords: &[[f64; 2]], d: &Matrix3<f64>, k
     let nn = kind.n_nodes();
     let nd = 2 * nn;
     k[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
-    let (d11, d12, d22, d33) = (d[(0, 0)], d[(0, 1)], d[(1, 1)], d[(2, 2)]);
     let mut min_det = f64::INFINITY;
     for q in stiffness_rule(kind) {
         let p = map_point(kind, coords, q.xi);
         min_det = min_det.min(p.det_j);
-        let w = q.w * p.det_j;
-        for a in 0..nn {
-            let [ax, ay] = p.dndx[a];
-            for b in 0..nn {
-                let [bx, by] = p.dndx[b];
-                let r0 = 2 * a * nd + 2 * b;
-                let r1 = r0 + nd;
-                k[r0] += w * (ax * d11 * bx + ay * d33 * by);
-                k[r0 + 1] += w * (ax * d12 * by + ay * d33 * bx);
-                k[r1] += w * (ay * d12 * bx + ax * d33 * by);
-                k[r1 + 1] += w * (ay * d22 * by + ax * d33 * bx);
-            }
-        }
+        add_btdb(k, &p.dndx[..nn], q.w * p.det_j, d);
     }
     min_det
 }
