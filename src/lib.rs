@@ -17,6 +17,7 @@ pub mod assembly;
 pub mod constraints;
 pub mod solve;
 pub mod substructure;
+pub mod multifrontal;
 pub mod ordering;
 pub mod recovery;
 pub mod loads;

@@ -1,14 +1,15 @@
 //! Two-domain substructuring: the reduced unknowns split into two halves and the separator
 //! between them ([`crate::ordering::bisection`]). Each half with the separator ordered last is
-//! a principal submatrix of K, hence positive definite, and faer factorises the two at once,
-//! one per core: faer's own threads only help inside large dense fronts, which a thin strip
-//! lacks. The trailing block L_ss of each factor gives that half's condensation onto the
+//! a principal submatrix of K, hence positive definite. faer analyses each half and
+//! [`crate::multifrontal`] factorises the two at once, one per core: threads inside a front
+//! only help large dense fronts, which a thin strip lacks. The trailing block L_ss of each factor gives that half's condensation onto the
 //! separator, L_ss L_ss^T = A_ss - A_sk A_kk^-1 A_ks; their sum less A_ss (counted twice) is
 //! the separator's Schur complement, a small dense matrix. The work done does not depend on
 //! the thread count, so neither do the results.
 
 use crate::assembly::Pattern;
 use crate::error::{Error, Result};
+use crate::multifrontal::{self, AssemblyTree};
 use crate::ordering::Bisection;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
@@ -17,7 +18,7 @@ use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering};
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::sparse::SymbolicSparseColMatRef;
 use faer::{Accum, Conj, Mat, MatMut, Par, Side};
 
 /// Symbolic analysis of both halves; reusable for any values on the same pattern.
@@ -38,6 +39,7 @@ struct Part {
     /// Position in the global values of each local entry.
     gather: Vec<u32>,
     symbolic: SymbolicCholesky<u32>,
+    tree: AssemblyTree,
 }
 
 /// Numeric factors of both halves and of the separator's Schur complement.
@@ -259,22 +261,17 @@ impl Part {
             faer::sparse::FaerError::IndexOverflow => too_big(),
             e => Error::input("symbolic factorisation", format!("{e:?}")),
         })?;
-        Ok(Self { unknowns, col_ptr, row_idx, gather, symbolic })
+        let tree = AssemblyTree::new(supernodal(&symbolic)).ok_or_else(|| Error::input("symbolic factorisation", "faer's supernodes do not form an assembly tree (a supernode's rows are missing from its parent's)"))?;
+        Ok(Self { unknowns, col_ptr, row_idx, gather, symbolic, tree })
     }
 
     /// Factor values and the trailing m x m block of L, or the reduced unknown of a bad pivot.
     fn factorize(&self, values: &[f64], m: usize) -> std::result::Result<(Vec<f64>, Mat<f64>), usize> {
         let nl = self.unknowns.len();
-        let local: Vec<f64> = self.gather.iter().map(|&p| values[p as usize]).collect();
-        let sym = SymbolicSparseColMatRef::new_unsorted_checked(nl, nl, &self.col_ptr, None, &self.row_idx);
-        let a = SparseColMatRef::new(sym, &local);
-        let mut l = vec![0.0; self.symbolic.len_val()];
-        let mut mem = MemBuffer::new(self.symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()));
-        if let Err(LltError::NonPositivePivot { index }) = self.symbolic.factorize_numeric_llt(&mut l, a, Side::Lower, LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()) {
-            return Err(self.unknowns[index.min(nl - 1)]);
-        }
-        // Trailing block: every column >= nl - m, rows from the supernodes holding them.
         let s = supernodal(&self.symbolic);
+        let mut l = vec![0.0; self.symbolic.len_val()];
+        multifrontal::factorize(s, &self.tree, &self.col_ptr, &self.row_idx, |p| values[self.gather[p] as usize], &mut l).map_err(|j| self.unknowns[j])?;
+        // Trailing block: every column >= nl - m, rows from the supernodes holding them.
         let llt = SupernodalLltRef::new(s, &l);
         let first = nl - m;
         let mut l_ss = Mat::<f64>::zeros(m, m);
