@@ -9,7 +9,7 @@ use crate::constraints::{dof, Constraints};
 use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::mesher::Rectangle;
-use crate::problem::{solve, LoadCase, Timings};
+use crate::problem::{solve, LoadCase, Prepared, Timings};
 use crate::scene::Scene;
 use crate::solve::{Ordering, SolverOptions};
 use std::fmt::Write;
@@ -64,8 +64,12 @@ pub struct Row {
     pub flops: f64,
     pub t: Timings,
     pub output: Option<f64>,
-    /// VmHWM of the process that ran the case, MiB.
+    /// VmHWM of the process that ran the case (before the refactorisation runs), MiB.
     pub peak_mib: f64,
+    /// Core-seconds the numeric factorisation spent in dense kernels (two-domain solver only).
+    pub dense_s: Option<f64>,
+    /// Numeric factorisation when refactorising with the same analysis (as in a sweep), s.
+    pub numeric_warm: f64,
 }
 
 impl Row {
@@ -75,16 +79,25 @@ impl Row {
     pub fn gflops(&self) -> f64 {
         self.flops / self.t.numeric / 1e9
     }
+    pub fn gflops_warm(&self) -> f64 {
+        self.flops / self.numeric_warm / 1e9
+    }
+    /// Rate of the dense kernels alone on this factorisation's fronts, per core, GFLOP/s: the
+    /// most any code built on them could reach here.
+    pub fn front_gflops_per_core(&self) -> Option<f64> {
+        self.dense_s.map(|d| self.flops / d / 1e9)
+    }
 
-    pub const CSV_HEADER: &'static str = "case,threads,factor,ordering,dofs,nnz_k,nnz_l,gflop,mesh_s,pattern_s,assembly_s,symbolic_s,numeric_s,solve_s,recovery_s,total_s,output_s,dofs_per_s,gflops,peak_mib";
+    pub const CSV_HEADER: &'static str = "case,threads,factor,ordering,dofs,nnz_k,nnz_l,gflop,mesh_s,pattern_s,assembly_s,symbolic_s,numeric_s,solve_s,recovery_s,total_s,output_s,dofs_per_s,gflops,peak_mib,dense_core_s,numeric_warm_s";
 
     pub fn to_csv(&self) -> String {
         let t = &self.t;
         let out = self.output.map_or(String::new(), |v| format!("{v:.4}"));
+        let dense = self.dense_s.map_or(String::new(), |v| format!("{v:.4}"));
         format!(
-            "{},{},{},{},{},{},{},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{out},{:.0},{:.3},{:.1}",
+            "{},{},{},{},{},{},{},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{out},{:.0},{:.3},{:.1},{dense},{:.4}",
             self.case, self.threads, self.factor, self.ordering, self.dofs, self.nnz_k, self.nnz_l, self.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery,
-            t.total(), self.dofs_per_s(), self.gflops(), self.peak_mib
+            t.total(), self.dofs_per_s(), self.gflops(), self.peak_mib, self.numeric_warm
         )
     }
 
@@ -110,6 +123,8 @@ impl Row {
             t,
             output: if f[16].is_empty() { None } else { Some(num(16)?) },
             peak_mib: num(19)?,
+            dense_s: if f[20].is_empty() { None } else { Some(num(20)?) },
+            numeric_warm: num(21)?,
         })
     }
 }
@@ -135,7 +150,6 @@ pub fn run_case(case: Case, cfg: &Config) -> Result<Row> {
         Case::Square(n) => square(n, &opts),
     })?;
     row.ordering = ordering_name(&cfg.ordering).into();
-    row.peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
     eprintln!("bench: {} done in {:.1} s", case.name(), clock.elapsed().as_secs_f64());
     Ok(row)
 }
@@ -144,6 +158,10 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
     let mut scene = Scene::default();
     scene.mesh.h = scene.block.thickness / ny as f64;
     let (res, _) = check::run(&scene, opts)?;
+    let peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
+    // The refactorisation of a sweep: same pattern and analysis, the factor's memory reused.
+    let prepared = check::prepare(&scene, opts)?;
+    let numeric_warm = (0..2).map(|_| Ok(check::run_model(&scene, scene.build()?, 0.0, opts, Some(&prepared))?.0.timings.numeric)).collect::<Result<Vec<f64>>>()?[1];
     // Outputs go to a private temporary directory, removed afterwards.
     let dir = std::env::temp_dir().join(format!("tribofe-bench-{}", std::process::id()));
     let clock = Instant::now();
@@ -162,7 +180,9 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
         flops: res.factor_flops,
         t: res.timings,
         output: Some(output),
-        peak_mib: 0.0,
+        peak_mib,
+        dense_s: res.dense_seconds,
+        numeric_warm,
     })
 }
 
@@ -179,7 +199,11 @@ fn square(n: usize, opts: &SolverOptions) -> Result<Row> {
     let case = LoadCase { prescribed: vec![0.0; c.n_fixed()], forces: f };
     let model = crate::assembly::Model::new(&mesh, Material::plane_strain(1e6, 0.3)?);
     let mesh_time = clock.elapsed().as_secs_f64();
-    let sol = solve(&model, &c, std::slice::from_ref(&case), opts, "check the square benchmark")?;
+    let hint = "check the square benchmark";
+    let sol = solve(&model, &c, std::slice::from_ref(&case), opts, hint)?;
+    let peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
+    let prepared = Prepared::new(&mesh, &c, opts)?;
+    let numeric_warm = (0..2).map(|_| Ok(prepared.solve(&model, &c, std::slice::from_ref(&case), opts, hint)?.timings.numeric)).collect::<Result<Vec<f64>>>()?[1];
     let clock = Instant::now();
     let stresses = crate::recovery::nodal_stresses(&model, &sol.u[0]);
     std::hint::black_box(stresses);
@@ -195,7 +219,9 @@ fn square(n: usize, opts: &SolverOptions) -> Result<Row> {
         flops: sol.factor_flops,
         t,
         output: None,
-        peak_mib: 0.0,
+        peak_mib,
+        dense_s: sol.dense_seconds,
+        numeric_warm,
     })
 }
 
@@ -252,19 +278,23 @@ pub fn best(rows: Vec<Row>) -> Option<Row> {
 /// factorisation's rate is compared with.
 pub fn table(rows: &[Row], dgemm: &[(usize, f64)]) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6} | {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>6} {:>6} | {:>8} {:>6} {:>5} {:>7}",
-        "case", "th", "factor", "ord", "DOFs", "nnz(K)", "nnz(L)", "GFLOP", "mesh", "patt", "asm", "symb", "numer", "solve", "recov", "total", "output", "DOF/s", "GF/s", "%peak", "MiB");
+    let _ = writeln!(s, "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6} | {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>6} {:>6} | {:>8} {:>6} {:>5} | {:>6} {:>5} {:>6} | {:>7}",
+        "case", "th", "factor", "ord", "DOFs", "nnz(K)", "nnz(L)", "GFLOP", "mesh", "patt", "asm", "symb", "numer", "solve", "recov", "total", "output", "DOF/s", "GF/s", "%peak", "refact", "%peak", "%front", "MiB");
     for r in rows {
         let t = &r.t;
-        let ceiling = dgemm.iter().find(|d| d.0 == r.threads).map_or("-".to_string(), |d| format!("{:.1}", 100.0 * r.gflops() / d.1));
+        let dgemm_rate = dgemm.iter().find(|d| d.0 == r.threads).map(|d| d.1);
+        let percent = |rate: f64| dgemm_rate.map_or("-".to_string(), |g| format!("{:.1}", 100.0 * rate / g));
+        let front = dgemm_rate.zip(r.front_gflops_per_core()).map_or("-".to_string(), |(g, f)| format!("{:.1}", 100.0 * f * r.threads as f64 / g));
         let _ = writeln!(
             s,
-            "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6.2} | {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} | {:>6.2} {:>6} | {:>8.2e} {:>6.2} {:>5} {:>7.0}",
+            "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6.2} | {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} | {:>6.2} {:>6} | {:>8.2e} {:>6.2} {:>5} | {:>6.3} {:>5} {:>6} | {:>7.0}",
             r.case, r.threads, r.factor, r.ordering, r.dofs, r.nnz_k, r.nnz_l, r.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery, t.total(),
-            r.output.map_or("-".into(), |v| format!("{v:.3}")), r.dofs_per_s(), r.gflops(), ceiling, r.peak_mib
+            r.output.map_or("-".into(), |v| format!("{v:.3}")), r.dofs_per_s(), r.gflops(), percent(r.gflops()), r.numeric_warm, percent(r.gflops_warm()), front, r.peak_mib
         );
     }
     let _ = writeln!(s, "times in s; symb = ordering + symbolic analysis; solve = all load cases + condition probe + residual check; %peak = numeric GFLOP/s / DGEMM GFLOP/s at the same thread count");
+    let _ = writeln!(s, "refact = numeric factorisation again with the same analysis and the factor's memory reused (as in a sweep); first-touch page faults of fresh memory make up most of the difference");
+    let _ = writeln!(s, "%front = the dense kernels' own rate on this factorisation's fronts, per core, / DGEMM per core: the ceiling of %peak for any code using them (two-domain solver only)");
     for (th, g) in dgemm {
         let _ = writeln!(s, "dense DGEMM (faer matmul): {th} thread(s) {g:.1} GFLOP/s");
     }

@@ -75,8 +75,10 @@ fn pattern(s: &SymbolicSupernodalCholesky<u32>, k: usize) -> &[u32] {
 
 /// Factorises the matrix whose lower triangle is given column by column (`col_ptr`,
 /// `row_idx` with row >= column, rows in any order; `value(p)` is entry p) into `l`
-/// (`s.len_val()` long). A non-positive pivot is returned as its column.
-pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_ptr: &[u32], row_idx: &[u32], value: impl Fn(usize) -> f64, l: &mut [f64]) -> Result<(), usize> {
+/// (`s.len_val()` long, any contents). Returns the seconds spent in the dense kernels (their
+/// rate on these fronts bounds the whole factorisation's); a non-positive pivot is returned
+/// as its column.
+pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_ptr: &[u32], row_idx: &[u32], value: impl Fn(usize) -> f64, l: &mut [f64]) -> Result<f64, usize> {
     let ns = s.n_supernodes();
     let (begin, end, val_ptr) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_val());
     let widest = (0..ns).map(|k| (end[k] - begin[k]) as usize).max().unwrap_or(0);
@@ -87,8 +89,9 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
     let mut map = Vec::new();
     // Update matrix (r x r, lower triangle) of each supernode until its parent takes it.
     let mut update: Vec<Vec<f64>> = (0..ns).map(|_| Vec::new()).collect();
-    // Consumed update buffers, reused: fresh large ones would be mapped and unmapped each time.
+    // Consumed update buffers are reused: fresh large ones would be mapped and unmapped each time.
     let mut spare: Vec<Vec<f64>> = Vec::new();
+    let mut dense = std::time::Duration::ZERO;
     for k in 0..ns {
         let (b, e) = (begin[k] as usize, end[k] as usize);
         let rows = pattern(s, k);
@@ -126,6 +129,7 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
             }
             spare.push(uc);
         }
+        let clock = std::time::Instant::now();
         let (mut top, mut bottom) = MatMut::from_column_major_slice_mut(panel, h, w).split_at_row_mut(w);
         if let Err(LltError::NonPositivePivot { index }) = llt::factor::cholesky_in_place(top.as_mut(), LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()) {
             return Err(b + index);
@@ -138,8 +142,9 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
         } else {
             spare.push(u);
         }
+        dense += clock.elapsed();
     }
-    Ok(())
+    Ok(dense.as_secs_f64())
 }
 
 #[cfg(test)]
@@ -197,7 +202,8 @@ mod tests {
         assert!(s.n_supernodes() > 20, "the test needs a tree, not one front");
         let tree = AssemblyTree::new(s).expect("faer's supernodes form an assembly tree");
         let mut ours = vec![f64::NAN; s.len_val()];
-        factorize(s, &tree, &ptr, &idx, |p| val[p], &mut ours).unwrap();
+        let dense = factorize(s, &tree, &ptr, &idx, |p| val[p], &mut ours).unwrap();
+        assert!(dense > 0.0);
         let n = ptr.len() - 1;
         let a = SparseColMatRef::new(SymbolicSparseColMatRef::new_unsorted_checked(n, n, &ptr, None, &idx), &val);
         let mut theirs = vec![0.0; s.len_val()];

@@ -55,6 +55,8 @@ pub struct Solution {
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
     pub factor_flops: f64,
+    /// Core-seconds of the numeric factorisation spent in dense kernels, when known.
+    pub dense_seconds: Option<f64>,
     pub supernodal: bool,
 }
 
@@ -165,6 +167,7 @@ impl Prepared {
             matrix_nnz: asm.pattern.nnz(),
             factor_nnz: solver.factor_nnz(),
             factor_flops: solver.factor_flops(),
+            dense_seconds: factor.dense_seconds(),
             supernodal: solver.is_supernodal(),
         })
     }

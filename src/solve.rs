@@ -176,7 +176,24 @@ pub struct Factor<'a> {
     values: FactorValues,
 }
 
+impl Drop for Factor<'_> {
+    fn drop(&mut self) {
+        if let (Backend::TwoDomain(t), FactorValues::TwoDomain(f)) = (&self.solver.backend, &mut self.values) {
+            t.recycle(f);
+        }
+    }
+}
+
 impl Factor<'_> {
+    /// Core-seconds the numeric factorisation spent in dense kernels; known for the
+    /// two-domain solver only (faer's own factorisation does not report it).
+    pub fn dense_seconds(&self) -> Option<f64> {
+        match &self.values {
+            FactorValues::TwoDomain(f) => Some(f.dense_seconds),
+            FactorValues::Direct(_) => None,
+        }
+    }
+
     /// Solves in place for `k` right-hand sides stored column-major in `b` (n x k).
     pub fn solve_in_place(&self, b: &mut [f64], k: usize) {
         let (s, l) = match (&self.solver.backend, &self.values) {

@@ -105,6 +105,26 @@ fn two_domains_match_one_factorisation_bitwise_on_any_thread_count() {
     }
 }
 
+/// A prepared solver keeps the factor's memory for the next factorisation (a sweep); the
+/// stale values in it must not leak: a material change gives bitwise the answer of a fresh
+/// solver.
+#[test]
+fn two_domain_refactorisation_in_reused_memory_is_bitwise_fresh() {
+    let scene = strip(6, "qua4");
+    let red = scene.build().unwrap().constraints.reduce().unwrap();
+    let split = bisection(&scene.build().unwrap().mesh, &red).unwrap();
+    let opts = SolverOptions { ordering: Ordering::TwoDomain(split), ..Default::default() };
+    let prepared = check::prepare(&scene, &opts).unwrap();
+    let mut other = scene.clone();
+    other.block.poisson = 0.3;
+    check::run_model(&scene, scene.build().unwrap(), 0.0, &opts, Some(&prepared)).unwrap();
+    let reused = check::run_model(&other, other.build().unwrap(), 0.0, &opts, Some(&prepared)).unwrap().0;
+    let fresh = check::run(&other, &opts).unwrap().0;
+    let bits = |r: &CheckResult| r.displacements.concat().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&reused), bits(&fresh));
+    assert!(rel_diff(&reused, &check::run(&scene, &opts).unwrap().0) > 1e-3, "nu must change the answer");
+}
+
 #[test]
 fn two_domains_name_a_free_body() {
     use tribofe::assembly::Model;
