@@ -13,6 +13,7 @@ use faer::linalg::cholesky::llt;
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
+use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::{Accum, MatMut, Par};
 
 /// Children of each supernode in the assembly tree.
@@ -64,6 +65,14 @@ impl AssemblyTree {
 
     fn children(&self, k: usize) -> &[u32] {
         &self.children[self.child_ptr[k] as usize..self.child_ptr[k + 1] as usize]
+    }
+}
+
+/// The supernodal structure of an analysis forced to be supernodal.
+pub(crate) fn supernodal(s: &SymbolicCholesky<u32>) -> &SymbolicSupernodalCholesky<u32> {
+    match s.raw() {
+        SymbolicCholeskyRaw::Supernodal(s) => s,
+        SymbolicCholeskyRaw::Simplicial(_) => unreachable!("analysed with FORCE_SUPERNODAL"),
     }
 }
 
@@ -150,7 +159,7 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
 #[cfg(test)]
 mod tests {
     use super::*;
-    use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering};
+    use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymmetricOrdering};
     use faer::sparse::linalg::SupernodalThreshold;
     use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
     use faer::Side;
@@ -176,7 +185,7 @@ mod tests {
         (ptr, idx, val)
     }
 
-    fn symbolic(ptr: &[u32], idx: &[u32]) -> faer::sparse::linalg::cholesky::SymbolicCholesky<u32> {
+    fn symbolic(ptr: &[u32], idx: &[u32]) -> SymbolicCholesky<u32> {
         let n = ptr.len() - 1;
         let a = SymbolicSparseColMatRef::new_unsorted_checked(n, n, ptr, None, idx);
         let mut params = CholeskySymbolicParams::default();
@@ -184,13 +193,6 @@ mod tests {
         // The lower triangle read as the upper triangle of the transpose: same structure.
         let upper = a.transpose().to_col_major().unwrap();
         factorize_symbolic_cholesky(upper.as_ref(), Side::Upper, SymmetricOrdering::Identity, params).unwrap()
-    }
-
-    fn supernodal(s: &faer::sparse::linalg::cholesky::SymbolicCholesky<u32>) -> &SymbolicSupernodalCholesky<u32> {
-        match s.raw() {
-            SymbolicCholeskyRaw::Supernodal(s) => s,
-            SymbolicCholeskyRaw::Simplicial(_) => unreachable!(),
-        }
     }
 
     /// Same factor as faer's left-looking numeric, to round-off (entries of L are O(1) here).

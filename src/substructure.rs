@@ -9,7 +9,7 @@
 
 use crate::assembly::Pattern;
 use crate::error::{Error, Result};
-use crate::multifrontal::{self, AssemblyTree};
+use crate::multifrontal::{self, supernodal, AssemblyTree};
 use crate::ordering::Bisection;
 use std::sync::Mutex;
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -17,7 +17,7 @@ use faer::linalg::cholesky::llt;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
-use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering};
+use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering};
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::{Accum, Conj, Mat, MatMut, Par, Side};
@@ -214,13 +214,6 @@ fn transpose(ptr: &[u32], idx: &[u32]) -> (Vec<u32>, Vec<u32>) {
         }
     }
     (t_ptr, t_idx)
-}
-
-fn supernodal(s: &SymbolicCholesky<u32>) -> &SymbolicSupernodalCholesky<u32> {
-    match s.raw() {
-        SymbolicCholeskyRaw::Supernodal(s) => s,
-        SymbolicCholeskyRaw::Simplicial(_) => unreachable!("halves are analysed as supernodal"),
-    }
 }
 
 /// Sum over the columns of L of (column count)^2.
