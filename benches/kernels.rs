@@ -1,6 +1,7 @@
 //! Kernel benchmarks (`cargo bench`): element matrices, assembly, symbolic and numeric
 //! Cholesky, and the solve (one factorisation and two domains), on a strip of the paper's
-//! scene small enough to repeat. The whole pipeline at 1e6 DOFs is `tribofe bench`.
+//! scene small enough to repeat; and the two halves' numeric factorisation of the 1e6-DOF strip,
+//! ours against faer's left-looking one. The whole pipeline at 1e6 DOFs is `tribofe bench`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -12,6 +13,7 @@ use tribofe::problem::LoadCase;
 use tribofe::scene::Scene;
 use tribofe::ordering::bisection;
 use tribofe::solve::{Ordering, Solver, SolverOptions};
+use tribofe::substructure::TwoDomain;
 
 fn kernels(c: &mut Criterion) {
     let d = Material::plane_strain(2e3, 0.4).unwrap().d_matrix();
@@ -65,5 +67,25 @@ fn kernels(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, kernels);
+/// The numeric factorisation of both halves of strip t/50 (980k unknowns), one per core, into
+/// the same memory every iteration: our multifrontal code against faer's left-looking one on
+/// the same symbolic structure.
+fn halves(c: &mut Criterion) {
+    let mut scene = Scene::default();
+    scene.mesh.h = scene.block.thickness / 50.0;
+    let sm = scene.build().unwrap();
+    let red = sm.constraints.reduce().unwrap();
+    let asm = Assembler::new(&sm.mesh, &red).unwrap();
+    let g = vec![vec![1e-6; sm.constraints.n_fixed()]];
+    let (values, _) = asm.assemble(&sm.model(), &red, &[vec![]], &g).unwrap();
+    let two = TwoDomain::analyse(&asm.pattern, &bisection(&sm.mesh, &red).unwrap()).unwrap();
+    let mut l = Default::default();
+    let mut group = c.benchmark_group("strip t/50, numeric factorisation of the two halves");
+    group.sample_size(10);
+    group.bench_function("multifrontal (ours)", |b| b.iter(|| two.factor_halves(&values, false, &mut l).unwrap()));
+    group.bench_function("left-looking (faer)", |b| b.iter(|| two.factor_halves(&values, true, &mut l).unwrap()));
+    group.finish();
+}
+
+criterion_group!(benches, kernels, halves);
 criterion_main!(benches);

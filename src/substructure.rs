@@ -19,7 +19,7 @@ use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering};
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::SymbolicSparseColMatRef;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Accum, Conj, Mat, MatMut, Par, Side};
 
 /// Symbolic analysis of both halves; reusable for any values on the same pattern.
@@ -130,6 +130,23 @@ impl TwoDomain {
             Ok(_) => Ok(TwoDomainFactor { l: [la, lb], l_ss: [sa, sb], schur, dense_seconds: da + db + clock.elapsed().as_secs_f64() }),
             Err(LltError::NonPositivePivot { index }) => Err(self.separator[index.min(m - 1)]),
         }
+    }
+
+    /// The numeric factors of the two halves alone (faer's layout, one per core, into `l`,
+    /// resized when needed), by our multifrontal code or by faer's own left-looking one: the
+    /// two are compared in `tests/parallel.rs` and `benches/kernels.rs`.
+    pub fn factor_halves(&self, values: &[f64], left_looking: bool, l: &mut [Vec<f64>; 2]) -> std::result::Result<(), usize> {
+        let [la, lb] = l;
+        let half = |part: &Part, l: &mut Vec<f64>| {
+            l.resize(part.symbolic.len_val(), 0.0);
+            if left_looking {
+                part.numeric_left_looking(values, l)
+            } else {
+                part.numeric(values, l).map(|_| ())
+            }
+        };
+        let (a, b) = rayon::join(|| half(&self.parts[0], la), || half(&self.parts[1], lb));
+        a.and(b)
     }
 
     /// Keeps the factor's memory for the next [`TwoDomain::factorize`].
@@ -284,7 +301,7 @@ impl Part {
         if l.len() != self.symbolic.len_val() {
             l = vec![0.0; self.symbolic.len_val()];
         }
-        let dense = multifrontal::factorize(s, &self.tree, &self.col_ptr, &self.row_idx, |p| values[self.gather[p] as usize], &mut l).map_err(|j| self.unknowns[j])?;
+        let dense = self.numeric(values, &mut l)?;
         // Trailing block: every column >= nl - m, rows from the supernodes holding them.
         let llt = SupernodalLltRef::new(s, &l);
         let first = nl - m;
@@ -303,6 +320,22 @@ impl Part {
             }
         }
         Ok((l, l_ss, dense))
+    }
+
+    fn numeric(&self, values: &[f64], l: &mut [f64]) -> std::result::Result<f64, usize> {
+        multifrontal::factorize(supernodal(&self.symbolic), &self.tree, &self.col_ptr, &self.row_idx, |p| values[self.gather[p] as usize], l).map_err(|j| self.unknowns[j])
+    }
+
+    /// faer's own (left-looking) numeric factorisation on the same structure.
+    fn numeric_left_looking(&self, values: &[f64], l: &mut [f64]) -> std::result::Result<(), usize> {
+        let nl = self.unknowns.len();
+        let local: Vec<f64> = self.gather.iter().map(|&p| values[p as usize]).collect();
+        let a = SparseColMatRef::new(SymbolicSparseColMatRef::new_unsorted_checked(nl, nl, &self.col_ptr, None, &self.row_idx), &local);
+        let mut mem = MemBuffer::new(self.symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()));
+        match self.symbolic.factorize_numeric_llt(l, a, Side::Lower, LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()) {
+            Err(LltError::NonPositivePivot { index }) => Err(self.unknowns[index.min(nl - 1)]),
+            Ok(_) => Ok(()),
+        }
     }
 
     /// Forward (L y = b) or backward (L^T x = y) solve in place, k columns of local length.

@@ -105,6 +105,28 @@ fn two_domains_match_one_factorisation_bitwise_on_any_thread_count() {
     }
 }
 
+/// Our multifrontal factorisation of the halves and faer's left-looking one on the same
+/// structure: the same factor to round-off (entries of L relative to the largest).
+#[test]
+fn multifrontal_halves_equal_faer_left_looking() {
+    use tribofe::substructure::TwoDomain;
+    for element in ["qua4", "qua8"] {
+        let sm = strip(8, element).build().unwrap();
+        let red = sm.constraints.reduce().unwrap();
+        let asm = Assembler::new(&sm.mesh, &red).unwrap();
+        let g = vec![vec![1e-6; sm.constraints.n_fixed()]];
+        let (values, _) = asm.assemble(&sm.model(), &red, &[vec![]], &g).unwrap();
+        let two = TwoDomain::analyse(&asm.pattern, &bisection(&sm.mesh, &red).unwrap()).unwrap();
+        let (mut ours, mut faer) = (Default::default(), Default::default());
+        two.factor_halves(&values, false, &mut ours).unwrap();
+        two.factor_halves(&values, true, &mut faer).unwrap();
+        let (a, b) = (ours.concat(), faer.concat());
+        let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let worst = a.iter().zip(&b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())) / scale;
+        assert!(worst < 1e-12, "{element}: relative difference {worst:.2e}");
+    }
+}
+
 /// A prepared solver keeps the factor's memory for the next factorisation (a sweep); the
 /// stale values in it must not leak: a material change gives bitwise the answer of a fresh
 /// solver.
