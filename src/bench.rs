@@ -299,7 +299,7 @@ pub fn table(rows: &[Row], dgemm: &[(usize, f64)]) -> String {
         );
     }
     let _ = writeln!(s, "times in s; symb = ordering + symbolic analysis; solve = all load cases + condition probe + residual check; %peak = numeric GFLOP/s / DGEMM GFLOP/s at the same thread count");
-    let _ = writeln!(s, "refact = numeric factorisation again with the same analysis and the factor's memory reused (as in a sweep); first-touch page faults of fresh memory make up most of the difference");
+    let _ = writeln!(s, "refact = numeric factorisation again with the same analysis and, with two domains, the factor's memory reused (as in a sweep); first-touch page faults of fresh memory make up most of the difference");
     let _ = writeln!(s, "%front = the dense kernels' own rate on this factorisation's fronts, per core, / DGEMM per core: the ceiling of %peak for any code using them (two-domain solver only)");
     for (th, g) in dgemm {
         let _ = writeln!(s, "dense DGEMM (faer matmul): {th} thread(s) {g:.1} GFLOP/s");
