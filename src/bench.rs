@@ -316,3 +316,23 @@ pub fn write_csv(rows: &[Row], dgemm: &[(usize, f64)], dir: &Path) -> Result<()>
     dgemm.iter().for_each(|(t, g)| d.push_str(&format!("{t},{g:.2}\n")));
     crate::report::write_atomic(&dir.join("dgemm.csv"), d.as_bytes())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The parent process reads back what the child printed: every stored field survives.
+    #[test]
+    fn row_round_trips_through_csv() {
+        let t = Timings { mesh: 0.01, pattern: 0.02, assembly: 0.03, symbolic: 0.04, numeric: 0.5, solve: 0.06, recovery: 0.07 };
+        let row = Row { case: "strip50".into(), threads: 2, factor: "supernodal".into(), ordering: "auto".into(), dofs: 980099, nnz_k: 9210342, nnz_l: 71550638, flops: 7.141e9, t, output: Some(0.08), peak_mib: 1036.0, dense_s: Some(0.4088), numeric_warm: 0.3563 };
+        for (output, dense_s) in [(Some(0.08), Some(0.4088)), (None, None)] {
+            let r = Row { output, dense_s, ..row.clone() };
+            let back = Row::from_csv(&r.to_csv()).unwrap();
+            assert_eq!((back.case.as_str(), back.threads, back.dofs, back.nnz_l), ("strip50", 2, 980099, 71550638));
+            assert_eq!((back.output, back.dense_s, back.numeric_warm, back.t.numeric), (output, dense_s, 0.3563, 0.5));
+            assert!((back.flops - 7.141e9).abs() < 1e5 && back.peak_mib == 1036.0);
+        }
+        assert!(Row::from_csv("strip50,2").is_err());
+    }
+}
