@@ -2,16 +2,16 @@
 //! between them ([`crate::ordering::bisection`]). Each half with the separator ordered last is
 //! a principal submatrix of K, hence positive definite. faer analyses each half and
 //! [`crate::multifrontal`] factorises the two at once, one per core: threads inside a front
-//! only help large dense fronts, which a thin strip lacks. The trailing block L_ss of each factor gives that half's condensation onto the
-//! separator, L_ss L_ss^T = A_ss - A_sk A_kk^-1 A_ks; their sum less A_ss (counted twice) is
-//! the separator's Schur complement, a small dense matrix. The work done does not depend on
-//! the thread count, so neither do the results.
+//! only help large dense fronts, which a thin strip lacks. The trailing block L_ss of each
+//! factor gives that half's condensation onto the separator, L_ss L_ss^T = A_ss - A_sk
+//! A_kk^-1 A_ks; their sum less A_ss (counted twice) is the separator's Schur complement, a
+//! small dense matrix. The work done does not depend on the thread count, so neither do the
+//! results.
 
 use crate::assembly::Pattern;
 use crate::error::{Error, Result};
 use crate::multifrontal::{self, supernodal, AssemblyTree};
 use crate::ordering::Bisection;
-use std::sync::Mutex;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
@@ -21,6 +21,7 @@ use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbol
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Accum, Conj, Mat, MatMut, Par, Side};
+use std::sync::Mutex;
 
 /// Symbolic analysis of both halves; reusable for any values on the same pattern.
 pub struct TwoDomain {
