@@ -101,10 +101,26 @@ pub fn map_point(kind: ElementKind, coords: &[[f64; 2]], xi: [f64; 2]) -> Mapped
     let mut n = [0.0; MAX_NODES];
     let mut dn = [[0.0; 2]; MAX_NODES];
     shape::eval(kind, xi, &mut n[..nn], &mut dn[..nn]);
-    let (mut j, mut x) = ([[0.0; 2]; 2], [0.0; 2]);
+    let mut x = [0.0; 2];
     for a in 0..nn {
         for r in 0..2 {
             x[r] += n[a] * coords[a][r];
+        }
+    }
+    let mut dndx = [[0.0; 2]; MAX_NODES];
+    let det_j = physical_derivatives(&coords[..nn], &dn[..nn], &mut dndx[..nn]);
+    MappedPoint { n, dndx, det_j, x }
+}
+
+/// dN/dx from the reference derivatives `dn` at one point of the element with nodes
+/// `coords`; returns det J. Shared by [`map_point`] and the stiffness kernel, which must agree
+/// bitwise.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // unrolled when the node count is a constant
+fn physical_derivatives(coords: &[[f64; 2]], dn: &[[f64; 2]], dndx: &mut [[f64; 2]]) -> f64 {
+    let mut j = [[0.0; 2]; 2];
+    for a in 0..coords.len() {
+        for r in 0..2 {
             for c in 0..2 {
                 j[r][c] += coords[a][r] * dn[a][c];
             }
@@ -112,14 +128,13 @@ pub fn map_point(kind: ElementKind, coords: &[[f64; 2]], xi: [f64; 2]) -> Mapped
     }
     let det_j = j[0][0] * j[1][1] - j[0][1] * j[1][0];
     let inv = [[j[1][1] / det_j, -j[0][1] / det_j], [-j[1][0] / det_j, j[0][0] / det_j]];
-    let mut dndx = [[0.0; 2]; MAX_NODES];
-    for a in 0..nn {
+    for (d, g) in dndx.iter_mut().zip(dn) {
         // dN/dx_c = sum_k dN/dxi_k dxi_k/dx_c, with dxi/dx = J^-1
         for c in 0..2 {
-            dndx[a][c] = dn[a][0] * inv[0][c] + dn[a][1] * inv[1][c];
+            d[c] = g[0] * inv[0][c] + g[1] * inv[1][c];
         }
     }
-    MappedPoint { n, dndx, det_j, x }
+    det_j
 }
 
 /// Full-integration stiffness into `k` (row-major, DOF order u0, v0, u1, v1, ...).
@@ -161,7 +176,6 @@ fn stiffness_table(kind: ElementKind) -> &'static [(f64, [[f64; 2]; MAX_NODES])]
 /// [`stiffness`] for `NN`-node kinds; the same operations in the same order as
 /// [`map_point`] followed by the B^T D B sum, so results are bitwise those of the generic form.
 #[inline(always)]
-#[allow(clippy::needless_range_loop)] // indexed as in the generic form it must match bitwise
 fn stiffness_n<const NN: usize>(kind: ElementKind, coords: &[[f64; 2]], d: &Matrix3<f64>, k: &mut [f64]) -> f64 {
     let x: &[[f64; 2]; NN] = coords[..NN].try_into().expect("one coordinate pair per node");
     let nd = 2 * NN;
@@ -169,22 +183,8 @@ fn stiffness_n<const NN: usize>(kind: ElementKind, coords: &[[f64; 2]], d: &Matr
     k.fill(0.0);
     let mut min_det = f64::INFINITY;
     for (qw, dn) in stiffness_table(kind) {
-        let mut j = [[0.0; 2]; 2];
-        for a in 0..NN {
-            for r in 0..2 {
-                for c in 0..2 {
-                    j[r][c] += x[a][r] * dn[a][c];
-                }
-            }
-        }
-        let det_j = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-        let inv = [[j[1][1] / det_j, -j[0][1] / det_j], [-j[1][0] / det_j, j[0][0] / det_j]];
         let mut dndx = [[0.0; 2]; NN];
-        for a in 0..NN {
-            for c in 0..2 {
-                dndx[a][c] = dn[a][0] * inv[0][c] + dn[a][1] * inv[1][c];
-            }
-        }
+        let det_j = physical_derivatives(x, &dn[..NN], &mut dndx);
         min_det = min_det.min(det_j);
         add_btdb(k, &dndx, qw * det_j, d);
     }
