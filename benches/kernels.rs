@@ -85,6 +85,18 @@ fn halves(c: &mut Criterion) {
     group.bench_function("multifrontal (ours)", |b| b.iter(|| two.factor_halves(&values, false, &mut l).unwrap()));
     group.bench_function("left-looking (faer)", |b| b.iter(|| two.factor_halves(&values, true, &mut l).unwrap()));
     group.finish();
+    // Forward and backward solves of both halves for 3 right-hand sides, on that factor.
+    two.factor_halves(&values, false, &mut l).unwrap();
+    let mut y: [Vec<f64>; 2] = Default::default();
+    let mut group = c.benchmark_group("strip t/50, solves of the two halves, 3 right-hand sides");
+    group.sample_size(10);
+    let mut run = |faer: bool| {
+        y.iter_mut().for_each(Vec::clear); // fresh right-hand sides: repeated solves would overflow
+        two.solve_halves(&l, &mut y, 3, faer)
+    };
+    group.bench_function("ours", |b| b.iter(|| run(false)));
+    group.bench_function("faer", |b| b.iter(|| run(true)));
+    group.finish();
 }
 
 criterion_group!(benches, kernels, halves);

@@ -20,7 +20,7 @@ use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSuper
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering};
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Accum, Conj, Mat, MatMut, Par, Side};
+use faer::{Accum, Conj, Mat, Par, Side};
 use std::sync::Mutex;
 
 /// Symbolic analysis of both halves; reusable for any values on the same pattern.
@@ -148,6 +148,26 @@ impl TwoDomain {
         };
         let (a, b) = rayon::join(|| half(&self.parts[0], la), || half(&self.parts[1], lb));
         a.and(b)
+    }
+
+    /// Forward then backward solve of each half alone (one per core) with the factors of
+    /// [`TwoDomain::factor_halves`], `k` columns of each half's length in `y`, by our
+    /// substitution or by faer's supernodal one: compared in `tests/parallel.rs` and
+    /// `benches/kernels.rs`.
+    pub fn solve_halves(&self, l: &[Vec<f64>; 2], y: &mut [Vec<f64>; 2], k: usize, faer: bool) {
+        let half = |h: usize, y: &mut Vec<f64>| {
+            let part = &self.parts[h];
+            y.resize(part.unknowns.len() * k, 1.0);
+            for forward in [true, false] {
+                if faer {
+                    part.solve_faer(&l[h], y, k, forward);
+                } else {
+                    part.solve(&l[h], y, k, forward);
+                }
+            }
+        };
+        let [ya, yb] = y;
+        rayon::join(|| half(0, ya), || half(1, yb));
     }
 
     /// Keeps the factor's memory for the next [`TwoDomain::factorize`].
@@ -339,16 +359,26 @@ impl Part {
         }
     }
 
-    /// Forward (L y = b) or backward (L^T x = y) solve in place, k columns of local length.
-    fn solve(&self, l: &[f64], y: &mut [f64], k: usize, forward: bool) {
+    /// [`Part::solve`] by faer's supernodal solve.
+    fn solve_faer(&self, l: &[f64], y: &mut [f64], k: usize, forward: bool) {
         let s = supernodal(&self.symbolic);
         let llt = SupernodalLltRef::new(s, l);
         let mut mem = MemBuffer::new(s.solve_in_place_scratch::<f64>(k, Par::Seq));
-        let rhs = MatMut::from_column_major_slice_mut(y, self.unknowns.len(), k);
+        let rhs = faer::MatMut::from_column_major_slice_mut(y, self.unknowns.len(), k);
         if forward {
             llt.l_solve_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
         } else {
             llt.l_transpose_solve_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
+        }
+    }
+
+    /// Forward (L y = b) or backward (L^T x = y) solve in place, k columns of local length.
+    fn solve(&self, l: &[f64], y: &mut [f64], k: usize, forward: bool) {
+        let s = supernodal(&self.symbolic);
+        if forward {
+            multifrontal::forward_solve(s, l, y, k);
+        } else {
+            multifrontal::backward_solve(s, l, y, k);
         }
     }
 }
