@@ -133,8 +133,9 @@ impl Prepared {
         // One extra column, a fixed pseudo-random probe b, rides along in the same solve: the
         // size of K^-1 b bounds the condition number from below, and for a singular K it is
         // dominated by the free rigid-body motion, which we can then name.
-        let mut x = rhs.clone();
-        x.extend_from_slice(&probe_vector(n));
+        let mut x = Vec::with_capacity((nc + 1) * n);
+        x.extend_from_slice(&rhs);
+        x.extend(probe_vector(n));
         factor.solve_in_place(&mut x, nc + 1);
         let condition = norm_1_sym(&asm.pattern, &values) * x[nc * n..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
         if !(condition < 1e15) {
@@ -174,14 +175,12 @@ impl Prepared {
 }
 
 /// Deterministic values in [-1, 1] (a linear congruential sequence), the same every run.
-fn probe_vector(n: usize) -> Vec<f64> {
+fn probe_vector(n: usize) -> impl Iterator<Item = f64> {
     let mut s: u64 = 0x9E37_79B9_7F4A_7C15;
-    (0..n)
-        .map(|_| {
-            s = s.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-            (s >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        })
-        .collect()
+    (0..n).map(move |_| {
+        s = s.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (s >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    })
 }
 
 /// max_j sum_i |K_ij| (= the infinity norm) of the symmetric matrix stored by its lower triangle.

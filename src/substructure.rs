@@ -76,13 +76,6 @@ impl TwoDomain {
         if let Some(k) = label.iter().position(|&l| l == u8::MAX) {
             return Err(Error::input("two-domain split", format!("unknown {k} is in no part")));
         }
-        for j in 0..n {
-            for &i in &pattern.row_idx[pattern.col_ptr[j]..pattern.col_ptr[j + 1]] {
-                if label[i] != label[j] && label[i] != SEP && label[j] != SEP {
-                    return Err(Error::input("two-domain split", format!("unknowns {j} and {i} couple the two halves directly")));
-                }
-            }
-        }
         let (a, b) = rayon::join(|| Part::analyse(pattern, &split.parts[0], &split.separator), || Part::analyse(pattern, &split.parts[1], &split.separator));
         let mut local = vec![usize::MAX; n];
         split.separator.iter().enumerate().for_each(|(s, &k)| local[k] = s);
@@ -272,12 +265,16 @@ impl Part {
         unknowns.iter().enumerate().for_each(|(l, &g)| local[g] = l as u32);
         // Global lower-triangle entries inside this part, moved to the local lower triangle
         // (column = the smaller local index): count, then fill.
+        // An entry outside the part in a column of the half couples the halves directly (the
+        // other half's columns are checked by its own part).
         let mut col_ptr = vec![0u32; nl + 1];
         for (jl, &j) in unknowns.iter().enumerate() {
             for &i in &pattern.row_idx[pattern.col_ptr[j]..pattern.col_ptr[j + 1]] {
                 let il = local[i];
                 if il != u32::MAX {
                     col_ptr[il.min(jl as u32) as usize + 1] += 1;
+                } else if jl < half.len() {
+                    return Err(Error::input("two-domain split", format!("unknowns {j} and {i} couple the two halves directly")));
                 }
             }
         }

@@ -131,6 +131,32 @@ fn multifrontal_halves_and_their_solves_equal_faer() {
     }
 }
 
+/// A split that is not a partition, or whose halves touch, is refused with the reason.
+#[test]
+fn a_bad_two_domain_split_is_refused() {
+    use tribofe::substructure::TwoDomain;
+    let sm = strip(6, "qua4").build().unwrap();
+    let red = sm.constraints.reduce().unwrap();
+    let asm = Assembler::new(&sm.mesh, &red).unwrap();
+    let good = bisection(&sm.mesh, &red).unwrap();
+    assert!(TwoDomain::analyse(&asm.pattern, &good).is_ok());
+    let refused = |split: &tribofe::ordering::Bisection, why: &str| {
+        let e = TwoDomain::analyse(&asm.pattern, split).err().expect("refused").to_string();
+        assert!(e.contains(why), "{e}");
+    };
+    // A separator unknown moved into one half touches the other half.
+    let mut touching = good.clone();
+    let k = touching.separator.remove(0);
+    touching.parts[0].push(k);
+    refused(&touching, "couple the two halves directly");
+    let mut twice = good.clone();
+    twice.parts[1].push(twice.parts[0][0]);
+    refused(&twice, "listed twice");
+    let mut missing = good.clone();
+    missing.parts[1].pop();
+    refused(&missing, "is in no part");
+}
+
 /// Largest difference of the two halves' values, relative to the largest value.
 fn relative_difference(a: &[Vec<f64>; 2], b: &[Vec<f64>; 2]) -> f64 {
     let (a, b) = (a.concat(), b.concat());
