@@ -88,16 +88,16 @@ impl Row {
         self.dense_s.map(|d| self.flops / d / 1e9)
     }
 
-    pub const CSV_HEADER: &'static str = "case,threads,factor,ordering,dofs,nnz_k,nnz_l,gflop,mesh_s,pattern_s,assembly_s,symbolic_s,numeric_s,solve_s,recovery_s,total_s,output_s,dofs_per_s,gflops,peak_mib,dense_core_s,numeric_warm_s";
+    pub const CSV_HEADER: &'static str = "case,threads,factor,ordering,dofs,nnz_k,nnz_l,gflop,mesh_s,pattern_s,assembly_s,symbolic_s,numeric_s,solve_s,recovery_s,other_s,total_s,output_s,dofs_per_s,gflops,peak_mib,dense_core_s,numeric_warm_s";
 
     pub fn to_csv(&self) -> String {
         let t = &self.t;
         let out = self.output.map_or(String::new(), |v| format!("{v:.4}"));
         let dense = self.dense_s.map_or(String::new(), |v| format!("{v:.4}"));
         format!(
-            "{},{},{},{},{},{},{},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{out},{:.0},{:.3},{:.1},{dense},{:.4}",
+            "{},{},{},{},{},{},{},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{out},{:.0},{:.3},{:.1},{dense},{:.4}",
             self.case, self.threads, self.factor, self.ordering, self.dofs, self.nnz_k, self.nnz_l, self.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery,
-            t.total(), self.dofs_per_s(), self.gflops(), self.peak_mib, self.numeric_warm
+            t.other, t.total(), self.dofs_per_s(), self.gflops(), self.peak_mib, self.numeric_warm
         )
     }
 
@@ -110,7 +110,7 @@ impl Row {
         }
         let num = |i: usize| f[i].parse::<f64>().map_err(|_| bad());
         let int = |i: usize| f[i].parse::<usize>().map_err(|_| bad());
-        let t = Timings { mesh: num(8)?, pattern: num(9)?, assembly: num(10)?, symbolic: num(11)?, numeric: num(12)?, solve: num(13)?, recovery: num(14)? };
+        let t = Timings { mesh: num(8)?, pattern: num(9)?, assembly: num(10)?, symbolic: num(11)?, numeric: num(12)?, solve: num(13)?, recovery: num(14)?, other: num(15)? };
         Ok(Row {
             case: f[0].into(),
             threads: int(1)?,
@@ -121,10 +121,10 @@ impl Row {
             nnz_l: int(6)?,
             flops: num(7)? * 1e9,
             t,
-            output: if f[16].is_empty() { None } else { Some(num(16)?) },
-            peak_mib: num(19)?,
-            dense_s: if f[20].is_empty() { None } else { Some(num(20)?) },
-            numeric_warm: num(21)?,
+            output: if f[17].is_empty() { None } else { Some(num(17)?) },
+            peak_mib: num(20)?,
+            dense_s: if f[21].is_empty() { None } else { Some(num(21)?) },
+            numeric_warm: num(22)?,
         })
     }
 }
@@ -284,8 +284,8 @@ pub fn best(rows: Vec<Row>) -> Option<Row> {
 /// factorisation's rate is compared with.
 pub fn table(rows: &[Row], dgemm: &[(usize, f64)]) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6} | {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>6} {:>6} | {:>8} {:>6} {:>5} | {:>6} {:>5} {:>6} | {:>7}",
-        "case", "th", "factor", "ord", "DOFs", "nnz(K)", "nnz(L)", "GFLOP", "mesh", "patt", "asm", "symb", "numer", "solve", "recov", "total", "output", "DOF/s", "GF/s", "%peak", "refact", "%peak", "%front", "MiB");
+    let _ = writeln!(s, "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6} | {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>6} {:>6} | {:>8} {:>6} {:>5} | {:>6} {:>5} {:>6} | {:>7}",
+        "case", "th", "factor", "ord", "DOFs", "nnz(K)", "nnz(L)", "GFLOP", "mesh", "patt", "asm", "symb", "numer", "solve", "recov", "other", "total", "output", "DOF/s", "GF/s", "%peak", "refact", "%peak", "%front", "MiB");
     for r in rows {
         let t = &r.t;
         let dgemm_rate = dgemm.iter().find(|d| d.0 == r.threads).map(|d| d.1);
@@ -293,12 +293,12 @@ pub fn table(rows: &[Row], dgemm: &[(usize, f64)]) -> String {
         let front = dgemm_rate.zip(r.front_gflops_per_core()).map_or("-".to_string(), |(g, f)| format!("{:.1}", 100.0 * f * r.threads as f64 / g));
         let _ = writeln!(
             s,
-            "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6.2} | {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} | {:>6.2} {:>6} | {:>8.2e} {:>6.2} {:>5} | {:>6.3} {:>5} {:>6} | {:>7.0}",
-            r.case, r.threads, r.factor, r.ordering, r.dofs, r.nnz_k, r.nnz_l, r.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery, t.total(),
+            "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6.2} | {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} | {:>6.2} {:>6} | {:>8.2e} {:>6.2} {:>5} | {:>6.3} {:>5} {:>6} | {:>7.0}",
+            r.case, r.threads, r.factor, r.ordering, r.dofs, r.nnz_k, r.nnz_l, r.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery, t.other, t.total(),
             r.output.map_or("-".into(), |v| format!("{v:.3}")), r.dofs_per_s(), r.gflops(), percent(r.gflops()), r.numeric_warm, percent(r.gflops_warm()), front, r.peak_mib
         );
     }
-    let _ = writeln!(s, "times in s; symb = ordering + symbolic analysis; solve = all load cases + condition probe + residual check; %peak = numeric GFLOP/s / DGEMM GFLOP/s at the same thread count");
+    let _ = writeln!(s, "times in s; symb = ordering + symbolic analysis; solve = all load cases + condition probe + residual check; other = the rest of the run's wall time (total = wall time, mesh to recovery); %peak = numeric GFLOP/s / DGEMM GFLOP/s at the same thread count");
     let _ = writeln!(s, "refact = numeric factorisation again with the same analysis and, with two domains, the factor's memory reused (as in a sweep); first-touch page faults of fresh memory make up most of the difference");
     let _ = writeln!(s, "%front = the dense kernels' own rate on this factorisation's fronts, per core, / DGEMM per core: the ceiling of %peak for any code using them (two-domain solver only)");
     for (th, g) in dgemm {
@@ -324,13 +324,13 @@ mod tests {
     /// The parent process reads back what the child printed: every stored field survives.
     #[test]
     fn row_round_trips_through_csv() {
-        let t = Timings { mesh: 0.01, pattern: 0.02, assembly: 0.03, symbolic: 0.04, numeric: 0.5, solve: 0.06, recovery: 0.07 };
+        let t = Timings { mesh: 0.01, pattern: 0.02, assembly: 0.03, symbolic: 0.04, numeric: 0.5, solve: 0.06, recovery: 0.07, other: 0.005 };
         let row = Row { case: "strip50".into(), threads: 2, factor: "supernodal".into(), ordering: "auto".into(), dofs: 980099, nnz_k: 9210342, nnz_l: 71550638, flops: 7.141e9, t, output: Some(0.08), peak_mib: 1036.0, dense_s: Some(0.4088), numeric_warm: 0.3563 };
         for (output, dense_s) in [(Some(0.08), Some(0.4088)), (None, None)] {
             let r = Row { output, dense_s, ..row.clone() };
             let back = Row::from_csv(&r.to_csv()).unwrap();
             assert_eq!((back.case.as_str(), back.threads, back.dofs, back.nnz_l), ("strip50", 2, 980099, 71550638));
-            assert_eq!((back.output, back.dense_s, back.numeric_warm, back.t.numeric), (output, dense_s, 0.3563, 0.5));
+            assert_eq!((back.output, back.dense_s, back.numeric_warm, back.t.numeric, back.t.other), (output, dense_s, 0.3563, 0.5, 0.005));
             assert!((back.flops - 7.141e9).abs() < 1e5 && back.peak_mib == 1036.0);
         }
         assert!(Row::from_csv("strip50,2").is_err());

@@ -103,7 +103,9 @@ pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneMod
     let clock = Instant::now();
     let sm = scene.build()?;
     let mesh_time = clock.elapsed().as_secs_f64();
-    run_model(scene, sm, mesh_time, opts, None)
+    let (mut res, sm) = run_model(scene, sm, mesh_time, opts, None)?;
+    res.timings.set_wall(clock.elapsed().as_secs_f64());
+    Ok((res, sm))
 }
 
 /// Runs the check on a model built from `scene` and then altered (e.g. interior nodes moved

@@ -101,7 +101,7 @@ pub fn table(res: &CheckResult) -> String {
     let r = &res.solve_report;
     let _ = writeln!(
         s,
-        "solver: componentwise backward error {:.1e} (after {} refinement steps), condition estimate {:.1e}; time {:.1} ms (mesh {:.1}, pattern {:.1}, assembly {:.1}, symbolic {:.1}, numeric {:.1}, solve {:.1}, recovery {:.1})",
+        "solver: componentwise backward error {:.1e} (after {} refinement steps), condition estimate {:.1e}; time {:.1} ms (mesh {:.1}, pattern {:.1}, assembly {:.1}, symbolic {:.1}, numeric {:.1}, solve {:.1}, recovery {:.1}, other {:.1})",
         r.residual.iter().cloned().fold(0.0, f64::max),
         r.refinement_steps,
         r.condition_estimate,
@@ -112,7 +112,8 @@ pub fn table(res: &CheckResult) -> String {
         res.timings.symbolic * 1e3,
         res.timings.numeric * 1e3,
         res.timings.solve * 1e3,
-        res.timings.recovery * 1e3
+        res.timings.recovery * 1e3,
+        res.timings.other * 1e3
     );
     s
 }
