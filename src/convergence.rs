@@ -298,17 +298,6 @@ pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
     front
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    #[test]
-    fn pareto_keeps_only_non_dominated_points() {
-        let pts = [(1.0, 1.0), (2.0, 0.5), (1.5, 2.0), (3.0, 0.5), (4.0, 0.1)];
-        assert_eq!(pareto_front(&pts), vec![0, 1, 4]);
-        assert!((observed_order(4.0, 2.0, 1.0, 1.0) - 2.0).abs() < 1e-15);
-    }
-}
-
 /// Runs of one (element, family) series, sorted from coarse to fine.
 pub fn series(study: &Study) -> Vec<Vec<usize>> {
     let mut keys: Vec<(String, Family)> = study.runs.iter().map(|r| (r.element.clone(), r.family)).collect();
@@ -406,4 +395,15 @@ pub fn decay_rates(r: &Run, t_over_l: f64, floor: f64) -> [Option<f64>; 4] {
     let dp = |i: usize| r.p[i] - (a + b * r.x[i]);
     let dt = |i: usize| r.tau[i] - tau_far;
     [fit(&dp, true), fit(&dp, false), fit(&dt, true), fit(&dt, false)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn pareto_keeps_only_non_dominated_points() {
+        let pts = [(1.0, 1.0), (2.0, 0.5), (1.5, 2.0), (3.0, 0.5), (4.0, 0.1)];
+        assert_eq!(pareto_front(&pts), vec![0, 1, 4]);
+        assert!((observed_order(4.0, 2.0, 1.0, 1.0) - 2.0).abs() < 1e-15);
+    }
 }

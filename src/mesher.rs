@@ -26,7 +26,7 @@ pub fn spacing(len: f64, n: usize, grading: Option<Grading>) -> Result<Vec<f64>>
         }
         return Ok(vec![len / n as f64; n]);
     };
-    if !(g.end > 0.0 && g.end <= len / 2.0) || !(g.ratio >= 1.0 && g.ratio.is_finite()) {
+    if !(g.end > 0.0 && g.end <= len / 2.0 && g.ratio >= 1.0 && g.ratio.is_finite()) {
         return Err(Error::input("grading", format!("end size {} m must be in (0, {}] and ratio {} >= 1", g.end, len / 2.0, g.ratio)));
     }
     let cap = g.max.unwrap_or(f64::INFINITY).max(g.end);

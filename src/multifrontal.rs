@@ -271,8 +271,7 @@ mod tests {
     fn symbolic(ptr: &[u32], idx: &[u32]) -> SymbolicCholesky<u32> {
         let n = ptr.len() - 1;
         let a = SymbolicSparseColMatRef::new_unsorted_checked(n, n, ptr, None, idx);
-        let mut params = CholeskySymbolicParams::default();
-        params.supernodal_flop_ratio_threshold = SupernodalThreshold::FORCE_SUPERNODAL;
+        let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL, ..Default::default() };
         // The lower triangle read as the upper triangle of the transpose: same structure.
         let upper = a.transpose().to_col_major().unwrap();
         factorize_symbolic_cholesky(upper.as_ref(), Side::Upper, SymmetricOrdering::Identity, params).unwrap()

@@ -79,12 +79,12 @@ pub struct Solver {
 impl Solver {
     pub fn analyse(pattern: &Pattern, options: SolverOptions) -> Result<Self> {
         let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
-        let mut params = CholeskySymbolicParams::default();
-        params.supernodal_flop_ratio_threshold = match options.supernodal {
+        let threshold = match options.supernodal {
             None => SupernodalThreshold::AUTO,
             Some(true) => SupernodalThreshold::FORCE_SUPERNODAL,
             Some(false) => SupernodalThreshold::FORCE_SIMPLICIAL,
         };
+        let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: threshold, ..Default::default() };
         let inv;
         let ordering = match &options.ordering {
             Ordering::TwoDomain(split) => {
@@ -159,6 +159,7 @@ impl Solver {
     }
 }
 
+#[allow(clippy::large_enum_variant)] // one per solver: its size does not matter
 enum Backend {
     /// One faer factorisation.
     Direct(SymbolicCholesky<usize>),

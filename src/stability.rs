@@ -226,7 +226,7 @@ fn plate_finding(n: usize, points: &[PlatePoint]) -> PlateFinding {
     let ok: Vec<(f64, f64)> = pts.iter().filter_map(|p| p.raw.as_ref().map(|r| (p.ratio, r.err()))).collect();
     let (best_ratio, best_err) = ok.iter().cloned().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap_or((f64::NAN, f64::NAN));
     // A failed solve above the best counts as round-off having taken over.
-    let roundoff_ratio = pts.iter().filter(|p| p.ratio > best_ratio).find(|p| p.raw.as_ref().map_or(true, |r| r.err() > 10.0 * best_err)).map(|p| p.ratio);
+    let roundoff_ratio = pts.iter().filter(|p| p.ratio > best_ratio).find(|p| p.raw.as_ref().is_none_or(|r| r.err() > 10.0 * best_err)).map(|p| p.ratio);
     PlateFinding {
         n_thick: n,
         best_ratio,

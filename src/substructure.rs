@@ -301,8 +301,7 @@ impl Part {
         // analysis gets the transposed pattern, the factorisation no copy.
         let (up_ptr, up_idx) = transpose(&col_ptr, &row_idx);
         let upper = SymbolicSparseColMatRef::new_unsorted_checked(nl, nl, &up_ptr, None, &up_idx);
-        let mut params = CholeskySymbolicParams::default();
-        params.supernodal_flop_ratio_threshold = SupernodalThreshold::FORCE_SUPERNODAL;
+        let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL, ..Default::default() };
         let symbolic = factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params).map_err(|e| match e {
             faer::sparse::FaerError::IndexOverflow => too_big(),
             e => Error::input("symbolic factorisation", format!("{e:?}")),

@@ -12,16 +12,14 @@ use tribofe::material::Material;
 use tribofe::mesh::Mesh;
 use tribofe::mesher::Rectangle;
 use tribofe::problem::{solve, LoadCase};
-use tribofe::recovery::{elements_touching, error_norms, gauss_stresses, nodal_stresses};
+use tribofe::recovery::{elements_touching, error_norms, nodal_stresses};
 use tribofe::solve::SolverOptions;
+
+mod common;
+use common::boundary;
 
 fn mat() -> Material {
     Material::plane_strain(2e3, 0.4).unwrap()
-}
-
-/// Boundary nodes of a rectangle mesh (all four named edges).
-fn boundary(m: &Mesh) -> Vec<usize> {
-    m.nodes_of_sets(&["bottom", "right", "top", "left"]).unwrap()
 }
 
 /// Moves interior nodes by a deterministic pseudo-random amount (up to 20 % of h).
@@ -40,43 +38,14 @@ fn distort(m: &mut Mesh, h: f64) {
     m.validate().unwrap();
 }
 
+/// Constant strain on strongly distorted QUA4 and TRI3 meshes (any straight-sided quadrilateral
+/// or triangle passes).
 #[test]
 fn patch_test_distorted_qua4_and_tri3() {
-    // Linear field u = (a + b x + c y, d + e x + f y): constant strain, exact for any element.
-    let lin = |p: [f64; 2]| [1e-3 + 2e-3 * p[0] - 1e-3 * p[1], -2e-3 + 0.5e-3 * p[0] + 3e-3 * p[1]];
-    let m = mat();
-    let eps = [2e-3, 3e-3, -1e-3 + 0.5e-3];
-    let d = m.d_matrix();
-    let s_exact = d * nalgebra::Vector3::from(eps);
     for kind in [ElementKind::Qua4, ElementKind::Tri3] {
         let mut mesh = Rectangle::new(0.0, 1.0, 0.0, 1.0, 5, 5).kind(kind).build().unwrap();
         distort(&mut mesh, 0.2);
-        let mut c = Constraints::new(mesh.n_nodes());
-        let mut g = Vec::new();
-        for n in boundary(&mesh) {
-            let u = lin(mesh.nodes[n]);
-            for k in 0..2 {
-                c.fix(dof(n, k));
-                g.push(u[k]);
-            }
-        }
-        let model = Model::new(&mesh, m);
-        let sol = solve(&model, &c, &[LoadCase { prescribed: g, forces: vec![] }], &SolverOptions::default(), "").unwrap();
-        for n in 0..mesh.n_nodes() {
-            let u = lin(mesh.nodes[n]);
-            for k in 0..2 {
-                assert!((sol.u[0][2 * n + k] - u[k]).abs() < 1e-10 * 1e-3, "{kind:?} node {n}");
-            }
-        }
-        let scale = s_exact.amax();
-        for e in 0..mesh.n_elements() {
-            for s in gauss_stresses(&model, e, &sol.u[0]) {
-                for k in 0..3 {
-                    assert!((s[k] - s_exact[k]).abs() < 1e-10 * scale, "{kind:?} element {e} stress {k}");
-                }
-                assert!((s[3] - m.lambda() * (eps[0] + eps[1])).abs() < 1e-10 * scale);
-            }
-        }
+        common::assert_patch_test(&Model::new(&mesh, mat()), &format!("{kind:?}"));
     }
 }
 

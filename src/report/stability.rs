@@ -69,7 +69,7 @@ pub fn plate_csv(p: &PlateStudy) -> Result<String> {
                     r.push(num("plate.csv", v)?);
                 }
             }
-            None => r.extend(std::iter::repeat(String::new()).take(6)),
+            None => r.extend(std::iter::repeat_n(String::new(), 6)),
         }
         r.push(opt(q.refined.map(|x| x.0)));
         r.push(q.refined.map_or(String::new(), |x| x.1.to_string()));
