@@ -117,7 +117,9 @@ pub fn nodal_stresses_from(model: &Model, u: &[f64], elements: &[usize]) -> Vec<
             count[n] += 1;
         }
     }
-    sum.iter().zip(&count).map(|(s, &c)| if c == 0 { *s } else { s.map(|v| v / c as f64) }).collect()
+    // Averaged in place: a new array would be 16 MB more fresh memory per call at 1e6 DOFs.
+    sum.iter_mut().zip(&count).filter(|(_, &c)| c > 0).for_each(|(s, &c)| *s = s.map(|v| v / c as f64));
+    sum
 }
 
 /// Internal forces K u (length 2 n_nodes) from the given elements only: the consistent
