@@ -66,24 +66,30 @@ impl<'a> Model<'a> {
     }
 }
 
-/// Lower-triangular CSC pattern of the reduced matrix (rows sorted within each column).
+/// Lower-triangular CSC pattern of the reduced matrix (rows sorted within each column), in
+/// 32-bit indices: half the memory and index traffic of usize (37 MB less at 1e6 DOFs);
+/// [`Assembler::new`] refuses a matrix with 2^32 stored entries or more.
 #[derive(Debug, Clone)]
 pub struct Pattern {
     pub n: usize,
-    pub col_ptr: Vec<usize>,
-    pub row_idx: Vec<usize>,
+    pub col_ptr: Vec<u32>,
+    pub row_idx: Vec<u32>,
 }
 
 impl Pattern {
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
     }
+    /// Positions of column j's entries.
+    #[inline]
+    pub fn col(&self, j: usize) -> std::ops::Range<usize> {
+        self.col_ptr[j] as usize..self.col_ptr[j + 1] as usize
+    }
     /// Position of entry (row, col), row >= col.
     #[inline]
     pub fn position(&self, row: usize, col: usize) -> usize {
-        let s = self.col_ptr[col];
-        let rows = &self.row_idx[s..self.col_ptr[col + 1]];
-        s + rows.binary_search(&row).expect("entry outside the assembled pattern")
+        let c = self.col(col);
+        c.start + self.row_idx[c].binary_search(&(row as u32)).expect("entry outside the assembled pattern")
     }
 }
 
@@ -123,13 +129,18 @@ fn element_unknowns(mesh: &Mesh, red: &Reduction, e: usize, out: &mut Vec<usize>
 /// per column cost 3x more at 1e6 columns).
 const COLS: usize = 8192;
 
-/// Joins per-chunk (column lengths, rows) into a pattern, copying the rows in parallel.
-fn join_columns<R: Copy + Send>(n: usize, chunks: Vec<(Vec<usize>, Vec<R>)>, widen: impl Fn(R) -> usize + Sync) -> Pattern {
+/// Joins per-chunk (column lengths, rows) into a pattern, copying the rows in parallel; None
+/// when the entries do not fit 32-bit indices.
+fn join_columns<R: Copy + Send>(n: usize, chunks: Vec<(Vec<usize>, Vec<R>)>, narrow: impl Fn(R) -> u32 + Sync) -> Option<Pattern> {
+    let total: usize = chunks.iter().map(|c| c.1.len()).sum();
+    if total >= u32::MAX as usize || n >= u32::MAX as usize {
+        return None;
+    }
     let mut col_ptr = Vec::with_capacity(n + 1);
-    col_ptr.push(0);
-    chunks.iter().flat_map(|c| &c.0).for_each(|l| col_ptr.push(col_ptr.last().unwrap() + l));
+    col_ptr.push(0u32);
+    chunks.iter().flat_map(|c| &c.0).for_each(|&l| col_ptr.push(col_ptr.last().unwrap() + l as u32));
     debug_assert_eq!(col_ptr.len(), n + 1);
-    let mut row_idx = vec![0; col_ptr[n]];
+    let mut row_idx = vec![0u32; total];
     crate::memory::advise_huge_pages(&row_idx);
     let (mut outs, mut rest) = (Vec::with_capacity(chunks.len()), row_idx.as_mut_slice());
     for (_, rows) in &chunks {
@@ -137,12 +148,12 @@ fn join_columns<R: Copy + Send>(n: usize, chunks: Vec<(Vec<usize>, Vec<R>)>, wid
         outs.push(head);
         rest = tail;
     }
-    chunks.into_par_iter().zip(outs).for_each(|((_, rows), out)| out.iter_mut().zip(rows).for_each(|(o, r)| *o = widen(r)));
-    Pattern { n, col_ptr, row_idx }
+    chunks.into_par_iter().zip(outs).for_each(|((_, rows), out)| out.iter_mut().zip(rows).for_each(|(o, r)| *o = narrow(r)));
+    Some(Pattern { n, col_ptr, row_idx })
 }
 
 /// Pattern and colouring from the unknowns of each element, for any reduction.
-fn by_unknowns(mesh: &Mesh, red: &Reduction) -> (Pattern, Vec<Vec<usize>>, Vec<usize>) {
+fn by_unknowns(mesh: &Mesh, red: &Reduction) -> Result<(Pattern, Vec<Vec<usize>>, Vec<usize>)> {
     let n = red.n_free();
     let ne = mesh.n_elements();
     // Unknowns per element (CSR), then elements per unknown (its transpose).
@@ -186,11 +197,11 @@ fn by_unknowns(mesh: &Mesh, red: &Reduction) -> (Pattern, Vec<Vec<usize>>, Vec<u
             (len, rows)
         })
         .collect();
-    let pattern = join_columns(n, chunks, |r| r);
+    let pattern = join_columns(n, chunks, |r| r as u32).ok_or_else(|| Error::input("mesh", format!("the matrix of {n} unknowns has 2^32 or more stored entries, beyond 32-bit indices")))?;
     // Greedy colouring on node unknowns (extra DOFs are accumulated per chunk instead).
     let fe = red.n_free_nodes;
     let (colors, serial) = colour(ne, |e| &e_unk[e_ptr[e]..e_ptr[e + 1]], fe, |k| k < fe);
-    (pattern, colors, serial)
+    Ok((pattern, colors, serial))
 }
 
 /// Greedy colouring: each element takes the first colour that none of its conflict keys
@@ -324,7 +335,7 @@ fn by_nodes(mesh: &Mesh, red: &Reduction) -> Option<(Pattern, Vec<Vec<usize>>, V
     }
     let mut chunks = node_chunks;
     chunks.push((len, rows));
-    let pattern = join_columns(n, chunks, |r| r as usize);
+    let pattern = join_columns(n, chunks, |r| r)?;
     // Colouring on nodes owning unknowns: the same as on their unknowns, since an element
     // touching such a node touches all its unknowns.
     let owner: Vec<bool> = (0..nn).map(|m| unk(m).first().is_some_and(|&k| k < fe)).collect();
@@ -341,7 +352,7 @@ impl Assembler {
         let (pattern, colors, serial, fast) = match by_nodes(mesh, red) {
             Some((p, c, s)) => (p, c, s, true),
             None => {
-                let (p, c, s) = by_unknowns(mesh, red);
+                let (p, c, s) = by_unknowns(mesh, red)?;
                 (p, c, s, false)
             }
         };
@@ -358,7 +369,7 @@ impl Assembler {
     /// of the node-level one).
     #[cfg(test)]
     fn new_general(mesh: &Mesh, red: &Reduction) -> Self {
-        let (pattern, colors, serial) = by_unknowns(mesh, red);
+        let (pattern, colors, serial) = by_unknowns(mesh, red).unwrap();
         Self { pattern, colors, serial, first_extra: red.n_free_nodes, plain: vec![usize::MAX; mesh.n_nodes()] }
     }
 
@@ -453,15 +464,16 @@ impl Assembler {
         let add = |p: usize, v: f64| *vptr.0.add(p) += v;
         for (i, &b) in ord.iter().enumerate() {
             let kb = ks[b];
-            let (s0, s1, s2) = (cp[kb], cp[kb + 1], cp[kb + 2]);
-            assert!(s1 - s0 == s2 - s1 + 1 && s0 + 1 < s1 && ri[s0] == kb && ri[s0 + 1] == kb + 1 && ri[s1] == kb + 1, "entry outside the assembled pattern");
+            let (s0, s1, s2) = (cp[kb] as usize, cp[kb + 1] as usize, cp[kb + 2] as usize);
+            let kb32 = kb as u32;
+            assert!(s1 - s0 == s2 - s1 + 1 && s0 + 1 < s1 && ri[s0] == kb32 && ri[s0 + 1] == kb32 + 1 && ri[s1] == kb32 + 1, "entry outside the assembled pattern");
             let (bx, by) = (2 * b * nd + 2 * b, (2 * b + 1) * nd + 2 * b);
             add(s0, ke[bx]);
             add(s0 + 1, ke[by]);
             add(s1, ke[by + 1]);
             let mut p = s0 + 2;
             for &a in &ord[i + 1..] {
-                let ka = ks[a];
+                let ka = ks[a] as u32;
                 p += ri[p..s1].partition_point(|&r| r < ka);
                 let q = p - s0 + s1 - 1;
                 assert!(p + 1 < s1 && ri[p] == ka && ri[p + 1] == ka + 1, "entry outside the assembled pattern");
@@ -607,8 +619,8 @@ mod tests {
             let x: Vec<f64> = (0..p.n).map(|i| ((i * 13) % 17) as f64 / 17.0 - 0.4).collect();
             let mut kx = vec![0.0; p.n];
             for j in 0..p.n {
-                for k in p.col_ptr[j]..p.col_ptr[j + 1] {
-                    let i = p.row_idx[k];
+                for k in p.col(j) {
+                    let i = p.row_idx[k] as usize;
                     kx[i] += va[k] * x[j];
                     if i != j {
                         kx[j] += va[k] * x[i];

@@ -205,8 +205,8 @@ fn probe_vector(n: usize) -> impl Iterator<Item = f64> {
 fn norm_1_sym(p: &crate::assembly::Pattern, values: &[f64]) -> f64 {
     let mut col = vec![0.0; p.n];
     for j in 0..p.n {
-        for k in p.col_ptr[j]..p.col_ptr[j + 1] {
-            let i = p.row_idx[k];
+        for k in p.col(j) {
+            let i = p.row_idx[k] as usize;
             col[j] += values[k].abs();
             if i != j {
                 col[i] += values[k].abs();

@@ -85,7 +85,7 @@ impl Solver {
             Some(false) => SupernodalThreshold::FORCE_SIMPLICIAL,
         };
         let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: threshold, ..Default::default() };
-        let inv;
+        let (fwd32, inv);
         let ordering = match &options.ordering {
             Ordering::TwoDomain(split) => {
                 let backend = Backend::TwoDomain(TwoDomain::analyse(pattern, split)?);
@@ -96,15 +96,17 @@ impl Solver {
                 if fwd.len() != pattern.n {
                     return Err(Error::input("ordering", format!("permutation has {} entries for {} unknowns", fwd.len(), pattern.n)));
                 }
-                let mut i = vec![usize::MAX; fwd.len()];
+                // In the pattern's 32-bit indices.
+                let mut i = vec![u32::MAX; fwd.len()];
                 for (new, &old) in fwd.iter().enumerate() {
-                    if old >= fwd.len() || i[old] != usize::MAX {
+                    if old >= fwd.len() || i[old] != u32::MAX {
                         return Err(Error::input("ordering", "not a permutation"));
                     }
-                    i[old] = new;
+                    i[old] = new as u32;
                 }
+                fwd32 = fwd.iter().map(|&k| k as u32).collect::<Vec<_>>();
                 inv = i;
-                SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(fwd, &inv, pattern.n))
+                SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&fwd32, &inv, pattern.n))
             }
         };
         let symbolic = factorize_symbolic_cholesky(sym, Side::Lower, ordering, params).map_err(|e| Error::input("symbolic factorisation", format!("{e:?}")))?;
@@ -154,7 +156,7 @@ impl Solver {
         let res = symbolic.factorize_numeric_llt(&mut l, a, Side::Lower, LltRegularization::default(), self.par, MemStack::new(&mut mem), Default::default());
         match res {
             Ok(_) => Ok(Factor { solver: self, values: FactorValues::Direct(l) }),
-            Err(LltError::NonPositivePivot { index }) => Err(symbolic.perm().map_or(index, |p| p.arrays().0[index.min(pattern.n - 1)])),
+            Err(LltError::NonPositivePivot { index }) => Err(symbolic.perm().map_or(index, |p| p.arrays().0[index.min(pattern.n - 1)] as usize)),
         }
     }
 }
@@ -162,7 +164,7 @@ impl Solver {
 #[allow(clippy::large_enum_variant)] // one per solver: its size does not matter
 enum Backend {
     /// One faer factorisation.
-    Direct(SymbolicCholesky<usize>),
+    Direct(SymbolicCholesky<u32>),
     TwoDomain(TwoDomain),
 }
 
@@ -203,7 +205,7 @@ impl Factor<'_> {
             _ => unreachable!("a factor comes from its own solver"),
         };
         let n = s.nrows();
-        let llt = LltRef::<'_, usize, f64>::new(s, l);
+        let llt = LltRef::<'_, u32, f64>::new(s, l);
         let mut mem = MemBuffer::new(s.solve_in_place_scratch::<f64>(k, self.solver.par));
         let rhs = MatMut::from_column_major_slice_mut(b, n, k);
         llt.solve_in_place_with_conj(Conj::No, rhs, self.solver.par, MemStack::new(&mut mem));
@@ -258,8 +260,8 @@ fn backward_errors(pattern: &Pattern, values: &[f64], f: &[f64], x: &[f64], k: u
             let (xc, fc) = (&x[c * n..(c + 1) * n], &f[c * n..(c + 1) * n]);
             let (mut kx, mut akx) = (vec![0.0; n], vec![0.0; n]);
             for j in 0..n {
-                for p in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
-                    let (i, v) = (pattern.row_idx[p], values[p]);
+                for p in pattern.col(j) {
+                    let (i, v) = (pattern.row_idx[p] as usize, values[p]);
                     kx[i] += v * xc[j];
                     akx[i] += v.abs() * xc[j].abs();
                     if i != j {

@@ -81,8 +81,8 @@ impl TwoDomain {
         split.separator.iter().enumerate().for_each(|(s, &k)| local[k] = s);
         let mut sep_entries = Vec::new();
         for &j in &split.separator {
-            for p in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
-                let i = pattern.row_idx[p];
+            for p in pattern.col(j) {
+                let i = pattern.row_idx[p] as usize;
                 if label[i] == SEP {
                     let (r, c) = (local[i], local[j]);
                     sep_entries.push((r.max(c), r.min(c), p));
@@ -269,8 +269,8 @@ impl Part {
         // other half's columns are checked by its own part).
         let mut col_ptr = vec![0u32; nl + 1];
         for (jl, &j) in unknowns.iter().enumerate() {
-            for &i in &pattern.row_idx[pattern.col_ptr[j]..pattern.col_ptr[j + 1]] {
-                let il = local[i];
+            for &i in &pattern.row_idx[pattern.col(j)] {
+                let il = local[i as usize];
                 if il != u32::MAX {
                     col_ptr[il.min(jl as u32) as usize + 1] += 1;
                 } else if jl < half.len() {
@@ -285,8 +285,8 @@ impl Part {
         let (mut row_idx, mut gather, mut fill) = (vec![0u32; nnz], vec![0u32; nnz], col_ptr.clone());
         for (jl, &j) in unknowns.iter().enumerate() {
             let jl = jl as u32;
-            for p in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
-                let il = local[pattern.row_idx[p]];
+            for p in pattern.col(j) {
+                let il = local[pattern.row_idx[p] as usize];
                 if il != u32::MAX {
                     let c = il.min(jl) as usize;
                     row_idx[fill[c] as usize] = il.max(jl);
