@@ -257,10 +257,9 @@ impl Part {
     fn analyse(pattern: &Pattern, half: &[usize], separator: &[usize]) -> Result<Self> {
         let unknowns: Vec<usize> = half.iter().chain(separator).copied().collect();
         let nl = unknowns.len();
+        // The pattern's entries fit 32-bit indices (checked where it is built); the factor's
+        // may not.
         let too_big = || Error::input("two-domain split", format!("a half with {nl} unknowns exceeds 32-bit indices"));
-        if pattern.nnz() >= u32::MAX as usize {
-            return Err(too_big());
-        }
         let mut local = vec![u32::MAX; pattern.n];
         unknowns.iter().enumerate().for_each(|(l, &g)| local[g] = l as u32);
         // Global lower-triangle entries inside this part, moved to the local lower triangle
