@@ -77,15 +77,15 @@ impl Row {
         self.dofs as f64 / self.t.total()
     }
     pub fn gflops(&self) -> f64 {
-        self.flops / self.t.numeric / 1e9
+        rate(self.flops, self.t.numeric)
     }
     pub fn gflops_warm(&self) -> f64 {
-        self.flops / self.numeric_warm / 1e9
+        rate(self.flops, self.numeric_warm)
     }
     /// Rate of the dense kernels alone on this factorisation's fronts, per core, GFLOP/s: the
     /// most any code built on them could reach here.
     pub fn front_gflops_per_core(&self) -> Option<f64> {
-        self.dense_s.map(|d| self.flops / d / 1e9)
+        self.dense_s.map(|d| rate(self.flops, d))
     }
 
     pub const CSV_HEADER: &'static str = "case,threads,factor,ordering,dofs,nnz_k,nnz_l,gflop,mesh_s,pattern_s,assembly_s,symbolic_s,numeric_s,solve_s,recovery_s,other_s,total_s,output_s,dofs_per_s,gflops,peak_mib,dense_core_s,numeric_warm_s";
@@ -231,6 +231,11 @@ fn refactorisation_time(mut numeric: impl FnMut() -> Result<f64>) -> Result<f64>
     numeric()
 }
 
+/// GFLOP/s; 0 for a time too short to be stored (the CSV keeps 0.1 ms), never NaN.
+fn rate(flops: f64, seconds: f64) -> f64 {
+    if seconds > 0.0 { flops / seconds / 1e9 } else { 0.0 }
+}
+
 fn factor_name(supernodal: bool) -> String {
     if supernodal { "supernodal" } else { "simplicial" }.into()
 }
@@ -334,5 +339,8 @@ mod tests {
             assert!((back.flops - 7.141e9).abs() < 1e5 && back.peak_mib == 1036.0);
         }
         assert!(Row::from_csv("strip50,2").is_err());
+        // A tiny case's times round to 0 in the CSV: rates are 0, not NaN.
+        let tiny = Row { flops: 0.0, numeric_warm: 0.0, dense_s: Some(0.0), t: Timings { numeric: 0.0, ..t }, ..row };
+        assert_eq!((tiny.gflops(), tiny.gflops_warm(), tiny.front_gflops_per_core()), (0.0, 0.0, Some(0.0)));
     }
 }
