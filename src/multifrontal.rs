@@ -163,15 +163,12 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
 /// every right-hand side while it is in L1.
 pub fn forward_solve(s: &SymbolicSupernodalCholesky<u32>, l: &[f64], y: &mut [f64], k: usize) {
     let n = s.nrows();
-    let (begin, end, vp) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_val());
     // Updates to the rows below a supernode, gathered contiguously and scattered once.
     let mut t = vec![0.0; widest_pattern(s) * k];
     for sn in 0..s.n_supernodes() {
-        let (b, e) = (begin[sn] as usize, end[sn] as usize);
-        let rows = pattern(s, sn);
-        let (w, r) = (e - b, rows.len());
+        let (b, w, rows, panel) = supernode(s, l, sn);
+        let (e, r) = (b + w, rows.len());
         let h = w + r;
-        let panel = &l[vp[sn] as usize..vp[sn + 1] as usize];
         t[..r * k].fill(0.0);
         for j in 0..w {
             let col = &panel[j * h..(j + 1) * h];
@@ -192,15 +189,12 @@ pub fn forward_solve(s: &SymbolicSupernodalCholesky<u32>, l: &[f64], y: &mut [f6
 /// Backward substitution L^T x = y in place, as [`forward_solve`].
 pub fn backward_solve(s: &SymbolicSupernodalCholesky<u32>, l: &[f64], y: &mut [f64], k: usize) {
     let n = s.nrows();
-    let (begin, end, vp) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_val());
     // The solved unknowns below a supernode, gathered contiguously once.
     let mut t = vec![0.0; widest_pattern(s) * k];
     for sn in (0..s.n_supernodes()).rev() {
-        let (b, e) = (begin[sn] as usize, end[sn] as usize);
-        let rows = pattern(s, sn);
-        let (w, r) = (e - b, rows.len());
+        let (b, w, rows, panel) = supernode(s, l, sn);
+        let (e, r) = (b + w, rows.len());
         let h = w + r;
-        let panel = &l[vp[sn] as usize..vp[sn + 1] as usize];
         for c in 0..k {
             t[c * r..(c + 1) * r].iter_mut().zip(rows).for_each(|(ti, &row)| *ti = y[c * n + row as usize]);
         }
@@ -219,6 +213,13 @@ pub fn backward_solve(s: &SymbolicSupernodalCholesky<u32>, l: &[f64], y: &mut [f
             }
         }
     }
+}
+
+/// Supernode `sn` of the factor `l`: its first column, its width, the rows below its diagonal
+/// block, and its panel (column-major; rows: its own columns, then those rows).
+fn supernode<'a>(s: &'a SymbolicSupernodalCholesky<u32>, l: &'a [f64], sn: usize) -> (usize, usize, &'a [u32], &'a [f64]) {
+    let (b, vp) = (s.supernode_begin()[sn] as usize, s.col_ptr_for_val());
+    (b, s.supernode_end()[sn] as usize - b, pattern(s, sn), &l[vp[sn] as usize..vp[sn + 1] as usize])
 }
 
 fn widest_pattern(s: &SymbolicSupernodalCholesky<u32>) -> usize {

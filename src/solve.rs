@@ -96,15 +96,16 @@ impl Solver {
                 if fwd.len() != pattern.n {
                     return Err(Error::input("ordering", format!("permutation has {} entries for {} unknowns", fwd.len(), pattern.n)));
                 }
-                // In the pattern's 32-bit indices.
-                let mut i = vec![u32::MAX; fwd.len()];
+                // Checked and inverted in one pass, in the pattern's 32-bit indices.
+                let (mut f, mut i) = (Vec::with_capacity(fwd.len()), vec![u32::MAX; fwd.len()]);
                 for (new, &old) in fwd.iter().enumerate() {
                     if old >= fwd.len() || i[old] != u32::MAX {
                         return Err(Error::input("ordering", "not a permutation"));
                     }
                     i[old] = new as u32;
+                    f.push(old as u32);
                 }
-                fwd32 = fwd.iter().map(|&k| k as u32).collect::<Vec<_>>();
+                fwd32 = f;
                 inv = i;
                 SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&fwd32, &inv, pattern.n))
             }
