@@ -95,7 +95,7 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
     // Position in the current front of each row; rows of a front are its columns, then its
     // pattern, so positions grow with the row and the lower triangle maps to the lower one.
     let mut pos = vec![0u32; s.nrows()];
-    let mut map = Vec::new();
+    let (mut map, mut taken) = (Vec::new(), Vec::new());
     // Update matrix (r x r, lower triangle) of each supernode until its parent takes it.
     let mut update: Vec<Vec<f64>> = (0..ns).map(|_| Vec::new()).collect();
     // Consumed update buffers are reused: fresh large ones would be mapped and unmapped each time.
@@ -118,25 +118,23 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
                 column[pos[row_idx[p] as usize] as usize] += value(p);
             }
         }
-        // The smallest spare that fits, else a new one (growing a spare would copy it).
+        // The smallest spare that fits, else a new one (growing a spare would copy it). Its
+        // contents do not matter: the rank-w update below overwrites the lower triangle.
         let fit = (0..spare.len()).filter(|&i| spare[i].capacity() >= r * r).min_by_key(|&i| spare[i].capacity());
         let mut u = fit.map(|i| spare.swap_remove(i)).unwrap_or_else(|| Vec::with_capacity(r * r));
-        u.clear();
-        u.resize(r * r, 0.0);
+        if u.len() < r * r {
+            u.resize(r * r, 0.0);
+        }
+        u.truncate(r * r);
+        // The children's columns that fall on this supernode's columns go into the panel now;
+        // the rest go into the update matrix once the rank-w update has written it.
+        taken.clear();
         for &c in tree.children(k) {
             let uc = std::mem::take(&mut update[c as usize]);
-            let crows = pattern(s, c as usize);
-            let rc = crows.len();
-            map.clear();
-            map.extend(crows.iter().map(|&row| pos[row as usize] as usize));
-            for (jc, &pj) in map.iter().enumerate() {
-                let src = &uc[jc * rc..(jc + 1) * rc];
-                let (dst, shift) = if pj < w { (&mut panel[pj * h..(pj + 1) * h], 0) } else { (&mut u[(pj - w) * r..(pj - w + 1) * r], w) };
-                for (&pi, &v) in map[jc..].iter().zip(&src[jc..]) {
-                    dst[pi - shift] += v;
-                }
-            }
-            spare.push(uc);
+            front_rows(pattern(s, c as usize), &pos, &mut map);
+            let split = map.partition_point(|&p| p < w);
+            extend_add(&map, &uc, 0..split, panel, h, 0);
+            taken.push((c, split, uc));
         }
         let clock = std::time::Instant::now();
         let (mut top, mut bottom) = MatMut::from_column_major_slice_mut(panel, h, w).split_at_row_mut(w);
@@ -146,14 +144,39 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
         if r > 0 {
             faer::linalg::triangular_solve::solve_lower_triangular_in_place(top.as_ref(), bottom.as_mut().transpose_mut(), Par::Seq);
             let um = MatMut::from_column_major_slice_mut(&mut u, r, r);
-            triangular::matmul(um, BlockStructure::TriangularLower, Accum::Add, bottom.as_ref(), BlockStructure::Rectangular, bottom.as_ref().transpose(), BlockStructure::Rectangular, -1.0, Par::Seq);
+            triangular::matmul(um, BlockStructure::TriangularLower, Accum::Replace, bottom.as_ref(), BlockStructure::Rectangular, bottom.as_ref().transpose(), BlockStructure::Rectangular, -1.0, Par::Seq);
+        }
+        dense += clock.elapsed();
+        for (c, split, uc) in taken.drain(..) {
+            front_rows(pattern(s, c as usize), &pos, &mut map);
+            extend_add(&map, &uc, split..map.len(), &mut u, r, w);
+            spare.push(uc);
+        }
+        if r > 0 {
             update[k] = u;
         } else {
             spare.push(u);
         }
-        dense += clock.elapsed();
     }
     Ok(dense.as_secs_f64())
+}
+
+/// Places in the current front of a child's rows.
+fn front_rows(rows: &[u32], pos: &[u32], map: &mut Vec<usize>) {
+    map.clear();
+    map.extend(rows.iter().map(|&row| pos[row as usize] as usize));
+}
+
+/// Adds columns `cols` of a child's update matrix `uc` (lower triangle, column-major) into the
+/// front: child row i is front row `map[i]`, and front entry (i, j) is `dst[(j - off) * ld + i - off]`.
+fn extend_add(map: &[usize], uc: &[f64], cols: std::ops::Range<usize>, dst: &mut [f64], ld: usize, off: usize) {
+    let rc = map.len();
+    for jc in cols {
+        let col = &mut dst[(map[jc] - off) * ld..(map[jc] - off + 1) * ld];
+        for (&pi, &v) in map[jc..].iter().zip(&uc[jc * rc + jc..(jc + 1) * rc]) {
+            col[pi - off] += v;
+        }
+    }
 }
 
 /// Forward substitution L y = b in place, for the k columns of `y` (n x k, column-major), on a
