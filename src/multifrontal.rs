@@ -82,12 +82,46 @@ fn pattern(s: &SymbolicSupernodalCholesky<u32>, k: usize) -> &[u32] {
     &s.row_idx()[rp[k] as usize..rp[k + 1] as usize]
 }
 
+/// Upper bounds of the supernode widths by which [`DenseWork`] sorts the dense kernels' work.
+pub const WIDTH_CLASSES: [usize; 4] = [8, 32, 64, usize::MAX];
+
+/// The dense kernels' work in one factorisation (Cholesky, triangular solve and rank-w update
+/// per supernode), by supernode width (`WIDTH_CLASSES`): their rate on these fronts bounds
+/// the whole factorisation's, and the narrow fronts of a strip are where it falls.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DenseWork {
+    /// Supernodes, flops (sum over their columns of (column count)^2, as
+    /// `substructure::supernodal_flops`) and seconds in the kernels, per width class.
+    pub by_width: [(usize, f64, f64); 4],
+}
+
+impl DenseWork {
+    fn add(&mut self, w: usize, r: usize, seconds: f64) {
+        let class = &mut self.by_width[WIDTH_CLASSES.iter().position(|&m| w <= m).unwrap_or(3)];
+        class.0 += 1;
+        class.1 += (0..w).map(|j| ((w - j + r) as f64).powi(2)).sum::<f64>();
+        class.2 += seconds;
+    }
+
+    /// Both factorisations' work.
+    pub fn merge(mut self, other: &Self) -> Self {
+        for (a, b) in self.by_width.iter_mut().zip(&other.by_width) {
+            *a = (a.0 + b.0, a.1 + b.1, a.2 + b.2);
+        }
+        self
+    }
+
+    /// Seconds in the dense kernels.
+    pub fn seconds(&self) -> f64 {
+        self.by_width.iter().map(|c| c.2).sum()
+    }
+}
+
 /// Factorises the matrix whose lower triangle is given column by column (`col_ptr`,
 /// `row_idx` with row >= column, rows in any order; `value(p)` is entry p) into `l`
-/// (`s.len_val()` long, any contents). Returns the seconds spent in the dense kernels (their
-/// rate on these fronts bounds the whole factorisation's); a non-positive pivot is returned
-/// as its column.
-pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_ptr: &[u32], row_idx: &[u32], value: impl Fn(usize) -> f64, l: &mut [f64]) -> Result<f64, usize> {
+/// (`s.len_val()` long, any contents). Returns the dense kernels' work; a non-positive pivot
+/// is returned as its column.
+pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_ptr: &[u32], row_idx: &[u32], value: impl Fn(usize) -> f64, l: &mut [f64]) -> Result<DenseWork, usize> {
     let ns = s.n_supernodes();
     let (begin, end, val_ptr) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_val());
     let widest = (0..ns).map(|k| (end[k] - begin[k]) as usize).max().unwrap_or(0);
@@ -100,7 +134,7 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
     let mut update: Vec<Vec<f64>> = (0..ns).map(|_| Vec::new()).collect();
     // Consumed update buffers are reused: fresh large ones would be mapped and unmapped each time.
     let mut spare: Vec<Vec<f64>> = Vec::new();
-    let mut dense = std::time::Duration::ZERO;
+    let mut dense = DenseWork::default();
     for k in 0..ns {
         let (b, e) = (begin[k] as usize, end[k] as usize);
         let rows = pattern(s, k);
@@ -146,7 +180,7 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
             let um = MatMut::from_column_major_slice_mut(&mut u, r, r);
             triangular::matmul(um, BlockStructure::TriangularLower, Accum::Replace, bottom.as_ref(), BlockStructure::Rectangular, bottom.as_ref().transpose(), BlockStructure::Rectangular, -1.0, Par::Seq);
         }
-        dense += clock.elapsed();
+        dense.add(w, r, clock.elapsed().as_secs_f64());
         for (c, split, uc) in taken.drain(..) {
             front_rows(pattern(s, c as usize), &pos, &mut map);
             extend_add(&map, &uc, split..map.len(), &mut u, r, w);
@@ -158,7 +192,7 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
             spare.push(u);
         }
     }
-    Ok(dense.as_secs_f64())
+    Ok(dense)
 }
 
 /// Places in the current front of a child's rows.
@@ -311,7 +345,11 @@ mod tests {
         let tree = AssemblyTree::new(s).expect("faer's supernodes form an assembly tree");
         let mut ours = vec![f64::NAN; s.len_val()];
         let dense = factorize(s, &tree, &ptr, &idx, |p| val[p], &mut ours).unwrap();
-        assert!(dense > 0.0);
+        assert!(dense.seconds() > 0.0);
+        assert_eq!(dense.by_width.iter().map(|c| c.0).sum::<usize>(), s.n_supernodes());
+        // Every column's count squared, once: the same total as the analysis gives.
+        let flops: f64 = dense.by_width.iter().map(|c| c.1).sum();
+        assert_eq!(flops, crate::substructure::supernodal_flops(s));
         let n = ptr.len() - 1;
         let a = SparseColMatRef::new(SymbolicSparseColMatRef::new_unsorted_checked(n, n, &ptr, None, &idx), &val);
         let mut theirs = vec![0.0; s.len_val()];
@@ -381,6 +419,6 @@ mod tests {
         let s = supernodal(&sym);
         let tree = AssemblyTree::new(s).unwrap();
         let mut l = vec![0.0; s.len_val()];
-        assert_eq!(factorize(s, &tree, &ptr, &idx, |p| val[p], &mut l), Err(bad));
+        assert_eq!(factorize(s, &tree, &ptr, &idx, |p| val[p], &mut l).err(), Some(bad));
     }
 }

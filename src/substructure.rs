@@ -10,7 +10,7 @@
 
 use crate::assembly::Pattern;
 use crate::error::{Error, Result};
-use crate::multifrontal::{self, supernodal, AssemblyTree};
+use crate::multifrontal::{self, supernodal, AssemblyTree, DenseWork};
 use crate::ordering::Bisection;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
@@ -129,18 +129,19 @@ impl TwoDomain {
     /// The numeric factors of the two halves alone (faer's layout, one per core, into `l`,
     /// resized when needed), by our multifrontal code or by faer's own left-looking one: the
     /// two are compared in `tests/parallel.rs` and `benches/kernels.rs`.
-    pub fn factor_halves(&self, values: &[f64], left_looking: bool, l: &mut [Vec<f64>; 2]) -> std::result::Result<(), usize> {
+    /// Returns the dense kernels' work of both halves (ours; none for faer's).
+    pub fn factor_halves(&self, values: &[f64], left_looking: bool, l: &mut [Vec<f64>; 2]) -> std::result::Result<DenseWork, usize> {
         let [la, lb] = l;
         let half = |part: &Part, l: &mut Vec<f64>| {
             l.resize(part.symbolic.len_val(), 0.0);
             if left_looking {
-                part.numeric_left_looking(values, l)
+                part.numeric_left_looking(values, l).map(|_| DenseWork::default())
             } else {
-                part.numeric(values, l).map(|_| ())
+                part.numeric(values, l)
             }
         };
         let (a, b) = rayon::join(|| half(&self.parts[0], la), || half(&self.parts[1], lb));
-        a.and(b)
+        Ok(a?.merge(&b?))
     }
 
     /// Forward then backward solve of each half alone (one per core) with the factors of
@@ -317,7 +318,7 @@ impl Part {
         if l.len() != self.symbolic.len_val() {
             l = vec![0.0; self.symbolic.len_val()];
         }
-        let dense = self.numeric(values, &mut l)?;
+        let dense = self.numeric(values, &mut l)?.seconds();
         // Trailing block: every column >= nl - m, rows from the supernodes holding them.
         let llt = SupernodalLltRef::new(s, &l);
         let first = nl - m;
@@ -338,7 +339,7 @@ impl Part {
         Ok((l, l_ss, dense))
     }
 
-    fn numeric(&self, values: &[f64], l: &mut [f64]) -> std::result::Result<f64, usize> {
+    fn numeric(&self, values: &[f64], l: &mut [f64]) -> std::result::Result<DenseWork, usize> {
         multifrontal::factorize(supernodal(&self.symbolic), &self.tree, &self.col_ptr, &self.row_idx, |p| values[self.gather[p] as usize], l).map_err(|j| self.unknowns[j])
     }
 
