@@ -95,11 +95,17 @@ pub struct DenseWork {
     pub by_width: [(usize, f64, f64); 4],
 }
 
+/// Flops of a supernode `w` columns wide with `r` rows below them: the sum over its columns of
+/// (column count)^2.
+pub(crate) fn supernode_flops(w: usize, r: usize) -> f64 {
+    (0..w).map(|j| ((w - j + r) as f64).powi(2)).sum()
+}
+
 impl DenseWork {
     fn add(&mut self, w: usize, r: usize, seconds: f64) {
         let class = &mut self.by_width[WIDTH_CLASSES.iter().position(|&m| w <= m).unwrap_or(3)];
         class.0 += 1;
-        class.1 += (0..w).map(|j| ((w - j + r) as f64).powi(2)).sum::<f64>();
+        class.1 += supernode_flops(w, r);
         class.2 += seconds;
     }
 
