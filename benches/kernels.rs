@@ -9,9 +9,9 @@ use tribofe::assembly::Assembler;
 use tribofe::element::stiffness::{stiffness, MAX_DOFS};
 use tribofe::element::ElementKind;
 use tribofe::material::Material;
+use tribofe::ordering::bisection;
 use tribofe::problem::LoadCase;
 use tribofe::scene::Scene;
-use tribofe::ordering::bisection;
 use tribofe::solve::{Ordering, Solver, SolverOptions};
 use tribofe::substructure::TwoDomain;
 
@@ -19,8 +19,14 @@ fn kernels(c: &mut Criterion) {
     let d = Material::plane_strain(2e3, 0.4).unwrap().d_matrix();
     let mut k = [0.0; MAX_DOFS * MAX_DOFS];
     for kind in [ElementKind::Qua4, ElementKind::Qua8, ElementKind::Tri6] {
-        let x: Vec<[f64; 2]> = kind.reference_nodes().iter().map(|&[a, b]| [1e-3 * (1.0 + a + 0.1 * b), 1e-3 * (0.5 + b)]).collect();
-        c.bench_function(&format!("element stiffness {}", kind.name()), |b| b.iter(|| stiffness(kind, black_box(&x), &d, &mut k)));
+        let x: Vec<[f64; 2]> = kind
+            .reference_nodes()
+            .iter()
+            .map(|&[a, b]| [1e-3 * (1.0 + a + 0.1 * b), 1e-3 * (0.5 + b)])
+            .collect();
+        c.bench_function(&format!("element stiffness {}", kind.name()), |b| {
+            b.iter(|| stiffness(kind, black_box(&x), &d, &mut k))
+        });
     }
 
     // The paper's scene at h = t/8: 3200 x 8 QUA4, ~2.9e4 unknowns, rigid plate.
@@ -39,9 +45,13 @@ fn kernels(c: &mut Criterion) {
     let asm = Assembler::new(&sm.mesh, &red).unwrap();
     group.bench_function("assembly", |b| b.iter(|| asm.assemble(&model, &red, &f, &g).unwrap()));
     let (values, rhs) = asm.assemble(&model, &red, &f, &g).unwrap();
-    group.bench_function("ordering + symbolic (AMD)", |b| b.iter(|| Solver::analyse(&asm.pattern, SolverOptions::default()).unwrap()));
+    group.bench_function("ordering + symbolic (AMD)", |b| {
+        b.iter(|| Solver::analyse(&asm.pattern, SolverOptions::default()).unwrap())
+    });
     let solver = Solver::analyse(&asm.pattern, SolverOptions::default()).unwrap();
-    group.bench_function("numeric factorisation", |b| b.iter(|| solver.factorize(&asm.pattern, &values).ok().unwrap()));
+    group.bench_function("numeric factorisation", |b| {
+        b.iter(|| solver.factorize(&asm.pattern, &values).ok().unwrap())
+    });
     let factor = solver.factorize(&asm.pattern, &values).ok().unwrap();
     let rhs3: Vec<f64> = rhs.iter().chain(&rhs).chain(&rhs).copied().collect();
     group.bench_function("solve, 3 right-hand sides", |b| {
@@ -52,10 +62,17 @@ fn kernels(c: &mut Criterion) {
         })
     });
     // The same system as two domains (both halves at once on the rayon pool).
-    let two = SolverOptions { ordering: Ordering::TwoDomain(bisection(&sm.mesh, &red).unwrap()), ..Default::default() };
-    group.bench_function("two domains: symbolic", |b| b.iter(|| Solver::analyse(&asm.pattern, two.clone()).unwrap()));
+    let two = SolverOptions {
+        ordering: Ordering::TwoDomain(bisection(&sm.mesh, &red).unwrap()),
+        ..Default::default()
+    };
+    group.bench_function("two domains: symbolic", |b| {
+        b.iter(|| Solver::analyse(&asm.pattern, two.clone()).unwrap())
+    });
     let solver = Solver::analyse(&asm.pattern, two).unwrap();
-    group.bench_function("two domains: numeric factorisation", |b| b.iter(|| solver.factorize(&asm.pattern, &values).ok().unwrap()));
+    group.bench_function("two domains: numeric factorisation", |b| {
+        b.iter(|| solver.factorize(&asm.pattern, &values).ok().unwrap())
+    });
     let factor = solver.factorize(&asm.pattern, &values).ok().unwrap();
     group.bench_function("two domains: solve, 3 right-hand sides", |b| {
         b.iter(|| {
@@ -82,8 +99,12 @@ fn halves(c: &mut Criterion) {
     let mut l = Default::default();
     let mut group = c.benchmark_group("strip t/50, numeric factorisation of the two halves");
     group.sample_size(10);
-    group.bench_function("multifrontal (ours)", |b| b.iter(|| two.factor_halves(&values, false, &mut l).unwrap()));
-    group.bench_function("left-looking (faer)", |b| b.iter(|| two.factor_halves(&values, true, &mut l).unwrap()));
+    group.bench_function("multifrontal (ours)", |b| {
+        b.iter(|| two.factor_halves(&values, false, &mut l).unwrap())
+    });
+    group.bench_function("left-looking (faer)", |b| {
+        b.iter(|| two.factor_halves(&values, true, &mut l).unwrap())
+    });
     group.finish();
     // Forward and backward solves of both halves for 3 right-hand sides, on that factor.
     two.factor_halves(&values, false, &mut l).unwrap();

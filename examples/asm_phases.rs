@@ -19,7 +19,9 @@ fn main() {
     });
     let t_rect = best(&mut || {
         let c = Instant::now();
-        std::hint::black_box(tribofe::mesher::Rectangle::new(-0.2, 0.2, 0.0, 0.002, 200 * ny, ny).build().unwrap());
+        std::hint::black_box(
+            tribofe::mesher::Rectangle::new(-0.2, 0.2, 0.0, 0.002, 200 * ny, ny).build().unwrap(),
+        );
         c.elapsed().as_secs_f64()
     });
     let sm = scene.build().unwrap();
@@ -40,7 +42,8 @@ fn main() {
     let red = sm.constraints.reduce().unwrap();
     let asm = Assembler::new(&sm.mesh, &red).unwrap();
     let model = sm.model();
-    let g: Vec<Vec<f64>> = (0..2).map(|c| (0..red.n_fixed()).map(|j| ((j * 7 + c * 3) % 5) as f64 - 2.0).collect()).collect();
+    let g: Vec<Vec<f64>> =
+        (0..2).map(|c| (0..red.n_fixed()).map(|j| ((j * 7 + c * 3) % 5) as f64 - 2.0).collect()).collect();
     let f: Vec<Vec<f64>> = vec![vec![], vec![]];
     let mut line = format!("ny={ny} n={} nnz={} colours={} | mesh {t_mesh:.4} (rectangle {t_rect:.4}) patt {t_patt:.4} (reduce {t_red:.4})", asm.pattern.n, asm.pattern.nnz(), asm.n_colors());
     let mut hash = 0u64;
@@ -52,11 +55,25 @@ fn main() {
             c.elapsed().as_secs_f64()
         });
         let (v, r) = pool.install(|| asm.assemble(&model, &red, &f, &g).unwrap());
-        let h = v.iter().chain(&r).fold(0xcbf29ce484222325u64, |h, x| (h ^ x.to_bits()).wrapping_mul(0x100000001b3));
-        let hp = asm.pattern.row_idx.iter().chain(&asm.pattern.col_ptr).fold(0xcbf29ce484222325u64, |h, &x| (h ^ x as u64).wrapping_mul(0x100000001b3));
-        if th == 1 { hash = h } else { assert_eq!(h, hash, "thread counts differ") }
+        let h = v
+            .iter()
+            .chain(&r)
+            .fold(0xcbf29ce484222325u64, |h, x| (h ^ x.to_bits()).wrapping_mul(0x100000001b3));
+        let hp = asm
+            .pattern
+            .row_idx
+            .iter()
+            .chain(&asm.pattern.col_ptr)
+            .fold(0xcbf29ce484222325u64, |h, &x| (h ^ x as u64).wrapping_mul(0x100000001b3));
+        if th == 1 {
+            hash = h
+        } else {
+            assert_eq!(h, hash, "thread counts differ")
+        }
         line += &format!(" asm{th} {t:.4}");
-        if th == 2 { line += &format!(" | values {h:016x} pattern {hp:016x}"); }
+        if th == 2 {
+            line += &format!(" | values {h:016x} pattern {hp:016x}");
+        }
     }
     println!("{line}");
 }

@@ -36,15 +36,34 @@ fn main() {
     }
     let (d1, d2) = (dgemm_gflops(2000, 1), dgemm_gflops(2000, 2));
     println!("strip t/{ny}: two halves, one per core, warm memory, best of {rep}; DGEMM {d1:.1} GFLOP/s on 1 core, {d2:.1} on 2");
-    println!("{:>12} {:>11} {:>7} {:>10} {:>12} {:>14}", "width", "supernodes", "GFLOP", "core-s", "GFLOP/s/core", "% DGEMM/core");
+    println!(
+        "{:>12} {:>11} {:>7} {:>10} {:>12} {:>14}",
+        "width", "supernodes", "GFLOP", "core-s", "GFLOP/s/core", "% DGEMM/core"
+    );
     let mut lower = 0;
     for (&upper, &(n, f, s)) in WIDTH_CLASSES.iter().zip(&work.by_width) {
         let label = if upper == usize::MAX { format!("> {lower}") } else { format!("{}-{upper}", lower + 1) };
-        println!("{label:>12} {n:>11} {:>7.3} {s:>10.4} {:>12.1} {:>14.1}", f / 1e9, f / 1e9 / s, 100.0 * f / 1e9 / s / d1);
+        println!(
+            "{label:>12} {n:>11} {:>7.3} {s:>10.4} {:>12.1} {:>14.1}",
+            f / 1e9,
+            f / 1e9 / s,
+            100.0 * f / 1e9 / s / d1
+        );
         lower = upper;
     }
     let (flops, seconds): (f64, f64) = work.by_width.iter().fold((0.0, 0.0), |a, c| (a.0 + c.1, a.1 + c.2));
-    println!("{:>12} {:>11} {:>7.3} {seconds:>10.4} {:>12.1} {:>14.1}", "all", work.by_width.iter().map(|c| c.0).sum::<usize>(), flops / 1e9, flops / 1e9 / seconds, 100.0 * flops / 1e9 / seconds / d1);
+    println!(
+        "{:>12} {:>11} {:>7.3} {seconds:>10.4} {:>12.1} {:>14.1}",
+        "all",
+        work.by_width.iter().map(|c| c.0).sum::<usize>(),
+        flops / 1e9,
+        flops / 1e9 / seconds,
+        100.0 * flops / 1e9 / seconds / d1
+    );
     println!("numeric phase of the halves: {best:.4} s wall = {:.1} GFLOP/s = {:.1} % of DGEMM on 2 cores; the dense kernels alone: {:.4} s per core", flops / 1e9 / best, 100.0 * flops / 1e9 / best / d2, seconds / 2.0);
-    println!("50 % of DGEMM on 2 cores would be {:.4} s for these {:.2} GFLOP", flops / 1e9 / (0.5 * d2), flops / 1e9);
+    println!(
+        "50 % of DGEMM on 2 cores would be {:.4} s for these {:.2} GFLOP",
+        flops / 1e9 / (0.5 * d2),
+        flops / 1e9
+    );
 }

@@ -31,7 +31,11 @@ impl<'a> Model<'a> {
     }
     /// Technology element `e` uses: `tech` for QUA4, `Full` otherwise.
     pub fn technology(&self, e: usize) -> Technology {
-        if self.mesh.kind(e) == ElementKind::Qua4 { self.tech } else { Technology::Full }
+        if self.mesh.kind(e) == ElementKind::Qua4 {
+            self.tech
+        } else {
+            Technology::Full
+        }
     }
     pub fn material(&self, e: usize) -> &Material {
         &self.materials[self.element_material.get(e).map_or(0, |&m| m as usize)]
@@ -131,7 +135,11 @@ const COLS: usize = 8192;
 
 /// Joins per-chunk (column lengths, rows) into a pattern, copying the rows in parallel; None
 /// when the entries do not fit 32-bit indices.
-fn join_columns<R: Copy + Send>(n: usize, chunks: Vec<(Vec<usize>, Vec<R>)>, narrow: impl Fn(R) -> u32 + Sync) -> Option<Pattern> {
+fn join_columns<R: Copy + Send>(
+    n: usize,
+    chunks: Vec<(Vec<usize>, Vec<R>)>,
+    narrow: impl Fn(R) -> u32 + Sync,
+) -> Option<Pattern> {
     let total: usize = chunks.iter().map(|c| c.1.len()).sum();
     if total >= u32::MAX as usize || n >= u32::MAX as usize {
         return None;
@@ -148,7 +156,10 @@ fn join_columns<R: Copy + Send>(n: usize, chunks: Vec<(Vec<usize>, Vec<R>)>, nar
         outs.push(head);
         rest = tail;
     }
-    chunks.into_par_iter().zip(outs).for_each(|((_, rows), out)| out.iter_mut().zip(rows).for_each(|(o, r)| *o = narrow(r)));
+    chunks
+        .into_par_iter()
+        .zip(outs)
+        .for_each(|((_, rows), out)| out.iter_mut().zip(rows).for_each(|(o, r)| *o = narrow(r)));
     Some(Pattern { n, col_ptr, row_idx })
 }
 
@@ -197,7 +208,12 @@ fn by_unknowns(mesh: &Mesh, red: &Reduction) -> Result<(Pattern, Vec<Vec<usize>>
             (len, rows)
         })
         .collect();
-    let pattern = join_columns(n, chunks, |r| r as u32).ok_or_else(|| Error::input("mesh", format!("the matrix of {n} unknowns has 2^32 or more stored entries, beyond 32-bit indices")))?;
+    let pattern = join_columns(n, chunks, |r| r as u32).ok_or_else(|| {
+        Error::input(
+            "mesh",
+            format!("the matrix of {n} unknowns has 2^32 or more stored entries, beyond 32-bit indices"),
+        )
+    })?;
     // Greedy colouring on node unknowns (extra DOFs are accumulated per chunk instead).
     let fe = red.n_free_nodes;
     let (colors, serial) = colour(ne, |e| &e_unk[e_ptr[e]..e_ptr[e + 1]], fe, |k| k < fe);
@@ -207,7 +223,12 @@ fn by_unknowns(mesh: &Mesh, red: &Reduction) -> Result<(Pattern, Vec<Vec<usize>>
 /// Greedy colouring: each element takes the first colour that none of its conflict keys
 /// (those with `counts(k)`, keys < `nk`) already has; elements finding none of 64 go to the
 /// serial list.
-fn colour<'a>(ne: usize, keys: impl Fn(usize) -> &'a [usize], nk: usize, counts: impl Fn(usize) -> bool) -> (Vec<Vec<usize>>, Vec<usize>) {
+fn colour<'a>(
+    ne: usize,
+    keys: impl Fn(usize) -> &'a [usize],
+    nk: usize,
+    counts: impl Fn(usize) -> bool,
+) -> (Vec<Vec<usize>>, Vec<usize>) {
     let mut used = vec![0u64; nk];
     let mut colors: Vec<Vec<usize>> = Vec::new();
     let mut serial = Vec::new();
@@ -291,14 +312,20 @@ fn by_nodes(mesh: &Mesh, red: &Reduction) -> Option<(Pattern, Vec<Vec<usize>>, V
                 }
                 nb.clear();
                 nb.push(m); // kept even if no element touches m, so the pivot error names it
-                n_elem[n_ptr[m]..n_ptr[m + 1]].iter().for_each(|&e| nb.extend_from_slice(mesh.element_nodes(e as usize)));
+                n_elem[n_ptr[m]..n_ptr[m + 1]]
+                    .iter()
+                    .for_each(|&e| nb.extend_from_slice(mesh.element_nodes(e as usize)));
                 nb.sort_unstable();
                 nb.dedup();
                 col.clear();
                 extra.clear();
                 for &p in &nb {
                     for &k in unk(p) {
-                        if k < fe { col.push(k) } else { extra.push(k) }
+                        if k < fe {
+                            col.push(k)
+                        } else {
+                            extra.push(k)
+                        }
                     }
                 }
                 extra.sort_unstable();
@@ -319,7 +346,9 @@ fn by_nodes(mesh: &Mesh, red: &Reduction) -> Option<(Pattern, Vec<Vec<usize>>, V
     let mut ex = Vec::new();
     for e in 0..ne {
         ex.clear();
-        mesh.element_nodes(e).iter().for_each(|&m| ex.extend(unk(m).iter().filter(|&&k| k >= fe).map(|&k| k - fe)));
+        mesh.element_nodes(e)
+            .iter()
+            .for_each(|&m| ex.extend(unk(m).iter().filter(|&&k| k >= fe).map(|&k| k - fe)));
         for &i in &ex {
             for &j in &ex {
                 pair[i * nx + j] = true;
@@ -358,7 +387,11 @@ impl Assembler {
         };
         let plain = (0..mesh.n_nodes())
             .map(|m| match (red.terms(2 * m), red.terms(2 * m + 1)) {
-                (&[(Target::Free(kx), cx)], &[(Target::Free(ky), cy)]) if fast && ky == kx + 1 && ky < fe && cx == 1.0 && cy == 1.0 => kx,
+                (&[(Target::Free(kx), cx)], &[(Target::Free(ky), cy)])
+                    if fast && ky == kx + 1 && ky < fe && cx == 1.0 && cy == 1.0 =>
+                {
+                    kx
+                }
                 _ => usize::MAX,
             })
             .collect();
@@ -370,7 +403,13 @@ impl Assembler {
     #[cfg(test)]
     fn new_general(mesh: &Mesh, red: &Reduction) -> Self {
         let (pattern, colors, serial) = by_unknowns(mesh, red).unwrap();
-        Self { pattern, colors, serial, first_extra: red.n_free_nodes, plain: vec![usize::MAX; mesh.n_nodes()] }
+        Self {
+            pattern,
+            colors,
+            serial,
+            first_extra: red.n_free_nodes,
+            plain: vec![usize::MAX; mesh.n_nodes()],
+        }
     }
 
     /// Number of element colours (parallel passes).
@@ -381,11 +420,20 @@ impl Assembler {
     /// Assembles the reduced matrix values (lower triangle) and the reduced right-hand sides
     /// for each load case: `loads[c]` is the full nodal force vector (may be empty) and
     /// `prescribed[c]` the prescribed values g. Returns (values, rhs column-major n x cases).
-    pub fn assemble(&self, model: &Model, red: &Reduction, loads: &[Vec<f64>], prescribed: &[Vec<f64>]) -> Result<(Vec<f64>, Vec<f64>)> {
+    pub fn assemble(
+        &self,
+        model: &Model,
+        red: &Reduction,
+        loads: &[Vec<f64>],
+        prescribed: &[Vec<f64>],
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
         let n = self.pattern.n;
         let nc = prescribed.len();
         if loads.len() != nc || prescribed.iter().any(|g| g.len() != red.n_fixed()) {
-            return Err(Error::input("load cases", format!("need {} prescribed values and one load vector per case", red.n_fixed())));
+            return Err(Error::input(
+                "load cases",
+                format!("need {} prescribed values and one load vector per case", red.n_fixed()),
+            ));
         }
         let mut values = vec![0.0; self.pattern.nnz()];
         crate::memory::advise_huge_pages(&values);
@@ -399,7 +447,11 @@ impl Assembler {
         let run = |elems: &[usize], acc: &mut Extra| -> Result<()> {
             let (mut ke, mut ks) = ([0.0; MAX_DOFS * MAX_DOFS], [0usize; MAX_NODES]);
             for &e in elems {
-                model.element_stiffness_with(e, &d[model.element_material.get(e).map_or(0, |&m| m as usize)], &mut ke)?;
+                model.element_stiffness_with(
+                    e,
+                    &d[model.element_material.get(e).map_or(0, |&m| m as usize)],
+                    &mut ke,
+                )?;
                 let nodes = mesh.element_nodes(e);
                 nodes.iter().zip(&mut ks).for_each(|(&m, k)| *k = self.plain[m]);
                 // SAFETY: elements processed concurrently share no node unknown (colouring), so
@@ -466,7 +518,14 @@ impl Assembler {
             let kb = ks[b];
             let (s0, s1, s2) = (cp[kb] as usize, cp[kb + 1] as usize, cp[kb + 2] as usize);
             let kb32 = kb as u32;
-            assert!(s1 - s0 == s2 - s1 + 1 && s0 + 1 < s1 && ri[s0] == kb32 && ri[s0 + 1] == kb32 + 1 && ri[s1] == kb32 + 1, "entry outside the assembled pattern");
+            assert!(
+                s1 - s0 == s2 - s1 + 1
+                    && s0 + 1 < s1
+                    && ri[s0] == kb32
+                    && ri[s0 + 1] == kb32 + 1
+                    && ri[s1] == kb32 + 1,
+                "entry outside the assembled pattern"
+            );
             let (bx, by) = (2 * b * nd + 2 * b, (2 * b + 1) * nd + 2 * b);
             add(s0, ke[bx]);
             add(s0 + 1, ke[by]);
@@ -476,7 +535,10 @@ impl Assembler {
                 let ka = ks[a] as u32;
                 p += ri[p..s1].partition_point(|&r| r < ka);
                 let q = p - s0 + s1 - 1;
-                assert!(p + 1 < s1 && ri[p] == ka && ri[p + 1] == ka + 1, "entry outside the assembled pattern");
+                assert!(
+                    p + 1 < s1 && ri[p] == ka && ri[p + 1] == ka + 1,
+                    "entry outside the assembled pattern"
+                );
                 let (ax, ay) = (2 * a * nd + 2 * b, (2 * a + 1) * nd + 2 * b);
                 add(p, ke[ax]);
                 add(p + 1, ke[ay]);
@@ -489,7 +551,18 @@ impl Assembler {
 
     /// Adds one element matrix into the reduced system through the reduction terms.
     #[allow(clippy::too_many_arguments)]
-    unsafe fn scatter(&self, mesh: &Mesh, red: &Reduction, e: usize, ke: &[f64], g: &[Vec<f64>], vptr: &SyncPtr, rptr: &SyncPtr, xk: &mut [f64], xf: &mut [f64]) {
+    unsafe fn scatter(
+        &self,
+        mesh: &Mesh,
+        red: &Reduction,
+        e: usize,
+        ke: &[f64],
+        g: &[Vec<f64>],
+        vptr: &SyncPtr,
+        rptr: &SyncPtr,
+        xk: &mut [f64],
+        xf: &mut [f64],
+    ) {
         let nodes = mesh.element_nodes(e);
         let nd = 2 * nodes.len();
         let (n, fe, nc) = (self.pattern.n, self.first_extra, g.len());
@@ -607,7 +680,9 @@ mod tests {
         for sm in cases() {
             let model = sm.model();
             let red = sm.constraints.reduce().unwrap();
-            let g: Vec<Vec<f64>> = (0..2).map(|c| (0..red.n_fixed()).map(|j| ((j * 7 + c * 3) % 5) as f64 - 2.0).collect()).collect();
+            let g: Vec<Vec<f64>> = (0..2)
+                .map(|c| (0..red.n_fixed()).map(|j| ((j * 7 + c * 3) % 5) as f64 - 2.0).collect())
+                .collect();
             let f: Vec<Vec<f64>> = vec![(0..red.n_full).map(|d| (d % 7) as f64).collect(), vec![]];
             let (a, b) = (Assembler::new(&sm.mesh, &red).unwrap(), Assembler::new_general(&sm.mesh, &red));
             let (va, ra) = a.assemble(&model, &red, &f, &g).unwrap();

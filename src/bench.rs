@@ -37,7 +37,9 @@ impl std::str::FromStr for Case {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
         let num = |p: &str| s.strip_prefix(p).and_then(|v| v.parse::<usize>().ok()).filter(|&v| v > 0);
-        num("strip").map(Case::Strip).or_else(|| num("square").map(Case::Square)).ok_or_else(|| Error::input("bench case", format!("'{s}': expected stripNY or squareN, e.g. strip50, square707")))
+        num("strip").map(Case::Strip).or_else(|| num("square").map(Case::Square)).ok_or_else(|| {
+            Error::input("bench case", format!("'{s}': expected stripNY or squareN, e.g. strip50, square707"))
+        })
     }
 }
 
@@ -110,7 +112,16 @@ impl Row {
         }
         let num = |i: usize| f[i].parse::<f64>().map_err(|_| bad());
         let int = |i: usize| f[i].parse::<usize>().map_err(|_| bad());
-        let t = Timings { mesh: num(8)?, pattern: num(9)?, assembly: num(10)?, symbolic: num(11)?, numeric: num(12)?, solve: num(13)?, recovery: num(14)?, other: num(15)? };
+        let t = Timings {
+            mesh: num(8)?,
+            pattern: num(9)?,
+            assembly: num(10)?,
+            symbolic: num(11)?,
+            numeric: num(12)?,
+            solve: num(13)?,
+            recovery: num(14)?,
+            other: num(15)?,
+        };
         Ok(Row {
             case: f[0].into(),
             threads: int(1)?,
@@ -141,9 +152,23 @@ pub fn ordering_name(o: &Ordering) -> &'static str {
 
 /// Runs one case in this process, with a rayon pool of `cfg.threads` threads.
 pub fn run_case(case: Case, cfg: &Config) -> Result<Row> {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(cfg.threads).build().map_err(|e| Error::input("threads", e.to_string()))?;
-    let opts = SolverOptions { ordering: cfg.ordering.clone(), threads: cfg.threads, supernodal: cfg.supernodal, ..Default::default() };
-    eprintln!("bench: {} ({} thread(s), {}, {}) ...", case.name(), cfg.threads, cfg.supernodal.map_or("auto", |s| if s { "supernodal" } else { "simplicial" }), ordering_name(&cfg.ordering));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(cfg.threads)
+        .build()
+        .map_err(|e| Error::input("threads", e.to_string()))?;
+    let opts = SolverOptions {
+        ordering: cfg.ordering.clone(),
+        threads: cfg.threads,
+        supernodal: cfg.supernodal,
+        ..Default::default()
+    };
+    eprintln!(
+        "bench: {} ({} thread(s), {}, {}) ...",
+        case.name(),
+        cfg.threads,
+        cfg.supernodal.map_or("auto", |s| if s { "supernodal" } else { "simplicial" }),
+        ordering_name(&cfg.ordering)
+    );
     let clock = Instant::now();
     let mut row = pool.install(|| match case {
         Case::Strip(ny) => strip(ny, &opts),
@@ -160,7 +185,9 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
     let (res, _) = check::run(&scene, opts)?;
     let peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
     let prepared = check::prepare(&scene, opts)?;
-    let numeric_warm = refactorisation_time(|| Ok(check::run_model(&scene, scene.build()?, 0.0, opts, Some(&prepared))?.0.timings.numeric))?;
+    let numeric_warm = refactorisation_time(|| {
+        Ok(check::run_model(&scene, scene.build()?, 0.0, opts, Some(&prepared))?.0.timings.numeric)
+    })?;
     // Outputs go to a private temporary directory, removed afterwards.
     let dir = std::env::temp_dir().join(format!("tribofe-bench-{}", std::process::id()));
     let clock = Instant::now();
@@ -202,7 +229,9 @@ fn square(n: usize, opts: &SolverOptions) -> Result<Row> {
     let sol = solve(&model, &c, std::slice::from_ref(&case), opts, hint)?;
     let peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
     let prepared = Prepared::new(&mesh, &c, opts)?;
-    let numeric_warm = refactorisation_time(|| Ok(prepared.solve(&model, &c, std::slice::from_ref(&case), opts, hint)?.timings.numeric))?;
+    let numeric_warm = refactorisation_time(|| {
+        Ok(prepared.solve(&model, &c, std::slice::from_ref(&case), opts, hint)?.timings.numeric)
+    })?;
     let clock = Instant::now();
     let stresses = crate::recovery::nodal_stresses(&model, &sol.u[0]);
     std::hint::black_box(stresses);
@@ -233,7 +262,11 @@ fn refactorisation_time(mut numeric: impl FnMut() -> Result<f64>) -> Result<f64>
 
 /// GFLOP/s; 0 for a time too short to be stored (the CSV keeps 0.1 ms), never NaN.
 fn rate(flops: f64, seconds: f64) -> f64 {
-    if seconds > 0.0 { flops / seconds / 1e9 } else { 0.0 }
+    if seconds > 0.0 {
+        flops / seconds / 1e9
+    } else {
+        0.0
+    }
 }
 
 fn factor_name(supernodal: bool) -> String {
@@ -243,7 +276,14 @@ fn factor_name(supernodal: bool) -> String {
 /// Peak resident memory of this process so far (VmHWM), MiB; None off Linux.
 pub fn peak_memory_mib() -> Option<f64> {
     let s = std::fs::read_to_string("/proc/self/status").ok()?;
-    let kb: f64 = s.lines().find_map(|l| l.strip_prefix("VmHWM:"))?.trim().trim_end_matches("kB").trim().parse().ok()?;
+    let kb: f64 = s
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))?
+        .trim()
+        .trim_end_matches("kB")
+        .trim()
+        .parse()
+        .ok()?;
     Some(kb / 1024.0)
 }
 
@@ -252,13 +292,27 @@ pub fn peak_memory_mib() -> Option<f64> {
 pub fn run_isolated(exe: &Path, case: Case, cfg: &Config) -> Result<Row> {
     let factor = cfg.supernodal.map_or("auto", |s| if s { "supernodal" } else { "simplicial" });
     let out = std::process::Command::new(exe)
-        .args(["bench", "--row", "--case", &case.name(), "--threads", &cfg.threads.to_string(), "--factor", factor, "--ordering", ordering_name(&cfg.ordering)])
+        .args([
+            "bench",
+            "--row",
+            "--case",
+            &case.name(),
+            "--threads",
+            &cfg.threads.to_string(),
+            "--factor",
+            factor,
+            "--ordering",
+            ordering_name(&cfg.ordering),
+        ])
         .stderr(std::process::Stdio::inherit())
         .output()
         .map_err(|e| Error::io(exe, e))?;
     let text = String::from_utf8_lossy(&out.stdout);
     if !out.status.success() {
-        return Err(Error::input(format!("bench case {}", case.name()), format!("child process failed ({}): {}", out.status, text.trim())));
+        return Err(Error::input(
+            format!("bench case {}", case.name()),
+            format!("child process failed ({}): {}", out.status, text.trim()),
+        ));
     }
     Row::from_csv(text.lines().last().unwrap_or(""))
 }
@@ -295,7 +349,9 @@ pub fn table(rows: &[Row], dgemm: &[(usize, f64)]) -> String {
         let t = &r.t;
         let dgemm_rate = dgemm.iter().find(|d| d.0 == r.threads).map(|d| d.1);
         let percent = |rate: f64| dgemm_rate.map_or("-".to_string(), |g| format!("{:.1}", 100.0 * rate / g));
-        let front = dgemm_rate.zip(r.front_gflops_per_core()).map_or("-".to_string(), |(g, f)| format!("{:.1}", 100.0 * f * r.threads as f64 / g));
+        let front = dgemm_rate
+            .zip(r.front_gflops_per_core())
+            .map_or("-".to_string(), |(g, f)| format!("{:.1}", 100.0 * f * r.threads as f64 / g));
         let _ = writeln!(
             s,
             "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6.2} | {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} | {:>6.2} {:>6} | {:>8.2e} {:>6.2} {:>5} | {:>6.3} {:>5} {:>6} | {:>7.0}",
@@ -329,18 +385,53 @@ mod tests {
     /// The parent process reads back what the child printed: every stored field survives.
     #[test]
     fn row_round_trips_through_csv() {
-        let t = Timings { mesh: 0.01, pattern: 0.02, assembly: 0.03, symbolic: 0.04, numeric: 0.5, solve: 0.06, recovery: 0.07, other: 0.005 };
-        let row = Row { case: "strip50".into(), threads: 2, factor: "supernodal".into(), ordering: "auto".into(), dofs: 980099, nnz_k: 9210342, nnz_l: 71550638, flops: 7.141e9, t, output: Some(0.08), peak_mib: 1036.0, dense_s: Some(0.4088), numeric_warm: 0.3563 };
+        let t = Timings {
+            mesh: 0.01,
+            pattern: 0.02,
+            assembly: 0.03,
+            symbolic: 0.04,
+            numeric: 0.5,
+            solve: 0.06,
+            recovery: 0.07,
+            other: 0.005,
+        };
+        let row = Row {
+            case: "strip50".into(),
+            threads: 2,
+            factor: "supernodal".into(),
+            ordering: "auto".into(),
+            dofs: 980099,
+            nnz_k: 9210342,
+            nnz_l: 71550638,
+            flops: 7.141e9,
+            t,
+            output: Some(0.08),
+            peak_mib: 1036.0,
+            dense_s: Some(0.4088),
+            numeric_warm: 0.3563,
+        };
         for (output, dense_s) in [(Some(0.08), Some(0.4088)), (None, None)] {
             let r = Row { output, dense_s, ..row.clone() };
             let back = Row::from_csv(&r.to_csv()).unwrap();
-            assert_eq!((back.case.as_str(), back.threads, back.dofs, back.nnz_l), ("strip50", 2, 980099, 71550638));
-            assert_eq!((back.output, back.dense_s, back.numeric_warm, back.t.numeric, back.t.other), (output, dense_s, 0.3563, 0.5, 0.005));
+            assert_eq!(
+                (back.case.as_str(), back.threads, back.dofs, back.nnz_l),
+                ("strip50", 2, 980099, 71550638)
+            );
+            assert_eq!(
+                (back.output, back.dense_s, back.numeric_warm, back.t.numeric, back.t.other),
+                (output, dense_s, 0.3563, 0.5, 0.005)
+            );
             assert!((back.flops - 7.141e9).abs() < 1e5 && back.peak_mib == 1036.0);
         }
         assert!(Row::from_csv("strip50,2").is_err());
         // A tiny case's times round to 0 in the CSV: rates are 0, not NaN.
-        let tiny = Row { flops: 0.0, numeric_warm: 0.0, dense_s: Some(0.0), t: Timings { numeric: 0.0, ..t }, ..row };
+        let tiny = Row {
+            flops: 0.0,
+            numeric_warm: 0.0,
+            dense_s: Some(0.0),
+            t: Timings { numeric: 0.0, ..t },
+            ..row
+        };
         assert_eq!((tiny.gflops(), tiny.gflops_warm(), tiny.front_gflops_per_core()), (0.0, 0.0, Some(0.0)));
     }
 }

@@ -112,14 +112,21 @@ pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneMod
 /// by the stability study); the interface, top and loading DOFs must be those of the scene.
 /// `mesh_time` (s) is reported as the mesh phase. With `prepared` (built on the same mesh and
 /// constraint structure, see [`prepare`]) the pattern and symbolic analysis are reused.
-pub fn run_model(scene: &Scene, sm: SceneModel, mesh_time: f64, opts: &SolverOptions, prepared: Option<&Prepared>) -> Result<(CheckResult, SceneModel)> {
+pub fn run_model(
+    scene: &Scene,
+    sm: SceneModel,
+    mesh_time: f64,
+    opts: &SolverOptions,
+    prepared: Option<&Prepared>,
+) -> Result<(CheckResult, SceneModel)> {
     let model = sm.model();
     let (l, t, hgt) = (scene.block.length, scene.block.thickness, scene.loading.height);
     // Unit cases: A presses the plate down by d, B moves it sideways by d (the problem is linear;
     // d = 5 % of t keeps N at the scale of the peer scripts in validation/peers).
     let d = 0.05 * t;
     let nf = sm.constraints.n_fixed();
-    let (ju, jv) = (sm.constraints.fixed_slot(sm.dof_u).unwrap(), sm.constraints.fixed_slot(sm.dof_v).unwrap());
+    let (ju, jv) =
+        (sm.constraints.fixed_slot(sm.dof_u).unwrap(), sm.constraints.fixed_slot(sm.dof_v).unwrap());
     let mut ga = vec![0.0; nf];
     ga[jv] = -d;
     let mut gb = vec![0.0; nf];
@@ -158,13 +165,17 @@ pub fn run_model(scene: &Scene, sm: SceneModel, mesh_time: f64, opts: &SolverOpt
     let (nb, fb) = (unit[1].0, unit[1].1);
     let det = na * fb - nb * fa;
     if !(det.abs() > 0.0) || !(na > 0.0) {
-        return Err(Error::input("scene", "the unit load cases are degenerate (no normal force from pressing the plate)"));
+        return Err(Error::input(
+            "scene",
+            "the unit load cases are degenerate (no normal force from pressing the plate)",
+        ));
     }
     let widths = tributary_widths(&sm);
     let xs: Vec<f64> = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
     let x_over_l: Vec<f64> = xs.iter().map(|x| x / l).collect();
     // Unit fields: combination giving (N, F) = (1, 0) and (0, 1).
-    let combo = |n_t: f64, f_t: f64| -> (f64, f64) { ((n_t * fb - f_t * nb) / det, (na * f_t - fa * n_t) / det) };
+    let combo =
+        |n_t: f64, f_t: f64| -> (f64, f64) { ((n_t * fb - f_t * nb) / det, (na * f_t - fa * n_t) / det) };
     let profile = |a: f64, b: f64| -> (Vec<f64>, Vec<f64>) {
         let p = (0..xs.len()).map(|i| (a * unit[0].3[i] + b * unit[1].3[i]) / widths[i]).collect();
         let tau = (0..xs.len()).map(|i| -(a * unit[0].2[i] + b * unit[1].2[i]) / widths[i]).collect();
@@ -217,7 +228,22 @@ pub fn run_model(scene: &Scene, sm: SceneModel, mesh_time: f64, opts: &SolverOpt
             balance_moment: (moment - f * hgt).abs() / (n * hgt),
             ..metrics(&x_over_l, &p, &tau, &p_model, &tau_model, slope_model, l, t, scene.report.tol)
         };
-        results.push(CaseResult { fn_ratio: ratio, n, f, tilt, plate_u: b * d, plate_v: -a * d, x_over_l: x_over_l.clone(), p, tau, p_extrap, tau_extrap, p_model, tau_model, metrics });
+        results.push(CaseResult {
+            fn_ratio: ratio,
+            n,
+            f,
+            tilt,
+            plate_u: b * d,
+            plate_v: -a * d,
+            x_over_l: x_over_l.clone(),
+            p,
+            tau,
+            p_extrap,
+            tau_extrap,
+            p_model,
+            tau_model,
+            metrics,
+        });
         displacements.push(u);
     }
     let timings = Timings { mesh: mesh_time, recovery: clock.elapsed().as_secs_f64(), ..sol.timings };
@@ -245,7 +271,10 @@ fn plate_tilt(sm: &SceneModel, u: &[f64]) -> f64 {
     let top = sm.mesh.nodes.iter().fold(f64::MIN, |m, p| m.max(p[1]));
     let corners: Vec<usize> = (0..sm.mesh.n_nodes()).filter(|&k| sm.mesh.nodes[k][1] == top).collect();
     let (l, r) = corners.iter().fold((corners[0], corners[0]), |(l, r), &k| {
-        (if sm.mesh.nodes[k][0] < sm.mesh.nodes[l][0] { k } else { l }, if sm.mesh.nodes[k][0] > sm.mesh.nodes[r][0] { k } else { r })
+        (
+            if sm.mesh.nodes[k][0] < sm.mesh.nodes[l][0] { k } else { l },
+            if sm.mesh.nodes[k][0] > sm.mesh.nodes[r][0] { k } else { r },
+        )
     });
     (u[2 * r + 1] - u[2 * l + 1]) / (sm.mesh.nodes[r][0] - sm.mesh.nodes[l][0])
 }
@@ -257,7 +286,8 @@ fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
     let mut w = vec![0.0; sm.mesh.n_nodes()];
     let mut f = vec![0.0; 2 * sm.mesh.n_nodes()];
     // A unit normal traction's consistent forces are exactly these integrals.
-    crate::loads::add_edge_traction(&sm.mesh, &sm.interface_set, &|_| [0.0, 1.0], &mut f).expect("interface edges exist");
+    crate::loads::add_edge_traction(&sm.mesh, &sm.interface_set, &|_| [0.0, 1.0], &mut f)
+        .expect("interface edges exist");
     for k in 0..sm.mesh.n_nodes() {
         w[k] = f[2 * k + 1];
     }
@@ -265,16 +295,31 @@ fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn metrics(x: &[f64], p: &[f64], tau: &[f64], pm: &[f64], tm: &[f64], slope_model: f64, l: f64, t: f64, tol: f64) -> Metrics {
+fn metrics(
+    x: &[f64],
+    p: &[f64],
+    tau: &[f64],
+    pm: &[f64],
+    tm: &[f64],
+    slope_model: f64,
+    l: f64,
+    t: f64,
+    tol: f64,
+) -> Metrics {
     let interior: Vec<usize> = (0..x.len()).filter(|&i| x[i].abs() * l < l / 2.0 - 10.0 * t).collect();
     let slope = line_fit(interior.iter().map(|&i| (x[i], p[i]))).map_or(f64::NAN, |l| l.1);
-    let dev = |v: &[f64], model: &[f64]| interior.iter().map(|&i| (v[i] - model[i]).abs()).fold(0.0, f64::max);
+    let dev =
+        |v: &[f64], model: &[f64]| interior.iter().map(|&i| (v[i] - model[i]).abs()).fold(0.0, f64::max);
     let tau_center = interpolate(x, tau, 0.0);
     let n = x.len();
     // Edge-zone width: from the end to where the excess |v - model| - tol |model| last changes
     // sign, located by linear interpolation between the two nodes around that crossing.
     let width = |v: &[f64], model: &[f64], left: bool| -> Option<f64> {
-        let order: Vec<usize> = if left { (0..n).filter(|&i| x[i] <= 0.0).collect() } else { (0..n).rev().filter(|&i| x[i] >= 0.0).collect() };
+        let order: Vec<usize> = if left {
+            (0..n).filter(|&i| x[i] <= 0.0).collect()
+        } else {
+            (0..n).rev().filter(|&i| x[i] >= 0.0).collect()
+        };
         if order.iter().any(|&i| model[i] == 0.0) {
             return None;
         }

@@ -127,10 +127,17 @@ impl Constraints {
             }
         }
         let n_free_nodes = free_to_full.iter().filter(|&&d| d < self.n_node_dofs).count();
-        let target = |d: usize| if is_fixed[d] != usize::MAX { Target::Fixed(is_fixed[d]) } else { Target::Free(free_index[d]) };
+        let target = |d: usize| {
+            if is_fixed[d] != usize::MAX {
+                Target::Fixed(is_fixed[d])
+            } else {
+                Target::Free(free_index[d])
+            }
+        };
         // Sized exactly: growing the 24 MB entries at 1e6 DOFs cost a copy and fresh pages.
         let mut ptr = Vec::with_capacity(n_full + 1);
-        let mut entries = Vec::with_capacity(n_full - self.ties.len() + self.ties.values().map(|t| t.len()).sum::<usize>());
+        let mut entries =
+            Vec::with_capacity(n_full - self.ties.len() + self.ties.values().map(|t| t.len()).sum::<usize>());
         crate::memory::advise_huge_pages(&entries);
         ptr.push(0);
         for d in 0..n_full {
@@ -175,9 +182,11 @@ impl Reduction {
             .map(|d| {
                 self.terms(d)
                     .iter()
-                    .map(|&(t, c)| c * match t {
-                        Target::Free(k) => r[k],
-                        Target::Fixed(j) => g[j],
+                    .map(|&(t, c)| {
+                        c * match t {
+                            Target::Free(k) => r[k],
+                            Target::Fixed(j) => g[j],
+                        }
                     })
                     .sum()
             })
@@ -232,6 +241,11 @@ mod tests {
         let u = r.expand(&[0.1, 0.2, 0.5], &[7.0, 0.0]);
         assert_eq!(jv, 0);
         assert_eq!(u, vec![0.0, 0.1, 0.2, 7.0 + 1.5, 0.5, 7.0]);
-        assert!(Constraints { ties: [(0, vec![(1, 1.0)]), (1, vec![(2, 1.0)])].into(), ..Constraints::new(2) }.reduce().is_err());
+        assert!(Constraints {
+            ties: [(0, vec![(1, 1.0)]), (1, vec![(2, 1.0)])].into(),
+            ..Constraints::new(2)
+        }
+        .reduce()
+        .is_err());
     }
 }

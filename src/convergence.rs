@@ -140,7 +140,12 @@ fn estimate_dofs(s: &Scene) -> Result<usize> {
     let t = s.block.thickness;
     let ny = (t / s.mesh.h).round().max(1.0) as usize;
     let nx = match s.mesh.grading {
-        Some(r) => crate::mesher::spacing(s.block.length, 0, Some(crate::mesher::Grading { end: s.mesh.h, ratio: r, max: s.mesh.h_max }))?.len(),
+        Some(r) => crate::mesher::spacing(
+            s.block.length,
+            0,
+            Some(crate::mesher::Grading { end: s.mesh.h, ratio: r, max: s.mesh.h_max }),
+        )?
+        .len(),
         None => (s.block.length / s.mesh.h).round() as usize,
     };
     let p = s.element()?.kind.order();
@@ -182,13 +187,24 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
         let (r, _) = check::run(s, &SolverOptions::default())?;
         let mut run = to_run(*f, e, *n, &r, clock.elapsed().as_secs_f64());
         if !o.parallel {
-            run.peak_mib = Some(crate::memory::peak_bytes().saturating_sub(base) as f64 / (1u64 << 20) as f64);
+            run.peak_mib =
+                Some(crate::memory::peak_bytes().saturating_sub(base) as f64 / (1u64 << 20) as f64);
         }
         progress(&run);
         Ok(run)
     };
-    let mut runs: Vec<Run> = if o.parallel { specs.par_iter().map(one).collect::<Result<_>>()? } else { specs.iter().map(one).collect::<Result<_>>()? };
-    runs.sort_by(|a, b| (a.element.as_str(), a.family.name(), a.n_thick).cmp(&(b.element.as_str(), b.family.name(), b.n_thick)));
+    let mut runs: Vec<Run> = if o.parallel {
+        specs.par_iter().map(one).collect::<Result<_>>()?
+    } else {
+        specs.iter().map(one).collect::<Result<_>>()?
+    };
+    runs.sort_by(|a, b| {
+        (a.element.as_str(), a.family.name(), a.n_thick).cmp(&(
+            b.element.as_str(),
+            b.family.name(),
+            b.n_thick,
+        ))
+    });
     let reference = pick_reference(&runs);
     let t_over_l = base.block.thickness / base.block.length;
     let samples = Samples::new(t_over_l);
@@ -258,7 +274,9 @@ impl Samples {
     }
 
     fn errors(&self, x: &[f64], p: &[f64], tau: &[f64], rx: &[f64], rp: &[f64], rt: &[f64]) -> ZoneErrors {
-        let max_err = |pts: &[f64], v: &[f64], rv: &[f64]| pts.iter().map(|&s| (interpolate(x, v, s) - interpolate(rx, rv, s)).abs()).fold(0.0, f64::max);
+        let max_err = |pts: &[f64], v: &[f64], rv: &[f64]| {
+            pts.iter().map(|&s| (interpolate(x, v, s) - interpolate(rx, rv, s)).abs()).fold(0.0, f64::max)
+        };
         let n = x.len();
         let rn = rx.len();
         let end = |v: &[f64], rv: &[f64]| (v[0] - rv[0]).abs().max((v[n - 1] - rv[rn - 1]).abs());
@@ -272,10 +290,17 @@ impl Samples {
 
 /// Zone errors (interior, edge zones, end nodes) of profiles (x/L, p, tau) against a
 /// reference on another mesh, in units of N/L.
-pub fn zone_errors(t_over_l: f64, x: &[f64], p: &[f64], tau: &[f64], rx: &[f64], rp: &[f64], rt: &[f64]) -> ZoneErrors {
+pub fn zone_errors(
+    t_over_l: f64,
+    x: &[f64],
+    p: &[f64],
+    tau: &[f64],
+    rx: &[f64],
+    rp: &[f64],
+    rt: &[f64],
+) -> ZoneErrors {
     Samples::new(t_over_l).errors(x, p, tau, rx, rp, rt)
 }
-
 
 /// Observed order of convergence between two runs: log(e1/e2) / log(h1/h2).
 pub fn observed_order(e1: f64, h1: f64, e2: f64, h2: f64) -> f64 {
@@ -304,7 +329,9 @@ pub fn series(study: &Study) -> Vec<Vec<usize>> {
     keys.dedup();
     keys.iter()
         .map(|(e, f)| {
-            let mut v: Vec<usize> = (0..study.runs.len()).filter(|&i| &study.runs[i].element == e && study.runs[i].family == *f).collect();
+            let mut v: Vec<usize> = (0..study.runs.len())
+                .filter(|&i| &study.runs[i].element == e && study.runs[i].family == *f)
+                .collect();
             v.sort_by_key(|&i| study.runs[i].n_thick);
             v
         })
@@ -325,7 +352,12 @@ pub fn orders(study: &Study, s: &[usize]) -> Option<[f64; 4]> {
     let (d1, d2) = (diff(r[0], r[1]), diff(r[1], r[2]));
     let ratio = r[1].n_thick as f64 / r[0].n_thick as f64;
     let o = |a: f64, b: f64| (a / b).ln() / ratio.ln();
-    Some([o(d1.interior[0], d2.interior[0]), o(d1.interior[1], d2.interior[1]), o(d1.edge[0], d2.edge[0]), o(d1.edge[1], d2.edge[1])])
+    Some([
+        o(d1.interior[0], d2.interior[0]),
+        o(d1.interior[1], d2.interior[1]),
+        o(d1.edge[0], d2.edge[0]),
+        o(d1.edge[1], d2.edge[1]),
+    ])
 }
 
 /// Largest edge-zone error of a run (pressure or shear, either end), units of N/L.

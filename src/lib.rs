@@ -10,30 +10,30 @@
 // read more plainly than zipped iterators in the numeric kernels.
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
 
+pub mod analytical;
+pub mod assembly;
+pub mod bench;
+pub mod check;
+pub mod constraints;
+pub mod convergence;
 pub mod element;
 pub mod error;
 pub mod io;
+pub mod loads;
 pub mod material;
 pub mod memory;
 pub mod mesh;
 pub mod mesher;
-pub mod assembly;
-pub mod constraints;
-pub mod solve;
-pub mod substructure;
 pub mod multifrontal;
 pub mod ordering;
-pub mod recovery;
-pub mod loads;
-pub mod problem;
-pub mod scene;
-pub mod check;
-pub mod convergence;
-pub mod rectangle;
-pub mod stability;
 pub mod precursors;
+pub mod problem;
+pub mod recovery;
+pub mod rectangle;
 pub mod report;
-pub mod analytical;
-pub mod bench;
+pub mod scene;
+pub mod solve;
+pub mod stability;
+pub mod substructure;
 
 pub use error::{Error, Result};

@@ -6,7 +6,12 @@ use crate::error::Result;
 use crate::mesh::Mesh;
 
 /// Adds the consistent nodal forces of traction `t(x, y)` (Pa) on edge set `name`.
-pub fn add_edge_traction(mesh: &Mesh, name: &str, t: &dyn Fn([f64; 2]) -> [f64; 2], f: &mut [f64]) -> Result<()> {
+pub fn add_edge_traction(
+    mesh: &Mesh,
+    name: &str,
+    t: &dyn Fn([f64; 2]) -> [f64; 2],
+    f: &mut [f64],
+) -> Result<()> {
     let mut fe = [0.0; 6];
     for edge in mesh.edges(name)? {
         let nodes: Vec<usize> = edge.nodes().collect();

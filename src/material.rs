@@ -15,7 +15,10 @@ impl Material {
     /// Plane-strain material; rejects E <= 0 and nu outside (-1, 0.5).
     pub fn plane_strain(e: f64, nu: f64) -> Result<Self> {
         if !(e.is_finite() && e > 0.0) {
-            return Err(Error::input("Young's modulus", format!("E = {e} Pa, must be a finite positive number")));
+            return Err(Error::input(
+                "Young's modulus",
+                format!("E = {e} Pa, must be a finite positive number"),
+            ));
         }
         if !nu.is_finite() || nu <= -1.0 || nu >= 0.5 {
             let why = if nu == 0.5 {

@@ -44,7 +44,13 @@ impl Mesh {
         let nn = kind.n_nodes();
         assert_eq!(conn.len() % nn, 0, "connectivity of whole elements");
         let ne = conn.len() / nn;
-        Self { nodes, kinds: vec![kind; ne], offsets: (0..=ne).map(|e| e * nn).collect(), conn, ..Default::default() }
+        Self {
+            nodes,
+            kinds: vec![kind; ne],
+            offsets: (0..=ne).map(|e| e * nn).collect(),
+            conn,
+            ..Default::default()
+        }
     }
 
     /// Appends an element; returns its index. Node indices are checked by [`Mesh::validate`].
@@ -88,7 +94,8 @@ impl Mesh {
     /// "element 12 (nodes 3, 4, 9, 8)" in the user's numbering when tags are known (1-based otherwise).
     pub fn describe_element(&self, e: usize) -> String {
         let etag = self.element_tags.as_ref().map_or(e as u64 + 1, |t| t[e]);
-        let nodes: Vec<String> = self.element_nodes(e).iter().map(|&n| self.node_tag(n).to_string()).collect();
+        let nodes: Vec<String> =
+            self.element_nodes(e).iter().map(|&n| self.node_tag(n).to_string()).collect();
         format!("element {etag} ({}, nodes {})", self.kinds[e].name(), nodes.join(", "))
     }
     pub fn node_tag(&self, n: usize) -> u64 {
@@ -97,7 +104,13 @@ impl Mesh {
 
     /// Names of all sets, for error messages.
     pub fn set_names(&self) -> Vec<String> {
-        let mut v: Vec<String> = self.node_sets.keys().chain(self.edge_sets.keys()).chain(self.element_sets.keys()).cloned().collect();
+        let mut v: Vec<String> = self
+            .node_sets
+            .keys()
+            .chain(self.edge_sets.keys())
+            .chain(self.element_sets.keys())
+            .cloned()
+            .collect();
         v.sort();
         v.dedup();
         v
@@ -165,7 +178,11 @@ impl Mesh {
         }
         for e in 0..self.n_elements() {
             if let Some(&n) = self.element_nodes(e).iter().find(|&&n| n >= self.n_nodes()) {
-                return Err(Error::Mesh(format!("{} refers to node index {n}, but there are only {} nodes", self.describe_element(e), self.n_nodes())));
+                return Err(Error::Mesh(format!(
+                    "{} refers to node index {n}, but there are only {} nodes",
+                    self.describe_element(e),
+                    self.n_nodes()
+                )));
             }
             let min = self.min_jacobian(e);
             if !(min > 0.0) {

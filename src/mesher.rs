@@ -27,7 +27,10 @@ pub fn spacing(len: f64, n: usize, grading: Option<Grading>) -> Result<Vec<f64>>
         return Ok(vec![len / n as f64; n]);
     };
     if !(g.end > 0.0 && g.end <= len / 2.0 && g.ratio >= 1.0 && g.ratio.is_finite()) {
-        return Err(Error::input("grading", format!("end size {} m must be in (0, {}] and ratio {} >= 1", g.end, len / 2.0, g.ratio)));
+        return Err(Error::input(
+            "grading",
+            format!("end size {} m must be in (0, {}] and ratio {} >= 1", g.end, len / 2.0, g.ratio),
+        ));
     }
     let cap = g.max.unwrap_or(f64::INFINITY).max(g.end);
     // Grow from one end until half the length is covered, then scale to fit exactly.
@@ -99,7 +102,12 @@ impl Rectangle {
                     ElementKind::Tri3 => conn.extend_from_slice(&[c[0], c[1], c[2], c[0], c[2], c[3]]),
                     ElementKind::Qua8 | ElementKind::Qua9 => {
                         conn.extend_from_slice(&c);
-                        conn.extend_from_slice(&[grid(i + 1, j), grid(i + 2, j + 1), grid(i + 1, j + 2), grid(i, j + 1)]);
+                        conn.extend_from_slice(&[
+                            grid(i + 1, j),
+                            grid(i + 2, j + 1),
+                            grid(i + 1, j + 2),
+                            grid(i, j + 1),
+                        ]);
                         if self.kind == ElementKind::Qua9 {
                             conn.push(grid(i + 1, j + 1));
                         }
@@ -127,11 +135,19 @@ impl Rectangle {
         }
         conn.iter_mut().for_each(|g| *g = new_index[*g]);
         let mut mesh = Mesh::with_elements(nodes, self.kind, conn);
-        let edge = |a: usize, b: usize, m: usize| Edge { ends: [new_index[a], new_index[b]], mid: (p == 2).then(|| new_index[m]) };
-        let bottom = (0..nx).map(|c| edge(grid(c * p, 0), grid((c + 1) * p, 0), grid(c * p + 1, 0))).collect();
-        let top = (0..nx).map(|c| edge(grid((c + 1) * p, gy - 1), grid(c * p, gy - 1), grid(c * p + 1, gy - 1))).collect();
+        let edge = |a: usize, b: usize, m: usize| Edge {
+            ends: [new_index[a], new_index[b]],
+            mid: (p == 2).then(|| new_index[m]),
+        };
+        let bottom =
+            (0..nx).map(|c| edge(grid(c * p, 0), grid((c + 1) * p, 0), grid(c * p + 1, 0))).collect();
+        let top = (0..nx)
+            .map(|c| edge(grid((c + 1) * p, gy - 1), grid(c * p, gy - 1), grid(c * p + 1, gy - 1)))
+            .collect();
         let left = (0..ny).map(|c| edge(grid(0, (c + 1) * p), grid(0, c * p), grid(0, c * p + 1))).collect();
-        let right = (0..ny).map(|c| edge(grid(gx - 1, c * p), grid(gx - 1, (c + 1) * p), grid(gx - 1, c * p + 1))).collect();
+        let right = (0..ny)
+            .map(|c| edge(grid(gx - 1, c * p), grid(gx - 1, (c + 1) * p), grid(gx - 1, c * p + 1)))
+            .collect();
         mesh.edge_sets.insert("bottom".into(), bottom);
         mesh.edge_sets.insert("right".into(), right);
         mesh.edge_sets.insert("top".into(), top);

@@ -127,11 +127,19 @@ impl DenseWork {
 /// `row_idx` with row >= column, rows in any order; `value(p)` is entry p) into `l`
 /// (`s.len_val()` long, any contents). Returns the dense kernels' work; a non-positive pivot
 /// is returned as its column.
-pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_ptr: &[u32], row_idx: &[u32], value: impl Fn(usize) -> f64, l: &mut [f64]) -> Result<DenseWork, usize> {
+pub fn factorize(
+    s: &SymbolicSupernodalCholesky<u32>,
+    tree: &AssemblyTree,
+    col_ptr: &[u32],
+    row_idx: &[u32],
+    value: impl Fn(usize) -> f64,
+    l: &mut [f64],
+) -> Result<DenseWork, usize> {
     let ns = s.n_supernodes();
     let (begin, end, val_ptr) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_val());
     let widest = (0..ns).map(|k| (end[k] - begin[k]) as usize).max().unwrap_or(0);
-    let mut mem = MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(widest, Par::Seq, Default::default()));
+    let mut mem =
+        MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(widest, Par::Seq, Default::default()));
     // Position in the current front of each row; rows of a front are its columns, then its
     // pattern, so positions grow with the row and the lower triangle maps to the lower one.
     let mut pos = vec![0u32; s.nrows()];
@@ -160,7 +168,8 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
         }
         // The smallest spare that fits, else a new one (growing a spare would copy it). Its
         // contents do not matter: the rank-w update below overwrites the lower triangle.
-        let fit = (0..spare.len()).filter(|&i| spare[i].capacity() >= r * r).min_by_key(|&i| spare[i].capacity());
+        let fit =
+            (0..spare.len()).filter(|&i| spare[i].capacity() >= r * r).min_by_key(|&i| spare[i].capacity());
         let mut u = fit.map(|i| spare.swap_remove(i)).unwrap_or_else(|| Vec::with_capacity(r * r));
         if u.len() < r * r {
             u.resize(r * r, 0.0);
@@ -178,13 +187,33 @@ pub fn factorize(s: &SymbolicSupernodalCholesky<u32>, tree: &AssemblyTree, col_p
         }
         let clock = std::time::Instant::now();
         let (mut top, mut bottom) = MatMut::from_column_major_slice_mut(panel, h, w).split_at_row_mut(w);
-        if let Err(LltError::NonPositivePivot { index }) = llt::factor::cholesky_in_place(top.as_mut(), LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()) {
+        if let Err(LltError::NonPositivePivot { index }) = llt::factor::cholesky_in_place(
+            top.as_mut(),
+            LltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+            Default::default(),
+        ) {
             return Err(b + index);
         }
         if r > 0 {
-            faer::linalg::triangular_solve::solve_lower_triangular_in_place(top.as_ref(), bottom.as_mut().transpose_mut(), Par::Seq);
+            faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+                top.as_ref(),
+                bottom.as_mut().transpose_mut(),
+                Par::Seq,
+            );
             let um = MatMut::from_column_major_slice_mut(&mut u, r, r);
-            triangular::matmul(um, BlockStructure::TriangularLower, Accum::Replace, bottom.as_ref(), BlockStructure::Rectangular, bottom.as_ref().transpose(), BlockStructure::Rectangular, -1.0, Par::Seq);
+            triangular::matmul(
+                um,
+                BlockStructure::TriangularLower,
+                Accum::Replace,
+                bottom.as_ref(),
+                BlockStructure::Rectangular,
+                bottom.as_ref().transpose(),
+                BlockStructure::Rectangular,
+                -1.0,
+                Par::Seq,
+            );
         }
         dense.add(w, r, clock.elapsed().as_secs_f64());
         for (c, split, uc) in taken.drain(..) {
@@ -209,7 +238,14 @@ fn front_rows(rows: &[u32], pos: &[u32], map: &mut Vec<usize>) {
 
 /// Adds columns `cols` of a child's update matrix `uc` (lower triangle, column-major) into the
 /// front: child row i is front row `map[i]`, and front entry (i, j) is `dst[(j - off) * ld + i - off]`.
-fn extend_add(map: &[usize], uc: &[f64], cols: std::ops::Range<usize>, dst: &mut [f64], ld: usize, off: usize) {
+fn extend_add(
+    map: &[usize],
+    uc: &[f64],
+    cols: std::ops::Range<usize>,
+    dst: &mut [f64],
+    ld: usize,
+    off: usize,
+) {
     let rc = map.len();
     for jc in cols {
         let col = &mut dst[(map[jc] - off) * ld..(map[jc] - off + 1) * ld];
@@ -280,7 +316,11 @@ pub fn backward_solve(s: &SymbolicSupernodalCholesky<u32>, l: &[f64], y: &mut [f
 
 /// Supernode `sn` of the factor `l`: its first column, its width, the rows below its diagonal
 /// block, and its panel (column-major; rows: its own columns, then those rows).
-fn supernode<'a>(s: &'a SymbolicSupernodalCholesky<u32>, l: &'a [f64], sn: usize) -> (usize, usize, &'a [u32], &'a [f64]) {
+fn supernode<'a>(
+    s: &'a SymbolicSupernodalCholesky<u32>,
+    l: &'a [f64],
+    sn: usize,
+) -> (usize, usize, &'a [u32], &'a [f64]) {
     let (b, vp) = (s.supernode_begin()[sn] as usize, s.col_ptr_for_val());
     (b, s.supernode_end()[sn] as usize - b, pattern(s, sn), &l[vp[sn] as usize..vp[sn + 1] as usize])
 }
@@ -306,7 +346,9 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymmetricOrdering};
+    use faer::sparse::linalg::cholesky::{
+        factorize_symbolic_cholesky, CholeskySymbolicParams, SymmetricOrdering,
+    };
     use faer::sparse::linalg::SupernodalThreshold;
     use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
     use faer::Side;
@@ -335,7 +377,10 @@ mod tests {
     fn symbolic(ptr: &[u32], idx: &[u32]) -> SymbolicCholesky<u32> {
         let n = ptr.len() - 1;
         let a = SymbolicSparseColMatRef::new_unsorted_checked(n, n, ptr, None, idx);
-        let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL, ..Default::default() };
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
         // The lower triangle read as the upper triangle of the transpose: same structure.
         let upper = a.transpose().to_col_major().unwrap();
         factorize_symbolic_cholesky(upper.as_ref(), Side::Upper, SymmetricOrdering::Identity, params).unwrap()
@@ -357,15 +402,26 @@ mod tests {
         let flops: f64 = dense.by_width.iter().map(|c| c.1).sum();
         assert_eq!(flops, crate::substructure::supernodal_flops(s));
         let n = ptr.len() - 1;
-        let a = SparseColMatRef::new(SymbolicSparseColMatRef::new_unsorted_checked(n, n, &ptr, None, &idx), &val);
+        let a =
+            SparseColMatRef::new(SymbolicSparseColMatRef::new_unsorted_checked(n, n, &ptr, None, &idx), &val);
         let mut theirs = vec![0.0; s.len_val()];
         let mut mem = MemBuffer::new(sym.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()));
-        sym.factorize_numeric_llt(&mut theirs, a, Side::Lower, LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()).unwrap();
+        sym.factorize_numeric_llt(
+            &mut theirs,
+            a,
+            Side::Lower,
+            LltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .unwrap();
         // Lower triangles only: the strict upper part of each diagonal block is not part of L.
         let (begin, end, vp) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_val());
         let mut worst = 0.0f64;
         for k in 0..s.n_supernodes() {
-            let (w, h) = ((end[k] - begin[k]) as usize, (vp[k + 1] - vp[k]) as usize / (end[k] - begin[k]) as usize);
+            let (w, h) =
+                ((end[k] - begin[k]) as usize, (vp[k + 1] - vp[k]) as usize / (end[k] - begin[k]) as usize);
             for j in 0..w {
                 for i in j..h {
                     let q = vp[k] as usize + j * h + i;
@@ -412,7 +468,11 @@ mod tests {
         let norm_a = row_sum.iter().fold(0.0f64, |m, &v| m.max(v));
         let norm_x = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let residual = b.iter().zip(&ax).fold(0.0f64, |m, (p, q)| m.max((p - q).abs()));
-        assert!(residual <= 1e-14 * norm_a * norm_x, "residual {residual:e}, ||A|| ||x|| = {:e}", norm_a * norm_x);
+        assert!(
+            residual <= 1e-14 * norm_a * norm_x,
+            "residual {residual:e}, ||A|| ||x|| = {:e}",
+            norm_a * norm_x
+        );
     }
 
     /// A matrix that is not positive definite fails at the first column whose Schur

@@ -80,7 +80,8 @@ impl Grid {
         if n == 0 {
             return None;
         }
-        let scale = mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs())).max(f64::MIN_POSITIVE);
+        let scale =
+            mesh.nodes.iter().fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs())).max(f64::MIN_POSITIVE);
         let lines = |c: usize| -> Vec<f64> {
             let mut v: Vec<f64> = mesh.nodes.iter().map(|p| p[c]).collect();
             v.par_sort_unstable_by(f64::total_cmp);
@@ -94,7 +95,8 @@ impl Grid {
             return None;
         }
         let index = |v: &[f64], x: f64| v.partition_point(|&a| a < x - 1e-9 * scale);
-        let ij: Vec<(usize, usize)> = mesh.nodes.par_iter().map(|p| (index(&xs, p[0]), index(&ys, p[1]))).collect();
+        let ij: Vec<(usize, usize)> =
+            mesh.nodes.par_iter().map(|p| (index(&xs, p[0]), index(&ys, p[1]))).collect();
         let mut at = vec![usize::MAX; gx * gy];
         for (k, &(i, j)) in ij.iter().enumerate() {
             if std::mem::replace(&mut at[j * gx + i], k) != usize::MAX {
@@ -115,7 +117,11 @@ impl Grid {
     /// The separator line nearest the middle of the longer side (the other side if none):
     /// (true, i) for grid column i, (false, j) for grid row j.
     fn split(&self, x: [usize; 2], y: [usize; 2]) -> Option<(bool, usize)> {
-        let pick = |r: [usize; 2], ok: &[bool]| (r[0] + 1..r[1].saturating_sub(1)).filter(|&s| ok[s]).min_by_key(|&s| (2 * s).abs_diff(r[0] + r[1] - 1));
+        let pick = |r: [usize; 2], ok: &[bool]| {
+            (r[0] + 1..r[1].saturating_sub(1))
+                .filter(|&s| ok[s])
+                .min_by_key(|&s| (2 * s).abs_diff(r[0] + r[1] - 1))
+        };
         if x[1] - x[0] >= y[1] - y[0] {
             pick(x, &self.sep_x).map(|s| (true, s)).or_else(|| pick(y, &self.sep_y).map(|s| (false, s)))
         } else {

@@ -5,8 +5,8 @@
 use crate::assembly::{Assembler, Model};
 use crate::constraints::{Constraints, Reduction};
 use crate::error::{Error, Result};
-use crate::recovery::internal_forces;
 use crate::ordering::{bisection, nested_dissection};
+use crate::recovery::internal_forces;
 use crate::solve::{Ordering, SolveReport, Solver, SolverOptions};
 use std::sync::Arc;
 use std::time::Instant;
@@ -76,7 +76,13 @@ pub struct Solution {
 
 /// Solves every load case with one factorisation. `hint` is appended to the error when
 /// the residual check rejects the answer (e.g. suggest a better-conditioned model).
-pub fn solve(model: &Model, constraints: &Constraints, cases: &[LoadCase], opts: &SolverOptions, hint: &str) -> Result<Solution> {
+pub fn solve(
+    model: &Model,
+    constraints: &Constraints,
+    cases: &[LoadCase],
+    opts: &SolverOptions,
+    hint: &str,
+) -> Result<Solution> {
     let clock = Instant::now();
     let prepared = Prepared::new(model.mesh, constraints, opts)?;
     let mut sol = prepared.solve(model, constraints, cases, opts, hint)?;
@@ -110,7 +116,10 @@ impl Prepared {
         // bisection needs only the mesh, so it runs alongside the pattern build (and is
         // timed with it).
         let two_domains = options.ordering == Ordering::Auto && red.n_free() >= TWO_DOMAINS_FROM;
-        let (asm, split) = rayon::join(|| Assembler::new(mesh, &red), || if two_domains { bisection(mesh, &red) } else { None });
+        let (asm, split) = rayon::join(
+            || Assembler::new(mesh, &red),
+            || if two_domains { bisection(mesh, &red) } else { None },
+        );
         let asm = asm?;
         let pattern_time = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
@@ -122,26 +131,43 @@ impl Prepared {
             }
         }
         let solver = Solver::analyse(&asm.pattern, options)?;
-        Ok(Self { red: Arc::new(red), asm, solver, pattern_time, symbolic_time: clock.elapsed().as_secs_f64() })
+        Ok(Self {
+            red: Arc::new(red),
+            asm,
+            solver,
+            pattern_time,
+            symbolic_time: clock.elapsed().as_secs_f64(),
+        })
     }
 
     /// Assembles `model` (same mesh and constraint structure as at [`Prepared::new`]),
     /// factorises, and solves every load case, with the checks of [`solve`]; the accuracy
     /// limits come from `opts`.
-    pub fn solve(&self, model: &Model, constraints: &Constraints, cases: &[LoadCase], opts: &SolverOptions, hint: &str) -> Result<Solution> {
+    pub fn solve(
+        &self,
+        model: &Model,
+        constraints: &Constraints,
+        cases: &[LoadCase],
+        opts: &SolverOptions,
+        hint: &str,
+    ) -> Result<Solution> {
         let (red, asm, solver) = (&*self.red, &self.asm, &self.solver);
         let mut t = Timings::default();
         let clock = Instant::now();
         let prescribed: Vec<Vec<f64>> = cases.iter().map(|c| c.prescribed.clone()).collect();
         let loads: Vec<Vec<f64>> = cases.iter().map(|c| c.forces.clone()).collect();
         if let Some(bad) = loads.iter().find(|f| !f.is_empty() && f.len() != red.n_full) {
-            return Err(Error::input("load case", format!("force vector has {} entries, the model has {} DOFs", bad.len(), red.n_full)));
+            return Err(Error::input(
+                "load case",
+                format!("force vector has {} entries, the model has {} DOFs", bad.len(), red.n_full),
+            ));
         }
         let (values, rhs) = asm.assemble(model, red, &loads, &prescribed)?;
         t.assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
-        let factor = solver.factorize(&asm.pattern, &values).map_err(|k| singular(model, constraints, red, k))?;
+        let factor =
+            solver.factorize(&asm.pattern, &values).map_err(|k| singular(model, constraints, red, k))?;
         t.numeric = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
@@ -154,7 +180,8 @@ impl Prepared {
         x.extend_from_slice(&rhs);
         x.extend(probe_vector(n));
         factor.solve_in_place(&mut x, nc + 1);
-        let condition = norm_1_sym(&asm.pattern, &values) * x[nc * n..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let condition =
+            norm_1_sym(&asm.pattern, &values) * x[nc * n..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
         if !(condition < 1e15) {
             let g0 = vec![0.0; red.n_fixed()];
             let mode = red.expand(&x[nc * n..], &g0);
@@ -174,7 +201,11 @@ impl Prepared {
         x.truncate(nc * n);
         let (x, mut report) = factor.check_and_refine(&asm.pattern, &values, &rhs, x, nc, opts, hint)?;
         report.condition_estimate = condition;
-        let u = cases.iter().enumerate().map(|(c, case)| red.expand(&x[c * n..(c + 1) * n], &case.prescribed)).collect();
+        let u = cases
+            .iter()
+            .enumerate()
+            .map(|(c, case)| red.expand(&x[c * n..(c + 1) * n], &case.prescribed))
+            .collect();
         t.solve = clock.elapsed().as_secs_f64();
         crate::memory::drop_in_background(values);
         Ok(Solution {
@@ -242,8 +273,13 @@ fn rigid_mode(model: &Model, u: &[f64]) -> Option<String> {
         return None;
     }
     let size = (rr / n).sqrt();
-    let parts = [(a.abs(), "translation along x"), (b.abs(), "translation along y"), ((w * size).abs(), "rotation")];
-    let names: Vec<&str> = parts.iter().filter(|(m, _)| *m > 0.05 * parts.iter().fold(0.0f64, |x, p| x.max(p.0))).map(|p| p.1).collect();
+    let parts =
+        [(a.abs(), "translation along x"), (b.abs(), "translation along y"), ((w * size).abs(), "rotation")];
+    let names: Vec<&str> = parts
+        .iter()
+        .filter(|(m, _)| *m > 0.05 * parts.iter().fold(0.0f64, |x, p| x.max(p.0)))
+        .map(|p| p.1)
+        .collect();
     Some(format!("rigid-body motion ({})", names.join(" and ")))
 }
 
@@ -259,7 +295,13 @@ fn singular(model: &Model, c: &Constraints, red: &Reduction, k: usize) -> Error 
 impl Solution {
     /// Consistent reactions (K u - f) at every full DOF for case `c`, computed from the given
     /// elements only (pass the elements touching the constrained DOFs of interest).
-    pub fn residual_forces(&self, model: &Model, case: &LoadCase, c: usize, elements: &[usize]) -> Result<Vec<f64>> {
+    pub fn residual_forces(
+        &self,
+        model: &Model,
+        case: &LoadCase,
+        c: usize,
+        elements: &[usize],
+    ) -> Result<Vec<f64>> {
         let mut r = internal_forces(model, &self.u[c], elements)?;
         r.resize(self.reduction.n_full, 0.0);
         if !case.forces.is_empty() {

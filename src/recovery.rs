@@ -55,7 +55,8 @@ pub fn gauss_stresses(model: &Model, e: usize, u: &[f64]) -> Vec<Stress> {
 /// polynomial that interpolates the integration points (bilinear for 2x2, biquadratic for
 /// 3x3, linear for 3-point triangles, constant for 1 point).
 pub fn extrapolation_matrix(kind: ElementKind) -> &'static DMatrix<f64> {
-    static CACHE: [OnceLock<DMatrix<f64>>; 5] = [OnceLock::new(), OnceLock::new(), OnceLock::new(), OnceLock::new(), OnceLock::new()];
+    static CACHE: [OnceLock<DMatrix<f64>>; 5] =
+        [OnceLock::new(), OnceLock::new(), OnceLock::new(), OnceLock::new(), OnceLock::new()];
     let i = ElementKind::ALL.iter().position(|&k| k == kind).unwrap();
     CACHE[i].get_or_init(|| {
         let pts = stiffness_rule(kind);
@@ -151,7 +152,11 @@ pub fn elements_touching(model: &Model, nodes: &[usize]) -> Vec<usize> {
 /// with an accurate quadrature; `exact` returns (u, eps) at a point. eps_h is the strain the
 /// element uses (B-bar, or with the incompatible modes); u_h is the compatible nodal
 /// interpolation only (for IM the modes are element-internal, not part of the field).
-pub fn error_norms(model: &Model, u: &[f64], exact: &(dyn Fn([f64; 2]) -> ([f64; 2], [f64; 3]) + Sync)) -> (f64, f64) {
+pub fn error_norms(
+    model: &Model,
+    u: &[f64],
+    exact: &(dyn Fn([f64; 2]) -> ([f64; 2], [f64; 3]) + Sync),
+) -> (f64, f64) {
     let mesh = model.mesh;
     let (l2, en) = (0..mesh.n_elements())
         .into_par_iter()

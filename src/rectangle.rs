@@ -33,7 +33,11 @@ impl std::str::FromStr for Side {
     /// `free`, `clamped`, `roller`, `u=UX,UY` (m) or `t=TX,TY` (Pa).
     fn from_str(s: &str) -> Result<Self> {
         let pair = |v: &str| -> Result<[f64; 2]> {
-            let p: Vec<f64> = v.split(',').map(|x| x.trim().parse::<f64>()).collect::<std::result::Result<_, _>>().map_err(|_| Error::input("side condition", format!("'{s}': expected two numbers")))?;
+            let p: Vec<f64> = v
+                .split(',')
+                .map(|x| x.trim().parse::<f64>())
+                .collect::<std::result::Result<_, _>>()
+                .map_err(|_| Error::input("side condition", format!("'{s}': expected two numbers")))?;
             match p.as_slice() {
                 [a, b] if a.is_finite() && b.is_finite() => Ok([*a, *b]),
                 _ => Err(Error::input("side condition", format!("'{s}': expected two finite numbers"))),
@@ -45,7 +49,10 @@ impl std::str::FromStr for Side {
             "roller" => Ok(Side::Roller),
             _ if s.starts_with("u=") => Ok(Side::Displaced(pair(&s[2..])?)),
             _ if s.starts_with("t=") => Ok(Side::Traction(pair(&s[2..])?)),
-            _ => Err(Error::input("side condition", format!("'{s}': use free, clamped, roller, u=UX,UY (m) or t=TX,TY (Pa)"))),
+            _ => Err(Error::input(
+                "side condition",
+                format!("'{s}': use free, clamped, roller, u=UX,UY (m) or t=TX,TY (Pa)"),
+            )),
         }
     }
 }
@@ -100,7 +107,13 @@ impl RectangleProblem {
         let mut model = Model::new(&mesh, self.material);
         model.tech = self.element.tech;
         let case = LoadCase { prescribed: g, forces: f.clone() };
-        let solution = solve(&model, &c, std::slice::from_ref(&case), &SolverOptions::default(), "check the side conditions")?;
+        let solution = solve(
+            &model,
+            &c,
+            std::slice::from_ref(&case),
+            &SolverOptions::default(),
+            "check the side conditions",
+        )?;
         let mut side_reactions = [[0.0; 2]; 4];
         let all: Vec<usize> = (0..mesh.n_elements()).collect();
         let r = solution.residual_forces(&model, &case, 0, &all)?;

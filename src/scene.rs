@@ -122,7 +122,17 @@ impl Default for Loading {
 }
 impl Default for MeshSpec {
     fn default() -> Self {
-        Self { h: 0.001, grading: None, h_max: None, n_thick: None, element: "qua4".into(), file: None, interface: "interface".into(), top: "top".into(), block: "block".into() }
+        Self {
+            h: 0.001,
+            grading: None,
+            h_max: None,
+            n_thick: None,
+            element: "qua4".into(),
+            file: None,
+            interface: "interface".into(),
+            top: "top".into(),
+            block: "block".into(),
+        }
     }
 }
 impl Default for Report {
@@ -153,7 +163,12 @@ pub struct SceneModel {
 
 impl SceneModel {
     pub fn model(&self) -> Model<'_> {
-        Model { mesh: &self.mesh, materials: self.materials.clone(), element_material: self.element_material.clone(), tech: self.tech }
+        Model {
+            mesh: &self.mesh,
+            materials: self.materials.clone(),
+            element_material: self.element_material.clone(),
+            tech: self.tech,
+        }
     }
 }
 
@@ -163,7 +178,11 @@ impl Scene {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
         let scene: Scene = toml::from_str(&text).map_err(|e| {
             let line = e.span().map_or(0, |s| text[..s.start].matches('\n').count() + 1);
-            Error::Parse { file: path.to_path_buf(), at: format!("line {line}"), msg: e.message().to_string() }
+            Error::Parse {
+                file: path.to_path_buf(),
+                at: format!("line {line}"),
+                msg: e.message().to_string(),
+            }
         })?;
         let mut scene = scene;
         if let (Some(f), Some(dir)) = (&scene.mesh.file, path.parent()) {
@@ -176,7 +195,13 @@ impl Scene {
     }
 
     pub fn validate(&self) -> Result<()> {
-        let pos = |what: &str, v: f64| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(Error::input(what, format!("{v} must be a positive number"))) };
+        let pos = |what: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(Error::input(what, format!("{v} must be a positive number")))
+            }
+        };
         pos("block.length (m)", self.block.length)?;
         pos("block.thickness (m)", self.block.thickness)?;
         pos("loading.height (m)", self.loading.height)?;
@@ -186,15 +211,31 @@ impl Scene {
         if self.plate.model == PlateModel::Elastic {
             Material::plane_strain(self.plate.young, self.plate.poisson)?;
             pos("plate.thickness (m)", self.plate.thickness)?;
-            if self.loading.height > self.block.thickness + self.plate.thickness || self.loading.height <= self.block.thickness {
-                return Err(Error::input("loading.height", format!("H = {} m must lie on the elastic plate's left side, in ({}, {}] m", self.loading.height, self.block.thickness, self.block.thickness + self.plate.thickness)));
+            if self.loading.height > self.block.thickness + self.plate.thickness
+                || self.loading.height <= self.block.thickness
+            {
+                return Err(Error::input(
+                    "loading.height",
+                    format!(
+                        "H = {} m must lie on the elastic plate's left side, in ({}, {}] m",
+                        self.loading.height,
+                        self.block.thickness,
+                        self.block.thickness + self.plate.thickness
+                    ),
+                ));
             }
         }
         if self.mesh.n_thick == Some(0) {
             return Err(Error::input("mesh.n_thick", "need at least one element through the thickness"));
         }
         if self.mesh.h > self.block.thickness && self.mesh.n_thick.is_none() {
-            return Err(Error::input("mesh.h", format!("{} m is larger than the block thickness {} m: use at most t", self.mesh.h, self.block.thickness)));
+            return Err(Error::input(
+                "mesh.h",
+                format!(
+                    "{} m is larger than the block thickness {} m: use at most t",
+                    self.mesh.h, self.block.thickness
+                ),
+            ));
         }
         if self.loading.fn_ratios.is_empty() || self.loading.fn_ratios.iter().any(|r| !r.is_finite()) {
             return Err(Error::input("loading.fn_ratios", "need at least one finite F/N ratio"));
@@ -247,7 +288,19 @@ impl Scene {
                     c.tie(dof(n, 1), &[(dv, 1.0), (dth, x)]);
                 }
                 let n_el = mesh.n_elements();
-                Ok(SceneModel { mesh, materials: vec![block_mat], element_material: vec![0; n_el], tech, constraints: c, interface, interface_set: interface_name, top_set: top_name, dof_u: du, dof_v: dv, dof_theta: Some(dth) })
+                Ok(SceneModel {
+                    mesh,
+                    materials: vec![block_mat],
+                    element_material: vec![0; n_el],
+                    tech,
+                    constraints: c,
+                    interface,
+                    interface_set: interface_name,
+                    top_set: top_name,
+                    dof_u: du,
+                    dof_v: dv,
+                    dof_theta: Some(dth),
+                })
             }
             PlateModel::Elastic => self.build_elastic(mesh, &interface_name, block_mat, nx, tech),
         }
@@ -258,20 +311,35 @@ impl Scene {
     /// chooses only the integration technology.
     fn read_mesh(&self, path: &Path) -> Result<Mesh> {
         let full = crate::io::gmsh::read(path)?;
-        let m = full.restrict_to(&self.mesh.block).map_err(|e| Error::Mesh(format!("{}: {e}", path.display())))?;
+        let m = full
+            .restrict_to(&self.mesh.block)
+            .map_err(|e| Error::Mesh(format!("{}: {e}", path.display())))?;
         for name in [&self.mesh.interface, &self.mesh.top] {
             m.edges(name).map_err(|e| Error::Mesh(format!("{}: {e}", path.display())))?;
         }
         let mut used = vec![false; m.n_nodes()];
         m.elements().for_each(|(_, v)| v.iter().for_each(|&n| used[n] = true));
         if let Some(n) = used.iter().position(|u| !u) {
-            return Err(Error::Mesh(format!("{}: node {} does not belong to the '{}' surface; the file must hold the block only", path.display(), m.node_tag(n), self.mesh.block)));
+            return Err(Error::Mesh(format!(
+                "{}: node {} does not belong to the '{}' surface; the file must hold the block only",
+                path.display(),
+                m.node_tag(n),
+                self.mesh.block
+            )));
         }
         let want = self.element()?;
         let kinds = m.kinds_present();
         if !kinds.contains(&want.kind) {
             let names: Vec<&str> = kinds.iter().map(|k| k.name()).collect();
-            return Err(Error::input("mesh.element", format!("'{}' but {} holds {} elements; the kind comes from the mesh file", self.mesh.element, path.display(), names.join(" and "))));
+            return Err(Error::input(
+                "mesh.element",
+                format!(
+                    "'{}' but {} holds {} elements; the kind comes from the mesh file",
+                    self.mesh.element,
+                    path.display(),
+                    names.join(" and ")
+                ),
+            ));
         }
         Ok(m)
     }
@@ -282,18 +350,30 @@ impl Scene {
         let l = self.block.length;
         let mut r = Rectangle::new(-l / 2.0, l / 2.0, y0, y1, nx, ny).kind(self.element()?.kind);
         if let Some(ratio) = self.mesh.grading {
-            r = r.graded_x(Grading { end: self.mesh.h, ratio, max: Some(self.mesh.h_max.unwrap_or(2.0 * self.block.thickness)) });
+            r = r.graded_x(Grading {
+                end: self.mesh.h,
+                ratio,
+                max: Some(self.mesh.h_max.unwrap_or(2.0 * self.block.thickness)),
+            });
         }
         r.build()
     }
 
     /// Block plus a meshed plate sharing the top nodes; rows of the plate are placed so that
     /// a node lies exactly at height H on the left side.
-    fn build_elastic(&self, block: Mesh, interface_name: &str, block_mat: Material, nx: usize, tech: Technology) -> Result<SceneModel> {
+    fn build_elastic(
+        &self,
+        block: Mesh,
+        interface_name: &str,
+        block_mat: Material,
+        nx: usize,
+        tech: Technology,
+    ) -> Result<SceneModel> {
         if self.mesh.file.is_some() {
             return Err(Error::input("plate.model", "the elastic plate needs the structured mesh"));
         }
-        let (l, t, hgt, tp) = (self.block.length, self.block.thickness, self.loading.height, self.plate.thickness);
+        let (l, t, hgt, tp) =
+            (self.block.length, self.block.thickness, self.loading.height, self.plate.thickness);
         let row = (t / 2.0).max(self.mesh.h);
         let n1 = (((hgt - t) / row).round() as usize).max(1);
         let n2 = ((t + tp - hgt) / row).round() as usize;
@@ -322,7 +402,19 @@ impl Scene {
         let dv = dof(find(0.0, t + tp)?, 1);
         c.fix(du);
         c.fix(dv);
-        Ok(SceneModel { mesh, materials: vec![block_mat, plate_mat], element_material, tech, constraints: c, interface, interface_set: self.mesh.interface.clone(), top_set: self.mesh.top.clone(), dof_u: du, dof_v: dv, dof_theta: None })
+        Ok(SceneModel {
+            mesh,
+            materials: vec![block_mat, plate_mat],
+            element_material,
+            tech,
+            constraints: c,
+            interface,
+            interface_set: self.mesh.interface.clone(),
+            top_set: self.mesh.top.clone(),
+            dof_u: du,
+            dof_v: dv,
+            dof_theta: None,
+        })
     }
 }
 
@@ -344,7 +436,8 @@ fn sorted_by_x(m: &Mesh, mut v: Vec<usize>) -> Vec<usize> {
 fn merge(a: &Mesh, b: &Mesh) -> Mesh {
     let scale = a.nodes.iter().chain(&b.nodes).fold(0.0f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
     let key = |p: &[f64; 2]| ((p[0] / scale * 1e12).round() as i64, (p[1] / scale * 1e12).round() as i64);
-    let mut index: std::collections::HashMap<(i64, i64), usize> = a.nodes.iter().enumerate().map(|(i, p)| (key(p), i)).collect();
+    let mut index: std::collections::HashMap<(i64, i64), usize> =
+        a.nodes.iter().enumerate().map(|(i, p)| (key(p), i)).collect();
     let mut nodes = a.nodes.clone();
     let map: Vec<usize> = b
         .nodes

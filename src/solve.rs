@@ -9,7 +9,10 @@ use crate::ordering::Bisection;
 use crate::substructure::{supernodal_flops, TwoDomain, TwoDomainFactor};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
-use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering};
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw,
+    SymmetricOrdering,
+};
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
@@ -53,7 +56,15 @@ pub struct SolverOptions {
 
 impl Default for SolverOptions {
     fn default() -> Self {
-        Self { ordering: Ordering::Auto, residual_limit: 1e-8, max_error_estimate: 1e-4, max_refinement: 2, refine_above: 1e-12, threads: 1, supernodal: None }
+        Self {
+            ordering: Ordering::Auto,
+            residual_limit: 1e-8,
+            max_error_estimate: 1e-4,
+            max_refinement: 2,
+            refine_above: 1e-12,
+            threads: 1,
+            supernodal: None,
+        }
     }
 }
 
@@ -78,13 +89,20 @@ pub struct Solver {
 
 impl Solver {
     pub fn analyse(pattern: &Pattern, options: SolverOptions) -> Result<Self> {
-        let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
+        let sym = SymbolicSparseColMatRef::new_checked(
+            pattern.n,
+            pattern.n,
+            &pattern.col_ptr,
+            None,
+            &pattern.row_idx,
+        );
         let threshold = match options.supernodal {
             None => SupernodalThreshold::AUTO,
             Some(true) => SupernodalThreshold::FORCE_SUPERNODAL,
             Some(false) => SupernodalThreshold::FORCE_SIMPLICIAL,
         };
-        let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: threshold, ..Default::default() };
+        let params =
+            CholeskySymbolicParams { supernodal_flop_ratio_threshold: threshold, ..Default::default() };
         let (fwd32, inv);
         let ordering = match &options.ordering {
             Ordering::TwoDomain(split) => {
@@ -94,7 +112,10 @@ impl Solver {
             Ordering::Auto | Ordering::Amd | Ordering::NestedDissection => SymmetricOrdering::Amd,
             Ordering::Custom(fwd) => {
                 if fwd.len() != pattern.n {
-                    return Err(Error::input("ordering", format!("permutation has {} entries for {} unknowns", fwd.len(), pattern.n)));
+                    return Err(Error::input(
+                        "ordering",
+                        format!("permutation has {} entries for {} unknowns", fwd.len(), pattern.n),
+                    ));
                 }
                 // Checked and inverted in one pass, in the pattern's 32-bit indices.
                 let (mut f, mut i) = (Vec::with_capacity(fwd.len()), vec![u32::MAX; fwd.len()]);
@@ -110,7 +131,8 @@ impl Solver {
                 SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&fwd32, &inv, pattern.n))
             }
         };
-        let symbolic = factorize_symbolic_cholesky(sym, Side::Lower, ordering, params).map_err(|e| Error::input("symbolic factorisation", format!("{e:?}")))?;
+        let symbolic = factorize_symbolic_cholesky(sym, Side::Lower, ordering, params)
+            .map_err(|e| Error::input("symbolic factorisation", format!("{e:?}")))?;
         let par = if options.threads > 1 { Par::rayon(options.threads) } else { Par::Seq };
         Ok(Self { backend: Backend::Direct(symbolic), par, options })
     }
@@ -131,7 +153,9 @@ impl Solver {
             Backend::TwoDomain(t) => return t.factor_flops(),
         };
         match symbolic.raw() {
-            SymbolicCholeskyRaw::Simplicial(s) => s.col_ptr().windows(2).map(|w| ((w[1] - w[0]) as f64).powi(2)).sum(),
+            SymbolicCholeskyRaw::Simplicial(s) => {
+                s.col_ptr().windows(2).map(|w| ((w[1] - w[0]) as f64).powi(2)).sum()
+            }
             SymbolicCholeskyRaw::Supernodal(s) => supernodal_flops(s),
         }
     }
@@ -148,16 +172,35 @@ impl Solver {
     pub fn factorize(&self, pattern: &Pattern, values: &[f64]) -> std::result::Result<Factor<'_>, usize> {
         let symbolic = match &self.backend {
             Backend::Direct(s) => s,
-            Backend::TwoDomain(t) => return Ok(Factor { solver: self, values: FactorValues::TwoDomain(t.factorize(values)?) }),
+            Backend::TwoDomain(t) => {
+                return Ok(Factor { solver: self, values: FactorValues::TwoDomain(t.factorize(values)?) })
+            }
         };
-        let sym = SymbolicSparseColMatRef::new_checked(pattern.n, pattern.n, &pattern.col_ptr, None, &pattern.row_idx);
+        let sym = SymbolicSparseColMatRef::new_checked(
+            pattern.n,
+            pattern.n,
+            &pattern.col_ptr,
+            None,
+            &pattern.row_idx,
+        );
         let a = SparseColMatRef::new(sym, values);
         let mut l = vec![0.0; symbolic.len_val()];
-        let mut mem = MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(self.par, Default::default()));
-        let res = symbolic.factorize_numeric_llt(&mut l, a, Side::Lower, LltRegularization::default(), self.par, MemStack::new(&mut mem), Default::default());
+        let mut mem =
+            MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(self.par, Default::default()));
+        let res = symbolic.factorize_numeric_llt(
+            &mut l,
+            a,
+            Side::Lower,
+            LltRegularization::default(),
+            self.par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
         match res {
             Ok(_) => Ok(Factor { solver: self, values: FactorValues::Direct(l) }),
-            Err(LltError::NonPositivePivot { index }) => Err(symbolic.perm().map_or(index, |p| p.arrays().0[index.min(pattern.n - 1)] as usize)),
+            Err(LltError::NonPositivePivot { index }) => {
+                Err(symbolic.perm().map_or(index, |p| p.arrays().0[index.min(pattern.n - 1)] as usize))
+            }
         }
     }
 }
@@ -182,7 +225,8 @@ pub struct Factor<'a> {
 
 impl Drop for Factor<'_> {
     fn drop(&mut self) {
-        if let (Backend::TwoDomain(t), FactorValues::TwoDomain(f)) = (&self.solver.backend, &mut self.values) {
+        if let (Backend::TwoDomain(t), FactorValues::TwoDomain(f)) = (&self.solver.backend, &mut self.values)
+        {
             t.recycle(f);
         }
     }
@@ -214,7 +258,15 @@ impl Factor<'_> {
 
     /// Solves K x = f for the k columns of `f`, checks each residual, refines if needed.
     /// Returns x and the report; errors when the residual stays above the limit or x is not finite.
-    pub fn solve_checked(&self, pattern: &Pattern, values: &[f64], f: &[f64], k: usize, opts: &SolverOptions, hint: &str) -> Result<(Vec<f64>, SolveReport)> {
+    pub fn solve_checked(
+        &self,
+        pattern: &Pattern,
+        values: &[f64],
+        f: &[f64],
+        k: usize,
+        opts: &SolverOptions,
+        hint: &str,
+    ) -> Result<(Vec<f64>, SolveReport)> {
         let mut x = f.to_vec();
         self.solve_in_place(&mut x, k);
         self.check_and_refine(pattern, values, f, x, k, opts, hint)
@@ -225,10 +277,21 @@ impl Factor<'_> {
     /// ||r|| / ||f|| is not hidden by a few very stiff rows (a stiff plate); refines with the
     /// same factor while that helps; errors when it stays above the limit or x is not finite.
     #[allow(clippy::too_many_arguments)]
-    pub fn check_and_refine(&self, pattern: &Pattern, values: &[f64], f: &[f64], mut x: Vec<f64>, k: usize, opts: &SolverOptions, hint: &str) -> Result<(Vec<f64>, SolveReport)> {
+    pub fn check_and_refine(
+        &self,
+        pattern: &Pattern,
+        values: &[f64],
+        f: &[f64],
+        mut x: Vec<f64>,
+        k: usize,
+        opts: &SolverOptions,
+        hint: &str,
+    ) -> Result<(Vec<f64>, SolveReport)> {
         let (mut r, rel0) = backward_errors(pattern, values, f, &x, k);
         let mut report = SolveReport { residual_initial: rel0.clone(), residual: rel0, ..Default::default() };
-        while report.refinement_steps < opts.max_refinement && report.residual.iter().any(|&v| !(v <= opts.refine_above)) {
+        while report.refinement_steps < opts.max_refinement
+            && report.residual.iter().any(|&v| !(v <= opts.refine_above))
+        {
             self.solve_in_place(&mut r, k);
             let trial: Vec<f64> = x.iter().zip(&r).map(|(a, b)| a + b).collect();
             let (r2, rel2) = backward_errors(pattern, values, f, &trial, k);
@@ -243,7 +306,10 @@ impl Factor<'_> {
         }
         let worst = report.residual.iter().cloned().fold(0.0, f64::max);
         if !(worst <= opts.residual_limit) || x.iter().any(|v| !v.is_finite()) {
-            let detail = format!("componentwise backward error {worst:.2e} exceeds {:.1e} after {} refinement steps", opts.residual_limit, report.refinement_steps);
+            let detail = format!(
+                "componentwise backward error {worst:.2e} exceeds {:.1e} after {} refinement steps",
+                opts.residual_limit, report.refinement_steps
+            );
             return Err(Error::Untrustworthy { detail, hint: hint.to_string() });
         }
         Ok((x, report))
@@ -252,7 +318,13 @@ impl Factor<'_> {
 
 /// Residual r = f - K x and the componentwise backward error of each of the k columns, one
 /// fused pass over the stored lower triangle per column (columns in parallel).
-fn backward_errors(pattern: &Pattern, values: &[f64], f: &[f64], x: &[f64], k: usize) -> (Vec<f64>, Vec<f64>) {
+fn backward_errors(
+    pattern: &Pattern,
+    values: &[f64],
+    f: &[f64],
+    x: &[f64],
+    k: usize,
+) -> (Vec<f64>, Vec<f64>) {
     use rayon::prelude::*;
     let n = pattern.n;
     let cols: Vec<(Vec<f64>, f64)> = (0..k)
@@ -275,7 +347,13 @@ fn backward_errors(pattern: &Pattern, values: &[f64], f: &[f64], x: &[f64], k: u
             for i in 0..n {
                 kx[i] = fc[i] - kx[i];
                 let den = akx[i] + fc[i].abs();
-                let e = if den > 0.0 { kx[i].abs() / den } else if kx[i] == 0.0 { 0.0 } else { f64::INFINITY };
+                let e = if den > 0.0 {
+                    kx[i].abs() / den
+                } else if kx[i] == 0.0 {
+                    0.0
+                } else {
+                    f64::INFINITY
+                };
                 worst = worst.max(e);
             }
             (kx, worst)

@@ -4,8 +4,8 @@
 //! elements), `thin` (t/L -> 0 at a fixed number of elements through the thickness) and
 //! `corners` (singular end nodes vs converging integrated quantities).
 
-use crate::check::{self, CheckResult};
 use crate::check::interpolate;
+use crate::check::{self, CheckResult};
 use crate::convergence::{self, zone_errors, Family, StudyOptions, ZoneErrors};
 use crate::error::{Error, Result};
 use crate::material::Material;
@@ -160,7 +160,12 @@ pub struct PlateStudy {
 /// Elastic plate at `ratio` against the rigid plate on the same block mesh.
 pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy> {
     let t = base.block.thickness;
-    let raw_opts = SolverOptions { max_error_estimate: f64::INFINITY, residual_limit: f64::INFINITY, max_refinement: 0, ..Default::default() };
+    let raw_opts = SolverOptions {
+        max_error_estimate: f64::INFINITY,
+        residual_limit: f64::INFINITY,
+        max_refinement: 0,
+        ..Default::default()
+    };
     let refine_opts = SolverOptions { max_refinement: 3, refine_above: 0.0, ..raw_opts.clone() };
     let mut points = Vec::new();
     let mut prepare_time = 0.0;
@@ -175,7 +180,8 @@ pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy
         e0.plate.model = PlateModel::Elastic;
         let prepared = check::prepare(&e0, &SolverOptions::default())?;
         prepare_time += prepared.pattern_time + prepared.symbolic_time;
-        let run = |e: &Scene, opts: &SolverOptions| check::run_model(e, e.build()?, 0.0, opts, Some(&prepared));
+        let run =
+            |e: &Scene, opts: &SolverOptions| check::run_model(e, e.build()?, 0.0, opts, Some(&prepared));
         for &ratio in &o.plate_ratios {
             let mut e = e0.clone();
             e.plate.young = ratio * base.block.young;
@@ -185,7 +191,9 @@ pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy
                 Err(err) => (None, Some(err.to_string())),
             };
             let refined = if o.plate_refine && raw.is_some() {
-                run(&e, &refine_opts).ok().map(|(r, _)| (plate_raw(&r, &rigid, 0.0, o.fn_ratio).err(), r.solve_report.refinement_steps))
+                run(&e, &refine_opts).ok().map(|(r, _)| {
+                    (plate_raw(&r, &rigid, 0.0, o.fn_ratio).err(), r.solve_report.refinement_steps)
+                })
             } else {
                 None
             };
@@ -199,7 +207,11 @@ pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy
     let times: Vec<f64> = points.iter().filter_map(|p| p.raw.as_ref()).map(|r| r.time).collect();
     let per_mesh = prepare_time / o.plate_n_thick.len().max(1) as f64;
     let mean = times.iter().sum::<f64>() / times.len().max(1) as f64;
-    Ok(PlateStudy { points, findings, symbolic_share: if per_mesh + mean > 0.0 { per_mesh / (per_mesh + mean) } else { 0.0 } })
+    Ok(PlateStudy {
+        points,
+        findings,
+        symbolic_share: if per_mesh + mean > 0.0 { per_mesh / (per_mesh + mean) } else { 0.0 },
+    })
 }
 
 fn plate_raw(r: &CheckResult, rigid: &CheckResult, time: f64, fn_ratio: f64) -> PlateRaw {
@@ -208,7 +220,9 @@ fn plate_raw(r: &CheckResult, rigid: &CheckResult, time: f64, fn_ratio: f64) -> 
         ep = ep.max(max_diff(&a.p, &b.p));
         et = et.max(max_diff(&a.tau, &b.tau));
     }
-    let pick = |c: &CheckResult| c.cases.iter().find(|x| x.fn_ratio == fn_ratio).or(c.cases.last()).map_or(0.0, |x| x.tilt / x.n);
+    let pick = |c: &CheckResult| {
+        c.cases.iter().find(|x| x.fn_ratio == fn_ratio).or(c.cases.last()).map_or(0.0, |x| x.tilt / x.n)
+    };
     let (te, tr) = (pick(r), pick(rigid));
     PlateRaw {
         err_p: ep,
@@ -224,16 +238,25 @@ fn plate_raw(r: &CheckResult, rigid: &CheckResult, time: f64, fn_ratio: f64) -> 
 fn plate_finding(n: usize, points: &[PlatePoint]) -> PlateFinding {
     let pts: Vec<&PlatePoint> = points.iter().filter(|p| p.n_thick == n).collect();
     let ok: Vec<(f64, f64)> = pts.iter().filter_map(|p| p.raw.as_ref().map(|r| (p.ratio, r.err()))).collect();
-    let (best_ratio, best_err) = ok.iter().cloned().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap_or((f64::NAN, f64::NAN));
+    let (best_ratio, best_err) =
+        ok.iter().cloned().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap_or((f64::NAN, f64::NAN));
     // A failed solve above the best counts as round-off having taken over.
-    let roundoff_ratio = pts.iter().filter(|p| p.ratio > best_ratio).find(|p| p.raw.as_ref().is_none_or(|r| r.err() > 10.0 * best_err)).map(|p| p.ratio);
+    let roundoff_ratio = pts
+        .iter()
+        .filter(|p| p.ratio > best_ratio)
+        .find(|p| p.raw.as_ref().is_none_or(|r| r.err() > 10.0 * best_err))
+        .map(|p| p.ratio);
     PlateFinding {
         n_thick: n,
         best_ratio,
         best_err,
         roundoff_ratio,
         first_refused: pts.iter().find(|p| p.refused.is_some()).map(|p| p.ratio),
-        digits_lost_1e12: pts.iter().find(|p| p.ratio == 1e12).and_then(|p| p.raw.as_ref()).map(|r| r.condition.log10()),
+        digits_lost_1e12: pts
+            .iter()
+            .find(|p| p.ratio == 1e12)
+            .and_then(|p| p.raw.as_ref())
+            .map(|r| r.condition.log10()),
     }
 }
 
@@ -272,7 +295,15 @@ impl References {
 /// A run's interface-profile errors against a reference at the compared load case (the last).
 fn errors_against(r: &CheckResult, reference: &CheckResult) -> ZoneErrors {
     let (c, rc) = (r.cases.last().unwrap(), reference.cases.last().unwrap());
-    zone_errors(r.scene.block.thickness / r.scene.block.length, &c.x_over_l, &c.p, &c.tau, &rc.x_over_l, &rc.p, &rc.tau)
+    zone_errors(
+        r.scene.block.thickness / r.scene.block.length,
+        &c.x_over_l,
+        &c.p,
+        &c.tau,
+        &rc.x_over_l,
+        &rc.p,
+        &rc.tau,
+    )
 }
 
 // ---------------------------------------------------------------- nu
@@ -361,7 +392,16 @@ pub fn nu(base: &Scene, o: &Options, refs: &mut References, progress: Progress) 
             let errors = errors_against(&r, &rf);
             let (p0_closed, modulus_ratio) = closed_form(&r)?;
             progress(&format!("nu {nu} {e}"));
-            points.push(NuPoint { nu, element: e.clone(), err: interior_max(&errors), err_edge_far: edge_far(&r, &rf), errors, oscillation: oscillation(&r, &rf), p0_closed, modulus_ratio });
+            points.push(NuPoint {
+                nu,
+                element: e.clone(),
+                err: interior_max(&errors),
+                err_edge_far: edge_far(&r, &rf),
+                errors,
+                oscillation: oscillation(&r, &rf),
+                p0_closed,
+                modulus_ratio,
+            });
         }
     }
     Ok(NuStudy { points, reference_p0 })
@@ -419,7 +459,8 @@ pub fn distort(mesh: &mut Mesh, amp: f64, seed: u64) -> Result<()> {
         ymax = ymax.max(p[1]);
     }
     let tol = 1e-9 * (xmax - xmin);
-    let inside = |p: &[f64; 2]| p[0] > xmin + tol && p[0] < xmax - tol && p[1] > ymin + tol && p[1] < ymax - tol;
+    let inside =
+        |p: &[f64; 2]| p[0] > xmin + tol && p[0] < xmax - tol && p[1] > ymin + tol && p[1] < ymax - tol;
     let mut corner = vec![false; mesh.n_nodes()];
     for (_, v) in mesh.elements() {
         v[..4.min(v.len())].iter().for_each(|&n| corner[n] = true);
@@ -457,7 +498,12 @@ pub fn distort(mesh: &mut Mesh, amp: f64, seed: u64) -> Result<()> {
     Ok(())
 }
 
-pub fn shape(base: &Scene, o: &Options, refs: &mut References, progress: Progress) -> Result<Vec<ShapePoint>> {
+pub fn shape(
+    base: &Scene,
+    o: &Options,
+    refs: &mut References,
+    progress: Progress,
+) -> Result<Vec<ShapePoint>> {
     let rf = refs.get(base.block.poisson, o.fn_ratio, progress)?.clone();
     let t = base.block.thickness;
     let h = t / o.n_thick as f64;
@@ -483,7 +529,16 @@ pub fn shape(base: &Scene, o: &Options, refs: &mut References, progress: Progres
                 let (r, _) = check::run(&v, &SolverOptions::default())?;
                 let errors = errors_against(&r, &rf);
                 progress(&format!("shape {} {e} 1:{a}", case.name()));
-                out.push(ShapePoint { case, element: e.clone(), param: a, n_elements: r.n_elements, err: interior_max(&errors), err_edge_far: edge_far(&r, &rf), errors, min_jacobian_rel: 1.0 });
+                out.push(ShapePoint {
+                    case,
+                    element: e.clone(),
+                    param: a,
+                    n_elements: r.n_elements,
+                    err: interior_max(&errors),
+                    err_edge_far: edge_far(&r, &rf),
+                    errors,
+                    min_jacobian_rel: 1.0,
+                });
             }
         }
         for &amp in &o.distortions {
@@ -494,18 +549,38 @@ pub fn shape(base: &Scene, o: &Options, refs: &mut References, progress: Progres
             let (r, _) = check::run_model(&s, sm, 0.0, &SolverOptions::default(), None)?;
             let errors = errors_against(&r, &rf);
             progress(&format!("shape distorted {e} {amp}"));
-            out.push(ShapePoint { case: ShapeCase::Distorted, element: e.clone(), param: amp, n_elements: r.n_elements, err: interior_max(&errors), err_edge_far: edge_far(&r, &rf), errors, min_jacobian_rel: j1 / j0 });
+            out.push(ShapePoint {
+                case: ShapeCase::Distorted,
+                element: e.clone(),
+                param: amp,
+                n_elements: r.n_elements,
+                err: interior_max(&errors),
+                err_edge_far: edge_far(&r, &rf),
+                errors,
+                min_jacobian_rel: j1 / j0,
+            });
         }
         let qua4_family = s.element()?.kind == crate::element::ElementKind::Qua4;
         if let (Some(path), true) = (o.unstructured_mesh.as_ref().filter(|p| p.exists()), qua4_family) {
             let mut v = s.clone();
             v.mesh.file = Some(path.clone());
             let sm = v.build()?;
-            let quality = (0..sm.mesh.n_elements()).map(|k| jacobian_quality(&sm.mesh, k)).fold(f64::INFINITY, f64::min);
+            let quality = (0..sm.mesh.n_elements())
+                .map(|k| jacobian_quality(&sm.mesh, k))
+                .fold(f64::INFINITY, f64::min);
             let (r, _) = check::run_model(&v, sm, 0.0, &SolverOptions::default(), None)?;
             let errors = errors_against(&r, &rf);
             progress(&format!("shape unstructured {e}"));
-            out.push(ShapePoint { case: ShapeCase::Unstructured, element: e.clone(), param: 0.0, n_elements: r.n_elements, err: interior_max(&errors), err_edge_far: edge_far(&r, &rf), errors, min_jacobian_rel: quality });
+            out.push(ShapePoint {
+                case: ShapeCase::Unstructured,
+                element: e.clone(),
+                param: 0.0,
+                n_elements: r.n_elements,
+                err: interior_max(&errors),
+                err_edge_far: edge_far(&r, &rf),
+                errors,
+                min_jacobian_rel: quality,
+            });
         }
     }
     Ok(out)
@@ -604,11 +679,17 @@ pub struct CornerStudy {
 /// Smallest root in (0.5, 1) of (3 - 4 nu) sin^2(lambda pi/2) = 4 (1 - nu)^2 - lambda^2, the
 /// eigenvalue equation of a clamped-free 90 degree wedge in plane strain (stresses ~ r^(lambda - 1)).
 pub fn williams_clamped_free(nu: f64) -> f64 {
-    let f = |l: f64| (3.0 - 4.0 * nu) * (l * std::f64::consts::FRAC_PI_2).sin().powi(2) - 4.0 * (1.0 - nu).powi(2) + l * l;
+    let f = |l: f64| {
+        (3.0 - 4.0 * nu) * (l * std::f64::consts::FRAC_PI_2).sin().powi(2) - 4.0 * (1.0 - nu).powi(2) + l * l
+    };
     let (mut a, mut b) = (0.5, 1.0);
     for _ in 0..200 {
         let m = 0.5 * (a + b);
-        if f(a) * f(m) <= 0.0 { b = m } else { a = m }
+        if f(a) * f(m) <= 0.0 {
+            b = m
+        } else {
+            a = m
+        }
     }
     0.5 * (a + b)
 }
@@ -629,7 +710,16 @@ pub fn corners(base: &Scene, o: &Options, progress: Progress) -> Result<CornerSt
     let tail = &increment_ratios[increment_ratios.len().saturating_sub(2)..];
     let factor = tail.iter().sum::<f64>() / tail.len().max(1) as f64;
     let lw = williams_clamped_free(base.block.poisson);
-    Ok(CornerStudy { study, p_end, increment_ratios, factor, lambda_measured: 1.0 - factor.log2(), lambda_williams: lw, factor_williams: 2f64.powf(1.0 - lw), nu: base.block.poisson })
+    Ok(CornerStudy {
+        study,
+        p_end,
+        increment_ratios,
+        factor,
+        lambda_measured: 1.0 - factor.log2(),
+        lambda_williams: lw,
+        factor_williams: 2f64.powf(1.0 - lw),
+        nu: base.block.poisson,
+    })
 }
 
 /// All selected studies.
@@ -644,7 +734,10 @@ pub struct Results {
 
 pub fn run(base: &Scene, studies: &[String], o: &Options, progress: Progress) -> Result<Results> {
     if let Some(bad) = studies.iter().find(|s| !STUDIES.contains(&s.as_str())) {
-        return Err(Error::input("study", format!("'{bad}' is not known; choose from {}", STUDIES.join(", "))));
+        return Err(Error::input(
+            "study",
+            format!("'{bad}' is not known; choose from {}", STUDIES.join(", ")),
+        ));
     }
     let on = |name: &str| studies.iter().any(|s| s == name);
     let mut refs = References::new(base, o.n_ref);

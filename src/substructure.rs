@@ -14,10 +14,12 @@ use crate::multifrontal::{self, supernodal, AssemblyTree, DenseWork};
 use crate::ordering::Bisection;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
-use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
+use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
-use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering};
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering,
+};
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Accum, Conj, Mat, Par, Side};
@@ -69,14 +71,20 @@ impl TwoDomain {
         for (g, list) in groups.iter().enumerate() {
             for &k in list.iter() {
                 if k >= n || std::mem::replace(&mut label[k], g as u8) != u8::MAX {
-                    return Err(Error::input("two-domain split", format!("unknown {k} is out of range or listed twice")));
+                    return Err(Error::input(
+                        "two-domain split",
+                        format!("unknown {k} is out of range or listed twice"),
+                    ));
                 }
             }
         }
         if let Some(k) = label.iter().position(|&l| l == u8::MAX) {
             return Err(Error::input("two-domain split", format!("unknown {k} is in no part")));
         }
-        let (a, b) = rayon::join(|| Part::analyse(pattern, &split.parts[0], &split.separator), || Part::analyse(pattern, &split.parts[1], &split.separator));
+        let (a, b) = rayon::join(
+            || Part::analyse(pattern, &split.parts[0], &split.separator),
+            || Part::analyse(pattern, &split.parts[1], &split.separator),
+        );
         let mut local = vec![usize::MAX; n];
         split.separator.iter().enumerate().for_each(|(s, &k)| local[k] = s);
         let mut sep_entries = Vec::new();
@@ -89,11 +97,17 @@ impl TwoDomain {
                 }
             }
         }
-        Ok(Self { parts: [a?, b?], separator: split.separator.clone(), sep_entries, recycled: Default::default() })
+        Ok(Self {
+            parts: [a?, b?],
+            separator: split.separator.clone(),
+            sep_entries,
+            recycled: Default::default(),
+        })
     }
 
     pub fn factor_nnz(&self) -> usize {
-        self.parts.iter().map(|p| p.symbolic.len_val()).sum::<usize>() + self.separator.len() * (self.separator.len() + 1) / 2
+        self.parts.iter().map(|p| p.symbolic.len_val()).sum::<usize>()
+            + self.separator.len() * (self.separator.len() + 1) / 2
     }
 
     /// Flops of both halves' factorisations plus the Schur complement's: two triangular
@@ -107,7 +121,8 @@ impl TwoDomain {
     pub fn factorize(&self, values: &[f64]) -> std::result::Result<TwoDomainFactor, usize> {
         let m = self.separator.len();
         let [wa, wb] = std::mem::take(&mut *self.recycled());
-        let (a, b) = rayon::join(|| self.parts[0].factorize(values, m, wa), || self.parts[1].factorize(values, m, wb));
+        let (a, b) =
+            rayon::join(|| self.parts[0].factorize(values, m, wa), || self.parts[1].factorize(values, m, wb));
         let ((la, sa, da), (lb, sb, db)) = (a?, b?);
         let clock = std::time::Instant::now();
         // S = L_ss,a L_ss,a^T + L_ss,b L_ss,b^T - A_ss, lower triangle only (triangular
@@ -117,11 +132,33 @@ impl TwoDomain {
             schur[(r, c)] -= values[p];
         }
         for l in [&sa, &sb] {
-            triangular::matmul(schur.as_mut(), BlockStructure::TriangularLower, Accum::Add, l.as_ref(), BlockStructure::TriangularLower, l.transpose(), BlockStructure::TriangularUpper, 1.0, Par::Seq);
+            triangular::matmul(
+                schur.as_mut(),
+                BlockStructure::TriangularLower,
+                Accum::Add,
+                l.as_ref(),
+                BlockStructure::TriangularLower,
+                l.transpose(),
+                BlockStructure::TriangularUpper,
+                1.0,
+                Par::Seq,
+            );
         }
-        let mut mem = MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(m, Par::Seq, Default::default()));
-        match llt::factor::cholesky_in_place(schur.as_mut(), LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()) {
-            Ok(_) => Ok(TwoDomainFactor { l: [la, lb], l_ss: [sa, sb], schur, dense_seconds: da + db + clock.elapsed().as_secs_f64() }),
+        let mut mem =
+            MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(m, Par::Seq, Default::default()));
+        match llt::factor::cholesky_in_place(
+            schur.as_mut(),
+            LltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+            Default::default(),
+        ) {
+            Ok(_) => Ok(TwoDomainFactor {
+                l: [la, lb],
+                l_ss: [sa, sb],
+                schur,
+                dense_seconds: da + db + clock.elapsed().as_secs_f64(),
+            }),
             Err(LltError::NonPositivePivot { index }) => Err(self.separator[index.min(m - 1)]),
         }
     }
@@ -130,7 +167,12 @@ impl TwoDomain {
     /// resized when needed), by our multifrontal code or by faer's own left-looking one: the
     /// two are compared in `tests/parallel.rs` and `benches/kernels.rs`.
     /// Returns the dense kernels' work of both halves (ours; none for faer's).
-    pub fn factor_halves(&self, values: &[f64], left_looking: bool, l: &mut [Vec<f64>; 2]) -> std::result::Result<DenseWork, usize> {
+    pub fn factor_halves(
+        &self,
+        values: &[f64],
+        left_looking: bool,
+        l: &mut [Vec<f64>; 2],
+    ) -> std::result::Result<DenseWork, usize> {
         let [la, lb] = l;
         let half = |part: &Part, l: &mut Vec<f64>| {
             l.resize(part.symbolic.len_val(), 0.0);
@@ -191,20 +233,43 @@ impl TwoDomain {
             // c_h = L_ss y_s = b_s - A_sh A_hh^-1 b_h, this half's condensed right-hand side.
             let ys = Mat::<f64>::from_fn(m, k, |i, c| y[c * nl + nl - m + i]);
             let mut ch = Mat::<f64>::zeros(m, k);
-            triangular::matmul(ch.as_mut(), BlockStructure::Rectangular, Accum::Replace, f.l_ss[h].as_ref(), BlockStructure::TriangularLower, ys.as_ref(), BlockStructure::Rectangular, 1.0, Par::Seq);
+            triangular::matmul(
+                ch.as_mut(),
+                BlockStructure::Rectangular,
+                Accum::Replace,
+                f.l_ss[h].as_ref(),
+                BlockStructure::TriangularLower,
+                ys.as_ref(),
+                BlockStructure::Rectangular,
+                1.0,
+                Par::Seq,
+            );
             (y, ch)
         };
         let ((mut ya, ca), (mut yb, cb)) = rayon::join(|| forward(0), || forward(1));
         let mut xs = Mat::<f64>::from_fn(m, k, |i, c| ca[(i, c)] + cb[(i, c)] - b[c * n + self.separator[i]]);
         let mut mem = MemBuffer::new(llt::solve::solve_in_place_scratch::<f64>(m, k, Par::Seq));
-        llt::solve::solve_in_place_with_conj(f.schur.as_ref(), Conj::No, xs.as_mut(), Par::Seq, MemStack::new(&mut mem));
+        llt::solve::solve_in_place_with_conj(
+            f.schur.as_ref(),
+            Conj::No,
+            xs.as_mut(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+        );
         // With the separator part of y set to L_ss^T x_s, the backward solve returns the
         // half's unknowns for the separator fixed at x_s.
         let backward = |h: usize, y: &mut Vec<f64>| {
             let part = &self.parts[h];
             let nl = part.unknowns.len();
             let mut t = Mat::<f64>::zeros(m, k);
-            faer::linalg::matmul::matmul(t.as_mut(), Accum::Replace, f.l_ss[h].transpose(), xs.as_ref(), 1.0, Par::Seq);
+            faer::linalg::matmul::matmul(
+                t.as_mut(),
+                Accum::Replace,
+                f.l_ss[h].transpose(),
+                xs.as_ref(),
+                1.0,
+                Par::Seq,
+            );
             for c in 0..k {
                 for i in 0..m {
                     y[c * nl + nl - m + i] = t[(i, c)];
@@ -251,7 +316,9 @@ fn transpose(ptr: &[u32], idx: &[u32]) -> (Vec<u32>, Vec<u32>) {
 /// Sum over the columns of L of (column count)^2.
 pub fn supernodal_flops<I: faer::Index>(s: &SymbolicSupernodalCholesky<I>) -> f64 {
     let (begin, end, rows) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_row_idx());
-    (0..s.n_supernodes()).map(|k| multifrontal::supernode_flops(end[k].zx() - begin[k].zx(), rows[k + 1].zx() - rows[k].zx())).sum()
+    (0..s.n_supernodes())
+        .map(|k| multifrontal::supernode_flops(end[k].zx() - begin[k].zx(), rows[k + 1].zx() - rows[k].zx()))
+        .sum()
 }
 
 impl Part {
@@ -260,7 +327,8 @@ impl Part {
         let nl = unknowns.len();
         // The pattern's entries fit 32-bit indices (checked where it is built); the factor's
         // may not.
-        let too_big = || Error::input("two-domain split", format!("a half with {nl} unknowns exceeds 32-bit indices"));
+        let too_big =
+            || Error::input("two-domain split", format!("a half with {nl} unknowns exceeds 32-bit indices"));
         let mut local = vec![u32::MAX; pattern.n];
         unknowns.iter().enumerate().for_each(|(l, &g)| local[g] = l as u32);
         // Global lower-triangle entries inside this part, moved to the local lower triangle
@@ -274,7 +342,10 @@ impl Part {
                 if il != u32::MAX {
                     col_ptr[il.min(jl as u32) as usize + 1] += 1;
                 } else if jl < half.len() {
-                    return Err(Error::input("two-domain split", format!("unknowns {j} and {i} couple the two halves directly")));
+                    return Err(Error::input(
+                        "two-domain split",
+                        format!("unknowns {j} and {i} couple the two halves directly"),
+                    ));
                 }
             }
         }
@@ -301,8 +372,12 @@ impl Part {
         // analysis gets the transposed pattern, the factorisation no copy.
         let (up_ptr, up_idx) = transpose(&col_ptr, &row_idx);
         let upper = SymbolicSparseColMatRef::new_unsorted_checked(nl, nl, &up_ptr, None, &up_idx);
-        let params = CholeskySymbolicParams { supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL, ..Default::default() };
-        let symbolic = factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params).map_err(|e| match e {
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        let symbolic = factorize_symbolic_cholesky(upper, Side::Upper, SymmetricOrdering::Identity, params)
+            .map_err(|e| match e {
             faer::sparse::FaerError::IndexOverflow => too_big(),
             e => Error::input("symbolic factorisation", format!("{e:?}")),
         })?;
@@ -312,7 +387,12 @@ impl Part {
 
     /// Factor values (in `l`'s memory when it fits), the trailing m x m block of L and the
     /// seconds in dense kernels, or the reduced unknown of a bad pivot.
-    fn factorize(&self, values: &[f64], m: usize, mut l: Vec<f64>) -> std::result::Result<(Vec<f64>, Mat<f64>, f64), usize> {
+    fn factorize(
+        &self,
+        values: &[f64],
+        m: usize,
+        mut l: Vec<f64>,
+    ) -> std::result::Result<(Vec<f64>, Mat<f64>, f64), usize> {
         let nl = self.unknowns.len();
         let s = supernodal(&self.symbolic);
         if l.len() != self.symbolic.len_val() {
@@ -329,7 +409,8 @@ impl Part {
             if begin + width <= first {
                 break;
             }
-            let rows: Vec<usize> = (begin..begin + width).chain(node.pattern().iter().map(|&r| r as usize)).collect();
+            let rows: Vec<usize> =
+                (begin..begin + width).chain(node.pattern().iter().map(|&r| r as usize)).collect();
             for j in begin.max(first)..begin + width {
                 for (q, &r) in rows.iter().enumerate().filter(|(_, &r)| r >= j) {
                     l_ss[(r - first, j - first)] = node.val()[(q, j - begin)];
@@ -340,16 +421,36 @@ impl Part {
     }
 
     fn numeric(&self, values: &[f64], l: &mut [f64]) -> std::result::Result<DenseWork, usize> {
-        multifrontal::factorize(supernodal(&self.symbolic), &self.tree, &self.col_ptr, &self.row_idx, |p| values[self.gather[p] as usize], l).map_err(|j| self.unknowns[j])
+        multifrontal::factorize(
+            supernodal(&self.symbolic),
+            &self.tree,
+            &self.col_ptr,
+            &self.row_idx,
+            |p| values[self.gather[p] as usize],
+            l,
+        )
+        .map_err(|j| self.unknowns[j])
     }
 
     /// faer's own (left-looking) numeric factorisation on the same structure.
     fn numeric_left_looking(&self, values: &[f64], l: &mut [f64]) -> std::result::Result<(), usize> {
         let nl = self.unknowns.len();
         let local: Vec<f64> = self.gather.iter().map(|&p| values[p as usize]).collect();
-        let a = SparseColMatRef::new(SymbolicSparseColMatRef::new_unsorted_checked(nl, nl, &self.col_ptr, None, &self.row_idx), &local);
-        let mut mem = MemBuffer::new(self.symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()));
-        match self.symbolic.factorize_numeric_llt(l, a, Side::Lower, LltRegularization::default(), Par::Seq, MemStack::new(&mut mem), Default::default()) {
+        let a = SparseColMatRef::new(
+            SymbolicSparseColMatRef::new_unsorted_checked(nl, nl, &self.col_ptr, None, &self.row_idx),
+            &local,
+        );
+        let mut mem =
+            MemBuffer::new(self.symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()));
+        match self.symbolic.factorize_numeric_llt(
+            l,
+            a,
+            Side::Lower,
+            LltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+            Default::default(),
+        ) {
             Err(LltError::NonPositivePivot { index }) => Err(self.unknowns[index.min(nl - 1)]),
             Ok(_) => Ok(()),
         }

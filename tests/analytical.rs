@@ -23,7 +23,16 @@ fn scene_values() {
         println!(
             "nu {nu}: lambda {:.6}{:+.6}i, 1-Re(lambda) {:.6}, growth/halving {:.6}; \
              compression s t {:.6}{:+.6}i, 5% at {:.4} t; shear s t {:.6}{:+.6}i, 5% at {:.4} t",
-            l.re, l.im, singularity_exponent(l), refinement_growth(l), c.re, c.im, dc, s.re, s.im, ds
+            l.re,
+            l.im,
+            singularity_exponent(l),
+            refinement_growth(l),
+            c.re,
+            c.im,
+            dc,
+            s.re,
+            s.im,
+            ds
         );
         assert!((l.re - lambda).abs() < 1e-12 && l.im == 0.0);
         assert!((c.re - comp).abs() < 1e-12 && c.im == 0.0);

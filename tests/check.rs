@@ -26,7 +26,11 @@ fn global_balances_hold_to_1e_9() {
     assert_eq!(r.cases.len(), 3);
     for c in &r.cases {
         let m = &c.metrics;
-        assert!(m.balance_n < 1e-9 && m.balance_f < 1e-9 && m.balance_moment < 1e-9, "F/N = {}: {m:?}", c.fn_ratio);
+        assert!(
+            m.balance_n < 1e-9 && m.balance_f < 1e-9 && m.balance_moment < 1e-9,
+            "F/N = {}: {m:?}",
+            c.fn_ratio
+        );
         // The requested ratio is hit exactly and N is the same for every case.
         assert!((c.f / c.n - c.fn_ratio).abs() < 1e-12);
         assert!((c.n - r.cases[0].n).abs() < 1e-12 * c.n);
@@ -73,7 +77,8 @@ fn superposition_equals_direct_solves() {
     let scene = Scene::default();
     let (r, sm) = run(&scene, &SolverOptions::default()).unwrap();
     let model = sm.model();
-    let (ju, jv) = (sm.constraints.fixed_slot(sm.dof_u).unwrap(), sm.constraints.fixed_slot(sm.dof_v).unwrap());
+    let (ju, jv) =
+        (sm.constraints.fixed_slot(sm.dof_u).unwrap(), sm.constraints.fixed_slot(sm.dof_v).unwrap());
     let near = elements_touching(&model, &sm.interface);
     for c in &r.cases {
         let mut g = vec![0.0; sm.constraints.n_fixed()];
@@ -85,7 +90,12 @@ fn superposition_equals_direct_solves() {
         let sum_ry: f64 = sm.interface.iter().map(|&k| res[dof(k, 1)]).sum();
         assert!((sum_ry - c.n).abs() < 1e-10 * c.n, "N {sum_ry} vs {}", c.n);
         let pmean = c.n / scene.block.length;
-        let p_direct: Vec<f64> = sm.interface.iter().zip(&r.unit.w_over_l).map(|(&k, w)| res[dof(k, 1)] / (w * scene.block.length) / pmean).collect();
+        let p_direct: Vec<f64> = sm
+            .interface
+            .iter()
+            .zip(&r.unit.w_over_l)
+            .map(|(&k, w)| res[dof(k, 1)] / (w * scene.block.length) / pmean)
+            .collect();
         assert!(max_diff(&p_direct, &c.p) < 1e-10, "F/N = {}", c.fn_ratio);
     }
 }
@@ -110,7 +120,12 @@ fn elastic_plate_agrees_with_rigid_when_well_conditioned_and_is_refused_otherwis
     // ~10 digits lost to the stiffness contrast and 6 left.
     let stiff = elastic(2e12, &SolverOptions::default()).unwrap();
     for (a, b) in stiff.cases.iter().zip(&rigid.cases) {
-        assert!(max_diff(&a.p, &b.p) < 1e-4 && max_diff(&a.tau, &b.tau) < 1e-4, "{} {}", max_diff(&a.p, &b.p), max_diff(&a.tau, &b.tau));
+        assert!(
+            max_diff(&a.p, &b.p) < 1e-4 && max_diff(&a.tau, &b.tau) < 1e-4,
+            "{} {}",
+            max_diff(&a.p, &b.p),
+            max_diff(&a.tau, &b.tau)
+        );
     }
     // E_plate = 2e15 (the paper's, ratio 1e12): ~13 digits are lost; tribofe refuses it...
     let err = elastic(2e15, &SolverOptions::default()).unwrap_err().to_string();
@@ -142,14 +157,28 @@ fn bad_scene_values_are_clear_errors() {
 #[test]
 fn gmsh_regular_mesh_gives_the_structured_result_in_every_format() {
     let built = paper();
-    for f in ["block_regular_v41_ascii", "block_regular_v41_bin", "block_regular_v22_ascii", "block_regular_v22_bin"] {
+    for f in [
+        "block_regular_v41_ascii",
+        "block_regular_v41_bin",
+        "block_regular_v22_ascii",
+        "block_regular_v22_bin",
+    ] {
         let mut s = Scene::default();
         s.mesh.file = Some(format!("{}/meshes/{f}.msh", env!("CARGO_MANIFEST_DIR")).into());
         let r = run(&s, &SolverOptions::default()).unwrap().0;
         for (a, b) in r.cases.iter().zip(&built.cases) {
             // Gmsh writes coordinates with ~5e-13 m round-off (1.3e-12 of L); profiles agree to that order.
-            assert!(max_diff(&a.x_over_l, &b.x_over_l) < 1e-11, "{f}: x differs by {}", max_diff(&a.x_over_l, &b.x_over_l));
-            assert!(max_diff(&a.p, &b.p) < 1e-9 && max_diff(&a.tau, &b.tau) < 1e-9, "{f}: {} {}", max_diff(&a.p, &b.p), max_diff(&a.tau, &b.tau));
+            assert!(
+                max_diff(&a.x_over_l, &b.x_over_l) < 1e-11,
+                "{f}: x differs by {}",
+                max_diff(&a.x_over_l, &b.x_over_l)
+            );
+            assert!(
+                max_diff(&a.p, &b.p) < 1e-9 && max_diff(&a.tau, &b.tau) < 1e-9,
+                "{f}: {} {}",
+                max_diff(&a.p, &b.p),
+                max_diff(&a.tau, &b.tau)
+            );
         }
     }
     // A group the mesh lacks is named with the groups it has.
@@ -169,7 +198,15 @@ fn reused_symbolic_analysis_gives_the_fresh_result() {
     for e in [2e9, 2e11] {
         s.plate.young = e;
         let fresh = run(&s, &SolverOptions::default()).unwrap().0;
-        let reused = tribofe::check::run_model(&s, s.build().unwrap(), 0.0, &SolverOptions::default(), Some(&prepared)).unwrap().0;
+        let reused = tribofe::check::run_model(
+            &s,
+            s.build().unwrap(),
+            0.0,
+            &SolverOptions::default(),
+            Some(&prepared),
+        )
+        .unwrap()
+        .0;
         assert_eq!(reused.timings.symbolic, 0.0);
         for (a, b) in fresh.cases.iter().zip(&reused.cases) {
             // Same pattern and ordering: the same arithmetic, so the same numbers.
@@ -187,7 +224,8 @@ fn unstructured_gmsh_mesh_agrees_with_the_converged_answer() {
     let c = conv.cases.last().unwrap();
     for el in ["qua4", "qua4-im"] {
         let mut s = Scene::default();
-        s.mesh.file = Some(format!("{}/meshes/block_unstructured_v41_bin.msh", env!("CARGO_MANIFEST_DIR")).into());
+        s.mesh.file =
+            Some(format!("{}/meshes/block_unstructured_v41_bin.msh", env!("CARGO_MANIFEST_DIR")).into());
         s.mesh.element = el.into();
         let r = run(&s, &SolverOptions::default()).unwrap().0;
         let u = r.cases.last().unwrap();

@@ -14,7 +14,12 @@ use tribofe::scene::Scene;
 use tribofe::solve::SolverOptions;
 
 fn runs(elements: &[&str], family: Family, n: &[usize]) -> Vec<Run> {
-    let o = StudyOptions { elements: elements.iter().map(|s| s.to_string()).collect(), families: vec![family], n_thick: n.to_vec(), ..Default::default() };
+    let o = StudyOptions {
+        elements: elements.iter().map(|s| s.to_string()).collect(),
+        families: vec![family],
+        n_thick: n.to_vec(),
+        ..Default::default()
+    };
     study(&Scene::default(), &o, &|_| {}).unwrap().runs
 }
 
@@ -42,12 +47,22 @@ fn interior_converges_at_the_pollution_rate_two_lambda() {
     // like h^(2 lambda) whatever the element order: 1.30 at nu = 0.4. Measured by self-convergence
     // over h = t/4, t/8, t/16: 1.30 (qua8, interior p), 1.31 (qua4).
     let two_lambda = 2.0 * williams::clamped_free_exponent(std::f64::consts::FRAC_PI_2, 0.4).unwrap().re;
-    let o = StudyOptions { elements: vec!["qua4".into(), "qua8".into()], families: vec![Family::Uniform], n_thick: vec![4, 8, 16], ..Default::default() };
+    let o = StudyOptions {
+        elements: vec!["qua4".into(), "qua8".into()],
+        families: vec![Family::Uniform],
+        n_thick: vec![4, 8, 16],
+        ..Default::default()
+    };
     let st = study(&Scene::default(), &o, &|_| {}).unwrap();
     for s in tribofe::convergence::series(&st) {
         let ord = tribofe::convergence::orders(&st, &s).unwrap();
         for k in 0..2 {
-            assert!((ord[k] - two_lambda).abs() < 0.2, "{} interior order {} vs 2 lambda {two_lambda}", st.runs[s[0]].element, ord[k]);
+            assert!(
+                (ord[k] - two_lambda).abs() < 0.2,
+                "{} interior order {} vs 2 lambda {two_lambda}",
+                st.runs[s[0]].element,
+                ord[k]
+            );
         }
     }
 }
@@ -86,7 +101,12 @@ fn converged_model_matches_a_finer_mesh() {
 
 #[test]
 fn graded_meshes_reach_the_uniform_accuracy_with_far_fewer_dofs() {
-    let o = StudyOptions { elements: vec!["qua4".into()], families: vec![Family::Uniform, Family::Graded], n_thick: vec![4, 8], ..Default::default() };
+    let o = StudyOptions {
+        elements: vec!["qua4".into()],
+        families: vec![Family::Uniform, Family::Graded],
+        n_thick: vec![4, 8],
+        ..Default::default()
+    };
     let st = study(&Scene::default(), &o, &|_| {}).unwrap();
     let find = |f: Family, n: usize| st.runs.iter().find(|r| r.family == f && r.n_thick == n).unwrap();
     let (u, g) = (find(Family::Uniform, 4), find(Family::Graded, 4));

@@ -69,13 +69,17 @@ fn smooth_map(m: &mut Mesh) {
     let pi = std::f64::consts::PI;
     for p in &mut m.nodes {
         let [x, y] = *p;
-        *p = [x + 0.04 * (2.0 * pi * x).sin() * (pi * y).sin(), y + 0.04 * (pi * x).sin() * (2.0 * pi * y).sin()];
+        *p = [
+            x + 0.04 * (2.0 * pi * x).sin() * (pi * y).sin(),
+            y + 0.04 * (pi * x).sin() * (2.0 * pi * y).sin(),
+        ];
     }
     m.validate().unwrap();
 }
 
 fn solve_u(model: &Model, c: &Constraints, g: Vec<f64>, f: Vec<f64>) -> Vec<f64> {
-    let sol = solve(model, c, &[LoadCase { prescribed: g, forces: f }], &SolverOptions::default(), "").unwrap();
+    let sol =
+        solve(model, c, &[LoadCase { prescribed: g, forces: f }], &SolverOptions::default(), "").unwrap();
     sol.u[0].clone()
 }
 
@@ -143,9 +147,14 @@ fn manufactured_solution_rates_every_element() {
                 error_norms(&model(&mesh, m, ch), &u, &exact)
             })
             .collect();
-        let rates: Vec<(f64, f64)> = errs.windows(2).map(|w| ((w[0].0 / w[1].0).log2(), (w[0].1 / w[1].1).log2())).collect();
+        let rates: Vec<(f64, f64)> =
+            errs.windows(2).map(|w| ((w[0].0 / w[1].0).log2(), (w[0].1 / w[1].1).log2())).collect();
         let (rl2, ren) = *rates.last().unwrap();
-        eprintln!("{:9} rates L2 / energy: {}", ch.name(), rates.iter().map(|r| format!("{:.3}/{:.3}", r.0, r.1)).collect::<Vec<_>>().join("  "));
+        eprintln!(
+            "{:9} rates L2 / energy: {}",
+            ch.name(),
+            rates.iter().map(|r| format!("{:.3}/{:.3}", r.0, r.1)).collect::<Vec<_>>().join("  ")
+        );
         assert!((rl2 - (p + 1.0)).abs() < 0.15, "{}: L2 rate {rl2}, errors {errs:?}", ch.name());
         assert!((ren - p).abs() < 0.15, "{}: energy rate {ren}, errors {errs:?}", ch.name());
     }
@@ -161,7 +170,13 @@ fn cantilever_tip(ch: ElementChoice, mat: Material, nx: usize, ny: usize, (l, h,
         c.fix(dof(n, 1));
     }
     let mut f = vec![0.0; 2 * mesh.n_nodes()];
-    tribofe::loads::add_edge_traction(&mesh, "right", &|x| [0.0, -1.5 * p / h * (1.0 - (2.0 * x[1] / h).powi(2))], &mut f).unwrap();
+    tribofe::loads::add_edge_traction(
+        &mesh,
+        "right",
+        &|x| [0.0, -1.5 * p / h * (1.0 - (2.0 * x[1] / h).powi(2))],
+        &mut f,
+    )
+    .unwrap();
     let u = solve_u(&model(&mesh, mat, ch), &c, vec![0.0; c.n_fixed()], f);
     let right = mesh.set_nodes("right").unwrap();
     -right.iter().map(|&n| u[2 * n + 1]).sum::<f64>() / right.len() as f64
@@ -173,10 +188,14 @@ fn cantilever_bending_shear_locking() {
     let mat = Material::plane_strain(1.0, 0.3).unwrap();
     let (l, h, p): (f64, f64, f64) = (10.0, 1.0, 1e-4);
     let e_ps = mat.e / (1.0 - mat.nu * mat.nu);
-    let beam = p * l.powi(3) / (3.0 * e_ps * h.powi(3) / 12.0) + p * l / (5.0 / 6.0 * mat.shear_modulus() * h);
+    let beam =
+        p * l.powi(3) / (3.0 * e_ps * h.powi(3) / 12.0) + p * l / (5.0 / 6.0 * mat.shear_modulus() * h);
     let ratio = |name: &str, ny: usize| cantilever_tip(name.parse().unwrap(), mat, 10, ny, (l, h, p)) / beam;
-    let (q4, im, sri, im2) = (ratio("qua4", 1), ratio("qua4-im", 1), ratio("qua4-sri", 1), ratio("qua4-im", 2));
-    eprintln!("cantilever 10x1 tip / Timoshenko: qua4 {q4:.4}, qua4-sri {sri:.4}, qua4-im {im:.4} (10x2: {im2:.4})");
+    let (q4, im, sri, im2) =
+        (ratio("qua4", 1), ratio("qua4-im", 1), ratio("qua4-sri", 1), ratio("qua4-im", 2));
+    eprintln!(
+        "cantilever 10x1 tip / Timoshenko: qua4 {q4:.4}, qua4-sri {sri:.4}, qua4-im {im:.4} (10x2: {im2:.4})"
+    );
     assert!((im - 1.0).abs() < 0.05, "qua4-im tip deflection ratio {im}");
     assert!((im2 - 1.0).abs() < 0.05, "qua4-im 10x2 tip deflection ratio {im2}");
     assert!(q4 < 0.8, "qua4 should lock in shear: ratio {q4}");
@@ -219,8 +238,12 @@ fn near_incompressible_volumetric_locking() {
 fn symmetric_with_exactly_three_zero_energy_modes() {
     let mat = Material::plane_strain(210e9, 0.3).unwrap();
     for ch in all_choices() {
-        let x: Vec<[f64; 2]> =
-            ch.kind.reference_nodes().iter().map(|&[a, b]| [1.0 + 0.9 * a + 0.2 * b + 0.15 * a * b, 0.5 + 0.1 * a + 0.7 * b]).collect();
+        let x: Vec<[f64; 2]> = ch
+            .kind
+            .reference_nodes()
+            .iter()
+            .map(|&[a, b]| [1.0 + 0.9 * a + 0.2 * b + 0.15 * a * b, 0.5 + 0.1 * a + 0.7 * b])
+            .collect();
         let mut mesh = Mesh::new(x.clone());
         mesh.push_element(ch.kind, &(0..x.len()).collect::<Vec<_>>());
         let nd = 2 * x.len();

@@ -85,7 +85,8 @@ fn layer(kind: ElementKind, top: [f64; 2], periodic: bool) -> (Mesh, Vec<f64>) {
         }
     }
     let model = Model::new(&mesh, mat());
-    let sol = solve(&model, &c, &[LoadCase { prescribed: g, forces: vec![] }], &SolverOptions::default(), "").unwrap();
+    let sol = solve(&model, &c, &[LoadCase { prescribed: g, forces: vec![] }], &SolverOptions::default(), "")
+        .unwrap();
     let u = sol.u[0].clone();
     (mesh, u)
 }
@@ -171,7 +172,8 @@ fn reactions_balance_loads_forces_and_moment() {
     let mut f = vec![0.0; 2 * mesh.n_nodes()];
     tribofe::loads::add_edge_traction(&mesh, "top", &|p| [0.0, -1e3 * p[0]], &mut f).unwrap();
     tribofe::loads::add_edge_traction(&mesh, "right", &|p| [500.0, 200.0 * p[1]], &mut f).unwrap();
-    let corner = mesh.nodes.iter().position(|p| (p[0] - 2.0).abs() < 1e-12 && (p[1] - 0.5).abs() < 1e-12).unwrap();
+    let corner =
+        mesh.nodes.iter().position(|p| (p[0] - 2.0).abs() < 1e-12 && (p[1] - 0.5).abs() < 1e-12).unwrap();
     f[dof(corner, 0)] += 77.0;
     let model = Model::new(&mesh, mat());
     let case = LoadCase { prescribed: vec![0.0; c.n_fixed()], forces: f.clone() };
@@ -207,7 +209,9 @@ fn free_floating_body_is_a_clear_error() {
     assert!(err.contains("free to move"), "{err}");
     // Nothing fixed at all.
     let c = Constraints::new(mesh.n_nodes());
-    let err = solve(&model, &c, &[LoadCase { prescribed: vec![], forces: f }], &SolverOptions::default(), "").unwrap_err().to_string();
+    let err = solve(&model, &c, &[LoadCase { prescribed: vec![], forces: f }], &SolverOptions::default(), "")
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("free to move"), "{err}");
 }
 

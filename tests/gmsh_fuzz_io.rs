@@ -28,8 +28,32 @@ impl Rng {
     }
 }
 
-const NUMBERS: [&str; 14] = ["0", "-1", "1", "2", "3", "15", "18446744073709551615", "9223372036854775808", "2147483648", "4294967296", "nan", "1e400", "-0", "99999999"];
-const PIECES: [&[u8]; 8] = [b"$Nodes\n", b"$EndNodes\n", b"$Elements\n", b"$EndElements\n", b"$Entities\n", b"\n", b"\"", b"$MeshFormat\n4.1 1 8\n"];
+const NUMBERS: [&str; 14] = [
+    "0",
+    "-1",
+    "1",
+    "2",
+    "3",
+    "15",
+    "18446744073709551615",
+    "9223372036854775808",
+    "2147483648",
+    "4294967296",
+    "nan",
+    "1e400",
+    "-0",
+    "99999999",
+];
+const PIECES: [&[u8]; 8] = [
+    b"$Nodes\n",
+    b"$EndNodes\n",
+    b"$Elements\n",
+    b"$EndElements\n",
+    b"$Entities\n",
+    b"\n",
+    b"\"",
+    b"$MeshFormat\n4.1 1 8\n",
+];
 const WORDS: [u64; 8] = [0, 1, 2, 3, u32::MAX as u64, i32::MAX as u64, u64::MAX, 1 << 40];
 
 /// One random mutation of `seed` (several for some inputs).
@@ -53,7 +77,10 @@ fn mutate(rng: &mut Rng, seed: &[u8], other: &[u8]) -> Vec<u8> {
             3 => {
                 // Replace the number token nearest after `at` (counts, tags, types, coordinates).
                 if let Some(s) = b[at..].iter().position(|c| c.is_ascii_digit()).map(|i| at + i) {
-                    let e = b[s..].iter().position(|c| !(c.is_ascii_digit() || matches!(c, b'.' | b'e' | b'-'))).map_or(b.len(), |i| s + i);
+                    let e = b[s..]
+                        .iter()
+                        .position(|c| !(c.is_ascii_digit() || matches!(c, b'.' | b'e' | b'-')))
+                        .map_or(b.len(), |i| s + i);
                     b.splice(s..e, NUMBERS[rng.below(NUMBERS.len())].bytes());
                 }
             }
@@ -90,15 +117,20 @@ fn mutate(rng: &mut Rng, seed: &[u8], other: &[u8]) -> Vec<u8> {
 
 fn seeds() -> Vec<(PathBuf, Vec<u8>)> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(root.join("fuzz/corpus/parse")).unwrap().map(|e| e.unwrap().path()).collect();
-    paths.extend(["v41_ascii", "v41_bin", "v22_ascii", "v22_bin"].map(|f| root.join(format!("meshes/block_regular_{f}.msh"))));
+    let mut paths: Vec<PathBuf> =
+        std::fs::read_dir(root.join("fuzz/corpus/parse")).unwrap().map(|e| e.unwrap().path()).collect();
+    paths.extend(
+        ["v41_ascii", "v41_bin", "v22_ascii", "v22_bin"]
+            .map(|f| root.join(format!("meshes/block_regular_{f}.msh"))),
+    );
     paths.sort();
     paths.into_iter().map(|p| (p.clone(), std::fs::read(&p).unwrap())).collect()
 }
 
 #[test]
 fn mutated_meshes_never_panic() {
-    let iters: usize = std::env::var("TRIBOFE_ROBUSTNESS_ITERS").ok().and_then(|s| s.parse().ok()).unwrap_or(20_000);
+    let iters: usize =
+        std::env::var("TRIBOFE_ROBUSTNESS_ITERS").ok().and_then(|s| s.parse().ok()).unwrap_or(20_000);
     let seeds = seeds();
     assert!(seeds.len() >= 12);
     for (p, s) in &seeds {
@@ -111,7 +143,8 @@ fn mutated_meshes_never_panic() {
     for i in 0..iters {
         // Mostly tiny seeds (fast); the 1203-node block one time in 16.
         let big = rng.below(16) == 0;
-        let pool: Vec<&(PathBuf, Vec<u8>)> = seeds.iter().filter(|(_, s)| (s.len() > 20_000) == big).collect();
+        let pool: Vec<&(PathBuf, Vec<u8>)> =
+            seeds.iter().filter(|(_, s)| (s.len() > 20_000) == big).collect();
         let (seed_path, seed) = pool[rng.below(pool.len())];
         let other = &seeds[rng.below(seeds.len())].1;
         let input = mutate(&mut rng, seed, other);
@@ -128,20 +161,30 @@ fn mutated_meshes_never_panic() {
             let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
             let out = dir.join(format!("gmsh-crash-{i}.msh"));
             std::fs::write(&out, &input).unwrap();
-            panic!("parse panicked on mutation {i} of {}; input saved to {}", seed_path.display(), out.display());
+            panic!(
+                "parse panicked on mutation {i} of {}; input saved to {}",
+                seed_path.display(),
+                out.display()
+            );
         };
         match result {
             Ok(m) => {
                 ok += 1;
                 assert!(m.n_elements() > 0 && m.validate().is_ok());
             }
-            Err(Error::Parse { at, .. }) => assert!(at.starts_with("line ") || at.starts_with("byte "), "{at}"),
+            Err(Error::Parse { at, .. }) => {
+                assert!(at.starts_with("line ") || at.starts_with("byte "), "{at}")
+            }
             Err(Error::Mesh(msg)) => assert!(msg.starts_with("m.msh: "), "{msg}"),
             Err(e) => panic!("unexpected error kind on mutation {i}: {e}"),
         }
         slowest = slowest.max(dt);
         worst_ratio = worst_ratio.max(peak as f64 / input.len().max(1) as f64);
-        assert!(peak < 200 * input.len() + (1 << 20), "mutation {i}: {peak} bytes allocated for a {}-byte input", input.len());
+        assert!(
+            peak < 200 * input.len() + (1 << 20),
+            "mutation {i}: {peak} bytes allocated for a {}-byte input",
+            input.len()
+        );
     }
     std::panic::set_hook(quiet);
     eprintln!("{iters} mutated inputs: {ok} parsed, {} rejected, no panic; slowest {slowest:?}, peak heap {worst_ratio:.1} x input", iters - ok);

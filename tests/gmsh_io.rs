@@ -53,7 +53,11 @@ fn canonical(m: &Mesh) -> Canonical {
     Canonical {
         nodes: (0..m.n_nodes()).map(|n| (tag(n), m.nodes[n])).collect(),
         elements,
-        node_sets: m.node_sets.iter().map(|(k, v)| (k.clone(), v.iter().map(|&n| tag(n)).collect())).collect(),
+        node_sets: m
+            .node_sets
+            .iter()
+            .map(|(k, v)| (k.clone(), v.iter().map(|&n| tag(n)).collect()))
+            .collect(),
         edge_sets,
         element_set_sizes: m.element_sets.iter().map(|(k, v)| (k.clone(), v.len())).collect(),
     }
@@ -72,7 +76,10 @@ fn assert_same_across_formats(meshes: &[(String, Mesh)]) {
         assert_eq!(c.nodes.len(), c0.nodes.len());
         for ((t, p), (t0, p0)) in c.nodes.iter().zip(&c0.nodes) {
             assert_eq!(t, t0);
-            assert!((p[0] - p0[0]).abs() < 1e-15 && (p[1] - p0[1]).abs() < 1e-15, "{f}: node {t} at {p:?} vs {p0:?}");
+            assert!(
+                (p[0] - p0[0]).abs() < 1e-15 && (p[1] - p0[1]).abs() < 1e-15,
+                "{f}: node {t} at {p:?} vs {p0:?}"
+            );
         }
     }
 }
@@ -90,9 +97,20 @@ fn assert_block(m: &Mesh, what: &str) {
         let nodes = m.set_nodes(set).unwrap();
         assert!(nodes.iter().all(|&n| on_side(m.nodes[n])), "{what}: a node of '{set}' is off its side");
         // The edges cover the side exactly once: their lengths add up to its length.
-        let length: f64 = m.edges(set).unwrap().iter().map(|e| (m.nodes[e.ends[0]][0] - m.nodes[e.ends[1]][0]).hypot(m.nodes[e.ends[0]][1] - m.nodes[e.ends[1]][1])).sum();
+        let length: f64 = m
+            .edges(set)
+            .unwrap()
+            .iter()
+            .map(|e| {
+                (m.nodes[e.ends[0]][0] - m.nodes[e.ends[1]][0])
+                    .hypot(m.nodes[e.ends[0]][1] - m.nodes[e.ends[1]][1])
+            })
+            .sum();
         let expected = if matches!(set, "interface" | "top") { 2.0 * L } else { H };
-        assert!((length - expected).abs() < 1e-12, "{what}: '{set}' edges add up to {length}, not {expected}");
+        assert!(
+            (length - expected).abs() < 1e-12,
+            "{what}: '{set}' edges add up to {length}, not {expected}"
+        );
     }
     let xs: Vec<f64> = m.set_nodes("interface").unwrap().iter().map(|&n| m.nodes[n][0]).collect();
     let (lo, hi) = xs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
@@ -118,9 +136,17 @@ fn graded_block_in_every_format() {
     for (f, m) in &meshes {
         assert_eq!((m.n_nodes(), m.n_elements()), (631 * 5, 630 * 4), "{f}");
         assert_block(m, f);
-        let sizes: Vec<f64> = m.edges("interface").unwrap().iter().map(|e| (m.nodes[e.ends[0]][0] - m.nodes[e.ends[1]][0]).abs()).collect();
+        let sizes: Vec<f64> = m
+            .edges("interface")
+            .unwrap()
+            .iter()
+            .map(|e| (m.nodes[e.ends[0]][0] - m.nodes[e.ends[1]][0]).abs())
+            .collect();
         let (min, max) = sizes.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &h| (a.min(h), b.max(h)));
-        assert!((0.9e-4..1.1e-4).contains(&min) && (1.8e-3..2.2e-3).contains(&max), "{f}: sizes {min}..{max}");
+        assert!(
+            (0.9e-4..1.1e-4).contains(&min) && (1.8e-3..2.2e-3).contains(&max),
+            "{f}: sizes {min}..{max}"
+        );
     }
 }
 
@@ -177,11 +203,18 @@ fn assert_mid_nodes_halfway(m: &Mesh, what: &str) {
         let (kind, v) = (m.kind(e), m.element_nodes(e));
         for edge in kind.edges() {
             let (a, b, mid) = (m.nodes[v[edge[0]]], m.nodes[v[edge[1]]], m.nodes[v[edge[2]]]);
-            assert!((mid[0] - 0.5 * (a[0] + b[0])).abs() < 1e-12 && (mid[1] - 0.5 * (a[1] + b[1])).abs() < 1e-12, "{what}: {}", m.describe_element(e));
+            assert!(
+                (mid[0] - 0.5 * (a[0] + b[0])).abs() < 1e-12 && (mid[1] - 0.5 * (a[1] + b[1])).abs() < 1e-12,
+                "{what}: {}",
+                m.describe_element(e)
+            );
         }
         if kind == ElementKind::Qua9 {
             let c: [f64; 2] = [0, 1].map(|i| v[..4].iter().map(|&n| m.nodes[n][i]).sum::<f64>() / 4.0);
-            assert!((m.nodes[v[8]][0] - c[0]).abs() < 1e-12 && (m.nodes[v[8]][1] - c[1]).abs() < 1e-12, "{what}");
+            assert!(
+                (m.nodes[v[8]][0] - c[0]).abs() < 1e-12 && (m.nodes[v[8]][1] - c[1]).abs() < 1e-12,
+                "{what}"
+            );
         }
     }
 }
@@ -201,7 +234,10 @@ fn tiny_meshes_in_every_format() {
         assert!(!left.is_empty() && left.len() < m.element_set("block").unwrap().len());
         assert!(left.iter().all(|&e| m.element_coords(e).iter().all(|p| p[0] <= 0.002 + 1e-15)), "{f}");
     }
-    for (base, kinds) in [("tiny_quadratic", [ElementKind::Tri6, ElementKind::Qua9]), ("tiny_serendipity", [ElementKind::Tri6, ElementKind::Qua8])] {
+    for (base, kinds) in [
+        ("tiny_quadratic", [ElementKind::Tri6, ElementKind::Qua9]),
+        ("tiny_serendipity", [ElementKind::Tri6, ElementKind::Qua8]),
+    ] {
         let meshes = read_all(&dir, base);
         assert_same_across_formats(&meshes);
         for (f, m) in &meshes {
@@ -212,8 +248,12 @@ fn tiny_meshes_in_every_format() {
             assert!(!edges.is_empty());
             for e in edges {
                 // Gmsh line3: end, end, mid.
-                let (a, b, c) = (m.nodes[e.ends[0]], m.nodes[e.ends[1]], m.nodes[e.mid.expect("line3 has a mid node")]);
-                assert!(a[1] == 0.0 && b[1] == 0.0 && (c[0] - 0.5 * (a[0] + b[0])).abs() < 1e-12, "{base} {f}: {a:?} {b:?} {c:?}");
+                let (a, b, c) =
+                    (m.nodes[e.ends[0]], m.nodes[e.ends[1]], m.nodes[e.mid.expect("line3 has a mid node")]);
+                assert!(
+                    a[1] == 0.0 && b[1] == 0.0 && (c[0] - 0.5 * (a[0] + b[0])).abs() < 1e-12,
+                    "{base} {f}: {a:?} {b:?} {c:?}"
+                );
             }
         }
     }
@@ -227,9 +267,17 @@ fn regenerated_meshes_read() {
         return;
     }
     let out = tempfile::tempdir().unwrap();
-    let status = std::process::Command::new("bash").arg(meshes_dir().join("regenerate.sh")).arg(out.path()).status().unwrap();
+    let status = std::process::Command::new("bash")
+        .arg(meshes_dir().join("regenerate.sh"))
+        .arg(out.path())
+        .status()
+        .unwrap();
     assert!(status.success());
-    for (base, counts) in [("block_regular", Some((1203, 800))), ("block_graded", Some((3155, 2520))), ("block_unstructured", None)] {
+    for (base, counts) in [
+        ("block_regular", Some((1203, 800))),
+        ("block_graded", Some((3155, 2520))),
+        ("block_unstructured", None),
+    ] {
         let meshes = read_all(out.path(), base);
         assert_same_across_formats(&meshes);
         for (f, m) in &meshes {
@@ -392,7 +440,14 @@ fn binary_22(big: bool) -> Vec<u8> {
     let f64_ = |b: &mut Vec<u8>, v: f64| b.extend(if big { v.to_be_bytes() } else { v.to_le_bytes() });
     i32_(&mut b, 1);
     b.extend(b"\n$EndMeshFormat\n$PhysicalNames\n1\n2 3 \"solid\"\n$EndPhysicalNames\n$Nodes\n6\n");
-    for (t, p) in [10, 20, 30, 40, 50, 60].iter().zip([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [0.0, 1.0], [1.0, 1.0], [2.0, 1.0]]) {
+    for (t, p) in [10, 20, 30, 40, 50, 60].iter().zip([
+        [0.0, 0.0],
+        [1.0, 0.0],
+        [2.0, 0.0],
+        [0.0, 1.0],
+        [1.0, 1.0],
+        [2.0, 1.0],
+    ]) {
         i32_(&mut b, *t);
         [p[0], p[1], 0.0].iter().for_each(|&x| f64_(&mut b, x));
     }
@@ -405,7 +460,12 @@ fn binary_22(big: bool) -> Vec<u8> {
 
 #[test]
 fn binary_files_in_both_byte_orders() {
-    for (what, bytes) in [("4.1 LE", binary_41(false)), ("4.1 BE", binary_41(true)), ("2.2 LE", binary_22(false)), ("2.2 BE", binary_22(true))] {
+    for (what, bytes) in [
+        ("4.1 LE", binary_41(false)),
+        ("4.1 BE", binary_41(true)),
+        ("2.2 LE", binary_22(false)),
+        ("2.2 BE", binary_22(true)),
+    ] {
         let m = gmsh::parse(&bytes, Path::new("b.msh")).unwrap_or_else(|e| panic!("{what}: {e}"));
         assert_eq!((m.n_nodes(), m.n_elements()), (6, 2), "{what}");
         assert_eq!(m.node_tags.as_deref(), Some(&[10, 20, 30, 40, 50, 60][..]), "{what}");
@@ -447,7 +507,10 @@ fn bad_input_is_named_with_its_line_or_byte() {
     assert!(msg.starts_with("b.msh: byte ") && msg.contains("unexpected end of file"), "{msg}");
     let mut marker = binary_41(false);
     marker[20] = 2;
-    assert!(gmsh::parse(&marker, Path::new("b.msh")).unwrap_err().to_string().contains("byte 20: bad endianness marker"));
+    assert!(gmsh::parse(&marker, Path::new("b.msh"))
+        .unwrap_err()
+        .to_string()
+        .contains("byte 20: bad endianness marker"));
 }
 
 #[test]

@@ -44,8 +44,10 @@ fn assembly_is_bitwise_identical_on_1_and_2_threads() {
     let red = sm.constraints.reduce().unwrap();
     let asm = Assembler::new(&sm.mesh, &red).unwrap();
     // Arbitrary prescribed values and loads so that every rhs path is exercised.
-    let g: Vec<Vec<f64>> = (0..2).map(|c| (0..red.n_fixed()).map(|j| ((j * 7 + c * 3) % 5) as f64 - 2.0).collect()).collect();
-    let f: Vec<Vec<f64>> = (0..2).map(|c| (0..red.n_full).map(|d| ((d * 3 + c) % 7) as f64).collect()).collect();
+    let g: Vec<Vec<f64>> =
+        (0..2).map(|c| (0..red.n_fixed()).map(|j| ((j * 7 + c * 3) % 5) as f64 - 2.0).collect()).collect();
+    let f: Vec<Vec<f64>> =
+        (0..2).map(|c| (0..red.n_full).map(|d| ((d * 3 + c) % 7) as f64).collect()).collect();
     let run = |k: usize| pool(k).install(|| asm.assemble(&model, &red, &f, &g).unwrap());
     let (v1, r1) = run(1);
     for _ in 0..3 {
@@ -77,7 +79,9 @@ fn nested_dissection_is_a_permutation_and_matches_amd() {
         let mut seen = vec![false; red.n_free()];
         p.iter().for_each(|&k| seen[k] = true);
         assert!(p.len() == red.n_free() && seen.iter().all(|&s| s), "{element}: not a permutation");
-        let run = |ordering: Ordering| check::run(&scene, &SolverOptions { ordering, ..Default::default() }).unwrap().0;
+        let run = |ordering: Ordering| {
+            check::run(&scene, &SolverOptions { ordering, ..Default::default() }).unwrap().0
+        };
         let d = rel_diff(&run(Ordering::Amd), &run(Ordering::Custom(p)));
         assert!(d <= 1e-10, "{element}: relative difference {d:.2e}");
     }
@@ -94,7 +98,10 @@ fn two_domains_match_one_factorisation_bitwise_on_any_thread_count() {
         // tied top one) and the plate's free DOFs.
         let line = 6 * if element == "qua8" { 2 } else { 1 };
         assert_eq!(split.separator.len(), 2 * (line - 1) + red.n_free() - red.n_free_nodes, "{element}");
-        let run = |ordering: Ordering, k: usize| pool(k).install(|| check::run(&scene, &SolverOptions { ordering, ..Default::default() }).unwrap().0);
+        let run = |ordering: Ordering, k: usize| {
+            pool(k)
+                .install(|| check::run(&scene, &SolverOptions { ordering, ..Default::default() }).unwrap().0)
+        };
         let one = run(Ordering::TwoDomain(split.clone()), 1);
         let two = run(Ordering::TwoDomain(split), 2);
         let bits = |r: &CheckResult| r.displacements.concat().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
@@ -201,6 +208,8 @@ fn two_domains_name_a_free_body() {
     f[0] = 1.0;
     let model = Model::new(&mesh, Material::plane_strain(2e3, 0.4).unwrap());
     let opts = SolverOptions { ordering: Ordering::TwoDomain(split), ..Default::default() };
-    let err = solve(&model, &c, &[LoadCase { prescribed: vec![0.0; c.n_fixed()], forces: f }], &opts, "").unwrap_err().to_string();
+    let err = solve(&model, &c, &[LoadCase { prescribed: vec![0.0; c.n_fixed()], forces: f }], &opts, "")
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("free to move"), "{err}");
 }

@@ -6,7 +6,9 @@ use std::path::PathBuf;
 use std::process::Command;
 use tribofe::precursors::discrete::{self, Interface};
 use tribofe::precursors::fe::{compare, UnitFields};
-use tribofe::precursors::{loading_curve, n_map, n_precursors, simulate, simulate_to_convergence, Event, Params};
+use tribofe::precursors::{
+    loading_curve, n_map, n_precursors, simulate, simulate_to_convergence, Event, Params,
+};
 use tribofe::report::{precursors as report, write_atomic};
 use tribofe::Error;
 
@@ -201,8 +203,14 @@ fn discrete_on_fe_like_nodes_reproduces_the_iteration() {
             assert!(run.periodic, "(r, g) = ({r}, {g}) did not settle within 500 events");
             for (i, df, dfc, dx) in errors(&run, &an) {
                 let tol_f = i as f64 * g * h * h;
-                assert!(df <= tol_f && dfc <= tol_f, "(r, g) = ({r}, {g}) event {i}: dF = {df:e}, dF^c = {dfc:e} > {tol_f:e}");
-                assert!(dx <= h / 2.0 + i as f64 * h * h / (2.0 * p.f1()) + EXACT, "(r, g) = ({r}, {g}) event {i}: dx = {dx:e}, h = {h:e}");
+                assert!(
+                    df <= tol_f && dfc <= tol_f,
+                    "(r, g) = ({r}, {g}) event {i}: dF = {df:e}, dF^c = {dfc:e} > {tol_f:e}"
+                );
+                assert!(
+                    dx <= h / 2.0 + i as f64 * h * h / (2.0 * p.f1()) + EXACT,
+                    "(r, g) = ({r}, {g}) event {i}: dx = {dx:e}, h = {h:e}"
+                );
             }
             assert!((run.f_limit().unwrap() - p.f_max()).abs() < 1e-9, "(r, g) = ({r}, {g})");
             assert!(run.events.iter().all(|e| e.nucleation == 0));
@@ -272,8 +280,13 @@ fn compare_on_linear_fields_coincides() {
         assert!((c.mu_d - g / (6.0 * hl)).abs() < EXACT && (c.mu_s - c.mu_d / r).abs() < EXACT);
         assert_eq!(c.fe.events.len(), c.linear.events.len());
         for (a, b) in c.fe.events.iter().zip(&c.linear.events) {
-            assert_eq!((a.nucleation, a.first, a.last, a.stick_slip), (b.nucleation, b.first, b.last, b.stick_slip));
-            assert!((a.f - b.f).abs() < EXACT && (a.fc - b.fc).abs() < EXACT && (a.fstar - b.fstar).abs() < EXACT);
+            assert_eq!(
+                (a.nucleation, a.first, a.last, a.stick_slip),
+                (b.nucleation, b.first, b.last, b.stick_slip)
+            );
+            assert!(
+                (a.f - b.f).abs() < EXACT && (a.fc - b.fc).abs() < EXACT && (a.fstar - b.fstar).abs() < EXACT
+            );
             assert!((a.x - b.x).abs() < EXACT);
         }
         assert_eq!(c.d_n, Some(0));
@@ -359,7 +372,9 @@ fn outputs_have_the_documented_columns_and_no_nan() {
 
     let c = compare(&UnitFields::linear(201, 0.1, 0.01), 0.9, 0.35, 100).unwrap();
     report::write_comparison(&dir, &c).unwrap();
-    assert!(std::fs::read_to_string(dir.join("fe_events.csv")).unwrap().starts_with("model,i,F,Fc,x_nucleation,x,Fstar,stick_slip\n"));
+    assert!(std::fs::read_to_string(dir.join("fe_events.csv"))
+        .unwrap()
+        .starts_with("model,i,F,Fc,x_nucleation,x,Fstar,stick_slip\n"));
     assert!(std::fs::read_to_string(dir.join("fe_extents.svg")).unwrap().contains("FE-fed n = 10"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -370,7 +385,8 @@ fn sweep_table_runs_every_geometry() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("sweep.csv");
     let (hs, ts) = ([0.05, 0.1], [0.01, 0.02, 0.05]);
-    let rows = report::sweep_table(&path, &hs, &ts, 0.9, 0.35, 200, |h, t| Ok(UnitFields::linear(201, h, t))).unwrap();
+    let rows = report::sweep_table(&path, &hs, &ts, 0.9, 0.35, 200, |h, t| Ok(UnitFields::linear(201, h, t)))
+        .unwrap();
     assert_eq!(rows.len(), 6);
     assert!(rows.iter().all(|r| r.n_fe == Some(10) && r.n_linear == Some(10) && r.max_abs_d_length < EXACT));
     let csv = std::fs::read_to_string(&path).unwrap();
@@ -378,7 +394,8 @@ fn sweep_table_runs_every_geometry() {
     assert!(rows.iter().all(|r| r.outside_model.is_none()));
     assert_eq!(csv.lines().count(), 7);
     // A closure returning fields for the wrong geometry is caught.
-    let wrong = report::sweep_table(&path, &hs, &ts, 0.9, 0.35, 200, |_, t| Ok(UnitFields::linear(201, 0.2, t)));
+    let wrong =
+        report::sweep_table(&path, &hs, &ts, 0.9, 0.35, 200, |_, t| Ok(UnitFields::linear(201, 0.2, t)));
     assert!(wrong.is_err());
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -387,7 +404,11 @@ fn sweep_table_runs_every_geometry() {
 fn cli_reports_and_rejects() {
     let exe = env!("CARGO_BIN_EXE_tribofe");
     let dir = tmp_dir("cli");
-    let ok = Command::new(exe).args(["precursors", "--r", "0.9", "--g", "0.35", "--out"]).arg(&dir).output().unwrap();
+    let ok = Command::new(exe)
+        .args(["precursors", "--r", "0.9", "--g", "0.35", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
     assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
     let stdout = String::from_utf8_lossy(&ok.stdout);
     assert!(stdout.contains("n = 10 precursors") && stdout.contains("F_1 = 0.720000"), "{stdout}");

@@ -14,7 +14,11 @@ fn stiff_plate_error_falls_then_round_off_takes_over_and_is_refused() {
     let st = stability::plate(&Scene::default(), &o, &quiet).unwrap();
     let raw = |k: usize| st.points[k].raw.as_ref().unwrap();
     let (e6, e9, e12) = (raw(0).err(), raw(1).err(), raw(2).err());
-    eprintln!("plate errors {e6:e} {e9:e} {e12:e}, refined {:?}, digits {}", st.points.iter().map(|p| p.refined).collect::<Vec<_>>(), raw(2).condition.log10());
+    eprintln!(
+        "plate errors {e6:e} {e9:e} {e12:e}, refined {:?}, digits {}",
+        st.points.iter().map(|p| p.refined).collect::<Vec<_>>(),
+        raw(2).condition.log10()
+    );
     // Modelling error ~ 1/ratio (1.5e-2 at 1e6), best 4.6e-5 at 1e9, round-off 4.4e-2 at 1e12.
     assert!(e6 > 1e-2 && e6 < 2e-2, "{e6}");
     assert!(e9 < 1e-4, "{e9}");
@@ -38,7 +42,12 @@ fn rigid_plate_profiles_are_identical_at_every_ratio_and_a_breakdown_is_an_error
         s.plate.young = e;
         let r = run(&s, &SolverOptions::default()).unwrap().0;
         for (a, b) in r.cases.iter().zip(&base.cases) {
-            let d = a.p.iter().zip(&b.p).chain(a.tau.iter().zip(&b.tau)).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+            let d =
+                a.p.iter()
+                    .zip(&b.p)
+                    .chain(a.tau.iter().zip(&b.tau))
+                    .map(|(x, y)| (x - y).abs())
+                    .fold(0.0, f64::max);
             assert!(a.p.iter().chain(&a.tau).all(|v| v.is_finite()) && d < 1e-13, "E_plate = {e}: {d}");
         }
     }
@@ -48,25 +57,45 @@ fn rigid_plate_profiles_are_identical_at_every_ratio_and_a_breakdown_is_an_error
     s.plate.model = PlateModel::Elastic;
     s.plate.young = 1e16 * s.block.young;
     s.mesh.h = s.block.thickness / 4.0;
-    let forced = SolverOptions { max_error_estimate: f64::INFINITY, residual_limit: f64::INFINITY, ..Default::default() };
+    let forced = SolverOptions {
+        max_error_estimate: f64::INFINITY,
+        residual_limit: f64::INFINITY,
+        ..Default::default()
+    };
     let err = run(&s, &forced).err().expect("breakdown must be an error").to_string();
     assert!(err.contains("not positive definite"), "{err}");
 }
 
 #[test]
 fn qua4_locks_at_nu_04999_while_quadratic_elements_stay_accurate() {
-    let o = Options { nus: vec![0.4, 0.4999], elements: ["qua4", "qua4-sri", "qua9"].map(String::from).to_vec(), n_thick: 2, n_ref: 4, ..Default::default() };
+    let o = Options {
+        nus: vec![0.4, 0.4999],
+        elements: ["qua4", "qua4-sri", "qua9"].map(String::from).to_vec(),
+        n_thick: 2,
+        n_ref: 4,
+        ..Default::default()
+    };
     let base = Scene::default();
     let mut refs = References::new(&base, o.n_ref);
     let st = stability::nu(&base, &o, &mut refs, &quiet).unwrap();
     let get = |nu: f64, el: &str| st.points.iter().find(|p| p.nu == nu && p.element == el).unwrap();
     // Measured (h = t/2 against qua9 t/4): qua4 interior p error 2.0e-3 at nu = 0.4, 0.215 at
     // 0.4999; qua4-sri p 6.0e-2 but tau 0.40 (checkerboard, edge oscillation 2.9); qua9 9.3e-3.
-    let (q4, q4_04, sri, q9) = (get(0.4999, "qua4"), get(0.4, "qua4"), get(0.4999, "qua4-sri"), get(0.4999, "qua9"));
-    assert!(q4.errors.interior[0] > 0.1 && q4.errors.interior[0] > 50.0 * q4_04.errors.interior[0], "qua4 locks: {:?}", q4.errors);
+    let (q4, q4_04, sri, q9) =
+        (get(0.4999, "qua4"), get(0.4, "qua4"), get(0.4999, "qua4-sri"), get(0.4999, "qua9"));
+    assert!(
+        q4.errors.interior[0] > 0.1 && q4.errors.interior[0] > 50.0 * q4_04.errors.interior[0],
+        "qua4 locks: {:?}",
+        q4.errors
+    );
     assert!(q9.err < 0.02, "qua9: {:?}", q9.errors);
     assert!(sri.errors.interior[0] < 0.5 * q4.errors.interior[0], "B-bar relieves p: {:?}", sri.errors);
-    assert!(sri.errors.interior[1] > 0.2 && sri.oscillation > 1.0, "B-bar's shear tractions checkerboard: {:?} {}", sri.errors, sri.oscillation);
+    assert!(
+        sri.errors.interior[1] > 0.2 && sri.oscillation > 1.0,
+        "B-bar's shear tractions checkerboard: {:?} {}",
+        sri.errors,
+        sri.oscillation
+    );
     // In the middle of the layer every element gives the closed-form confined compression to 1.5 %.
     for p in &st.points {
         assert!((p.p0_closed - 1.0).abs() < 0.015, "{} {}: {}", p.nu, p.element, p.p0_closed);
@@ -75,11 +104,20 @@ fn qua4_locks_at_nu_04999_while_quadratic_elements_stay_accurate() {
 
 #[test]
 fn elongated_and_distorted_elements() {
-    let o = Options { elements: ["qua4", "qua9"].map(String::from).to_vec(), n_thick: 2, n_ref: 4, aspects: vec![1.0, 50.0], distortions: vec![0.0, 0.3], ..Default::default() };
+    let o = Options {
+        elements: ["qua4", "qua9"].map(String::from).to_vec(),
+        n_thick: 2,
+        n_ref: 4,
+        aspects: vec![1.0, 50.0],
+        distortions: vec![0.0, 0.3],
+        ..Default::default()
+    };
     let base = Scene::default();
     let mut refs = References::new(&base, o.n_ref);
     let st = stability::shape(&base, &o, &mut refs, &quiet).unwrap();
-    let get = |c: ShapeCase, el: &str, v: f64| st.iter().find(|p| p.case == c && p.element == el && p.param == v).unwrap().err;
+    let get = |c: ShapeCase, el: &str, v: f64| {
+        st.iter().find(|p| p.case == c && p.element == el && p.param == v).unwrap().err
+    };
     for el in ["qua4", "qua9"] {
         let square = get(ShapeCase::Graded, el, 1.0);
         // Elongated 1:50 only where the fields are smooth: the error barely moves (measured 1.2x, 1.0x).
@@ -87,7 +125,10 @@ fn elongated_and_distorted_elements() {
         // Elongated 1:50 everywhere, ends included: 11x (qua4) and 100x (qua9) worse.
         assert!(get(ShapeCase::Uniform, el, 50.0) > 8.0 * square, "{el}");
         // Interior nodes moved by up to 0.3 h: within 4 % (measured).
-        assert!((get(ShapeCase::Distorted, el, 0.3) / get(ShapeCase::Distorted, el, 0.0) - 1.0).abs() < 0.15, "{el}");
+        assert!(
+            (get(ShapeCase::Distorted, el, 0.3) / get(ShapeCase::Distorted, el, 0.0) - 1.0).abs() < 0.15,
+            "{el}"
+        );
     }
 }
 
@@ -118,7 +159,9 @@ fn end_nodes_diverge_at_the_williams_rate_while_integrated_quantities_converge()
     // Increments of p(+L/2) grow by 1.227, 1.219 per halving (lambda = 0.71); Williams'
     // clamped-free corner at nu = 0.4 gives lambda = 0.650, 2^(1 - lambda) = 1.275.
     assert!(c.factor > 1.15 && c.factor < 1.30, "{}", c.factor);
-    assert!((c.lambda_williams - 0.6499).abs() < 1e-3 && (c.lambda_measured - c.lambda_williams).abs() < 0.08);
+    assert!(
+        (c.lambda_williams - 0.6499).abs() < 1e-3 && (c.lambda_measured - c.lambda_williams).abs() < 0.08
+    );
     let r = &c.study.runs;
     assert!(r.windows(2).all(|w| w[1].p_end[1] > w[0].p_end[1] + 0.5), "end values keep growing");
     // Force and moment balances exact to round-off on every mesh; slope and widths converge.

@@ -30,8 +30,13 @@ fn all_kinds_mesh() -> Mesh {
 fn fields(m: &Mesh) -> (Vec<Field>, Vec<Field>) {
     let u: Vec<[f64; 2]> = m.nodes.iter().map(|p| [1e-6 * p[0], -2e-7 * p[0] * p[1]]).collect();
     let temp: Vec<f64> = m.nodes.iter().map(|p| 20.0 + p[1]).collect();
-    let stress: Vec<[f64; 4]> = (0..m.n_elements()).map(|e| [-1e6 * e as f64, 2.5e5, 0.3 * (2.5e5 - 1e6 * e as f64), 1e-3 * e as f64]).collect();
-    (vec![Field::vector_2d("displacement", &u), Field::scalar("temperature", temp)], vec![Field::tensor_2d("stress", &stress)])
+    let stress: Vec<[f64; 4]> = (0..m.n_elements())
+        .map(|e| [-1e6 * e as f64, 2.5e5, 0.3 * (2.5e5 - 1e6 * e as f64), 1e-3 * e as f64])
+        .collect();
+    (
+        vec![Field::vector_2d("displacement", &u), Field::scalar("temperature", temp)],
+        vec![Field::tensor_2d("stress", &stress)],
+    )
 }
 
 fn decode_base64(s: &str) -> Vec<u8> {
@@ -54,7 +59,9 @@ fn decode_base64(s: &str) -> Vec<u8> {
 
 /// Every `DataArray` of a `.vtu` written by us: name -> (type, components, raw bytes).
 fn data_arrays(xml: &str) -> BTreeMap<String, (String, usize, Vec<u8>)> {
-    let attr = |tag: &str, name: &str| tag.split(&format!(" {name}=\"")).nth(1).map(|s| s[..s.find('"').unwrap()].to_string());
+    let attr = |tag: &str, name: &str| {
+        tag.split(&format!(" {name}=\"")).nth(1).map(|s| s[..s.find('"').unwrap()].to_string())
+    };
     let mut out = BTreeMap::new();
     for piece in xml.split("<DataArray").skip(1) {
         let (tag, rest) = piece.split_once('>').unwrap();
@@ -63,7 +70,14 @@ fn data_arrays(xml: &str) -> BTreeMap<String, (String, usize, Vec<u8>)> {
         let n = u64::from_le_bytes(raw[..8].try_into().unwrap()) as usize;
         assert_eq!(n, raw.len() - 8, "byte count header of {tag}");
         let name = attr(tag, "Name").unwrap();
-        out.insert(name, (attr(tag, "type").unwrap(), attr(tag, "NumberOfComponents").unwrap().parse().unwrap(), raw[8..].to_vec()));
+        out.insert(
+            name,
+            (
+                attr(tag, "type").unwrap(),
+                attr(tag, "NumberOfComponents").unwrap().parse().unwrap(),
+                raw[8..].to_vec(),
+            ),
+        );
     }
     out
 }
@@ -81,11 +95,28 @@ fn json_array(v: impl IntoIterator<Item = String>) -> String {
 
 /// The mesh and fields as JSON, for `validation/io/check_vtu.py`.
 fn json_dump(m: &Mesh, point_data: &[Field], cell_data: &[Field]) -> String {
-    let fields = |fs: &[Field]| format!("{{{}}}", fs.iter().map(|f| format!("\"{}\":{{\"components\":{},\"values\":{}}}", f.name, f.components, json_array(f.values.iter().map(|x| format!("{x:e}"))))).collect::<Vec<_>>().join(","));
+    let fields = |fs: &[Field]| {
+        format!(
+            "{{{}}}",
+            fs.iter()
+                .map(|f| format!(
+                    "\"{}\":{{\"components\":{},\"values\":{}}}",
+                    f.name,
+                    f.components,
+                    json_array(f.values.iter().map(|x| format!("{x:e}")))
+                ))
+                .collect::<Vec<_>>()
+                .join(",")
+        )
+    };
     format!(
         "{{\"points\":{},\"cells\":{},\"point_data\":{},\"cell_data\":{}}}\n",
         json_array(m.nodes.iter().map(|p| format!("[{:e},{:e},0]", p[0], p[1]))),
-        json_array(m.elements().map(|(k, v)| format!("[{},{}]", k.vtk_type(), json_array(v.iter().map(|n| n.to_string()))))),
+        json_array(m.elements().map(|(k, v)| format!(
+            "[{},{}]",
+            k.vtk_type(),
+            json_array(v.iter().map(|n| n.to_string()))
+        ))),
         fields(point_data),
         fields(cell_data)
     )
@@ -105,10 +136,28 @@ fn vtu_arrays_decode_to_what_was_written() {
     gmsh_post::write_msh(&dir.join("result.msh"), &m, &pd, &cd).unwrap();
 
     let xml = std::fs::read_to_string(&path).unwrap();
-    assert!(xml.contains(&format!("NumberOfPoints=\"{}\" NumberOfCells=\"{}\"", m.n_nodes(), m.n_elements())));
+    assert!(xml.contains(&format!(
+        "NumberOfPoints=\"{}\" NumberOfCells=\"{}\"",
+        m.n_nodes(),
+        m.n_elements()
+    )));
     let a = data_arrays(&xml);
     let names: Vec<&str> = a.keys().map(|s| s.as_str()).collect();
-    assert_eq!(names, ["Points", "connectivity", "displacement", "element_kind", "element_tag", "node_tag", "offsets", "stress", "temperature", "types"]);
+    assert_eq!(
+        names,
+        [
+            "Points",
+            "connectivity",
+            "displacement",
+            "element_kind",
+            "element_tag",
+            "node_tag",
+            "offsets",
+            "stress",
+            "temperature",
+            "types"
+        ]
+    );
     let points = f64s(&a["Points"].2);
     assert_eq!((a["Points"].1, points.len()), (3, 3 * m.n_nodes()));
     for (n, p) in m.nodes.iter().enumerate() {
@@ -120,7 +169,8 @@ fn vtu_arrays_decode_to_what_was_written() {
     assert_eq!(offsets.len(), m.n_elements());
     assert_eq!(*offsets.last().unwrap() as usize, conn.len());
     assert_eq!(a["types"].2, [5, 5, 5, 5, 22, 22, 22, 22, 9, 9, 23, 23, 28, 28]);
-    let kinds: Vec<i32> = a["element_kind"].2.chunks(4).map(|c| i32::from_le_bytes(c.try_into().unwrap())).collect();
+    let kinds: Vec<i32> =
+        a["element_kind"].2.chunks(4).map(|c| i32::from_le_bytes(c.try_into().unwrap())).collect();
     assert_eq!(kinds, m.elements().map(|(k, _)| k.gmsh_type() as i32).collect::<Vec<_>>());
     assert_eq!(i64s(&a["node_tag"].2), (1..=m.n_nodes() as i64).collect::<Vec<_>>());
     for f in pd.iter().chain(&cd) {
@@ -141,7 +191,11 @@ fn refused_fields_leave_no_file() {
     let mut values = vec![0.0; m.n_nodes()];
     values[7] = f64::NAN;
     let cases = [
-        (Field::scalar("pressure", values), "field 'pressure'", "value NaN at point 7 component 0 is not finite"),
+        (
+            Field::scalar("pressure", values),
+            "field 'pressure'",
+            "value NaN at point 7 component 0 is not finite",
+        ),
         (Field::new("u", 2, vec![0.0; 3]), "field 'u'", "has 3 values"),
         (Field::scalar("a\"b", vec![0.0; m.n_nodes()]), "field 'a\"b'", "without quotes"),
         (Field::scalar("node_tag", vec![0.0; m.n_nodes()]), "field 'node_tag'", "used twice"),
@@ -150,10 +204,20 @@ fn refused_fields_leave_no_file() {
         let msg = vtu::write_vtu(&path, &m, std::slice::from_ref(&f), &[]).unwrap_err().to_string();
         assert!(msg.contains(what) && msg.contains(why), "{msg}");
         // `node_tag` is reserved in .vtu only.
-        assert_eq!(gmsh_post::write_msh(&dir.path().join("bad.msh"), &m, std::slice::from_ref(&f), &[]).is_err(), f.name != "node_tag");
+        assert_eq!(
+            gmsh_post::write_msh(&dir.path().join("bad.msh"), &m, std::slice::from_ref(&f), &[]).is_err(),
+            f.name != "node_tag"
+        );
         let _ = std::fs::remove_file(dir.path().join("bad.msh"));
     }
-    let msg = gmsh_post::write_msh(&dir.path().join("bad.msh"), &m, &[Field::new("u", 2, vec![0.0; 2 * m.n_nodes()])], &[]).unwrap_err().to_string();
+    let msg = gmsh_post::write_msh(
+        &dir.path().join("bad.msh"),
+        &m,
+        &[Field::new("u", 2, vec![0.0; 2 * m.n_nodes()])],
+        &[],
+    )
+    .unwrap_err()
+    .to_string();
     assert!(msg.contains("Gmsh views take 1, 3 or 9 components"), "{msg}");
     assert!(vtu::write_pvd(&dir.path().join("c.pvd"), &[(f64::INFINITY, &path)]).is_err());
     let mut moved = m.clone();
@@ -193,7 +257,8 @@ fn views(text: &str, section: &str) -> BTreeMap<String, (usize, BTreeMap<u64, Ve
 #[test]
 fn gmsh_output_reads_back_identical() {
     // A Gmsh mesh (sparse sets, a node set, overlapping element sets) and a quadratic mixed one.
-    let tiny = gmsh::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/tiny/tiny_mixed_v41_bin.msh")).unwrap();
+    let tiny = gmsh::read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/tiny/tiny_mixed_v41_bin.msh"))
+        .unwrap();
     let mut quad = Rectangle::new(0.0, 1.0, 0.0, 0.5, 3, 2).kind(ElementKind::Qua9).build().unwrap();
     quad.element_sets.insert("first".into(), vec![0, 2]);
     quad.node_sets.insert("pins".into(), vec![0, 5]);
@@ -204,12 +269,30 @@ fn gmsh_output_reads_back_identical() {
         gmsh_post::write_msh(&path, &m, &pd, &cd).unwrap();
         let back = gmsh::read(&path).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(back.nodes, m.nodes, "{what}: coordinates round-trip exactly");
-        assert_eq!((0..back.n_nodes()).map(|n| back.node_tag(n)).collect::<Vec<_>>(), (0..m.n_nodes()).map(|n| m.node_tag(n)).collect::<Vec<_>>(), "{what}");
+        assert_eq!(
+            (0..back.n_nodes()).map(|n| back.node_tag(n)).collect::<Vec<_>>(),
+            (0..m.n_nodes()).map(|n| m.node_tag(n)).collect::<Vec<_>>(),
+            "{what}"
+        );
         assert_eq!(back.elements().collect::<Vec<_>>(), m.elements().collect::<Vec<_>>(), "{what}");
-        assert_eq!(back.element_tags.unwrap(), m.element_tags.clone().unwrap_or_else(|| (1..=m.n_elements() as u64).collect()), "{what}");
+        assert_eq!(
+            back.element_tags.unwrap(),
+            m.element_tags.clone().unwrap_or_else(|| (1..=m.n_elements() as u64).collect()),
+            "{what}"
+        );
         assert_eq!(back.edge_sets, m.edge_sets, "{what}");
         assert_eq!(back.node_sets, m.node_sets, "{what}");
-        let sorted = |s: &BTreeMap<String, Vec<usize>>| s.iter().map(|(k, v)| (k.clone(), { let mut v = v.clone(); v.sort(); v })).collect::<BTreeMap<_, _>>();
+        let sorted = |s: &BTreeMap<String, Vec<usize>>| {
+            s.iter()
+                .map(|(k, v)| {
+                    (k.clone(), {
+                        let mut v = v.clone();
+                        v.sort();
+                        v
+                    })
+                })
+                .collect::<BTreeMap<_, _>>()
+        };
         assert_eq!(sorted(&back.element_sets), sorted(&m.element_sets), "{what}");
 
         let text = std::fs::read_to_string(&path).unwrap();
@@ -220,8 +303,17 @@ fn gmsh_output_reads_back_identical() {
                 let (comps, rows) = &v[&f.name];
                 assert_eq!(*comps, f.components);
                 for i in 0..n {
-                    let tag = if section == "NodeData" { m.node_tag(i) } else { m.element_tags.as_ref().map_or(i as u64 + 1, |t| t[i]) };
-                    assert_eq!(rows[&tag], f.values[i * comps..(i + 1) * comps], "{what} {} at tag {tag}", f.name);
+                    let tag = if section == "NodeData" {
+                        m.node_tag(i)
+                    } else {
+                        m.element_tags.as_ref().map_or(i as u64 + 1, |t| t[i])
+                    };
+                    assert_eq!(
+                        rows[&tag],
+                        f.values[i * comps..(i + 1) * comps],
+                        "{what} {} at tag {tag}",
+                        f.name
+                    );
                 }
             }
         }

@@ -26,7 +26,8 @@ impl SineSolution {
     /// Exact displacement and strain (eps_xx, eps_yy, gamma_xy) at a point.
     pub fn exact(&self, p: [f64; 2]) -> ([f64; 2], [f64; 3]) {
         let phi = (PI * p[0]).sin() * (PI * p[1]).sin();
-        let (px, py) = (PI * (PI * p[0]).cos() * (PI * p[1]).sin(), PI * (PI * p[0]).sin() * (PI * p[1]).cos());
+        let (px, py) =
+            (PI * (PI * p[0]).cos() * (PI * p[1]).sin(), PI * (PI * p[0]).sin() * (PI * p[1]).cos());
         ([phi, phi], [px, py, px + py])
     }
 }

@@ -155,9 +155,7 @@ pub(crate) fn check_nu(nu: f64, incompressible_ok: bool) -> Result<()> {
 pub fn det<const N: usize>(mut a: [[Complex; N]; N]) -> Complex {
     let mut d = Complex::ONE;
     for k in 0..N {
-        let p = (k..N)
-            .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
-            .unwrap();
+        let p = (k..N).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs())).unwrap();
         if a[p][k].abs() == 0.0 {
             return Complex::ZERO;
         }

@@ -98,9 +98,9 @@ pub fn slowest_root(faces: Faces, nu: f64, family: Family) -> Result<Complex> {
         residual(faces, nu, family, z) / zn
     };
     let roots = find_roots(&g, Region { re: (1e-3, 6.0), im_max: 4.0, n_re: 60, n_im: 40 });
-    smallest_re_above(&roots, 0.0)
-        .map(|z| z * 2.0)
-        .ok_or_else(|| Error::input("strip eigenvalue", format!("no {family:?} root with 1e-3 <= Re(z) <= 6 for nu = {nu}")))
+    smallest_re_above(&roots, 0.0).map(|z| z * 2.0).ok_or_else(|| {
+        Error::input("strip eigenvalue", format!("no {family:?} root with 1e-3 <= Re(z) <= 6 for nu = {nu}"))
+    })
 }
 
 /// [`slowest_root`] for the clamped strip: the slowest-decaying s t of `family`.

@@ -46,7 +46,9 @@ fn parse_factor(s: &str) -> tribofe::Result<Option<bool>> {
         "auto" => Ok(None),
         "supernodal" => Ok(Some(true)),
         "simplicial" => Ok(Some(false)),
-        _ => Err(tribofe::Error::input("--factor", format!("'{s}': expected auto, supernodal or simplicial"))),
+        _ => {
+            Err(tribofe::Error::input("--factor", format!("'{s}': expected auto, supernodal or simplicial")))
+        }
     }
 }
 
@@ -87,7 +89,13 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     for &case in &cases {
         for cfg in &configs {
             let runs = (0..args.repeat.max(1))
-                .map(|_| if args.in_process { bench::run_case(case, cfg) } else { bench::run_isolated(&exe, case, cfg) })
+                .map(|_| {
+                    if args.in_process {
+                        bench::run_case(case, cfg)
+                    } else {
+                        bench::run_isolated(&exe, case, cfg)
+                    }
+                })
                 .collect::<tribofe::Result<Vec<_>>>()?;
             rows.extend(bench::best(runs));
         }

@@ -86,7 +86,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     let (res, sm) = tribofe::check::run(&scene, &opts)?;
     // The converged figures need the exact rigid plate and the structured mesh of the scene.
     let converged = match (scene.plate.model, &scene.mesh.file, args.no_converged) {
-        (PlateModel::Rigid, None, false) => Some(tribofe::check::run(&tribofe::check::converged_scene(&scene), &opts)?.0),
+        (PlateModel::Rigid, None, false) => {
+            Some(tribofe::check::run(&tribofe::check::converged_scene(&scene), &opts)?.0)
+        }
         _ => None,
     };
     tribofe::report::check::write(&res, converged.as_ref(), &args.out)?;
@@ -97,6 +99,10 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     if let Some(c) = &converged {
         print!("{}", tribofe::report::check::converged_table(&res, c));
     }
-    println!("wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg{}}}", args.out.display(), if args.no_fields { "" } else { ", fields_FN*.vtu/.msh, fields.pvd" });
+    println!(
+        "wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg{}}}",
+        args.out.display(),
+        if args.no_fields { "" } else { ", fields_FN*.vtu/.msh, fields.pvd" }
+    );
     Ok(())
 }

@@ -37,9 +37,18 @@ pub struct Args {
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = super::check::scene(&args.scene)?;
     let families = args.families.iter().map(|f| f.parse::<Family>()).collect::<tribofe::Result<Vec<_>>>()?;
-    let o = StudyOptions { elements: args.elements.clone(), families, n_thick: args.n_thick.clone(), max_dofs: args.max_dofs, fn_ratio: args.case, parallel: !args.serial, ..Default::default() };
+    let o = StudyOptions {
+        elements: args.elements.clone(),
+        families,
+        n_thick: args.n_thick.clone(),
+        max_dofs: args.max_dofs,
+        fn_ratio: args.case,
+        parallel: !args.serial,
+        ..Default::default()
+    };
     let total = (o.elements.len() * o.families.len() * o.n_thick.len()) as u64;
-    let bar = ProgressBar::new(total).with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} {msg}").unwrap());
+    let bar = ProgressBar::new(total)
+        .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} {msg}").unwrap());
     let st = study(&scene, &o, &|r| {
         bar.set_message(format!("last: {} {} t/{}", r.family.name(), r.element, r.n_thick));
         bar.inc(1);
@@ -47,6 +56,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     bar.finish_and_clear();
     tribofe::report::convergence::write(&st, &args.out)?;
     print!("{}", tribofe::report::convergence::summary(&st, args.target));
-    println!("wrote {}/{{convergence.csv, error_vs_dofs.svg, error_vs_time.svg, summary.txt}}", args.out.display());
+    println!(
+        "wrote {}/{{convergence.csv, error_vs_dofs.svg, error_vs_time.svg, summary.txt}}",
+        args.out.display()
+    );
     Ok(())
 }

@@ -3,15 +3,19 @@
 
 mod bench;
 mod check;
-mod solve;
 mod converge;
 mod precursors;
+mod solve;
 mod stability;
 
 use clap::{Parser, Subcommand};
 
 #[derive(Parser, Debug)]
-#[command(name = "tribofe", version, about = "2D plane-strain FE verifier for frictional interfaces (SI units)")]
+#[command(
+    name = "tribofe",
+    version,
+    about = "2D plane-strain FE verifier for frictional interfaces (SI units)"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,

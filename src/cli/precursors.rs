@@ -83,12 +83,17 @@ fn print_written(paths: &[impl AsRef<Path>]) -> tribofe::Result<()> {
 fn fe(args: &Args) -> tribofe::Result<()> {
     let scene = super::check::scene(&args.scene)?;
     let n_events = args.events.unwrap_or(MAX_DEFAULT_EVENTS);
-    let fields = |s: &tribofe::scene::Scene| tribofe::check::run(s, &SolverOptions::default()).map(|r| r.0.unit);
+    let fields =
+        |s: &tribofe::scene::Scene| tribofe::check::run(s, &SolverOptions::default()).map(|r| r.0.unit);
     let c = tribofe::precursors::fe::compare(&fields(&scene)?, args.r, args.g, n_events)?;
     print_comparison(&c);
     let mut written = report::write_comparison(&args.out, &c)?;
     if args.sweep {
-        let (l, h0, t0) = (scene.block.length, scene.loading.height / scene.block.length, scene.block.thickness / scene.block.length);
+        let (l, h0, t0) = (
+            scene.block.length,
+            scene.loading.height / scene.block.length,
+            scene.block.thickness / scene.block.length,
+        );
         let hs = [0.25 * h0, 0.5 * h0, h0, 2.0 * h0];
         let ts = [0.5 * t0, t0, 2.0 * t0, 4.0 * t0];
         let path = args.out.join("fe_sweep.csv");
@@ -112,7 +117,12 @@ fn print_comparison(c: &tribofe::precursors::fe::Comparison) {
     let optf = |v: Option<f64>| v.map_or("-".to_string(), |f| format!("{f:.6}"));
     println!(
         "FE-fed precursors: r = {}, g = {} (mu_s = {:.4}, mu_d = {:.4}), H/L = {}, t/L = {} (dimensionless)",
-        c.params.r(), c.params.g(), c.mu_s, c.mu_d, c.h_over_l, c.t_over_l
+        c.params.r(),
+        c.params.g(),
+        c.mu_s,
+        c.mu_d,
+        c.h_over_l,
+        c.t_over_l
     );
     println!("{:>22} {:>12} {:>12}", "", "linear model", "FE fields");
     let first = |r: &tribofe::precursors::discrete::Run| r.events.first().map_or(f64::NAN, |e| e.f);
@@ -122,7 +132,9 @@ fn print_comparison(c: &tribofe::precursors::fe::Comparison) {
     println!("{:>4} {:>14} {:>14}   (precursor length x_i + 1/2, in units of L)", "i", "linear", "FE");
     let (a, b) = (c.linear.precursors(), c.fe.precursors());
     for i in 0..a.len().max(b.len()) {
-        let len = |v: &[tribofe::precursors::discrete::CellEvent]| v.get(i).map_or("-".to_string(), |e| format!("{:.5}", e.x + 0.5));
+        let len = |v: &[tribofe::precursors::discrete::CellEvent]| {
+            v.get(i).map_or("-".to_string(), |e| format!("{:.5}", e.x + 0.5))
+        };
         println!("{:>4} {:>14} {:>14}", i + 1, len(a), len(b));
     }
 }

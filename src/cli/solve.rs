@@ -6,8 +6,8 @@ use std::path::PathBuf;
 use tribofe::io::{gmsh_post::write_msh, vtu::write_vtu, Field};
 use tribofe::material::Material;
 use tribofe::mesher::Rectangle;
-use tribofe::rectangle::{RectangleProblem, Side, SIDES};
 use tribofe::recovery::{nodal_stresses, von_mises};
+use tribofe::rectangle::{RectangleProblem, Side, SIDES};
 
 #[derive(ClapArgs, Debug)]
 pub struct Args {
@@ -44,20 +44,38 @@ pub struct Args {
 
 pub fn run(a: Args) -> tribofe::Result<()> {
     let sides: [Side; 4] = [a.bottom.parse()?, a.right.parse()?, a.top.parse()?, a.left.parse()?];
-    let p = RectangleProblem { rect: Rectangle::new(0.0, a.lx, 0.0, a.ly, a.nx, a.ny), material: Material::plane_strain(a.young, a.poisson)?, element: a.element.parse()?, sides };
+    let p = RectangleProblem {
+        rect: Rectangle::new(0.0, a.lx, 0.0, a.ly, a.nx, a.ny),
+        material: Material::plane_strain(a.young, a.poisson)?,
+        element: a.element.parse()?,
+        sides,
+    };
     let r = p.solve()?;
-    let model = tribofe::assembly::Model { tech: p.element.tech, ..tribofe::assembly::Model::new(&r.mesh, p.material) };
+    let model = tribofe::assembly::Model {
+        tech: p.element.tech,
+        ..tribofe::assembly::Model::new(&r.mesh, p.material)
+    };
     let u = &r.solution.u[0];
-    println!("rectangle {} x {} m, {} x {} {} elements, {} unknowns; forces in N per metre of width", a.lx, a.ly, a.nx, a.ny, a.element, r.solution.n_unknowns);
+    println!(
+        "rectangle {} x {} m, {} x {} {} elements, {} unknowns; forces in N per metre of width",
+        a.lx, a.ly, a.nx, a.ny, a.element, r.solution.n_unknowns
+    );
     for (name, f) in SIDES.iter().zip(&r.side_reactions) {
         println!("  reaction on {name:<6}: Fx = {:>12.5e}, Fy = {:>12.5e}", f[0], f[1]);
     }
     let bal = [r.total_reaction[0] + r.applied[0], r.total_reaction[1] + r.applied[1]];
-    println!("  applied tractions: Fx = {:.5e}, Fy = {:.5e}; balance (reactions + applied): {:.1e}, {:.1e}", r.applied[0], r.applied[1], bal[0], bal[1]);
+    println!(
+        "  applied tractions: Fx = {:.5e}, Fy = {:.5e}; balance (reactions + applied): {:.1e}, {:.1e}",
+        r.applied[0], r.applied[1], bal[0], bal[1]
+    );
     let s = nodal_stresses(&model, u);
     let disp: Vec<[f64; 2]> = (0..r.mesh.n_nodes()).map(|k| [u[2 * k], u[2 * k + 1]]).collect();
     let tensor: Vec<[f64; 4]> = s.iter().map(|s| [s[0], s[1], s[3], s[2]]).collect();
-    let fields = [Field::vector_2d("displacement_m", &disp), Field::tensor_2d("stress_Pa", &tensor), Field::scalar("von_mises_Pa", s.iter().map(von_mises).collect())];
+    let fields = [
+        Field::vector_2d("displacement_m", &disp),
+        Field::tensor_2d("stress_Pa", &tensor),
+        Field::scalar("von_mises_Pa", s.iter().map(von_mises).collect()),
+    ];
     std::fs::create_dir_all(&a.out).map_err(|e| tribofe::Error::io(&a.out, e))?;
     write_vtu(&a.out.join("fields.vtu"), &r.mesh, &fields, &[])?;
     write_msh(&a.out.join("fields.msh"), &r.mesh, &fields, &[])?;

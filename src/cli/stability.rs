@@ -24,10 +24,16 @@ pub struct Args {
 
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = super::check::scene(&args.scene)?;
-    let studies: Vec<String> = if args.study.is_empty() { STUDIES.iter().map(|s| s.to_string()).collect() } else { args.study.clone() };
-    let corner_n_thick = std::iter::successors(Some(1usize), |n| Some(2 * n)).take_while(|&n| n <= args.corner_max).collect();
+    let studies: Vec<String> = if args.study.is_empty() {
+        STUDIES.iter().map(|s| s.to_string()).collect()
+    } else {
+        args.study.clone()
+    };
+    let corner_n_thick =
+        std::iter::successors(Some(1usize), |n| Some(2 * n)).take_while(|&n| n <= args.corner_max).collect();
     let o = Options { n_ref: args.n_ref, corner_n_thick, ..Default::default() };
-    let bar = ProgressBar::new_spinner().with_style(ProgressStyle::with_template("{spinner} {pos} runs, {elapsed} {msg}").unwrap());
+    let bar = ProgressBar::new_spinner()
+        .with_style(ProgressStyle::with_template("{spinner} {pos} runs, {elapsed} {msg}").unwrap());
     let res = run_studies(&scene, &studies, &o, &|m| {
         bar.set_message(format!("last: {m}"));
         bar.inc(1);

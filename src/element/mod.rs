@@ -12,8 +12,8 @@
 //!  0---4---1               0---3---1
 //! ```
 
-pub mod quadrature;
 pub mod qua4;
+pub mod quadrature;
 pub mod shape;
 pub mod stiffness;
 
@@ -74,14 +74,25 @@ impl ElementKind {
     pub fn edges(self) -> &'static [[usize; 3]] {
         const TRI: [[usize; 3]; 3] = [[0, 1, 3], [1, 2, 4], [2, 0, 5]];
         const QUA: [[usize; 3]; 4] = [[0, 1, 4], [1, 2, 5], [2, 3, 6], [3, 0, 7]];
-        if self.is_quad() { &QUA } else { &TRI }
+        if self.is_quad() {
+            &QUA
+        } else {
+            &TRI
+        }
     }
 
     /// Reference coordinates of the local nodes.
     pub fn reference_nodes(self) -> &'static [[f64; 2]] {
         const Q: [[f64; 2]; 9] = [
-            [-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0],
-            [0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, 0.0],
+            [-1.0, -1.0],
+            [1.0, -1.0],
+            [1.0, 1.0],
+            [-1.0, 1.0],
+            [0.0, -1.0],
+            [1.0, 0.0],
+            [0.0, 1.0],
+            [-1.0, 0.0],
+            [0.0, 0.0],
         ];
         const T: [[f64; 2]; 6] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.0], [0.5, 0.5], [0.0, 0.5]];
         match self {
@@ -95,7 +106,11 @@ impl ElementKind {
 
     /// Reference coordinates of the centroid.
     pub const fn reference_centroid(self) -> [f64; 2] {
-        if self.is_quad() { [0.0, 0.0] } else { [1.0 / 3.0, 1.0 / 3.0] }
+        if self.is_quad() {
+            [0.0, 0.0]
+        } else {
+            [1.0 / 3.0, 1.0 / 3.0]
+        }
     }
 
     /// VTK cell type code.

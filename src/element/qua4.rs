@@ -34,7 +34,13 @@ fn b_columns(p: &MappedPoint) -> Cols<ND> {
 }
 
 /// Adds w A^T D B into `k` (row-major R x C).
-fn add_atdb<const R: usize, const C: usize>(k: &mut [f64], d: &Matrix3<f64>, w: f64, a: &Cols<R>, b: &Cols<C>) {
+fn add_atdb<const R: usize, const C: usize>(
+    k: &mut [f64],
+    d: &Matrix3<f64>,
+    w: f64,
+    a: &Cols<R>,
+    b: &Cols<C>,
+) {
     for i in 0..R {
         let da = d * Vector3::from(a[i]);
         for j in 0..C {
@@ -46,7 +52,9 @@ fn add_atdb<const R: usize, const C: usize>(k: &mut [f64], d: &Matrix3<f64>, w: 
 /// Element averages of the shape-function gradients, b_a = (1/A) int grad N_a dA.
 fn mean_gradients(p: &[MappedPoint; 4], w: &[f64; 4]) -> [[f64; 2]; NN] {
     let area: f64 = w.iter().sum();
-    std::array::from_fn(|a| std::array::from_fn(|c| (0..4).map(|q| w[q] * p[q].dndx[a][c]).sum::<f64>() / area))
+    std::array::from_fn(|a| {
+        std::array::from_fn(|c| (0..4).map(|q| w[q] * p[q].dndx[a][c]).sum::<f64>() / area)
+    })
 }
 
 /// Mean-dilatation B-bar QUA4 (Hughes, "Generalization of selective integration procedures
@@ -109,7 +117,12 @@ fn mode_columns(xi: [f64; 2], det_j: f64, j0inv: &[[f64; 2]; 2], det_j0: f64) ->
 
 /// K_uu (8x8), K_au (4x8) and K_aa (4x4) of QM6; `taylor = false` uses the local Jacobian for
 /// the modes (the original Q6, which fails the patch test on distorted elements).
-fn im_blocks(x: &[[f64; 2]], d: &Matrix3<f64>, taylor: bool, kuu: &mut [f64]) -> (SMatrix<f64, 4, ND>, Matrix4<f64>, f64) {
+fn im_blocks(
+    x: &[[f64; 2]],
+    d: &Matrix3<f64>,
+    taylor: bool,
+    kuu: &mut [f64],
+) -> (SMatrix<f64, 4, ND>, Matrix4<f64>, f64) {
     let (p, w, min_det) = mapped_points(x);
     let rule = stiffness_rule(ElementKind::Qua4);
     let (j0inv, det_j0) = jacobian_inverse(x, [0.0, 0.0]);
@@ -180,13 +193,16 @@ impl StrainCorrection {
             Technology::SelectiveReduced => {
                 let (p, w, _) = mapped_points(x);
                 let b = mean_gradients(&p, &w);
-                Self::MeanDilatation { theta_bar: (0..NN).map(|a| b[a][0] * u[2 * a] + b[a][1] * u[2 * a + 1]).sum() }
+                Self::MeanDilatation {
+                    theta_bar: (0..NN).map(|a| b[a][0] * u[2 * a] + b[a][1] * u[2 * a + 1]).sum(),
+                }
             }
             Technology::IncompatibleModes => {
                 let mut kuu = [0.0; ND * ND];
                 let (kau, kaa, _) = im_blocks(x, d, true, &mut kuu);
                 let ue = SMatrix::<f64, ND, 1>::from_column_slice(&u[..ND]);
-                let alpha: Vector4<f64> = -kaa.cholesky().expect("K_aa of a valid QUA4 is positive definite").solve(&(kau * ue));
+                let alpha: Vector4<f64> =
+                    -kaa.cholesky().expect("K_aa of a valid QUA4 is positive definite").solve(&(kau * ue));
                 let (j0inv, det_j0) = jacobian_inverse(x, [0.0, 0.0]);
                 Self::Modes { alpha: alpha.into(), j0inv, det_j0 }
             }
@@ -234,7 +250,8 @@ mod tests {
                 f[j] += w[q] * Vector3::from(*c).dot(&sigma);
             }
         }
-        (0..ND).map(|i| ((0..ND).map(|j| k[i * ND + j] * u[j]).sum::<f64>() - f[i]).abs()).fold(0.0, f64::max) / sigma.amax()
+        (0..ND).map(|i| ((0..ND).map(|j| k[i * ND + j] * u[j]).sum::<f64>() - f[i]).abs()).fold(0.0, f64::max)
+            / sigma.amax()
     }
 
     #[test]
@@ -250,14 +267,20 @@ mod tests {
     #[test]
     fn recovered_modes_vanish_for_linear_fields() {
         let d = Material::plane_strain(1.0, 0.3).unwrap().d_matrix();
-        let u: Vec<f64> = X.iter().flat_map(|&p| [1e-3 * p[0] - 2e-3 * p[1], 0.5e-3 * p[0] + 3e-3 * p[1]]).collect();
+        let u: Vec<f64> =
+            X.iter().flat_map(|&p| [1e-3 * p[0] - 2e-3 * p[1], 0.5e-3 * p[0] + 3e-3 * p[1]]).collect();
         match StrainCorrection::new(Technology::IncompatibleModes, &X, &d, &u) {
-            StrainCorrection::Modes { alpha, .. } => assert!(alpha.iter().all(|a| a.abs() < 1e-16), "{alpha:?}"),
+            StrainCorrection::Modes { alpha, .. } => {
+                assert!(alpha.iter().all(|a| a.abs() < 1e-16), "{alpha:?}")
+            }
             c => panic!("{c:?}"),
         }
         let c = StrainCorrection::new(Technology::SelectiveReduced, &X, &d, &u);
         let p = map_point(ElementKind::Qua4, &X, [0.3, -0.6]);
         let e = c.apply(&p, [0.3, -0.6], strain(&p, 4, &u));
-        assert!((e[0] - 1e-3).abs() < 1e-16 && (e[1] - 3e-3).abs() < 1e-16 && (e[2] + 1.5e-3).abs() < 1e-16, "{e:?}");
+        assert!(
+            (e[0] - 1e-3).abs() < 1e-16 && (e[1] - 3e-3).abs() < 1e-16 && (e[2] + 1.5e-3).abs() < 1e-16,
+            "{e:?}"
+        );
     }
 }

@@ -57,11 +57,23 @@ impl std::str::FromStr for ElementChoice {
     fn from_str(s: &str) -> crate::Result<Self> {
         let lower = s.to_ascii_lowercase();
         let (kind_name, suffix) = lower.split_at(lower.find('-').unwrap_or(lower.len()));
-        let unknown = || crate::Error::input("element", format!("'{s}' is not known; choose one of {}", Self::NAMES.join(", ")));
+        let unknown = || {
+            crate::Error::input(
+                "element",
+                format!("'{s}' is not known; choose one of {}", Self::NAMES.join(", ")),
+            )
+        };
         let kind = ElementKind::ALL.into_iter().find(|k| k.name() == kind_name).ok_or_else(unknown)?;
         let tech = Technology::ALL.into_iter().find(|t| t.suffix() == suffix).ok_or_else(unknown)?;
         if tech != Technology::Full && kind != ElementKind::Qua4 {
-            return Err(crate::Error::input("element", format!("'{s}': '{}' is only available for qua4 (try qua4{suffix}, or {} with full integration)", &suffix[1..], kind.name())));
+            return Err(crate::Error::input(
+                "element",
+                format!(
+                    "'{s}': '{}' is only available for qua4 (try qua4{suffix}, or {} with full integration)",
+                    &suffix[1..],
+                    kind.name()
+                ),
+            ));
         }
         Ok(Self { kind, tech })
     }
@@ -69,7 +81,8 @@ impl std::str::FromStr for ElementChoice {
 
 /// Quadrature rule used for the stiffness of a kind (full integration), built once.
 pub fn stiffness_rule(kind: ElementKind) -> &'static [QPoint] {
-    static RULES: LazyLock<[Vec<QPoint>; 4]> = LazyLock::new(|| [gauss_quad(2), gauss_quad(3), gauss_tri(1), gauss_tri(2)]);
+    static RULES: LazyLock<[Vec<QPoint>; 4]> =
+        LazyLock::new(|| [gauss_quad(2), gauss_quad(3), gauss_tri(1), gauss_tri(2)]);
     &RULES[match kind {
         ElementKind::Qua4 => 0,
         ElementKind::Qua8 | ElementKind::Qua9 => 1,
@@ -176,7 +189,12 @@ fn stiffness_table(kind: ElementKind) -> &'static [(f64, [[f64; 2]; MAX_NODES])]
 /// [`stiffness`] for `NN`-node kinds; the same operations in the same order as
 /// [`map_point`] followed by the B^T D B sum, so results are bitwise those of the generic form.
 #[inline(always)]
-fn stiffness_n<const NN: usize>(kind: ElementKind, coords: &[[f64; 2]], d: &Matrix3<f64>, k: &mut [f64]) -> f64 {
+fn stiffness_n<const NN: usize>(
+    kind: ElementKind,
+    coords: &[[f64; 2]],
+    d: &Matrix3<f64>,
+    k: &mut [f64],
+) -> f64 {
     let x: &[[f64; 2]; NN] = coords[..NN].try_into().expect("one coordinate pair per node");
     let nd = 2 * NN;
     let k = &mut k[..nd * nd];

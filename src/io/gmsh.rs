@@ -25,12 +25,16 @@ pub fn read(path: &Path) -> Result<Mesh> {
 
 /// Parses the bytes of a Gmsh `.msh` file; `file_name` only labels error messages.
 pub fn parse(bytes: &[u8], file_name: &Path) -> Result<Mesh> {
-    let mut p = Parser { r: Cursor { buf: bytes, pos: 0, file: file_name, binary: false, big_endian: false, size_t: 8 }, ..Default::default() };
+    let mut p = Parser {
+        r: Cursor { buf: bytes, pos: 0, file: file_name, binary: false, big_endian: false, size_t: 8 },
+        ..Default::default()
+    };
     p.run()?;
     p.build()
 }
 
-const SUPPORTED: &str = "15 (point), 1 (line2), 8 (line3), 2 (tri3), 9 (tri6), 3 (qua4), 16 (qua8), 10 (qua9)";
+const SUPPORTED: &str =
+    "15 (point), 1 (line2), 8 (line3), 2 (tri3), 9 (tri6), 3 (qua4), 16 (qua8), 10 (qua9)";
 
 /// The Gmsh element types the reader accepts.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -124,10 +128,12 @@ impl<'a> Cursor<'a> {
 
     fn ascii<T: std::str::FromStr>(&mut self, what: &str) -> Result<T> {
         let (at, tok) = self.token(what)?;
-        std::str::from_utf8(tok)
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .ok_or_else(|| self.err(at, format!("expected {what}, found '{}'", String::from_utf8_lossy(&tok[..tok.len().min(40)]))))
+        std::str::from_utf8(tok).ok().and_then(|s| s.parse().ok()).ok_or_else(|| {
+            self.err(
+                at,
+                format!("expected {what}, found '{}'", String::from_utf8_lossy(&tok[..tok.len().min(40)])),
+            )
+        })
     }
 
     /// Ends the current text line: only blanks may remain before the newline. Binary data
@@ -149,7 +155,10 @@ impl<'a> Cursor<'a> {
     fn expect(&mut self, word: &str) -> Result<()> {
         let (at, tok) = self.token(word)?;
         if tok != word.as_bytes() {
-            return Err(self.err(at, format!("expected {word}, found '{}'", String::from_utf8_lossy(&tok[..tok.len().min(40)]))));
+            return Err(self.err(
+                at,
+                format!("expected {word}, found '{}'", String::from_utf8_lossy(&tok[..tok.len().min(40)])),
+            ));
         }
         Ok(())
     }
@@ -177,20 +186,32 @@ impl<'a> Cursor<'a> {
     }
 
     fn finite(&self, at: usize, x: f64, what: &str) -> Result<f64> {
-        if x.is_finite() { Ok(x) } else { Err(self.err(at, format!("{what} is {x}"))) }
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.err(at, format!("{what} is {x}")))
+        }
     }
 
     // Mode-independent readers for MSH 4.1, whose binary layout mirrors its text layout.
 
     fn int(&mut self, what: &str) -> Result<i64> {
-        if self.binary { self.bin_i32(what) } else { self.ascii(what) }
+        if self.binary {
+            self.bin_i32(what)
+        } else {
+            self.ascii(what)
+        }
     }
 
     fn size(&mut self, what: &str) -> Result<u64> {
         if !self.binary {
             return self.ascii(what);
         }
-        Ok(if self.size_t == 4 { u32::from_le_bytes(self.bytes(what)?) as u64 } else { u64::from_le_bytes(self.bytes(what)?) })
+        Ok(if self.size_t == 4 {
+            u32::from_le_bytes(self.bytes(what)?) as u64
+        } else {
+            u64::from_le_bytes(self.bytes(what)?)
+        })
     }
 
     fn real(&mut self, what: &str) -> Result<f64> {
@@ -245,7 +266,13 @@ impl<'a> Parser<'a> {
             }
             let (at, tok) = self.r.token("a section")?;
             let Some(name) = tok.strip_prefix(b"$") else {
-                return Err(self.r.err(at, format!("expected a section such as $Nodes, found '{}'", String::from_utf8_lossy(&tok[..tok.len().min(40)]))));
+                return Err(self.r.err(
+                    at,
+                    format!(
+                        "expected a section such as $Nodes, found '{}'",
+                        String::from_utf8_lossy(&tok[..tok.len().min(40)])
+                    ),
+                ));
             };
             let name = String::from_utf8_lossy(name).into_owned();
             match name.as_str() {
@@ -256,7 +283,11 @@ impl<'a> Parser<'a> {
                 }
                 "Nodes" => {
                     self.r.end_line()?;
-                    if self.version == 4 { self.nodes_41()? } else { self.nodes_22(false)? }
+                    if self.version == 4 {
+                        self.nodes_41()?
+                    } else {
+                        self.nodes_22(false)?
+                    }
                 }
                 // MSH 2 saved with Mesh.SaveParametric = 1.
                 "ParametricNodes" if self.version == 2 => {
@@ -269,7 +300,11 @@ impl<'a> Parser<'a> {
                     }
                     self.elements_at = Some(at);
                     self.r.end_line()?;
-                    if self.version == 4 { self.elements_41()? } else { self.elements_22()? }
+                    if self.version == 4 {
+                        self.elements_41()?
+                    } else {
+                        self.elements_22()?
+                    }
                 }
                 "MeshFormat" => return Err(self.r.err(at, "second $MeshFormat section")),
                 _ => {
@@ -300,7 +335,13 @@ impl<'a> Parser<'a> {
             b"4.1" => 4,
             b"2.2" | b"2.1" | b"2" | b"2.0" => 2,
             _ => {
-                return Err(self.r.err(at, format!("MSH version '{}' is not supported; save as MSH 4.1 or 2.2", String::from_utf8_lossy(&v[..v.len().min(20)]))));
+                return Err(self.r.err(
+                    at,
+                    format!(
+                        "MSH version '{}' is not supported; save as MSH 4.1 or 2.2",
+                        String::from_utf8_lossy(&v[..v.len().min(20)])
+                    ),
+                ));
             }
         };
         let at = self.r.pos;
@@ -321,10 +362,18 @@ impl<'a> Parser<'a> {
                 self.r.big_endian = match self.r.bytes::<4>("the endianness marker (int 1)")? {
                     [1, 0, 0, 0] => false,
                     [0, 0, 0, 1] => true,
-                    _ => return Err(self.r.err(at, "bad endianness marker: expected the int 1 after the $MeshFormat line")),
+                    _ => {
+                        return Err(self
+                            .r
+                            .err(at, "bad endianness marker: expected the int 1 after the $MeshFormat line"))
+                    }
                 };
             }
-            _ => return Err(self.r.err(at, format!("file type {file_type} is neither 0 (ASCII) nor 1 (binary)"))),
+            _ => {
+                return Err(self
+                    .r
+                    .err(at, format!("file type {file_type} is neither 0 (ASCII) nor 1 (binary)")))
+            }
         }
         self.r.expect("$EndMeshFormat")
     }
@@ -354,7 +403,14 @@ impl<'a> Parser<'a> {
     fn entities(&mut self) -> Result<()> {
         let mut counts = [0u64; 4];
         for (d, c) in counts.iter_mut().enumerate() {
-            *c = self.r.size(["the number of points", "the number of curves", "the number of surfaces", "the number of volumes"][d])?;
+            *c = self.r.size(
+                [
+                    "the number of points",
+                    "the number of curves",
+                    "the number of surfaces",
+                    "the number of volumes",
+                ][d],
+            )?;
         }
         for (dim, &count) in counts.iter().enumerate() {
             for _ in 0..count {
@@ -405,7 +461,10 @@ impl<'a> Parser<'a> {
             self.r.int("the entity tag")?;
             let parametric = self.r.int("the parametric flag")?;
             if !(0..=3).contains(&dim) || !(0..=1).contains(&parametric) {
-                return Err(self.r.err(dim_at, format!("bad node block header: dimension {dim}, parametric flag {parametric}")));
+                return Err(self.r.err(
+                    dim_at,
+                    format!("bad node block header: dimension {dim}, parametric flag {parametric}"),
+                ));
             }
             let n = self.r.size("the number of nodes in the block")?;
             let mut tags = Vec::with_capacity(self.r.cap(n, 8));
@@ -425,7 +484,9 @@ impl<'a> Parser<'a> {
             read = read.saturating_add(n);
         }
         if read != n_nodes {
-            return Err(self.r.err(at, format!("the header announces {n_nodes} nodes but the blocks hold {read}")));
+            return Err(self
+                .r
+                .err(at, format!("the header announces {n_nodes} nodes but the blocks hold {read}")));
         }
         Ok(())
     }
@@ -463,11 +524,15 @@ impl<'a> Parser<'a> {
     }
 
     fn shape(&self, at: usize, t: i64) -> Result<Shape> {
-        Shape::from_gmsh(t).ok_or_else(|| self.r.err(at, format!("Gmsh element type {t} is not supported; supported types: {SUPPORTED}")))
+        Shape::from_gmsh(t).ok_or_else(|| {
+            self.r.err(at, format!("Gmsh element type {t} is not supported; supported types: {SUPPORTED}"))
+        })
     }
 
     fn node(&self, at: usize, tag: u64) -> Result<usize> {
-        self.node_index.get(&tag).copied().ok_or_else(|| self.r.err(at, format!("node tag {tag} is used by an element but not defined in $Nodes")))
+        self.node_index.get(&tag).copied().ok_or_else(|| {
+            self.r.err(at, format!("node tag {tag} is used by an element but not defined in $Nodes"))
+        })
     }
 
     fn elements_41(&mut self) -> Result<()> {
@@ -486,7 +551,13 @@ impl<'a> Parser<'a> {
             let t = self.r.int("the element type")?;
             let shape = self.shape(type_at, t)?;
             if shape.dim() != dim {
-                return Err(self.r.err(block_at, format!("element type {t} is {}D but its block is on an entity of dimension {dim}", shape.dim())));
+                return Err(self.r.err(
+                    block_at,
+                    format!(
+                        "element type {t} is {}D but its block is on an entity of dimension {dim}",
+                        shape.dim()
+                    ),
+                ));
             }
             let groups = self.entity_groups.get(&(dim, entity)).cloned().unwrap_or_default();
             let n = self.r.size("the number of elements in the block")?;
@@ -504,7 +575,9 @@ impl<'a> Parser<'a> {
             read = read.saturating_add(n);
         }
         if read != n_elems {
-            return Err(self.r.err(at, format!("the header announces {n_elems} elements but the blocks hold {read}")));
+            return Err(self
+                .r
+                .err(at, format!("the header announces {n_elems} elements but the blocks hold {read}")));
         }
         Ok(())
     }
@@ -561,7 +634,8 @@ impl<'a> Parser<'a> {
                     let t = self.r.bin_i32("a node tag")?;
                     nodes.push(self.node(at, t as u64)?);
                 }
-                let tag = u64::try_from(tag).map_err(|_| self.r.err(at, format!("negative element tag {tag}")))?;
+                let tag =
+                    u64::try_from(tag).map_err(|_| self.r.err(at, format!("negative element tag {tag}")))?;
                 self.add_element_22(at, shape, tag, &nodes, &tags);
             }
             read += count as u64;
@@ -640,13 +714,20 @@ impl<'a> Parser<'a> {
         }
         let map = |n: usize, name: &str, at: usize| -> Result<usize> {
             match new[n] {
-                usize::MAX => Err(r.err(at, format!("node tag {} in set '{name}' is not connected to any 2D element", self.node_tags[n]))),
+                usize::MAX => Err(r.err(
+                    at,
+                    format!(
+                        "node tag {} in set '{name}' is not connected to any 2D element",
+                        self.node_tags[n]
+                    ),
+                )),
                 i => Ok(i),
             }
         };
         let mut mesh = Mesh::new(kept.iter().map(|&n| self.nodes[n]).collect());
         for (e, &kind) in self.kinds.iter().enumerate() {
-            let nodes: Vec<usize> = self.conn[e * 9..e * 9 + kind.n_nodes()].iter().map(|&n| new[n]).collect();
+            let nodes: Vec<usize> =
+                self.conn[e * 9..e * 9 + kind.n_nodes()].iter().map(|&n| new[n]).collect();
             mesh.push_element(kind, &nodes);
         }
         for (&key, members) in &self.element_groups {

@@ -23,11 +23,17 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
     if let Some(f) = node_data.iter().chain(element_data).find(|f| ![1, 3, 9].contains(&f.components)) {
         return Err(Error::input(
             format!("field '{}'", f.name),
-            format!("Gmsh views take 1, 3 or 9 components, not {} (use Field::vector_2d or Field::tensor_2d)", f.components),
+            format!(
+                "Gmsh views take 1, 3 or 9 components, not {} (use Field::vector_2d or Field::tensor_2d)",
+                f.components
+            ),
         ));
     }
     if let Some(name) = mesh.set_names().into_iter().find(|n| n.is_empty() || n.contains(['"', '\n', '\r'])) {
-        return Err(Error::input("set name", format!("'{name}' cannot be a Gmsh physical name (empty, quote or line break)")));
+        return Err(Error::input(
+            "set name",
+            format!("'{name}' cannot be a Gmsh physical name (empty, quote or line break)"),
+        ));
     }
     let node_tags: Vec<u64> = (0..mesh.n_nodes()).map(|n| mesh.node_tag(n)).collect();
     let elem_tags: Vec<u64> = (0..mesh.n_elements()).map(|e| element_tag(mesh, e)).collect();
@@ -37,7 +43,9 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
             return Err(Error::Mesh(format!("{what} tag {t} is used twice; Gmsh needs unique tags")));
         }
     }
-    let out_of_range = |name: &str, i: usize, n: usize, what: &str| Error::Mesh(format!("set '{name}' refers to {what} index {i}, but there are {n}"));
+    let out_of_range = |name: &str, i: usize, n: usize, what: &str| {
+        Error::Mesh(format!("set '{name}' refers to {what} index {i}, but there are {n}"))
+    };
 
     // Surfaces: one entity per distinct element-set membership, in order of first use.
     let mut member: Vec<Vec<usize>> = vec![Vec::new(); mesh.n_elements()];
@@ -62,7 +70,9 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
         surfaces.push(Vec::new()); // the nodes' entity
     }
     for (name, edges) in &mesh.edge_sets {
-        if let Some(n) = edges.iter().flat_map(|e| e.nodes().collect::<Vec<_>>()).find(|&n| n >= mesh.n_nodes()) {
+        if let Some(n) =
+            edges.iter().flat_map(|e| e.nodes().collect::<Vec<_>>()).find(|&n| n >= mesh.n_nodes())
+        {
             return Err(out_of_range(name, n, mesh.n_nodes(), "node"));
         }
     }
@@ -80,19 +90,34 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
     let (lo, hi) = mesh.nodes.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
         ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
     });
-    let bbox = if mesh.n_nodes() == 0 { String::from("0 0 0 0 0 0") } else { format!("{:e} {:e} 0 {:e} {:e} 0", lo[0], lo[1], hi[0], hi[1]) };
+    let bbox = if mesh.n_nodes() == 0 {
+        String::from("0 0 0 0 0 0")
+    } else {
+        format!("{:e} {:e} 0 {:e} {:e} 0", lo[0], lo[1], hi[0], hi[1])
+    };
 
     write_atomic(path, |w| {
         let e = io_err(path);
         writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat").map_err(&e)?;
         let n_names = mesh.node_sets.len() + mesh.edge_sets.len() + mesh.element_sets.len();
         writeln!(w, "$PhysicalNames\n{n_names}").map_err(&e)?;
-        for (dim, names) in [(0, mesh.node_sets.keys().collect::<Vec<_>>()), (1, mesh.edge_sets.keys().collect()), (2, mesh.element_sets.keys().collect())] {
+        for (dim, names) in [
+            (0, mesh.node_sets.keys().collect::<Vec<_>>()),
+            (1, mesh.edge_sets.keys().collect()),
+            (2, mesh.element_sets.keys().collect()),
+        ] {
             for (g, name) in names.into_iter().enumerate() {
                 writeln!(w, "{dim} {} \"{name}\"", g + 1).map_err(&e)?;
             }
         }
-        writeln!(w, "$EndPhysicalNames\n$Entities\n{} {} {} 0", points.len(), mesh.edge_sets.len(), surfaces.len()).map_err(&e)?;
+        writeln!(
+            w,
+            "$EndPhysicalNames\n$Entities\n{} {} {} 0",
+            points.len(),
+            mesh.edge_sets.len(),
+            surfaces.len()
+        )
+        .map_err(&e)?;
         let tags = |t: &[usize]| t.iter().map(|g| format!(" {g}")).collect::<String>();
         for (i, (&n, groups)) in points.iter().enumerate() {
             let p = mesh.nodes[n];
@@ -146,15 +171,19 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
         for ((dim, entity, ty), rows) in &blocks {
             writeln!(w, "{dim} {entity} {ty} {}", rows.len()).map_err(&e)?;
             for row in rows {
-                writeln!(w, "{}", row.iter().map(u64::to_string).collect::<Vec<_>>().join(" ")).map_err(&e)?;
+                writeln!(w, "{}", row.iter().map(u64::to_string).collect::<Vec<_>>().join(" "))
+                    .map_err(&e)?;
             }
         }
         writeln!(w, "$EndElements").map_err(&e)?;
 
-        for (fields, section, tags) in [(node_data, "NodeData", &node_tags), (element_data, "ElementData", &elem_tags)] {
+        for (fields, section, tags) in
+            [(node_data, "NodeData", &node_tags), (element_data, "ElementData", &elem_tags)]
+        {
             for f in fields {
                 // string tag: name; real tag: time; int tags: time step, components, entries
-                writeln!(w, "${section}\n1\n\"{}\"\n1\n0\n3\n0\n{}\n{}", f.name, f.components, tags.len()).map_err(&e)?;
+                writeln!(w, "${section}\n1\n\"{}\"\n1\n0\n3\n0\n{}\n{}", f.name, f.components, tags.len())
+                    .map_err(&e)?;
                 for (t, v) in tags.iter().zip(f.values.chunks(f.components)) {
                     let v: String = v.iter().map(|x| format!(" {x:e}")).collect();
                     writeln!(w, "{t}{v}").map_err(&e)?;

@@ -43,7 +43,8 @@ impl Field {
     /// A plane-strain symmetric tensor given as [xx, yy, zz, xy] (e.g. stress), stored as the
     /// full 3 x 3 row-major tensor that VTK and Gmsh views expect.
     pub fn tensor_2d(name: impl Into<String>, values: &[[f64; 4]]) -> Self {
-        let full = values.iter().flat_map(|&[xx, yy, zz, xy]| [xx, xy, 0.0, xy, yy, 0.0, 0.0, 0.0, zz]).collect();
+        let full =
+            values.iter().flat_map(|&[xx, yy, zz, xy]| [xx, xy, 0.0, xy, yy, 0.0, 0.0, 0.0, zz]).collect();
         Self::new(name, 9, full)
     }
 
@@ -52,19 +53,34 @@ impl Field {
     /// writer needs to escape them.
     pub fn check(&self, n: usize, over: &str) -> Result<()> {
         let what = || format!("field '{}'", self.name);
-        if self.name.is_empty() || self.name.chars().any(|c| c.is_control() || matches!(c, '"' | '<' | '>' | '&' | '\'')) {
-            return Err(Error::input(what(), "a name must be non-empty, without quotes, <, >, & or control characters"));
+        if self.name.is_empty()
+            || self.name.chars().any(|c| c.is_control() || matches!(c, '"' | '<' | '>' | '&' | '\''))
+        {
+            return Err(Error::input(
+                what(),
+                "a name must be non-empty, without quotes, <, >, & or control characters",
+            ));
         }
         if self.components == 0 || self.values.len() != n * self.components {
             return Err(Error::input(
                 what(),
-                format!("has {} values, but {n} {over}s x {} components need {}", self.values.len(), self.components, n * self.components),
+                format!(
+                    "has {} values, but {n} {over}s x {} components need {}",
+                    self.values.len(),
+                    self.components,
+                    n * self.components
+                ),
             ));
         }
         if let Some(i) = self.values.iter().position(|v| !v.is_finite()) {
             return Err(Error::input(
                 what(),
-                format!("value {} at {over} {} component {} is not finite", self.values[i], i / self.components, i % self.components),
+                format!(
+                    "value {} at {over} {} component {} is not finite",
+                    self.values[i],
+                    i / self.components,
+                    i % self.components
+                ),
             ));
         }
         Ok(())
@@ -76,7 +92,10 @@ fn check_fields(fields: &[Field], n: usize, over: &str, reserved: &[&str]) -> Re
     for (i, f) in fields.iter().enumerate() {
         f.check(n, over)?;
         if reserved.contains(&f.name.as_str()) || fields[..i].iter().any(|g| g.name == f.name) {
-            return Err(Error::input(format!("field '{}'", f.name), format!("the name is used twice among the {over} fields")));
+            return Err(Error::input(
+                format!("field '{}'", f.name),
+                format!("the name is used twice among the {over} fields"),
+            ));
         }
     }
     Ok(())
@@ -90,10 +109,20 @@ fn element_tag(mesh: &Mesh, e: usize) -> u64 {
 /// Writers refuse what would make a broken file: non-finite coordinates, nodes out of range.
 fn check_mesh(mesh: &Mesh) -> Result<()> {
     if let Some(n) = mesh.nodes.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
-        return Err(Error::Mesh(format!("node {} has the non-finite coordinates {:?}", mesh.node_tag(n), mesh.nodes[n])));
+        return Err(Error::Mesh(format!(
+            "node {} has the non-finite coordinates {:?}",
+            mesh.node_tag(n),
+            mesh.nodes[n]
+        )));
     }
-    if let Some(e) = (0..mesh.n_elements()).find(|&e| mesh.element_nodes(e).iter().any(|&n| n >= mesh.n_nodes())) {
-        return Err(Error::Mesh(format!("{} refers to a node index beyond the {} nodes", mesh.describe_element(e), mesh.n_nodes())));
+    if let Some(e) =
+        (0..mesh.n_elements()).find(|&e| mesh.element_nodes(e).iter().any(|&n| n >= mesh.n_nodes()))
+    {
+        return Err(Error::Mesh(format!(
+            "{} refers to a node index beyond the {} nodes",
+            mesh.describe_element(e),
+            mesh.n_nodes()
+        )));
     }
     Ok(())
 }
@@ -105,7 +134,9 @@ fn write_atomic(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) ->
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let name = path.file_name().ok_or_else(|| Error::input("output path", format!("'{}' has no file name", path.display())))?;
+    let name = path
+        .file_name()
+        .ok_or_else(|| Error::input("output path", format!("'{}' has no file name", path.display())))?;
     // Unique per process and call, so concurrent writers never share a temporary file.
     static COUNTER: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);

@@ -28,7 +28,8 @@ pub fn write_vtu(path: &Path, mesh: &Mesh, point_data: &[Field], cell_data: &[Fi
         let e = io_err(path);
         writeln!(w, "<?xml version=\"1.0\"?>").map_err(&e)?;
         writeln!(w, "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">").map_err(&e)?;
-        writeln!(w, "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nc}\">").map_err(&e)?;
+        writeln!(w, "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nc}\">")
+            .map_err(&e)?;
 
         writeln!(w, "      <PointData>").map_err(&e)?;
         for f in point_data {
@@ -51,7 +52,13 @@ pub fn write_vtu(path: &Path, mesh: &Mesh, point_data: &[Field], cell_data: &[Fi
         writeln!(w, "      </Points>\n      <Cells>").map_err(&e)?;
         let conn: Vec<i64> = mesh.elements().flat_map(|(_, nodes)| nodes.iter().map(|&n| n as i64)).collect();
         let mut end = 0i64;
-        let offsets: Vec<i64> = mesh.elements().map(|(k, _)| { end += k.n_nodes() as i64; end }).collect();
+        let offsets: Vec<i64> = mesh
+            .elements()
+            .map(|(k, _)| {
+                end += k.n_nodes() as i64;
+                end
+            })
+            .collect();
         let types: Vec<u8> = mesh.elements().map(|(k, _)| k.vtk_type()).collect();
         array(w, "connectivity", 1, &conn).map_err(&e)?;
         array(w, "offsets", 1, &offsets).map_err(&e)?;
@@ -72,7 +79,12 @@ pub fn write_pvd(path: &Path, entries: &[(f64, &Path)]) -> Result<()> {
         writeln!(w, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n  <Collection>").map_err(&e)?;
         for (t, p) in entries {
             let rel = p.strip_prefix(dir).unwrap_or(p);
-            writeln!(w, "    <DataSet timestep=\"{t:e}\" group=\"\" part=\"0\" file=\"{}\"/>", xml_escape(&rel.to_string_lossy())).map_err(&e)?;
+            writeln!(
+                w,
+                "    <DataSet timestep=\"{t:e}\" group=\"\" part=\"0\" file=\"{}\"/>",
+                xml_escape(&rel.to_string_lossy())
+            )
+            .map_err(&e)?;
         }
         writeln!(w, "  </Collection>\n</VTKFile>").map_err(&e)
     })
@@ -143,7 +155,15 @@ fn base64(bytes: &[u8]) -> String {
 mod tests {
     #[test]
     fn base64_matches_rfc4648_vectors() {
-        for (plain, enc) in [("", ""), ("f", "Zg=="), ("fo", "Zm8="), ("foo", "Zm9v"), ("foob", "Zm9vYg=="), ("fooba", "Zm9vYmE="), ("foobar", "Zm9vYmFy")] {
+        for (plain, enc) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
             assert_eq!(super::base64(plain.as_bytes()), enc);
         }
     }

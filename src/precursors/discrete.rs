@@ -87,19 +87,47 @@ impl Interface {
         if n < 2 {
             return Err(Error::input("interface", format!("{n} cells: need at least 2")));
         }
-        for (name, v) in [("x", &self.x), ("w", &self.w), ("p0", &self.p0), ("dp", &self.dp), ("s", &self.s), ("sigma0", &self.sigma0)] {
+        for (name, v) in [
+            ("x", &self.x),
+            ("w", &self.w),
+            ("p0", &self.p0),
+            ("dp", &self.dp),
+            ("s", &self.s),
+            ("sigma0", &self.sigma0),
+        ] {
             if v.len() != n {
-                return Err(Error::input("interface", format!("{name} has {} entries but x has {n}", v.len())));
+                return Err(Error::input(
+                    "interface",
+                    format!("{name} has {} entries but x has {n}", v.len()),
+                ));
             }
             if let Some(k) = v.iter().position(|a| !a.is_finite()) {
-                return Err(Error::input("interface", format!("{name}[{k}] = {} is not a finite number", v[k])));
+                return Err(Error::input(
+                    "interface",
+                    format!("{name}[{k}] = {} is not a finite number", v[k]),
+                ));
             }
         }
         if let Some(k) = (1..n).find(|&k| self.x[k] <= self.x[k - 1]) {
-            return Err(Error::input("interface", format!("x must increase strictly; x[{k}] = {} <= x[{}] = {}", self.x[k], k - 1, self.x[k - 1])));
+            return Err(Error::input(
+                "interface",
+                format!(
+                    "x must increase strictly; x[{k}] = {} <= x[{}] = {}",
+                    self.x[k],
+                    k - 1,
+                    self.x[k - 1]
+                ),
+            ));
         }
         if self.x[0] < -0.5 - SUM_TOL || self.x[n - 1] > 0.5 + SUM_TOL {
-            return Err(Error::input("interface", format!("cell centres span [{}, {}], outside the contact [-1/2, 1/2]", self.x[0], self.x[n - 1])));
+            return Err(Error::input(
+                "interface",
+                format!(
+                    "cell centres span [{}, {}], outside the contact [-1/2, 1/2]",
+                    self.x[0],
+                    self.x[n - 1]
+                ),
+            ));
         }
         if let Some(k) = self.w.iter().position(|&a| a <= 0.0) {
             return Err(Error::input("interface", format!("w[{k}] = {} must be > 0", self.w[k])));
@@ -110,13 +138,22 @@ impl Interface {
         }
         let sum_ws: f64 = self.w.iter().zip(&self.s).map(|(w, s)| w * s).sum();
         if (sum_ws - 1.0).abs() > SUM_TOL {
-            return Err(Error::input("interface", format!("sum w_k s_k = {sum_ws}, not 1: F would not grow like F^c")));
+            return Err(Error::input(
+                "interface",
+                format!("sum w_k s_k = {sum_ws}, not 1: F would not grow like F^c"),
+            ));
         }
         if let Some(k) = self.p0.iter().position(|&a| a <= 0.0) {
-            return Err(Error::input("interface", format!("p0[{k}] = {}: the unloaded contact must be in compression", self.p0[k])));
+            return Err(Error::input(
+                "interface",
+                format!("p0[{k}] = {}: the unloaded contact must be in compression", self.p0[k]),
+            ));
         }
         if !(self.mu_d.is_finite() && self.mu_s.is_finite() && 0.0 < self.mu_d && self.mu_d < self.mu_s) {
-            return Err(Error::input("interface", format!("mu_s = {}, mu_d = {}: need 0 < mu_d < mu_s", self.mu_s, self.mu_d)));
+            return Err(Error::input(
+                "interface",
+                format!("mu_s = {}, mu_d = {}: need 0 < mu_d < mu_s", self.mu_s, self.mu_d),
+            ));
         }
         Ok(())
     }
@@ -216,7 +253,11 @@ pub fn simulate(iface: &Interface, max_events: usize) -> Result<Run> {
         if let Some(k) = (0..n).find(|&k| iface.p(k, f) <= 0.0) {
             return Err(Error::input(
                 "pressure field",
-                format!("p = {} <= 0 in cell {k} (x = {}) at F = {f}: the contact opens, outside the model", iface.p(k, f), iface.x[k]),
+                format!(
+                    "p = {} <= 0 in cell {k} (x = {}) at F = {f}: the contact opens, outside the model",
+                    iface.p(k, f),
+                    iface.x[k]
+                ),
             ));
         }
         let slips = |k: usize| sigma[k] > mu_d * iface.p(k, f);
@@ -247,7 +288,8 @@ pub fn simulate(iface: &Interface, max_events: usize) -> Result<Run> {
         };
         drops += f - fstar;
         f = fstar;
-        let repeat = events.last().is_some_and(|p| p.stick_slip && (p.f - ev.f).abs() <= 1e-12 * ev.f.abs().max(1.0));
+        let repeat =
+            events.last().is_some_and(|p| p.stick_slip && (p.f - ev.f).abs() <= 1e-12 * ev.f.abs().max(1.0));
         events.push(ev);
         if stick_slip && repeat {
             periodic = true;

@@ -69,9 +69,18 @@ impl UnitFields {
             }
         }
         let n = self.x_over_l.len();
-        for (name, v) in [("w_over_l", &self.w_over_l), ("p_per_n", &self.p_per_n), ("tau_per_n", &self.tau_per_n), ("p_per_f", &self.p_per_f), ("tau_per_f", &self.tau_per_f)] {
+        for (name, v) in [
+            ("w_over_l", &self.w_over_l),
+            ("p_per_n", &self.p_per_n),
+            ("tau_per_n", &self.tau_per_n),
+            ("p_per_f", &self.p_per_f),
+            ("tau_per_f", &self.tau_per_f),
+        ] {
             if v.len() != n {
-                return Err(Error::input("FE unit fields", format!("{name} has {} entries but x_over_l has {n}", v.len())));
+                return Err(Error::input(
+                    "FE unit fields",
+                    format!("{name} has {} entries but x_over_l has {n}", v.len()),
+                ));
             }
         }
         let tau_sum: f64 = self.w_over_l.iter().zip(&self.tau_per_f).map(|(w, t)| w * t).sum();
@@ -133,10 +142,14 @@ pub fn compare(fields: &UnitFields, r: f64, g: f64, n_events: usize) -> Result<C
     let fe = discrete::simulate(&fe_iface, n_events)?;
     let linear = discrete::simulate(&lin_iface, n_events)?;
     let (Some(fe1), Some(lin1)) = (fe.events.first(), linear.events.first()) else {
-        return Err(Error::input("FE unit fields", "no slip event: the static threshold is never reached under tangential loading"));
+        return Err(Error::input(
+            "FE unit fields",
+            "no slip event: the static threshold is never reached under tangential loading",
+        ));
     };
     let length = |e: &CellEvent| e.x + 0.5;
-    let d_lengths = fe.precursors().iter().zip(linear.precursors()).map(|(a, b)| length(a) - length(b)).collect();
+    let d_lengths =
+        fe.precursors().iter().zip(linear.precursors()).map(|(a, b)| length(a) - length(b)).collect();
     let d_n = fe.n_precursors().zip(linear.n_precursors()).map(|(a, b)| a as i64 - b as i64);
     let d_f_max = fe.f_limit().zip(linear.f_limit()).map(|(a, b)| a - b);
     Ok(Comparison {
@@ -190,14 +203,28 @@ pub fn sweep(
             if uf.h_over_l != h || uf.t_over_l != t {
                 return Err(Error::input(
                     "FE unit fields",
-                    format!("asked for H/L = {h}, t/L = {t}, got fields for H/L = {}, t/L = {}", uf.h_over_l, uf.t_over_l),
+                    format!(
+                        "asked for H/L = {h}, t/L = {t}, got fields for H/L = {}, t/L = {}",
+                        uf.h_over_l, uf.t_over_l
+                    ),
                 ));
             }
             // A geometry outside the model (contact opening) is a finding, not a failure.
             let c = match compare(&uf, r, g, n_events) {
                 Ok(c) => c,
                 Err(e) => {
-                    rows.push(SweepRow { h_over_l: h, t_over_l: t, n_fe: None, n_linear: None, f1_fe: 0.0, f1_linear: 0.0, f_max_fe: None, f_max_linear: None, max_abs_d_length: 0.0, outside_model: Some(e.to_string()) });
+                    rows.push(SweepRow {
+                        h_over_l: h,
+                        t_over_l: t,
+                        n_fe: None,
+                        n_linear: None,
+                        f1_fe: 0.0,
+                        f1_linear: 0.0,
+                        f_max_fe: None,
+                        f_max_linear: None,
+                        max_abs_d_length: 0.0,
+                        outside_model: Some(e.to_string()),
+                    });
                     continue;
                 }
             };

@@ -49,7 +49,11 @@ impl Params {
             return bad("g", g, "g = 6 mu_d H/L must be > 0: without torque (H = 0) the trailing edge is not singled out and there are no precursors");
         }
         if g >= 1.0 {
-            return bad("g", g, "g must be < 1 so the trailing-edge pressure stays positive (r - g F_max > 0)");
+            return bad(
+                "g",
+                g,
+                "g must be < 1 so the trailing-edge pressure stays positive (r - g F_max > 0)",
+            );
         }
         Ok(Params { r, g })
     }
@@ -161,15 +165,12 @@ pub fn simulate_to_convergence(p: &Params, tol: f64, max_events: usize) -> Vec<E
 
 /// Number of precursors n: the events before the first one with x > 1/2.
 pub fn n_precursors(p: &Params) -> Result<usize> {
-    Events::new(p)
-        .take(MAX_PRECURSORS + 1)
-        .position(|e| e.stick_slip)
-        .ok_or_else(|| {
-            Error::input(
-                format!("(r, g) = ({}, {})", p.r, p.g),
-                format!("more than {MAX_PRECURSORS} precursors; the count diverges as r and g approach 1"),
-            )
-        })
+    Events::new(p).take(MAX_PRECURSORS + 1).position(|e| e.stick_slip).ok_or_else(|| {
+        Error::input(
+            format!("(r, g) = ({}, {})", p.r, p.g),
+            format!("more than {MAX_PRECURSORS} precursors; the count diverges as r and g approach 1"),
+        )
+    })
 }
 
 /// F_max = 1/(1 + g(1-r)/r), the force the stick-slip peaks tend to (paper, Results).

@@ -21,9 +21,22 @@ pub fn write(res: &CheckResult, converged: Option<&CheckResult>, dir: &Path) -> 
     }
     for c in &res.cases {
         let rows: Vec<Vec<f64>> = (0..c.x_over_l.len())
-            .map(|i| vec![c.x_over_l[i], c.p[i], c.tau[i], c.p_model[i], c.tau_model[i], c.p_extrap[i], c.tau_extrap[i]])
+            .map(|i| {
+                vec![
+                    c.x_over_l[i],
+                    c.p[i],
+                    c.tau[i],
+                    c.p_model[i],
+                    c.tau_model[i],
+                    c.p_extrap[i],
+                    c.tau_extrap[i],
+                ]
+            })
             .collect();
-        write_atomic(&dir.join(format!("profile_FN{}.csv", ratio_label(c.fn_ratio))), csv(PROFILE_HEADER, &rows)?.as_bytes())?;
+        write_atomic(
+            &dir.join(format!("profile_FN{}.csv", ratio_label(c.fn_ratio))),
+            csv(PROFILE_HEADER, &rows)?.as_bytes(),
+        )?;
     }
     write_atomic(&dir.join("summary.csv"), summary_csv(res)?.as_bytes())?;
     write_atomic(&dir.join("fig2.svg"), fig2(res)?.as_bytes())
@@ -40,9 +53,23 @@ pub fn summary_csv(res: &CheckResult) -> Result<String> {
     for c in &res.cases {
         let m = &c.metrics;
         let nums = [c.fn_ratio, c.n, c.f, m.slope_interior, m.slope_model, m.tau_center];
-        let tail = [m.interior_dev_p, m.interior_dev_tau, m.p_ends[0], m.p_ends[1], m.tau_ends[0], m.tau_ends[1], c.tilt, m.balance_n, m.balance_f, m.balance_moment];
+        let tail = [
+            m.interior_dev_p,
+            m.interior_dev_tau,
+            m.p_ends[0],
+            m.p_ends[1],
+            m.tau_ends[0],
+            m.tau_ends[1],
+            c.tilt,
+            m.balance_n,
+            m.balance_f,
+            m.balance_moment,
+        ];
         if let Some(v) = nums.iter().chain(&tail).find(|v| !v.is_finite()) {
-            return Err(Error::input("summary", format!("F/N = {}: a figure is {v}; refusing to write it", c.fn_ratio)));
+            return Err(Error::input(
+                "summary",
+                format!("F/N = {}: a figure is {v}; refusing to write it", c.fn_ratio),
+            ));
         }
         let mut cells: Vec<String> = nums.iter().map(|v| format!("{v:.12e}")).collect();
         cells.extend([m.edge_p_t[0], m.edge_p_t[1], m.edge_tau_t[0], m.edge_tau_t[1]].map(opt));
@@ -61,11 +88,31 @@ pub fn converged_table(paper: &CheckResult, conv: &CheckResult) -> String {
         "converged answer (graded {} mesh, t/16 at the ends, {} unknowns; shown by validation/convergence to match the finest meshes):",
         conv.scene.mesh.element, conv.n_unknowns
     );
-    let _ = writeln!(s, "{:>6} {:>10} {:>10} {:>10} {:>10} | {:>13} {:>13}", "F/N", "slope", "(mesh)", "tau(0)", "(mesh)", "edge p L/R", "edge tau L/R");
+    let _ = writeln!(
+        s,
+        "{:>6} {:>10} {:>10} {:>10} {:>10} | {:>13} {:>13}",
+        "F/N", "slope", "(mesh)", "tau(0)", "(mesh)", "edge p L/R", "edge tau L/R"
+    );
     for (c, p) in conv.cases.iter().zip(&paper.cases) {
-        let w = |v: [Option<f64>; 2]| format!("{}/{}", v[0].map_or("-".into(), |x| format!("{x:.2}")), v[1].map_or("-".into(), |x| format!("{x:.2}")));
+        let w = |v: [Option<f64>; 2]| {
+            format!(
+                "{}/{}",
+                v[0].map_or("-".into(), |x| format!("{x:.2}")),
+                v[1].map_or("-".into(), |x| format!("{x:.2}"))
+            )
+        };
         let (m, pm) = (&c.metrics, &p.metrics);
-        let _ = writeln!(s, "{:>6} {:>10.5} {:>10.5} {:>10.5} {:>10.5} | {:>13} {:>13}", c.fn_ratio, m.slope_interior, pm.slope_interior, m.tau_center, pm.tau_center, w(m.edge_p_t), w(m.edge_tau_t));
+        let _ = writeln!(
+            s,
+            "{:>6} {:>10.5} {:>10.5} {:>10.5} {:>10.5} | {:>13} {:>13}",
+            c.fn_ratio,
+            m.slope_interior,
+            pm.slope_interior,
+            m.tau_center,
+            pm.tau_center,
+            w(m.edge_p_t),
+            w(m.edge_tau_t)
+        );
     }
     s
 }
@@ -79,24 +126,54 @@ pub fn table(res: &CheckResult) -> String {
         "tribofe check: block L = {} m, t = {} m, E = {} Pa, nu = {}; {:?} plate; H = {} m; {} elements ({}), {} nodes, {} unknowns",
         sc.block.length, sc.block.thickness, sc.block.young, sc.block.poisson, sc.plate.model, sc.loading.height, res.n_elements, sc.mesh.element, res.n_nodes, res.n_unknowns
     );
-    let _ = writeln!(s, "stresses in units of the mean pressure N/L; widths in units of t; forces per unit width (N/m)");
-    let _ = writeln!(s, "{:>6} {:>11} {:>11} {:>9} {:>9} {:>9} {:>9} {:>9} | {:>13} {:>13}", "F/N", "N", "F", "slope", "model", "tau(0)", "dev p", "dev tau", "edge p L/R", "edge tau L/R");
+    let _ = writeln!(
+        s,
+        "stresses in units of the mean pressure N/L; widths in units of t; forces per unit width (N/m)"
+    );
+    let _ = writeln!(
+        s,
+        "{:>6} {:>11} {:>11} {:>9} {:>9} {:>9} {:>9} {:>9} | {:>13} {:>13}",
+        "F/N", "N", "F", "slope", "model", "tau(0)", "dev p", "dev tau", "edge p L/R", "edge tau L/R"
+    );
     for c in &res.cases {
         let m = &c.metrics;
-        let w = |v: [Option<f64>; 2]| format!("{}/{}", v[0].map_or("-".into(), |x| format!("{x:.2}")), v[1].map_or("-".into(), |x| format!("{x:.2}")));
+        let w = |v: [Option<f64>; 2]| {
+            format!(
+                "{}/{}",
+                v[0].map_or("-".into(), |x| format!("{x:.2}")),
+                v[1].map_or("-".into(), |x| format!("{x:.2}"))
+            )
+        };
         let _ = writeln!(
             s,
             "{:>6} {:>11.4e} {:>11.4e} {:>9.5} {:>9.5} {:>9.5} {:>9.2e} {:>9.2e} | {:>13} {:>13}",
-            c.fn_ratio, c.n, c.f, m.slope_interior, m.slope_model, m.tau_center, m.interior_dev_p, m.interior_dev_tau, w(m.edge_p_t), w(m.edge_tau_t)
+            c.fn_ratio,
+            c.n,
+            c.f,
+            m.slope_interior,
+            m.slope_model,
+            m.tau_center,
+            m.interior_dev_p,
+            m.interior_dev_tau,
+            w(m.edge_p_t),
+            w(m.edge_tau_t)
         );
     }
     let _ = writeln!(s, "paper (Cast3M, 1 mm QUA4): edge zones ~1 t for pressure and ~3 t for shear (tolerance here: {} of the local model value)", sc.report.tol);
     let _ = writeln!(s, "end-node values (NOT converged: the clamped-free corners are singular, they grow without bound under refinement):");
     for c in &res.cases {
         let m = &c.metrics;
-        let _ = writeln!(s, "  F/N = {:<5} p ends {:.4}/{:.4}  tau ends {:.4}/{:.4}  plate tilt {:.4e} rad", c.fn_ratio, m.p_ends[0], m.p_ends[1], m.tau_ends[0], m.tau_ends[1], c.tilt);
+        let _ = writeln!(
+            s,
+            "  F/N = {:<5} p ends {:.4}/{:.4}  tau ends {:.4}/{:.4}  plate tilt {:.4e} rad",
+            c.fn_ratio, m.p_ends[0], m.p_ends[1], m.tau_ends[0], m.tau_ends[1], c.tilt
+        );
     }
-    let worst = res.cases.iter().map(|c| c.metrics.balance_n.max(c.metrics.balance_f).max(c.metrics.balance_moment)).fold(0.0, f64::max);
+    let worst = res
+        .cases
+        .iter()
+        .map(|c| c.metrics.balance_n.max(c.metrics.balance_f).max(c.metrics.balance_moment))
+        .fold(0.0, f64::max);
     let _ = writeln!(s, "global balance (sum of interface forces vs N, F; moment vs F H): worst relative error {worst:.1e} {}", if worst < 1e-9 { "(ok, < 1e-9)" } else { "(FAILED, > 1e-9)" });
     let r = &res.solve_report;
     let _ = writeln!(
@@ -118,7 +195,14 @@ pub fn table(res: &CheckResult) -> String {
     s
 }
 
-const COLORS: [RGBColor; 6] = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189), RGBColor(255, 127, 14), RGBColor(23, 190, 207)];
+const COLORS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+];
 
 fn err(e: impl std::fmt::Display) -> Error {
     Error::input("fig2.svg", e.to_string())
@@ -141,14 +225,28 @@ pub fn fig2(res: &CheckResult) -> Result<String> {
         panel(&top, res, -0.5..0.5, main_y, "Interface stresses (fig. 2 of the paper): open = pressure p/(N/L), full = shear tau/(N/L), dashed = model", 9)?;
         let zone = 10.0 * t / l;
         let zy = (ymin - 0.05)..(ymax + 0.1);
-        panel(&halves[0], res, (-0.5 - 0.05 * zone)..(-0.5 + zone), zy.clone(), "Trailing edge zone (10 t)", 1)?;
+        panel(
+            &halves[0],
+            res,
+            (-0.5 - 0.05 * zone)..(-0.5 + zone),
+            zy.clone(),
+            "Trailing edge zone (10 t)",
+            1,
+        )?;
         panel(&halves[1], res, (0.5 - zone)..(0.5 + 0.05 * zone), zy, "Leading edge zone (10 t)", 1)?;
         root.present().map_err(err)?;
     }
     Ok(svg)
 }
 
-fn panel<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>, res: &CheckResult, xr: std::ops::Range<f64>, yr: std::ops::Range<f64>, title: &str, every: usize) -> Result<()>
+fn panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    res: &CheckResult,
+    xr: std::ops::Range<f64>,
+    yr: std::ops::Range<f64>,
+    title: &str,
+    every: usize,
+) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
@@ -159,11 +257,19 @@ where
         .y_label_area_size(55)
         .build_cartesian_2d(xr.clone(), yr)
         .map_err(err)?;
-    chart.configure_mesh().x_desc("x/L (dimensionless)").y_desc("stress / (N/L) (dimensionless)").light_line_style(WHITE.mix(0.0)).draw().map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("x/L (dimensionless)")
+        .y_desc("stress / (N/L) (dimensionless)")
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(err)?;
     for (k, c) in res.cases.iter().enumerate() {
         let col = COLORS[k % COLORS.len()];
-        let pts: Vec<usize> = (0..c.x_over_l.len()).filter(|&i| c.x_over_l[i] >= xr.start && c.x_over_l[i] <= xr.end).collect();
-        let sel: Vec<usize> = pts.iter().copied().enumerate().filter(|(j, _)| j % every == 0).map(|(_, i)| i).collect();
+        let pts: Vec<usize> =
+            (0..c.x_over_l.len()).filter(|&i| c.x_over_l[i] >= xr.start && c.x_over_l[i] <= xr.end).collect();
+        let sel: Vec<usize> =
+            pts.iter().copied().enumerate().filter(|(j, _)| j % every == 0).map(|(_, i)| i).collect();
         let model_p: Vec<(f64, f64)> = pts.iter().map(|&i| (c.x_over_l[i], c.p_model[i])).collect();
         let model_t: Vec<(f64, f64)> = pts.iter().map(|&i| (c.x_over_l[i], c.tau_model[i])).collect();
         chart.draw_series(DashedLineSeries::new(model_p, 6, 4, col.stroke_width(1))).map_err(err)?;
@@ -172,16 +278,30 @@ where
         markers(&mut chart, sel.iter().map(|&i| (c.x_over_l[i], c.p[i])).collect(), k, col, false)?;
         markers(&mut chart, sel.iter().map(|&i| (c.x_over_l[i], c.tau[i])).collect(), k, col, true)?;
         // Legend entry: the case's colour (the marker shape follows the case order).
-        chart.draw_series(std::iter::empty::<Circle<(f64, f64), i32>>()).map_err(err)?.label(label).legend(move |(x, y)| Circle::new((x, y), 4, col.filled()));
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(err)?
+            .label(label)
+            .legend(move |(x, y)| Circle::new((x, y), 4, col.filled()));
     }
-    chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).position(SeriesLabelPosition::UpperMiddle).draw().map_err(err)?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperMiddle)
+        .draw()
+        .map_err(err)?;
     Ok(())
 }
 
 /// Field files of every load case for ParaView (`fields_FN<ratio>.vtu` and `fields.pvd`) and
 /// Gmsh (`fields_FN<ratio>.msh`): displacement, nodal stresses (extrapolated and averaged),
 /// von Mises, and the mean integration-point stress of each element.
-pub fn write_fields(res: &CheckResult, sm: &crate::scene::SceneModel, dir: &Path) -> Result<Vec<std::path::PathBuf>> {
+pub fn write_fields(
+    res: &CheckResult,
+    sm: &crate::scene::SceneModel,
+    dir: &Path,
+) -> Result<Vec<std::path::PathBuf>> {
     use crate::io::{gmsh_post::write_msh, vtu, Field};
     use crate::recovery::{gauss_stresses, nodal_stresses, von_mises};
     let model = sm.model();
@@ -192,7 +312,8 @@ pub fn write_fields(res: &CheckResult, sm: &crate::scene::SceneModel, dir: &Path
         let disp: Vec<[f64; 2]> = (0..nn).map(|k| [u[2 * k], u[2 * k + 1]]).collect();
         let s = nodal_stresses(&model, u);
         // Field::tensor_2d takes (xx, yy, zz, xy).
-        let tensor = |v: &[[f64; 4]]| -> Vec<[f64; 4]> { v.iter().map(|s| [s[0], s[1], s[3], s[2]]).collect() };
+        let tensor =
+            |v: &[[f64; 4]]| -> Vec<[f64; 4]> { v.iter().map(|s| [s[0], s[1], s[3], s[2]]).collect() };
         let mean: Vec<[f64; 4]> = (0..sm.mesh.n_elements())
             .map(|e| {
                 let g = gauss_stresses(&model, e, u);
@@ -222,7 +343,13 @@ pub fn write_fields(res: &CheckResult, sm: &crate::scene::SceneModel, dir: &Path
 
 /// The paper's markers: circle, square, diamond for the successive load cases; open for the
 /// pressure, full for the shear.
-fn markers<DB: DrawingBackend>(chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>, pts: Vec<(f64, f64)>, k: usize, col: RGBColor, filled: bool) -> Result<()>
+fn markers<DB: DrawingBackend>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    pts: Vec<(f64, f64)>,
+    k: usize,
+    col: RGBColor,
+    filled: bool,
+) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
@@ -230,9 +357,19 @@ where
     let diamond = [(0, -4), (4, 0), (0, 4), (-4, 0)];
     match (k % 3, filled) {
         (0, _) => chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, style))).map(|_| ()),
-        (1, _) => chart.draw_series(pts.into_iter().map(|p| EmptyElement::at(p) + Rectangle::new([(-3, -3), (3, 3)], style))).map(|_| ()),
-        (_, true) => chart.draw_series(pts.into_iter().map(|p| EmptyElement::at(p) + Polygon::new(diamond.to_vec(), style))).map(|_| ()),
-        (_, false) => chart.draw_series(pts.into_iter().map(|p| EmptyElement::at(p) + PathElement::new([&diamond[..], &diamond[..1]].concat(), style))).map(|_| ()),
+        (1, _) => chart
+            .draw_series(
+                pts.into_iter().map(|p| EmptyElement::at(p) + Rectangle::new([(-3, -3), (3, 3)], style)),
+            )
+            .map(|_| ()),
+        (_, true) => chart
+            .draw_series(pts.into_iter().map(|p| EmptyElement::at(p) + Polygon::new(diamond.to_vec(), style)))
+            .map(|_| ()),
+        (_, false) => chart
+            .draw_series(pts.into_iter().map(|p| {
+                EmptyElement::at(p) + PathElement::new([&diamond[..], &diamond[..1]].concat(), style)
+            }))
+            .map(|_| ()),
     }
     .map_err(err)
 }

@@ -17,9 +17,30 @@ pub fn csv(study: &Study) -> Result<String> {
         let t = &r.timings;
         let e = &r.errors;
         let nums = [
-            t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, r.wall, r.factor_mib, e.interior[0], e.interior[1], e.edge[0], e.edge[1], e.end[0], e.end[1], r.slope, r.tau_center,
+            t.pattern,
+            t.assembly,
+            t.symbolic,
+            t.numeric,
+            t.solve,
+            r.wall,
+            r.factor_mib,
+            e.interior[0],
+            e.interior[1],
+            e.edge[0],
+            e.edge[1],
+            e.end[0],
+            e.end[1],
+            r.slope,
+            r.tau_center,
         ];
-        let mut cells = vec![r.family.name().to_string(), r.element.clone(), r.n_thick.to_string(), format!("{:.6e}", 1.0 / r.n_thick as f64), r.dofs.to_string(), r.n_elements.to_string()];
+        let mut cells = vec![
+            r.family.name().to_string(),
+            r.element.clone(),
+            r.n_thick.to_string(),
+            format!("{:.6e}", 1.0 / r.n_thick as f64),
+            r.dofs.to_string(),
+            r.n_elements.to_string(),
+        ];
         for v in nums {
             cells.push(format!("{:.6e}", super::finite("convergence.csv", v)?));
         }
@@ -46,8 +67,31 @@ pub fn write(study: &Study, dir: &Path) -> Result<()> {
 pub fn summary(study: &Study, tol: Option<f64>) -> String {
     let mut s = String::new();
     let rf = &study.runs[study.reference];
-    let _ = writeln!(s, "reference: {} {} h = t/{} ({} DOFs); errors below are max |difference| from it in units of N/L", rf.family.name(), rf.element, rf.n_thick, rf.dofs);
-    let _ = writeln!(s, "{:<8} {:<9} {:>5} {:>9} {:>9} | {:>9} {:>9} | {:>9} {:>9} | {:>9} {:>9} | {:>8} {:>8}", "family", "element", "t/h", "DOFs", "time s", "int p", "int tau", "edge p", "edge tau", "end p", "end tau", "wp R t", "wtau R t");
+    let _ = writeln!(
+        s,
+        "reference: {} {} h = t/{} ({} DOFs); errors below are max |difference| from it in units of N/L",
+        rf.family.name(),
+        rf.element,
+        rf.n_thick,
+        rf.dofs
+    );
+    let _ = writeln!(
+        s,
+        "{:<8} {:<9} {:>5} {:>9} {:>9} | {:>9} {:>9} | {:>9} {:>9} | {:>9} {:>9} | {:>8} {:>8}",
+        "family",
+        "element",
+        "t/h",
+        "DOFs",
+        "time s",
+        "int p",
+        "int tau",
+        "edge p",
+        "edge tau",
+        "end p",
+        "end tau",
+        "wp R t",
+        "wtau R t"
+    );
     for r in &study.runs {
         let e = &r.errors;
         let w = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.3}"));
@@ -61,7 +105,16 @@ pub fn summary(study: &Study, tol: Option<f64>) -> String {
     for sr in series(study) {
         let r = &study.runs[sr[0]];
         if let Some(o) = orders(study, &sr) {
-            let _ = writeln!(s, "  {:<8} {:<9} {:>6.2} {:>6.2} {:>6.2} {:>6.2}", r.family.name(), r.element, o[0], o[1], o[2], o[3]);
+            let _ = writeln!(
+                s,
+                "  {:<8} {:<9} {:>6.2} {:>6.2} {:>6.2} {:>6.2}",
+                r.family.name(),
+                r.element,
+                o[0],
+                o[1],
+                o[2],
+                o[3]
+            );
         }
     }
     let _ = writeln!(s, "\nedge-zone widths (units of t) of the finest run of each series, and the coarsest mesh from which on they agree to 2 significant digits:");
@@ -78,10 +131,22 @@ pub fn summary(study: &Study, tol: Option<f64>) -> String {
             .collect();
         let prev = sr.len().checked_sub(2).map(|i| &study.runs[sr[i]]);
         let unc = prev.map_or("-".to_string(), |p| {
-            let d: Vec<String> = (0..4).map(|k| match (last.widths[k], p.widths[k]) { (Some(a), Some(b)) => format!("{:.3}", (a - b).abs()), _ => "-".into() }).collect();
+            let d: Vec<String> = (0..4)
+                .map(|k| match (last.widths[k], p.widths[k]) {
+                    (Some(a), Some(b)) => format!("{:.3}", (a - b).abs()),
+                    _ => "-".into(),
+                })
+                .collect();
             d.join("/")
         });
-        let _ = writeln!(s, "  {:<8} {:<9} t/{:<3} {} | change from the previous mesh {unc}", last.family.name(), last.element, last.n_thick, cells.join(", "));
+        let _ = writeln!(
+            s,
+            "  {:<8} {:<9} t/{:<3} {} | change from the previous mesh {unc}",
+            last.family.name(),
+            last.element,
+            last.n_thick,
+            cells.join(", ")
+        );
     }
     let _ = writeln!(s, "\nend-node values under refinement (uniform family; the corner is singular, so they must NOT converge):");
     for sr in series(study) {
@@ -89,12 +154,24 @@ pub fn summary(study: &Study, tol: Option<f64>) -> String {
         if r0.family != crate::convergence::Family::Uniform {
             continue;
         }
-        let vals: Vec<String> = sr.iter().map(|&i| format!("t/{}: {:.3}", study.runs[i].n_thick, study.runs[i].p_end[1])).collect();
-        let ratios: Vec<String> = sr.windows(3).map(|w| {
-            let v = |i: usize| study.runs[w[i]].p_end[1];
-            format!("{:.3}", (v(2) - v(1)) / (v(1) - v(0)))
-        }).collect();
-        let _ = writeln!(s, "  {:<9} p(+L/2): {}  | ratio of successive increments {}", r0.element, vals.join(", "), ratios.join(", "));
+        let vals: Vec<String> = sr
+            .iter()
+            .map(|&i| format!("t/{}: {:.3}", study.runs[i].n_thick, study.runs[i].p_end[1]))
+            .collect();
+        let ratios: Vec<String> = sr
+            .windows(3)
+            .map(|w| {
+                let v = |i: usize| study.runs[w[i]].p_end[1];
+                format!("{:.3}", (v(2) - v(1)) / (v(1) - v(0)))
+            })
+            .collect();
+        let _ = writeln!(
+            s,
+            "  {:<9} p(+L/2): {}  | ratio of successive increments {}",
+            r0.element,
+            vals.join(", "),
+            ratios.join(", ")
+        );
     }
     let _ = theory(&mut s, study);
     if !study.skipped.is_empty() {
@@ -106,7 +183,8 @@ pub fn summary(study: &Study, tol: Option<f64>) -> String {
                 let _ = writeln!(s, "\ncheapest run reaching edge-zone error <= {tol:e} N/L: {} {} h = t/{} ({} DOFs, {:.3} s, error {:.2e})", r.family.name(), r.element, r.n_thick, r.dofs, r.wall, edge_error(r));
             }
             None => {
-                let _ = writeln!(s, "\nno run reaches edge-zone error <= {tol:e} N/L (other than the reference)");
+                let _ =
+                    writeln!(s, "\nno run reaches edge-zone error <= {tol:e} N/L (other than the reference)");
             }
         }
     }
@@ -114,8 +192,18 @@ pub fn summary(study: &Study, tol: Option<f64>) -> String {
 }
 
 const COLORS: [RGBColor; 12] = [
-    RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189), RGBColor(255, 127, 14), RGBColor(23, 190, 207),
-    RGBColor(140, 86, 75), RGBColor(227, 119, 194), RGBColor(127, 127, 127), RGBColor(188, 189, 34), RGBColor(0, 0, 128), RGBColor(128, 0, 0),
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(0, 0, 128),
+    RGBColor(128, 0, 0),
 ];
 
 fn err(e: impl std::fmt::Display) -> Error {
@@ -123,8 +211,14 @@ fn err(e: impl std::fmt::Display) -> Error {
 }
 
 fn range(v: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
-    let (lo, hi) = v.filter(|x| *x > 0.0 && x.is_finite()).fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
-    if lo.is_finite() { (lo / 2.0)..(hi * 2.0) } else { 1e-6..1.0 }
+    let (lo, hi) = v
+        .filter(|x| *x > 0.0 && x.is_finite())
+        .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+    if lo.is_finite() {
+        (lo / 2.0)..(hi * 2.0)
+    } else {
+        1e-6..1.0
+    }
 }
 
 /// Error (max of p and tau) against DOFs, log-log, one panel per zone.
@@ -140,23 +234,53 @@ pub fn error_vs_dofs(study: &Study) -> Result<String> {
             ("end nodes (singular: no convergence)", |e| e.end[0].max(e.end[1])),
         ];
         for (panel, (title, f)) in panels.iter().zip(zones) {
-            let pts: Vec<(f64, f64)> = study.runs.iter().enumerate().filter(|(i, _)| *i != study.reference).map(|(_, r)| (r.dofs as f64, f(&r.errors))).collect();
+            let pts: Vec<(f64, f64)> = study
+                .runs
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| *i != study.reference)
+                .map(|(_, r)| (r.dofs as f64, f(&r.errors)))
+                .collect();
             let mut chart = ChartBuilder::on(panel)
                 .caption(title, ("sans-serif", 14))
                 .margin(10)
                 .x_label_area_size(40)
                 .y_label_area_size(60)
-                .build_cartesian_2d(range(pts.iter().map(|p| p.0)).log_scale(), range(pts.iter().map(|p| p.1)).log_scale())
+                .build_cartesian_2d(
+                    range(pts.iter().map(|p| p.0)).log_scale(),
+                    range(pts.iter().map(|p| p.1)).log_scale(),
+                )
                 .map_err(err)?;
-            chart.configure_mesh().x_desc("DOFs").y_desc("max |error| / (N/L)").x_label_formatter(&|v| format!("{v:.0e}")).y_label_formatter(&|v| format!("{v:.0e}")).draw().map_err(err)?;
+            chart
+                .configure_mesh()
+                .x_desc("DOFs")
+                .y_desc("max |error| / (N/L)")
+                .x_label_formatter(&|v| format!("{v:.0e}"))
+                .y_label_formatter(&|v| format!("{v:.0e}"))
+                .draw()
+                .map_err(err)?;
             for (k, sr) in series(study).iter().enumerate() {
                 let col = COLORS[k % COLORS.len()];
                 let r0 = &study.runs[sr[0]];
-                let line: Vec<(f64, f64)> = sr.iter().filter(|&&i| i != study.reference).map(|&i| (study.runs[i].dofs as f64, f(&study.runs[i].errors))).filter(|p| p.1 > 0.0).collect();
-                chart.draw_series(LineSeries::new(line.clone(), col.stroke_width(2))).map_err(err)?.label(format!("{} {}", r0.element, r0.family.name())).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], col.stroke_width(2)));
+                let line: Vec<(f64, f64)> = sr
+                    .iter()
+                    .filter(|&&i| i != study.reference)
+                    .map(|&i| (study.runs[i].dofs as f64, f(&study.runs[i].errors)))
+                    .filter(|p| p.1 > 0.0)
+                    .collect();
+                chart
+                    .draw_series(LineSeries::new(line.clone(), col.stroke_width(2)))
+                    .map_err(err)?
+                    .label(format!("{} {}", r0.element, r0.family.name()))
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], col.stroke_width(2)));
                 chart.draw_series(line.iter().map(|&p| Circle::new(p, 3, col.filled()))).map_err(err)?;
             }
-            chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw().map_err(err)?;
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .draw()
+                .map_err(err)?;
         }
         root.present().map_err(err)?;
     }
@@ -166,29 +290,61 @@ pub fn error_vs_dofs(study: &Study) -> Result<String> {
 /// Edge-zone error against wall time per run, every series, with the Pareto front marked.
 pub fn error_vs_time(study: &Study) -> Result<String> {
     let idx: Vec<usize> = (0..study.runs.len()).filter(|&i| i != study.reference).collect();
-    let pts: Vec<(f64, f64)> = idx.iter().map(|&i| (study.runs[i].wall, edge_error(&study.runs[i]))).collect();
+    let pts: Vec<(f64, f64)> =
+        idx.iter().map(|&i| (study.runs[i].wall, edge_error(&study.runs[i]))).collect();
     let front: Vec<(f64, f64)> = pareto_front(&pts).into_iter().map(|k| pts[k]).collect();
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
         let mut chart = ChartBuilder::on(&root)
-            .caption("Accuracy against time: edge-zone error vs wall time per run (black line: Pareto front)", ("sans-serif", 15))
+            .caption(
+                "Accuracy against time: edge-zone error vs wall time per run (black line: Pareto front)",
+                ("sans-serif", 15),
+            )
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(65)
-            .build_cartesian_2d(range(pts.iter().map(|p| p.0)).log_scale(), range(pts.iter().map(|p| p.1)).log_scale())
+            .build_cartesian_2d(
+                range(pts.iter().map(|p| p.0)).log_scale(),
+                range(pts.iter().map(|p| p.1)).log_scale(),
+            )
             .map_err(err)?;
-        chart.configure_mesh().x_desc("wall time of the run, s").y_desc("edge-zone max |error| / (N/L)").x_label_formatter(&|v| format!("{v:.0e}")).y_label_formatter(&|v| format!("{v:.0e}")).draw().map_err(err)?;
-        chart.draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2))).map_err(err)?.label("Pareto front").legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(2)));
+        chart
+            .configure_mesh()
+            .x_desc("wall time of the run, s")
+            .y_desc("edge-zone max |error| / (N/L)")
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()
+            .map_err(err)?;
+        chart
+            .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2)))
+            .map_err(err)?
+            .label("Pareto front")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(2)));
         for (k, sr) in series(study).iter().enumerate() {
             let col = COLORS[k % COLORS.len()];
             let r0 = &study.runs[sr[0]];
-            let p: Vec<(f64, f64)> = sr.iter().filter(|&&i| i != study.reference).map(|&i| (study.runs[i].wall, edge_error(&study.runs[i]))).filter(|p| p.1 > 0.0).collect();
-            chart.draw_series(p.iter().map(|&q| Circle::new(q, 4, col.filled()))).map_err(err)?.label(format!("{} {}", r0.element, r0.family.name())).legend(move |(x, y)| Circle::new((x + 8, y), 4, col.filled()));
+            let p: Vec<(f64, f64)> = sr
+                .iter()
+                .filter(|&&i| i != study.reference)
+                .map(|&i| (study.runs[i].wall, edge_error(&study.runs[i])))
+                .filter(|p| p.1 > 0.0)
+                .collect();
+            chart
+                .draw_series(p.iter().map(|&q| Circle::new(q, 4, col.filled())))
+                .map_err(err)?
+                .label(format!("{} {}", r0.element, r0.family.name()))
+                .legend(move |(x, y)| Circle::new((x + 8, y), 4, col.filled()));
             chart.draw_series(LineSeries::new(p, col.mix(0.5))).map_err(err)?;
         }
-        chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw().map_err(err)?;
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(err)?;
         root.present().map_err(err)?;
     }
     Ok(svg)
@@ -216,7 +372,9 @@ fn theory(s: &mut String, study: &Study) -> Result<()> {
     let k = crate::convergence::decay_rates(rf, study.t_over_l, 1e-4);
     let f = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.3}"));
     let _ = writeln!(s, "\nedge decay fitted on the reference, |deviation from the far field| ~ exp(-k d/t): k = p {}/{} (left/right), tau {}/{}", f(k[0]), f(k[1]), f(k[2]), f(k[3]));
-    for (name, fam) in [("compression-class", strip::Family::Compression), ("shear-class", strip::Family::Shear)] {
+    for (name, fam) in
+        [("compression-class", strip::Family::Compression), ("shear-class", strip::Family::Shear)]
+    {
         let root = strip::slowest_decay(nu, fam)?;
         let _ = writeln!(s, "  strip clamped on both faces, {name} slowest mode: s t = {:.4}{:+.4}i, k = {:.3}, falls to 5 % within {:.2} t", root.re, root.im, root.re, strip::decay_distance_over_t(nu, fam, 0.05)?);
     }

@@ -45,7 +45,10 @@ pub fn csv(header: &str, rows: &[Vec<f64>]) -> Result<String> {
     s.push_str(header);
     s.push('\n');
     for (i, r) in rows.iter().enumerate() {
-        let cells: Result<Vec<String>> = r.iter().map(|&v| finite(&format!("row {} of '{header}'", i + 1), v).map(|v| format!("{v:.12e}"))).collect();
+        let cells: Result<Vec<String>> = r
+            .iter()
+            .map(|&v| finite(&format!("row {} of '{header}'", i + 1), v).map(|v| format!("{v:.12e}")))
+            .collect();
         s.push_str(&cells?.join(","));
         s.push('\n');
     }

@@ -18,7 +18,13 @@ fn plot_err(figure: &str) -> impl Fn(Box<dyn std::error::Error>) -> Error + '_ {
 }
 
 /// Runs a plotting closure on an in-memory SVG of the given size.
-fn render(figure: &str, size: (u32, u32), draw: impl FnOnce(&DrawingArea<SVGBackend, plotters::coord::Shift>) -> std::result::Result<(), Box<dyn std::error::Error>>) -> Result<String> {
+fn render(
+    figure: &str,
+    size: (u32, u32),
+    draw: impl FnOnce(
+        &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    ) -> std::result::Result<(), Box<dyn std::error::Error>>,
+) -> Result<String> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
@@ -37,7 +43,8 @@ fn opt<T: std::fmt::Display>(v: Option<T>) -> String {
 pub fn events_csv(events: &[Event]) -> Result<String> {
     let mut s = String::from("i,F,Fc,x,Fstar,stick_slip\n");
     for e in events {
-        let (f, fc, x, fs) = (finite("F", e.f)?, finite("Fc", e.fc)?, finite("x", e.x)?, finite("Fstar", e.fstar)?);
+        let (f, fc, x, fs) =
+            (finite("F", e.f)?, finite("Fc", e.fc)?, finite("x", e.x)?, finite("Fstar", e.fstar)?);
         let _ = writeln!(s, "{},{f},{fc},{x},{fs},{}", e.i, u8::from(e.stick_slip));
     }
     Ok(s)
@@ -65,7 +72,10 @@ pub fn fig4_svg(p: &Params, events: &[Event]) -> Result<String> {
     let f_max = p.f_max();
     render("fig4.svg", (900, 650), |root| {
         let mut chart = ChartBuilder::on(root)
-            .caption(format!("Loading curve and precursors, r = {}, g = {} (paper fig. 4)", p.r(), p.g()), (FONT, 20))
+            .caption(
+                format!("Loading curve and precursors, r = {}, g = {} (paper fig. 4)", p.r(), p.g()),
+                (FONT, 20),
+            )
             .margin(15)
             .x_label_area_size(45)
             .top_x_label_area_size(45)
@@ -91,15 +101,27 @@ pub fn fig4_svg(p: &Params, events: &[Event]) -> Result<String> {
             .label("loading curve F(F^c)")
             .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(2)));
         chart
-            .draw_series(DashedLineSeries::new([(0.0, f_max), (fc_top, f_max)], 6, 4, BLACK.mix(0.6).stroke_width(1)))?
+            .draw_series(DashedLineSeries::new(
+                [(0.0, f_max), (fc_top, f_max)],
+                6,
+                4,
+                BLACK.mix(0.6).stroke_width(1),
+            ))?
             .label(format!("F_max = {f_max:.4}"))
             .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLACK.mix(0.6)));
         let blue = BLUE.stroke_width(2);
         chart
-            .draw_secondary_series(events.iter().filter(|e| !e.stick_slip).map(|e| PathElement::new([(-0.5, e.f), (e.x, e.f)], blue)))?
+            .draw_secondary_series(
+                events
+                    .iter()
+                    .filter(|e| !e.stick_slip)
+                    .map(|e| PathElement::new([(-0.5, e.f), (e.x, e.f)], blue)),
+            )?
             .label("precursor i: from x = -1/2 to x_i, at height F_i")
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], blue));
-        chart.draw_secondary_series(events.iter().filter(|e| !e.stick_slip).map(|e| Circle::new((e.x, e.f), 3, BLUE.filled())))?;
+        chart.draw_secondary_series(
+            events.iter().filter(|e| !e.stick_slip).map(|e| Circle::new((e.x, e.f), 3, BLUE.filled())),
+        )?;
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::LowerRight)
@@ -148,7 +170,8 @@ pub fn n_map_csv(map: &[MapPoint]) -> Result<String> {
 
 /// Viridis, linearly interpolated between five anchors; `c` in [0, 1].
 fn viridis(c: f64) -> RGBColor {
-    const A: [(f64, f64, f64); 5] = [(68., 1., 84.), (59., 82., 139.), (33., 145., 140.), (94., 201., 98.), (253., 231., 37.)];
+    const A: [(f64, f64, f64); 5] =
+        [(68., 1., 84.), (59., 82., 139.), (33., 145., 140.), (94., 201., 98.), (253., 231., 37.)];
     let t = c.clamp(0.0, 1.0) * 4.0;
     let k = (t.floor() as usize).min(3);
     let u = t - k as f64;
@@ -160,7 +183,8 @@ fn viridis(c: f64) -> RGBColor {
 /// to thousands near (1, 1)), with a colour key and the no-precursor line g = (1-r)/2.
 pub fn fig5_svg(map: &[MapPoint], resolution: usize) -> Result<String> {
     let n_max = map.iter().map(|m| m.n).max().unwrap_or(0);
-    let colour = |n: usize| viridis(if n_max == 0 { 0.0 } else { (n as f64).ln_1p() / (n_max as f64).ln_1p() });
+    let colour =
+        |n: usize| viridis(if n_max == 0 { 0.0 } else { (n as f64).ln_1p() / (n_max as f64).ln_1p() });
     let half = 0.5 / resolution as f64;
     render("fig5.svg", (900, 720), |root| {
         let (main, key) = root.split_horizontally(760);
@@ -176,7 +200,9 @@ pub fn fig5_svg(map: &[MapPoint], resolution: usize) -> Result<String> {
             .x_desc("r = mu_d / mu_s  (dimensionless)")
             .y_desc("g = 6 mu_d H / L  (dimensionless)")
             .draw()?;
-        chart.draw_series(map.iter().map(|m| Rectangle::new([(m.r - half, m.g - half), (m.r + half, m.g + half)], colour(m.n).filled())))?;
+        chart.draw_series(map.iter().map(|m| {
+            Rectangle::new([(m.r - half, m.g - half), (m.r + half, m.g + half)], colour(m.n).filled())
+        }))?;
         chart
             .draw_series(LineSeries::new([(0.0, 0.5), (1.0, 0.0)], RED.stroke_width(3)))?
             .label("g = (1 - r)/2: no precursor below")
@@ -189,15 +215,20 @@ pub fn fig5_svg(map: &[MapPoint], resolution: usize) -> Result<String> {
             .label_font((FONT, 14))
             .draw()?;
         key.draw(&Text::new("n (log colour scale)", (0, 40), (FONT, 14)))?;
-        let mut shown: Vec<usize> = [0, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000]
-            .into_iter()
-            .filter(|&v| v < n_max)
-            .collect();
+        let mut shown: Vec<usize> =
+            [0, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000]
+                .into_iter()
+                .filter(|&v| v < n_max)
+                .collect();
         shown.push(n_max);
         for (row, &v) in shown.iter().enumerate() {
             let y = 60 + 28 * row as i32;
             key.draw(&Rectangle::new([(10, y), (40, y + 22)], colour(v).filled()))?;
-            key.draw(&Text::new(if v == n_max { format!("{v} (max)") } else { v.to_string() }, (48, y + 5), (FONT, 14)))?;
+            key.draw(&Text::new(
+                if v == n_max { format!("{v} (max)") } else { v.to_string() },
+                (48, y + 5),
+                (FONT, 14),
+            ))?;
         }
         Ok(())
     })
@@ -212,7 +243,8 @@ pub fn write_map(dir: &Path, map: &[MapPoint], resolution: usize) -> Result<Vec<
 /// Precursor extents x_i against event index: the paper's analytic iteration vs the
 /// discrete model fed with FE fields.
 pub fn fe_extents_svg(c: &Comparison) -> Result<String> {
-    let analytic: Vec<(f64, f64)> = c.analytic.iter().filter(|e| !e.stick_slip).map(|e| (e.i as f64, e.x)).collect();
+    let analytic: Vec<(f64, f64)> =
+        c.analytic.iter().filter(|e| !e.stick_slip).map(|e| (e.i as f64, e.x)).collect();
     let fed: Vec<(f64, f64)> = c.fe.precursors().iter().map(|e| (e.i as f64, e.x)).collect();
     for &(_, x) in analytic.iter().chain(&fed) {
         finite("precursor extent", x)?;
@@ -314,7 +346,13 @@ pub fn sweep_table(
     let mut s = String::from("H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length,outside_model\n");
     for w in &rows {
         if let Some(why) = &w.outside_model {
-            let _ = writeln!(s, "{},{},,,,,,,,\"{}\"", finite("H/L", w.h_over_l)?, finite("t/L", w.t_over_l)?, why.replace('"', "'"));
+            let _ = writeln!(
+                s,
+                "{},{},,,,,,,,\"{}\"",
+                finite("H/L", w.h_over_l)?,
+                finite("t/L", w.t_over_l)?,
+                why.replace('"', "'")
+            );
             continue;
         }
         let _ = writeln!(

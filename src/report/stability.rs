@@ -62,10 +62,12 @@ pub const PLATE_HEADER: &str = "n_thick,plate_ratio,solved,err_p_over_pmean,err_
 pub fn plate_csv(p: &PlateStudy) -> Result<String> {
     let mut rows = Vec::new();
     for q in &p.points {
-        let mut r = vec![q.n_thick.to_string(), num("plate ratio", q.ratio)?, u8::from(q.raw.is_some()).to_string()];
+        let mut r =
+            vec![q.n_thick.to_string(), num("plate ratio", q.ratio)?, u8::from(q.raw.is_some()).to_string()];
         match &q.raw {
             Some(x) => {
-                for v in [x.err_p, x.err_tau, x.backward_error, x.condition, x.condition.log10(), x.tilt_rel] {
+                for v in [x.err_p, x.err_tau, x.backward_error, x.condition, x.condition.log10(), x.tilt_rel]
+                {
                     r.push(num("plate.csv", v)?);
                 }
             }
@@ -85,7 +87,17 @@ pub fn nu_csv(n: &NuStudy) -> Result<String> {
     let mut rows = Vec::new();
     for q in &n.points {
         let mut r = vec![num("nu", q.nu)?, q.element.clone()];
-        for v in [q.err, q.err_edge_far, q.errors.interior[0], q.errors.interior[1], q.errors.edge[0], q.errors.edge[1], q.oscillation, q.p0_closed, q.modulus_ratio] {
+        for v in [
+            q.err,
+            q.err_edge_far,
+            q.errors.interior[0],
+            q.errors.interior[1],
+            q.errors.edge[0],
+            q.errors.edge[1],
+            q.oscillation,
+            q.p0_closed,
+            q.modulus_ratio,
+        ] {
             r.push(num("nu.csv", v)?);
         }
         rows.push(r);
@@ -96,8 +108,21 @@ pub fn nu_csv(n: &NuStudy) -> Result<String> {
 pub fn shape_csv(s: &[ShapePoint]) -> Result<String> {
     let mut rows = Vec::new();
     for q in s {
-        let mut r = vec![q.case.name().to_string(), q.element.clone(), num("shape", q.param)?, q.n_elements.to_string()];
-        for v in [q.err, q.err_edge_far, q.errors.interior[0], q.errors.interior[1], q.errors.edge[0], q.errors.edge[1], q.min_jacobian_rel] {
+        let mut r = vec![
+            q.case.name().to_string(),
+            q.element.clone(),
+            num("shape", q.param)?,
+            q.n_elements.to_string(),
+        ];
+        for v in [
+            q.err,
+            q.err_edge_far,
+            q.errors.interior[0],
+            q.errors.interior[1],
+            q.errors.edge[0],
+            q.errors.edge[1],
+            q.min_jacobian_rel,
+        ] {
             r.push(num("shape.csv", v)?);
         }
         rows.push(r);
@@ -108,7 +133,12 @@ pub fn shape_csv(s: &[ShapePoint]) -> Result<String> {
 pub fn thin_csv(t: &[ThinPoint]) -> Result<String> {
     let mut rows = Vec::new();
     for q in t {
-        let mut r = vec![num("t/L", q.t_over_l)?, q.nx.to_string(), q.dofs.to_string(), u8::from(q.graded).to_string()];
+        let mut r = vec![
+            num("t/L", q.t_over_l)?,
+            q.nx.to_string(),
+            q.dofs.to_string(),
+            u8::from(q.graded).to_string(),
+        ];
         for v in [q.condition, q.backward_error, q.fill, q.time, q.slope, q.slope_rel_err, q.tau_dev] {
             r.push(num("thin.csv", v)?);
         }
@@ -143,7 +173,20 @@ pub fn summary(res: &Results) -> String {
     let mut s = String::new();
     if let Some(p) = &res.plate {
         let _ = writeln!(s, "== plate: elastic plate (E_plate/E_block) against the exact rigid plate; errors max over nodes and F/N cases, units of N/L");
-        let _ = writeln!(s, "{:>4} {:>7} {:>9} {:>9} {:>9} {:>9} {:>7} {:>9} {:>9} {:>8}", "t/h", "ratio", "err p", "err tau", "backward", "cond", "digits", "tilt rel", "refined", "default");
+        let _ = writeln!(
+            s,
+            "{:>4} {:>7} {:>9} {:>9} {:>9} {:>9} {:>7} {:>9} {:>9} {:>8}",
+            "t/h",
+            "ratio",
+            "err p",
+            "err tau",
+            "backward",
+            "cond",
+            "digits",
+            "tilt rel",
+            "refined",
+            "default"
+        );
         for q in &p.points {
             let refused = if q.refused.is_some() { "refused" } else { "accepted" };
             match &q.raw {
@@ -151,11 +194,26 @@ pub fn summary(res: &Results) -> String {
                     let _ = writeln!(
                         s,
                         "{:>4} {:>7.0e} {:>9} {:>9} {:>9} {:>9} {:>7.1} {:>9} {:>9} {:>8}",
-                        q.n_thick, q.ratio, e(r.err_p), e(r.err_tau), e(r.backward_error), e(r.condition), r.condition.log10(), e(r.tilt_rel), q.refined.map_or("-".into(), |x| e(x.0)), refused
+                        q.n_thick,
+                        q.ratio,
+                        e(r.err_p),
+                        e(r.err_tau),
+                        e(r.backward_error),
+                        e(r.condition),
+                        r.condition.log10(),
+                        e(r.tilt_rel),
+                        q.refined.map_or("-".into(), |x| e(x.0)),
+                        refused
                     );
                 }
                 None => {
-                    let _ = writeln!(s, "{:>4} {:>7.0e} solve failed: {} ({refused})", q.n_thick, q.ratio, q.failure.as_deref().unwrap_or(""));
+                    let _ = writeln!(
+                        s,
+                        "{:>4} {:>7.0e} solve failed: {} ({refused})",
+                        q.n_thick,
+                        q.ratio,
+                        q.failure.as_deref().unwrap_or("")
+                    );
                 }
             }
         }
@@ -183,7 +241,21 @@ pub fn summary(res: &Results) -> String {
         });
         let _ = writeln!(s, "{:>7} {}", "nu", els.iter().map(|x| format!("{x:>35}")).collect::<String>());
         for &(nu, p0) in &n.reference_p0 {
-            let cells: String = n.points.iter().filter(|q| q.nu == nu).map(|q| format!("{:>8} {:>8} {:>8} {:>7.4}", e(q.err), e(q.err_edge_far), e(q.oscillation), q.p0_closed)).map(|c| format!("{c:>35}")).collect();
+            let cells: String = n
+                .points
+                .iter()
+                .filter(|q| q.nu == nu)
+                .map(|q| {
+                    format!(
+                        "{:>8} {:>8} {:>8} {:>7.4}",
+                        e(q.err),
+                        e(q.err_edge_far),
+                        e(q.oscillation),
+                        q.p0_closed
+                    )
+                })
+                .map(|c| format!("{c:>35}"))
+                .collect();
             let _ = writeln!(s, "{nu:>7} {cells}   (reference p(0)/closed form {p0:.5})");
         }
         s.push('\n');
@@ -200,8 +272,18 @@ pub fn summary(res: &Results) -> String {
             els.dedup();
             let _ = writeln!(s, "{} ({what}):", case.name());
             for el in els {
-                let label = |q: &crate::stability::ShapePoint| if case == ShapeCase::Unstructured { format!("{:.2}", q.min_jacobian_rel) } else { format!("{}", q.param) };
-                let cells: Vec<String> = sh.iter().filter(|q| q.case == case && q.element == el).map(|q| format!("{}: {}/{}", label(q), e(q.err), e(q.err_edge_far))).collect();
+                let label = |q: &crate::stability::ShapePoint| {
+                    if case == ShapeCase::Unstructured {
+                        format!("{:.2}", q.min_jacobian_rel)
+                    } else {
+                        format!("{}", q.param)
+                    }
+                };
+                let cells: Vec<String> = sh
+                    .iter()
+                    .filter(|q| q.case == case && q.element == el)
+                    .map(|q| format!("{}: {}/{}", label(q), e(q.err), e(q.err_edge_far)))
+                    .collect();
                 if cells.is_empty() {
                     continue;
                 }
@@ -212,22 +294,62 @@ pub fn summary(res: &Results) -> String {
     }
     if let Some(t) = &res.thin {
         let _ = writeln!(s, "== thin: t/L sweep, qua4, fixed elements through the thickness (rigid plate)");
-        let _ = writeln!(s, "{:>7} {:>7} {:>8} {:>9} {:>9} {:>6} {:>7} {:>9} {:>9} {:>9} {:>15}", "t/L", "nx", "DOFs", "cond", "backward", "fill", "time s", "slope", "slope err", "tau dev", "widths p/tau R");
+        let _ = writeln!(
+            s,
+            "{:>7} {:>7} {:>8} {:>9} {:>9} {:>6} {:>7} {:>9} {:>9} {:>9} {:>15}",
+            "t/L",
+            "nx",
+            "DOFs",
+            "cond",
+            "backward",
+            "fill",
+            "time s",
+            "slope",
+            "slope err",
+            "tau dev",
+            "widths p/tau R"
+        );
         for q in t {
             let w = |v: Option<f64>| v.map_or("-".into(), |x| format!("{x:.2}"));
             let _ = writeln!(
                 s,
                 "{:>7.0e} {:>7} {:>8} {:>9} {:>9} {:>6.2} {:>7.2} {:>9.5} {:>9} {:>9} {:>15}{}",
-                q.t_over_l, q.nx, q.dofs, e(q.condition), e(q.backward_error), q.fill, q.time, q.slope, e(q.slope_rel_err), e(q.tau_dev), format!("{}/{}", w(q.widths[1]), w(q.widths[3])), if q.graded { " (graded: DOF budget)" } else { "" }
+                q.t_over_l,
+                q.nx,
+                q.dofs,
+                e(q.condition),
+                e(q.backward_error),
+                q.fill,
+                q.time,
+                q.slope,
+                e(q.slope_rel_err),
+                e(q.tau_dev),
+                format!("{}/{}", w(q.widths[1]), w(q.widths[3])),
+                if q.graded { " (graded: DOF budget)" } else { "" }
             );
         }
         s.push('\n');
     }
     if let Some(c) = &res.corners {
-        let _ = writeln!(s, "== corners: uniform qua4, h = t/1 .. t/{}", c.study.runs.last().map_or(0, |r| r.n_thick));
+        let _ = writeln!(
+            s,
+            "== corners: uniform qua4, h = t/1 .. t/{}",
+            c.study.runs.last().map_or(0, |r| r.n_thick)
+        );
         for r in &c.study.runs {
             let w = |v: Option<f64>| v.map_or("-".into(), |x| format!("{x:.3}"));
-            let _ = writeln!(s, "  t/{:<3} p(+L/2) {:>8.4}  balance {}  slope {:.6}  widths p {}/{} tau {}/{} t", r.n_thick, r.p_end[1], e(r.balance), r.slope, w(r.widths[0]), w(r.widths[1]), w(r.widths[2]), w(r.widths[3]));
+            let _ = writeln!(
+                s,
+                "  t/{:<3} p(+L/2) {:>8.4}  balance {}  slope {:.6}  widths p {}/{} tau {}/{} t",
+                r.n_thick,
+                r.p_end[1],
+                e(r.balance),
+                r.slope,
+                w(r.widths[0]),
+                w(r.widths[1]),
+                w(r.widths[2]),
+                w(r.widths[3])
+            );
         }
         let ratios: Vec<String> = c.increment_ratios.iter().map(|x| format!("{x:.3}")).collect();
         let _ = writeln!(s, "ratios of successive end-value increments: {} -> factor {:.3} per halving, exponent lambda = 1 - log2(factor) = {:.3}", ratios.join(", "), c.factor, c.lambda_measured);
@@ -238,15 +360,30 @@ pub fn summary(res: &Results) -> String {
 
 // ---------------------------------------------------------------- charts
 
-const COLORS: [RGBColor; 8] = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189), RGBColor(255, 127, 14), RGBColor(23, 190, 207), RGBColor(140, 86, 75), RGBColor(227, 119, 194)];
+const COLORS: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+];
 
 fn err(e: impl std::fmt::Display) -> Error {
     Error::input("stability chart", e.to_string())
 }
 
 fn range(v: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
-    let (lo, hi) = v.filter(|x| *x > 0.0 && x.is_finite()).fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
-    if lo.is_finite() { (lo / 2.0)..(hi * 2.0) } else { 1e-6..1.0 }
+    let (lo, hi) = v
+        .filter(|x| *x > 0.0 && x.is_finite())
+        .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+    if lo.is_finite() {
+        (lo / 2.0)..(hi * 2.0)
+    } else {
+        1e-6..1.0
+    }
 }
 
 type Series = (String, Vec<(f64, f64)>);
@@ -259,22 +396,44 @@ fn panels(size: (u32, u32), specs: &[(&str, &str, &str, Vec<Series>)]) -> Result
         root.fill(&WHITE).map_err(err)?;
         let areas = root.split_evenly((1, specs.len()));
         for (area, (title, xd, yd, series)) in areas.iter().zip(specs) {
-            let pts = || series.iter().flat_map(|s| s.1.iter()).filter(|p| p.0 > 0.0 && p.1 > 0.0 && p.1.is_finite());
+            let pts = || {
+                series.iter().flat_map(|s| s.1.iter()).filter(|p| p.0 > 0.0 && p.1 > 0.0 && p.1.is_finite())
+            };
             let mut chart = ChartBuilder::on(area)
                 .caption(*title, ("sans-serif", 14))
                 .margin(10)
                 .x_label_area_size(40)
                 .y_label_area_size(60)
-                .build_cartesian_2d(range(pts().map(|p| p.0)).log_scale(), range(pts().map(|p| p.1)).log_scale())
+                .build_cartesian_2d(
+                    range(pts().map(|p| p.0)).log_scale(),
+                    range(pts().map(|p| p.1)).log_scale(),
+                )
                 .map_err(err)?;
-            chart.configure_mesh().x_desc(*xd).y_desc(*yd).x_label_formatter(&|v| format!("{v:.0e}")).y_label_formatter(&|v| format!("{v:.0e}")).draw().map_err(err)?;
+            chart
+                .configure_mesh()
+                .x_desc(*xd)
+                .y_desc(*yd)
+                .x_label_formatter(&|v| format!("{v:.0e}"))
+                .y_label_formatter(&|v| format!("{v:.0e}"))
+                .draw()
+                .map_err(err)?;
             for (k, (name, line)) in series.iter().enumerate() {
                 let col = COLORS[k % COLORS.len()];
-                let line: Vec<(f64, f64)> = line.iter().cloned().filter(|p| p.0 > 0.0 && p.1 > 0.0 && p.1.is_finite()).collect();
-                chart.draw_series(LineSeries::new(line.clone(), col.stroke_width(2))).map_err(err)?.label(name.clone()).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], col.stroke_width(2)));
+                let line: Vec<(f64, f64)> =
+                    line.iter().cloned().filter(|p| p.0 > 0.0 && p.1 > 0.0 && p.1.is_finite()).collect();
+                chart
+                    .draw_series(LineSeries::new(line.clone(), col.stroke_width(2)))
+                    .map_err(err)?
+                    .label(name.clone())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], col.stroke_width(2)));
                 chart.draw_series(line.iter().map(|&p| Circle::new(p, 3, col.filled()))).map_err(err)?;
             }
-            chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw().map_err(err)?;
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .draw()
+                .map_err(err)?;
         }
         root.present().map_err(err)?;
     }
@@ -286,23 +445,54 @@ pub fn plate_svg(p: &PlateStudy) -> Result<String> {
     let mut right = Vec::new();
     for f in &p.findings {
         let pts: Vec<_> = p.points.iter().filter(|q| q.n_thick == f.n_thick).collect();
-        let get = |g: &dyn Fn(&crate::stability::PlateRaw) -> f64| pts.iter().filter_map(|q| q.raw.as_ref().map(|r| (q.ratio, g(r)))).collect::<Vec<_>>();
+        let get = |g: &dyn Fn(&crate::stability::PlateRaw) -> f64| {
+            pts.iter().filter_map(|q| q.raw.as_ref().map(|r| (q.ratio, g(r)))).collect::<Vec<_>>()
+        };
         left.push((format!("error vs rigid, h = t/{}", f.n_thick), get(&|r| r.err())));
         left.push((format!("cond x eps, h = t/{}", f.n_thick), get(&|r| r.condition * f64::EPSILON)));
         right.push((format!("condition estimate, h = t/{}", f.n_thick), get(&|r| r.condition)));
-        right.push((format!("backward error x 1e16, h = t/{}", f.n_thick), get(&|r| r.backward_error * 1e16)));
+        right
+            .push((format!("backward error x 1e16, h = t/{}", f.n_thick), get(&|r| r.backward_error * 1e16)));
     }
-    panels((1300, 480), &[("Elastic plate vs exact rigid plate", "E_plate / E_block", "max |error| / (N/L)", left), ("Conditioning", "E_plate / E_block", "dimensionless", right)])
+    panels(
+        (1300, 480),
+        &[
+            ("Elastic plate vs exact rigid plate", "E_plate / E_block", "max |error| / (N/L)", left),
+            ("Conditioning", "E_plate / E_block", "dimensionless", right),
+        ],
+    )
 }
 
 pub fn nu_svg(n: &NuStudy) -> Result<String> {
     let mut els: Vec<&String> = n.points.iter().map(|q| &q.element).collect();
     els.sort();
     els.dedup();
-    let by = |f: &dyn Fn(&crate::stability::NuPoint) -> f64| -> Vec<Series> { els.iter().map(|el| (el.to_string(), n.points.iter().filter(|q| &q.element == *el).map(|q| (0.5 - q.nu, f(q))).collect())).collect() };
+    let by = |f: &dyn Fn(&crate::stability::NuPoint) -> f64| -> Vec<Series> {
+        els.iter()
+            .map(|el| {
+                (
+                    el.to_string(),
+                    n.points.iter().filter(|q| &q.element == *el).map(|q| (0.5 - q.nu, f(q))).collect(),
+                )
+            })
+            .collect()
+    };
     panels(
         (1300, 480),
-        &[("Interior profile error vs incompressibility", "0.5 - nu", "max |error| / (N/L)", by(&|q| q.err)), ("Edge-zone oscillation (excess over reference)", "0.5 - nu", "max |2nd difference of p| / (N/L)", by(&|q| q.oscillation))],
+        &[
+            (
+                "Interior profile error vs incompressibility",
+                "0.5 - nu",
+                "max |error| / (N/L)",
+                by(&|q| q.err),
+            ),
+            (
+                "Edge-zone oscillation (excess over reference)",
+                "0.5 - nu",
+                "max |2nd difference of p| / (N/L)",
+                by(&|q| q.oscillation),
+            ),
+        ],
     )
 }
 
@@ -311,14 +501,39 @@ pub fn shape_svg(s: &[ShapePoint]) -> Result<String> {
     els.dedup();
     // Interior error, or the edge error (t .. 10 t) where the ends are elongated too.
     let by = |case: ShapeCase, shift: f64, edge: bool| -> Vec<Series> {
-        els.iter().map(|el| (el.to_string(), s.iter().filter(|q| q.case == case && q.element == *el).map(|q| (q.param + shift, if edge { q.err_edge_far } else { q.err })).collect())).collect()
+        els.iter()
+            .map(|el| {
+                (
+                    el.to_string(),
+                    s.iter()
+                        .filter(|q| q.case == case && q.element == *el)
+                        .map(|q| (q.param + shift, if edge { q.err_edge_far } else { q.err }))
+                        .collect(),
+                )
+            })
+            .collect()
     };
     panels(
         (1500, 480),
         &[
-            ("Graded: elongated only in the interior", "largest aspect ratio", "interior max |error| / (N/L)", by(ShapeCase::Graded, 0.0, false)),
-            ("Uniform: elongated everywhere", "aspect ratio", "edge (t..10 t) max |error| / (N/L)", by(ShapeCase::Uniform, 0.0, true)),
-            ("Distorted quads (x axis: 0.01 + amplitude/h)", "0.01 + amplitude / h", "interior max |error| / (N/L)", by(ShapeCase::Distorted, 0.01, false)),
+            (
+                "Graded: elongated only in the interior",
+                "largest aspect ratio",
+                "interior max |error| / (N/L)",
+                by(ShapeCase::Graded, 0.0, false),
+            ),
+            (
+                "Uniform: elongated everywhere",
+                "aspect ratio",
+                "edge (t..10 t) max |error| / (N/L)",
+                by(ShapeCase::Uniform, 0.0, true),
+            ),
+            (
+                "Distorted quads (x axis: 0.01 + amplitude/h)",
+                "0.01 + amplitude / h",
+                "interior max |error| / (N/L)",
+                by(ShapeCase::Distorted, 0.01, false),
+            ),
         ],
     )
 }
@@ -328,8 +543,27 @@ pub fn thin_svg(t: &[ThinPoint]) -> Result<String> {
     panels(
         (1300, 480),
         &[
-            ("Conditioning and fill", "t / L", "dimensionless", vec![("condition estimate".into(), line(&|q| q.condition)), ("fill nnz(L)/nnz(K)".into(), line(&|q| q.fill)), ("backward error x 1e16".into(), line(&|q| q.backward_error * 1e16))]),
-            ("Model accuracy", "t / L", "dimensionless", vec![("interior slope rel. error".into(), line(&|q| q.slope_rel_err)), ("tau deviation / (N/L)".into(), line(&|q| q.tau_dev)), ("edge width p right / t".into(), line(&|q| q.widths[1].unwrap_or(0.0))), ("edge width tau right / t".into(), line(&|q| q.widths[3].unwrap_or(0.0)))]),
+            (
+                "Conditioning and fill",
+                "t / L",
+                "dimensionless",
+                vec![
+                    ("condition estimate".into(), line(&|q| q.condition)),
+                    ("fill nnz(L)/nnz(K)".into(), line(&|q| q.fill)),
+                    ("backward error x 1e16".into(), line(&|q| q.backward_error * 1e16)),
+                ],
+            ),
+            (
+                "Model accuracy",
+                "t / L",
+                "dimensionless",
+                vec![
+                    ("interior slope rel. error".into(), line(&|q| q.slope_rel_err)),
+                    ("tau deviation / (N/L)".into(), line(&|q| q.tau_dev)),
+                    ("edge width p right / t".into(), line(&|q| q.widths[1].unwrap_or(0.0))),
+                    ("edge width tau right / t".into(), line(&|q| q.widths[3].unwrap_or(0.0))),
+                ],
+            ),
         ],
     )
 }
@@ -337,18 +571,34 @@ pub fn thin_svg(t: &[ThinPoint]) -> Result<String> {
 pub fn corners_svg(c: &CornerStudy) -> Result<String> {
     let runs = &c.study.runs;
     let h = |r: &crate::convergence::Run| 1.0 / r.n_thick as f64;
-    let inc: Vec<(f64, f64)> = runs.windows(2).map(|w| (h(&w[1]), (w[1].p_end[1] - w[0].p_end[1]).abs())).collect();
+    let inc: Vec<(f64, f64)> =
+        runs.windows(2).map(|w| (h(&w[1]), (w[1].p_end[1] - w[0].p_end[1]).abs())).collect();
     let fin = runs.last().unwrap();
-    let diff = |f: &dyn Fn(&crate::convergence::Run) -> f64| runs[..runs.len() - 1].iter().map(|r| (h(r), (f(r) - f(fin)).abs())).collect::<Vec<_>>();
+    let diff = |f: &dyn Fn(&crate::convergence::Run) -> f64| {
+        runs[..runs.len() - 1].iter().map(|r| (h(r), (f(r) - f(fin)).abs())).collect::<Vec<_>>()
+    };
     panels(
         (1300, 480),
         &[
-            ("End node p(+L/2): diverges", "h / t", "value or increment / (N/L)", vec![("p(+L/2)".into(), runs.iter().map(|r| (h(r), r.p_end[1])).collect()), ("|increment|".into(), inc)]),
+            (
+                "End node p(+L/2): diverges",
+                "h / t",
+                "value or increment / (N/L)",
+                vec![
+                    ("p(+L/2)".into(), runs.iter().map(|r| (h(r), r.p_end[1])).collect()),
+                    ("|increment|".into(), inc),
+                ],
+            ),
             (
                 "Integrated quantities: converge",
                 "h / t",
                 "|difference from finest| (balance: rel. error)",
-                vec![("interior slope".into(), diff(&|r| r.slope)), ("edge width p right / t".into(), diff(&|r| r.widths[1].unwrap_or(0.0))), ("edge width tau right / t".into(), diff(&|r| r.widths[3].unwrap_or(0.0))), ("balance (N, F, FH)".into(), runs.iter().map(|r| (h(r), r.balance)).collect())],
+                vec![
+                    ("interior slope".into(), diff(&|r| r.slope)),
+                    ("edge width p right / t".into(), diff(&|r| r.widths[1].unwrap_or(0.0))),
+                    ("edge width tau right / t".into(), diff(&|r| r.widths[3].unwrap_or(0.0))),
+                    ("balance (N, F, FH)".into(), runs.iter().map(|r| (h(r), r.balance)).collect()),
+                ],
             ),
         ],
     )

@@ -32,12 +32,18 @@ pub fn assert_patch_test(model: &Model, what: &str) {
             g.push(u[k]);
         }
     }
-    let sol = solve(model, &c, &[LoadCase { prescribed: g, forces: vec![] }], &SolverOptions::default(), "").unwrap();
+    let sol = solve(model, &c, &[LoadCase { prescribed: g, forces: vec![] }], &SolverOptions::default(), "")
+        .unwrap();
     let u = &sol.u[0];
     for n in 0..mesh.n_nodes() {
         let ex = lin(mesh.nodes[n]);
         for k in 0..2 {
-            assert!((u[2 * n + k] - ex[k]).abs() < 1e-10 * u_scale, "{what} node {n}: {} vs {}", u[2 * n + k], ex[k]);
+            assert!(
+                (u[2 * n + k] - ex[k]).abs() < 1e-10 * u_scale,
+                "{what} node {n}: {} vs {}",
+                u[2 * n + k],
+                ex[k]
+            );
         }
     }
     for e in 0..mesh.n_elements() {
@@ -45,7 +51,10 @@ pub fn assert_patch_test(model: &Model, what: &str) {
             for k in 0..3 {
                 assert!((s[k] - s_exact[k]).abs() < 1e-10 * scale, "{what} element {e} stress {k}: {}", s[k]);
             }
-            assert!((s[3] - mat.lambda() * (eps[0] + eps[1])).abs() < 1e-10 * scale, "{what} element {e}: sigma_zz");
+            assert!(
+                (s[3] - mat.lambda() * (eps[0] + eps[1])).abs() < 1e-10 * scale,
+                "{what} element {e}: sigma_zz"
+            );
         }
     }
 }
