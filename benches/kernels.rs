@@ -5,15 +5,15 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use tribofe::assembly::Assembler;
-use tribofe::element::stiffness::{stiffness, MAX_DOFS};
-use tribofe::element::ElementKind;
-use tribofe::material::Material;
-use tribofe::ordering::bisection;
-use tribofe::problem::LoadCase;
+use tribofe::fem::assembly::Assembler;
+use tribofe::fem::element::stiffness::{stiffness, MAX_DOFS};
+use tribofe::fem::element::ElementKind;
+use tribofe::fem::material::Material;
+use tribofe::fem::ordering::bisection;
+use tribofe::fem::problem::LoadCase;
+use tribofe::linalg::solve::{Ordering, Solver, SolverOptions};
+use tribofe::linalg::substructure::TwoDomain;
 use tribofe::scene::Scene;
-use tribofe::solve::{Ordering, Solver, SolverOptions};
-use tribofe::substructure::TwoDomain;
 
 fn kernels(c: &mut Criterion) {
     let d = Material::plane_strain(2e3, 0.4).unwrap().d_matrix();

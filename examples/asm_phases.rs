@@ -2,7 +2,7 @@
 //! prints a hash of the assembled values so changes can be checked for bitwise equality.
 //! `cargo run --release --example asm_phases -- [ny] [repeat]`
 use std::time::Instant;
-use tribofe::assembly::Assembler;
+use tribofe::fem::assembly::Assembler;
 use tribofe::scene::Scene;
 
 fn main() {
@@ -20,7 +20,7 @@ fn main() {
     let t_rect = best(&mut || {
         let c = Instant::now();
         std::hint::black_box(
-            tribofe::mesher::Rectangle::new(-0.2, 0.2, 0.0, 0.002, 200 * ny, ny).build().unwrap(),
+            tribofe::fem::mesher::Rectangle::new(-0.2, 0.2, 0.0, 0.002, 200 * ny, ny).build().unwrap(),
         );
         c.elapsed().as_secs_f64()
     });

@@ -4,12 +4,12 @@
 //! strip, whose fronts are at most ~100 columns wide.
 //! `cargo run --release --example fronts -- [ny] [repeat]`
 use std::time::Instant;
-use tribofe::assembly::Assembler;
-use tribofe::bench::dgemm_gflops;
-use tribofe::multifrontal::{DenseWork, WIDTH_CLASSES};
-use tribofe::ordering::bisection;
+use tribofe::fem::assembly::Assembler;
+use tribofe::fem::ordering::bisection;
+use tribofe::linalg::multifrontal::{DenseWork, WIDTH_CLASSES};
+use tribofe::linalg::substructure::TwoDomain;
 use tribofe::scene::Scene;
-use tribofe::substructure::TwoDomain;
+use tribofe::studies::bench::dgemm_gflops;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

@@ -5,12 +5,12 @@
 //! superposition equal to direct solves, rigid vs elastic plate, refusal of an
 //! ill-conditioned elastic plate.
 
-use tribofe::check::{run, CheckResult};
-use tribofe::constraints::dof;
-use tribofe::problem::{solve, LoadCase};
-use tribofe::recovery::elements_touching;
+use tribofe::fem::constraints::dof;
+use tribofe::fem::problem::{solve, LoadCase};
+use tribofe::fem::recovery::elements_touching;
+use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::{PlateModel, Scene};
-use tribofe::solve::SolverOptions;
+use tribofe::studies::check::{run, CheckResult};
 
 fn paper() -> CheckResult {
     run(&Scene::default(), &SolverOptions::default()).unwrap().0
@@ -194,11 +194,11 @@ fn reused_symbolic_analysis_gives_the_fresh_result() {
     // One pattern + symbolic analysis serves every plate modulus of a sweep.
     let mut s = Scene::default();
     s.plate.model = PlateModel::Elastic;
-    let prepared = tribofe::check::prepare(&s, &SolverOptions::default()).unwrap();
+    let prepared = tribofe::studies::check::prepare(&s, &SolverOptions::default()).unwrap();
     for e in [2e9, 2e11] {
         s.plate.young = e;
         let fresh = run(&s, &SolverOptions::default()).unwrap().0;
-        let reused = tribofe::check::run_model(
+        let reused = tribofe::studies::check::run_model(
             &s,
             s.build().unwrap(),
             0.0,
@@ -220,7 +220,9 @@ fn unstructured_gmsh_mesh_agrees_with_the_converged_answer() {
     // Quad-dominant Gmsh mesh (QUA4 + TRI3, worst quad Jacobian half its mean), ~t/4.7 in size.
     // Measured against the converged graded QUA8 answer at F/N = 0.82: slope 4e-4, tau(0) 1e-3,
     // leading-edge pressure width 0.03 t.
-    let conv = run(&tribofe::check::converged_scene(&Scene::default()), &SolverOptions::default()).unwrap().0;
+    let conv = run(&tribofe::studies::check::converged_scene(&Scene::default()), &SolverOptions::default())
+        .unwrap()
+        .0;
     let c = conv.cases.last().unwrap();
     for el in ["qua4", "qua4-im"] {
         let mut s = Scene::default();

@@ -8,10 +8,10 @@
 //!   figures matches a finer mesh.
 
 use tribofe::analytical::{strip, williams};
-use tribofe::check::{converged_scene, run};
-use tribofe::convergence::{decay_rates, study, Family, Run, StudyOptions};
+use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::Scene;
-use tribofe::solve::SolverOptions;
+use tribofe::studies::check::{converged_scene, run};
+use tribofe::studies::convergence::{decay_rates, study, Family, Run, StudyOptions};
 
 fn runs(elements: &[&str], family: Family, n: &[usize]) -> Vec<Run> {
     let o = StudyOptions {
@@ -54,8 +54,8 @@ fn interior_converges_at_the_pollution_rate_two_lambda() {
         ..Default::default()
     };
     let st = study(&Scene::default(), &o, &|_| {}).unwrap();
-    for s in tribofe::convergence::series(&st) {
-        let ord = tribofe::convergence::orders(&st, &s).unwrap();
+    for s in tribofe::studies::convergence::series(&st) {
+        let ord = tribofe::studies::convergence::orders(&st, &s).unwrap();
         for k in 0..2 {
             assert!(
                 (ord[k] - two_lambda).abs() < 0.2,

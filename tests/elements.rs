@@ -8,16 +8,16 @@
 //! finite meshes still carries the next-order term of the error expansion.
 
 use nalgebra::{DMatrix, SymmetricEigen};
-use tribofe::assembly::Model;
-use tribofe::constraints::{dof, Constraints};
-use tribofe::element::stiffness::{ElementChoice, Technology};
-use tribofe::element::ElementKind;
-use tribofe::material::Material;
-use tribofe::mesh::Mesh;
-use tribofe::mesher::Rectangle;
-use tribofe::problem::{solve, LoadCase};
-use tribofe::recovery::error_norms;
-use tribofe::solve::SolverOptions;
+use tribofe::fem::assembly::Model;
+use tribofe::fem::constraints::{dof, Constraints};
+use tribofe::fem::element::stiffness::{ElementChoice, Technology};
+use tribofe::fem::element::ElementKind;
+use tribofe::fem::material::Material;
+use tribofe::fem::mesh::Mesh;
+use tribofe::fem::mesher::Rectangle;
+use tribofe::fem::problem::{solve, LoadCase};
+use tribofe::fem::recovery::error_norms;
+use tribofe::linalg::solve::SolverOptions;
 
 mod common;
 use common::boundary;
@@ -91,7 +91,7 @@ fn square_solve(mesh: &Mesh, mat: Material, ch: ElementChoice, b: &dyn Fn([f64; 
         c.fix(dof(n, 1));
     }
     let mut f = vec![0.0; 2 * mesh.n_nodes()];
-    tribofe::loads::add_body_force(mesh, b, &mut f);
+    tribofe::fem::loads::add_body_force(mesh, b, &mut f);
     solve_u(&model(mesh, mat, ch), &c, vec![0.0; c.n_fixed()], f)
 }
 
@@ -170,7 +170,7 @@ fn cantilever_tip(ch: ElementChoice, mat: Material, nx: usize, ny: usize, (l, h,
         c.fix(dof(n, 1));
     }
     let mut f = vec![0.0; 2 * mesh.n_nodes()];
-    tribofe::loads::add_edge_traction(
+    tribofe::fem::loads::add_edge_traction(
         &mesh,
         "right",
         &|x| [0.0, -1.5 * p / h * (1.0 - (2.0 * x[1] / h).powi(2))],

@@ -5,15 +5,15 @@
 //! exactly are reproduced to round-off (1e-10 relative); convergence rates of QUA4 are 2
 //! (L2) and 1 (energy) asymptotically, asserted to +-0.1.
 
-use tribofe::assembly::Model;
-use tribofe::constraints::{dof, Constraints};
-use tribofe::element::ElementKind;
-use tribofe::material::Material;
-use tribofe::mesh::Mesh;
-use tribofe::mesher::Rectangle;
-use tribofe::problem::{solve, LoadCase};
-use tribofe::recovery::{elements_touching, error_norms, nodal_stresses};
-use tribofe::solve::SolverOptions;
+use tribofe::fem::assembly::Model;
+use tribofe::fem::constraints::{dof, Constraints};
+use tribofe::fem::element::ElementKind;
+use tribofe::fem::material::Material;
+use tribofe::fem::mesh::Mesh;
+use tribofe::fem::mesher::Rectangle;
+use tribofe::fem::problem::{solve, LoadCase};
+use tribofe::fem::recovery::{elements_touching, error_norms, nodal_stresses};
+use tribofe::linalg::solve::SolverOptions;
 
 mod common;
 use common::boundary;
@@ -146,7 +146,7 @@ fn manufactured_solution_rates_qua4() {
             c.fix(dof(b, 1));
         }
         let mut f = vec![0.0; 2 * mesh.n_nodes()];
-        tribofe::loads::add_body_force(&mesh, &body, &mut f);
+        tribofe::fem::loads::add_body_force(&mesh, &body, &mut f);
         let model = Model::new(&mesh, m);
         let case = LoadCase { prescribed: vec![0.0; c.n_fixed()], forces: f };
         let sol = solve(&model, &c, &[case], &SolverOptions::default(), "").unwrap();
@@ -170,8 +170,8 @@ fn reactions_balance_loads_forces_and_moment() {
         c.fix(dof(n, 1));
     }
     let mut f = vec![0.0; 2 * mesh.n_nodes()];
-    tribofe::loads::add_edge_traction(&mesh, "top", &|p| [0.0, -1e3 * p[0]], &mut f).unwrap();
-    tribofe::loads::add_edge_traction(&mesh, "right", &|p| [500.0, 200.0 * p[1]], &mut f).unwrap();
+    tribofe::fem::loads::add_edge_traction(&mesh, "top", &|p| [0.0, -1e3 * p[0]], &mut f).unwrap();
+    tribofe::fem::loads::add_edge_traction(&mesh, "right", &|p| [500.0, 200.0 * p[1]], &mut f).unwrap();
     let corner =
         mesh.nodes.iter().position(|p| (p[0] - 2.0).abs() < 1e-12 && (p[1] - 0.5).abs() < 1e-12).unwrap();
     f[dof(corner, 0)] += 77.0;
@@ -228,7 +228,7 @@ fn stiffness_pattern_and_values_reused_across_materials() {
     f[2 * mesh.n_nodes() - 1] = -1.0;
     let case = LoadCase { prescribed: vec![0.0; c.n_fixed()], forces: f };
     let red = c.reduce().unwrap();
-    let asm = tribofe::assembly::Assembler::new(&mesh, &red).unwrap();
+    let asm = tribofe::fem::assembly::Assembler::new(&mesh, &red).unwrap();
     let m1 = Model::new(&mesh, Material::plane_strain(1e3, 0.3).unwrap());
     let m2 = Model::new(&mesh, Material::plane_strain(1e4, 0.3).unwrap());
     let (v1, _) = asm.assemble(&m1, &red, &[case.forces.clone()], &[case.prescribed.clone()]).unwrap();
@@ -241,7 +241,7 @@ fn stiffness_pattern_and_values_reused_across_materials() {
 
 #[test]
 fn rectangle_problem_balances_and_rejects_bad_sides() {
-    use tribofe::rectangle::{RectangleProblem, Side};
+    use tribofe::scene::rectangle::{RectangleProblem, Side};
     // Clamped bottom, rollers left and right, uniform pressure on top: the bottom carries it all.
     let p = RectangleProblem {
         rect: Rectangle::new(0.0, 1.0, 0.0, 0.1, 20, 4),

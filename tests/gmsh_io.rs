@@ -4,9 +4,9 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use tribofe::element::ElementKind;
+use tribofe::fem::element::ElementKind;
+use tribofe::fem::mesh::Mesh;
 use tribofe::io::gmsh;
-use tribofe::mesh::Mesh;
 use tribofe::Error;
 
 const FORMATS: [&str; 4] = ["v41_ascii", "v41_bin", "v22_ascii", "v22_bin"];
@@ -183,7 +183,7 @@ fn sorted_grid(m: &Mesh) -> (Vec<[f64; 2]>, Vec<Vec<usize>>) {
 
 #[test]
 fn regular_block_matches_the_structured_mesher() {
-    let reference = tribofe::mesher::Rectangle::new(-L, L, 0.0, H, 400, 2).build().unwrap();
+    let reference = tribofe::fem::mesher::Rectangle::new(-L, L, 0.0, H, 400, 2).build().unwrap();
     let (ref_nodes, ref_elements) = sorted_grid(&reference);
     for (f, m) in read_all(&meshes_dir(), "block_regular") {
         let (nodes, elements) = sorted_grid(&m);

@@ -6,11 +6,11 @@
 //! The factorisation with 2 faer threads may reorder dense kernel sums: 1e-14 relative.
 //! The two-domain solver does the same work on any thread count: bitwise again.
 
-use tribofe::assembly::Assembler;
-use tribofe::check::{self, CheckResult};
-use tribofe::ordering::{bisection, nested_dissection};
+use tribofe::fem::assembly::Assembler;
+use tribofe::fem::ordering::{bisection, nested_dissection};
+use tribofe::linalg::solve::{Ordering, SolverOptions};
 use tribofe::scene::Scene;
-use tribofe::solve::{Ordering, SolverOptions};
+use tribofe::studies::check::{self, CheckResult};
 
 fn pool(k: usize) -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new().num_threads(k).build().unwrap()
@@ -117,7 +117,7 @@ fn two_domains_match_one_factorisation_bitwise_on_any_thread_count() {
 /// solutions to round-off (relative to the largest value; measured <= 3e-15).
 #[test]
 fn multifrontal_halves_and_their_solves_equal_faer() {
-    use tribofe::substructure::TwoDomain;
+    use tribofe::linalg::substructure::TwoDomain;
     for element in ["qua4", "qua8"] {
         let sm = strip(8, element).build().unwrap();
         let red = sm.constraints.reduce().unwrap();
@@ -142,13 +142,13 @@ fn multifrontal_halves_and_their_solves_equal_faer() {
 /// A split that is not a partition, or whose halves touch, is refused with the reason.
 #[test]
 fn a_bad_two_domain_split_is_refused() {
-    use tribofe::substructure::TwoDomain;
+    use tribofe::linalg::substructure::TwoDomain;
     let sm = strip(6, "qua4").build().unwrap();
     let red = sm.constraints.reduce().unwrap();
     let asm = Assembler::new(&sm.mesh, &red).unwrap();
     let good = bisection(&sm.mesh, &red).unwrap();
     assert!(TwoDomain::analyse(&asm.pattern, &good).is_ok());
-    let refused = |split: &tribofe::ordering::Bisection, why: &str| {
+    let refused = |split: &tribofe::fem::ordering::Bisection, why: &str| {
         let e = TwoDomain::analyse(&asm.pattern, split).err().expect("refused").to_string();
         assert!(e.contains(why), "{e}");
     };
@@ -194,11 +194,11 @@ fn two_domain_refactorisation_in_reused_memory_is_bitwise_fresh() {
 
 #[test]
 fn two_domains_name_a_free_body() {
-    use tribofe::assembly::Model;
-    use tribofe::constraints::{dof, Constraints};
-    use tribofe::material::Material;
-    use tribofe::problem::{solve, LoadCase};
-    let mesh = tribofe::mesher::Rectangle::new(0.0, 2.0, 0.0, 0.1, 40, 2).build().unwrap();
+    use tribofe::fem::assembly::Model;
+    use tribofe::fem::constraints::{dof, Constraints};
+    use tribofe::fem::material::Material;
+    use tribofe::fem::problem::{solve, LoadCase};
+    let mesh = tribofe::fem::mesher::Rectangle::new(0.0, 2.0, 0.0, 0.1, 40, 2).build().unwrap();
     let mut c = Constraints::new(mesh.n_nodes());
     for n in mesh.set_nodes("bottom").unwrap() {
         c.fix(dof(n, 1)); // free to slide in x

@@ -1,10 +1,10 @@
 //! The stability studies' findings (issue 7) on small meshes; thresholds are the values
 //! measured with `tribofe stability` (validation/stability/README.md) with a margin.
 
-use tribofe::check::run;
+use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::{PlateModel, Scene};
-use tribofe::solve::SolverOptions;
-use tribofe::stability::{self, Options, References, ShapeCase};
+use tribofe::studies::check::run;
+use tribofe::studies::stability::{self, Options, References, ShapeCase};
 
 fn quiet(_: &str) {}
 

@@ -8,10 +8,10 @@
 
 use std::collections::BTreeMap;
 use std::path::Path;
-use tribofe::element::ElementKind;
+use tribofe::fem::element::ElementKind;
+use tribofe::fem::mesh::Mesh;
+use tribofe::fem::mesher::Rectangle;
 use tribofe::io::{gmsh, gmsh_post, vtu, Field};
-use tribofe::mesh::Mesh;
-use tribofe::mesher::Rectangle;
 
 /// One small rectangle mesh of each element kind, side by side (nodes not shared).
 fn all_kinds_mesh() -> Mesh {

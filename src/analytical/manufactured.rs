@@ -2,7 +2,7 @@
 //! u = v = sin(pi x) sin(pi y), zero on the boundary, loaded by the body force
 //! b = -div sigma = -[(lambda + mu) grad(div u) + mu laplace(u)].
 
-use crate::material::Material;
+use crate::fem::material::Material;
 use std::f64::consts::PI;
 
 #[derive(Debug, Clone, Copy)]

@@ -3,8 +3,8 @@
 
 use clap::Args as ClapArgs;
 use std::path::PathBuf;
-use tribofe::bench::{self, Case, Config, Row};
-use tribofe::solve::Ordering;
+use tribofe::linalg::solve::Ordering;
+use tribofe::studies::bench::{self, Case, Config, Row};
 
 #[derive(ClapArgs, Debug)]
 pub struct Args {

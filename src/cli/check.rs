@@ -2,8 +2,8 @@
 
 use clap::Args as ClapArgs;
 use std::path::PathBuf;
+use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::{PlateModel, Scene};
-use tribofe::solve::SolverOptions;
 
 /// The scene options shared by every subcommand that runs the paper's scene.
 #[derive(ClapArgs, Debug)]
@@ -83,11 +83,11 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = scene(&args.scene)?;
     let opts = SolverOptions::default();
-    let (res, sm) = tribofe::check::run(&scene, &opts)?;
+    let (res, sm) = tribofe::studies::check::run(&scene, &opts)?;
     // The converged figures need the exact rigid plate and the structured mesh of the scene.
     let converged = match (scene.plate.model, &scene.mesh.file, args.no_converged) {
         (PlateModel::Rigid, None, false) => {
-            Some(tribofe::check::run(&tribofe::check::converged_scene(&scene), &opts)?.0)
+            Some(tribofe::studies::check::run(&tribofe::studies::check::converged_scene(&scene), &opts)?.0)
         }
         _ => None,
     };

@@ -3,7 +3,7 @@
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use tribofe::convergence::{study, Family, StudyOptions};
+use tribofe::studies::convergence::{study, Family, StudyOptions};
 
 #[derive(ClapArgs, Debug)]
 pub struct Args {

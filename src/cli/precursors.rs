@@ -1,9 +1,9 @@
 //! `tribofe precursors`: the paper's event iteration for one (r, g), or the n(r, g) map.
 
 use std::path::{Path, PathBuf};
+use tribofe::linalg::solve::SolverOptions;
 use tribofe::precursors::{self, Event, Params};
 use tribofe::report::precursors as report;
-use tribofe::solve::SolverOptions;
 use tribofe::Error;
 
 /// Events are iterated until |F - F_max| < this (or MAX_DEFAULT_EVENTS) unless --events is given.
@@ -83,8 +83,9 @@ fn print_written(paths: &[impl AsRef<Path>]) -> tribofe::Result<()> {
 fn fe(args: &Args) -> tribofe::Result<()> {
     let scene = super::check::scene(&args.scene)?;
     let n_events = args.events.unwrap_or(MAX_DEFAULT_EVENTS);
-    let fields =
-        |s: &tribofe::scene::Scene| tribofe::check::run(s, &SolverOptions::default()).map(|r| r.0.unit);
+    let fields = |s: &tribofe::scene::Scene| {
+        tribofe::studies::check::run(s, &SolverOptions::default()).map(|r| r.0.unit)
+    };
     let c = tribofe::precursors::fe::compare(&fields(&scene)?, args.r, args.g, n_events)?;
     print_comparison(&c);
     let mut written = report::write_comparison(&args.out, &c)?;

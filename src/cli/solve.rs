@@ -3,11 +3,11 @@
 
 use clap::Args as ClapArgs;
 use std::path::PathBuf;
+use tribofe::fem::material::Material;
+use tribofe::fem::mesher::Rectangle;
+use tribofe::fem::recovery::{nodal_stresses, von_mises};
 use tribofe::io::{gmsh_post::write_msh, vtu::write_vtu, Field};
-use tribofe::material::Material;
-use tribofe::mesher::Rectangle;
-use tribofe::recovery::{nodal_stresses, von_mises};
-use tribofe::rectangle::{RectangleProblem, Side, SIDES};
+use tribofe::scene::rectangle::{RectangleProblem, Side, SIDES};
 
 #[derive(ClapArgs, Debug)]
 pub struct Args {
@@ -51,9 +51,9 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         sides,
     };
     let r = p.solve()?;
-    let model = tribofe::assembly::Model {
+    let model = tribofe::fem::assembly::Model {
         tech: p.element.tech,
-        ..tribofe::assembly::Model::new(&r.mesh, p.material)
+        ..tribofe::fem::assembly::Model::new(&r.mesh, p.material)
     };
     let u = &r.solution.u[0];
     println!(

@@ -3,7 +3,7 @@
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use tribofe::stability::{run as run_studies, Options, STUDIES};
+use tribofe::studies::stability::{run as run_studies, Options, STUDIES};
 
 #[derive(ClapArgs, Debug)]
 pub struct Args {

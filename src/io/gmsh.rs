@@ -11,9 +11,9 @@
 //! [`Error::Parse`] naming the line (ASCII) or byte (binary); counts read from the file never
 //! size an allocation beyond what the remaining input could hold.
 
-use crate::element::ElementKind;
 use crate::error::{Error, Result};
-use crate::mesh::{Edge, Mesh};
+use crate::fem::element::ElementKind;
+use crate::fem::mesh::{Edge, Mesh};
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 

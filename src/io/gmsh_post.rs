@@ -11,7 +11,7 @@
 
 use super::{check_fields, check_mesh, element_tag, io_err, write_atomic, Field};
 use crate::error::{Error, Result};
-use crate::mesh::Mesh;
+use crate::fem::mesh::Mesh;
 use std::collections::{BTreeMap, HashSet};
 use std::path::Path;
 

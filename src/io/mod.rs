@@ -13,7 +13,7 @@ pub mod gmsh_post;
 pub mod vtu;
 
 use crate::error::{Error, Result};
-use crate::mesh::Mesh;
+use crate::fem::mesh::Mesh;
 use std::io::Write;
 use std::path::Path;
 

@@ -10,7 +10,7 @@
 
 use super::{check_fields, check_mesh, element_tag, io_err, write_atomic, Field};
 use crate::error::{Error, Result};
-use crate::mesh::Mesh;
+use crate::fem::mesh::Mesh;
 use std::io::Write;
 use std::path::Path;
 

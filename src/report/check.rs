@@ -2,8 +2,8 @@
 //! table, and fig. 2 of the paper redrawn with zooms on both edge zones.
 
 use super::{csv, ratio_label, write_atomic};
-use crate::check::CheckResult;
 use crate::error::{Error, Result};
+use crate::studies::check::CheckResult;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::fmt::Write as _;
@@ -302,8 +302,8 @@ pub fn write_fields(
     sm: &crate::scene::SceneModel,
     dir: &Path,
 ) -> Result<Vec<std::path::PathBuf>> {
+    use crate::fem::recovery::{gauss_stresses, nodal_stresses, von_mises};
     use crate::io::{gmsh_post::write_msh, vtu, Field};
-    use crate::recovery::{gauss_stresses, nodal_stresses, von_mises};
     let model = sm.model();
     let nn = sm.mesh.n_nodes();
     let mut written = Vec::new();

@@ -2,8 +2,10 @@
 //! the error-versus-time chart with the Pareto front, and a readable summary.
 
 use super::write_atomic;
-use crate::convergence::{cheapest, edge_error, first_converged_width, orders, pareto_front, series, Study};
 use crate::error::{Error, Result};
+use crate::studies::convergence::{
+    cheapest, edge_error, first_converged_width, orders, pareto_front, series, Study,
+};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -151,7 +153,7 @@ pub fn summary(study: &Study, tol: Option<f64>) -> String {
     let _ = writeln!(s, "\nend-node values under refinement (uniform family; the corner is singular, so they must NOT converge):");
     for sr in series(study) {
         let r0 = &study.runs[sr[0]];
-        if r0.family != crate::convergence::Family::Uniform {
+        if r0.family != crate::studies::convergence::Family::Uniform {
             continue;
         }
         let vals: Vec<String> = sr
@@ -228,7 +230,7 @@ pub fn error_vs_dofs(study: &Study) -> Result<String> {
         let root = SVGBackend::with_string(&mut svg, (1200, 420)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
         let panels = root.split_evenly((1, 3));
-        let zones: [(&str, fn(&crate::convergence::ZoneErrors) -> f64); 3] = [
+        let zones: [(&str, fn(&crate::studies::convergence::ZoneErrors) -> f64); 3] = [
             ("interior (|x| < L/2 - 10 t)", |e| e.interior[0].max(e.interior[1])),
             ("edge zones (t/4 to 10 t from the ends)", |e| e.edge[0].max(e.edge[1])),
             ("end nodes (singular: no convergence)", |e| e.end[0].max(e.end[1])),
@@ -369,7 +371,7 @@ fn theory(s: &mut String, study: &Study) -> Result<()> {
         2.0 * lambda.re
     );
     let rf = &study.runs[study.reference];
-    let k = crate::convergence::decay_rates(rf, study.t_over_l, 1e-4);
+    let k = crate::studies::convergence::decay_rates(rf, study.t_over_l, 1e-4);
     let f = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.3}"));
     let _ = writeln!(s, "\nedge decay fitted on the reference, |deviation from the far field| ~ exp(-k d/t): k = p {}/{} (left/right), tau {}/{}", f(k[0]), f(k[1]), f(k[2]), f(k[3]));
     for (name, fam) in

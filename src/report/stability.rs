@@ -3,7 +3,9 @@
 
 use super::{finite, write_atomic};
 use crate::error::{Error, Result};
-use crate::stability::{CornerStudy, NuStudy, PlateStudy, Results, ShapeCase, ShapePoint, ThinPoint};
+use crate::studies::stability::{
+    CornerStudy, NuStudy, PlateStudy, Results, ShapeCase, ShapePoint, ThinPoint,
+};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -272,7 +274,7 @@ pub fn summary(res: &Results) -> String {
             els.dedup();
             let _ = writeln!(s, "{} ({what}):", case.name());
             for el in els {
-                let label = |q: &crate::stability::ShapePoint| {
+                let label = |q: &crate::studies::stability::ShapePoint| {
                     if case == ShapeCase::Unstructured {
                         format!("{:.2}", q.min_jacobian_rel)
                     } else {
@@ -445,7 +447,7 @@ pub fn plate_svg(p: &PlateStudy) -> Result<String> {
     let mut right = Vec::new();
     for f in &p.findings {
         let pts: Vec<_> = p.points.iter().filter(|q| q.n_thick == f.n_thick).collect();
-        let get = |g: &dyn Fn(&crate::stability::PlateRaw) -> f64| {
+        let get = |g: &dyn Fn(&crate::studies::stability::PlateRaw) -> f64| {
             pts.iter().filter_map(|q| q.raw.as_ref().map(|r| (q.ratio, g(r)))).collect::<Vec<_>>()
         };
         left.push((format!("error vs rigid, h = t/{}", f.n_thick), get(&|r| r.err())));
@@ -467,7 +469,7 @@ pub fn nu_svg(n: &NuStudy) -> Result<String> {
     let mut els: Vec<&String> = n.points.iter().map(|q| &q.element).collect();
     els.sort();
     els.dedup();
-    let by = |f: &dyn Fn(&crate::stability::NuPoint) -> f64| -> Vec<Series> {
+    let by = |f: &dyn Fn(&crate::studies::stability::NuPoint) -> f64| -> Vec<Series> {
         els.iter()
             .map(|el| {
                 (
@@ -570,11 +572,11 @@ pub fn thin_svg(t: &[ThinPoint]) -> Result<String> {
 
 pub fn corners_svg(c: &CornerStudy) -> Result<String> {
     let runs = &c.study.runs;
-    let h = |r: &crate::convergence::Run| 1.0 / r.n_thick as f64;
+    let h = |r: &crate::studies::convergence::Run| 1.0 / r.n_thick as f64;
     let inc: Vec<(f64, f64)> =
         runs.windows(2).map(|w| (h(&w[1]), (w[1].p_end[1] - w[0].p_end[1]).abs())).collect();
     let fin = runs.last().unwrap();
-    let diff = |f: &dyn Fn(&crate::convergence::Run) -> f64| {
+    let diff = |f: &dyn Fn(&crate::studies::convergence::Run) -> f64| {
         runs[..runs.len() - 1].iter().map(|r| (h(r), (f(r) - f(fin)).abs())).collect::<Vec<_>>()
     };
     panels(

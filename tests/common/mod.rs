@@ -1,11 +1,11 @@
 //! Set-up shared by the verification tests.
 
-use tribofe::assembly::Model;
-use tribofe::constraints::{dof, Constraints};
-use tribofe::mesh::Mesh;
-use tribofe::problem::{solve, LoadCase};
-use tribofe::recovery::gauss_stresses;
-use tribofe::solve::SolverOptions;
+use tribofe::fem::assembly::Model;
+use tribofe::fem::constraints::{dof, Constraints};
+use tribofe::fem::mesh::Mesh;
+use tribofe::fem::problem::{solve, LoadCase};
+use tribofe::fem::recovery::gauss_stresses;
+use tribofe::linalg::solve::SolverOptions;
 
 /// Boundary nodes of a rectangle mesh (all four named edges).
 pub fn boundary(m: &Mesh) -> Vec<usize> {

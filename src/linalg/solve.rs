@@ -3,10 +3,10 @@
 //! all load cases are solved together; every solve is checked by its residual, refined
 //! once or twice with the same factor if needed, and rejected if still not trustworthy.
 
-use crate::assembly::Pattern;
 use crate::error::{Error, Result};
-use crate::ordering::Bisection;
-use crate::substructure::{supernodal_flops, TwoDomain, TwoDomainFactor};
+use crate::fem::assembly::Pattern;
+use crate::fem::ordering::Bisection;
+use crate::linalg::substructure::{supernodal_flops, TwoDomain, TwoDomainFactor};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::sparse::linalg::cholesky::{
@@ -21,19 +21,19 @@ use faer::{Conj, MatMut, Par, Side};
 #[derive(Debug, Clone, Default, PartialEq)]
 pub enum Ordering {
     /// [`Ordering::TwoDomain`] when the mesh is a grid with at least
-    /// [`crate::problem::TWO_DOMAINS_FROM`] unknowns, AMD otherwise; resolved by
-    /// [`crate::problem::solve`], which knows the mesh.
+    /// [`crate::fem::problem::TWO_DOMAINS_FROM`] unknowns, AMD otherwise; resolved by
+    /// [`crate::fem::problem::solve`], which knows the mesh.
     #[default]
     Auto,
     /// faer's approximate minimum degree.
     Amd,
-    /// Our geometric nested dissection ([`crate::ordering`]) in one factorisation on grids,
+    /// Our geometric nested dissection ([`crate::fem::ordering`]) in one factorisation on grids,
     /// AMD otherwise; resolved like `Auto`.
     NestedDissection,
     /// Our own permutation: `perm[new] = old`.
     Custom(Vec<usize>),
     /// Nested dissection whose first cut is solved by substructuring: both halves factorised
-    /// at once, one per thread ([`crate::substructure`]).
+    /// at once, one per thread ([`crate::linalg::substructure`]).
     TwoDomain(Bisection),
 }
 

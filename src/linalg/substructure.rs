@@ -1,17 +1,17 @@
 //! Two-domain substructuring: the reduced unknowns split into two halves and the separator
-//! between them ([`crate::ordering::bisection`]). Each half with the separator ordered last is
+//! between them ([`crate::fem::ordering::bisection`]). Each half with the separator ordered last is
 //! a principal submatrix of K, hence positive definite. faer analyses each half and
-//! [`crate::multifrontal`] factorises the two at once, one per core: threads inside a front
+//! [`crate::linalg::multifrontal`] factorises the two at once, one per core: threads inside a front
 //! only help large dense fronts, which a thin strip lacks. The trailing block L_ss of each
 //! factor gives that half's condensation onto the separator, L_ss L_ss^T = A_ss - A_sk
 //! A_kk^-1 A_ks; their sum less A_ss (counted twice) is the separator's Schur complement, a
 //! small dense matrix. The work done does not depend on the thread count, so neither do the
 //! results.
 
-use crate::assembly::Pattern;
 use crate::error::{Error, Result};
-use crate::multifrontal::{self, supernodal, AssemblyTree, DenseWork};
-use crate::ordering::Bisection;
+use crate::fem::assembly::Pattern;
+use crate::fem::ordering::Bisection;
+use crate::linalg::multifrontal::{self, supernodal, AssemblyTree, DenseWork};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};

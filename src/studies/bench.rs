@@ -4,14 +4,14 @@
 //! peak memory. Peak memory is per process, so callers run each case in a fresh process
 //! ([`run_isolated`]).
 
-use crate::check;
-use crate::constraints::{dof, Constraints};
 use crate::error::{Error, Result};
-use crate::material::Material;
-use crate::mesher::Rectangle;
-use crate::problem::{solve, LoadCase, Prepared, Timings};
+use crate::fem::constraints::{dof, Constraints};
+use crate::fem::material::Material;
+use crate::fem::mesher::Rectangle;
+use crate::fem::problem::{solve, LoadCase, Prepared, Timings};
+use crate::linalg::solve::{Ordering, SolverOptions};
 use crate::scene::Scene;
-use crate::solve::{Ordering, SolverOptions};
+use crate::studies::check;
 use std::fmt::Write;
 use std::path::Path;
 use std::time::Instant;
@@ -221,9 +221,9 @@ fn square(n: usize, opts: &SolverOptions) -> Result<Row> {
         c.fix(dof(k, 1));
     }
     let mut f = vec![0.0; 2 * mesh.n_nodes()];
-    crate::loads::add_edge_traction(&mesh, "top", &|_| [1e3, -1e3], &mut f)?;
+    crate::fem::loads::add_edge_traction(&mesh, "top", &|_| [1e3, -1e3], &mut f)?;
     let case = LoadCase { prescribed: vec![0.0; c.n_fixed()], forces: f };
-    let model = crate::assembly::Model::new(&mesh, Material::plane_strain(1e6, 0.3)?);
+    let model = crate::fem::assembly::Model::new(&mesh, Material::plane_strain(1e6, 0.3)?);
     let mesh_time = clock.elapsed().as_secs_f64();
     let hint = "check the square benchmark";
     let sol = solve(&model, &c, std::slice::from_ref(&case), opts, hint)?;
@@ -233,7 +233,7 @@ fn square(n: usize, opts: &SolverOptions) -> Result<Row> {
         Ok(prepared.solve(&model, &c, std::slice::from_ref(&case), opts, hint)?.timings.numeric)
     })?;
     let clock = Instant::now();
-    let stresses = crate::recovery::nodal_stresses(&model, &sol.u[0]);
+    let stresses = crate::fem::recovery::nodal_stresses(&model, &sol.u[0]);
     std::hint::black_box(stresses);
     let t = Timings { mesh: mesh_time, recovery: clock.elapsed().as_secs_f64(), ..sol.timings };
     Ok(Row {

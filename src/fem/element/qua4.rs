@@ -231,8 +231,8 @@ impl StrainCorrection {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::element::stiffness::strain;
-    use crate::material::Material;
+    use crate::fem::element::stiffness::strain;
+    use crate::fem::material::Material;
 
     const X: [[f64; 2]; 4] = [[0.0, 0.0], [2.0, 0.3], [2.4, 1.9], [-0.2, 1.2]];
 

@@ -2,9 +2,9 @@
 //! towards both ends of each direction. Named edge sets `bottom`, `right`, `top`, `left` and
 //! the element set `all` come with the mesh.
 
-use crate::element::ElementKind;
 use crate::error::{Error, Result};
-use crate::mesh::{Edge, Mesh};
+use crate::fem::element::ElementKind;
+use crate::fem::mesh::{Edge, Mesh};
 
 /// Geometric grading symmetric about the centre: elements of size `end` at both ends,
 /// growing by `ratio` per element towards the middle, capped at `max` if given.

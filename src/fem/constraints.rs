@@ -13,7 +13,7 @@
 //! unknowns) follow the node DOFs and are numbered last among the free unknowns too.
 
 use crate::error::{Error, Result};
-use crate::mesh::Mesh;
+use crate::fem::mesh::Mesh;
 use std::collections::{BTreeMap, HashMap};
 
 /// Full DOF index of component `comp` (0 = x, 1 = y) of node `node`.

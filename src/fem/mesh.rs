@@ -1,8 +1,8 @@
 //! The mesh: node coordinates, elements of mixed kinds stored flat, and named sets of
 //! nodes, edges and elements that boundary conditions and outputs refer to.
 
-use crate::element::{shape, ElementKind};
 use crate::error::{Error, Result};
+use crate::fem::element::{shape, ElementKind};
 use std::collections::BTreeMap;
 
 /// A boundary edge: its two end nodes and, for quadratic elements, the mid node.

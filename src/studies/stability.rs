@@ -4,14 +4,14 @@
 //! elements), `thin` (t/L -> 0 at a fixed number of elements through the thickness) and
 //! `corners` (singular end nodes vs converging integrated quantities).
 
-use crate::check::interpolate;
-use crate::check::{self, CheckResult};
-use crate::convergence::{self, zone_errors, Family, StudyOptions, ZoneErrors};
 use crate::error::{Error, Result};
-use crate::material::Material;
-use crate::mesh::Mesh;
+use crate::fem::material::Material;
+use crate::fem::mesh::Mesh;
+use crate::linalg::solve::SolverOptions;
 use crate::scene::{PlateModel, Scene};
-use crate::solve::SolverOptions;
+use crate::studies::check::interpolate;
+use crate::studies::check::{self, CheckResult};
+use crate::studies::convergence::{self, zone_errors, Family, StudyOptions, ZoneErrors};
 use std::collections::HashMap;
 use std::time::Instant;
 
@@ -560,7 +560,7 @@ pub fn shape(
                 min_jacobian_rel: j1 / j0,
             });
         }
-        let qua4_family = s.element()?.kind == crate::element::ElementKind::Qua4;
+        let qua4_family = s.element()?.kind == crate::fem::element::ElementKind::Qua4;
         if let (Some(path), true) = (o.unstructured_mesh.as_ref().filter(|p| p.exists()), qua4_family) {
             let mut v = s.clone();
             v.mesh.file = Some(path.clone());
@@ -588,7 +588,7 @@ pub fn shape(
 
 /// Smallest Jacobian determinant of an element over its mean one (area / reference area):
 /// 1 for parallelograms and triangles, smaller the more a quad is distorted.
-fn jacobian_quality(mesh: &crate::mesh::Mesh, e: usize) -> f64 {
+fn jacobian_quality(mesh: &crate::fem::mesh::Mesh, e: usize) -> f64 {
     let reference_area = if mesh.kind(e).is_quad() { 4.0 } else { 0.5 };
     mesh.min_jacobian(e) / (mesh.signed_area(e) / reference_area)
 }

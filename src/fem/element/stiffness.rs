@@ -301,7 +301,7 @@ pub fn edge_traction(coords: &[[f64; 2]], t: &dyn Fn([f64; 2]) -> [f64; 2], f: &
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::Material;
+    use crate::fem::material::Material;
 
     fn distorted(kind: ElementKind) -> Vec<[f64; 2]> {
         // Map the reference nodes through a smooth, invertible affine-plus-bilinear map.

@@ -3,13 +3,13 @@
 //! element matrices are scattered into it in parallel (elements coloured so that no two
 //! in one colour share a node unknown). The full matrix is never formed.
 
-use crate::constraints::{Reduction, Target};
-use crate::element::qua4::{stiffness_bbar, stiffness_im};
-use crate::element::stiffness::{stiffness, Technology, MAX_DOFS, MAX_NODES};
-use crate::element::ElementKind;
 use crate::error::{Error, Result};
-use crate::material::Material;
-use crate::mesh::Mesh;
+use crate::fem::constraints::{Reduction, Target};
+use crate::fem::element::qua4::{stiffness_bbar, stiffness_im};
+use crate::fem::element::stiffness::{stiffness, Technology, MAX_DOFS, MAX_NODES};
+use crate::fem::element::ElementKind;
+use crate::fem::material::Material;
+use crate::fem::mesh::Mesh;
 use nalgebra::Matrix3;
 use rayon::prelude::*;
 
@@ -668,7 +668,7 @@ mod tests {
         let sm = strip(2, "qua4", PlateModel::Rigid);
         let mut c = sm.constraints.clone();
         // An interior node's u follows its right neighbour's (row 1 of the 400 x 2 grid).
-        c.tie(crate::constraints::dof(406, 0), &[(crate::constraints::dof(407, 0), 0.5)]);
+        c.tie(crate::fem::constraints::dof(406, 0), &[(crate::fem::constraints::dof(407, 0), 0.5)]);
         let red = c.reduce().unwrap();
         assert!(by_nodes(&sm.mesh, &red).is_none());
         let a = Assembler::new(&sm.mesh, &red).unwrap();
@@ -704,7 +704,7 @@ mod tests {
             }
             let u = red.expand(&x, &vec![0.0; red.n_fixed()]);
             let all: Vec<usize> = (0..sm.mesh.n_elements()).collect();
-            let mut fu = crate::recovery::internal_forces(&model, &u, &all).unwrap();
+            let mut fu = crate::fem::recovery::internal_forces(&model, &u, &all).unwrap();
             fu.resize(red.n_full, 0.0);
             let mut want = vec![0.0; p.n];
             red.project_add(&fu, &mut want);

@@ -3,11 +3,11 @@
 //! (the smooth interior, the edge zones, the singular end nodes), observed orders, converged
 //! edge-zone widths, and the cost of each run for the accuracy-versus-time chart.
 
-use crate::check::{self, interpolate, line_fit, CheckResult};
 use crate::error::{Error, Result};
-use crate::problem::Timings;
+use crate::fem::problem::Timings;
+use crate::linalg::solve::SolverOptions;
 use crate::scene::Scene;
-use crate::solve::SolverOptions;
+use crate::studies::check::{self, interpolate, line_fit, CheckResult};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -140,10 +140,10 @@ fn estimate_dofs(s: &Scene) -> Result<usize> {
     let t = s.block.thickness;
     let ny = (t / s.mesh.h).round().max(1.0) as usize;
     let nx = match s.mesh.grading {
-        Some(r) => crate::mesher::spacing(
+        Some(r) => crate::fem::mesher::spacing(
             s.block.length,
             0,
-            Some(crate::mesher::Grading { end: s.mesh.h, ratio: r, max: s.mesh.h_max }),
+            Some(crate::fem::mesher::Grading { end: s.mesh.h, ratio: r, max: s.mesh.h_max }),
         )?
         .len(),
         None => (s.block.length / s.mesh.h).round() as usize,
@@ -245,11 +245,11 @@ fn to_run(family: Family, element: &str, n: usize, r: &CheckResult, wall: f64) -
 /// elements converge fastest in the smooth zones; among equals QUA9, then QUA8, then TRI6,
 /// the most accurate per DOF in the study), else the run with the most DOFs.
 fn pick_reference(runs: &[Run]) -> usize {
-    let choice = |r: &Run| r.element.parse::<crate::element::stiffness::ElementChoice>().ok();
+    let choice = |r: &Run| r.element.parse::<crate::fem::element::stiffness::ElementChoice>().ok();
     let order = |r: &Run| choice(r).map_or(1, |c| c.kind.order());
     let rank = |r: &Run| match choice(r).map(|c| c.kind) {
-        Some(crate::element::ElementKind::Qua9) => 3,
-        Some(crate::element::ElementKind::Qua8) => 2,
+        Some(crate::fem::element::ElementKind::Qua9) => 3,
+        Some(crate::fem::element::ElementKind::Qua8) => 2,
         _ => 1,
     };
     (0..runs.len())

@@ -1,9 +1,9 @@
 //! External loads as full nodal force vectors (length 2 n_nodes + extra DOFs): point
 //! forces, edge tractions on named edge sets, body forces.
 
-use crate::element::stiffness::{body_force as elem_body, edge_traction as elem_edge, MAX_DOFS};
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::fem::element::stiffness::{body_force as elem_body, edge_traction as elem_edge, MAX_DOFS};
+use crate::fem::mesh::Mesh;
 
 /// Adds the consistent nodal forces of traction `t(x, y)` (Pa) on edge set `name`.
 pub fn add_edge_traction(

@@ -400,7 +400,7 @@ mod tests {
         assert_eq!(dense.by_width.iter().map(|c| c.0).sum::<usize>(), s.n_supernodes());
         // Every column's count squared, once: the same total as the analysis gives.
         let flops: f64 = dense.by_width.iter().map(|c| c.1).sum();
-        assert_eq!(flops, crate::substructure::supernodal_flops(s));
+        assert_eq!(flops, crate::linalg::substructure::supernodal_flops(s));
         let n = ptr.len() - 1;
         let a =
             SparseColMatRef::new(SymbolicSparseColMatRef::new_unsorted_checked(n, n, &ptr, None, &idx), &val);

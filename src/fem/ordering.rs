@@ -4,8 +4,8 @@
 //! nodes that no element straddles. Regions are bisected along their longer side, each half
 //! ordered first and the separator last, down to small leaves.
 
-use crate::constraints::Reduction;
-use crate::mesh::Mesh;
+use crate::fem::constraints::Reduction;
+use crate::fem::mesh::Mesh;
 use rayon::prelude::*;
 
 /// Regions with at most this many grid points are ordered line by line (short side fastest).
@@ -174,9 +174,9 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::constraints::{dof, Constraints};
-    use crate::element::ElementKind;
-    use crate::mesher::Rectangle;
+    use crate::fem::constraints::{dof, Constraints};
+    use crate::fem::element::ElementKind;
+    use crate::fem::mesher::Rectangle;
 
     #[test]
     fn permutation_of_the_free_unknowns_with_extra_last() {

@@ -14,13 +14,15 @@
 //!  x = -L/2                     x = L/2
 //! ```
 
-use crate::assembly::Model;
-use crate::constraints::{dof, Constraints};
-use crate::element::stiffness::{ElementChoice, Technology};
+pub mod rectangle;
+
 use crate::error::{Error, Result};
-use crate::material::Material;
-use crate::mesh::Mesh;
-use crate::mesher::{Grading, Rectangle};
+use crate::fem::assembly::Model;
+use crate::fem::constraints::{dof, Constraints};
+use crate::fem::element::stiffness::{ElementChoice, Technology};
+use crate::fem::material::Material;
+use crate::fem::mesh::Mesh;
+use crate::fem::mesher::{Grading, Rectangle};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 

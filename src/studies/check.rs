@@ -4,11 +4,11 @@
 //! p/(N/L) = 1 + 12 (F/N)(H/L)(x/L) and tau/(N/L) = F/N.
 
 use crate::error::{Error, Result};
+use crate::fem::problem::{solve, LoadCase, Prepared, Timings};
+use crate::fem::recovery::{elements_touching, nodal_stresses_from};
+use crate::linalg::solve::{SolveReport, SolverOptions};
 use crate::precursors::fe::UnitFields;
-use crate::problem::{solve, LoadCase, Prepared, Timings};
-use crate::recovery::{elements_touching, nodal_stresses_from};
 use crate::scene::{PlateModel, Scene, SceneModel};
-use crate::solve::{SolveReport, SolverOptions};
 use std::time::Instant;
 
 /// Figures of one load case (all stresses divided by the mean pressure N/L).
@@ -286,7 +286,7 @@ fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
     let mut w = vec![0.0; sm.mesh.n_nodes()];
     let mut f = vec![0.0; 2 * sm.mesh.n_nodes()];
     // A unit normal traction's consistent forces are exactly these integrals.
-    crate::loads::add_edge_traction(&sm.mesh, &sm.interface_set, &|_| [0.0, 1.0], &mut f)
+    crate::fem::loads::add_edge_traction(&sm.mesh, &sm.interface_set, &|_| [0.0, 1.0], &mut f)
         .expect("interface edges exist");
     for k in 0..sm.mesh.n_nodes() {
         w[k] = f[2 * k + 1];

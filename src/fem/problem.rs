@@ -2,12 +2,12 @@
 //! analyse, factorise, solve all load cases at once, expand to full displacements.
 //! Each phase is timed so benchmarks and convergence runs can report where time goes.
 
-use crate::assembly::{Assembler, Model};
-use crate::constraints::{Constraints, Reduction};
 use crate::error::{Error, Result};
-use crate::ordering::{bisection, nested_dissection};
-use crate::recovery::internal_forces;
-use crate::solve::{Ordering, SolveReport, Solver, SolverOptions};
+use crate::fem::assembly::{Assembler, Model};
+use crate::fem::constraints::{Constraints, Reduction};
+use crate::fem::ordering::{bisection, nested_dissection};
+use crate::fem::recovery::internal_forces;
+use crate::linalg::solve::{Ordering, SolveReport, Solver, SolverOptions};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -108,7 +108,11 @@ pub struct Prepared {
 }
 
 impl Prepared {
-    pub fn new(mesh: &crate::mesh::Mesh, constraints: &Constraints, opts: &SolverOptions) -> Result<Self> {
+    pub fn new(
+        mesh: &crate::fem::mesh::Mesh,
+        constraints: &Constraints,
+        opts: &SolverOptions,
+    ) -> Result<Self> {
         let clock = Instant::now();
         let red = constraints.reduce()?;
         let mut options = opts.clone();
@@ -233,7 +237,7 @@ fn probe_vector(n: usize) -> impl Iterator<Item = f64> {
 }
 
 /// max_j sum_i |K_ij| (= the infinity norm) of the symmetric matrix stored by its lower triangle.
-fn norm_1_sym(p: &crate::assembly::Pattern, values: &[f64]) -> f64 {
+fn norm_1_sym(p: &crate::fem::assembly::Pattern, values: &[f64]) -> f64 {
     let mut col = vec![0.0; p.n];
     for j in 0..p.n {
         for k in p.col(j) {

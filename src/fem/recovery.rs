@@ -3,10 +3,10 @@
 //! and averaged between elements, internal forces K u for consistent reactions, and
 //! error norms against exact fields.
 
-use crate::assembly::Model;
-use crate::element::qua4::StrainCorrection;
-use crate::element::stiffness::{accurate_rule, map_point, stiffness_rule, strain, MAX_DOFS, MAX_NODES};
-use crate::element::ElementKind;
+use crate::fem::assembly::Model;
+use crate::fem::element::qua4::StrainCorrection;
+use crate::fem::element::stiffness::{accurate_rule, map_point, stiffness_rule, strain, MAX_DOFS, MAX_NODES};
+use crate::fem::element::ElementKind;
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 use std::sync::OnceLock;

@@ -2,15 +2,15 @@
 //! one condition per side (clamped, roller, prescribed displacement, traction, or free), solved
 //! by the same pipeline as the paper's check. Reactions are reported per side.
 
-use crate::assembly::Model;
-use crate::constraints::{dof, Constraints};
-use crate::element::stiffness::ElementChoice;
 use crate::error::{Error, Result};
-use crate::material::Material;
-use crate::mesh::Mesh;
-use crate::mesher::Rectangle;
-use crate::problem::{solve, LoadCase, Solution};
-use crate::solve::SolverOptions;
+use crate::fem::assembly::Model;
+use crate::fem::constraints::{dof, Constraints};
+use crate::fem::element::stiffness::ElementChoice;
+use crate::fem::material::Material;
+use crate::fem::mesh::Mesh;
+use crate::fem::mesher::Rectangle;
+use crate::fem::problem::{solve, LoadCase, Solution};
+use crate::linalg::solve::SolverOptions;
 
 pub const SIDES: [&str; 4] = ["bottom", "right", "top", "left"];
 
@@ -101,7 +101,7 @@ impl RectangleProblem {
                 Side::Clamped => nodes.iter().for_each(|&n| (0..2).for_each(|k| set(dof(n, k), 0.0))),
                 Side::Roller => nodes.iter().for_each(|&n| set(dof(n, normal), 0.0)),
                 Side::Displaced(u) => nodes.iter().for_each(|&n| (0..2).for_each(|k| set(dof(n, k), u[k]))),
-                Side::Traction(t) => crate::loads::add_edge_traction(&mesh, name, &|_| t, &mut f)?,
+                Side::Traction(t) => crate::fem::loads::add_edge_traction(&mesh, name, &|_| t, &mut f)?,
             }
         }
         let mut model = Model::new(&mesh, self.material);

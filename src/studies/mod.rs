@@ -1,0 +1,8 @@
+//! What tribofe computes with the engine, each returning numbers for [`crate::report`] to
+//! format: the paper's check ([`check`]), mesh and element convergence ([`convergence`]),
+//! where methods fail ([`stability`]) and phase timings ([`bench`]).
+
+pub mod bench;
+pub mod check;
+pub mod convergence;
+pub mod stability;
