@@ -17,6 +17,7 @@
 pub mod manufactured;
 pub mod roots;
 pub mod strip;
+pub mod thin_layer;
 pub mod williams;
 
 use crate::{Error, Result};

@@ -5,6 +5,7 @@ mod bench;
 mod check;
 mod converge;
 mod precursors;
+mod scene_args;
 mod solve;
 mod stability;
 

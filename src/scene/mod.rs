@@ -14,7 +14,10 @@
 //!  x = -L/2                     x = L/2
 //! ```
 
+pub mod overrides;
 pub mod rectangle;
+
+pub use overrides::Overrides;
 
 use crate::error::{Error, Result};
 use crate::fem::assembly::Model;
@@ -209,6 +212,14 @@ impl Scene {
         pos("loading.height (m)", self.loading.height)?;
         pos("mesh.h (m)", self.mesh.h)?;
         pos("report.tol", self.report.tol)?;
+        if let Some(g) = self.mesh.grading {
+            if !(g.is_finite() && g >= 1.0) {
+                return Err(Error::input("mesh.grading", format!("{g} must be a growth ratio >= 1")));
+            }
+        }
+        if let Some(m) = self.mesh.h_max {
+            pos("mesh.h_max (m)", m)?;
+        }
         Material::plane_strain(self.block.young, self.block.poisson)?;
         if self.plate.model == PlateModel::Elastic {
             Material::plane_strain(self.plate.young, self.plate.poisson)?;
