@@ -8,6 +8,7 @@ mod precursors;
 mod scene_args;
 mod solve;
 mod stability;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 
@@ -43,6 +44,9 @@ pub enum Command {
     /// Numerical stability: stiff elastic plate, near-incompressibility, element shape, thin layers, singular corners.
     #[command(allow_negative_numbers = true)]
     Stability(stability::Args),
+    /// The check over a grid of scene parameters: model, corrected model and FE, verdicts, CSV and maps.
+    #[command(allow_negative_numbers = true)]
+    Sweep(sweep::Args),
 }
 
 pub fn run(cli: Cli) -> tribofe::Result<()> {
@@ -53,5 +57,6 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Precursors(args) => precursors::run(args),
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
+        Command::Sweep(a) => sweep::run(a),
     }
 }

@@ -15,20 +15,20 @@ pub struct SceneArgs {
     #[arg(long, value_name = "FILE")]
     pub write_scene: Option<PathBuf>,
     /// Block length L, m (paper: 0.4).
-    #[arg(long)]
-    pub length: Option<f64>,
+    #[arg(long, value_parser = parse_values)]
+    pub length: Option<Values>,
     /// Block thickness t, m (paper: 0.002).
-    #[arg(long)]
-    pub thickness: Option<f64>,
+    #[arg(long, value_parser = parse_values)]
+    pub thickness: Option<Values>,
     /// Block Young's modulus E, Pa (paper: 2e3).
-    #[arg(long)]
-    pub young: Option<f64>,
+    #[arg(long, value_parser = parse_values)]
+    pub young: Option<Values>,
     /// Block Poisson ratio nu, dimensionless, in (-1, 0.5) (paper: 0.4).
-    #[arg(long)]
-    pub poisson: Option<f64>,
+    #[arg(long, value_parser = parse_values)]
+    pub poisson: Option<Values>,
     /// Height H of the tangential loading point above the interface, m (paper: 0.04).
-    #[arg(long)]
-    pub height: Option<f64>,
+    #[arg(long, value_parser = parse_values)]
+    pub height: Option<Values>,
     /// Load cases as F/N ratios, dimensionless, comma separated (paper: 0,0.41,0.82).
     #[arg(long, value_delimiter = ',')]
     pub fn_ratios: Option<Vec<f64>>,
@@ -67,14 +67,38 @@ pub struct SceneArgs {
     pub mesh: Option<PathBuf>,
 }
 
+/// The values of a sweepable flag: one number, a list `a,b,c`, or a range `a:b:n` (n points,
+/// both ends included, linear) or `a:b:ng` (geometric). Commands other than `sweep` take one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Values(pub Vec<f64>);
+
+fn parse_values(s: &str) -> Result<Values, String> {
+    tribofe::studies::sweep::parse_values(s).map(Values).map_err(|e| e.to_string())
+}
+
+fn one(flag: &str, v: &Option<Values>) -> tribofe::Result<Option<f64>> {
+    match v {
+        None => Ok(None),
+        Some(Values(x)) if x.len() == 1 => Ok(Some(x[0])),
+        Some(Values(x)) => Err(tribofe::Error::input(
+            format!("--{flag}"),
+            format!(
+                "{} values given; this command takes one (lists and ranges are for `tribofe sweep`)",
+                x.len()
+            ),
+        )),
+    }
+}
+
 impl SceneArgs {
-    pub fn overrides(&self) -> Overrides {
-        Overrides {
-            length: self.length,
-            thickness: self.thickness,
-            young: self.young,
-            poisson: self.poisson,
-            height: self.height,
+    /// The overrides, each sweepable flag holding one value.
+    pub fn overrides(&self) -> tribofe::Result<Overrides> {
+        Ok(Overrides {
+            length: one("length", &self.length)?,
+            thickness: one("thickness", &self.thickness)?,
+            young: one("young", &self.young)?,
+            poisson: one("poisson", &self.poisson)?,
+            height: one("height", &self.height)?,
             fn_ratios: self.fn_ratios.clone(),
             plate: self.plate,
             plate_thickness: self.plate_thickness,
@@ -87,7 +111,7 @@ impl SceneArgs {
             element: self.element.clone(),
             mesh: self.mesh.clone(),
             tol: self.tol,
-        }
+        })
     }
 }
 
@@ -98,7 +122,7 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
         Some(p) => Scene::from_file(p)?,
         None => Scene::default(),
     };
-    let s = base.apply(&args.overrides())?;
+    let s = base.apply(&args.overrides()?)?;
     if let Some(path) = &args.write_scene {
         tribofe::report::write_atomic(path, s.to_toml()?.as_bytes())?;
     }

@@ -5,6 +5,7 @@ pub mod check;
 pub mod convergence;
 pub mod precursors;
 pub mod stability;
+pub mod sweep;
 
 use crate::{Error, Result};
 use std::io::Write;

@@ -6,3 +6,4 @@ pub mod bench;
 pub mod check;
 pub mod convergence;
 pub mod stability;
+pub mod sweep;
