@@ -5,6 +5,7 @@ mod bench;
 mod check;
 mod converge;
 mod precursors;
+mod slide;
 mod solve;
 mod stability;
 
@@ -36,6 +37,9 @@ pub enum Command {
     /// Precursors to sliding (Scheibert & Dysthe model): event table, fig. 4, or the n(r, g) map (fig. 5).
     #[command(allow_negative_numbers = true)]
     Precursors(precursors::Args),
+    /// Frictional interface (coulomb, static-kinetic): N then X at height H, solved event by event.
+    #[command(allow_negative_numbers = true)]
+    Slide(slide::Args),
     /// Pipeline benchmark: phase times, sizes, GFLOP/s and peak memory on ~1e6-DOF problems.
     #[command(allow_negative_numbers = true)]
     Bench(bench::Args),
@@ -50,6 +54,7 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Check(a) => check::run(a),
         Command::Converge(a) => converge::run(a),
         Command::Precursors(args) => precursors::run(args),
+        Command::Slide(a) => slide::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
     }

@@ -18,7 +18,7 @@ fn plot_err(figure: &str) -> impl Fn(Box<dyn std::error::Error>) -> Error + '_ {
 }
 
 /// Runs a plotting closure on an in-memory SVG of the given size.
-fn render(
+pub(crate) fn render(
     figure: &str,
     size: (u32, u32),
     draw: impl FnOnce(

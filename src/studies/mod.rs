@@ -5,4 +5,5 @@
 pub mod bench;
 pub mod check;
 pub mod convergence;
+pub mod slide;
 pub mod stability;

@@ -1,0 +1,192 @@
+//! Condensation of the block and the rigid plate onto the interface DOFs and the plate's
+//! three DOFs: one factorisation, one solve with 2n + 3 unit load cases (a unit prescribed
+//! value on one boundary DOF each); the consistent reactions of each case are a column of the
+//! dense symmetric Schur complement S (f_b = S b, forces on the block/plate at the boundary
+//! DOFs).
+//!
+//! Boundary order: u_0..u_{n-1}, v_0..v_{n-1} (interface nodes sorted by x), then the plate's
+//! (U0, V0, theta) with u = U0 - theta (y - t), v = V0 + theta x on the top y = t. The drive
+//! height H enters only through [`Condensed::at_height`], which moves the drive point
+//! algebraically (U_H = U0 - theta (H - t)), so one condensation serves every H.
+
+use crate::error::{Error, Result};
+use crate::fem::constraints::dof;
+use crate::fem::problem::{solve, LoadCase};
+use crate::linalg::solve::SolverOptions;
+use crate::scene::{PlateModel, Scene};
+use rayon::prelude::*;
+
+/// The condensed block + plate.
+#[derive(Debug, Clone)]
+pub struct Condensed {
+    /// Interface nodes.
+    pub n: usize,
+    /// Node positions along the interface, m (sorted), and tributary widths, m.
+    pub x: Vec<f64>,
+    pub w: Vec<f64>,
+    /// Block length, thickness, m.
+    pub l: f64,
+    pub t: f64,
+    /// Plane-strain modulus E/(1 - nu^2), Pa (scales for tolerances).
+    pub e_star: f64,
+    /// Dense symmetric S, (2n + 3)^2, row-major, N/m per m.
+    pub s: Vec<f64>,
+    /// Largest |S_ij - S_ji| / max |S|, and largest |S r| / (max |S| |r|) over the three rigid motions.
+    pub asymmetry: f64,
+    pub rigid_residual: f64,
+}
+
+impl Condensed {
+    pub fn dim(&self) -> usize {
+        2 * self.n + 3
+    }
+
+    /// S with the plate DOFs (U_H, V, theta): U_H is the plate's horizontal displacement at
+    /// height `h` (m) above the interface.
+    pub fn at_height(&self, h: f64) -> Vec<f64> {
+        let nd = self.dim();
+        let (iu, ith) = (2 * self.n, 2 * self.n + 2);
+        // b_old = T b_new: U0 = U_H + (h - t) theta.
+        let c = h - self.t;
+        let mut s = self.s.clone();
+        // Columns: S T.
+        for i in 0..nd {
+            s[i * nd + ith] += c * s[i * nd + iu];
+        }
+        // Rows: T^T (S T).
+        for j in 0..nd {
+            s[ith * nd + j] += c * s[iu * nd + j];
+        }
+        s
+    }
+}
+
+/// Element kinds `slide` supports: linear ones, whose nodal forces over tributary widths are
+/// the tractions.
+fn check_element(scene: &Scene) -> Result<()> {
+    let name = scene.mesh.element.as_str();
+    if ["qua4", "qua4-sri", "qua4-im", "tri3"].contains(&name) {
+        Ok(())
+    } else {
+        Err(Error::input(
+            "mesh.element",
+            format!("'{name}': the frictional interface supports linear elements only (qua4, qua4-sri, qua4-im, tri3); quadratic elements need the consistent edge mass of the contact law, not implemented"),
+        ))
+    }
+}
+
+/// Condenses the scene's block and rigid plate (the loading height of `scene` is ignored).
+pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
+    check_element(scene)?;
+    if scene.plate.model != PlateModel::Rigid {
+        return Err(Error::input(
+            "plate.model",
+            "the frictional interface needs the rigid plate (--plate rigid); the elastic plate is not condensed",
+        ));
+    }
+    let mut sc = scene.clone();
+    // Reference height of U0: the top of the block.
+    sc.loading.height = scene.block.thickness;
+    let mut sm = sc.build()?;
+    let th = sm.dof_theta.expect("rigid plate has theta");
+    sm.constraints.fix(th);
+    let model = sm.model();
+    let n = sm.interface.len();
+    if n < 3 {
+        return Err(Error::input("mesh", "the interface needs at least 3 nodes"));
+    }
+    let mut bdofs: Vec<usize> = sm.interface.iter().map(|&k| dof(k, 0)).collect();
+    bdofs.extend(sm.interface.iter().map(|&k| dof(k, 1)));
+    bdofs.extend([sm.dof_u, sm.dof_v, th]);
+    let nd = bdofs.len();
+    let nf = sm.constraints.n_fixed();
+    if nf != nd {
+        return Err(Error::input("scene", format!("{nf} prescribed DOFs, expected {nd}")));
+    }
+    let slots: Vec<usize> = bdofs.iter().map(|&d| sm.constraints.fixed_slot(d).unwrap()).collect();
+    let cases: Vec<LoadCase> = slots
+        .iter()
+        .map(|&j| {
+            let mut g = vec![0.0; nf];
+            g[j] = 1.0;
+            LoadCase { prescribed: g, forces: vec![] }
+        })
+        .collect();
+    let sol = solve(&model, &sm.constraints, &cases, opts, "check the mesh and the material values")?;
+    // Element stiffnesses once, then the reactions of every case from them.
+    let mut touch = sm.interface.clone();
+    touch.extend(sm.mesh.set_nodes(&sm.top_set)?);
+    let elems = crate::fem::recovery::elements_touching(&model, &touch);
+    let kes: Vec<(Vec<usize>, Vec<f64>)> = elems
+        .iter()
+        .map(|&e| {
+            let mut ke = vec![0.0; crate::fem::element::stiffness::MAX_DOFS.pow(2)];
+            model.element_stiffness(e, &mut ke)?;
+            Ok((model.mesh.element_nodes(e).to_vec(), ke))
+        })
+        .collect::<Result<_>>()?;
+    let red = &sol.reduction;
+    let cols: Vec<Vec<f64>> = sol
+        .u
+        .par_iter()
+        .map(|u| {
+            let mut r = vec![0.0; red.n_full];
+            for (nodes, ke) in &kes {
+                let nd = 2 * nodes.len();
+                for a in 0..nd {
+                    let mut fa = 0.0;
+                    for b in 0..nd {
+                        fa += ke[a * nd + b] * u[2 * nodes[b / 2] + b % 2];
+                    }
+                    r[2 * nodes[a / 2] + a % 2] += fa;
+                }
+            }
+            let fixed = red.fixed_reactions(&r);
+            slots.iter().map(|&j| fixed[j]).collect()
+        })
+        .collect();
+    let mut s = vec![0.0; nd * nd];
+    for (j, c) in cols.iter().enumerate() {
+        for i in 0..nd {
+            s[i * nd + j] = c[i];
+        }
+    }
+    let smax = s.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut asym = 0.0f64;
+    for i in 0..nd {
+        for j in 0..i {
+            asym = asym.max((s[i * nd + j] - s[j * nd + i]).abs() / smax);
+        }
+    }
+    // Symmetrise (the asymmetry is round-off, reported above).
+    for i in 0..nd {
+        for j in 0..i {
+            let a = 0.5 * (s[i * nd + j] + s[j * nd + i]);
+            s[i * nd + j] = a;
+            s[j * nd + i] = a;
+        }
+    }
+    let x: Vec<f64> = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
+    let t = scene.block.thickness;
+    let mut rigid = vec![vec![0.0; nd]; 3];
+    for i in 0..n {
+        rigid[0][i] = 1.0;
+        rigid[1][n + i] = 1.0;
+        rigid[2][n + i] = x[i];
+    }
+    rigid[0][2 * n] = 1.0;
+    rigid[1][2 * n + 1] = 1.0;
+    rigid[2][2 * n] = -t;
+    rigid[2][2 * n + 2] = 1.0;
+    let mut rigid_residual = 0.0f64;
+    for r in &rigid {
+        let rn = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for i in 0..nd {
+            let v: f64 = (0..nd).map(|j| s[i * nd + j] * r[j]).sum();
+            rigid_residual = rigid_residual.max(v.abs() / (smax * rn));
+        }
+    }
+    let w = crate::studies::check::tributary_widths(&sm);
+    let e_star = scene.block.young / (1.0 - scene.block.poisson.powi(2));
+    Ok(Condensed { n, x, w, l: scene.block.length, t, e_star, s, asymmetry: asym, rigid_residual })
+}
