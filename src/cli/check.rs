@@ -51,6 +51,13 @@ pub struct Args {
 
 /// Applies the command-line overrides to the scene (file or defaults).
 pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
+    let s = scene_unvalidated(args)?;
+    s.validate()?;
+    Ok(s)
+}
+
+/// [`scene`] without the final validation, for subcommands that override more keys first.
+pub fn scene_unvalidated(args: &SceneArgs) -> tribofe::Result<Scene> {
     let mut s = match &args.scene {
         Some(p) => Scene::from_file(p)?,
         None => Scene::default(),
@@ -76,7 +83,6 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
     if let Some(m) = &args.mesh {
         s.mesh.file = Some(m.clone());
     }
-    s.validate()?;
     Ok(s)
 }
 

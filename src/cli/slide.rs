@@ -1,6 +1,6 @@
 //! `tribofe slide`: the frictional interface loaded by N then X at height H, event by event.
 
-use super::check::{scene as scene_from, SceneArgs};
+use super::check::{scene_unvalidated as scene_from, SceneArgs};
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;

@@ -112,7 +112,12 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
             LoadCase { prescribed: g, forces: vec![] }
         })
         .collect();
-    let sol = solve(&model, &sm.constraints, &cases, opts, "check the mesh and the material values")?;
+    // The componentwise backward error is meaningless here: a unit displacement at one end of
+    // a long thin strip decays like exp(-pi x/t), so far rows hold underflowing values whose
+    // relative residual is O(1). The normwise checks that matter are done on S below
+    // (symmetry and rigid-body null space, both to round-off).
+    let o = SolverOptions { residual_limit: f64::INFINITY, ..opts.clone() };
+    let sol = solve(&model, &sm.constraints, &cases, &o, "check the mesh and the material values")?;
     // Element stiffnesses once, then the reactions of every case from them.
     let mut touch = sm.interface.clone();
     touch.extend(sm.mesh.set_nodes(&sm.top_set)?);
@@ -185,6 +190,14 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
             let v: f64 = (0..nd).map(|j| s[i * nd + j] * r[j]).sum();
             rigid_residual = rigid_residual.max(v.abs() / (smax * rn));
         }
+    }
+    if !(asym < 1e-9 && rigid_residual < 1e-9) {
+        return Err(Error::Untrustworthy {
+            detail: format!(
+                "the condensed interface stiffness is not symmetric ({asym:.1e}) or does not annihilate the rigid motions ({rigid_residual:.1e}) to 1e-9"
+            ),
+            hint: "refine the mesh or check the material values".into(),
+        });
     }
     let w = crate::studies::check::tributary_widths(&sm);
     let e_star = scene.block.young / (1.0 - scene.block.poisson.powi(2));

@@ -144,6 +144,8 @@ pub struct Event {
     pub f_relaxed: f64,
     /// Nodes of the region that slipped backwards during the relaxation (paper rule).
     pub backslip: usize,
+    /// Every contact node slipping at the end of the relaxation (then F* = mu_d N).
+    pub all_slipping: bool,
 }
 
 #[derive(Debug, Clone)]
@@ -736,7 +738,6 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     let mut ev = Event::simple("normal-load", &st, pre.first().copied().unwrap_or(0));
     if !pre.is_empty() {
         ev.kind = "edge-preslip";
-        ev.region = Some((pre[0], pre[pre.len() - 1]));
     }
     prev_u.clone_from(&st.u);
     push(&mut out, pb, ev, st)?;
@@ -754,7 +755,9 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     }
     let mut x_end = pb.x_max.unwrap_or(f64::INFINITY);
     let mut last_region: Option<(usize, usize)> = None;
-    let mut last_x = f64::NAN;
+    // Nodes slipped in an instability since the last whole-interface slip: an event nucleating
+    // next to this set's run from the trailing edge is the tip advance of an arrested front.
+    let mut slipped = vec![false; n];
     let frac = |out: &Run, lam: f64, x_end: f64| -> f64 {
         let by_x = if x_end.is_finite() { lam / x_end } else { 0.0 };
         let by_c = if is_sk { out.sliding_events as f64 / pb.cycles.max(1) as f64 } else { 0.0 };
@@ -786,7 +789,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                         push(&mut out, pb, Event::simple(kind, &st, i), st)?;
                     }
                     let f_before = a.f(sv.iu(), lam);
-                    let (region, backslip) = instability(&mut sv, &a, lam, i0)?;
+                    let (region, backslip, all_slip) = instability(&mut sv, &a, lam, i0)?;
                     // Zeno guard: a node that relaxes alone twice in a row (the trailing corner
                     // as p -> 0) slides on continuously at mu_d (creep) until its slip rate
                     // reverses or it opens.
@@ -800,6 +803,9 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                     let st = sv.record(&a2, lam, Some(&prev_u));
                     prev_u.clone_from(&st.u);
                     let contact: Vec<usize> = (0..n).filter(|&k| sv.states[k] != NodeState::Open).collect();
+                    // Whole-interface slip: the event reached every contact node (with the
+                    // overdamped rule some may have re-stuck before the end of the relaxation;
+                    // `all_slipping` says whether all were slipping at its end, F* = mu_d N).
                     let covers = contact.first().is_some_and(|&c0| region.0 <= c0)
                         && contact.last().is_some_and(|&c1| region.1 >= c1);
                     let kind = if zeno {
@@ -807,15 +813,23 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                     } else if covers {
                         out.sliding_events += 1;
                         "sliding"
-                    } else if lam == last_x && last_region.is_some_and(|r| i0 + 1 >= r.0 && i0 <= r.1 + 1) {
-                        "tip-advance"
                     } else if contact.first() == Some(&region.0) {
                         "precursor"
                     } else {
-                        "nucleation"
+                        let c0 = contact.first().copied().unwrap_or(0);
+                        let tip = (c0..n).take_while(|&k| slipped[k]).last();
+                        if tip.is_some_and(|k| region.0 <= k + 1) {
+                            "tip-advance"
+                        } else {
+                            "nucleation"
+                        }
                     };
+                    if kind == "sliding" {
+                        slipped.iter_mut().for_each(|v| *v = false);
+                    } else {
+                        (region.0..=region.1).for_each(|k| slipped[k] = true);
+                    }
                     last_region = Some(region);
-                    last_x = lam;
                     let ev = Event {
                         kind,
                         f: f_before,
@@ -824,6 +838,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                         region: Some(region),
                         f_relaxed: st.f,
                         backslip,
+                        all_slipping: all_slip,
                     };
                     push(&mut out, pb, ev, st)?;
                     progress(frac(&out, lam, x_end));
@@ -839,7 +854,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
             push(&mut out, pb, Event::simple(kind, &st, i), st)?;
         }
         // Coulomb: the first whole-interface slip; by default the run ends 5 % further.
-        if !is_sk && !sliding_seen && lam > 0.0 {
+        if !is_sk && !sliding_seen {
             let contact = (0..n).filter(|&k| sv.states[k] != NodeState::Open).count();
             let slipping = (0..n).filter(|&k| matches!(sv.states[k], NodeState::Slip(_))).count();
             if contact > 0 && slipping == contact {
@@ -849,7 +864,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                 prev_u.clone_from(&st.u);
                 push(&mut out, pb, Event::simple("sliding", &st, 0), st)?;
                 if pb.x_max.is_none() {
-                    x_end = lam * 1.05;
+                    x_end = lam + 0.05 * lam.max(pb.n_force / k_bonded);
                 }
             }
         }
@@ -935,7 +950,16 @@ fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<
 
 impl Event {
     fn simple(kind: &'static str, st: &State, node: usize) -> Event {
-        Event { kind, f: st.f, x: st.x, node, region: None, f_relaxed: st.f, backslip: 0 }
+        Event {
+            kind,
+            f: st.f,
+            x: st.x,
+            node,
+            region: None,
+            f_relaxed: st.f,
+            backslip: 0,
+            all_slipping: false,
+        }
     }
 }
 
@@ -963,9 +987,10 @@ fn finish(mut out: Run, sv: &Solver) -> Result<Run> {
 }
 
 /// Static-kinetic instability nucleated at i0 at fixed X = lam: applies the rule, relaxes,
-/// re-sticks everything in contact. Returns the slipped region (first, last node) and the
-/// number of region nodes that slipped backwards.
-fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usize, usize), usize)> {
+/// re-sticks everything in contact. Returns the slipped region (first, last node), the
+/// number of region nodes that slipped backwards, and whether every contact node was slipping
+/// at the end of the relaxation (whole-interface slip).
+fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usize, usize), usize, bool)> {
     let n = sv.n;
     let tf = 1e-9 * sv.fscale;
     let td = 1e-9 * sv.dscale;
@@ -1090,6 +1115,8 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
         }
     }
     let b = sv.solve()?;
+    let all_slip = (0..n).all(|i| matches!(sv.states[i], NodeState::Slip(_) | NodeState::Open))
+        && (0..n).any(|i| matches!(sv.states[i], NodeState::Slip(_)));
     let mut backslip = 0;
     let mut ch = Vec::new();
     for i in 0..n {
@@ -1104,5 +1131,5 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
     sv.set_many(&ch)?;
     let first = (0..n).find(|&i| in_region[i]).unwrap_or(i0);
     let last = (0..n).rev().find(|&i| in_region[i]).unwrap_or(i0);
-    Ok(((first, last), backslip))
+    Ok(((first, last), backslip, all_slip))
 }
