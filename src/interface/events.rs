@@ -401,22 +401,32 @@ impl<'a> Solver<'a> {
             Phase::Drive => fk0 = -self.n_force,
         }
         let s = self.s;
-        let dot = |row: usize, v: &[f64]| -> f64 {
-            s[row * nd..(row + 1) * nd].iter().zip(v).map(|(a, b)| a * b).sum()
-        };
+        // g = S b_c for both columns in one pass over S; the free rows' right-hand sides are
+        // read from it, and f = g + sum_k z_k S[free_k, :] (S symmetric) afterwards.
+        let mut g0 = vec![0.0; nd];
+        let mut g1 = vec![0.0; nd];
+        for i in 0..nd {
+            let row = &s[i * nd..(i + 1) * nd];
+            let (mut x0, mut x1) = (0.0, 0.0);
+            for j in 0..nd {
+                x0 += row[j] * b0[j];
+                x1 += row[j] * b1[j];
+            }
+            g0[i] = x0;
+            g1[i] = x1;
+        }
         for attempt in 0..2 {
             let m = self.free.dofs.len();
             let mut r0 = vec![0.0; m];
             let mut r1 = vec![0.0; m];
-            // b0, b1 hold only the constrained values here.
             for (k, &a) in self.free.dofs.iter().enumerate() {
                 let (mut s0, mut s1) = if a == iv { (fk0, fk1) } else { (0.0, 0.0) };
-                s0 -= dot(a, &b0);
-                s1 -= dot(a, &b1);
+                s0 -= g0[a];
+                s1 -= g1[a];
                 let c = self.slip_coef(a);
                 if c != 0.0 {
-                    s0 -= c * dot(a + self.n, &b0);
-                    s1 -= c * dot(a + self.n, &b1);
+                    s0 -= c * g0[a + self.n];
+                    s1 -= c * g1[a + self.n];
                 }
                 r0[k] = s0;
                 r1[k] = s1;
@@ -434,17 +444,14 @@ impl<'a> Solver<'a> {
                 c0[a] = z0[k];
                 c1[a] = z1[k];
             }
-            let mut f0 = vec![0.0; nd];
-            let mut f1 = vec![0.0; nd];
-            for i in 0..nd {
-                let row = &s[i * nd..(i + 1) * nd];
-                let (mut x0, mut x1) = (0.0, 0.0);
+            let (mut f0, mut f1) = (g0.clone(), g1.clone());
+            for (k, &a) in self.free.dofs.iter().enumerate() {
+                let (za, zb) = (z0[k], z1[k]);
+                let row = &s[a * nd..(a + 1) * nd];
                 for j in 0..nd {
-                    x0 += row[j] * c0[j];
-                    x1 += row[j] * c1[j];
+                    f0[j] += za * row[j];
+                    f1[j] += zb * row[j];
                 }
-                f0[i] = x0;
-                f1[i] = x1;
             }
             // Residual of the free equations relative to the largest force: a drifting
             // inverse (many bordering updates) is rebuilt once.
