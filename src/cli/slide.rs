@@ -174,6 +174,27 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         res.run.updates,
         res.run.refreshes
     );
+    if let Some(o) = tribofe::studies::slide::front_offset(&res) {
+        println!(
+            "slip front vs thin-layer closed form (|x_s| < 0.3 L, {} states): offset {:.3} t (range {:.3} .. {:.3} t)",
+            o.samples, o.mean_t, o.min_t, o.max_t
+        );
+    }
+    if let Some(c) = tribofe::studies::slide::compare_paper(&res) {
+        let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+        println!(
+            "paper's iteration (r = {:.4}, g = {:.4}): n = {}, F_1 = {:.4}, x_1 = {:.4}, F_max = {:.4}",
+            c.r, c.g, c.n, c.f1, c.x1, c.f_max
+        );
+        println!(
+            "FE: {} precursors before the first whole slip ({} longer than 5 t), first long one F = {}, x = {}; last peak F = {}",
+            c.n_fe,
+            c.n_fe_long,
+            f(c.f1_fe),
+            f(c.x1_fe),
+            f(c.f_max_fe)
+        );
+    }
     println!(
         "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml}}",
         a.out.display()

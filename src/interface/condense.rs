@@ -108,6 +108,18 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
     // One assembly and factorisation; the 2n + 3 right-hand sides -T^T K G e_j are built here
     // from the few elements each unit value touches (the pipeline's per-case assembly of
     // prescribed values costs elements x cases, 2 s at 1000 interface nodes).
+    let interior = (0..sm.mesh.n_nodes()).any(|k| {
+        sm.constraints.fixed_slot(dof(k, 0)).is_none() && {
+            let y = sm.mesh.nodes[k][1];
+            y > 0.0 && y < scene.block.thickness
+        }
+    });
+    if !interior {
+        return Err(Error::input(
+            "mesh.n_thick",
+            "the block has no node between the interface and the plate: use at least 2 elements through the thickness (--n-thick 2)",
+        ));
+    }
     let red = sm.constraints.reduce()?;
     let asm = Assembler::new(&sm.mesh, &red)?;
     let (values, _) = asm.assemble(&model, &red, &[vec![]], &[vec![0.0; nf]])?;
