@@ -176,13 +176,13 @@ pub fn fig4_svg(r: &SlideResult) -> Result<String> {
     })
 }
 
-/// Space-time picture: for each event with a slipped region, a segment over its extent x/L at
-/// its force F/N; continuous slip (coulomb) as the slipping nodes of every state.
+/// Space-time picture: for each instability its slipped extent x/L at its force F/N (blue);
+/// for continuous slip (coulomb, creep) each state's runs of slipping nodes at its F/N (red).
 pub fn fronts_svg(r: &SlideResult) -> Result<String> {
     let c = &r.condensed;
     let n = r.options.n_force;
     let mut segs: Vec<(f64, f64, f64)> = Vec::new();
-    let mut dots: Vec<(f64, f64)> = Vec::new();
+    let mut runs: Vec<(f64, f64, f64)> = Vec::new();
     for (e, st) in r.run.events.iter().zip(&r.run.states) {
         if st.phase != Phase::Drive {
             continue;
@@ -190,9 +190,14 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
         if let Some((a, b)) = e.region {
             segs.push((c.x[a] / c.l, c.x[b] / c.l, e.f / n));
         }
-        for i in 0..c.n {
+        let mut i = 0;
+        while i < c.n {
             if matches!(st.states[i], NodeState::Slip(_)) {
-                dots.push((c.x[i] / c.l, st.f / n));
+                let j = (i..c.n).find(|&k| !matches!(st.states[k], NodeState::Slip(_))).unwrap_or(c.n);
+                runs.push((c.x[i] / c.l, c.x[j - 1] / c.l, st.f / n));
+                i = j;
+            } else {
+                i += 1;
             }
         }
     }
@@ -209,10 +214,21 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
             .x_desc("position along the interface x / L (trailing edge -1/2)  (dimensionless)")
             .y_desc("friction force F / N  (dimensionless)")
             .draw()?;
-        chart.draw_series(
-            segs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], BLUE.stroke_width(2))),
-        )?;
-        chart.draw_series(dots.iter().map(|&(x, f)| Circle::new((x, f), 1, RED.filled())))?;
+        chart
+            .draw_series(runs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], RED.stroke_width(1))))?
+            .label("slipping nodes of each state (continuous slip)")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED));
+        chart
+            .draw_series(segs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], BLUE.stroke_width(2))))?
+            .label("extent of each instability at its force")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT, 14))
+            .draw()?;
         Ok(())
     })
 }
