@@ -147,7 +147,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     tribofe::report::slide::write(&res, &a.out, &header)?;
     let worst = res.run.states.iter().map(|s| s.violations.max()).fold(0.0, f64::max);
     let last = res.run.states.last().unwrap();
-    println!(
+    outln!(
         "{}: {} interface nodes, {} events ({}), {} whole-interface slips",
         law.name(),
         res.condensed.n,
@@ -159,13 +159,13 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             .join(", "),
         res.run.sliding_events
     );
-    println!(
+    outln!(
         "final F/N = {:.6} at X = {:.4e} m; largest violation (equilibrium, p >= 0, gap >= 0, p gap = 0, friction) {:.1e} of N/n",
         last.f / a.n_force,
         last.x,
         worst
     );
-    println!(
+    outln!(
         "condensation {:.3} s (S symmetric to {:.1e}, rigid motions to {:.1e}); events {:.3} s ({} bordering updates, {} full LU)",
         res.condense_s,
         res.condensed.asymmetry,
@@ -175,18 +175,23 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         res.run.refreshes
     );
     if let Some(o) = tribofe::studies::slide::front_offset(&res) {
-        println!(
+        outln!(
             "slip front vs thin-layer closed form (|x_s| < 0.3 L, {} states): offset {:.3} t (range {:.3} .. {:.3} t)",
             o.samples, o.mean_t, o.min_t, o.max_t
         );
     }
     if let Some(c) = tribofe::studies::slide::compare_paper(&res) {
         let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
-        println!(
+        outln!(
             "paper's iteration (r = {:.4}, g = {:.4}): n = {}, F_1 = {:.4}, x_1 = {:.4}, F_max = {:.4}",
-            c.r, c.g, c.n, c.f1, c.x1, c.f_max
+            c.r,
+            c.g,
+            c.n,
+            c.f1,
+            c.x1,
+            c.f_max
         );
-        println!(
+        outln!(
             "FE: {} precursors before the first whole slip ({} longer than 5 t), first long one F = {}, x = {}; last peak F = {}",
             c.n_fe,
             c.n_fe_long,
@@ -195,7 +200,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             f(c.f_max_fe)
         );
     }
-    println!(
+    outln!(
         "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml}}",
         a.out.display()
     );

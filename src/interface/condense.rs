@@ -128,6 +128,8 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
         detail: format!(
             "the block's stiffness is not positive definite (pivot {k}) with the interface and plate held"
         ),
+        node: None,
+        component: None,
     })?;
     // Element stiffnesses of the elements touching the interface or the top, once.
     let mut touch = sm.interface.clone();

@@ -254,6 +254,8 @@ impl<'a> Solver<'a> {
         let a = nalgebra::DMatrix::from_fn(m, m, |i, j| self.a_entry(dofs[i], dofs[j]));
         let inv = a.lu().try_inverse().ok_or_else(|| Error::Singular {
             detail: "the interface leaves the block free to move (every node open, or N <= 0)".into(),
+            node: None,
+            component: None,
         })?;
         let f = &mut self.free;
         f.pos = vec![usize::MAX; nd];

@@ -215,11 +215,15 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
             .y_desc("friction force F / N  (dimensionless)")
             .draw()?;
         chart
-            .draw_series(runs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], RED.stroke_width(1))))?
+            .draw_series(
+                runs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], RED.stroke_width(1))),
+            )?
             .label("slipping nodes of each state (continuous slip)")
             .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED));
         chart
-            .draw_series(segs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], BLUE.stroke_width(2))))?
+            .draw_series(
+                segs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], BLUE.stroke_width(2))),
+            )?
             .label("extent of each instability at its force")
             .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE.stroke_width(2)));
         chart
