@@ -15,6 +15,11 @@ run paper_sk_paper --law static-kinetic --r 0.9 --g 0.35 --rule paper
 for t in 0.008 0.004 0.002 0.001 0.0005; do
   run thin_coulomb_t$t --thickness $t --h $t --n-thick 2 --mu 0.5
 done
+# Mesh convergence of the coulomb fronts at the paper's t = 2 mm (h = t, t/2, t/4; 2 h through t).
+for p in 2:0.002 4:0.001 8:0.0005; do
+  nt=${p%:*}; h=${p#*:}
+  run mesh_coulomb_nt$nt --h $h --n-thick $nt --mu 0.5
+done
 # The paper rule against the analytic iteration, t/L -> 0, (r, g) = (0.9, 0.35) and two others.
 for t in 0.008 0.004 0.002 0.001; do
   run thin_sk_t$t --thickness $t --h $t --n-thick 2 --law static-kinetic --r 0.9 --g 0.35
