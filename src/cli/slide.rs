@@ -24,7 +24,7 @@ pub struct Args {
     /// Friction law: coulomb, static-kinetic or slip-weakening.
     #[arg(long, default_value = "coulomb")]
     pub law: String,
-    /// Coulomb coefficient (coulomb).
+    /// Coulomb coefficient (coulomb; default 0.5).
     #[arg(long)]
     pub mu: Option<f64>,
     /// Static and kinetic coefficients (static-kinetic).
@@ -32,7 +32,8 @@ pub struct Args {
     pub mu_s: Option<f64>,
     #[arg(long)]
     pub mu_d: Option<f64>,
-    /// The paper's r = mu_d/mu_s and g = 6 mu_d H/L instead of the coefficients.
+    /// The paper's r = mu_d/mu_s and g = 6 mu_d H/L instead of the coefficients
+    /// (static-kinetic default: r = 0.9, g = 0.35; coulomb takes --g alone: mu = g L/(6 H)).
     #[arg(long)]
     pub r: Option<f64>,
     #[arg(long)]

@@ -185,6 +185,9 @@ struct Solver<'a> {
     n_force: f64,
     phase: Phase,
     creep: f64,
+    /// S b0 and S b1 over the constrained values, or None to rebuild.
+    g: Option<(Vec<f64>, Vec<f64>)>,
+    g_updates: usize,
 }
 
 /// Affine solution b = b0 + lam b1, f = f0 + lam f1 over all DOFs.
@@ -360,6 +363,25 @@ impl<'a> Solver<'a> {
     /// Changes node i's state, updating the free set.
     fn set_state(&mut self, i: usize, new: NodeState, anchor: f64) -> Result<()> {
         let (n, old) = (self.n, self.states[i]);
+        // Keep g0 = S b0 current: a stuck node's anchor leaves or enters b0 (row i of S).
+        let (nd, s) = (self.nd, self.s);
+        if let Some((g0, _)) = &mut self.g {
+            let mut axpy = |a: f64| {
+                if a != 0.0 {
+                    g0.iter_mut().zip(&s[i * nd..(i + 1) * nd]).for_each(|(g, v)| *g += a * v);
+                }
+            };
+            if old == NodeState::Stick {
+                axpy(-self.anchor[i]);
+            }
+            if new == NodeState::Stick {
+                axpy(anchor);
+            }
+            self.g_updates += 1;
+            if self.g_updates > 256 {
+                self.g = None;
+            }
+        }
         let was_u = !matches!(old, NodeState::Stick);
         let was_v = matches!(old, NodeState::Open);
         if was_u {
@@ -392,6 +414,7 @@ impl<'a> Solver<'a> {
             self.states[i] = st;
             self.anchor[i] = a;
         }
+        self.g = None;
         self.refresh()
     }
 
@@ -415,20 +438,26 @@ impl<'a> Solver<'a> {
             Phase::Drive => fk0 = -self.n_force,
         }
         let s = self.s;
-        // g = S b_c for both columns in one pass over S; the free rows' right-hand sides are
-        // read from it, and f = g + sum_k z_k S[free_k, :] (S symmetric) afterwards.
-        let mut g0 = vec![0.0; nd];
-        let mut g1 = vec![0.0; nd];
-        for i in 0..nd {
-            let row = &s[i * nd..(i + 1) * nd];
-            let (mut x0, mut x1) = (0.0, 0.0);
-            for j in 0..nd {
-                x0 += row[j] * b0[j];
-                x1 += row[j] * b1[j];
+        // g = S b_c (the constrained values' forces), kept up to date by `set_state` (O(N) per
+        // change) and rebuilt in one pass over S after bulk changes or 256 updates; the free
+        // rows' right-hand sides are read from it, and f = g + sum_k z_k S[free_k, :].
+        if self.g.is_none() {
+            let mut g0 = vec![0.0; nd];
+            let mut g1 = vec![0.0; nd];
+            for i in 0..nd {
+                let row = &s[i * nd..(i + 1) * nd];
+                let (mut x0, mut x1) = (0.0, 0.0);
+                for j in 0..nd {
+                    x0 += row[j] * b0[j];
+                    x1 += row[j] * b1[j];
+                }
+                g0[i] = x0;
+                g1[i] = x1;
             }
-            g0[i] = x0;
-            g1[i] = x1;
+            self.g = Some((g0, g1));
+            self.g_updates = 0;
         }
+        let (g0, g1) = self.g.clone().expect("set above");
         for attempt in 0..2 {
             let m = self.free.dofs.len();
             let mut r0 = vec![0.0; m];
@@ -707,6 +736,8 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
         n_force: pb.n_force,
         phase: Phase::Drive,
         creep: pb.creep_fraction,
+        g: None,
+        g_updates: 0,
     };
     sv.refresh()?;
     // Bonded stiffness and the displacement scale (|V| under N) from the all-stuck solution.
@@ -721,6 +752,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     }
     sv.dscale = v_scale;
     sv.phase = Phase::Normal;
+    sv.g = None;
 
     let mut out =
         Run { events: vec![], states: vec![], k_bonded, sliding_events: 0, updates: 0, refreshes: 0 };
@@ -766,6 +798,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     // Phase 2: X from 0 with N held. Static-kinetic: the normal loading stops, so every
     // pre-slipped node sticks and re-arms to mu_s.
     sv.phase = Phase::Drive;
+    sv.g = None;
     lam = 0.0;
     if is_sk {
         for i in 0..n {
@@ -1030,6 +1063,7 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
             sv.set_state(i, NodeState::Stick, u_start[i])?;
         } else if sv.states[i] == NodeState::Stick {
             sv.anchor[i] = u_start[i];
+            sv.g = None;
         }
     }
     let mut in_region = vec![false; n];
