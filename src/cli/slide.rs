@@ -54,8 +54,8 @@ pub struct Args {
     /// Whole-interface slips (stick-slip cycles) to run, static-kinetic.
     #[arg(long, default_value_t = 10)]
     pub cycles: usize,
-    /// Cap on events.
-    #[arg(long, default_value_t = 200_000)]
+    /// Cap on events (each keeps the interface state: ~40 bytes per node).
+    #[arg(long, default_value_t = 50_000)]
     pub max_events: usize,
     /// Output directory.
     #[arg(long, default_value = "out/slide")]

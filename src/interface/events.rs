@@ -66,7 +66,7 @@ impl Default for Problem {
             law: Law::Coulomb { mu: 0.5 },
             x_max: None,
             cycles: 10,
-            max_events: 200_000,
+            max_events: 50_000,
             creep_fraction: 1e-3,
         }
     }
