@@ -280,3 +280,22 @@ fn slide_command_writes_the_named_files() {
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("mu-s"));
 }
+
+/// Linear elasticity with Coulomb friction is homogeneous of degree one in (N, X): the same
+/// events at X/N and F/N for any N (the tolerances are relative, so the event sequence too).
+#[test]
+fn results_per_unit_n_do_not_depend_on_n() {
+    let sc = coarse();
+    let go = |n_force: f64| {
+        let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), n_force, ..Default::default() };
+        run(&sc, &o, &|_| {}).unwrap()
+    };
+    let (a, b) = (go(1.0), go(7.5));
+    assert_eq!(a.run.events.len(), b.run.events.len());
+    for (x, y) in a.run.states.iter().zip(&b.run.states) {
+        assert!((x.f - y.f / 7.5).abs() < 1e-12, "F/N {} vs {}", x.f, y.f / 7.5);
+        let x_last = a.run.states.last().unwrap().x;
+        assert!((x.x - y.x / 7.5).abs() < 1e-10 * x_last, "X/N {} vs {}", x.x, y.x / 7.5);
+        assert_eq!(x.states, y.states);
+    }
+}
