@@ -37,11 +37,11 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     if !args.no_fields {
         tribofe::report::check::write_fields(&res, &sm, &args.out)?;
     }
-    print!("{}", tribofe::report::check::table(&res));
+    out!("{}", tribofe::report::check::table(&res));
     if let Some(c) = &converged {
-        print!("{}", tribofe::report::check::converged_table(&res, c));
+        out!("{}", tribofe::report::check::converged_table(&res, c));
     }
-    println!(
+    outln!(
         "wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg{}}}",
         args.out.display(),
         if args.no_fields { "" } else { ", fields_FN*.vtu/.msh, fields.pvd" }

@@ -223,7 +223,7 @@ const COLORS: [RGBColor; 6] = [
 ];
 
 fn err(e: impl std::fmt::Display) -> Error {
-    Error::input("fig2.svg", e.to_string())
+    Error::plot("fig2.svg", e)
 }
 
 /// Fig. 2 of the paper redrawn: p/(N/L) open symbols, tau/(N/L) full symbols, model dashed;

@@ -4,6 +4,7 @@
 pub mod check;
 pub mod convergence;
 pub mod precursors;
+pub mod slide;
 pub mod stability;
 pub mod sweep;
 

@@ -299,7 +299,7 @@ fn plate_tilt(sm: &SceneModel, u: &[f64]) -> f64 {
 /// Integral of each interface node's shape function along the interface (m): the width
 /// over which its consistent nodal force is spread (half the neighbouring edges for linear
 /// elements; L/6 and 2L/3 per edge for quadratic ones).
-fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
+pub fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
     let mut w = vec![0.0; sm.mesh.n_nodes()];
     let mut f = vec![0.0; 2 * sm.mesh.n_nodes()];
     // A unit normal traction's consistent forces are exactly these integrals.
