@@ -132,22 +132,29 @@ fn heat_map(title: &str, ax: &Axis, ay: &Axis, cells: &[(usize, usize, Option<f6
     {
         let root = SVGBackend::with_string(&mut svg, (900, 640)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
-        let xl = |i: &f64| ax.values.get(*i as usize).map_or(String::new(), |v| format!("{v:.3e}"));
-        let yl = |i: &f64| ay.values.get(*i as usize).map_or(String::new(), |v| format!("{v:.3e}"));
+        let at = |vals: &[f64], i: f64| -> String {
+            let k = i.round();
+            if (i - k).abs() > 1e-6 || k < 0.0 {
+                return String::new();
+            }
+            vals.get(k as usize).map_or(String::new(), |v| format!("{v:.3e}"))
+        };
+        let xl = |i: &f64| at(&ax.values, *i);
+        let yl = |i: &f64| at(&ay.values, *i);
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 20))
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(80)
-            .build_cartesian_2d(0f64..nx as f64, 0f64..ny as f64)
+            .build_cartesian_2d(-0.5f64..nx as f64 - 0.5, -0.5f64..ny as f64 - 0.5)
             .map_err(err)?;
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_labels(nx.min(16) + 1)
-            .y_labels(ny.min(16) + 1)
-            .x_label_formatter(&|v| xl(&(v - 0.5)))
-            .y_label_formatter(&|v| yl(&(v - 0.5)))
+            .x_labels(nx.min(16))
+            .y_labels(ny.min(16))
+            .x_label_formatter(&xl)
+            .y_label_formatter(&yl)
             .x_desc(ax.param.column())
             .y_desc(ay.param.column())
             .draw()
@@ -164,7 +171,7 @@ fn heat_map(title: &str, ax: &Axis, ay: &Axis, cells: &[(usize, usize, Option<f6
                 }
                 _ => RGBColor(200, 200, 200),
             };
-            let (x0, y0) = (ix as f64, iy as f64);
+            let (x0, y0) = (ix as f64 - 0.5, iy as f64 - 0.5);
             chart
                 .draw_series(std::iter::once(Rectangle::new(
                     [(x0, y0), (x0 + 1.0, y0 + 1.0)],
