@@ -256,18 +256,46 @@ pub fn run(
             0.0,
         )?;
     }
-    scenes
+    // Points that differ only in the block's material share the mesh, the constraint ties and
+    // so the pattern and symbolic analysis (`problem::Prepared`): one per group. H is baked into
+    // the rigid plate's ties, so a change of H starts a new group.
+    let mut groups: Vec<Vec<(usize, Scene)>> = Vec::new();
+    let mut keys: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
+    for (i, s) in scenes {
+        let mut k = s.clone();
+        k.block.young = 0.0;
+        k.block.poisson = 0.0;
+        let key = format!("{k:?}");
+        let g = *keys.entry(key).or_insert_with(|| {
+            groups.push(Vec::new());
+            groups.len() - 1
+        });
+        groups[g].push((i, s));
+    }
+    let solved: Vec<Vec<Point>> = groups
         .into_par_iter()
-        .map(|(index, scene)| {
-            let clock = Instant::now();
-            let (mut result, _) = super::check::run(&scene, &o.solver)?;
-            result.displacements.clear();
-            let verdicts = result.cases.iter().map(|c| verdict(&result, c, &o.verdict)).collect();
-            let p = Point { index, scene, result, verdicts, wall: clock.elapsed().as_secs_f64() };
-            progress(&p);
-            Ok(p)
+        .map(|group| {
+            let prepared = super::check::prepare(&group[0].1, &o.solver)?;
+            group
+                .into_iter()
+                .map(|(index, scene)| {
+                    let clock = Instant::now();
+                    let sm = scene.build()?;
+                    let mesh_time = clock.elapsed().as_secs_f64();
+                    let (mut result, _) =
+                        super::check::run_model(&scene, sm, mesh_time, &o.solver, Some(&prepared))?;
+                    result.displacements.clear();
+                    let verdicts = result.cases.iter().map(|c| verdict(&result, c, &o.verdict)).collect();
+                    let p = Point { index, scene, result, verdicts, wall: clock.elapsed().as_secs_f64() };
+                    progress(&p);
+                    Ok(p)
+                })
+                .collect::<Result<Vec<Point>>>()
         })
-        .collect()
+        .collect::<Result<_>>()?;
+    let mut points: Vec<Point> = solved.into_iter().flatten().collect();
+    points.sort_by_key(|p| p.index);
+    Ok(points)
 }
 
 fn verdict(res: &CheckResult, c: &super::check::CaseResult, o: &VerdictOptions) -> Verdict {
