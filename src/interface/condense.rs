@@ -71,7 +71,7 @@ fn check_element(scene: &Scene) -> Result<()> {
     } else {
         Err(Error::input(
             "mesh.element",
-            format!("'{name}': the frictional interface supports linear elements only (qua4, qua4-sri, qua4-im, tri3); quadratic elements need the consistent edge mass of the contact law, not implemented"),
+            format!("'{name}': the frictional interface supports linear elements only (qua4, qua4-sri, qua4-im, tri3); the node-wise laws assume nodal force = traction x tributary width, which quadratic edges (weights 1/6, 2/3, 1/6) break"),
         ))
     }
 }
