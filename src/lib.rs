@@ -11,10 +11,6 @@
 //! Beside them: [`analytical`] (closed forms the results are judged against) and
 //! [`precursors`] (the paper's 1D friction model).
 
-// `!(x <= limit)` is how the checks treat NaN as a failure; index loops over several arrays
-// read more plainly than zipped iterators in the numeric kernels.
-#![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop)]
-
 pub mod analytical;
 pub mod error;
 pub mod fem;

@@ -85,7 +85,8 @@ fn superposition_equals_direct_solves() {
         g[ju] = c.plate_u;
         g[jv] = c.plate_v;
         let case = LoadCase { prescribed: g, forces: vec![] };
-        let sol = solve(&model, &sm.constraints, &[case.clone()], &SolverOptions::default(), "").unwrap();
+        let sol = solve(&model, &sm.constraints, std::slice::from_ref(&case), &SolverOptions::default(), "")
+            .unwrap();
         let res = sol.residual_forces(&model, &case, 0, &near).unwrap();
         let sum_ry: f64 = sm.interface.iter().map(|&k| res[dof(k, 1)]).sum();
         assert!((sum_ry - c.n).abs() < 1e-10 * c.n, "N {sum_ry} vs {}", c.n);

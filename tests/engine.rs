@@ -177,7 +177,7 @@ fn reactions_balance_loads_forces_and_moment() {
     f[dof(corner, 0)] += 77.0;
     let model = Model::new(&mesh, mat());
     let case = LoadCase { prescribed: vec![0.0; c.n_fixed()], forces: f.clone() };
-    let sol = solve(&model, &c, &[case.clone()], &SolverOptions::default(), "").unwrap();
+    let sol = solve(&model, &c, std::slice::from_ref(&case), &SolverOptions::default(), "").unwrap();
     let r = sol.residual_forces(&model, &case, 0, &elements_touching(&model, &left)).unwrap();
     let (mut fx, mut fy, mut mz, mut scale) = (0.0, 0.0, 0.0, 0.0f64);
     for n in 0..mesh.n_nodes() {
@@ -231,8 +231,12 @@ fn stiffness_pattern_and_values_reused_across_materials() {
     let asm = tribofe::fem::assembly::Assembler::new(&mesh, &red).unwrap();
     let m1 = Model::new(&mesh, Material::plane_strain(1e3, 0.3).unwrap());
     let m2 = Model::new(&mesh, Material::plane_strain(1e4, 0.3).unwrap());
-    let (v1, _) = asm.assemble(&m1, &red, &[case.forces.clone()], &[case.prescribed.clone()]).unwrap();
-    let (v2, _) = asm.assemble(&m2, &red, &[case.forces.clone()], &[case.prescribed.clone()]).unwrap();
+    let (v1, _) = asm
+        .assemble(&m1, &red, std::slice::from_ref(&case.forces), std::slice::from_ref(&case.prescribed))
+        .unwrap();
+    let (v2, _) = asm
+        .assemble(&m2, &red, std::slice::from_ref(&case.forces), std::slice::from_ref(&case.prescribed))
+        .unwrap();
     let scale = v2.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     for (a, b) in v1.iter().zip(&v2) {
         assert!((b - 10.0 * a).abs() <= 1e-13 * scale, "{a} {b}");

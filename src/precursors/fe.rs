@@ -7,8 +7,8 @@
 //!   p(x)   = (N/L) p_per_n(x) + (F/L) p_per_f(x),
 //!   tau(x) = (N/L) tau_per_n(x) + (F/L) tau_per_f(x).
 //! Dividing stresses by the paper's unit mu_s N/L and writing F~ = F/(mu_s N):
-//!   p~(x, F~) = p_per_n/mu_s + F~ p_per_f      so p0_k = p_per_n[k]/mu_s, dp_k = p_per_f[k];
-//!   sigma~    = tau_per_n/mu_s + F~ tau_per_f  so sigma0_k = tau_per_n[k]/mu_s, s_k = tau_per_f[k].
+//!   p~(x, F~) = p_per_n/mu_s + F~ p_per_f      so p0_k = p_per_n(k)/mu_s, dp_k = p_per_f(k);
+//!   sigma~    = tau_per_n/mu_s + F~ tau_per_f  so sigma0_k = tau_per_n(k)/mu_s, s_k = tau_per_f(k).
 //! Friction coefficients from (r, g) and the geometry: g = 6 mu_d H/L gives
 //! mu_d = g/(6 H/L), and mu_s = mu_d/r. Check with the paper's fields: p_per_n = 1,
 //! p_per_f = 12 (H/L) x/L gives dp = (2g/mu_d) x, the paper's p~ = 1/mu_s + (2g/mu_d) F~ x~.

@@ -13,7 +13,7 @@ pub const PROFILE_HEADER: &str =
     "x_over_L,p_over_pmean,tau_over_pmean,p_model,tau_model,p_extrap,tau_extrap,p_corrected";
 pub const SUMMARY_HEADER: &str = "FN,N,F,slope_interior,slope_model,tau_center,edge_p_left_t,edge_p_right_t,edge_tau_left_t,edge_tau_right_t,interior_dev_p,interior_dev_tau,p_end_left,p_end_right,tau_end_left,tau_end_right,tilt_rad,balance_N,balance_F,balance_moment,slope_corrected,interior_dev_p_corrected";
 
-/// Writes profile_FN<ratio>.csv, summary.csv and fig2.svg into `dir`, and with a converged
+/// Writes `profile_FN<ratio>.csv`, summary.csv and fig2.svg into `dir`, and with a converged
 /// run, `summary_converged.csv` and its profiles under `converged/`.
 pub fn write(res: &CheckResult, converged: Option<&CheckResult>, dir: &Path) -> Result<()> {
     if let Some(c) = converged {

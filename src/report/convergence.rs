@@ -230,7 +230,8 @@ pub fn error_vs_dofs(study: &Study) -> Result<String> {
         let root = SVGBackend::with_string(&mut svg, (1200, 420)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
         let panels = root.split_evenly((1, 3));
-        let zones: [(&str, fn(&crate::studies::convergence::ZoneErrors) -> f64); 3] = [
+        type Zone = (&'static str, fn(&crate::studies::convergence::ZoneErrors) -> f64);
+        let zones: [Zone; 3] = [
             ("interior (|x| < L/2 - 10 t)", |e| e.interior[0].max(e.interior[1])),
             ("edge zones (t/4 to 10 t from the ends)", |e| e.edge[0].max(e.edge[1])),
             ("end nodes (singular: no convergence)", |e| e.end[0].max(e.end[1])),

@@ -1,6 +1,6 @@
 //! What tribofe computes with the engine, each returning numbers for [`crate::report`] to
 //! format: the paper's check ([`check`]), mesh and element convergence ([`convergence`]),
-//! where methods fail ([`stability`]) and phase timings ([`bench`]).
+//! where methods fail ([`stability`]) and phase timings ([`bench`](mod@bench)).
 
 pub mod bench;
 pub mod check;

@@ -316,7 +316,7 @@ pub struct NuPoint {
     /// Largest interior error (p or tau), units of N/L: the edge zones' error is dominated by
     /// the singular corners for every element, the interior's shows locking.
     pub err: f64,
-    /// See [`edge_far`].
+    /// See `edge_far`.
     pub err_edge_far: f64,
     /// Max |second difference| of p or tau between neighbouring nodes t/2 .. 10 t from the
     /// ends, in excess of the reference's sampled at those nodes (units of N/L): checkerboard.

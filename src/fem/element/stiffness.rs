@@ -326,7 +326,8 @@ mod tests {
                 }
             }
             // Translations and the infinitesimal rotation store no energy: K r = 0.
-            let modes: [Box<dyn Fn([f64; 2]) -> [f64; 2]>; 3] =
+            type Mode = Box<dyn Fn([f64; 2]) -> [f64; 2]>;
+            let modes: [Mode; 3] =
                 [Box::new(|_| [1.0, 0.0]), Box::new(|_| [0.0, 1.0]), Box::new(|p| [-p[1], p[0]])];
             for m in &modes {
                 let r: Vec<f64> = x.iter().flat_map(|&p| m(p)).collect();
