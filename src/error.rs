@@ -1,11 +1,29 @@
 //! One error type for the whole library. Every variant names what was wrong and where
-//! (file and line, element and nodes, DOF and node) so the CLI can print it as is.
+//! (parameter, file and line, node and component) so the CLI can print it as is, and maps to
+//! one documented exit status ([`Error::exit_status`]).
 
 use std::path::PathBuf;
 
+/// Exit statuses of the `tribofe` command (README, "Inputs and failures").
+pub mod exit {
+    /// Success.
+    pub const OK: i32 = 0;
+    /// Bad input: a parameter, scene key, mesh or option refused, an unreadable input file,
+    /// a problem above the size limit, an output folder that cannot be used.
+    pub const INPUT: i32 = 2;
+    /// Numerical refusal: a singular or ill-conditioned system, a failed self-check.
+    pub const NUMERICAL: i32 = 3;
+    /// An I/O failure while writing results (disk full, permissions...).
+    pub const OUTPUT: i32 = 4;
+    /// Interrupted by SIGINT or SIGTERM (128 + SIGINT, as shells report it).
+    pub const INTERRUPTED: i32 = 130;
+}
+
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
-    /// A parameter outside its physical or numerical range.
+    /// A parameter outside its physical or numerical range; `what` is the name the user gave
+    /// (`--h`, `block.thickness`...).
     #[error("invalid {what}: {why}")]
     Input { what: String, why: String },
 
@@ -13,20 +31,47 @@ pub enum Error {
     #[error("{}: {at}: {msg}", file.display())]
     Parse { file: PathBuf, at: String, msg: String },
 
-    /// A mesh that cannot be used (degenerate element, unknown set, empty mesh...).
+    /// A mesh that cannot be used (degenerate element, unknown set, a geometry that
+    /// contradicts the scene...).
     #[error("mesh: {0}")]
     Mesh(String),
 
-    /// The reduced stiffness matrix is not positive definite.
+    /// The problem would not fit: estimated unknowns and memory against the limit.
+    #[error("problem too large: about {dofs:.3e} unknowns and {gib:.1} GiB estimated, above the limit of {limit} unknowns (--max-dofs); {suggestion}")]
+    TooLarge { dofs: f64, gib: f64, limit: usize, suggestion: String },
+
+    /// The reduced stiffness matrix is not positive definite; `node` (tag) and `component`
+    /// (0 = u, 1 = v) name the first bad pivot when it is a node's DOF.
     #[error("the boundary conditions leave the body free to move: {detail}")]
-    Singular { detail: String },
+    Singular { detail: String, node: Option<u64>, component: Option<usize> },
 
     /// The solve went through but its residual says the answer cannot be trusted.
     #[error("untrustworthy solution: {detail}; {hint}")]
     Untrustworthy { detail: String, hint: String },
 
+    /// A self-check of the results (global balance...) failed beyond its threshold.
+    #[error("self-check failed: {what} = {value:.2e} exceeds {limit:.1e}; {hint}")]
+    SelfCheck { what: String, value: f64, limit: f64, hint: String },
+
+    /// A chart that could not be drawn.
+    #[error("{file}: cannot draw the chart: {msg}")]
+    Plot { file: String, msg: String },
+
+    /// An input file that cannot be read.
+    #[error("cannot read {}: {source}", path.display())]
+    Read { path: PathBuf, source: std::io::Error },
+
+    /// An output folder that cannot be used (a file of that name, another run's lock...).
+    #[error("output folder {}: {why}", path.display())]
+    Output { path: PathBuf, why: String },
+
+    /// Writing results failed.
     #[error("{}: {source}", path.display())]
     Io { path: PathBuf, source: std::io::Error },
+
+    /// SIGINT or SIGTERM arrived; temporaries were removed.
+    #[error("interrupted; the output folder was left as it was")]
+    Interrupted,
 }
 
 impl Error {
@@ -36,6 +81,41 @@ impl Error {
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io { path: path.into(), source }
     }
+    pub fn read(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Read { path: path.into(), source }
+    }
+    pub fn plot(file: impl Into<String>, msg: impl std::fmt::Display) -> Self {
+        Error::Plot { file: file.into(), msg: msg.to_string() }
+    }
+
+    /// The exit status documented in README ("Inputs and failures") and `tribofe --help`.
+    pub fn exit_status(&self) -> i32 {
+        match self {
+            Error::Input { .. }
+            | Error::Parse { .. }
+            | Error::Mesh(_)
+            | Error::TooLarge { .. }
+            | Error::Read { .. }
+            | Error::Output { .. } => exit::INPUT,
+            Error::Singular { .. } | Error::Untrustworthy { .. } | Error::SelfCheck { .. } => exit::NUMERICAL,
+            Error::Plot { .. } | Error::Io { .. } => exit::OUTPUT,
+            Error::Interrupted => exit::INTERRUPTED,
+        }
+    }
+}
+
+/// Quotes text taken from an input file or argument for a message: control characters
+/// (ESC, NUL...) are escaped so nothing read from input can drive the terminal.
+pub fn quote(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    for c in s.chars() {
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 pub type Result<T> = std::result::Result<T, Error>;

@@ -18,6 +18,7 @@
 pub mod analytical;
 pub mod error;
 pub mod fem;
+pub mod interface;
 pub mod io;
 pub mod linalg;
 pub mod memory;

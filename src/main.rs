@@ -1,19 +1,23 @@
 //! The `tribofe` command: parses arguments, calls the library, prints. No FE logic lives here.
 
+#[macro_use]
 mod cli;
 
 use clap::Parser;
+use std::io::Write;
+use tribofe::error::exit;
 
 fn main() {
-    // Die quietly on a closed pipe (`tribofe check | head`) like other Unix tools, instead of
-    // panicking in println!.
-    #[cfg(unix)]
-    unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
-    }
     let args = cli::Cli::parse();
-    if let Err(e) = cli::run(args) {
-        eprintln!("error: {e}");
-        std::process::exit(2);
-    }
+    let status = match cli::run(args) {
+        Ok(()) => exit::OK,
+        // A closed pipe (`tribofe check | head`) is a normal end for a Unix filter: the reader
+        // has what it wanted. Rust ignores SIGPIPE, so the write returns EPIPE and lands here.
+        Err(tribofe::Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => exit::OK,
+        Err(e) => {
+            let _ = writeln!(std::io::stderr(), "error: {e}");
+            e.exit_status()
+        }
+    };
+    std::process::exit(status);
 }

@@ -15,8 +15,10 @@
 //! Throughout, κ = 3 − 4ν (plane strain) and μ is the shear modulus.
 
 pub mod manufactured;
+pub mod partial_slip;
 pub mod roots;
 pub mod strip;
+pub mod thin_layer;
 pub mod williams;
 
 use crate::{Error, Result};

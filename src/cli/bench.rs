@@ -75,7 +75,7 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     }
     if args.row {
         let row = bench::run_case(args.case[0], &configs[0])?;
-        println!("{}", row.to_csv());
+        outln!("{}", row.to_csv());
         return Ok(());
     }
     let mut cases = args.case.clone();
@@ -107,10 +107,10 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
             dgemm.push((t, bench::dgemm_gflops(args.dgemm, t)));
         }
     }
-    print!("{}", bench::table(&rows, &dgemm));
+    out!("{}", bench::table(&rows, &dgemm));
     if let Some(dir) = &args.out {
         bench::write_csv(&rows, &dgemm, dir)?;
-        println!("wrote {}/{{bench.csv, dgemm.csv}}", dir.display());
+        outln!("wrote {}/{{bench.csv, dgemm.csv}}", dir.display());
     }
     Ok(())
 }

@@ -3,36 +3,7 @@
 use clap::Args as ClapArgs;
 use std::path::PathBuf;
 use tribofe::linalg::solve::SolverOptions;
-use tribofe::scene::{PlateModel, Scene};
-
-/// The scene options shared by every subcommand that runs the paper's scene.
-#[derive(ClapArgs, Debug)]
-pub struct SceneArgs {
-    /// Scene file (TOML); every key defaults to the paper's value.
-    #[arg(long)]
-    pub scene: Option<PathBuf>,
-    /// Element size in the block, m (paper: 0.001).
-    #[arg(long)]
-    pub h: Option<f64>,
-    /// Plate model: exact rigid body, or meshed elastic plate as in the paper.
-    #[arg(long, value_enum)]
-    pub plate: Option<PlateModel>,
-    /// Young's modulus of the elastic plate, Pa (paper: 2e15).
-    #[arg(long)]
-    pub plate_modulus: Option<f64>,
-    /// Load cases as F/N ratios, comma separated (paper: 0,0.41,0.82).
-    #[arg(long, value_delimiter = ',')]
-    pub fn_ratios: Option<Vec<f64>>,
-    /// Element formulation (qua4, qua4-sri, qua4-im, qua8, qua9, tri3, tri6).
-    #[arg(long)]
-    pub element: Option<String>,
-    /// Edge-zone tolerance, relative to the local model value (default 0.05).
-    #[arg(long)]
-    pub tol: Option<f64>,
-    /// A Gmsh mesh (.msh 4.1 or 2.2) of the block with physical groups interface, top, block.
-    #[arg(long)]
-    pub mesh: Option<PathBuf>,
-}
+use tribofe::scene::PlateModel;
 
 #[derive(ClapArgs, Debug)]
 pub struct Args {
@@ -49,36 +20,7 @@ pub struct Args {
     pub no_converged: bool,
 }
 
-/// Applies the command-line overrides to the scene (file or defaults).
-pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
-    let mut s = match &args.scene {
-        Some(p) => Scene::from_file(p)?,
-        None => Scene::default(),
-    };
-    if let Some(h) = args.h {
-        s.mesh.h = h;
-    }
-    if let Some(p) = args.plate {
-        s.plate.model = p;
-    }
-    if let Some(e) = args.plate_modulus {
-        s.plate.young = e;
-    }
-    if let Some(r) = &args.fn_ratios {
-        s.loading.fn_ratios = r.clone();
-    }
-    if let Some(e) = &args.element {
-        s.mesh.element = e.clone();
-    }
-    if let Some(t) = args.tol {
-        s.report.tol = t;
-    }
-    if let Some(m) = &args.mesh {
-        s.mesh.file = Some(m.clone());
-    }
-    s.validate()?;
-    Ok(s)
-}
+pub use super::scene_args::{scene, SceneArgs};
 
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = scene(&args.scene)?;
@@ -95,11 +37,11 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     if !args.no_fields {
         tribofe::report::check::write_fields(&res, &sm, &args.out)?;
     }
-    print!("{}", tribofe::report::check::table(&res));
+    out!("{}", tribofe::report::check::table(&res));
     if let Some(c) = &converged {
-        print!("{}", tribofe::report::check::converged_table(&res, c));
+        out!("{}", tribofe::report::check::converged_table(&res, c));
     }
-    println!(
+    outln!(
         "wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg{}}}",
         args.out.display(),
         if args.no_fields { "" } else { ", fields_FN*.vtu/.msh, fields.pvd" }

@@ -47,16 +47,18 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         ..Default::default()
     };
     let total = (o.elements.len() * o.families.len() * o.n_thick.len()) as u64;
-    let bar = ProgressBar::new(total)
-        .with_style(ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} {msg}").unwrap());
+    let bar = ProgressBar::new(total).with_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
     let st = study(&scene, &o, &|r| {
         bar.set_message(format!("last: {} {} t/{}", r.family.name(), r.element, r.n_thick));
         bar.inc(1);
     })?;
     bar.finish_and_clear();
     tribofe::report::convergence::write(&st, &args.out)?;
-    print!("{}", tribofe::report::convergence::summary(&st, args.target));
-    println!(
+    out!("{}", tribofe::report::convergence::summary(&st, args.target));
+    outln!(
         "wrote {}/{{convergence.csv, error_vs_dofs.svg, error_vs_time.svg, summary.txt}}",
         args.out.display()
     );

@@ -1,12 +1,26 @@
 //! Subcommands, one file each. Each parses its flags into library types, calls the library
-//! and prints; errors bubble up to `main` as one message and exit code 2.
+//! and prints; errors bubble up to `main` as one message and the exit status of
+//! [`tribofe::Error::exit_status`].
+
+/// `print!` that returns a write failure (closed pipe, full disk) to the caller with `?`
+/// instead of panicking; `main` ends quietly on a closed pipe.
+macro_rules! out {
+    ($($t:tt)*) => { $crate::cli::write_stdout(format_args!($($t)*))? };
+}
+/// `println!` counterpart of [`out!`].
+macro_rules! outln {
+    ($($t:tt)*) => { $crate::cli::write_stdout(format_args!("{}\n", format_args!($($t)*)))? };
+}
 
 mod bench;
 mod check;
 mod converge;
 mod precursors;
+mod scene_args;
+mod slide;
 mod solve;
 mod stability;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 
@@ -14,7 +28,12 @@ use clap::{Parser, Subcommand};
 #[command(
     name = "tribofe",
     version,
-    about = "2D plane-strain FE verifier for frictional interfaces (SI units)"
+    about = "2D plane-strain FE verifier for frictional interfaces (SI units)",
+    after_help = "Exit status: 0 success; 2 bad input (parameter, scene key, mesh, unreadable file, size \
+above --max-dofs, unusable output folder); 3 numerical refusal (singular or ill-conditioned system, \
+failed self-check); 4 failure while writing results; 130 interrupted (the output folder is left as \
+it was). Inputs are checked before any work starts; results go to a fresh folder renamed into place \
+at the end (README, \"Inputs and failures\")."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -36,12 +55,25 @@ pub enum Command {
     /// Precursors to sliding (Scheibert & Dysthe model): event table, fig. 4, or the n(r, g) map (fig. 5).
     #[command(allow_negative_numbers = true)]
     Precursors(precursors::Args),
+    /// Frictional interface (coulomb, static-kinetic): N then X at height H, solved event by event.
+    #[command(allow_negative_numbers = true)]
+    Slide(slide::Args),
     /// Pipeline benchmark: phase times, sizes, GFLOP/s and peak memory on ~1e6-DOF problems.
     #[command(allow_negative_numbers = true)]
     Bench(bench::Args),
     /// Numerical stability: stiff elastic plate, near-incompressibility, element shape, thin layers, singular corners.
     #[command(allow_negative_numbers = true)]
     Stability(stability::Args),
+    /// The check over a grid of scene parameters: model, corrected model and FE, verdicts, CSV and maps.
+    #[command(allow_negative_numbers = true)]
+    Sweep(sweep::Args),
+}
+
+/// Writes to standard output and flushes, so a closed pipe is seen here, not at exit.
+pub fn write_stdout(args: std::fmt::Arguments) -> tribofe::Result<()> {
+    use std::io::Write;
+    let mut o = std::io::stdout().lock();
+    o.write_fmt(args).and_then(|_| o.flush()).map_err(|e| tribofe::Error::io("standard output", e))
 }
 
 pub fn run(cli: Cli) -> tribofe::Result<()> {
@@ -50,7 +82,9 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Check(a) => check::run(a),
         Command::Converge(a) => converge::run(a),
         Command::Precursors(args) => precursors::run(args),
+        Command::Slide(a) => slide::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
+        Command::Sweep(a) => sweep::run(a),
     }
 }

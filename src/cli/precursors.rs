@@ -44,7 +44,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     if args.map {
         let map = precursors::n_map(args.resolution)?;
         let n_max = map.iter().map(|m| m.n).max().unwrap_or(0);
-        println!("n(r, g) on a {0} x {0} grid: n from 0 to {n_max}", args.resolution);
+        outln!("n(r, g) on a {0} x {0} grid: n from 0 to {n_max}", args.resolution);
         return print_written(&report::write_map(&args.out, &map, args.resolution)?);
     }
     if args.fe {
@@ -56,24 +56,25 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         Some(n) => precursors::simulate(&p, n),
         None => precursors::simulate_to_convergence(&p, CONVERGED, MAX_DEFAULT_EVENTS),
     };
-    print_table(&events);
+    print_table(&events)?;
     let n = precursors::n_precursors(&p)?;
-    println!("r = {}, g = {} (dimensionless; forces in units of mu_s N, x in units of L)", p.r(), p.g());
-    println!("F_1 = {:.6}   n = {n} precursors   F_max = {:.6}", p.f1(), p.f_max());
+    outln!("r = {}, g = {} (dimensionless; forces in units of mu_s N, x in units of L)", p.r(), p.g());
+    outln!("F_1 = {:.6}   n = {n} precursors   F_max = {:.6}", p.f1(), p.f_max());
     print_written(&report::write_events(&args.out, &p, &events)?)
 }
 
-fn print_table(events: &[Event]) {
-    println!("{:>4} {:>10} {:>10} {:>10} {:>10}  regime", "i", "F", "F^c", "x", "F^*");
+fn print_table(events: &[Event]) -> tribofe::Result<()> {
+    outln!("{:>4} {:>10} {:>10} {:>10} {:>10}  regime", "i", "F", "F^c", "x", "F^*");
     for e in events {
         let regime = if e.stick_slip { "stick-slip" } else { "precursor" };
-        println!("{:>4} {:>10.6} {:>10.6} {:>10.6} {:>10.6}  {regime}", e.i, e.f, e.fc, e.x, e.fstar);
+        outln!("{:>4} {:>10.6} {:>10.6} {:>10.6} {:>10.6}  {regime}", e.i, e.f, e.fc, e.x, e.fstar);
     }
+    Ok(())
 }
 
 fn print_written(paths: &[impl AsRef<Path>]) -> tribofe::Result<()> {
     for p in paths {
-        println!("wrote {}", p.as_ref().display());
+        outln!("wrote {}", p.as_ref().display());
     }
     Ok(())
 }
@@ -87,7 +88,7 @@ fn fe(args: &Args) -> tribofe::Result<()> {
         tribofe::studies::check::run(s, &SolverOptions::default()).map(|r| r.0.unit)
     };
     let c = tribofe::precursors::fe::compare(&fields(&scene)?, args.r, args.g, n_events)?;
-    print_comparison(&c);
+    print_comparison(&c)?;
     let mut written = report::write_comparison(&args.out, &c)?;
     if args.sweep {
         let (l, h0, t0) = (
@@ -113,10 +114,10 @@ fn fe(args: &Args) -> tribofe::Result<()> {
     print_written(&written)
 }
 
-fn print_comparison(c: &tribofe::precursors::fe::Comparison) {
+fn print_comparison(c: &tribofe::precursors::fe::Comparison) -> tribofe::Result<()> {
     let opt = |v: Option<usize>| v.map_or("-".to_string(), |n| n.to_string());
     let optf = |v: Option<f64>| v.map_or("-".to_string(), |f| format!("{f:.6}"));
-    println!(
+    outln!(
         "FE-fed precursors: r = {}, g = {} (mu_s = {:.4}, mu_d = {:.4}), H/L = {}, t/L = {} (dimensionless)",
         c.params.r(),
         c.params.g(),
@@ -125,17 +126,18 @@ fn print_comparison(c: &tribofe::precursors::fe::Comparison) {
         c.h_over_l,
         c.t_over_l
     );
-    println!("{:>22} {:>12} {:>12}", "", "linear model", "FE fields");
+    outln!("{:>22} {:>12} {:>12}", "", "linear model", "FE fields");
     let first = |r: &tribofe::precursors::discrete::Run| r.events.first().map_or(f64::NAN, |e| e.f);
-    println!("{:>22} {:>12.6} {:>12.6}", "F_1", first(&c.linear), first(&c.fe));
-    println!("{:>22} {:>12} {:>12}", "precursors n", opt(c.linear.n_precursors()), opt(c.fe.n_precursors()));
-    println!("{:>22} {:>12} {:>12}", "stick-slip F_max", optf(c.linear.f_limit()), optf(c.fe.f_limit()));
-    println!("{:>4} {:>14} {:>14}   (precursor length x_i + 1/2, in units of L)", "i", "linear", "FE");
+    outln!("{:>22} {:>12.6} {:>12.6}", "F_1", first(&c.linear), first(&c.fe));
+    outln!("{:>22} {:>12} {:>12}", "precursors n", opt(c.linear.n_precursors()), opt(c.fe.n_precursors()));
+    outln!("{:>22} {:>12} {:>12}", "stick-slip F_max", optf(c.linear.f_limit()), optf(c.fe.f_limit()));
+    outln!("{:>4} {:>14} {:>14}   (precursor length x_i + 1/2, in units of L)", "i", "linear", "FE");
     let (a, b) = (c.linear.precursors(), c.fe.precursors());
     for i in 0..a.len().max(b.len()) {
         let len = |v: &[tribofe::precursors::discrete::CellEvent]| {
             v.get(i).map_or("-".to_string(), |e| format!("{:.5}", e.x + 0.5))
         };
-        println!("{:>4} {:>14} {:>14}", i + 1, len(a), len(b));
+        outln!("{:>4} {:>14} {:>14}", i + 1, len(a), len(b));
     }
+    Ok(())
 }

@@ -56,17 +56,25 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         ..tribofe::fem::assembly::Model::new(&r.mesh, p.material)
     };
     let u = &r.solution.u[0];
-    println!(
+    outln!(
         "rectangle {} x {} m, {} x {} {} elements, {} unknowns; forces in N per metre of width",
-        a.lx, a.ly, a.nx, a.ny, a.element, r.solution.n_unknowns
+        a.lx,
+        a.ly,
+        a.nx,
+        a.ny,
+        a.element,
+        r.solution.n_unknowns
     );
     for (name, f) in SIDES.iter().zip(&r.side_reactions) {
-        println!("  reaction on {name:<6}: Fx = {:>12.5e}, Fy = {:>12.5e}", f[0], f[1]);
+        outln!("  reaction on {name:<6}: Fx = {:>12.5e}, Fy = {:>12.5e}", f[0], f[1]);
     }
     let bal = [r.total_reaction[0] + r.applied[0], r.total_reaction[1] + r.applied[1]];
-    println!(
+    outln!(
         "  applied tractions: Fx = {:.5e}, Fy = {:.5e}; balance (reactions + applied): {:.1e}, {:.1e}",
-        r.applied[0], r.applied[1], bal[0], bal[1]
+        r.applied[0],
+        r.applied[1],
+        bal[0],
+        bal[1]
     );
     let s = nodal_stresses(&model, u);
     let disp: Vec<[f64; 2]> = (0..r.mesh.n_nodes()).map(|k| [u[2 * k], u[2 * k + 1]]).collect();
@@ -79,6 +87,6 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     std::fs::create_dir_all(&a.out).map_err(|e| tribofe::Error::io(&a.out, e))?;
     write_vtu(&a.out.join("fields.vtu"), &r.mesh, &fields, &[])?;
     write_msh(&a.out.join("fields.msh"), &r.mesh, &fields, &[])?;
-    println!("wrote {}/{{fields.vtu, fields.msh}}", a.out.display());
+    outln!("wrote {}/{{fields.vtu, fields.msh}}", a.out.display());
     Ok(())
 }

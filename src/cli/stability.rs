@@ -32,15 +32,17 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     let corner_n_thick =
         std::iter::successors(Some(1usize), |n| Some(2 * n)).take_while(|&n| n <= args.corner_max).collect();
     let o = Options { n_ref: args.n_ref, corner_n_thick, ..Default::default() };
-    let bar = ProgressBar::new_spinner()
-        .with_style(ProgressStyle::with_template("{spinner} {pos} runs, {elapsed} {msg}").unwrap());
+    let bar = ProgressBar::new_spinner().with_style(
+        ProgressStyle::with_template("{spinner} {pos} runs, {elapsed} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
     let res = run_studies(&scene, &studies, &o, &|m| {
         bar.set_message(format!("last: {m}"));
         bar.inc(1);
     })?;
     bar.finish_and_clear();
     let files = tribofe::report::stability::write(&res, &args.out)?;
-    print!("{}", tribofe::report::stability::summary(&res));
-    println!("wrote {}/{{{}}}", args.out.display(), files.join(", "));
+    out!("{}", tribofe::report::stability::summary(&res));
+    outln!("wrote {}/{{{}}}", args.out.display(), files.join(", "));
     Ok(())
 }

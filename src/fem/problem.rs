@@ -190,7 +190,7 @@ impl Prepared {
             let g0 = vec![0.0; red.n_fixed()];
             let mode = red.expand(&x[nc * n..], &g0);
             if let Some(what) = rigid_mode(model, &mode) {
-                return Err(Error::Singular { detail: format!("the solution contains an unresisted {what} (condition estimate {condition:.1e}); prescribe enough displacements to stop both translations and the rotation of every separate body") });
+                return Err(Error::Singular { detail: format!("the solution contains an unresisted {what} (condition estimate {condition:.1e}); prescribe enough displacements to stop both translations and the rotation of every separate body"), node: None, component: None });
             }
         }
         let expected = condition * f64::EPSILON;
@@ -288,8 +288,12 @@ fn rigid_mode(model: &Model, u: &[f64]) -> Option<String> {
 }
 
 fn singular(model: &Model, c: &Constraints, red: &Reduction, k: usize) -> Error {
-    let which = red.free_to_full.get(k).map_or("an unknown".to_string(), |&d| c.describe_dof(model.mesh, d));
+    let full = red.free_to_full.get(k).copied();
+    let which = full.map_or("an unknown".to_string(), |d| c.describe_dof(model.mesh, d));
+    let at_node = full.filter(|&d| d < 2 * model.mesh.n_nodes());
     Error::Singular {
+        node: at_node.map(|d| model.mesh.node_tag(d / 2)),
+        component: at_node.map(|d| d % 2),
         detail: format!(
             "the stiffness matrix is not positive definite (first bad pivot at {which}); prescribe enough displacements to stop both translations and the rotation of every separate body"
         ),

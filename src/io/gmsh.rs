@@ -19,7 +19,7 @@ use std::path::Path;
 
 /// Reads a Gmsh `.msh` file.
 pub fn read(path: &Path) -> Result<Mesh> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let bytes = std::fs::read(path).map_err(|e| Error::read(path, e))?;
     parse(&bytes, path)
 }
 

@@ -209,7 +209,7 @@ const COLORS: [RGBColor; 12] = [
 ];
 
 fn err(e: impl std::fmt::Display) -> Error {
-    Error::input("convergence chart", e.to_string())
+    Error::plot("convergence chart", e)
 }
 
 fn range(v: impl Iterator<Item = f64>) -> std::ops::Range<f64> {

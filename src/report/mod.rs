@@ -4,7 +4,9 @@
 pub mod check;
 pub mod convergence;
 pub mod precursors;
+pub mod slide;
 pub mod stability;
+pub mod sweep;
 
 use crate::{Error, Result};
 use std::io::Write;

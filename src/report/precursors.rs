@@ -14,11 +14,11 @@ use std::path::{Path, PathBuf};
 const FONT: &str = "sans-serif";
 
 fn plot_err(figure: &str) -> impl Fn(Box<dyn std::error::Error>) -> Error + '_ {
-    move |e| Error::io(figure, std::io::Error::other(e.to_string()))
+    move |e| Error::plot(figure, e)
 }
 
 /// Runs a plotting closure on an in-memory SVG of the given size.
-fn render(
+pub(crate) fn render(
     figure: &str,
     size: (u32, u32),
     draw: impl FnOnce(

@@ -374,7 +374,7 @@ const COLORS: [RGBColor; 8] = [
 ];
 
 fn err(e: impl std::fmt::Display) -> Error {
-    Error::input("stability chart", e.to_string())
+    Error::plot("stability chart", e)
 }
 
 fn range(v: impl Iterator<Item = f64>) -> std::ops::Range<f64> {

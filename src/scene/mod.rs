@@ -14,7 +14,10 @@
 //!  x = -L/2                     x = L/2
 //! ```
 
+pub mod overrides;
 pub mod rectangle;
+
+pub use overrides::Overrides;
 
 use crate::error::{Error, Result};
 use crate::fem::assembly::Model;
@@ -177,7 +180,7 @@ impl SceneModel {
 impl Scene {
     /// Reads a scene file; unknown keys and bad values are errors naming the file and line.
     pub fn from_file(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let text = std::fs::read_to_string(path).map_err(|e| Error::read(path, e))?;
         let scene: Scene = toml::from_str(&text).map_err(|e| {
             let line = e.span().map_or(0, |s| text[..s.start].matches('\n').count() + 1);
             Error::Parse {
@@ -209,6 +212,14 @@ impl Scene {
         pos("loading.height (m)", self.loading.height)?;
         pos("mesh.h (m)", self.mesh.h)?;
         pos("report.tol", self.report.tol)?;
+        if let Some(g) = self.mesh.grading {
+            if !(g.is_finite() && g >= 1.0) {
+                return Err(Error::input("mesh.grading", format!("{g} must be a growth ratio >= 1")));
+            }
+        }
+        if let Some(m) = self.mesh.h_max {
+            pos("mesh.h_max (m)", m)?;
+        }
         Material::plane_strain(self.block.young, self.block.poisson)?;
         if self.plate.model == PlateModel::Elastic {
             Material::plane_strain(self.plate.young, self.plate.poisson)?;

@@ -33,6 +33,8 @@ pub struct CaseResult {
     pub tau_extrap: Vec<f64>,
     pub p_model: Vec<f64>,
     pub tau_model: Vec<f64>,
+    /// The corrected model's pressure (`analytical::thin_layer`), valid away from the end zones.
+    pub p_corrected: Vec<f64>,
     pub metrics: Metrics,
 }
 
@@ -55,6 +57,10 @@ pub struct Metrics {
     pub balance_n: f64,
     pub balance_f: f64,
     pub balance_moment: f64,
+    /// The corrected model (`analytical::thin_layer`): its least-squares slope over the same
+    /// interior, and the largest |p - p_corrected| there, in units of N/L.
+    pub slope_corrected: f64,
+    pub interior_dev_p_corrected: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -222,7 +228,17 @@ pub fn run_model(
             Some(th) => u[th],
             None => plate_tilt(&sm, &u),
         };
+        let corr = crate::analytical::thin_layer::Corrected::new(l, t, hgt, scene.block.poisson, ratio)?;
+        let p_corrected: Vec<f64> = x_over_l.iter().map(|&x| corr.pressure(x)).collect();
+        let interior: Vec<usize> =
+            (0..xs.len()).filter(|&i| x_over_l[i].abs() * l < l / 2.0 - 10.0 * t).collect();
+        let slope_corrected =
+            line_fit(interior.iter().map(|&i| (x_over_l[i], p_corrected[i]))).map_or(f64::NAN, |l| l.1);
+        let interior_dev_p_corrected =
+            interior.iter().map(|&i| (p[i] - p_corrected[i]).abs()).fold(0.0, f64::max);
         let metrics = Metrics {
+            slope_corrected,
+            interior_dev_p_corrected,
             balance_n: (sum_ry - n).abs() / n,
             balance_f: (sum_rx + f).abs() / n,
             balance_moment: (moment - f * hgt).abs() / (n * hgt),
@@ -242,6 +258,7 @@ pub fn run_model(
             tau_extrap,
             p_model,
             tau_model,
+            p_corrected,
             metrics,
         });
         displacements.push(u);
@@ -282,7 +299,7 @@ fn plate_tilt(sm: &SceneModel, u: &[f64]) -> f64 {
 /// Integral of each interface node's shape function along the interface (m): the width
 /// over which its consistent nodal force is spread (half the neighbouring edges for linear
 /// elements; L/6 and 2L/3 per edge for quadratic ones).
-fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
+pub fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
     let mut w = vec![0.0; sm.mesh.n_nodes()];
     let mut f = vec![0.0; 2 * sm.mesh.n_nodes()];
     // A unit normal traction's consistent forces are exactly these integrals.
@@ -349,6 +366,8 @@ fn metrics(
         balance_n: 0.0,
         balance_f: 0.0,
         balance_moment: 0.0,
+        slope_corrected: f64::NAN,
+        interior_dev_p_corrected: f64::NAN,
     }
 }
 

@@ -5,4 +5,6 @@
 pub mod bench;
 pub mod check;
 pub mod convergence;
+pub mod slide;
 pub mod stability;
+pub mod sweep;

@@ -1,0 +1,130 @@
+//! The scene flags shared by every subcommand that runs the paper's scene (check, converge,
+//! sweep): each overrides one key of the scene file (or of the paper's defaults) and goes
+//! through the same validation.
+
+use clap::Args as ClapArgs;
+use std::path::PathBuf;
+use tribofe::scene::{Overrides, PlateModel, Scene};
+
+#[derive(ClapArgs, Debug, Clone, Default)]
+pub struct SceneArgs {
+    /// Scene file (TOML); every key defaults to the paper's value.
+    #[arg(long)]
+    pub scene: Option<PathBuf>,
+    /// Writes the effective scene (file + flags) as TOML to FILE, a template to edit.
+    #[arg(long, value_name = "FILE")]
+    pub write_scene: Option<PathBuf>,
+    /// Block length L, m (paper: 0.4).
+    #[arg(long, value_parser = parse_values)]
+    pub length: Option<Values>,
+    /// Block thickness t, m (paper: 0.002).
+    #[arg(long, value_parser = parse_values)]
+    pub thickness: Option<Values>,
+    /// Block Young's modulus E, Pa (paper: 2e3).
+    #[arg(long, value_parser = parse_values)]
+    pub young: Option<Values>,
+    /// Block Poisson ratio nu, dimensionless, in (-1, 0.5) (paper: 0.4).
+    #[arg(long, value_parser = parse_values)]
+    pub poisson: Option<Values>,
+    /// Height H of the tangential loading point above the interface, m (paper: 0.04).
+    #[arg(long, value_parser = parse_values)]
+    pub height: Option<Values>,
+    /// Load cases as F/N ratios, dimensionless, comma separated (paper: 0,0.41,0.82).
+    #[arg(long, value_delimiter = ',')]
+    pub fn_ratios: Option<Vec<f64>>,
+    /// Plate model: exact rigid body, or meshed elastic plate as in the paper.
+    #[arg(long, value_enum)]
+    pub plate: Option<PlateModel>,
+    /// Elastic plate thickness, m (default 0.048).
+    #[arg(long)]
+    pub plate_thickness: Option<f64>,
+    /// Young's modulus of the elastic plate, Pa (paper: 2e15).
+    #[arg(long, alias = "plate-young")]
+    pub plate_modulus: Option<f64>,
+    /// Poisson ratio of the elastic plate, dimensionless (default 0.4).
+    #[arg(long)]
+    pub plate_poisson: Option<f64>,
+    /// Element size in the block, m (paper: 0.001); with --grading, the size at both ends.
+    #[arg(long)]
+    pub h: Option<f64>,
+    /// Growth ratio of the element length from both ends to the middle, dimensionless, >= 1.
+    #[arg(long)]
+    pub grading: Option<f64>,
+    /// Largest element length with --grading, m (default 2 t).
+    #[arg(long)]
+    pub h_max: Option<f64>,
+    /// Elements through the thickness (default round(t / h)).
+    #[arg(long)]
+    pub n_thick: Option<usize>,
+    /// Element formulation (qua4, qua4-sri, qua4-im, qua8, qua9, tri3, tri6).
+    #[arg(long)]
+    pub element: Option<String>,
+    /// Edge-zone tolerance, relative to the local model value, dimensionless (default 0.05).
+    #[arg(long)]
+    pub tol: Option<f64>,
+    /// A Gmsh mesh (.msh 4.1 or 2.2) of the block with physical groups interface, top, block.
+    #[arg(long)]
+    pub mesh: Option<PathBuf>,
+}
+
+/// The values of a sweepable flag: one number, a list `a,b,c`, or a range `a:b:n` (n points,
+/// both ends included, linear) or `a:b:ng` (geometric). Commands other than `sweep` take one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Values(pub Vec<f64>);
+
+fn parse_values(s: &str) -> Result<Values, String> {
+    tribofe::studies::sweep::parse_values(s).map(Values).map_err(|e| e.to_string())
+}
+
+fn one(flag: &str, v: &Option<Values>) -> tribofe::Result<Option<f64>> {
+    match v {
+        None => Ok(None),
+        Some(Values(x)) if x.len() == 1 => Ok(Some(x[0])),
+        Some(Values(x)) => Err(tribofe::Error::input(
+            format!("--{flag}"),
+            format!(
+                "{} values given; this command takes one (lists and ranges are for `tribofe sweep`)",
+                x.len()
+            ),
+        )),
+    }
+}
+
+impl SceneArgs {
+    /// The overrides, each sweepable flag holding one value.
+    pub fn overrides(&self) -> tribofe::Result<Overrides> {
+        Ok(Overrides {
+            length: one("length", &self.length)?,
+            thickness: one("thickness", &self.thickness)?,
+            young: one("young", &self.young)?,
+            poisson: one("poisson", &self.poisson)?,
+            height: one("height", &self.height)?,
+            fn_ratios: self.fn_ratios.clone(),
+            plate: self.plate,
+            plate_thickness: self.plate_thickness,
+            plate_young: self.plate_modulus,
+            plate_poisson: self.plate_poisson,
+            h: self.h,
+            grading: self.grading,
+            h_max: self.h_max,
+            n_thick: self.n_thick,
+            element: self.element.clone(),
+            mesh: self.mesh.clone(),
+            tol: self.tol,
+        })
+    }
+}
+
+/// The scene file (or the paper's defaults) with the flags applied and validated; writes it
+/// to `--write-scene` when asked.
+pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
+    let base = match &args.scene {
+        Some(p) => Scene::from_file(p)?,
+        None => Scene::default(),
+    };
+    let s = base.apply(&args.overrides()?)?;
+    if let Some(path) = &args.write_scene {
+        tribofe::report::write_atomic(path, s.to_toml()?.as_bytes())?;
+    }
+    Ok(s)
+}

@@ -1,0 +1,191 @@
+//! `tribofe slide`: the frictional interface loaded by N then X at height H, event by event.
+
+use super::scene_args::{scene as scene_from, SceneArgs};
+use clap::Args as ClapArgs;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use tribofe::interface::law::{Law, Rule};
+use tribofe::studies::slide::{coefficients_from_rg, SlideOptions};
+use tribofe::Error;
+
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Friction law: coulomb, static-kinetic or slip-weakening.
+    #[arg(long, default_value = "coulomb")]
+    pub law: String,
+    /// Coulomb coefficient (coulomb; default 0.5).
+    #[arg(long)]
+    pub mu: Option<f64>,
+    /// Static and kinetic coefficients (static-kinetic).
+    #[arg(long)]
+    pub mu_s: Option<f64>,
+    #[arg(long)]
+    pub mu_d: Option<f64>,
+    /// The paper's r = mu_d/mu_s and g = 6 mu_d H/L instead of the coefficients
+    /// (static-kinetic default: r = 0.9, g = 0.35; coulomb takes --g alone: mu = g L/(6 H)).
+    #[arg(long)]
+    pub r: Option<f64>,
+    #[arg(long)]
+    pub g: Option<f64>,
+    /// Event rule of static-kinetic: paper or overdamped.
+    #[arg(long, default_value = "paper")]
+    pub rule: String,
+    /// Slip-weakening distance D_c, m (slip-weakening: not implemented yet).
+    #[arg(long)]
+    pub dc: Option<f64>,
+    /// Normal force N, N/m (results are reported per unit N where that makes them independent of it).
+    #[arg(long, default_value_t = 1.0)]
+    pub n_force: f64,
+    /// Largest plate displacement X at height H, m (default: 5 % past the first whole-interface
+    /// slip for coulomb; the cycles for static-kinetic).
+    #[arg(long)]
+    pub x_max: Option<f64>,
+    /// Whole-interface slips (stick-slip cycles) to run, static-kinetic.
+    #[arg(long, default_value_t = 10)]
+    pub cycles: usize,
+    /// Cap on events (each keeps the interface state: ~40 bytes per node).
+    #[arg(long, default_value_t = 50_000)]
+    pub max_events: usize,
+    /// Output directory.
+    #[arg(long, default_value = "out/slide")]
+    pub out: PathBuf,
+}
+
+fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
+    let rule: Rule = a.rule.parse()?;
+    match a.law.as_str() {
+        "coulomb" => {
+            if a.mu_s.is_some() || a.mu_d.is_some() || a.r.is_some() {
+                return Err(Error::input("law", "coulomb takes --mu (or --g alone), not --mu-s/--mu-d/--r"));
+            }
+            let mu = match (a.mu, a.g) {
+                (Some(m), None) => m,
+                (None, Some(g)) => g * scene.block.length / (6.0 * scene.loading.height),
+                (None, None) => 0.5,
+                _ => return Err(Error::input("mu", "give --mu or --g, not both")),
+            };
+            Law::coulomb(mu)
+        }
+        "static-kinetic" => {
+            let (ms, md) = match (a.mu_s, a.mu_d, a.r, a.g) {
+                (Some(s), Some(d), None, None) => (s, d),
+                (None, None, Some(r), Some(g)) => coefficients_from_rg(scene, r, g)?,
+                (None, None, None, None) => coefficients_from_rg(scene, 0.9, 0.35)?,
+                _ => {
+                    return Err(Error::input("mu-s/mu-d", "give both --mu-s and --mu-d, or both --r and --g"))
+                }
+            };
+            Law::static_kinetic(ms, md, rule)
+        }
+        "slip-weakening" => Err(Error::input(
+            "law",
+            "slip-weakening is not implemented yet (issue 17, priority 4); use coulomb or static-kinetic",
+        )),
+        other => {
+            Err(Error::input("law", format!("'{other}': use coulomb, static-kinetic or slip-weakening")))
+        }
+    }
+}
+
+pub fn run(a: Args) -> tribofe::Result<()> {
+    // The scene flags (shared with check and sweep) are applied and validated in scene_from.
+    let scene = scene_from(&a.scene)?;
+    if a.dc.is_some() && a.law != "slip-weakening" {
+        return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
+    }
+    let law = law(&a, &scene)?;
+    let o = SlideOptions {
+        law,
+        n_force: a.n_force,
+        x_max: a.x_max,
+        cycles: a.cycles,
+        max_events: a.max_events,
+        ..Default::default()
+    };
+    let bar = ProgressBar::new(1000).with_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {percent}% {elapsed}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_message(format!("slide {}", law.name()));
+    let res = tribofe::studies::slide::run(&scene, &o, &|f| bar.set_position((f * 1000.0) as u64))?;
+    bar.finish_and_clear();
+    let args: Vec<String> = std::env::args().collect();
+    let header = format!(
+        "# written by tribofe {} slide\ncommand = {:?}\nlaw = {:?}\nmu_s = {}\nmu_d = {}\nn_force_N_per_m = {}\nheight_m = {}\nlength_m = {}\nthickness_m = {}\nelement = {:?}\ninterface_nodes = {}\nk_bonded_N_per_m_per_m = {}\n",
+        env!("CARGO_PKG_VERSION"),
+        args.join(" "),
+        law.name(),
+        law.mu_s(),
+        law.mu_d(),
+        a.n_force,
+        scene.loading.height,
+        scene.block.length,
+        scene.block.thickness,
+        scene.mesh.element,
+        res.condensed.n,
+        res.run.k_bonded
+    );
+    tribofe::report::slide::write(&res, &a.out, &header)?;
+    let worst = res.run.states.iter().map(|s| s.violations.max()).fold(0.0, f64::max);
+    let last = res.run.states.last().unwrap();
+    outln!(
+        "{}: {} interface nodes, {} events ({}), {} whole-interface slips",
+        law.name(),
+        res.condensed.n,
+        res.run.events.len(),
+        tribofe::report::slide::kind_counts(&res)
+            .iter()
+            .map(|(k, c)| format!("{c} {k}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        res.run.sliding_events
+    );
+    outln!(
+        "final F/N = {:.6} at X = {:.4e} m; largest violation (equilibrium, p >= 0, gap >= 0, p gap = 0, friction) {:.1e} of N/n",
+        last.f / a.n_force,
+        last.x,
+        worst
+    );
+    outln!(
+        "condensation {:.3} s (S symmetric to {:.1e}, rigid motions to {:.1e}); events {:.3} s ({} bordering updates, {} full LU)",
+        res.condense_s,
+        res.condensed.asymmetry,
+        res.condensed.rigid_residual,
+        res.events_s,
+        res.run.updates,
+        res.run.refreshes
+    );
+    if let Some(o) = tribofe::studies::slide::front_offset(&res) {
+        outln!(
+            "slip front vs thin-layer closed form (|x_s| < 0.3 L, {} states): offset {:.3} t (range {:.3} .. {:.3} t)",
+            o.samples, o.mean_t, o.min_t, o.max_t
+        );
+    }
+    if let Some(c) = tribofe::studies::slide::compare_paper(&res) {
+        let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+        outln!(
+            "paper's iteration (r = {:.4}, g = {:.4}): n = {}, F_1 = {:.4}, x_1 = {:.4}, F_max = {:.4}",
+            c.r,
+            c.g,
+            c.n,
+            c.f1,
+            c.x1,
+            c.f_max
+        );
+        outln!(
+            "FE: {} precursors before the first whole slip ({} longer than 5 t), first long one F = {}, x = {}; last peak F = {}",
+            c.n_fe,
+            c.n_fe_long,
+            f(c.f1_fe),
+            f(c.x1_fe),
+            f(c.f_max_fe)
+        );
+    }
+    outln!(
+        "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml}}",
+        a.out.display()
+    );
+    Ok(())
+}

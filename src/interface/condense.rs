@@ -1,0 +1,249 @@
+//! Condensation of the block and the rigid plate onto the interface DOFs and the plate's
+//! three DOFs: one factorisation, one solve with 2n + 3 unit load cases (a unit prescribed
+//! value on one boundary DOF each); the consistent reactions of each case are a column of the
+//! dense symmetric Schur complement S (f_b = S b, forces on the block/plate at the boundary
+//! DOFs).
+//!
+//! Boundary order: u_0..u_{n-1}, v_0..v_{n-1} (interface nodes sorted by x), then the plate's
+//! (U0, V0, theta) with u = U0 - theta (y - t), v = V0 + theta x on the top y = t. The drive
+//! height H enters only through [`Condensed::at_height`], which moves the drive point
+//! algebraically (U_H = U0 - theta (H - t)), so one condensation serves every H.
+
+use crate::error::{Error, Result};
+use crate::fem::assembly::Assembler;
+use crate::fem::constraints::dof;
+use crate::linalg::solve::Solver;
+use crate::linalg::solve::SolverOptions;
+use crate::scene::{PlateModel, Scene};
+use rayon::prelude::*;
+
+/// The condensed block + plate.
+#[derive(Debug, Clone)]
+pub struct Condensed {
+    /// Interface nodes.
+    pub n: usize,
+    /// Node positions along the interface, m (sorted), and tributary widths, m.
+    pub x: Vec<f64>,
+    pub w: Vec<f64>,
+    /// Block length, thickness, m.
+    pub l: f64,
+    pub t: f64,
+    /// Plane-strain modulus E/(1 - nu^2), Pa (scales for tolerances).
+    pub e_star: f64,
+    /// Dense symmetric S, (2n + 3)^2, row-major, N/m per m.
+    pub s: Vec<f64>,
+    /// Largest |S_ij - S_ji| / max |S|, and largest |S r| / (max |S| |r|) over the three rigid motions.
+    pub asymmetry: f64,
+    pub rigid_residual: f64,
+}
+
+impl Condensed {
+    pub fn dim(&self) -> usize {
+        2 * self.n + 3
+    }
+
+    /// S with the plate DOFs (U_H, V, theta): U_H is the plate's horizontal displacement at
+    /// height `h` (m) above the interface.
+    pub fn at_height(&self, h: f64) -> Vec<f64> {
+        let nd = self.dim();
+        let (iu, ith) = (2 * self.n, 2 * self.n + 2);
+        // b_old = T b_new: U0 = U_H + (h - t) theta.
+        let c = h - self.t;
+        let mut s = self.s.clone();
+        // Columns: S T.
+        for i in 0..nd {
+            s[i * nd + ith] += c * s[i * nd + iu];
+        }
+        // Rows: T^T (S T).
+        for j in 0..nd {
+            s[ith * nd + j] += c * s[iu * nd + j];
+        }
+        s
+    }
+}
+
+/// Element kinds `slide` supports: linear ones, whose nodal forces over tributary widths are
+/// the tractions.
+fn check_element(scene: &Scene) -> Result<()> {
+    let name = scene.mesh.element.as_str();
+    if ["qua4", "qua4-sri", "qua4-im", "tri3"].contains(&name) {
+        Ok(())
+    } else {
+        Err(Error::input(
+            "mesh.element",
+            format!("'{name}': the frictional interface supports linear elements only (qua4, qua4-sri, qua4-im, tri3); the node-wise laws assume nodal force = traction x tributary width, which quadratic edges (weights 1/6, 2/3, 1/6) break"),
+        ))
+    }
+}
+
+/// Condenses the scene's block and rigid plate (the loading height of `scene` is ignored).
+pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
+    check_element(scene)?;
+    if scene.plate.model != PlateModel::Rigid {
+        return Err(Error::input(
+            "plate.model",
+            "the frictional interface needs the rigid plate (--plate rigid); the elastic plate is not condensed",
+        ));
+    }
+    let mut sc = scene.clone();
+    // Reference height of U0: the top of the block.
+    sc.loading.height = scene.block.thickness;
+    let mut sm = sc.build()?;
+    let th = sm.dof_theta.expect("rigid plate has theta");
+    sm.constraints.fix(th);
+    let model = sm.model();
+    let n = sm.interface.len();
+    if n < 3 {
+        return Err(Error::input("mesh", "the interface needs at least 3 nodes"));
+    }
+    let mut bdofs: Vec<usize> = sm.interface.iter().map(|&k| dof(k, 0)).collect();
+    bdofs.extend(sm.interface.iter().map(|&k| dof(k, 1)));
+    bdofs.extend([sm.dof_u, sm.dof_v, th]);
+    let nd = bdofs.len();
+    let nf = sm.constraints.n_fixed();
+    if nf != nd {
+        return Err(Error::input("scene", format!("{nf} prescribed DOFs, expected {nd}")));
+    }
+    let slots: Vec<usize> = bdofs.iter().map(|&d| sm.constraints.fixed_slot(d).unwrap()).collect();
+    // One assembly and factorisation; the 2n + 3 right-hand sides -T^T K G e_j are built here
+    // from the few elements each unit value touches (the pipeline's per-case assembly of
+    // prescribed values costs elements x cases, 2 s at 1000 interface nodes).
+    let interior = (0..sm.mesh.n_nodes()).any(|k| {
+        sm.constraints.fixed_slot(dof(k, 0)).is_none() && {
+            let y = sm.mesh.nodes[k][1];
+            y > 0.0 && y < scene.block.thickness
+        }
+    });
+    if !interior {
+        return Err(Error::input(
+            "mesh.n_thick",
+            "the block has no node between the interface and the plate: use at least 2 elements through the thickness (--n-thick 2)",
+        ));
+    }
+    let red = sm.constraints.reduce()?;
+    let asm = Assembler::new(&sm.mesh, &red)?;
+    let (values, _) = asm.assemble(&model, &red, &[vec![]], &[vec![0.0; nf]])?;
+    let solver = Solver::analyse(&asm.pattern, opts.clone())?;
+    let factor = solver.factorize(&asm.pattern, &values).map_err(|k| Error::Singular {
+        detail: format!(
+            "the block's stiffness is not positive definite (pivot {k}) with the interface and plate held"
+        ),
+        node: None,
+        component: None,
+    })?;
+    // Element stiffnesses of the elements touching the interface or the top, once.
+    let mut touch = sm.interface.clone();
+    touch.extend(sm.mesh.set_nodes(&sm.top_set)?);
+    let elems = crate::fem::recovery::elements_touching(&model, &touch);
+    let kes: Vec<(Vec<usize>, Vec<f64>)> = elems
+        .iter()
+        .map(|&e| {
+            let mut ke = vec![0.0; crate::fem::element::stiffness::MAX_DOFS.pow(2)];
+            model.element_stiffness(e, &mut ke)?;
+            Ok((model.mesh.element_nodes(e).to_vec(), ke))
+        })
+        .collect::<Result<_>>()?;
+    let nfull = red.n_full;
+    let k_times = |u: &[f64], only_nonzero: bool| -> Vec<f64> {
+        let mut r = vec![0.0; nfull];
+        for (nodes, ke) in &kes {
+            if only_nonzero && nodes.iter().all(|&k| u[2 * k] == 0.0 && u[2 * k + 1] == 0.0) {
+                continue;
+            }
+            let nd = 2 * nodes.len();
+            for a in 0..nd {
+                let mut fa = 0.0;
+                for b in 0..nd {
+                    fa += ke[a * nd + b] * u[2 * nodes[b / 2] + b % 2];
+                }
+                r[2 * nodes[a / 2] + a % 2] += fa;
+            }
+        }
+        r
+    };
+    let unit = |j: usize| {
+        let mut g = vec![0.0; nf];
+        g[slots[j]] = 1.0;
+        g
+    };
+    let nfree = red.n_free();
+    let zero_r = vec![0.0; nfree];
+    let rhs: Vec<Vec<f64>> = (0..nd)
+        .into_par_iter()
+        .map(|j| {
+            let up = red.expand(&zero_r, &unit(j));
+            let f: Vec<f64> = k_times(&up, true).into_iter().map(|v| -v).collect();
+            let mut out = vec![0.0; nfree];
+            red.project_add(&f, &mut out);
+            out
+        })
+        .collect();
+    let mut x: Vec<f64> = rhs.concat();
+    factor.solve_in_place(&mut x, nd);
+    if x.iter().any(|v| !v.is_finite()) {
+        return Err(Error::Untrustworthy {
+            detail: "the condensation produced non-finite displacements".into(),
+            hint: "check the mesh and the material values".into(),
+        });
+    }
+    let cols: Vec<Vec<f64>> = (0..nd)
+        .into_par_iter()
+        .map(|j| {
+            let u = red.expand(&x[j * nfree..(j + 1) * nfree], &unit(j));
+            let fixed = red.fixed_reactions(&k_times(&u, false));
+            slots.iter().map(|&j| fixed[j]).collect()
+        })
+        .collect();
+    let mut s = vec![0.0; nd * nd];
+    for (j, c) in cols.iter().enumerate() {
+        for i in 0..nd {
+            s[i * nd + j] = c[i];
+        }
+    }
+    let smax = s.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut asym = 0.0f64;
+    for i in 0..nd {
+        for j in 0..i {
+            asym = asym.max((s[i * nd + j] - s[j * nd + i]).abs() / smax);
+        }
+    }
+    // Symmetrise (the asymmetry is round-off, reported above).
+    for i in 0..nd {
+        for j in 0..i {
+            let a = 0.5 * (s[i * nd + j] + s[j * nd + i]);
+            s[i * nd + j] = a;
+            s[j * nd + i] = a;
+        }
+    }
+    let x: Vec<f64> = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
+    let t = scene.block.thickness;
+    let mut rigid = vec![vec![0.0; nd]; 3];
+    for i in 0..n {
+        rigid[0][i] = 1.0;
+        rigid[1][n + i] = 1.0;
+        rigid[2][n + i] = x[i];
+    }
+    rigid[0][2 * n] = 1.0;
+    rigid[1][2 * n + 1] = 1.0;
+    rigid[2][2 * n] = -t;
+    rigid[2][2 * n + 2] = 1.0;
+    let mut rigid_residual = 0.0f64;
+    for r in &rigid {
+        let rn = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for i in 0..nd {
+            let v: f64 = (0..nd).map(|j| s[i * nd + j] * r[j]).sum();
+            rigid_residual = rigid_residual.max(v.abs() / (smax * rn));
+        }
+    }
+    if !(asym < 1e-9 && rigid_residual < 1e-9) {
+        return Err(Error::Untrustworthy {
+            detail: format!(
+                "the condensed interface stiffness is not symmetric ({asym:.1e}) or does not annihilate the rigid motions ({rigid_residual:.1e}) to 1e-9"
+            ),
+            hint: "refine the mesh or check the material values".into(),
+        });
+    }
+    let w = crate::studies::check::tributary_widths(&sm);
+    let e_star = scene.block.young / (1.0 - scene.block.poisson.powi(2));
+    Ok(Condensed { n, x, w, l: scene.block.length, t, e_star, s, asymmetry: asym, rigid_residual })
+}

@@ -1,0 +1,85 @@
+//! Friction laws of the interface. Each is named in the outputs by [`Law::name`].
+
+use crate::error::{Error, Result};
+
+/// What a static-kinetic instability does once a node reaches mu_s p.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rule {
+    /// Scheibert & Dysthe's rule: the front runs over the connected region around the
+    /// nucleation node where the pre-event |tau| >= mu_d p (fields frozen at the event's
+    /// force); that region then relaxes to mu_d p with equilibrium restored (the plate held at
+    /// X), and everything sticks again.
+    Paper,
+    /// Quasi-static cascade at fixed X: slipping nodes carry mu_d p (p of the current
+    /// iterate), the body re-equilibrates, any stuck node above its threshold joins. A node
+    /// that has slipped once in the event keeps the kinetic threshold mu_d p for the rest of
+    /// the event; if equilibrium asks it to slip backwards it sticks at its position from the
+    /// start of the event (and may rejoin at mu_d p). When nothing moves, all nodes re-stick
+    /// with mu_s.
+    Overdamped,
+}
+
+impl std::str::FromStr for Rule {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "paper" => Ok(Rule::Paper),
+            "overdamped" => Ok(Rule::Overdamped),
+            _ => Err(Error::input("rule", format!("'{s}': use paper or overdamped"))),
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Law {
+    /// mu_s = mu_d = mu.
+    Coulomb { mu: f64 },
+    /// Amontons with mu_s > mu_d and an explicit event rule.
+    StaticKinetic { mu_s: f64, mu_d: f64, rule: Rule },
+}
+
+impl Law {
+    pub fn coulomb(mu: f64) -> Result<Law> {
+        if !(mu.is_finite() && mu >= 0.0) {
+            return Err(Error::input("mu", format!("{mu} must be a finite number >= 0")));
+        }
+        Ok(Law::Coulomb { mu })
+    }
+
+    pub fn static_kinetic(mu_s: f64, mu_d: f64, rule: Rule) -> Result<Law> {
+        if !(mu_s.is_finite() && mu_s > 0.0) {
+            return Err(Error::input("mu-s", format!("{mu_s} must be a finite number > 0")));
+        }
+        if !(mu_d.is_finite() && mu_d > 0.0 && mu_d < mu_s) {
+            return Err(Error::input(
+                "mu-d",
+                format!("{mu_d} must be > 0 and below mu_s = {mu_s} (use --law coulomb for mu_s = mu_d)"),
+            ));
+        }
+        Ok(Law::StaticKinetic { mu_s, mu_d, rule })
+    }
+
+    /// Static threshold (stuck nodes).
+    pub fn mu_s(&self) -> f64 {
+        match *self {
+            Law::Coulomb { mu } => mu,
+            Law::StaticKinetic { mu_s, .. } => mu_s,
+        }
+    }
+
+    /// Kinetic coefficient (slipping nodes).
+    pub fn mu_d(&self) -> f64 {
+        match *self {
+            Law::Coulomb { mu } => mu,
+            Law::StaticKinetic { mu_d, .. } => mu_d,
+        }
+    }
+
+    pub fn name(&self) -> String {
+        match self {
+            Law::Coulomb { .. } => "coulomb".into(),
+            Law::StaticKinetic { rule: Rule::Paper, .. } => "static-kinetic (rule paper)".into(),
+            Law::StaticKinetic { rule: Rule::Overdamped, .. } => "static-kinetic (rule overdamped)".into(),
+        }
+    }
+}

@@ -1,0 +1,269 @@
+//! Output of `tribofe slide`: loading.csv, events.csv, states.csv (names and columns read by
+//! scripts: keep them), fig4_fe.svg (loading curve F against F^c with the paper's analytic
+//! iteration for the same r, g) and fronts.svg (slip extents x/L against F/N).
+
+use crate::error::Result;
+use crate::interface::events::{NodeState, Phase};
+use crate::interface::law::Law;
+use crate::report::precursors::render;
+use crate::report::{finite, write_atomic};
+use crate::studies::slide::SlideResult;
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+const FONT: &str = "sans-serif";
+
+fn num(what: &str, v: f64) -> Result<String> {
+    Ok(format!("{:.12e}", finite(what, v)?))
+}
+
+pub fn loading_csv(r: &SlideResult) -> Result<String> {
+    let mut s = String::from(
+        "event,phase,X_m,F_N_per_m,N_N_per_m,Fc_N_per_m,F_over_N,tilt_rad,V_m,n_stick,n_slip,n_open,max_violation\n",
+    );
+    for (k, st) in r.run.states.iter().enumerate() {
+        let [a, b, c] = st.counts();
+        let phase = if st.phase == Phase::Normal { "normal" } else { "drive" };
+        writeln!(
+            s,
+            "{k},{phase},{},{},{},{},{},{},{},{a},{b},{c},{}",
+            num("X", st.x)?,
+            num("F", st.f)?,
+            num("N", st.n_force)?,
+            num("Fc", r.f_c(st.x))?,
+            num("F/N", if st.n_force > 0.0 { st.f / st.n_force } else { 0.0 })?,
+            num("tilt", st.tilt)?,
+            num("V", st.v)?,
+            num("violation", st.violations.max())?
+        )
+        .unwrap();
+    }
+    Ok(s)
+}
+
+/// x/L of the region end farther from the nucleation node.
+fn arrest(r: &SlideResult, node: usize, region: Option<(usize, usize)>) -> f64 {
+    let x = &r.condensed.x;
+    let l = r.condensed.l;
+    match region {
+        Some((a, b)) if node.abs_diff(a) > node.abs_diff(b) => x[a] / l,
+        Some((_, b)) => x[b] / l,
+        None => x[node] / l,
+    }
+}
+
+pub fn events_csv(r: &SlideResult) -> Result<String> {
+    let mu_s = r.options.law.mu_s().max(f64::MIN_POSITIVE);
+    let n = r.options.n_force;
+    let c = &r.condensed;
+    let mut s = String::from("event,kind,X_m,F_N_per_m,F_over_mu_s_N,Fc_over_mu_s_N,x_nucleation_over_L,x_arrest_over_L,region_first_over_L,region_last_over_L,slipped_length_over_L,F_relaxed_over_mu_s_N,backslip_nodes,max_violation,overload\n");
+    for (k, (e, st)) in r.run.events.iter().zip(&r.run.states).enumerate() {
+        let (first, last, len) = match e.region {
+            Some((a, b)) => (c.x[a] / c.l, c.x[b] / c.l, c.w[a..=b].iter().sum::<f64>() / c.l),
+            None => (c.x[e.node] / c.l, c.x[e.node] / c.l, 0.0),
+        };
+        writeln!(
+            s,
+            "{k},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            e.kind,
+            num("X", e.x)?,
+            num("F", e.f)?,
+            num("F", e.f / (mu_s * n))?,
+            num("Fc", r.f_c(e.x) / (mu_s * n))?,
+            num("x", c.x[e.node] / c.l)?,
+            num("x", arrest(r, e.node, e.region))?,
+            num("x", first)?,
+            num("x", last)?,
+            num("length", len)?,
+            num("F*", e.f_relaxed / (mu_s * n))?,
+            e.backslip,
+            num("violation", st.violations.max())?,
+            num("overload", st.violations.overload)?
+        )
+        .unwrap();
+    }
+    Ok(s)
+}
+
+pub fn states_csv(r: &SlideResult) -> Result<String> {
+    let c = &r.condensed;
+    let pm = r.p_mean();
+    let mut s = String::from("event,x_over_L,p_over_pmean,tau_over_pmean,slip_m,gap_m,state\n");
+    for (k, st) in r.run.states.iter().enumerate() {
+        for i in 0..c.n {
+            writeln!(
+                s,
+                "{k},{},{},{},{},{},{}",
+                num("x", c.x[i] / c.l)?,
+                num("p", st.p_force[i] / c.w[i] / pm)?,
+                num("tau", -st.t_force[i] / c.w[i] / pm)?,
+                num("slip", st.u[i])?,
+                num("gap", st.gap[i])?,
+                st.states[i].name()
+            )
+            .unwrap();
+        }
+    }
+    Ok(s)
+}
+
+/// The FE loading curve (F^c, F)/(mu_s N) of the drive phase: each instability is a vertical
+/// drop from its force to its relaxed force.
+pub fn fe_curve(r: &SlideResult) -> Vec<(f64, f64)> {
+    let k = r.options.law.mu_s() * r.options.n_force;
+    let mut pts = vec![(0.0, 0.0)];
+    for (e, st) in r.run.events.iter().zip(&r.run.states) {
+        if st.phase != Phase::Drive {
+            continue;
+        }
+        pts.push((r.f_c(e.x) / k, e.f / k));
+        pts.push((r.f_c(e.x) / k, e.f_relaxed / k));
+    }
+    pts
+}
+
+pub fn fig4_svg(r: &SlideResult) -> Result<String> {
+    let fe = fe_curve(r);
+    let law = r.options.law;
+    let (l, h) = (r.condensed.l, r.scene.loading.height);
+    let (rr, g) = (law.mu_d() / law.mu_s(), 6.0 * law.mu_d() * h / l);
+    let analytic = match (law, crate::precursors::Params::new(rr, g)) {
+        (Law::StaticKinetic { .. }, Ok(p)) => {
+            let n = r.run.sliding_events.max(1) + crate::precursors::n_precursors(&p).unwrap_or(0);
+            Some(crate::precursors::loading_curve(&crate::precursors::simulate(&p, n)))
+        }
+        _ => None,
+    };
+    let all = fe.iter().chain(analytic.iter().flatten());
+    let fc_top = all.clone().fold(0.1f64, |m, p| m.max(p.0)) * 1.05;
+    let f_top = all.fold(0.1f64, |m, p| m.max(p.1)) * 1.1;
+    render("fig4_fe.svg", (900, 650), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(format!("Loading curve, FE {} (r = {rr:.3}, g = {g:.3})", law.name()), (FONT, 20))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(65)
+            .build_cartesian_2d(0.0..fc_top, 0.0..f_top)?;
+        chart
+            .configure_mesh()
+            .x_desc("elastic force F^c / (mu_s N) = k_bonded X / (mu_s N)  (dimensionless)")
+            .y_desc("friction force F / (mu_s N)  (dimensionless)")
+            .draw()?;
+        let m = fc_top.min(f_top);
+        chart
+            .draw_series(LineSeries::new([(0.0, 0.0), (m, m)], BLACK.stroke_width(1)))?
+            .label("ideal elastic loading F = F^c")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLACK));
+        chart
+            .draw_series(LineSeries::new(fe.iter().copied(), RED.stroke_width(2)))?
+            .label("FE event by event")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(2)));
+        if let Some(a) = &analytic {
+            chart
+                .draw_series(LineSeries::new(a.iter().copied(), BLUE.stroke_width(1)))?
+                .label("paper's analytic iteration")
+                .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT, 14))
+            .draw()?;
+        Ok(())
+    })
+}
+
+/// Space-time picture: for each instability its slipped extent x/L at its force F/N (blue);
+/// for continuous slip (coulomb, creep) each state's runs of slipping nodes at its F/N (red).
+pub fn fronts_svg(r: &SlideResult) -> Result<String> {
+    let c = &r.condensed;
+    let n = r.options.n_force;
+    let mut segs: Vec<(f64, f64, f64)> = Vec::new();
+    let mut runs: Vec<(f64, f64, f64)> = Vec::new();
+    for (e, st) in r.run.events.iter().zip(&r.run.states) {
+        if st.phase != Phase::Drive {
+            continue;
+        }
+        if let Some((a, b)) = e.region {
+            segs.push((c.x[a] / c.l, c.x[b] / c.l, e.f / n));
+        }
+        let mut i = 0;
+        while i < c.n {
+            if matches!(st.states[i], NodeState::Slip(_)) {
+                let j = (i..c.n).find(|&k| !matches!(st.states[k], NodeState::Slip(_))).unwrap_or(c.n);
+                runs.push((c.x[i] / c.l, c.x[j - 1] / c.l, st.f / n));
+                i = j;
+            } else {
+                i += 1;
+            }
+        }
+    }
+    let f_top = r.run.states.iter().fold(0.1f64, |m, s| m.max(s.f / n)) * 1.1;
+    render("fronts.svg", (900, 650), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(format!("Slip fronts, FE {}", r.options.law.name()), (FONT, 20))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(65)
+            .build_cartesian_2d(-0.5..0.5, 0.0..f_top)?;
+        chart
+            .configure_mesh()
+            .x_desc("position along the interface x / L (trailing edge -1/2)  (dimensionless)")
+            .y_desc("friction force F / N  (dimensionless)")
+            .draw()?;
+        chart
+            .draw_series(
+                runs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], RED.stroke_width(1))),
+            )?
+            .label("slipping nodes of each state (continuous slip)")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED));
+        chart
+            .draw_series(
+                segs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], BLUE.stroke_width(2))),
+            )?
+            .label("extent of each instability at its force")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT, 14))
+            .draw()?;
+        Ok(())
+    })
+}
+
+/// Writes every output into `dir`; `header` is the run.toml text (what produced the files).
+pub fn write(r: &SlideResult, dir: &Path, header: &str) -> Result<Vec<PathBuf>> {
+    let files = [
+        ("loading.csv", loading_csv(r)?),
+        ("events.csv", events_csv(r)?),
+        ("states.csv", states_csv(r)?),
+        ("fig4_fe.svg", fig4_svg(r)?),
+        ("fronts.svg", fronts_svg(r)?),
+        ("run.toml", header.to_string()),
+    ];
+    let mut out = Vec::new();
+    for (name, text) in files {
+        let p = dir.join(name);
+        write_atomic(&p, text.as_bytes())?;
+        out.push(p);
+    }
+    Ok(out)
+}
+
+/// Counts of each event kind, in first-seen order.
+pub fn kind_counts(r: &SlideResult) -> Vec<(&'static str, usize)> {
+    let mut v: Vec<(&'static str, usize)> = Vec::new();
+    for e in &r.run.events {
+        match v.iter_mut().find(|k| k.0 == e.kind) {
+            Some(k) => k.1 += 1,
+            None => v.push((e.kind, 1)),
+        }
+    }
+    v
+}

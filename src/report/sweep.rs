@@ -1,0 +1,191 @@
+//! Outputs of `tribofe sweep`: one tidy CSV (one row per point and load case) and SVG maps of
+//! the model's error and validity against the two first swept parameters.
+
+use super::check::{summary_csv, SUMMARY_HEADER};
+use super::write_atomic;
+use crate::error::{Error, Result};
+use crate::studies::sweep::{Axis, Param, Point};
+use plotters::prelude::*;
+use std::path::Path;
+
+pub fn header() -> String {
+    let inputs: Vec<&str> = Param::ALL.iter().map(|p| p.column()).collect();
+    format!(
+        "point,{},element,{SUMMARY_HEADER},slope_ratio,slope_ratio_corrected,shear_uniformity,edge_zone_fraction_L,tension_onset_FN,tension_onset_FN_model,locking_prone,interior_ok,edges_ok,tension_ok,model_holds,n_unknowns,point_wall_s",
+        inputs.join(",")
+    )
+}
+
+fn e(v: f64) -> String {
+    format!("{v:.12e}")
+}
+fn opt(v: Option<f64>) -> String {
+    v.map_or(String::new(), e)
+}
+
+/// The table; with `with_header` false (shards after the first) the rows only, so that the
+/// shards' files concatenate into the unsharded table.
+pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
+    let mut s = String::new();
+    if with_header {
+        s.push_str(&header());
+        s.push('\n');
+    }
+    for p in points {
+        let summary = summary_csv(&p.result)?;
+        for ((c, line), v) in p.result.cases.iter().zip(summary.lines().skip(1)).zip(&p.verdicts) {
+            let m = &c.metrics;
+            let ratio = |a: f64, b: f64| if c.fn_ratio != 0.0 && b != 0.0 { Some(a / b) } else { None };
+            let mut cells = vec![(p.index + 1).to_string()];
+            cells.extend(Param::ALL.iter().map(|q| e(q.get(&p.scene))));
+            cells.push(p.scene.mesh.element.clone());
+            cells.push(line.to_string());
+            cells.push(opt(ratio(m.slope_interior, m.slope_model)));
+            cells.push(opt(ratio(m.slope_interior, m.slope_corrected)));
+            cells.push(opt(ratio(m.tau_center, c.fn_ratio)));
+            cells.push(e(v.edge_zone_fraction));
+            cells.push(opt(v.tension_onset_fn));
+            cells.push(e(v.tension_onset_fn_model));
+            for b in [v.locking_prone, v.interior_ok, v.edges_ok, v.tension_ok, v.holds()] {
+                cells.push(u8::from(b).to_string());
+            }
+            cells.push(p.result.n_unknowns.to_string());
+            cells.push(e(p.wall));
+            s.push_str(&cells.join(","));
+            s.push('\n');
+        }
+    }
+    Ok(s)
+}
+
+/// A map: name, title, value per (point, case).
+type Quantity = (&'static str, &'static str, fn(&Point, usize) -> Option<f64>);
+
+const MAPS: [Quantity; 7] = [
+    ("map_slope_ratio.svg", "interior slope FE / model", |p, c| {
+        let m = &p.result.cases[c].metrics;
+        (p.result.cases[c].fn_ratio != 0.0).then(|| m.slope_interior / m.slope_model)
+    }),
+    ("map_slope_ratio_corrected.svg", "interior slope FE / corrected model", |p, c| {
+        let m = &p.result.cases[c].metrics;
+        (p.result.cases[c].fn_ratio != 0.0).then(|| m.slope_interior / m.slope_corrected)
+    }),
+    ("map_shear_uniformity.svg", "tau(0) / (F/N)", |p, c| {
+        let k = &p.result.cases[c];
+        (k.fn_ratio != 0.0).then(|| k.metrics.tau_center / k.fn_ratio)
+    }),
+    ("map_edge_zones.svg", "widest edge zone / L", |p, c| Some(p.verdicts[c].edge_zone_fraction)),
+    ("map_tension_onset.svg", "F/N at tension one t inside the trailing end", |p, c| {
+        p.verdicts[c].tension_onset_fn
+    }),
+    ("map_residual_corrected.svg", "interior |p - corrected| / (N/L)", |p, c| {
+        Some(p.result.cases[c].metrics.interior_dev_p_corrected)
+    }),
+    ("map_verdict.svg", "model holds (1) or not (0)", |p, c| {
+        Some(f64::from(u8::from(p.verdicts[c].holds())))
+    }),
+];
+
+/// Writes the maps over the first two axes with more than one value, for the largest F/N;
+/// the other axes at their first value. Returns the files written (none with < 2 such axes).
+pub fn write_maps(points: &[Point], axes: &[Axis], dir: &Path) -> Result<Vec<String>> {
+    let multi: Vec<usize> = (0..axes.len()).filter(|&i| axes[i].values.len() > 1).collect();
+    if multi.len() < 2 {
+        return Ok(vec![]);
+    }
+    let (ax, ay) = (&axes[multi[0]], &axes[multi[1]]);
+    let mut written = Vec::new();
+    for (file, title, f) in MAPS {
+        let mut cells = Vec::new();
+        for p in points {
+            let fixed_ok = axes
+                .iter()
+                .enumerate()
+                .all(|(i, a)| i == multi[0] || i == multi[1] || a.param.get(&p.scene) == a.values[0]);
+            if !fixed_ok {
+                continue;
+            }
+            let c = p.result.cases.len() - 1;
+            let ix = ax.values.iter().position(|&v| v == ax.param.get(&p.scene));
+            let iy = ay.values.iter().position(|&v| v == ay.param.get(&p.scene));
+            if let (Some(ix), Some(iy)) = (ix, iy) {
+                cells.push((ix, iy, f(p, c)));
+            }
+        }
+        let fn_ratio = points.first().map_or(0.0, |p| p.result.cases.last().map_or(0.0, |c| c.fn_ratio));
+        let svg = heat_map(&format!("{title}, F/N = {fn_ratio}"), ax, ay, &cells)?;
+        write_atomic(&dir.join(file), svg.as_bytes())?;
+        written.push(file.to_string());
+    }
+    Ok(written)
+}
+
+fn err(e: impl std::fmt::Display) -> Error {
+    Error::input("sweep map", e.to_string())
+}
+
+fn heat_map(title: &str, ax: &Axis, ay: &Axis, cells: &[(usize, usize, Option<f64>)]) -> Result<String> {
+    let vals: Vec<f64> = cells.iter().filter_map(|c| c.2).filter(|v| v.is_finite()).collect();
+    let (lo, hi) = vals.iter().fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+    let (nx, ny) = (ax.values.len(), ay.values.len());
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 640)).into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        let at = |vals: &[f64], i: f64| -> String {
+            let k = i.round();
+            if (i - k).abs() > 1e-6 || k < 0.0 {
+                return String::new();
+            }
+            vals.get(k as usize).map_or(String::new(), |v| format!("{v:.3e}"))
+        };
+        let xl = |i: &f64| at(&ax.values, *i);
+        let yl = |i: &f64| at(&ay.values, *i);
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 20))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(80)
+            .build_cartesian_2d(-0.5f64..nx as f64 - 0.5, -0.5f64..ny as f64 - 0.5)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_labels(nx.min(16))
+            .y_labels(ny.min(16))
+            .x_label_formatter(&xl)
+            .y_label_formatter(&yl)
+            .x_desc(ax.param.column())
+            .y_desc(ay.param.column())
+            .draw()
+            .map_err(err)?;
+        for &(ix, iy, v) in cells {
+            let color = match v {
+                Some(v) if v.is_finite() => {
+                    let f = if hi > lo { (v - lo) / (hi - lo) } else { 0.5 };
+                    RGBColor(
+                        (40.0 + 215.0 * f) as u8,
+                        (90.0 + 80.0 * (1.0 - (2.0 * f - 1.0).abs())) as u8,
+                        (255.0 - 215.0 * f) as u8,
+                    )
+                }
+                _ => RGBColor(200, 200, 200),
+            };
+            let (x0, y0) = (ix as f64 - 0.5, iy as f64 - 0.5);
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x0, y0), (x0 + 1.0, y0 + 1.0)],
+                    color.filled(),
+                )))
+                .map_err(err)?;
+            if nx * ny <= 400 {
+                let label = v.map_or("-".to_string(), |v| format!("{v:.3}"));
+                chart
+                    .draw_series(std::iter::once(Text::new(label, (x0 + 0.1, y0 + 0.6), ("sans-serif", 11))))
+                    .map_err(err)?;
+            }
+        }
+        root.present().map_err(err)?;
+    }
+    Ok(svg)
+}

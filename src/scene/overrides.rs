@@ -1,0 +1,75 @@
+//! Command-line (or programmatic) overrides of a scene's keys: every field `None` leaves the
+//! scene's value. Applied by [`Scene::apply`], then checked by the same [`Scene::validate`] as a
+//! scene file.
+
+use super::{PlateModel, Scene};
+use crate::error::{Error, Result};
+use std::path::PathBuf;
+
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Overrides {
+    pub length: Option<f64>,
+    pub thickness: Option<f64>,
+    pub young: Option<f64>,
+    pub poisson: Option<f64>,
+    pub height: Option<f64>,
+    pub fn_ratios: Option<Vec<f64>>,
+    pub plate: Option<PlateModel>,
+    pub plate_thickness: Option<f64>,
+    pub plate_young: Option<f64>,
+    pub plate_poisson: Option<f64>,
+    pub h: Option<f64>,
+    pub grading: Option<f64>,
+    pub h_max: Option<f64>,
+    pub n_thick: Option<usize>,
+    pub element: Option<String>,
+    pub mesh: Option<PathBuf>,
+    pub tol: Option<f64>,
+}
+
+macro_rules! set {
+    ($src:expr, $dst:expr) => {
+        if let Some(v) = &$src {
+            $dst = v.clone();
+        }
+    };
+}
+
+impl Scene {
+    /// The scene with the given overrides, validated.
+    pub fn apply(&self, o: &Overrides) -> Result<Scene> {
+        let mut s = self.clone();
+        set!(o.length, s.block.length);
+        set!(o.thickness, s.block.thickness);
+        set!(o.young, s.block.young);
+        set!(o.poisson, s.block.poisson);
+        set!(o.height, s.loading.height);
+        set!(o.fn_ratios, s.loading.fn_ratios);
+        set!(o.plate, s.plate.model);
+        set!(o.plate_thickness, s.plate.thickness);
+        set!(o.plate_young, s.plate.young);
+        set!(o.plate_poisson, s.plate.poisson);
+        set!(o.h, s.mesh.h);
+        if o.grading.is_some() {
+            s.mesh.grading = o.grading;
+        }
+        if o.h_max.is_some() {
+            s.mesh.h_max = o.h_max;
+        }
+        if o.n_thick.is_some() {
+            s.mesh.n_thick = o.n_thick;
+        }
+        set!(o.element, s.mesh.element);
+        if o.mesh.is_some() {
+            s.mesh.file = o.mesh.clone();
+        }
+        set!(o.tol, s.report.tol);
+        s.validate()?;
+        Ok(s)
+    }
+
+    /// The scene as TOML (every key, so the file is a template to edit).
+    pub fn to_toml(&self) -> Result<String> {
+        toml::to_string(self).map_err(|e| Error::input("scene", format!("cannot write it as TOML: {e}")))
+    }
+}

@@ -1,0 +1,207 @@
+//! The scene-level frictional run: Scene -> condensed interface -> loading history (N, then
+//! X at height H) -> events, states and classified events, as plain data.
+
+use crate::error::{Error, Result};
+use crate::interface::condense::{condense, Condensed};
+use crate::interface::events::{run as run_events, NodeState, Problem, Run};
+use crate::interface::law::Law;
+use crate::linalg::solve::SolverOptions;
+use crate::scene::Scene;
+use std::time::Instant;
+
+#[derive(Debug, Clone)]
+pub struct SlideOptions {
+    pub law: Law,
+    /// Normal force, N/m.
+    pub n_force: f64,
+    pub x_max: Option<f64>,
+    pub cycles: usize,
+    pub max_events: usize,
+    pub creep_fraction: f64,
+}
+
+impl Default for SlideOptions {
+    fn default() -> Self {
+        let p = Problem::default();
+        Self {
+            law: p.law,
+            n_force: 1.0,
+            x_max: None,
+            cycles: p.cycles,
+            max_events: p.max_events,
+            creep_fraction: p.creep_fraction,
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct SlideResult {
+    pub scene: Scene,
+    pub options: SlideOptions,
+    pub condensed: Condensed,
+    pub run: Run,
+    /// Wall time of the condensation and of the event loop, s.
+    pub condense_s: f64,
+    pub events_s: f64,
+}
+
+impl SlideResult {
+    /// Mean pressure N/L, Pa.
+    pub fn p_mean(&self) -> f64 {
+        self.options.n_force / self.condensed.l
+    }
+
+    /// The elastic force F^c = k_bonded X of a state, N/m.
+    pub fn f_c(&self, x: f64) -> f64 {
+        self.run.k_bonded * x
+    }
+}
+
+/// Condenses and runs.
+pub fn run(scene: &Scene, o: &SlideOptions, progress: &dyn Fn(f64)) -> Result<SlideResult> {
+    let clock = Instant::now();
+    let c = condense(scene, &SolverOptions::default())?;
+    let condense_s = clock.elapsed().as_secs_f64();
+    run_condensed(scene, c, condense_s, o, progress)
+}
+
+/// Runs on an existing condensation of `scene`'s mesh and material (any H, law, N).
+pub fn run_condensed(
+    scene: &Scene,
+    c: Condensed,
+    condense_s: f64,
+    o: &SlideOptions,
+    progress: &dyn Fn(f64),
+) -> Result<SlideResult> {
+    let clock = Instant::now();
+    let s = c.at_height(scene.loading.height);
+    let pb = Problem {
+        n_force: o.n_force,
+        law: o.law,
+        x_max: o.x_max,
+        cycles: o.cycles,
+        max_events: o.max_events,
+        creep_fraction: o.creep_fraction,
+    };
+    if o.cycles == 0 && o.x_max.is_none() && matches!(o.law, Law::StaticKinetic { .. }) {
+        return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
+    }
+    let run = run_events(&s, c.n, &pb, progress)?;
+    Ok(SlideResult {
+        scene: scene.clone(),
+        options: o.clone(),
+        condensed: c,
+        run,
+        condense_s,
+        events_s: clock.elapsed().as_secs_f64(),
+    })
+}
+
+/// Coefficients from the paper's (r, g) at the scene's H/L: mu_d = g L/(6 H), mu_s = mu_d/r.
+pub fn coefficients_from_rg(scene: &Scene, r: f64, g: f64) -> Result<(f64, f64)> {
+    let p = crate::precursors::Params::new(r, g)?;
+    let mu_d = p.g() * scene.block.length / (6.0 * scene.loading.height);
+    Ok((mu_d / p.r(), mu_d))
+}
+
+/// Front of the slip zone grown from the trailing edge (x = -L/2) of a state: x/L midway
+/// between the last slipping node of the run that starts at the first contact node (open
+/// trailing nodes are skipped) and the next node; None when that first contact node sticks.
+pub fn trailing_front(res: &SlideResult, state: usize) -> Option<f64> {
+    let st = &res.run.states[state];
+    let c = &res.condensed;
+    let c0 = st.states.iter().position(|s| *s != NodeState::Open)?;
+    if !matches!(st.states[c0], NodeState::Slip(_)) {
+        return None;
+    }
+    let k = (c0..c.n).find(|&k| !matches!(st.states[k], NodeState::Slip(_))).unwrap_or(c.n);
+    if k >= c.n {
+        return Some(0.5);
+    }
+    Some(0.5 * (c.x[k - 1] + c.x[k]) / c.l)
+}
+
+/// The coulomb slip front against the thin-layer closed form
+/// F/(mu N) = 1/(1 + g (1/2 - x_s/L)^2): offsets (x_s,FE - x_s,closed form)/t over the drive
+/// states whose closed-form front lies in |x_s| < 0.3 L (away from both edge zones).
+#[derive(Debug, Clone, Copy)]
+pub struct FrontOffset {
+    pub mean_t: f64,
+    pub min_t: f64,
+    pub max_t: f64,
+    pub samples: usize,
+}
+
+pub fn front_offset(res: &SlideResult) -> Option<FrontOffset> {
+    let Law::Coulomb { mu } = res.options.law else { return None };
+    let (l, t) = (res.condensed.l, res.condensed.t);
+    let g = 6.0 * mu * res.scene.loading.height / l;
+    let mut d = Vec::new();
+    for (k, st) in res.run.states.iter().enumerate() {
+        if st.phase != crate::interface::events::Phase::Drive || mu == 0.0 {
+            continue;
+        }
+        let phi = st.f / (mu * res.options.n_force);
+        if let (Some(xf), Some(xc)) = (trailing_front(res, k), crate::analytical::partial_slip::front(g, phi))
+        {
+            if xc.abs() < 0.3 {
+                d.push((xf - xc) * l / t);
+            }
+        }
+    }
+    if d.is_empty() {
+        return None;
+    }
+    Some(FrontOffset {
+        mean_t: d.iter().sum::<f64>() / d.len() as f64,
+        min_t: d.iter().cloned().fold(f64::INFINITY, f64::min),
+        max_t: d.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+        samples: d.len(),
+    })
+}
+
+/// The static-kinetic run against the paper's analytic iteration for the same (r, g).
+#[derive(Debug, Clone, Copy)]
+pub struct PaperComparison {
+    pub r: f64,
+    pub g: f64,
+    /// Analytic: number of precursors, F_1, x_1 (dimensionless, F in units of mu_s N), F_max.
+    pub n: usize,
+    pub f1: f64,
+    pub x1: f64,
+    pub f_max: f64,
+    /// FE: precursors (events from the trailing edge) before the first whole-interface slip,
+    /// those longer than 5 t, the first of those (F, arrest x/L), and the last stick-slip peak.
+    pub n_fe: usize,
+    pub n_fe_long: usize,
+    pub f1_fe: Option<f64>,
+    pub x1_fe: Option<f64>,
+    pub f_max_fe: Option<f64>,
+}
+
+pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
+    let Law::StaticKinetic { mu_s, mu_d, .. } = res.options.law else { return None };
+    let c = &res.condensed;
+    let (r, g) = (mu_d / mu_s, 6.0 * mu_d * res.scene.loading.height / c.l);
+    let p = crate::precursors::Params::new(r, g).ok()?;
+    let ev = crate::precursors::simulate(&p, 1);
+    let k = mu_s * res.options.n_force;
+    let evs = &res.run.events;
+    let first_slide = evs.iter().position(|e| e.kind == "sliding").unwrap_or(evs.len());
+    let pre: Vec<_> = evs[..first_slide].iter().filter(|e| e.kind == "precursor").collect();
+    let long: Vec<_> =
+        pre.iter().filter(|e| e.region.is_some_and(|(a, b)| c.x[b] - c.x[a] > 5.0 * c.t)).collect();
+    Some(PaperComparison {
+        r,
+        g,
+        n: crate::precursors::n_precursors(&p).ok()?,
+        f1: ev[0].f,
+        x1: ev[0].x,
+        f_max: p.f_max(),
+        n_fe: pre.len(),
+        n_fe_long: long.len(),
+        f1_fe: long.first().map(|e| e.f / k),
+        x1_fe: long.first().and_then(|e| e.region).map(|(_, b)| c.x[b] / c.l),
+        f_max_fe: evs.iter().rfind(|e| e.kind == "sliding").map(|e| e.f / k),
+    })
+}

@@ -1,0 +1,323 @@
+//! `tribofe sweep`: the paper's check over a grid of scene parameters, each point on the model
+//! the convergence study proves adequate ([`super::check::converged_scene`]), with validity
+//! verdicts. Points are independent: they run in parallel (rayon) and split into contiguous
+//! shards whose tables concatenate into the unsharded one.
+
+use super::check::{converged_scene, CheckResult};
+use crate::error::{Error, Result};
+use crate::linalg::solve::SolverOptions;
+use crate::scene::{Overrides, Scene};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// A sweepable scene parameter; its CSV column is named after its flag with its unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Param {
+    Length,
+    Thickness,
+    Height,
+    Young,
+    Poisson,
+}
+
+impl Param {
+    pub const ALL: [Param; 5] =
+        [Param::Length, Param::Thickness, Param::Height, Param::Young, Param::Poisson];
+    pub fn flag(self) -> &'static str {
+        match self {
+            Param::Length => "length",
+            Param::Thickness => "thickness",
+            Param::Height => "height",
+            Param::Young => "young",
+            Param::Poisson => "poisson",
+        }
+    }
+    pub fn column(self) -> &'static str {
+        match self {
+            Param::Length => "length_m",
+            Param::Thickness => "thickness_m",
+            Param::Height => "height_m",
+            Param::Young => "young_Pa",
+            Param::Poisson => "poisson",
+        }
+    }
+    pub fn get(self, s: &Scene) -> f64 {
+        match self {
+            Param::Length => s.block.length,
+            Param::Thickness => s.block.thickness,
+            Param::Height => s.loading.height,
+            Param::Young => s.block.young,
+            Param::Poisson => s.block.poisson,
+        }
+    }
+    fn set(self, o: &mut Overrides, v: f64) {
+        let slot = match self {
+            Param::Length => &mut o.length,
+            Param::Thickness => &mut o.thickness,
+            Param::Height => &mut o.height,
+            Param::Young => &mut o.young,
+            Param::Poisson => &mut o.poisson,
+        };
+        *slot = Some(v);
+    }
+}
+
+/// One swept parameter and its values, in order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    pub param: Param,
+    pub values: Vec<f64>,
+}
+
+/// Parses `a`, a list `a,b,c`, or a range `a:b:n` (n points, ends included, linearly spaced)
+/// or `a:b:ng` (geometrically spaced; a and b of the same sign, nonzero).
+pub fn parse_values(s: &str) -> Result<Vec<f64>> {
+    let bad = |msg: String| Error::input(format!("value list '{s}'"), msg);
+    let num = |x: &str| -> Result<f64> {
+        x.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| bad(format!("'{x}' is not a finite number")))
+    };
+    if s.contains(':') {
+        let parts: Vec<&str> = s.split(':').collect();
+        if parts.len() != 3 {
+            return Err(bad("a range is START:END:N (linear) or START:END:Ng (geometric)".into()));
+        }
+        let (a, b) = (num(parts[0])?, num(parts[1])?);
+        let last = parts[2].trim();
+        let (count, geometric) = match last.strip_suffix('g') {
+            Some(c) => (c, true),
+            None => (last, false),
+        };
+        let n: usize =
+            count.parse().map_err(|_| bad(format!("'{last}' is not a point count like 8 or 8g")))?;
+        if n < 2 {
+            return Err(bad("a range needs at least 2 points".into()));
+        }
+        if geometric && !(a * b > 0.0) {
+            return Err(bad("a geometric range needs nonzero ends of the same sign".into()));
+        }
+        return Ok((0..n)
+            .map(|i| {
+                let f = i as f64 / (n - 1) as f64;
+                if i == n - 1 {
+                    b
+                } else if geometric {
+                    a * (b / a).powf(f)
+                } else {
+                    a + (b - a) * f
+                }
+            })
+            .collect());
+    }
+    s.split(',').map(num).collect()
+}
+
+#[derive(Debug, Clone)]
+pub struct SweepOptions {
+    /// Solve each point on the converged model (graded QUA8, t/16 at the ends); otherwise on
+    /// the scene's own mesh settings.
+    pub converged: bool,
+    /// Run only shard `i` of `n` (1-based), a contiguous block of points.
+    pub shard: Option<(usize, usize)>,
+    pub verdict: VerdictOptions,
+    pub solver: SolverOptions,
+}
+
+impl Default for SweepOptions {
+    fn default() -> Self {
+        Self {
+            converged: true,
+            shard: None,
+            verdict: VerdictOptions::default(),
+            solver: SolverOptions::default(),
+        }
+    }
+}
+
+/// When the paper's model is said to hold at a point.
+#[derive(Debug, Clone)]
+pub struct VerdictOptions {
+    /// Largest interior |p - model| and |tau - model|, in units of N/L.
+    pub interior_tol: f64,
+    /// Largest edge zone (pressure or shear, either end) as a fraction of L.
+    pub edge_fraction: f64,
+    /// The trailing edge must stay in compression up to this F/N (default: the largest
+    /// requested ratio).
+    pub tension_fn: Option<f64>,
+}
+
+impl Default for VerdictOptions {
+    fn default() -> Self {
+        Self { interior_tol: 0.02, edge_fraction: 0.05, tension_fn: None }
+    }
+}
+
+/// The verdicts of one point and load case.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Verdict {
+    /// Largest edge zone / L.
+    pub edge_zone_fraction: f64,
+    /// F/N at which the FE pressure one t inside the trailing end reaches zero (None: never),
+    /// and the model's L / (6 H).
+    pub tension_onset_fn: Option<f64>,
+    pub tension_onset_fn_model: f64,
+    /// Linear elements (qua4, tri3) at nu >= 0.49 lock.
+    pub locking_prone: bool,
+    pub interior_ok: bool,
+    pub edges_ok: bool,
+    pub tension_ok: bool,
+}
+
+impl Verdict {
+    pub fn holds(&self) -> bool {
+        self.interior_ok && self.edges_ok && self.tension_ok && !self.locking_prone
+    }
+}
+
+/// One solved point: its index in the full grid, its scene and check result.
+#[derive(Debug, Clone)]
+pub struct Point {
+    pub index: usize,
+    pub scene: Scene,
+    pub result: CheckResult,
+    pub verdicts: Vec<Verdict>,
+    /// Wall time of the point, s.
+    pub wall: f64,
+}
+
+/// The points of the grid (first axis slowest), as override sets.
+pub fn grid(axes: &[Axis]) -> Vec<Vec<(Param, f64)>> {
+    let mut pts: Vec<Vec<(Param, f64)>> = vec![vec![]];
+    for a in axes {
+        pts = pts
+            .into_iter()
+            .flat_map(|p| {
+                a.values.iter().map(move |&v| {
+                    let mut q = p.clone();
+                    q.push((a.param, v));
+                    q
+                })
+            })
+            .collect();
+    }
+    pts
+}
+
+/// The contiguous range of point indices of shard i of n (1-based) out of `total`.
+pub fn shard_range(total: usize, shard: Option<(usize, usize)>) -> Result<std::ops::Range<usize>> {
+    match shard {
+        None => Ok(0..total),
+        Some((i, n)) if n >= 1 && (1..=n).contains(&i) => Ok(total * (i - 1) / n..total * i / n),
+        Some((i, n)) => Err(Error::input("--shard", format!("{i}/{n}: need 1 <= I <= N"))),
+    }
+}
+
+/// Runs the sweep (or its shard) on `base` with every point's scene validated before any
+/// solve; `progress` is called once per finished point (from any thread).
+pub fn run(
+    base: &Scene,
+    axes: &[Axis],
+    o: &SweepOptions,
+    progress: &(dyn Fn(&Point) + Sync),
+) -> Result<Vec<Point>> {
+    let mut seen = Vec::new();
+    for a in axes {
+        if seen.contains(&a.param) {
+            return Err(Error::input(format!("--{}", a.param.flag()), "swept twice"));
+        }
+        if a.values.is_empty() {
+            return Err(Error::input(format!("--{}", a.param.flag()), "no values"));
+        }
+        seen.push(a.param);
+    }
+    let all = grid(axes);
+    let range = shard_range(all.len(), o.shard)?;
+    // Validate every point first: a bad value is refused before any work.
+    let scenes: Vec<(usize, Scene)> = range
+        .map(|i| {
+            let mut ov = Overrides::default();
+            for &(p, v) in &all[i] {
+                p.set(&mut ov, v);
+            }
+            let s =
+                base.apply(&ov).map_err(|e| Error::input(format!("sweep point {}", i + 1), e.to_string()))?;
+            Ok((i, if o.converged { converged_scene(&s) } else { s }))
+        })
+        .collect::<Result<_>>()?;
+    for (_, s) in &scenes {
+        crate::analytical::thin_layer::Corrected::new(
+            s.block.length,
+            s.block.thickness,
+            s.loading.height,
+            s.block.poisson,
+            0.0,
+        )?;
+    }
+    // Points that differ only in the block's material share the mesh, the constraint ties and
+    // so the pattern and symbolic analysis (`problem::Prepared`): one per group. H is baked into
+    // the rigid plate's ties, so a change of H starts a new group.
+    let mut groups: Vec<Vec<(usize, Scene)>> = Vec::new();
+    let mut keys: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
+    for (i, s) in scenes {
+        let mut k = s.clone();
+        k.block.young = 0.0;
+        k.block.poisson = 0.0;
+        let key = format!("{k:?}");
+        let g = *keys.entry(key).or_insert_with(|| {
+            groups.push(Vec::new());
+            groups.len() - 1
+        });
+        groups[g].push((i, s));
+    }
+    let solved: Vec<Vec<Point>> = groups
+        .into_par_iter()
+        .map(|group| {
+            let prepared = super::check::prepare(&group[0].1, &o.solver)?;
+            group
+                .into_iter()
+                .map(|(index, scene)| {
+                    let clock = Instant::now();
+                    let sm = scene.build()?;
+                    let mesh_time = clock.elapsed().as_secs_f64();
+                    let (mut result, _) =
+                        super::check::run_model(&scene, sm, mesh_time, &o.solver, Some(&prepared))?;
+                    result.displacements.clear();
+                    let verdicts = result.cases.iter().map(|c| verdict(&result, c, &o.verdict)).collect();
+                    let p = Point { index, scene, result, verdicts, wall: clock.elapsed().as_secs_f64() };
+                    progress(&p);
+                    Ok(p)
+                })
+                .collect::<Result<Vec<Point>>>()
+        })
+        .collect::<Result<_>>()?;
+    let mut points: Vec<Point> = solved.into_iter().flatten().collect();
+    points.sort_by_key(|p| p.index);
+    Ok(points)
+}
+
+fn verdict(res: &CheckResult, c: &super::check::CaseResult, o: &VerdictOptions) -> Verdict {
+    let s = &res.scene;
+    let (l, t, h) = (s.block.length, s.block.thickness, s.loading.height);
+    let m = &c.metrics;
+    let widest = m.edge_p_t.iter().chain(&m.edge_tau_t).flatten().fold(0.0f64, |a, &b| a.max(b));
+    let edge_zone_fraction = widest * t / l;
+    let u = &res.unit;
+    let x0 = -0.5 + t / l;
+    let pn = super::check::interpolate(&u.x_over_l, &u.p_per_n, x0);
+    let pf = super::check::interpolate(&u.x_over_l, &u.p_per_f, x0);
+    let tension_onset_fn = if pf < 0.0 { Some(-pn / pf) } else { None };
+    let fn_check = o.tension_fn.unwrap_or_else(|| s.loading.fn_ratios.iter().cloned().fold(0.0, f64::max));
+    let el = s.mesh.element.as_str();
+    Verdict {
+        edge_zone_fraction,
+        tension_onset_fn,
+        tension_onset_fn_model: l / (6.0 * h),
+        locking_prone: matches!(el, "qua4" | "tri3") && s.block.poisson >= 0.49,
+        interior_ok: m.interior_dev_p <= o.interior_tol && m.interior_dev_tau <= o.interior_tol,
+        edges_ok: edge_zone_fraction <= o.edge_fraction,
+        tension_ok: tension_onset_fn.is_none_or(|r| r > fn_check),
+    }
+}
