@@ -27,9 +27,10 @@ value, set to 1 m here, so every force in the deck and in the output is per metr
 width (N/m), as in tribofe. The contact slope K is a pressure per penetration (Pa/m).
 
 Per increment: F = sum of the top nodes' RF_x (CalculiX reports no RF on the element-less
-plate node; the plate's action on the block appears at the tied nodes), N likewise, the
-interface nodal forces from the bottom nodes' RF, p and tau = nodal force / tributary
-length (h, h/2 at the ends), slip = u of the bottom node (the flat does not move; it
+plate node; the plate's action on the block appears at the tied nodes), N likewise; p and tau
+from CalculiX's contact stresses (*CONTACT PRINT CSTR; the bottom nodes' RF is zero because it
+includes the contact elements), tau taken positive along +x on the flat; sum(p w) and
+sum(tau w) with w the tributary length (h, h/2 at the ends) are written as checks; slip = u of the bottom node (the flat does not move; it
 includes the stick compliance tau/lambda), state: open if p <= 1e-9 p_mean, slip if
 |tau| >= 0.999 mu p, else stick.
 """
@@ -350,7 +351,7 @@ def main(argv=None):
     write_csv(os.path.join(a.out, "states.csv"), states)
     sta = open(os.path.join(work, "slide.sta")).read() if os.path.isfile(os.path.join(work, "slide.sta")) else ""
     iters = sum(int(l.split()[3]) for l in sta.splitlines()[2:] if len(l.split()) >= 4 and l.split()[0].isdigit())
-    meta = {"ccx_version": re.search(r"Version\s+(\S+)", logtxt).group(1) if re.search(r"Version\s+(\S+)", logtxt) else "?",
+    meta = {"ccx_version": re.search(r"Version\s+(\S+)", logtxt).group(1).rstrip(",") if re.search(r"Version\s+(\S+)", logtxt) else "?",
             "wall_s": wall, "threads": 1, "increments": len(loading), "iterations": iters,
             "mu": sc.mu, "penalty_Pa_per_m": sc.K, "stick_slope_Pa_per_m": sc.lam,
             "nx": sc.nx, "ny": sc.ny, "L_m": sc.L, "t_m": sc.t, "H_m": sc.H, "E_Pa": sc.E, "nu": sc.nu,
