@@ -5,8 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../../.."
 out=${1:-out/calculix}
-command -v ccx >/dev/null || { apt-get update -qq && apt-get install -y -qq calculix-ccx; }
-python3 -c "import numpy, matplotlib" 2>/dev/null || python3 -m pip install -q numpy matplotlib
+bash validation/friction/calculix/install.sh
 export OMP_NUM_THREADS=1 CCX_NPROC_EQUATION_SOLVER=1
 mkdir -p "$out"
 cargo build --release -q
