@@ -99,13 +99,13 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         if shard.is_none() { tribofe::report::sweep::write_maps(&points, &axes, &args.out)? } else { vec![] };
     let cases: usize = points.iter().map(|p| p.result.cases.len()).sum();
     let holds = points.iter().flat_map(|p| &p.verdicts).filter(|v| v.holds()).count();
-    println!(
+    outln!(
         "{} points x load cases = {cases} rows in {wall:.2} s ({:.1} points/s, {} threads); model holds in {holds} of {cases}",
         points.len(),
         points.len() as f64 / wall,
         rayon::current_num_threads()
     );
-    println!(
+    outln!(
         "wrote {}/{name}{}",
         args.out.display(),
         if maps.is_empty() { String::new() } else { format!(", {}", maps.join(", ")) }
