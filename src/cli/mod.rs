@@ -55,7 +55,7 @@ pub enum Command {
     /// Precursors to sliding (Scheibert & Dysthe model): event table, fig. 4, or the n(r, g) map (fig. 5).
     #[command(allow_negative_numbers = true)]
     Precursors(precursors::Args),
-    /// Frictional interface (coulomb, static-kinetic): N then X at height H, solved event by event.
+    /// Frictional interface (coulomb, static-kinetic, slip-weakening): N then X at height H, solved event by event.
     #[command(allow_negative_numbers = true)]
     Slide(slide::Args),
     /// Pipeline benchmark: phase times, sizes, GFLOP/s and peak memory on ~1e6-DOF problems.

@@ -32,7 +32,7 @@ pub struct Args {
     /// Event rule of static-kinetic: paper or overdamped.
     #[arg(long, default_value = "paper")]
     pub rule: String,
-    /// Slip-weakening distance D_c, m (slip-weakening: not implemented yet).
+    /// Slip-weakening distance D_c, m (slip-weakening; the coefficients as for static-kinetic).
     #[arg(long)]
     pub dc: Option<f64>,
     /// Normal force N, N/m (results are reported per unit N where that makes them independent of it).
@@ -42,7 +42,7 @@ pub struct Args {
     /// slip for coulomb; the cycles for static-kinetic).
     #[arg(long)]
     pub x_max: Option<f64>,
-    /// Whole-interface slips (stick-slip cycles) to run, static-kinetic.
+    /// Whole-interface slips (stick-slip cycles) to run, static-kinetic and slip-weakening.
     #[arg(long, default_value_t = 10)]
     pub cycles: usize,
     /// Cap on events (each keeps the interface state: ~40 bytes per node).
@@ -68,7 +68,13 @@ fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
             };
             Law::coulomb(mu)
         }
-        "static-kinetic" => {
+        "static-kinetic" | "slip-weakening" => {
+            if a.mu.is_some() {
+                return Err(Error::input(
+                    "mu",
+                    format!("{} takes --mu-s and --mu-d (or --r and --g)", a.law),
+                ));
+            }
             let (ms, md) = match (a.mu_s, a.mu_d, a.r, a.g) {
                 (Some(s), Some(d), None, None) => (s, d),
                 (None, None, Some(r), Some(g)) => coefficients_from_rg(scene, r, g)?,
@@ -77,12 +83,14 @@ fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
                     return Err(Error::input("mu-s/mu-d", "give both --mu-s and --mu-d, or both --r and --g"))
                 }
             };
-            Law::static_kinetic(ms, md, rule)
+            match a.dc {
+                None if a.law == "slip-weakening" => {
+                    Err(Error::input("dc", "slip-weakening needs --dc, the weakening slip distance in m"))
+                }
+                Some(dc) => Law::slip_weakening(ms, md, dc),
+                None => Law::static_kinetic(ms, md, rule),
+            }
         }
-        "slip-weakening" => Err(Error::input(
-            "law",
-            "slip-weakening is not implemented yet (issue 17, priority 4); use coulomb or static-kinetic",
-        )),
         other => {
             Err(Error::input("law", format!("'{other}': use coulomb, static-kinetic or slip-weakening")))
         }

@@ -36,6 +36,10 @@ pub enum Law {
     Coulomb { mu: f64 },
     /// Amontons with mu_s > mu_d and an explicit event rule.
     StaticKinetic { mu_s: f64, mu_d: f64, rule: Rule },
+    /// Linear slip weakening: a slipping node's coefficient falls from mu_s to mu_d over the
+    /// slip distance dc (m) accumulated since it last stuck; a node heals to mu_s when it
+    /// sticks again.
+    SlipWeakening { mu_s: f64, mu_d: f64, dc: f64 },
 }
 
 impl Law {
@@ -59,11 +63,32 @@ impl Law {
         Ok(Law::StaticKinetic { mu_s, mu_d, rule })
     }
 
+    pub fn slip_weakening(mu_s: f64, mu_d: f64, dc: f64) -> Result<Law> {
+        Law::static_kinetic(mu_s, mu_d, Rule::Paper)?; // the same bounds on mu_s, mu_d
+        if !(dc.is_finite() && dc > 0.0) {
+            return Err(Error::input("dc", format!("{dc} m must be a finite slip distance > 0")));
+        }
+        Ok(Law::SlipWeakening { mu_s, mu_d, dc })
+    }
+
+    /// Coefficient of a node that has slipped `slip` (m) since it last stuck.
+    pub fn kinetic(&self, slip: f64) -> f64 {
+        match *self {
+            Law::SlipWeakening { mu_s, mu_d, dc } => mu_s - (mu_s - mu_d) * (slip / dc).clamp(0.0, 1.0),
+            _ => self.mu_d(),
+        }
+    }
+
+    /// Whether the law has a static peak above the kinetic level (stick-slip instabilities).
+    pub fn weakens(&self) -> bool {
+        !matches!(self, Law::Coulomb { .. })
+    }
+
     /// Static threshold (stuck nodes).
     pub fn mu_s(&self) -> f64 {
         match *self {
             Law::Coulomb { mu } => mu,
-            Law::StaticKinetic { mu_s, .. } => mu_s,
+            Law::StaticKinetic { mu_s, .. } | Law::SlipWeakening { mu_s, .. } => mu_s,
         }
     }
 
@@ -71,7 +96,7 @@ impl Law {
     pub fn mu_d(&self) -> f64 {
         match *self {
             Law::Coulomb { mu } => mu,
-            Law::StaticKinetic { mu_d, .. } => mu_d,
+            Law::StaticKinetic { mu_d, .. } | Law::SlipWeakening { mu_d, .. } => mu_d,
         }
     }
 
@@ -80,6 +105,7 @@ impl Law {
             Law::Coulomb { .. } => "coulomb".into(),
             Law::StaticKinetic { rule: Rule::Paper, .. } => "static-kinetic (rule paper)".into(),
             Law::StaticKinetic { rule: Rule::Overdamped, .. } => "static-kinetic (rule overdamped)".into(),
+            Law::SlipWeakening { dc, .. } => format!("slip-weakening (D_c = {dc:e} m)"),
         }
     }
 }

@@ -129,7 +129,7 @@ pub fn fig4_svg(r: &SlideResult) -> Result<String> {
     let (l, h) = (r.condensed.l, r.scene.loading.height);
     let (rr, g) = (law.mu_d() / law.mu_s(), 6.0 * law.mu_d() * h / l);
     let analytic = match (law, crate::precursors::Params::new(rr, g)) {
-        (Law::StaticKinetic { .. }, Ok(p)) => {
+        (Law::StaticKinetic { .. } | Law::SlipWeakening { .. }, Ok(p)) => {
             let n = r.run.sliding_events.max(1) + crate::precursors::n_precursors(&p).unwrap_or(0);
             Some(crate::precursors::loading_curve(&crate::precursors::simulate(&p, n)))
         }

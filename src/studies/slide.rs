@@ -83,7 +83,7 @@ pub fn run_condensed(
         max_events: o.max_events,
         creep_fraction: o.creep_fraction,
     };
-    if o.cycles == 0 && o.x_max.is_none() && matches!(o.law, Law::StaticKinetic { .. }) {
+    if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
         return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
     }
     let run = run_events(&s, c.n, &pb, progress)?;
@@ -180,7 +180,10 @@ pub struct PaperComparison {
 }
 
 pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
-    let Law::StaticKinetic { mu_s, mu_d, .. } = res.options.law else { return None };
+    if !res.options.law.weakens() {
+        return None;
+    }
+    let (mu_s, mu_d) = (res.options.law.mu_s(), res.options.law.mu_d());
     let c = &res.condensed;
     let (r, g) = (mu_d / mu_s, 6.0 * mu_d * res.scene.loading.height / c.l);
     let p = crate::precursors::Params::new(r, g).ok()?;

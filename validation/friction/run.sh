@@ -1,5 +1,5 @@
 #!/bin/sh
-# Reruns every study quoted in validation/friction/README.md (release build; ~2 min on 2 cores).
+# Reruns every study quoted in validation/friction/README.md (release build; ~3 min on 2 cores).
 # Each run writes loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml and
 # prints its summary, captured in <dir>/summary.txt.
 set -e
@@ -34,3 +34,13 @@ for p in 2:0.004 4:0.002 8:0.001; do
 done
 # Speed: ~1000 interface nodes (coulomb to 5 % past whole sliding).
 run speed_1000 --h 0.0004 --n-thick 2 --mu 0.5
+# Slip weakening (L = 10 cm, t = 4 mm, (r, g) = (0.9, 0.35), one cycle): D_c = 0.3 um
+# (kappa = 0.33) on h = 4, 2, 1, 0.5 mm; stable growth at D_c = 10 um (kappa = 11); the
+# abrupt-drop limit D_c = 1e-10 m against the overdamped rule on h = 1 mm.
+for p in 2:0.004 4:0.002 8:0.001 16:0.0005; do
+  nt=${p%:*}; h=${p#*:}
+  run sw_nt$nt --length 0.1 --thickness 0.004 --h $h --n-thick $nt --law slip-weakening --r 0.9 --g 0.35 --dc 3e-7 --cycles 1
+done
+run sw_stable --length 0.1 --thickness 0.004 --h 0.002 --n-thick 4 --law slip-weakening --r 0.9 --g 0.35 --dc 1e-5 --cycles 1
+run sw_dc0 --length 0.1 --thickness 0.004 --h 0.001 --n-thick 8 --law slip-weakening --r 0.9 --g 0.35 --dc 1e-10 --cycles 1
+run sw_overdamped --length 0.1 --thickness 0.004 --h 0.001 --n-thick 8 --law static-kinetic --rule overdamped --r 0.9 --g 0.35 --cycles 1

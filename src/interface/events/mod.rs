@@ -16,6 +16,8 @@ use crate::error::{Error, Result};
 use crate::interface::law::{Law, Rule};
 use faer::linalg::solvers::DenseSolveCore;
 
+mod weakening;
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum NodeState {
     Stick,
@@ -179,6 +181,13 @@ struct Solver<'a> {
     law: Law,
     states: Vec<NodeState>,
     anchor: Vec<f64>,
+    /// Per node: the coefficient of its slip row (mu_d, or the slip-weakening value), the
+    /// threshold while stuck (mu_s; slip weakening: the value its slip has reached), the
+    /// position where it last started slipping and its slip before that (since the last heal).
+    mu_slip: Vec<f64>,
+    mu_stick: Vec<f64>,
+    slip0: Vec<f64>,
+    slip_acc: Vec<f64>,
     free: Free,
     fscale: f64,
     dscale: f64,
@@ -222,7 +231,7 @@ impl<'a> Solver<'a> {
     fn slip_coef(&self, d: usize) -> f64 {
         if d < self.n {
             if let NodeState::Slip(s) = self.states[d] {
-                return s * self.law.mu_d();
+                return s * self.mu_slip[d];
             }
         }
         0.0
@@ -390,8 +399,7 @@ impl<'a> Solver<'a> {
         if was_v {
             self.remove(n + i);
         }
-        self.states[i] = new;
-        self.anchor[i] = anchor;
+        self.enter(i, new, anchor);
         if !matches!(new, NodeState::Stick) {
             self.add(i)?;
         }
@@ -411,11 +419,50 @@ impl<'a> Solver<'a> {
             return Ok(());
         }
         for &(i, st, a) in changes {
-            self.states[i] = st;
-            self.anchor[i] = a;
+            self.enter(i, st, a);
         }
         self.g = None;
         self.refresh()
+    }
+
+    /// New coefficients of slipping nodes' rows (slip weakening).
+    fn set_coefficients(&mut self, changes: &[(usize, f64)]) -> Result<()> {
+        if changes.len() < 32 {
+            for &(i, mu) in changes {
+                self.remove(i);
+                self.mu_slip[i] = mu;
+                self.add(i)?;
+            }
+            return Ok(());
+        }
+        for &(i, mu) in changes {
+            self.mu_slip[i] = mu;
+        }
+        self.refresh()
+    }
+
+    /// Every node forgets its slip: thresholds back to mu_s (slip weakening's healing).
+    fn heal_memory(&mut self) {
+        self.slip_acc.iter_mut().for_each(|v| *v = 0.0);
+        self.mu_stick.iter_mut().for_each(|v| *v = self.law.mu_s());
+    }
+
+    /// Node i's new state and its bookkeeping (the free set is the caller's).
+    fn enter(&mut self, i: usize, new: NodeState, anchor: f64) {
+        match (self.states[i], new) {
+            (NodeState::Slip(_), NodeState::Slip(_)) => {}
+            (_, NodeState::Slip(_)) => {
+                self.mu_slip[i] = self.law.kinetic(self.slip_acc[i]);
+                self.slip0[i] = if self.states[i] == NodeState::Stick { self.anchor[i] } else { 0.0 };
+            }
+            (NodeState::Slip(s), NodeState::Stick) if matches!(self.law, Law::SlipWeakening { .. }) => {
+                self.slip_acc[i] += (s * (anchor - self.slip0[i])).max(0.0);
+                self.mu_stick[i] = self.law.kinetic(self.slip_acc[i]);
+            }
+            _ => {}
+        }
+        self.states[i] = new;
+        self.anchor[i] = anchor;
     }
 
     /// The affine solution of the current state set.
@@ -524,8 +571,8 @@ impl<'a> Solver<'a> {
         let n = self.n;
         let (tf, td) = (1e-9 * self.fscale, 1e-9 * self.dscale);
         let (rate_f, rate_d) = self.rate_tols(a);
-        let mu_s = self.law.mu_s();
         for i in 0..n {
+            let mu_s = self.mu_stick[i];
             let (t, p, u, g) = (a.f(i, lam), a.f(n + i, lam), a.b(i, lam), a.b(n + i, lam));
             let (t1, p1, u1, g1) = (a.f1[i], a.f1[n + i], a.b1[i], a.b1[n + i]);
             match self.states[i] {
@@ -592,10 +639,12 @@ impl<'a> Solver<'a> {
             v.gap = v.gap.max(-g / ds);
             v.complementarity = v.complementarity.max((p * g).abs() / (fs * ds));
             match self.states[i] {
-                NodeState::Stick if mu_d < mu_s => v.overload = v.overload.max((t.abs() - mu_s * p) / fs),
+                NodeState::Stick if mu_d < mu_s => {
+                    v.overload = v.overload.max((t.abs() - self.mu_stick[i] * p) / fs)
+                }
                 NodeState::Stick => v.friction = v.friction.max((t.abs() - mu_s * p) / fs),
                 NodeState::Slip(s) => {
-                    v.friction = v.friction.max((t.abs() - mu_d * p).abs() / fs);
+                    v.friction = v.friction.max((t.abs() - self.mu_slip[i] * p).abs() / fs);
                     v.direction = v.direction.max(s * t / fs);
                     if let Some(pu) = prev_u {
                         v.direction = v.direction.max(-s * (u - pu[i]) / ds);
@@ -655,7 +704,6 @@ impl<'a> Solver<'a> {
     /// (increment, node, what).
     fn next_event(&self, a: &Affine, lam: f64) -> Option<(f64, usize, Hit)> {
         let n = self.n;
-        let mu_s = self.law.mu_s();
         let (rf, rd) = self.rate_tols(a);
         let mut best: Option<(f64, usize, Hit)> = None;
         let mut consider = |g: f64, g1: f64, i: usize, h: Hit| {
@@ -672,6 +720,7 @@ impl<'a> Solver<'a> {
             let (t1, p1, g1) = (a.f1[i], a.f1[n + i], a.b1[n + i]);
             match self.states[i] {
                 NodeState::Stick => {
+                    let mu_s = self.mu_stick[i];
                     consider(p, p1, i, Hit::Open);
                     consider(mu_s * p - t, mu_s * p1 - t1, i, Hit::Friction(-1.0));
                     consider(mu_s * p + t, mu_s * p1 + t1, i, Hit::Friction(1.0));
@@ -724,6 +773,10 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
         law: pb.law,
         states: vec![NodeState::Stick; n],
         anchor: vec![0.0; n],
+        mu_slip: vec![pb.law.mu_d(); n],
+        mu_stick: vec![pb.law.mu_s(); n],
+        slip0: vec![0.0; n],
+        slip_acc: vec![0.0; n],
         free: Free {
             dofs: vec![],
             pos: vec![usize::MAX; nd],
@@ -757,7 +810,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     let mut out =
         Run { events: vec![], states: vec![], k_bonded, sliding_events: 0, updates: 0, refreshes: 0 };
     let max_fix = 20 * n + 100;
-    let is_sk = matches!(pb.law, Law::StaticKinetic { .. });
+    let is_sk = pb.law.weakens();
     let mut prev_u: Vec<f64> = vec![0.0; n];
 
     // Phase 1: N from 0 to its value; proportional loading, so the rate problem at 0 decides.
@@ -806,6 +859,9 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                 sv.set_state(i, NodeState::Stick, prev_u[i])?;
             }
         }
+    }
+    if let Law::SlipWeakening { dc, .. } = pb.law {
+        return weakening::drive(&mut sv, out, pb, dc, prev_u, progress);
     }
     let mut x_end = pb.x_max.unwrap_or(f64::INFINITY);
     let mut last_region: Option<(usize, usize)> = None;
@@ -856,32 +912,9 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                     let a2 = sv.solve()?;
                     let st = sv.record(&a2, lam, Some(&prev_u));
                     prev_u.clone_from(&st.u);
-                    let contact: Vec<usize> = (0..n).filter(|&k| sv.states[k] != NodeState::Open).collect();
-                    // Whole-interface slip: the event reached every contact node (with the
-                    // overdamped rule some may have re-stuck before the end of the relaxation;
-                    // `all_slipping` says whether all were slipping at its end, F* = mu_d N).
-                    let covers = contact.first().is_some_and(|&c0| region.0 <= c0)
-                        && contact.last().is_some_and(|&c1| region.1 >= c1);
-                    let kind = if zeno {
-                        "creep"
-                    } else if covers {
-                        out.sliding_events += 1;
-                        "sliding"
-                    } else if contact.first() == Some(&region.0) {
-                        "precursor"
-                    } else {
-                        let c0 = contact.first().copied().unwrap_or(0);
-                        let tip = (c0..n).take_while(|&k| slipped[k]).last();
-                        if tip.is_some_and(|k| region.0 <= k + 1) {
-                            "tip-advance"
-                        } else {
-                            "nucleation"
-                        }
-                    };
+                    let kind = if zeno { "creep" } else { classify(&sv.states, region, &mut slipped) };
                     if kind == "sliding" {
-                        slipped.iter_mut().for_each(|v| *v = false);
-                    } else {
-                        (region.0..=region.1).for_each(|k| slipped[k] = true);
+                        out.sliding_events += 1;
                     }
                     last_region = Some(region);
                     let ev = Event {
@@ -962,6 +995,37 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
         };
         pending = Some((kind, i));
     }
+}
+
+/// Kind of an instability over `region` (first, last node) given the states after it, and
+/// `slipped`, the nodes slipped in instabilities since the last whole-interface slip (updated):
+/// `sliding` when the region covers every contact node (with the overdamped rule some may
+/// have re-stuck before the end of the relaxation), `precursor` when it starts at the first
+/// contact node (the trailing edge), `tip-advance` when it touches the run of slipped nodes
+/// grown from there (an arrested front creeping on), `nucleation` elsewhere.
+fn classify(states: &[NodeState], region: (usize, usize), slipped: &mut [bool]) -> &'static str {
+    let contact: Vec<usize> = (0..states.len()).filter(|&k| states[k] != NodeState::Open).collect();
+    let covers =
+        contact.first().is_some_and(|&c0| region.0 <= c0) && contact.last().is_some_and(|&c1| region.1 >= c1);
+    let kind = if covers {
+        "sliding"
+    } else if contact.first() == Some(&region.0) {
+        "precursor"
+    } else {
+        let c0 = contact.first().copied().unwrap_or(0);
+        let tip = (c0..states.len()).take_while(|&k| slipped[k]).last();
+        if tip.is_some_and(|k| region.0 <= k + 1) {
+            "tip-advance"
+        } else {
+            "nucleation"
+        }
+    };
+    if kind == "sliding" {
+        slipped.iter_mut().for_each(|v| *v = false);
+    } else {
+        (region.0..=region.1).for_each(|k| slipped[k] = true);
+    }
+    kind
 }
 
 /// Rate-consistency changes at lam until none is needed (continuous slip allowed).
@@ -1055,7 +1119,7 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
     let dir = |t: f64| if t > 0.0 { -1.0 } else { 1.0 };
     let rule = match sv.law {
         Law::StaticKinetic { rule, .. } => rule,
-        Law::Coulomb { .. } => Rule::Paper,
+        Law::Coulomb { .. } | Law::SlipWeakening { .. } => Rule::Paper,
     };
     // Every contact node sticks at its current position to start with.
     for i in 0..n {
