@@ -245,10 +245,29 @@ impl Scene {
             return Err(Error::input(
                 "mesh.h",
                 format!(
-                    "{} m is larger than the block thickness {} m: use at most t",
+                    "{} m is larger than the block thickness {} m: use at most t / 2",
                     self.mesh.h, self.block.thickness
                 ),
             ));
+        }
+        if self.mesh.file.is_none() {
+            let ny =
+                self.mesh.n_thick.unwrap_or(((self.block.thickness / self.mesh.h).round() as usize).max(1));
+            // One element through the thickness (no free node for QUA4) only when asked for
+            // by n_thick, never as the rounding of h.
+            if ny == 1 && self.mesh.n_thick.is_none() {
+                return Err(Error::input(
+                    "mesh.h (--h)",
+                    format!(
+                        "h = {} m gives round(t / h) = 1 element through the thickness t = {} m; \
+                         use h <= {:.3e} m (t / 2), or set n_thick = 1 (--n-thick 1) if one \
+                         element is meant",
+                        self.mesh.h,
+                        self.block.thickness,
+                        self.block.thickness / 2.0
+                    ),
+                ));
+            }
         }
         if self.loading.fn_ratios.is_empty() || self.loading.fn_ratios.iter().any(|r| !r.is_finite()) {
             return Err(Error::input("loading.fn_ratios", "need at least one finite F/N ratio"));
@@ -340,9 +359,12 @@ impl Scene {
                 self.mesh.block
             )));
         }
+        self.check_mesh_geometry(&m, path)?;
         let want = self.element()?;
         let kinds = m.kinds_present();
-        if !kinds.contains(&want.kind) {
+        // The kind comes from the file: plain `qua4` (the default) names no kind, only the
+        // standard technology; any other name must match an element the file holds.
+        if !kinds.contains(&want.kind) && self.mesh.element != "qua4" {
             let names: Vec<&str> = kinds.iter().map(|k| k.name()).collect();
             return Err(Error::input(
                 "mesh.element",
@@ -355,6 +377,61 @@ impl Scene {
             ));
         }
         Ok(m)
+    }
+
+    /// Refuses a mesh whose geometry contradicts the scene: the figures are normalised by L
+    /// and t, and the plate acts on the interface at y = 0 and the top at y = t.
+    fn check_mesh_geometry(&self, m: &Mesh, path: &Path) -> Result<()> {
+        let (l, t) = (self.block.length, self.block.thickness);
+        let tol = 1e-6 * t;
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &m.nodes {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let bad =
+            |why: String| Error::Mesh(format!("{}: {why}", crate::error::quote(&path.display().to_string())));
+        if (lo[0] + l / 2.0).abs() > tol
+            || (hi[0] - l / 2.0).abs() > tol
+            || lo[1].abs() > tol
+            || (hi[1] - t).abs() > tol
+        {
+            return Err(bad(format!(
+                "the block spans x in [{:.6e}, {:.6e}] m, y in [{:.6e}, {:.6e}] m, but the scene has \
+                 length L = {l} m and thickness t = {t} m (x in [-L/2, L/2], y in [0, t]); set \
+                 block.length / block.thickness (--length, --thickness) to the mesh's or move the mesh",
+                lo[0], hi[0], lo[1], hi[1]
+            )));
+        }
+        let order = m.kinds_present().iter().map(|k| k.order()).max().unwrap_or(1);
+        for (name, y) in [(&self.mesh.interface, 0.0), (&self.mesh.top, t)] {
+            let edges = m.edges(name).map_err(|e| bad(e.to_string()))?;
+            let (mut covered, mut y_off) = (0.0, 0.0f64);
+            for e in edges {
+                let [a, b] = e.ends.map(|n| m.nodes[n]);
+                covered += (b[0] - a[0]).abs();
+                y_off = e.nodes().fold(y_off, |d, n| d.max((m.nodes[n][1] - y).abs()));
+                if e.mid.is_some() != (order == 2) {
+                    return Err(bad(format!(
+                        "group '{}' holds {}-node lines but the elements are of order {order}: \
+                         use {} lines",
+                        crate::error::quote(name),
+                        2 + usize::from(e.mid.is_some()),
+                        if order == 2 { "3-node (line3)" } else { "2-node (line2)" }
+                    )));
+                }
+            }
+            if y_off > tol || (covered - l).abs() > tol {
+                return Err(bad(format!(
+                    "group '{}' must be the whole side y = {y} m spanning [-L/2, L/2] (L = {l} m): \
+                     its nodes lie up to {y_off:.3e} m off that line and its edges cover {covered:.6e} m",
+                    crate::error::quote(name)
+                )));
+            }
+        }
+        Ok(())
     }
 
     /// A layer y0 < y < y1 spanning the block's length, with the block's spacing along x

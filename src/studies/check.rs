@@ -91,6 +91,7 @@ pub fn converged_scene(scene: &Scene) -> Scene {
     let t = s.block.thickness;
     s.mesh.element = "qua8".into();
     s.mesh.h = t / 16.0;
+    s.mesh.n_thick = None;
     s.mesh.grading = Some(1.15);
     s.mesh.h_max = Some(4.0 * t);
     s.mesh.file = None;
