@@ -106,3 +106,47 @@ fn h_giving_one_element_through_the_thickness_is_refused() {
     refused(dir.path(), &["--h", "0.0018"], &["--h", "t / 2", "--n-thick"]);
     refused(dir.path(), &["--h", "0.003"], &["mesh.h", "t / 2"]);
 }
+
+/// Runs `check` on a short block and returns (stdout, summary.csv).
+fn short_block(dir: &Path, args: &[&str]) -> (String, String) {
+    let out = dir.join("out");
+    let mut a = vec!["check", "--no-fields", "--out", out.to_str().unwrap()];
+    a.extend_from_slice(args);
+    let o = tribofe(&a);
+    assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    (String::from_utf8_lossy(&o.stdout).into_owned(), summary)
+}
+
+#[test]
+fn short_thick_block_uses_its_middle_half() {
+    // L = 20 t: no node lies 10 t from both ends; the interior is |x| < L/4 and says so.
+    let dir = tempfile::tempdir().unwrap();
+    let (stdout, summary) = short_block(dir.path(), &["--length", "0.1", "--thickness", "0.005"]);
+    assert!(stdout.contains("middle half") && stdout.contains("2.5000e-2 m"), "{stdout}");
+    assert!(!summary.to_lowercase().contains("nan"));
+    // Every figure defined; the slope at F/N = 0.82 near the model's 12 (F/N)(H/L) = 3.936
+    // (measured 4.02: the short block's shear couple shifts it by a few percent).
+    let row: Vec<&str> = summary.lines().nth(3).unwrap().split(',').collect();
+    let slope: f64 = row[3].parse().unwrap();
+    assert!((slope / 3.936 - 1.0).abs() < 0.05, "{slope}");
+    assert!(row.iter().skip(10).all(|c| !c.is_empty()), "{row:?}");
+}
+
+#[test]
+fn undefined_interior_figures_are_dashes_and_empty_cells() {
+    // L = 2 t on 1 mm elements: the middle half holds one node, no slope can be fitted.
+    let dir = tempfile::tempdir().unwrap();
+    let (stdout, summary) = short_block(
+        dir.path(),
+        &["--length", "0.004", "--thickness", "0.002", "--h", "0.001", "--no-converged"],
+    );
+    assert!(stdout.contains("fewer than two interface nodes"), "{stdout}");
+    assert!(!summary.to_lowercase().contains("nan"));
+    for line in summary.lines().skip(1) {
+        let row: Vec<&str> = line.split(',').collect();
+        assert!(row[3].is_empty() && row[20].is_empty(), "{row:?}");
+        // One node: the deviation is defined; the balance is exact to round-off.
+        assert!(row[10].parse::<f64>().is_ok() && row[17].parse::<f64>().unwrap() < 1e-9, "{row:?}");
+    }
+}

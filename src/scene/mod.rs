@@ -250,25 +250,6 @@ impl Scene {
                 ),
             ));
         }
-        if self.mesh.file.is_none() {
-            let ny =
-                self.mesh.n_thick.unwrap_or(((self.block.thickness / self.mesh.h).round() as usize).max(1));
-            // One element through the thickness (no free node for QUA4) only when asked for
-            // by n_thick, never as the rounding of h.
-            if ny == 1 && self.mesh.n_thick.is_none() {
-                return Err(Error::input(
-                    "mesh.h (--h)",
-                    format!(
-                        "h = {} m gives round(t / h) = 1 element through the thickness t = {} m; \
-                         use h <= {:.3e} m (t / 2), or set n_thick = 1 (--n-thick 1) if one \
-                         element is meant",
-                        self.mesh.h,
-                        self.block.thickness,
-                        self.block.thickness / 2.0
-                    ),
-                ));
-            }
-        }
         if self.loading.fn_ratios.is_empty() || self.loading.fn_ratios.iter().any(|r| !r.is_finite()) {
             return Err(Error::input("loading.fn_ratios", "need at least one finite F/N ratio"));
         }
@@ -283,6 +264,9 @@ impl Scene {
     /// Builds the structured mesh (or reads the Gmsh one) and the constraints.
     pub fn build(&self) -> Result<SceneModel> {
         self.validate()?;
+        if self.mesh.file.is_none() {
+            self.check_rows()?;
+        }
         let (l, t, hgt) = (self.block.length, self.block.thickness, self.loading.height);
         let tech = self.element()?.tech;
         let block_mat = Material::plane_strain(self.block.young, self.block.poisson)?;
@@ -377,6 +361,28 @@ impl Scene {
             ));
         }
         Ok(m)
+    }
+
+    /// Refuses a structured mesh with one element through the thickness that only the
+    /// rounding of h produced (checked when the mesh is built: a study may replace h).
+    fn check_rows(&self) -> Result<()> {
+        let ny = self.mesh.n_thick.unwrap_or(((self.block.thickness / self.mesh.h).round() as usize).max(1));
+        // One element through the thickness (no free node for QUA4) only when asked for
+        // by n_thick, never as the rounding of h.
+        if ny == 1 && self.mesh.n_thick.is_none() {
+            return Err(Error::input(
+                "mesh.h (--h)",
+                format!(
+                    "h = {} m gives round(t / h) = 1 element through the thickness t = {} m; \
+                     use h <= {:.3e} m (t / 2), or set n_thick = 1 (--n-thick 1) if one \
+                     element is meant",
+                    self.mesh.h,
+                    self.block.thickness,
+                    self.block.thickness / 2.0
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// Refuses a mesh whose geometry contradicts the scene: the figures are normalised by L
