@@ -150,3 +150,31 @@ fn undefined_interior_figures_are_dashes_and_empty_cells() {
         assert!(row[10].parse::<f64>().is_ok() && row[17].parse::<f64>().unwrap() < 1e-9, "{row:?}");
     }
 }
+
+#[test]
+fn size_guard_refuses_before_meshing() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // 1.6e9 unknowns: once a 25.6 GB allocation abort; metres for millimetres: 1.6e6 unknowns;
+    // 1e300 m: once a capacity-overflow panic.
+    refused(d, &["--h", "1e-6"], &["too large", "1.601e9", "--max-dofs", "--h"]);
+    refused(d, &["--thickness", "2"], &["too large", "block.thickness = 2e0 m"]);
+    refused(d, &["--thickness", "1e300"], &["too large", "--max-dofs"]);
+    // The default scene has 2 x 401 x 3 = 2406 unknowns: the limit acts on both sides of it.
+    refused(d, &["--max-dofs", "2000"], &["about 2.406e3 unknowns", "2000"]);
+    refused(d, &["--max-dofs", "0"], &["--max-dofs"]);
+    let (code, err, written) = check(d, &["--max-dofs", "3000"]);
+    assert!(code == 0 && written, "{code} {written} {err}");
+    // Every subcommand: sweep checks each point, converge its own limit.
+    let o =
+        tribofe(&["sweep", "--as-meshed", "--thickness", "0.002,2", "--out", d.join("sw").to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.code() == Some(2) && err.contains("sweep point 2") && err.contains("too large"),
+        "{err}"
+    );
+    assert!(!d.join("sw").exists());
+    let o = tribofe(&["converge", "--max-dofs", "0", "--out", d.join("cv").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!d.join("cv").exists());
+}

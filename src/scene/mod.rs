@@ -266,6 +266,7 @@ impl Scene {
         self.validate()?;
         if self.mesh.file.is_none() {
             self.check_rows()?;
+            self.check_size()?;
         }
         let (l, t, hgt) = (self.block.length, self.block.thickness, self.loading.height);
         let tech = self.element()?.tech;
@@ -381,6 +382,55 @@ impl Scene {
                     self.block.thickness / 2.0
                 ),
             ));
+        }
+        Ok(())
+    }
+
+    /// Unknowns of the structured mesh, estimated from the scene alone (no allocation; f64
+    /// so that absurd sizes do not overflow).
+    pub fn estimate_dofs(&self) -> Result<f64> {
+        let (l, t, h) = (self.block.length, self.block.thickness, self.mesh.h);
+        let nx = match self.mesh.grading {
+            Some(r) if r > 1.0 => {
+                // Elements grow from h by r up to h_max, from both ends.
+                let hm = self.mesh.h_max.unwrap_or(2.0 * t).max(h);
+                let k = ((hm / h).ln() / r.ln()).floor();
+                let ramp = h * (r.powf(k) - 1.0) / (r - 1.0);
+                if 2.0 * ramp >= l {
+                    2.0 * (1.0 + l / 2.0 * (r - 1.0) / h).ln() / r.ln()
+                } else {
+                    2.0 * k + (l - 2.0 * ramp) / hm
+                }
+            }
+            _ => (l / h).round(),
+        }
+        .max(2.0);
+        let ny = self.mesh.n_thick.map_or((t / h).round().max(1.0), |n| n as f64);
+        let rows = match self.plate.model {
+            PlateModel::Rigid => ny,
+            PlateModel::Elastic => ny + self.plate.thickness / (t / 2.0).max(h) + 1.0,
+        };
+        let p = self.element()?.kind.order() as f64;
+        Ok(2.0 * (p * nx + 1.0) * (p * rows + 1.0))
+    }
+
+    /// Refuses a scene above the size limit ([`crate::memory::max_dofs`]) before meshing.
+    pub fn check_size(&self) -> Result<()> {
+        let dofs = self.estimate_dofs()?;
+        let limit = crate::memory::max_dofs();
+        if dofs > limit as f64 {
+            let h = self.mesh.h * (dofs / limit as f64).sqrt();
+            return Err(Error::TooLarge {
+                dofs,
+                gib: dofs * crate::memory::BYTES_PER_DOF / (1u64 << 30) as f64,
+                limit,
+                suggestion: format!(
+                    "check the units of block.length = {:e} m and block.thickness = {:e} m, use a \
+                     coarser mesh (--h {h:.2e} or more, or --grading), or raise --max-dofs if the \
+                     memory is there",
+                    self.block.length, self.block.thickness
+                ),
+            });
         }
         Ok(())
     }
