@@ -140,12 +140,16 @@ pub fn max_dofs() -> usize {
 /// Half the machine's memory (`MemTotal` of /proc/meminfo, 8 GiB where unknown) over
 /// [`BYTES_PER_DOF`], at most [`DEFAULT_MAX_DOFS_CAP`].
 pub fn default_max_dofs() -> usize {
-    let total = std::fs::read_to_string("/proc/meminfo")
+    ((0.5 * total_bytes() / BYTES_PER_DOF) as usize).min(DEFAULT_MAX_DOFS_CAP)
+}
+
+/// This machine's memory, bytes (`MemTotal` of /proc/meminfo, 8 GiB where unknown).
+pub fn total_bytes() -> f64 {
+    std::fs::read_to_string("/proc/meminfo")
         .ok()
         .and_then(|s| {
             let line = s.lines().find(|l| l.starts_with("MemTotal:"))?.to_owned();
             line.split_whitespace().nth(1)?.parse::<f64>().ok().map(|kib| kib * 1024.0)
         })
-        .unwrap_or(8.0 * (1u64 << 30) as f64);
-    ((0.5 * total / BYTES_PER_DOF) as usize).min(DEFAULT_MAX_DOFS_CAP)
+        .unwrap_or(8.0 * (1u64 << 30) as f64)
 }

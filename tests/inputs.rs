@@ -178,3 +178,15 @@ fn size_guard_refuses_before_meshing() {
     assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(!d.join("cv").exists());
 }
+
+#[test]
+fn bench_refuses_sizes_and_thread_counts_it_cannot_run() {
+    // Once an unwrap on a 80 GB allocation error (exit 101).
+    for (args, word) in
+        [(&["bench", "--dgemm", "100000"][..], "--dgemm"), (&["bench", "--threads", "0"][..], "--threads")]
+    {
+        let o = tribofe(args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.code() == Some(2) && err.contains(word), "{args:?}: {err}");
+    }
+}
