@@ -90,6 +90,8 @@ fn mesh_contradicting_the_scene_is_refused() {
         &["--scene", scene.to_str().unwrap(), "--mesh", ok.to_str().unwrap(), "--length", "0.1"],
         &["'top'", "y = 0"],
     );
+    // A mesher flag cannot act on a mesh file.
+    refused(d, &["--mesh", ok.to_str().unwrap(), "--length", "0.1", "--h", "0.0005"], &["--h", "ok.msh"]);
     // QUA8 elements with 2-node boundary lines.
     let mut q8 = block(ElementKind::Qua8, -l / 2.0, l, t, 50);
     for edges in q8.edge_sets.values_mut() {
