@@ -110,6 +110,7 @@ fn names_parse_and_reject_clearly() {
     let mut scene = tribofe::scene::Scene::default();
     scene.mesh.element = "qua4-sri".into();
     scene.mesh.h = 0.002;
+    scene.mesh.n_thick = Some(2);
     let sm = scene.build().unwrap();
     assert_eq!(sm.model().tech, Technology::SelectiveReduced);
     scene.mesh.element = "tri6-im".into();

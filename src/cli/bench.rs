@@ -65,6 +65,21 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     if args.threads.is_empty() {
         args.threads.push(std::thread::available_parallelism().map_or(1, |n| n.get()));
     }
+    if args.threads.contains(&0) {
+        return Err(tribofe::Error::input("--threads", "0: a run needs at least one thread"));
+    }
+    // Three n x n matrices of f64 must fit in half the memory.
+    let dgemm_bytes = 24.0 * (args.dgemm as f64).powi(2);
+    if dgemm_bytes > 0.5 * tribofe::memory::total_bytes() {
+        return Err(tribofe::Error::input(
+            "--dgemm",
+            format!(
+                "{}: three {0} x {0} matrices need {:.1} GiB, more than half this machine's memory",
+                args.dgemm,
+                dgemm_bytes / (1u64 << 30) as f64
+            ),
+        ));
+    }
     let mut configs = Vec::new();
     for &threads in &args.threads {
         for f in &args.factor {

@@ -35,6 +35,8 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
+    // The study's own limit is the size guard of each of its runs.
+    tribofe::memory::set_max_dofs(args.max_dofs)?;
     let scene = super::check::scene(&args.scene)?;
     let families = args.families.iter().map(|f| f.parse::<Family>()).collect::<tribofe::Result<Vec<_>>>()?;
     let o = StudyOptions {

@@ -123,6 +123,24 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
         None => Scene::default(),
     };
     let s = base.apply(&args.overrides()?)?;
+    if let Some(mesh) = &s.mesh.file {
+        // The structured mesher's flags cannot act on a mesh read from a file.
+        let given = [
+            ("--h", args.h.is_some()),
+            ("--grading", args.grading.is_some()),
+            ("--h-max", args.h_max.is_some()),
+            ("--n-thick", args.n_thick.is_some()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|g| g.1) {
+            return Err(tribofe::Error::input(
+                *flag,
+                format!(
+                    "sizes the built-in mesh, but the mesh comes from {}; refine that file instead",
+                    tribofe::error::quote(&mesh.display().to_string())
+                ),
+            ));
+        }
+    }
     if let Some(path) = &args.write_scene {
         tribofe::report::write_atomic(path, s.to_toml()?.as_bytes())?;
     }

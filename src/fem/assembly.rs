@@ -628,6 +628,7 @@ mod tests {
     fn strip(ny: usize, element: &str, plate: PlateModel) -> crate::scene::SceneModel {
         let mut s = Scene::default();
         s.mesh.h = s.block.thickness / ny as f64;
+        s.mesh.n_thick = Some(ny);
         s.mesh.element = element.into();
         s.plate.model = plate;
         let mut sm = s.build().unwrap();

@@ -48,16 +48,15 @@ fn opt(v: Option<f64>) -> String {
     v.map_or(String::new(), |w| format!("{w:.6e}"))
 }
 
-/// Summary table; an edge width the model cannot define (zero model shear) is left empty.
+/// Summary table; an edge width the model cannot define (zero model shear) and an interior
+/// figure of an interior with too few nodes are left empty.
 pub fn summary_csv(res: &CheckResult) -> Result<String> {
     let mut s = String::from(SUMMARY_HEADER);
     s.push('\n');
     for c in &res.cases {
         let m = &c.metrics;
-        let nums = [c.fn_ratio, c.n, c.f, m.slope_interior, m.slope_model, m.tau_center];
+        let nums = [c.fn_ratio, c.n, c.f, m.slope_model, m.tau_center];
         let tail = [
-            m.interior_dev_p,
-            m.interior_dev_tau,
             m.p_ends[0],
             m.p_ends[1],
             m.tau_ends[0],
@@ -66,8 +65,6 @@ pub fn summary_csv(res: &CheckResult) -> Result<String> {
             m.balance_n,
             m.balance_f,
             m.balance_moment,
-            m.slope_corrected,
-            m.interior_dev_p_corrected,
         ];
         if let Some(v) = nums.iter().chain(&tail).find(|v| !v.is_finite()) {
             return Err(Error::input(
@@ -75,9 +72,15 @@ pub fn summary_csv(res: &CheckResult) -> Result<String> {
                 format!("F/N = {}: a figure is {v}; refusing to write it", c.fn_ratio),
             ));
         }
-        let mut cells: Vec<String> = nums.iter().map(|v| format!("{v:.12e}")).collect();
+        let num = |v: &f64| format!("{v:.12e}");
+        // Interior figures are undefined (empty) when the interior holds too few nodes.
+        let interior = |v: f64| if v.is_nan() { String::new() } else { num(&v) };
+        let mut cells = vec![num(&nums[0]), num(&nums[1]), num(&nums[2]), interior(m.slope_interior)];
+        cells.extend(nums[3..].iter().map(num));
         cells.extend([m.edge_p_t[0], m.edge_p_t[1], m.edge_tau_t[0], m.edge_tau_t[1]].map(opt));
-        cells.extend(tail.iter().map(|v| format!("{v:.12e}")));
+        cells.extend([m.interior_dev_p, m.interior_dev_tau].map(interior));
+        cells.extend(tail.iter().map(num));
+        cells.extend([m.slope_corrected, m.interior_dev_p_corrected].map(interior));
         s.push_str(&cells.join(","));
         s.push('\n');
     }
@@ -161,21 +164,38 @@ pub fn table(res: &CheckResult) -> String {
         };
         let _ = writeln!(
             s,
-            "{:>6} {:>11.4e} {:>11.4e} {:>9.5} {:>9.5} {:>9.5} {:>9.5} {:>9.2e} {:>9.2e} {:>9.2e} | {:>13} {:>13}",
+            "{:>6} {:>11.4e} {:>11.4e} {:>9} {:>9.5} {:>9} {:>9.5} {:>9} {:>9} {:>9} | {:>13} {:>13}",
             c.fn_ratio,
             c.n,
             c.f,
-            m.slope_interior,
+            dash(m.slope_interior, 'f'),
             m.slope_model,
-            m.slope_corrected,
+            dash(m.slope_corrected, 'f'),
             m.tau_center,
-            m.interior_dev_p,
-            m.interior_dev_p_corrected,
-            m.interior_dev_tau,
+            dash(m.interior_dev_p, 'e'),
+            dash(m.interior_dev_p_corrected, 'e'),
+            dash(m.interior_dev_tau, 'e'),
             w(m.edge_p_t),
             w(m.edge_tau_t)
         );
     }
+    let (l, t) = (sc.block.length, sc.block.thickness);
+    let margin = crate::studies::check::interior_margin(l, t);
+    let _ = writeln!(
+        s,
+        "interior (slope, dev): |x| < L/2 - {} = {:.4e} m{}",
+        if margin < 10.0 * t {
+            "L/4 (the middle half: L < 40 t leaves no interior 10 t from both ends)"
+        } else {
+            "10 t"
+        },
+        l / 2.0 - margin,
+        if res.cases.iter().any(|c| c.metrics.slope_interior.is_nan()) {
+            "; '-': fewer than two interface nodes there, refine the mesh (--h) to define it"
+        } else {
+            ""
+        }
+    );
     let _ = writeln!(s, "model: the paper's 12 (F/N)(H/L); corrected: arm H - t/2 (the block's shear couple) and the Poisson edge deficit (analytical::thin_layer); dev p c: interior |p - corrected|");
     let _ = writeln!(s, "paper (Cast3M, 1 mm QUA4): edge zones ~1 t for pressure and ~3 t for shear (tolerance here: {} of the local model value)", sc.report.tol);
     let _ = writeln!(s, "end-node values (NOT converged: the clamped-free corners are singular, they grow without bound under refinement):");
@@ -213,6 +233,15 @@ pub fn table(res: &CheckResult) -> String {
     s
 }
 
+/// A figure for the table, `-` where it is undefined (NaN); `style` 'e' for exponent form.
+fn dash(v: f64, style: char) -> String {
+    match (v.is_nan(), style) {
+        (true, _) => "-".into(),
+        (false, 'e') => format!("{v:.2e}"),
+        _ => format!("{v:.5}"),
+    }
+}
+
 const COLORS: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
@@ -227,7 +256,7 @@ fn err(e: impl std::fmt::Display) -> Error {
 }
 
 /// Fig. 2 of the paper redrawn: p/(N/L) open symbols, tau/(N/L) full symbols, model dashed;
-/// below, the two edge zones (10 t wide) with every node.
+/// below, the two edge zones (10 t wide, L/4 for a short block) with every node.
 pub fn fig2(res: &CheckResult) -> Result<String> {
     let mut svg = String::new();
     {
@@ -241,17 +270,10 @@ pub fn fig2(res: &CheckResult) -> Result<String> {
         let ymin = res.cases.iter().flat_map(|c| c.p.iter().chain(&c.tau)).fold(0.0f64, |m, &v| m.min(v));
         let main_y = (ymin - 0.05)..(ymax + 0.1);
         panel(&top, res, -0.5..0.5, main_y, "Interface stresses (fig. 2 of the paper): open = pressure p/(N/L), full = shear tau/(N/L), dashed = model", 9)?;
-        let zone = 10.0 * t / l;
+        let zone = crate::studies::check::interior_margin(l, t) / l;
         let zy = (ymin - 0.05)..(ymax + 0.1);
-        panel(
-            &halves[0],
-            res,
-            (-0.5 - 0.05 * zone)..(-0.5 + zone),
-            zy.clone(),
-            "Trailing edge zone (10 t)",
-            1,
-        )?;
-        panel(&halves[1], res, (0.5 - zone)..(0.5 + 0.05 * zone), zy, "Leading edge zone (10 t)", 1)?;
+        panel(&halves[0], res, (-0.5 - 0.05 * zone)..(-0.5 + zone), zy.clone(), "Trailing edge zone", 1)?;
+        panel(&halves[1], res, (0.5 - zone)..(0.5 + 0.05 * zone), zy, "Leading edge zone", 1)?;
         root.present().map_err(err)?;
     }
     Ok(svg)

@@ -245,7 +245,7 @@ impl Scene {
             return Err(Error::input(
                 "mesh.h",
                 format!(
-                    "{} m is larger than the block thickness {} m: use at most t",
+                    "{} m is larger than the block thickness {} m: use at most t / 2",
                     self.mesh.h, self.block.thickness
                 ),
             ));
@@ -264,6 +264,10 @@ impl Scene {
     /// Builds the structured mesh (or reads the Gmsh one) and the constraints.
     pub fn build(&self) -> Result<SceneModel> {
         self.validate()?;
+        if self.mesh.file.is_none() {
+            self.check_rows()?;
+            self.check_size()?;
+        }
         let (l, t, hgt) = (self.block.length, self.block.thickness, self.loading.height);
         let tech = self.element()?.tech;
         let block_mat = Material::plane_strain(self.block.young, self.block.poisson)?;
@@ -340,9 +344,12 @@ impl Scene {
                 self.mesh.block
             )));
         }
+        self.check_mesh_geometry(&m, path)?;
         let want = self.element()?;
         let kinds = m.kinds_present();
-        if !kinds.contains(&want.kind) {
+        // The kind comes from the file: plain `qua4` (the default) names no kind, only the
+        // standard technology; any other name must match an element the file holds.
+        if !kinds.contains(&want.kind) && self.mesh.element != "qua4" {
             let names: Vec<&str> = kinds.iter().map(|k| k.name()).collect();
             return Err(Error::input(
                 "mesh.element",
@@ -355,6 +362,132 @@ impl Scene {
             ));
         }
         Ok(m)
+    }
+
+    /// Refuses a structured mesh with one element through the thickness that only the
+    /// rounding of h produced (checked when the mesh is built: a study may replace h).
+    fn check_rows(&self) -> Result<()> {
+        let ny = self.mesh.n_thick.unwrap_or(((self.block.thickness / self.mesh.h).round() as usize).max(1));
+        // One element through the thickness (no free node for QUA4) only when asked for
+        // by n_thick, never as the rounding of h.
+        if ny == 1 && self.mesh.n_thick.is_none() {
+            return Err(Error::input(
+                "mesh.h (--h)",
+                format!(
+                    "h = {} m gives round(t / h) = 1 element through the thickness t = {} m; \
+                     use h <= {:.3e} m (t / 2), or set n_thick = 1 (--n-thick 1) if one \
+                     element is meant",
+                    self.mesh.h,
+                    self.block.thickness,
+                    self.block.thickness / 2.0
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Unknowns of the structured mesh, estimated from the scene alone (no allocation; f64
+    /// so that absurd sizes do not overflow).
+    pub fn estimate_dofs(&self) -> Result<f64> {
+        let (l, t, h) = (self.block.length, self.block.thickness, self.mesh.h);
+        let nx = match self.mesh.grading {
+            Some(r) if r > 1.0 => {
+                // Elements grow from h by r up to h_max, from both ends.
+                let hm = self.mesh.h_max.unwrap_or(2.0 * t).max(h);
+                let k = ((hm / h).ln() / r.ln()).floor();
+                let ramp = h * (r.powf(k) - 1.0) / (r - 1.0);
+                if 2.0 * ramp >= l {
+                    2.0 * (1.0 + l / 2.0 * (r - 1.0) / h).ln() / r.ln()
+                } else {
+                    2.0 * k + (l - 2.0 * ramp) / hm
+                }
+            }
+            _ => (l / h).round(),
+        }
+        .max(2.0);
+        let ny = self.mesh.n_thick.map_or((t / h).round().max(1.0), |n| n as f64);
+        let rows = match self.plate.model {
+            PlateModel::Rigid => ny,
+            PlateModel::Elastic => ny + self.plate.thickness / (t / 2.0).max(h) + 1.0,
+        };
+        let p = self.element()?.kind.order() as f64;
+        Ok(2.0 * (p * nx + 1.0) * (p * rows + 1.0))
+    }
+
+    /// Refuses a scene above the size limit ([`crate::memory::max_dofs`]) before meshing.
+    pub fn check_size(&self) -> Result<()> {
+        let dofs = self.estimate_dofs()?;
+        let limit = crate::memory::max_dofs();
+        if dofs > limit as f64 {
+            let h = self.mesh.h * (dofs / limit as f64).sqrt();
+            return Err(Error::TooLarge {
+                dofs,
+                gib: dofs * crate::memory::BYTES_PER_DOF / (1u64 << 30) as f64,
+                limit,
+                suggestion: format!(
+                    "check the units of block.length = {:e} m and block.thickness = {:e} m, use a \
+                     coarser mesh (--h {h:.2e} or more, or --grading), or raise --max-dofs if the \
+                     memory is there",
+                    self.block.length, self.block.thickness
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Refuses a mesh whose geometry contradicts the scene: the figures are normalised by L
+    /// and t, and the plate acts on the interface at y = 0 and the top at y = t.
+    fn check_mesh_geometry(&self, m: &Mesh, path: &Path) -> Result<()> {
+        let (l, t) = (self.block.length, self.block.thickness);
+        let tol = 1e-6 * t;
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &m.nodes {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let bad =
+            |why: String| Error::Mesh(format!("{}: {why}", crate::error::quote(&path.display().to_string())));
+        if (lo[0] + l / 2.0).abs() > tol
+            || (hi[0] - l / 2.0).abs() > tol
+            || lo[1].abs() > tol
+            || (hi[1] - t).abs() > tol
+        {
+            return Err(bad(format!(
+                "the block spans x in [{:.6e}, {:.6e}] m, y in [{:.6e}, {:.6e}] m, but the scene has \
+                 length L = {l} m and thickness t = {t} m (x in [-L/2, L/2], y in [0, t]); set \
+                 block.length / block.thickness (--length, --thickness) to the mesh's or move the mesh",
+                lo[0], hi[0], lo[1], hi[1]
+            )));
+        }
+        let order = m.kinds_present().iter().map(|k| k.order()).max().unwrap_or(1);
+        for (name, y) in [(&self.mesh.interface, 0.0), (&self.mesh.top, t)] {
+            let edges = m.edges(name).map_err(|e| bad(e.to_string()))?;
+            let (mut covered, mut y_off) = (0.0, 0.0f64);
+            for e in edges {
+                let [a, b] = e.ends.map(|n| m.nodes[n]);
+                covered += (b[0] - a[0]).abs();
+                y_off = e.nodes().fold(y_off, |d, n| d.max((m.nodes[n][1] - y).abs()));
+                if e.mid.is_some() != (order == 2) {
+                    return Err(bad(format!(
+                        "group '{}' holds {}-node lines but the elements are of order {order}: \
+                         use {} lines",
+                        crate::error::quote(name),
+                        2 + usize::from(e.mid.is_some()),
+                        if order == 2 { "3-node (line3)" } else { "2-node (line2)" }
+                    )));
+                }
+            }
+            if y_off > tol || (covered - l).abs() > tol {
+                return Err(bad(format!(
+                    "group '{}' must be the whole side y = {y} m spanning [-L/2, L/2] (L = {l} m): \
+                     its nodes lie up to {y_off:.3e} m off that line and its edges cover {covered:.6e} m",
+                    crate::error::quote(name)
+                )));
+            }
+        }
+        Ok(())
     }
 
     /// A layer y0 < y < y1 spanning the block's length, with the block's spacing along x

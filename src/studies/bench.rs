@@ -182,6 +182,7 @@ pub fn run_case(case: Case, cfg: &Config) -> Result<Row> {
 fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
     let mut scene = Scene::default();
     scene.mesh.h = scene.block.thickness / ny as f64;
+    scene.mesh.n_thick = Some(ny);
     let (res, _) = check::run(&scene, opts)?;
     let peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
     let prepared = check::prepare(&scene, opts)?;

@@ -40,7 +40,9 @@ pub struct CaseResult {
 
 #[derive(Debug, Clone)]
 pub struct Metrics {
-    /// Least-squares slope of p/(N/L) against x/L over |x| < L/2 - 10 t, and the model's 12 (F/N)(H/L).
+    /// Least-squares slope of p/(N/L) against x/L over the interior |x| < L/2 - [`interior_margin`],
+    /// and the model's 12 (F/N)(H/L). Interior figures are NaN (reported `-`, undefined) when
+    /// the interior holds fewer than two nodes (one for the deviations).
     pub slope_interior: f64,
     pub slope_model: f64,
     /// Largest |deviation from the model| over the interior, in units of N/L.
@@ -91,6 +93,7 @@ pub fn converged_scene(scene: &Scene) -> Scene {
     let t = s.block.thickness;
     s.mesh.element = "qua8".into();
     s.mesh.h = t / 16.0;
+    s.mesh.n_thick = None;
     s.mesh.grading = Some(1.15);
     s.mesh.h_max = Some(4.0 * t);
     s.mesh.file = None;
@@ -230,12 +233,10 @@ pub fn run_model(
         };
         let corr = crate::analytical::thin_layer::Corrected::new(l, t, hgt, scene.block.poisson, ratio)?;
         let p_corrected: Vec<f64> = x_over_l.iter().map(|&x| corr.pressure(x)).collect();
-        let interior: Vec<usize> =
-            (0..xs.len()).filter(|&i| x_over_l[i].abs() * l < l / 2.0 - 10.0 * t).collect();
+        let interior = interior_nodes(&x_over_l, l, t);
         let slope_corrected =
             line_fit(interior.iter().map(|&i| (x_over_l[i], p_corrected[i]))).map_or(f64::NAN, |l| l.1);
-        let interior_dev_p_corrected =
-            interior.iter().map(|&i| (p[i] - p_corrected[i]).abs()).fold(0.0, f64::max);
+        let interior_dev_p_corrected = max_dev(&interior, &p, &p_corrected);
         let metrics = Metrics {
             slope_corrected,
             interior_dev_p_corrected,
@@ -323,10 +324,9 @@ fn metrics(
     t: f64,
     tol: f64,
 ) -> Metrics {
-    let interior: Vec<usize> = (0..x.len()).filter(|&i| x[i].abs() * l < l / 2.0 - 10.0 * t).collect();
+    let interior = interior_nodes(x, l, t);
     let slope = line_fit(interior.iter().map(|&i| (x[i], p[i]))).map_or(f64::NAN, |l| l.1);
-    let dev =
-        |v: &[f64], model: &[f64]| interior.iter().map(|&i| (v[i] - model[i]).abs()).fold(0.0, f64::max);
+    let dev = |v: &[f64], model: &[f64]| max_dev(&interior, v, model);
     let tau_center = interpolate(x, tau, 0.0);
     let n = x.len();
     // Edge-zone width: from the end to where the excess |v - model| - tol |model| last changes
@@ -369,6 +369,23 @@ fn metrics(
         slope_corrected: f64::NAN,
         interior_dev_p_corrected: f64::NAN,
     }
+}
+
+/// Distance from each end excluded from the interior, m: 10 t (the end zones are a few t
+/// wide), or L/4 for a block shorter than 40 t, whose interior is then its middle half.
+pub fn interior_margin(l: f64, t: f64) -> f64 {
+    (10.0 * t).min(l / 4.0)
+}
+
+/// Interface nodes (by index into x = x/L) of the interior |x| < L/2 - [`interior_margin`].
+fn interior_nodes(x_over_l: &[f64], l: f64, t: f64) -> Vec<usize> {
+    let half = l / 2.0 - interior_margin(l, t);
+    (0..x_over_l.len()).filter(|&i| x_over_l[i].abs() * l < half).collect()
+}
+
+/// Largest |v - model| over the nodes; NaN (undefined, reported as `-`) when there are none.
+fn max_dev(nodes: &[usize], v: &[f64], model: &[f64]) -> f64 {
+    nodes.iter().map(|&i| (v[i] - model[i]).abs()).reduce(f64::max).unwrap_or(f64::NAN)
 }
 
 /// Linear interpolation of a profile v(x) at x0 (x sorted; extrapolates linearly outside).

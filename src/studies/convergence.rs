@@ -126,6 +126,7 @@ pub fn run_scene(base: &Scene, o: &StudyOptions, family: Family, element: &str, 
     let mut s = base.clone();
     let t = s.block.thickness;
     s.mesh.h = t / n as f64;
+    s.mesh.n_thick = Some(n);
     s.mesh.element = element.to_string();
     s.loading.fn_ratios = vec![o.fn_ratio];
     if family == Family::Graded {

@@ -172,6 +172,7 @@ pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy
     for &n in &o.plate_n_thick {
         let mut s = base.clone();
         s.mesh.h = t / n as f64;
+        s.mesh.n_thick = Some(n);
         s.plate.model = PlateModel::Rigid;
         let (rigid, _) = check::run(&s, &SolverOptions::default())?;
         progress(&format!("plate rigid t/{n}"));
@@ -386,6 +387,7 @@ pub fn nu(base: &Scene, o: &Options, refs: &mut References, progress: Progress) 
             let mut s = base.clone();
             s.block.poisson = nu;
             s.mesh.h = s.block.thickness / o.n_thick as f64;
+            s.mesh.n_thick = Some(o.n_thick);
             s.mesh.element = e.clone();
             s.loading.fn_ratios = vec![0.0, o.fn_ratio];
             let (r, _) = check::run(&s, &SolverOptions::default())?;
@@ -512,6 +514,7 @@ pub fn shape(
         let mut s = base.clone();
         s.mesh.element = e.clone();
         s.mesh.h = h;
+        s.mesh.n_thick = Some(o.n_thick);
         s.loading.fn_ratios = vec![o.fn_ratio];
         for &a in &o.aspects {
             for case in [ShapeCase::Graded, ShapeCase::Uniform] {

@@ -244,7 +244,11 @@ pub fn run(
             }
             let s =
                 base.apply(&ov).map_err(|e| Error::input(format!("sweep point {}", i + 1), e.to_string()))?;
-            Ok((i, if o.converged { converged_scene(&s) } else { s }))
+            let s = if o.converged { converged_scene(&s) } else { s };
+            if s.mesh.file.is_none() {
+                s.check_size().map_err(|e| Error::input(format!("sweep point {}", i + 1), e.to_string()))?;
+            }
+            Ok((i, s))
         })
         .collect::<Result<_>>()?;
     for (_, s) in &scenes {

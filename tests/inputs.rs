@@ -1,0 +1,194 @@
+//! Bad inputs run as a user runs them: the built binary, its exit status, its message, and an
+//! output folder left untouched because the refusal comes before any solve.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use tribofe::fem::element::ElementKind;
+use tribofe::fem::mesh::Mesh;
+use tribofe::fem::mesher::Rectangle;
+
+fn tribofe(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tribofe")).args(args).output().unwrap()
+}
+
+/// A structured block x in [x0, x0 + l], y in [0, t] with the groups interface, top, block.
+fn block(kind: ElementKind, x0: f64, l: f64, t: f64, nx: usize) -> Mesh {
+    let mut m = Rectangle::new(x0, x0 + l, 0.0, t, nx, 2).kind(kind).build().unwrap();
+    let bottom = m.edge_sets.remove("bottom").unwrap();
+    m.edge_sets.insert("interface".into(), bottom);
+    let all = m.element_sets.remove("all").unwrap();
+    m.element_sets.insert("block".into(), all);
+    m
+}
+
+fn write(dir: &Path, name: &str, m: &Mesh) -> PathBuf {
+    let p = dir.join(name);
+    tribofe::io::gmsh_post::write_msh(&p, m, &[], &[]).unwrap();
+    p
+}
+
+/// Runs `check` into a fresh folder and returns (exit status, stderr, whether the folder exists).
+fn check(dir: &Path, args: &[&str]) -> (i32, String, bool) {
+    let out = dir.join("out");
+    let mut a = vec!["check", "--no-fields", "--no-converged", "--out", out.to_str().unwrap()];
+    a.extend_from_slice(args);
+    let o = tribofe(&a);
+    (o.status.code().unwrap(), String::from_utf8_lossy(&o.stderr).into_owned(), out.exists())
+}
+
+/// Refused with the input status, naming each of `words`, the folder never created.
+fn refused(dir: &Path, args: &[&str], words: &[&str]) {
+    let (code, err, written) = check(dir, args);
+    assert_eq!(code, 2, "{args:?}: {err}");
+    for w in words {
+        assert!(err.contains(w), "{args:?}: '{w}' not in: {err}");
+    }
+    assert!(!written, "{args:?}: output folder written");
+}
+
+#[test]
+fn qua8_gmsh_mesh_of_another_geometry_runs_without_element_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let (l, t) = (0.1, 0.002);
+    let m = write(dir.path(), "q8.msh", &block(ElementKind::Qua8, -l / 2.0, l, t, 50));
+    let (code, err, written) = check(dir.path(), &["--mesh", m.to_str().unwrap(), "--length", "0.1"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(written && dir.path().join("out/summary.csv").exists());
+    // A technology the file's elements lack is still refused, naming the option.
+    let other = tempfile::tempdir().unwrap();
+    refused(
+        other.path(),
+        &["--mesh", m.to_str().unwrap(), "--length", "0.1", "--element", "qua4-im"],
+        &["mesh.element", "qua8"],
+    );
+}
+
+#[test]
+fn mesh_contradicting_the_scene_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let (l, t) = (0.1, 0.002);
+    let good = block(ElementKind::Qua4, -l / 2.0, l, t, 50);
+    let ok = write(d, "ok.msh", &good);
+    // The default scene has L = 0.4 m: normalising by it would be silently wrong.
+    refused(d, &["--mesh", ok.to_str().unwrap()], &["ok.msh", "length", "0.4"]);
+    refused(d, &["--mesh", ok.to_str().unwrap(), "--length", "0.1", "--thickness", "0.003"], &["thickness"]);
+    // Shifted in x.
+    let shifted = write(d, "shifted.msh", &block(ElementKind::Qua4, -l / 2.0 + 0.01, l, t, 50));
+    refused(d, &["--mesh", shifted.to_str().unwrap(), "--length", "0.1"], &["shifted.msh", "x in"]);
+    // An interface covering half the base.
+    let mut half = good.clone();
+    let iface = half.edge_sets.get_mut("interface").unwrap();
+    iface.truncate(iface.len() / 2);
+    let half = write(d, "half.msh", &half);
+    refused(d, &["--mesh", half.to_str().unwrap(), "--length", "0.1"], &["'interface'", "cover"]);
+    // interface and top swapped through the scene's group names.
+    let scene = d.join("swap.toml");
+    std::fs::write(&scene, "[mesh]\ninterface = \"top\"\ntop = \"interface\"\n").unwrap();
+    refused(
+        d,
+        &["--scene", scene.to_str().unwrap(), "--mesh", ok.to_str().unwrap(), "--length", "0.1"],
+        &["'top'", "y = 0"],
+    );
+    // A mesher flag cannot act on a mesh file.
+    refused(d, &["--mesh", ok.to_str().unwrap(), "--length", "0.1", "--h", "0.0005"], &["--h", "ok.msh"]);
+    // QUA8 elements with 2-node boundary lines.
+    let mut q8 = block(ElementKind::Qua8, -l / 2.0, l, t, 50);
+    for edges in q8.edge_sets.values_mut() {
+        edges.iter_mut().for_each(|e| e.mid = None);
+    }
+    let q8 = write(d, "q8_line2.msh", &q8);
+    refused(d, &["--mesh", q8.to_str().unwrap(), "--length", "0.1"], &["2-node", "line3"]);
+}
+
+#[test]
+fn h_giving_one_element_through_the_thickness_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    // t = 2 mm: round(t / h) = 1 for h in (1.33, 2] mm.
+    refused(dir.path(), &["--h", "0.0018"], &["--h", "t / 2", "--n-thick"]);
+    refused(dir.path(), &["--h", "0.003"], &["mesh.h", "t / 2"]);
+}
+
+/// Runs `check` on a short block and returns (stdout, summary.csv).
+fn short_block(dir: &Path, args: &[&str]) -> (String, String) {
+    let out = dir.join("out");
+    let mut a = vec!["check", "--no-fields", "--out", out.to_str().unwrap()];
+    a.extend_from_slice(args);
+    let o = tribofe(&a);
+    assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    (String::from_utf8_lossy(&o.stdout).into_owned(), summary)
+}
+
+#[test]
+fn short_thick_block_uses_its_middle_half() {
+    // L = 20 t: no node lies 10 t from both ends; the interior is |x| < L/4 and says so.
+    let dir = tempfile::tempdir().unwrap();
+    let (stdout, summary) = short_block(dir.path(), &["--length", "0.1", "--thickness", "0.005"]);
+    assert!(stdout.contains("middle half") && stdout.contains("2.5000e-2 m"), "{stdout}");
+    assert!(!summary.to_lowercase().contains("nan"));
+    // Every figure defined; the slope at F/N = 0.82 near the model's 12 (F/N)(H/L) = 3.936
+    // (measured 4.02: the short block's shear couple shifts it by a few percent).
+    let row: Vec<&str> = summary.lines().nth(3).unwrap().split(',').collect();
+    let slope: f64 = row[3].parse().unwrap();
+    assert!((slope / 3.936 - 1.0).abs() < 0.05, "{slope}");
+    assert!(row.iter().skip(10).all(|c| !c.is_empty()), "{row:?}");
+}
+
+#[test]
+fn undefined_interior_figures_are_dashes_and_empty_cells() {
+    // L = 2 t on 1 mm elements: the middle half holds one node, no slope can be fitted.
+    let dir = tempfile::tempdir().unwrap();
+    let (stdout, summary) = short_block(
+        dir.path(),
+        &["--length", "0.004", "--thickness", "0.002", "--h", "0.001", "--no-converged"],
+    );
+    assert!(stdout.contains("fewer than two interface nodes"), "{stdout}");
+    assert!(!summary.to_lowercase().contains("nan"));
+    for line in summary.lines().skip(1) {
+        let row: Vec<&str> = line.split(',').collect();
+        assert!(row[3].is_empty() && row[20].is_empty(), "{row:?}");
+        // One node: the deviation is defined; the balance is exact to round-off.
+        assert!(row[10].parse::<f64>().is_ok() && row[17].parse::<f64>().unwrap() < 1e-9, "{row:?}");
+    }
+}
+
+#[test]
+fn size_guard_refuses_before_meshing() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // 1.6e9 unknowns: once a 25.6 GB allocation abort; metres for millimetres: 1.6e6 unknowns;
+    // 1e300 m: once a capacity-overflow panic.
+    refused(d, &["--h", "1e-6"], &["too large", "1.601e9", "--max-dofs", "--h"]);
+    refused(d, &["--thickness", "2"], &["too large", "block.thickness = 2e0 m"]);
+    refused(d, &["--thickness", "1e300"], &["too large", "--max-dofs"]);
+    // The default scene has 2 x 401 x 3 = 2406 unknowns: the limit acts on both sides of it.
+    refused(d, &["--max-dofs", "2000"], &["about 2.406e3 unknowns", "2000"]);
+    refused(d, &["--max-dofs", "0"], &["--max-dofs"]);
+    let (code, err, written) = check(d, &["--max-dofs", "3000"]);
+    assert!(code == 0 && written, "{code} {written} {err}");
+    // Every subcommand: sweep checks each point, converge its own limit.
+    let o =
+        tribofe(&["sweep", "--as-meshed", "--thickness", "0.002,2", "--out", d.join("sw").to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.code() == Some(2) && err.contains("sweep point 2") && err.contains("too large"),
+        "{err}"
+    );
+    assert!(!d.join("sw").exists());
+    let o = tribofe(&["converge", "--max-dofs", "0", "--out", d.join("cv").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!d.join("cv").exists());
+}
+
+#[test]
+fn bench_refuses_sizes_and_thread_counts_it_cannot_run() {
+    // Once an unwrap on a 80 GB allocation error (exit 101).
+    for (args, word) in
+        [(&["bench", "--dgemm", "100000"][..], "--dgemm"), (&["bench", "--threads", "0"][..], "--threads")]
+    {
+        let o = tribofe(args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.code() == Some(2) && err.contains(word), "{args:?}: {err}");
+    }
+}
