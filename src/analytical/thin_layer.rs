@@ -49,6 +49,20 @@ impl Corrected {
     /// The corrected model for a block of thickness t, length l, loaded at height h (m), with
     /// Poisson ratio nu and the load ratio F/N.
     pub fn new(l: f64, t: f64, h: f64, nu: f64, fn_ratio: f64) -> Result<Self> {
+        Self::with_decay(l, t, h, nu, fn_ratio, Self::decay(nu)?)
+    }
+
+    /// The decay rate k(nu) of [`Corrected::new`]: a complex root search (milliseconds), so
+    /// callers with many load cases or geometries at one nu compute it once.
+    pub fn decay(nu: f64) -> Result<f64> {
+        if !(nu > -1.0 && nu < 0.5) {
+            return Err(Error::input("corrected model", format!("nu = {nu} must lie in (-1, 0.5)")));
+        }
+        Ok(slowest_decay(nu, Family::Compression)?.re)
+    }
+
+    /// [`Corrected::new`] with k = [`Corrected::decay`](nu) given.
+    pub fn with_decay(l: f64, t: f64, h: f64, nu: f64, fn_ratio: f64, k: f64) -> Result<Self> {
         if !(l > 0.0 && t > 0.0 && h > 0.0 && l.is_finite() && t.is_finite() && h.is_finite()) {
             return Err(Error::input(
                 "corrected model",
@@ -58,7 +72,6 @@ impl Corrected {
         if !(nu > -1.0 && nu < 0.5) {
             return Err(Error::input("corrected model", format!("nu = {nu} must lie in (-1, 0.5)")));
         }
-        let k = slowest_decay(nu, Family::Compression)?.re;
         let a = (nu / (1.0 - nu)).powi(2);
         let tau = t / l;
         let c = k / tau;

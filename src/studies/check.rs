@@ -128,6 +128,19 @@ pub fn run_model(
     opts: &SolverOptions,
     prepared: Option<&Prepared>,
 ) -> Result<(CheckResult, SceneModel)> {
+    run_model_with_decay(scene, sm, mesh_time, opts, prepared, None)
+}
+
+/// [`run_model`] with the corrected model's decay rate k(nu) given (a sweep computes it once
+/// per Poisson ratio: the root search costs as much as a small solve).
+pub fn run_model_with_decay(
+    scene: &Scene,
+    sm: SceneModel,
+    mesh_time: f64,
+    opts: &SolverOptions,
+    prepared: Option<&Prepared>,
+    decay: Option<f64>,
+) -> Result<(CheckResult, SceneModel)> {
     let model = sm.model();
     let (l, t, hgt) = (scene.block.length, scene.block.thickness, scene.loading.height);
     // Unit cases: A presses the plate down by d, B moves it sideways by d (the problem is linear;
@@ -207,6 +220,10 @@ pub fn run_model(
 
     let mut results = Vec::new();
     let mut displacements = Vec::new();
+    let decay = match decay {
+        Some(k) => k,
+        None => crate::analytical::thin_layer::Corrected::decay(scene.block.poisson)?,
+    };
     for &ratio in &scene.loading.fn_ratios {
         // N = N_A (the normal force of case A alone), F = ratio N.
         let (a, b) = combo(na, ratio * na);
@@ -231,7 +248,14 @@ pub fn run_model(
             Some(th) => u[th],
             None => plate_tilt(&sm, &u),
         };
-        let corr = crate::analytical::thin_layer::Corrected::new(l, t, hgt, scene.block.poisson, ratio)?;
+        let corr = crate::analytical::thin_layer::Corrected::with_decay(
+            l,
+            t,
+            hgt,
+            scene.block.poisson,
+            ratio,
+            decay,
+        )?;
         let p_corrected: Vec<f64> = x_over_l.iter().map(|&x| corr.pressure(x)).collect();
         let interior = interior_nodes(&x_over_l, l, t);
         let slope_corrected =

@@ -251,13 +251,25 @@ pub fn run(
             Ok((i, s))
         })
         .collect::<Result<_>>()?;
+    // The corrected model's inputs, its root search once per Poisson ratio.
+    let mut decays: Vec<(f64, f64)> = Vec::new();
     for (_, s) in &scenes {
-        crate::analytical::thin_layer::Corrected::new(
+        let nu = s.block.poisson;
+        let k = match decays.iter().find(|d| d.0 == nu) {
+            Some(d) => d.1,
+            None => {
+                let k = crate::analytical::thin_layer::Corrected::decay(nu)?;
+                decays.push((nu, k));
+                k
+            }
+        };
+        crate::analytical::thin_layer::Corrected::with_decay(
             s.block.length,
             s.block.thickness,
             s.loading.height,
-            s.block.poisson,
+            nu,
             0.0,
+            k,
         )?;
     }
     // Points that differ only in the block's material share the mesh, the constraint ties and
@@ -286,8 +298,15 @@ pub fn run(
                     let clock = Instant::now();
                     let sm = scene.build()?;
                     let mesh_time = clock.elapsed().as_secs_f64();
-                    let (mut result, _) =
-                        super::check::run_model(&scene, sm, mesh_time, &o.solver, Some(&prepared))?;
+                    let k = decays.iter().find(|d| d.0 == scene.block.poisson).map(|d| d.1);
+                    let (mut result, _) = super::check::run_model_with_decay(
+                        &scene,
+                        sm,
+                        mesh_time,
+                        &o.solver,
+                        Some(&prepared),
+                        k,
+                    )?;
                     result.displacements.clear();
                     let verdicts = result.cases.iter().map(|c| verdict(&result, c, &o.verdict)).collect();
                     let p = Point { index, scene, result, verdicts, wall: clock.elapsed().as_secs_f64() };
