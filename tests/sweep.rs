@@ -126,3 +126,39 @@ fn scene_flags_override_and_validate_like_the_file() {
     let e = Scene::default().apply(&Overrides { thickness: Some(-1.0), ..Default::default() }).unwrap_err();
     assert!(e.to_string().contains("block.thickness"), "{e}");
 }
+
+/// The frictional columns: each point's are those of a single `slide` run on the point's
+/// frictional scene (same code path, so to round-off), g follows H at fixed coefficients, and
+/// the FE's first long precursor force lies within 5 % of the paper's F_1 (t/L = 0.01; the
+/// singular trailing corner nucleates slightly early, validation/friction/README.md).
+#[test]
+fn friction_columns_equal_single_slide_runs() {
+    use tribofe::interface::law::{Law, Rule};
+    use tribofe::studies::slide::{compare_paper, run as slide, SlideOptions};
+    let (mu_s, mu_d) = (0.648, 0.583);
+    let axes = vec![Axis { param: Param::Height, values: vec![0.02, 0.04] }];
+    let mut base = Scene::default();
+    base.block.thickness = 0.004;
+    base.loading.fn_ratios = vec![0.41];
+    let f = sweep::FrictionSweep { mu_s, mu_d, rule: Rule::Paper, cycles: 2 };
+    let o = SweepOptions { friction: Some(f), ..Default::default() };
+    let points = sweep::run(&base, &axes, &o, &|_| {}).unwrap();
+    for p in &points {
+        let got = p.friction.expect("friction columns");
+        let so = SlideOptions {
+            law: Law::static_kinetic(mu_s, mu_d, Rule::Paper).unwrap(),
+            cycles: 2,
+            ..Default::default()
+        };
+        let mut s = base.clone();
+        s.loading.height = p.scene.loading.height;
+        let want = compare_paper(&slide(&sweep::FrictionSweep::scene(&s), &so, &|_| {}).unwrap()).unwrap();
+        assert_eq!(format!("{got:?}"), format!("{want:?}"));
+        let g = 6.0 * mu_d * s.loading.height / s.block.length;
+        assert!((got.g / g - 1.0).abs() < 1e-12, "g {} vs {g}", got.g);
+        let f1 = got.f1_fe.expect("a long precursor");
+        assert!((f1 / got.f1 - 1.0).abs() < 0.05, "F_1 FE {f1} vs model {}", got.f1);
+    }
+    let table = csv(&points, true).unwrap();
+    assert!(table.lines().next().unwrap().contains("fe_Fmax_over_mu_s_N,model_precursors"));
+}

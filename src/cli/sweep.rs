@@ -5,7 +5,7 @@ use super::scene_args::{scene, SceneArgs};
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use tribofe::studies::sweep::{Axis, Param, SweepOptions, VerdictOptions};
+use tribofe::studies::sweep::{Axis, FrictionSweep, Param, SweepOptions, VerdictOptions};
 
 #[derive(ClapArgs, Debug)]
 pub struct Args {
@@ -34,6 +34,17 @@ pub struct Args {
     /// Refuse points above this many unknowns (default: what fits in half this machine's memory).
     #[arg(long)]
     pub max_dofs: Option<usize>,
+    /// Also run the frictional interface at each point with these static and kinetic
+    /// coefficients `MU_S,MU_D` (g = 6 mu_d H/L follows the geometry): FE precursors, F_1,
+    /// x_1 and the stick-slip peak against the paper's iteration, in the CSV and two maps.
+    #[arg(long, value_name = "MU_S,MU_D")]
+    pub friction: Option<String>,
+    /// Event rule of the frictional run: paper or overdamped.
+    #[arg(long, default_value = "paper")]
+    pub rule: String,
+    /// Whole-interface slips of the frictional run (the last one's peak is F_max).
+    #[arg(long, default_value_t = 3)]
+    pub cycles: usize,
     #[arg(long, default_value = "out/sweep")]
     pub out: PathBuf,
 }
@@ -73,7 +84,21 @@ pub fn run(args: Args) -> tribofe::Result<()> {
             return Err(tribofe::Error::input(what, format!("{v} must be a positive number")));
         }
     }
+    let friction = match &args.friction {
+        None => None,
+        Some(v) => {
+            let mu: Vec<f64> = tribofe::studies::sweep::parse_values(v)?;
+            let [mu_s, mu_d] = mu[..] else {
+                return Err(tribofe::Error::input(
+                    "--friction",
+                    format!("'{v}' is not MU_S,MU_D, e.g. 0.65,0.58"),
+                ));
+            };
+            Some(FrictionSweep { mu_s, mu_d, rule: args.rule.parse()?, cycles: args.cycles })
+        }
+    };
     let o = SweepOptions {
+        friction,
         converged: !args.as_meshed,
         shard,
         verdict: VerdictOptions {

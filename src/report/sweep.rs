@@ -8,11 +8,16 @@ use crate::studies::sweep::{Axis, Param, Point};
 use plotters::prelude::*;
 use std::path::Path;
 
-pub fn header() -> String {
+/// Columns of the frictional run (F in units of mu_s N, x in units of L): the FE's precursor
+/// counts, first long precursor and last stick-slip peak, then the paper's iteration.
+const FRICTION_HEADER: &str = "friction_r,friction_g,fe_precursors,fe_precursors_longer_5t,fe_F1_over_mu_s_N,fe_x1_over_L,fe_Fmax_over_mu_s_N,model_precursors,model_F1_over_mu_s_N,model_x1_over_L,model_Fmax_over_mu_s_N";
+
+pub fn header(friction: bool) -> String {
     let inputs: Vec<&str> = Param::ALL.iter().map(|p| p.column()).collect();
     format!(
-        "point,{},element,{SUMMARY_HEADER},slope_ratio,slope_ratio_corrected,shear_uniformity,edge_zone_fraction_L,tension_onset_FN,tension_onset_FN_model,locking_prone,interior_ok,edges_ok,tension_ok,model_holds,n_unknowns,point_wall_s",
-        inputs.join(",")
+        "point,{},element,{SUMMARY_HEADER},slope_ratio,slope_ratio_corrected,shear_uniformity,edge_zone_fraction_L,tension_onset_FN,tension_onset_FN_model,locking_prone,interior_ok,edges_ok,tension_ok,model_holds,n_unknowns,{}point_wall_s",
+        inputs.join(","),
+        if friction { format!("{FRICTION_HEADER},") } else { String::new() }
     )
 }
 
@@ -27,8 +32,9 @@ fn opt(v: Option<f64>) -> String {
 /// shards' files concatenate into the unsharded table.
 pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
     let mut s = String::new();
+    let friction = points.iter().any(|p| p.friction.is_some());
     if with_header {
-        s.push_str(&header());
+        s.push_str(&header(friction));
         s.push('\n');
     }
     for p in points {
@@ -50,6 +56,24 @@ pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
                 cells.push(u8::from(b).to_string());
             }
             cells.push(p.result.n_unknowns.to_string());
+            if friction {
+                match &p.friction {
+                    Some(f) => cells.extend([
+                        e(f.r),
+                        e(f.g),
+                        f.n_fe.to_string(),
+                        f.n_fe_long.to_string(),
+                        opt(f.f1_fe),
+                        opt(f.x1_fe),
+                        opt(f.f_max_fe),
+                        f.n.to_string(),
+                        e(f.f1),
+                        e(f.x1),
+                        e(f.f_max),
+                    ]),
+                    None => cells.extend(std::iter::repeat_n(String::new(), 11)),
+                }
+            }
             cells.push(e(p.wall));
             s.push_str(&cells.join(","));
             s.push('\n');
@@ -60,6 +84,17 @@ pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
 
 /// A map: name, title, value per (point, case).
 type Quantity = (&'static str, &'static str, fn(&Point, usize) -> Option<f64>);
+
+/// With the frictional run: the FE's last stick-slip peak against the model's F_max, and
+/// the FE's precursors longer than 5 t before the first whole slip.
+const FRICTION_MAPS: [Quantity; 2] = [
+    ("map_friction_fmax_ratio.svg", "stick-slip peak FE / model F_max", |p, _| {
+        p.friction.and_then(|f| Some(f.f_max_fe? / f.f_max))
+    }),
+    ("map_friction_precursors.svg", "FE precursors longer than 5 t", |p, _| {
+        p.friction.map(|f| f.n_fe_long as f64)
+    }),
+];
 
 const MAPS: [Quantity; 7] = [
     ("map_slope_ratio.svg", "interior slope FE / model", |p, c| {
@@ -95,7 +130,9 @@ pub fn write_maps(points: &[Point], axes: &[Axis], dir: &Path) -> Result<Vec<Str
     }
     let (ax, ay) = (&axes[multi[0]], &axes[multi[1]]);
     let mut written = Vec::new();
-    for (file, title, f) in MAPS {
+    let friction = points.iter().any(|p| p.friction.is_some());
+    let extra = if friction { &FRICTION_MAPS[..] } else { &[] };
+    for &(file, title, f) in MAPS.iter().chain(extra) {
         let mut cells = Vec::new();
         for p in points {
             let fixed_ok = axes

@@ -124,6 +124,34 @@ pub struct SweepOptions {
     pub shard: Option<(usize, usize)>,
     pub verdict: VerdictOptions,
     pub solver: SolverOptions,
+    /// Also run the frictional interface at each point (`None`: the check only).
+    pub friction: Option<FrictionSweep>,
+}
+
+/// The frictional quantities of each point: the static-kinetic law with fixed coefficients
+/// (a rig's materials: g = 6 mu_d H/L then follows the geometry), on the QUA4 mesh of the
+/// thin-layer validation runs (h = t along x, 2 elements through t, rigid plate), against the
+/// paper's iteration for the same (r, g) ([`super::slide::compare_paper`]).
+#[derive(Debug, Clone, Copy)]
+pub struct FrictionSweep {
+    pub mu_s: f64,
+    pub mu_d: f64,
+    pub rule: crate::interface::law::Rule,
+    /// Whole-interface slips to run (the last one's peak is reported as F_max).
+    pub cycles: usize,
+}
+
+impl FrictionSweep {
+    /// The frictional scene of a point: its geometry and material on the QUA4 interface mesh.
+    pub fn scene(base: &Scene) -> Scene {
+        let mut s = base.clone();
+        s.mesh.element = "qua4".into();
+        s.mesh.grading = None;
+        s.mesh.h_max = None;
+        s.mesh.h = s.block.thickness;
+        s.mesh.n_thick = Some(2);
+        s
+    }
 }
 
 impl Default for SweepOptions {
@@ -133,6 +161,7 @@ impl Default for SweepOptions {
             shard: None,
             verdict: VerdictOptions::default(),
             solver: SolverOptions::default(),
+            friction: None,
         }
     }
 }
@@ -184,6 +213,8 @@ pub struct Point {
     pub scene: Scene,
     pub result: CheckResult,
     pub verdicts: Vec<Verdict>,
+    /// The frictional run against the paper's iteration (with [`SweepOptions::friction`]).
+    pub friction: Option<super::slide::PaperComparison>,
     /// Wall time of the point, s.
     pub wall: f64,
 }
@@ -251,6 +282,24 @@ pub fn run(
             Ok((i, s))
         })
         .collect::<Result<_>>()?;
+    let law = match &o.friction {
+        Some(f) => {
+            if base.mesh.file.is_some() || base.plate.model != crate::scene::PlateModel::Rigid {
+                return Err(Error::input(
+                    "--friction",
+                    "the frictional sweep meshes each point itself with a rigid plate: drop --mesh and --plate elastic",
+                ));
+            }
+            if f.cycles == 0 {
+                return Err(Error::input(
+                    "--cycles",
+                    "0: at least one whole-interface slip is needed for F_max",
+                ));
+            }
+            Some(crate::interface::law::Law::static_kinetic(f.mu_s, f.mu_d, f.rule)?)
+        }
+        None => None,
+    };
     // The corrected model's inputs, its root search once per Poisson ratio.
     let mut decays: Vec<(f64, f64)> = Vec::new();
     for (_, s) in &scenes {
@@ -309,7 +358,23 @@ pub fn run(
                     )?;
                     result.displacements.clear();
                     let verdicts = result.cases.iter().map(|c| verdict(&result, c, &o.verdict)).collect();
-                    let p = Point { index, scene, result, verdicts, wall: clock.elapsed().as_secs_f64() };
+                    let friction = match (&o.friction, law) {
+                        (Some(f), Some(law)) => {
+                            let so =
+                                super::slide::SlideOptions { law, cycles: f.cycles, ..Default::default() };
+                            let r = super::slide::run(&FrictionSweep::scene(&scene), &so, &|_| {})?;
+                            super::slide::compare_paper(&r)
+                        }
+                        _ => None,
+                    };
+                    let p = Point {
+                        index,
+                        scene,
+                        result,
+                        verdicts,
+                        friction,
+                        wall: clock.elapsed().as_secs_f64(),
+                    };
                     progress(&p);
                     Ok(p)
                 })
