@@ -44,6 +44,7 @@ pub(super) fn drive(
         let u_pre: Vec<f64> = (0..n).map(|i| a0.b(i, lam)).collect();
         let f_pre = a0.f(sv.iu(), lam);
         let states_pre = sv.states.clone();
+        let mu_pre = sv.mu_slip.clone();
         let (a, touched) = settle(sv, lam, cap, &u_pre)?;
         let moved: Vec<f64> = (0..n).map(|i| (a.b(i, lam) - u_pre[i]).abs()).collect();
         let (i0, jump) =
@@ -63,6 +64,11 @@ pub(super) fn drive(
             }
             let all_slipping = (0..n).all(|i| sv.states[i] != NodeState::Stick)
                 && sv.states.iter().any(|s| matches!(s, NodeState::Slip(_)));
+            // Nucleation: the most weakened node slipping when the step began.
+            let node = (first..=last)
+                .filter(|&i| matches!(states_pre[i], NodeState::Slip(_)))
+                .min_by(|&i, &j| mu_pre[i].total_cmp(&mu_pre[j]))
+                .unwrap_or(i0);
             let kind = classify(&sv.states, (first, last), &mut slipped);
             heal(sv, &a, lam)?;
             let b = sv.solve()?;
@@ -75,7 +81,7 @@ pub(super) fn drive(
                 kind,
                 f: f_pre,
                 x: lam,
-                node: i0,
+                node,
                 region: Some((first, last)),
                 f_relaxed: st.f,
                 backslip: 0,
