@@ -237,3 +237,55 @@ fn unstructured_gmsh_mesh_agrees_with_the_converged_answer() {
         assert!((u.metrics.edge_p_t[1].unwrap() - c.metrics.edge_p_t[1].unwrap()).abs() < 0.15, "{el}");
     }
 }
+
+/// One factorisation for every drive height (issue 19): the unit cases at the first H plus a
+/// unit moment, combined per H, give each height's check to round-off of the fields' scale
+/// (1e-10 of N/L: the combination coefficients grow with the shift, up to 10 cm here).
+#[test]
+fn heights_from_one_factorisation_equal_single_checks() {
+    let mut s = Scene::default();
+    s.mesh.h = 0.002;
+    s.mesh.n_thick = Some(2);
+    let heights = [0.04, 0.01, 0.14];
+    let scenes: Vec<Scene> = heights
+        .iter()
+        .map(|&h| {
+            let mut x = s.clone();
+            x.loading.height = h;
+            x
+        })
+        .collect();
+    let shifted =
+        tribofe::studies::check::run_heights(&scenes[0], &scenes, &SolverOptions::default(), None, None)
+            .unwrap();
+    for (sc, got) in scenes.iter().zip(&shifted) {
+        let want = run(sc, &SolverOptions::default()).unwrap().0;
+        for (a, b) in want.cases.iter().zip(&got.cases) {
+            assert!(
+                (a.n / b.n - 1.0).abs() < 1e-10 && (a.f - b.f).abs() < 1e-10 * a.n,
+                "H {}",
+                sc.loading.height
+            );
+            assert!(
+                max_diff(&a.p, &b.p) < 1e-10 && max_diff(&a.tau, &b.tau) < 1e-10,
+                "H {}: p {:e} tau {:e} tilt {} {} n {} {}",
+                sc.loading.height,
+                max_diff(&a.p, &b.p),
+                max_diff(&a.tau, &b.tau),
+                a.tilt,
+                b.tilt,
+                a.n,
+                b.n
+            );
+            let scale = want.cases.iter().map(|c| c.tilt.abs()).fold(0.0, f64::max);
+            assert!(
+                (a.tilt - b.tilt).abs() < 1e-10 * scale,
+                "H {}: tilt {} {}",
+                sc.loading.height,
+                a.tilt,
+                b.tilt
+            );
+            assert!((a.metrics.slope_interior - b.metrics.slope_interior).abs() < 1e-10);
+        }
+    }
+}

@@ -76,7 +76,11 @@ fn sweep_rows_equal_single_checks_shards_and_thread_counts() {
     assert_eq!(full.len(), 6);
     let table = csv(&full, true).unwrap();
     assert_eq!(table.lines().count(), 1 + 12);
-    // Rows equal the single converged checks, figure for figure.
+    // Rows equal the single converged checks, figure for figure, to round-off: each H comes
+    // from the unit cases at the first swept H plus a unit moment (one factorisation), so the
+    // figures agree to round-off, not bitwise: 1e-9 relative, plus 1e-11 absolute for figures
+    // that are zero up to round-off or differences of O(1) stresses (units N/L, t, rad); the
+    // figures that are undefined (empty) must match exactly.
     for p in &full {
         let o = Overrides {
             thickness: Some(p.scene.block.thickness),
@@ -84,10 +88,20 @@ fn sweep_rows_equal_single_checks_shards_and_thread_counts() {
             ..Default::default()
         };
         let (r, _) = run(&converged_scene(&base.apply(&o).unwrap()), &opts()).unwrap();
-        assert_eq!(
+        let (a, b) = (
             tribofe::report::check::summary_csv(&r).unwrap(),
-            tribofe::report::check::summary_csv(&p.result).unwrap()
+            tribofe::report::check::summary_csv(&p.result).unwrap(),
         );
+        for (la, lb) in a.lines().zip(b.lines()) {
+            for (x, y) in la.split(',').zip(lb.split(',')) {
+                match (x.parse::<f64>(), y.parse::<f64>()) {
+                    (Ok(x), Ok(y)) => {
+                        assert!((x - y).abs() <= 1e-9 * x.abs().max(y.abs()) + 1e-11, "{la}\n{lb}")
+                    }
+                    _ => assert_eq!(x, y),
+                }
+            }
+        }
     }
     // Shards (contiguous, header in the first only) concatenate into the same table.
     let mut joined = String::new();

@@ -61,7 +61,7 @@ impl Corrected {
         Ok(slowest_decay(nu, Family::Compression)?.re)
     }
 
-    /// [`Corrected::new`] with k = [`Corrected::decay`](nu) given.
+    /// [`Corrected::new`] with k = [`Corrected::decay`]`(nu)` given.
     pub fn with_decay(l: f64, t: f64, h: f64, nu: f64, fn_ratio: f64, k: f64) -> Result<Self> {
         if !(l > 0.0 && t > 0.0 && h > 0.0 && l.is_finite() && t.is_finite() && h.is_finite()) {
             return Err(Error::input(

@@ -4,7 +4,8 @@
 //! p/(N/L) = 1 + 12 (F/N)(H/L)(x/L) and tau/(N/L) = F/N.
 
 use crate::error::{Error, Result};
-use crate::fem::problem::{solve, LoadCase, Prepared, Timings};
+use crate::fem::assembly::Model;
+use crate::fem::problem::{solve, LoadCase, Prepared, Solution, Timings};
 use crate::fem::recovery::{elements_touching, nodal_stresses_from};
 use crate::linalg::solve::{SolveReport, SolverOptions};
 use crate::precursors::fe::UnitFields;
@@ -141,19 +142,82 @@ pub fn run_model_with_decay(
     prepared: Option<&Prepared>,
     decay: Option<f64>,
 ) -> Result<(CheckResult, SceneModel)> {
+    let (sol, cases) = solve_units(scene, &sm, opts, prepared, false)?;
+    let clock = Instant::now();
     let model = sm.model();
-    let (l, t, hgt) = (scene.block.length, scene.block.thickness, scene.loading.height);
-    // Unit cases: A presses the plate down by d, B moves it sideways by d (the problem is linear;
-    // d = 5 % of t keeps N at the scale of the peer scripts in validation/peers).
-    let d = 0.05 * t;
+    let units = Units::from_solution(&sm, &model, &sol, &cases)?;
+    let res = finish(scene, &sm, &sol, units, mesh_time, clock, decay)?;
+    Ok((res, sm))
+}
+
+/// The check at every height of `scenes` (scenes equal to `reference` but for
+/// loading.height, rigid plate) from one factorisation: the unit cases at the reference's
+/// height plus a unit moment on the plate, combined per height (H enters the rigid plate's
+/// ties only as the reference point of its rotation).
+pub fn run_heights(
+    reference: &Scene,
+    scenes: &[Scene],
+    opts: &SolverOptions,
+    prepared: Option<&Prepared>,
+    decay: Option<f64>,
+) -> Result<Vec<CheckResult>> {
+    let clock = Instant::now();
+    let sm = reference.build()?;
+    let mesh_time = clock.elapsed().as_secs_f64();
+    if sm.dof_theta.is_none() {
+        return Err(Error::input("plate.model", "the check over heights needs the rigid plate"));
+    }
+    let (sol, cases) = solve_units(reference, &sm, opts, prepared, true)?;
+    let model = sm.model();
+    let base = Units::from_solution(&sm, &model, &sol, &cases)?;
+    scenes
+        .iter()
+        .map(|s| {
+            let mut same = s.clone();
+            same.loading.height = reference.loading.height;
+            if format!("{same:?}") != format!("{reference:?}") {
+                return Err(Error::input(
+                    "check over heights",
+                    "the scenes differ in more than loading.height",
+                ));
+            }
+            let clock = Instant::now();
+            let units = base.at_height(s.loading.height - reference.loading.height)?;
+            finish(s, &sm, &sol, units, mesh_time, clock, decay)
+        })
+        .collect()
+}
+
+/// Solves the unit cases: A presses the plate down by d, B moves it sideways by d at height H
+/// (the problem is linear; d = 5 % of t keeps N at the scale of the peer scripts in
+/// validation/peers); with `moment`, C: U = V = 0 and a unit moment on the rigid plate.
+fn solve_units(
+    scene: &Scene,
+    sm: &SceneModel,
+    opts: &SolverOptions,
+    prepared: Option<&Prepared>,
+    moment: bool,
+) -> Result<(Solution, Vec<LoadCase>)> {
+    let model = sm.model();
+    let d = 0.05 * scene.block.thickness;
     let nf = sm.constraints.n_fixed();
-    let (ju, jv) =
-        (sm.constraints.fixed_slot(sm.dof_u).unwrap(), sm.constraints.fixed_slot(sm.dof_v).unwrap());
+    let slot = |dof: usize| {
+        sm.constraints
+            .fixed_slot(dof)
+            .ok_or_else(|| Error::input("scene", "the plate's loading DOFs are not prescribed"))
+    };
+    let (ju, jv) = (slot(sm.dof_u)?, slot(sm.dof_v)?);
     let mut ga = vec![0.0; nf];
     ga[jv] = -d;
     let mut gb = vec![0.0; nf];
     gb[ju] = d;
-    let cases = [LoadCase { prescribed: ga, forces: vec![] }, LoadCase { prescribed: gb, forces: vec![] }];
+    let mut cases =
+        vec![LoadCase { prescribed: ga, forces: vec![] }, LoadCase { prescribed: gb, forces: vec![] }];
+    if let (true, Some(th)) = (moment, sm.dof_theta) {
+        let mut f = vec![0.0; sm.constraints.n_full()];
+        f[th] = 1.0;
+        cases.push(LoadCase { prescribed: vec![0.0; nf], forces: f });
+    }
     let hint = match scene.plate.model {
         PlateModel::Elastic => format!(
             "the elastic plate (E_plate / E_block = {:.1e}) makes the system too ill-conditioned for double precision; use the exact rigid plate (--plate rigid)",
@@ -165,24 +229,111 @@ pub fn run_model_with_decay(
         Some(p) => p.solve(&model, &sm.constraints, &cases, opts, &hint)?,
         None => solve(&model, &sm.constraints, &cases, opts, &hint)?,
     };
-    let clock = Instant::now();
+    Ok((sol, cases))
+}
 
-    // Interface reactions of each unit case, and the generalised reactions at U and V.
-    let near = elements_touching(&model, &sm.interface);
-    let plate_elems: Vec<usize> = match sm.dof_theta {
-        Some(_) => elements_touching(&model, &sm.mesh.set_nodes(&sm.top_set)?),
-        None => elements_touching(&model, &[sm.dof_u / 2, sm.dof_v / 2]),
-    };
-    let mut unit = Vec::new();
-    for c in 0..2 {
-        let r_int = sol.residual_forces(&model, &cases[c], c, &near)?;
-        let r_plate = sol.residual_forces(&model, &cases[c], c, &plate_elems)?;
-        let fixed = sol.reduction.fixed_reactions(&r_plate);
-        let (n, f) = (-fixed[jv], fixed[ju]);
-        let rx: Vec<f64> = sm.interface.iter().map(|&k| r_int[2 * k]).collect();
-        let ry: Vec<f64> = sm.interface.iter().map(|&k| r_int[2 * k + 1]).collect();
-        unit.push((n, f, rx, ry));
+/// Per unit case: displacements, the generalised reactions N and F at the plate, the
+/// interface nodal reactions (x, y), and (rigid plate) the plate's U, rotation and applied
+/// moment; all linear in the case, so cases combine.
+#[derive(Clone)]
+struct Unit {
+    u: Vec<f64>,
+    n: f64,
+    f: f64,
+    rx: Vec<f64>,
+    ry: Vec<f64>,
+    plate_u: f64,
+    theta: f64,
+    moment: f64,
+}
+
+struct Units(Vec<Unit>);
+
+impl Units {
+    fn from_solution(sm: &SceneModel, model: &Model, sol: &Solution, cases: &[LoadCase]) -> Result<Self> {
+        // Interface reactions of each unit case, and the generalised reactions at U and V.
+        let near = elements_touching(model, &sm.interface);
+        let plate_elems: Vec<usize> = match sm.dof_theta {
+            Some(_) => elements_touching(model, &sm.mesh.set_nodes(&sm.top_set)?),
+            None => elements_touching(model, &[sm.dof_u / 2, sm.dof_v / 2]),
+        };
+        let (ju, jv) = (sm.constraints.fixed_slot(sm.dof_u), sm.constraints.fixed_slot(sm.dof_v));
+        let (Some(ju), Some(jv)) = (ju, jv) else {
+            return Err(Error::input("scene", "the plate's loading DOFs are not prescribed"));
+        };
+        let mut units = Vec::new();
+        for (c, case) in cases.iter().enumerate() {
+            let r_int = sol.residual_forces(model, case, c, &near)?;
+            let r_plate = sol.residual_forces(model, case, c, &plate_elems)?;
+            let fixed = sol.reduction.fixed_reactions(&r_plate);
+            let th = sm.dof_theta;
+            units.push(Unit {
+                u: sol.u[c].clone(),
+                n: -fixed[jv],
+                f: fixed[ju],
+                rx: sm.interface.iter().map(|&k| r_int[2 * k]).collect(),
+                ry: sm.interface.iter().map(|&k| r_int[2 * k + 1]).collect(),
+                plate_u: case.prescribed[ju],
+                theta: th.map_or(0.0, |th| sol.u[c][th]),
+                moment: th.map_or(0.0, |th| case.forces.get(th).copied().unwrap_or(0.0)),
+            });
+        }
+        Ok(Self(units))
     }
+
+    /// The cases A and B for the drive at height H0 + dh from A, B and the moment case C at
+    /// H0: U(H) = U - theta dh (the tie u = U - theta (y - H0)), and a force F at H is F at H0
+    /// with the moment -dh F (virtual work F du(H)), so C's share makes the moment -dh F.
+    fn at_height(&self, dh: f64) -> Result<Self> {
+        let [a, b, c] = &self.0[..] else {
+            return Err(Error::input("check over heights", "needs the three unit cases"));
+        };
+        let d = b.plate_u;
+        // beta B + gamma C added to alpha A: U(H) = target, moment = -dh F.
+        let m = [[d - dh * b.theta, -dh * c.theta], [dh * b.f, c.moment + dh * c.f]];
+        let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+        if !(det.abs() > 0.0) {
+            return Err(Error::input("check over heights", "the height shift is degenerate"));
+        }
+        let pick = |alpha: f64, u_target: f64| -> Unit {
+            let r = [u_target + dh * alpha * a.theta, -dh * alpha * a.f];
+            let beta = (r[0] * m[1][1] - m[0][1] * r[1]) / det;
+            let gamma = (m[0][0] * r[1] - r[0] * m[1][0]) / det;
+            let mix = |x: &[f64], y: &[f64], z: &[f64]| -> Vec<f64> {
+                x.iter().zip(y).zip(z).map(|((x, y), z)| alpha * x + beta * y + gamma * z).collect()
+            };
+            let theta = alpha * a.theta + beta * b.theta + gamma * c.theta;
+            Unit {
+                u: mix(&a.u, &b.u, &c.u),
+                n: alpha * a.n + beta * b.n + gamma * c.n,
+                f: alpha * a.f + beta * b.f + gamma * c.f,
+                rx: mix(&a.rx, &b.rx, &c.rx),
+                ry: mix(&a.ry, &b.ry, &c.ry),
+                plate_u: u_target,
+                theta,
+                moment: 0.0,
+            }
+        };
+        Ok(Self(vec![pick(1.0, 0.0), pick(0.0, d)]))
+    }
+}
+
+/// The check's figures from the two unit cases.
+fn finish(
+    scene: &Scene,
+    sm: &SceneModel,
+    sol: &Solution,
+    units: Units,
+    mesh_time: f64,
+    clock: Instant,
+    decay: Option<f64>,
+) -> Result<CheckResult> {
+    let model = sm.model();
+    let (l, t, hgt) = (scene.block.length, scene.block.thickness, scene.loading.height);
+    let d = 0.05 * t;
+    let near = elements_touching(&model, &sm.interface);
+    let unit: Vec<(f64, f64, Vec<f64>, Vec<f64>)> =
+        units.0.iter().take(2).map(|u| (u.n, u.f, u.rx.clone(), u.ry.clone())).collect();
     let (na, fa) = (unit[0].0, unit[0].1);
     let (nb, fb) = (unit[1].0, unit[1].1);
     let det = na * fb - nb * fa;
@@ -192,7 +343,7 @@ pub fn run_model_with_decay(
             "the unit load cases are degenerate (no normal force from pressing the plate)",
         ));
     }
-    let widths = tributary_widths(&sm);
+    let widths = tributary_widths(sm);
     let xs: Vec<f64> = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
     let x_over_l: Vec<f64> = xs.iter().map(|x| x / l).collect();
     // Unit fields: combination giving (N, F) = (1, 0) and (0, 1).
@@ -230,7 +381,7 @@ pub fn run_model_with_decay(
         let (n, f) = (a * na + b * nb, a * fa + b * fb);
         let pmean = n / l;
         let (p, tau) = profile(a, b);
-        let u: Vec<f64> = sol.u[0].iter().zip(&sol.u[1]).map(|(x, y)| a * x + b * y).collect();
+        let u: Vec<f64> = units.0[0].u.iter().zip(&units.0[1].u).map(|(x, y)| a * x + b * y).collect();
         let s = nodal_stresses_from(&model, &u, &near);
         let p_extrap: Vec<f64> = sm.interface.iter().map(|&k| -s[k][1] / pmean).collect();
         let tau_extrap: Vec<f64> = sm.interface.iter().map(|&k| s[k][2] / pmean).collect();
@@ -246,7 +397,7 @@ pub fn run_model_with_decay(
         let moment: f64 = (0..xs.len()).map(|i| xs[i] * (a * unit[0].3[i] + b * unit[1].3[i])).sum();
         let tilt = match sm.dof_theta {
             Some(th) => u[th],
-            None => plate_tilt(&sm, &u),
+            None => plate_tilt(sm, &u),
         };
         let corr = crate::analytical::thin_layer::Corrected::with_decay(
             l,
@@ -305,7 +456,7 @@ pub fn run_model_with_decay(
         solve_report: sol.report.clone(),
         displacements,
     };
-    Ok((res, sm))
+    Ok(res)
 }
 
 /// Rotation of an elastic plate from the vertical displacements of its top corners, rad.

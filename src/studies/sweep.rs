@@ -5,6 +5,7 @@
 
 use super::check::{converged_scene, CheckResult};
 use crate::error::{Error, Result};
+use crate::fem::problem::Prepared;
 use crate::linalg::solve::SolverOptions;
 use crate::scene::{Overrides, Scene};
 use rayon::prelude::*;
@@ -321,41 +322,84 @@ pub fn run(
             k,
         )?;
     }
-    // Points that differ only in the block's material share the mesh, the constraint ties and
-    // so the pattern and symbolic analysis (`problem::Prepared`): one per group. H is baked into
-    // the rigid plate's ties, so a change of H starts a new group.
-    let mut groups: Vec<Vec<(usize, Scene)>> = Vec::new();
-    let mut keys: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
-    for (i, s) in scenes {
+    // Points that differ only in the block's material share the mesh, the constraint ties
+    // pattern and so the symbolic analysis (`problem::Prepared`): one per group. Within a
+    // group, points that differ only in H (rigid plate) share one factorisation: the unit
+    // cases at a reference height plus a unit moment, combined per H
+    // ([`super::check::run_heights`]). The reference is the first swept H (or the scene's), so
+    // a shard computes its rows exactly as the whole sweep does.
+    let h_ref = axes.iter().find(|a| a.param == Param::Height).map_or(base.loading.height, |a| a.values[0]);
+    let rigid = |s: &Scene| s.plate.model == crate::scene::PlateModel::Rigid;
+    let key = |s: &Scene, material: bool| {
         let mut k = s.clone();
-        k.block.young = 0.0;
-        k.block.poisson = 0.0;
-        let key = format!("{k:?}");
-        let g = *keys.entry(key).or_insert_with(|| {
+        if !material {
+            k.block.young = 0.0;
+            k.block.poisson = 0.0;
+        }
+        if rigid(s) {
+            k.loading.height = h_ref;
+        }
+        format!("{k:?}")
+    };
+    let mut groups: Vec<Vec<Vec<(usize, Scene)>>> = Vec::new();
+    let mut keys: std::collections::HashMap<String, (usize, usize)> = std::collections::HashMap::new();
+    let mut sub_keys: std::collections::HashMap<String, (usize, usize)> = std::collections::HashMap::new();
+    for (i, s) in scenes {
+        let (g, _) = *keys.entry(key(&s, false)).or_insert_with(|| {
             groups.push(Vec::new());
-            groups.len() - 1
+            (groups.len() - 1, 0)
         });
-        groups[g].push((i, s));
+        let (_, j) = *sub_keys.entry(key(&s, true)).or_insert_with(|| {
+            groups[g].push(Vec::new());
+            (g, groups[g].len() - 1)
+        });
+        groups[g][j].push((i, s));
     }
-    let solved: Vec<Vec<Point>> = groups
+    let prepared: Vec<Prepared> = groups
+        .par_iter()
+        .map(|g| {
+            let mut s = g[0][0].1.clone();
+            if rigid(&s) {
+                s.loading.height = h_ref;
+            }
+            super::check::prepare(&s, &o.solver)
+        })
+        .collect::<Result<_>>()?;
+    let subgroups: Vec<(usize, Vec<(usize, Scene)>)> =
+        groups.into_iter().enumerate().flat_map(|(g, subs)| subs.into_iter().map(move |s| (g, s))).collect();
+    let solved: Vec<Vec<Point>> = subgroups
         .into_par_iter()
-        .map(|group| {
-            let prepared = super::check::prepare(&group[0].1, &o.solver)?;
-            group
-                .into_iter()
-                .map(|(index, scene)| {
+        .map(|(g, sub)| {
+            let clock = Instant::now();
+            let first = &sub[0].1;
+            let k = decays.iter().find(|d| d.0 == first.block.poisson).map(|d| d.1);
+            let results = if rigid(first) {
+                let mut reference = first.clone();
+                reference.loading.height = h_ref;
+                let scenes: Vec<Scene> = sub.iter().map(|p| p.1.clone()).collect();
+                super::check::run_heights(&reference, &scenes, &o.solver, Some(&prepared[g]), k)?
+            } else {
+                sub.iter()
+                    .map(|(_, scene)| {
+                        let sm = scene.build()?;
+                        let r = super::check::run_model_with_decay(
+                            scene,
+                            sm,
+                            0.0,
+                            &o.solver,
+                            Some(&prepared[g]),
+                            k,
+                        );
+                        Ok(r?.0)
+                    })
+                    .collect::<Result<Vec<_>>>()?
+            };
+            // The shared solve's time is split evenly over the subgroup's points.
+            let shared = clock.elapsed().as_secs_f64() / sub.len() as f64;
+            sub.into_iter()
+                .zip(results)
+                .map(|((index, scene), mut result)| {
                     let clock = Instant::now();
-                    let sm = scene.build()?;
-                    let mesh_time = clock.elapsed().as_secs_f64();
-                    let k = decays.iter().find(|d| d.0 == scene.block.poisson).map(|d| d.1);
-                    let (mut result, _) = super::check::run_model_with_decay(
-                        &scene,
-                        sm,
-                        mesh_time,
-                        &o.solver,
-                        Some(&prepared),
-                        k,
-                    )?;
                     result.displacements.clear();
                     let verdicts = result.cases.iter().map(|c| verdict(&result, c, &o.verdict)).collect();
                     let friction = match (&o.friction, law) {
@@ -367,14 +411,8 @@ pub fn run(
                         }
                         _ => None,
                     };
-                    let p = Point {
-                        index,
-                        scene,
-                        result,
-                        verdicts,
-                        friction,
-                        wall: clock.elapsed().as_secs_f64(),
-                    };
+                    let wall = shared + clock.elapsed().as_secs_f64();
+                    let p = Point { index, scene, result, verdicts, friction, wall };
                     progress(&p);
                     Ok(p)
                 })
