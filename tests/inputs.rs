@@ -192,3 +192,45 @@ fn bench_refuses_sizes_and_thread_counts_it_cannot_run() {
         assert!(o.status.code() == Some(2) && err.contains(word), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn max_dofs_acts_on_every_meshing_subcommand_and_is_scene_data() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = d.join("out");
+    let o = out.to_str().unwrap();
+    // The default scene has 2406 unknowns, the default rectangle of `solve` 410.
+    let cases: [&[&str]; 6] = [
+        &["check", "--max-dofs", "2000"],
+        &["slide", "--max-dofs", "2000"],
+        &["stability", "--study", "plate", "--max-dofs", "2000"],
+        &["sweep", "--as-meshed", "--max-dofs", "2000"],
+        &["precursors", "--fe", "--max-dofs", "2000"],
+        &["solve", "--max-dofs", "400"],
+    ];
+    for args in cases {
+        let mut a = args.to_vec();
+        a.extend(["--out", o]);
+        let r = tribofe(&a);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(
+            r.status.code() == Some(2) && err.contains("too large") && err.contains("--max-dofs"),
+            "{a:?}: {err}"
+        );
+        assert!(!out.exists(), "{a:?}: output written");
+    }
+    // A scene file carries the limit (mesh.max_dofs), and --write-scene keeps it.
+    let scene = d.join("s.toml");
+    std::fs::write(&scene, "[mesh]\nmax_dofs = 2000\n").unwrap();
+    refused(d, &["--scene", scene.to_str().unwrap()], &["too large", "2000"]);
+    let written = d.join("w.toml");
+    refused(d, &["--max-dofs", "2000", "--write-scene", written.to_str().unwrap()], &["too large"]);
+    assert!(std::fs::read_to_string(&written).unwrap().contains("max_dofs = 2000"));
+    // No process-wide state: two scenes with different limits in one process.
+    let base = tribofe::scene::Scene::default();
+    let mut small = base.clone();
+    small.mesh.max_dofs = Some(2000);
+    assert!(small.check_size().is_err());
+    assert!(base.check_size().is_ok());
+    assert!(small.check_size().is_err());
+}

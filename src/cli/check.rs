@@ -15,10 +15,6 @@ pub struct Args {
     /// Skip the field files (fields_FN*.vtu/.msh, fields.pvd) of the whole mesh.
     #[arg(long)]
     pub no_fields: bool,
-    /// Refuse problems above this many unknowns (default: what fits in half this machine's
-    /// memory at about 1.5 kB per unknown, at most 1.5e6).
-    #[arg(long)]
-    pub max_dofs: Option<usize>,
     /// Skip the converged run (graded QUA8) printed next to the scene's mesh.
     #[arg(long)]
     pub no_converged: bool,
@@ -27,9 +23,6 @@ pub struct Args {
 pub use super::scene_args::{scene, SceneArgs};
 
 pub fn run(args: Args) -> tribofe::Result<()> {
-    if let Some(n) = args.max_dofs {
-        tribofe::memory::set_max_dofs(n)?;
-    }
     let scene = scene(&args.scene)?;
     let opts = SolverOptions::default();
     let (res, sm) = tribofe::studies::check::run(&scene, &opts)?;

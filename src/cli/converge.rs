@@ -18,9 +18,6 @@ pub struct Args {
     /// Elements through the thickness of each mesh (h = t / n).
     #[arg(long, value_delimiter = ',', default_value = "1,2,4,8,16,32,64")]
     pub n_thick: Vec<usize>,
-    /// Skip runs above this many DOFs.
-    #[arg(long, default_value_t = 3_000_000)]
-    pub max_dofs: usize,
     /// The load case compared, as F/N.
     #[arg(long, default_value_t = 0.82)]
     pub case: f64,
@@ -35,15 +32,12 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
-    // The study's own limit is the size guard of each of its runs.
-    tribofe::memory::set_max_dofs(args.max_dofs)?;
     let scene = super::check::scene(&args.scene)?;
     let families = args.families.iter().map(|f| f.parse::<Family>()).collect::<tribofe::Result<Vec<_>>>()?;
     let o = StudyOptions {
         elements: args.elements.clone(),
         families,
         n_thick: args.n_thick.clone(),
-        max_dofs: args.max_dofs,
         fn_ratio: args.case,
         parallel: !args.serial,
         ..Default::default()

@@ -1,5 +1,5 @@
 //! The scene flags shared by every subcommand that runs the paper's scene (check, converge,
-//! sweep): each overrides one key of the scene file (or of the paper's defaults) and goes
+//! sweep, slide, stability, precursors): each overrides one key of the scene file (or of the paper's defaults) and goes
 //! through the same validation.
 
 use clap::Args as ClapArgs;
@@ -65,6 +65,10 @@ pub struct SceneArgs {
     /// A Gmsh mesh (.msh 4.1 or 2.2) of the block with physical groups interface, top, block.
     #[arg(long)]
     pub mesh: Option<PathBuf>,
+    /// Refuse meshes above this many unknowns, estimated before meshing (default: what fits in
+    /// half this machine's memory at about 1.5 kB per unknown, at most 1.5e6).
+    #[arg(long)]
+    pub max_dofs: Option<usize>,
 }
 
 /// The values of a sweepable flag: one number, a list `a,b,c`, or a range `a:b:n` (n points,
@@ -111,6 +115,7 @@ impl SceneArgs {
             element: self.element.clone(),
             mesh: self.mesh.clone(),
             tol: self.tol,
+            max_dofs: self.max_dofs,
         })
     }
 }

@@ -40,6 +40,10 @@ pub struct Args {
     pub left: String,
     #[arg(long, default_value = "out/solve")]
     pub out: PathBuf,
+    /// Refuse meshes above this many unknowns (default: what fits in half this machine's
+    /// memory at about 1.5 kB per unknown, at most 1.5e6).
+    #[arg(long)]
+    pub max_dofs: Option<usize>,
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
@@ -50,6 +54,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         element: a.element.parse()?,
         sides,
     };
+    p.check_size(a.max_dofs)?;
     let r = p.solve()?;
     let model = tribofe::fem::assembly::Model {
         tech: p.element.tech,

@@ -31,17 +31,11 @@ pub struct Args {
     /// Verdict: no tension one t inside the trailing end up to this F/N (default: the largest ratio).
     #[arg(long)]
     pub tension_fn: Option<f64>,
-    /// Refuse points above this many unknowns (default: what fits in half this machine's memory).
-    #[arg(long)]
-    pub max_dofs: Option<usize>,
     #[arg(long, default_value = "out/sweep")]
     pub out: PathBuf,
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
-    if let Some(n) = args.max_dofs {
-        tribofe::memory::set_max_dofs(n)?;
-    }
     let mut flat = args.scene.clone();
     let mut axes = Vec::new();
     for p in Param::ALL {

@@ -14,6 +14,7 @@
 //!  x = -L/2                     x = L/2
 //! ```
 
+pub mod limits;
 pub mod overrides;
 pub mod rectangle;
 
@@ -91,6 +92,9 @@ pub struct MeshSpec {
     pub interface: String,
     pub top: String,
     pub block: String,
+    /// Largest number of unknowns a run may have (`--max-dofs`); none = half this machine's
+    /// memory at [`limits::BYTES_PER_DOF`], at most [`limits::DEFAULT_MAX_DOFS_CAP`].
+    pub max_dofs: Option<usize>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -137,6 +141,7 @@ impl Default for MeshSpec {
             interface: "interface".into(),
             top: "top".into(),
             block: "block".into(),
+            max_dofs: None,
         }
     }
 }
@@ -238,6 +243,7 @@ impl Scene {
                 ));
             }
         }
+        limits::effective(self.mesh.max_dofs)?;
         if self.mesh.n_thick == Some(0) {
             return Err(Error::input("mesh.n_thick", "need at least one element through the thickness"));
         }
@@ -414,25 +420,19 @@ impl Scene {
         Ok(2.0 * (p * nx + 1.0) * (p * rows + 1.0))
     }
 
-    /// Refuses a scene above the size limit ([`crate::memory::max_dofs`]) before meshing.
+    /// Refuses a scene above its size limit (`mesh.max_dofs`, [`limits::effective`]) before
+    /// meshing.
     pub fn check_size(&self) -> Result<()> {
-        let dofs = self.estimate_dofs()?;
-        let limit = crate::memory::max_dofs();
-        if dofs > limit as f64 {
-            let h = self.mesh.h * (dofs / limit as f64).sqrt();
-            return Err(Error::TooLarge {
-                dofs,
-                gib: dofs * crate::memory::BYTES_PER_DOF / (1u64 << 30) as f64,
-                limit,
-                suggestion: format!(
-                    "check the units of block.length = {:e} m and block.thickness = {:e} m, use a \
-                     coarser mesh (--h {h:.2e} or more, or --grading), or raise --max-dofs if the \
-                     memory is there",
-                    self.block.length, self.block.thickness
-                ),
-            });
-        }
-        Ok(())
+        limits::check(self.estimate_dofs()?, self.mesh.max_dofs, |grow| {
+            format!(
+                "check the units of block.length = {:e} m and block.thickness = {:e} m, use a \
+                 coarser mesh (--h {:.2e} or more, or --grading), or raise --max-dofs if the \
+                 memory is there",
+                self.block.length,
+                self.block.thickness,
+                self.mesh.h * grow
+            )
+        })
     }
 
     /// Refuses a mesh whose geometry contradicts the scene: the figures are normalised by L

@@ -702,7 +702,6 @@ pub fn corners(base: &Scene, o: &Options, progress: Progress) -> Result<CornerSt
         elements: vec!["qua4".into()],
         families: vec![Family::Uniform],
         n_thick: o.corner_n_thick.clone(),
-        max_dofs: usize::MAX,
         fn_ratio: o.fn_ratio,
         parallel: false,
         ..Default::default()
