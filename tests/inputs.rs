@@ -234,3 +234,30 @@ fn max_dofs_acts_on_every_meshing_subcommand_and_is_scene_data() {
     assert!(base.check_size().is_ok());
     assert!(small.check_size().is_err());
 }
+
+#[test]
+fn self_check_and_load_ratios() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // Absurd and duplicated F/N, refused before solving.
+    refused(d, &["--fn-ratios", "1e20"], &["--fn-ratios", "1e20", "friction coefficient"]);
+    refused(d, &["--fn-ratios", "0,0.4,0.4"], &["--fn-ratios", "0.4", "twice"]);
+    // The README's elastic plate at 2e9 Pa passes its self-check (the error relative to the
+    // load, 8e-9, against 100 eps kappa with kappa ~ 9e6).
+    let (code, err, written) = check(d, &["--plate", "elastic", "--plate-modulus", "2e9"]);
+    assert!(code == 0 && written, "{err}");
+    // A balance worse than the solve can explain is a numerical refusal (status 3).
+    let (mut res, _) = tribofe::studies::check::run(
+        &tribofe::scene::Scene::default(),
+        &tribofe::linalg::solve::SolverOptions::default(),
+    )
+    .unwrap();
+    let limit = res.balance_limit();
+    assert!(res.balance_error() <= limit && limit < 1e-11, "{} {limit}", res.balance_error());
+    assert!(res.self_check().is_ok());
+    res.cases[1].metrics.balance_moment = 2.0 * limit;
+    assert_eq!(res.self_check().unwrap_err().exit_status(), 3);
+    // Locking pairs run with a warning naming the better element.
+    let (code, err, _) = check(&d.join("nu"), &["--poisson", "0.4995"]);
+    assert!(code == 0 && err.contains("warning") && err.contains("qua8"), "{err}");
+}

@@ -33,6 +33,11 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         }
         _ => None,
     };
+    // A failed self-check is an error: nothing is written.
+    res.self_check()?;
+    if let Some(c) = &converged {
+        c.self_check()?;
+    }
     tribofe::report::check::write(&res, converged.as_ref(), &args.out)?;
     if !args.no_fields {
         tribofe::report::check::write_fields(&res, &sm, &args.out)?;

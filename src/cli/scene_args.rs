@@ -146,6 +146,10 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
             ));
         }
     }
+    for w in s.warnings() {
+        use std::io::Write;
+        let _ = writeln!(std::io::stderr(), "warning: {w}");
+    }
     if let Some(path) = &args.write_scene {
         tribofe::report::write_atomic(path, s.to_toml()?.as_bytes())?;
     }

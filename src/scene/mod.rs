@@ -256,11 +256,53 @@ impl Scene {
                 ),
             ));
         }
-        if self.loading.fn_ratios.is_empty() || self.loading.fn_ratios.iter().any(|r| !r.is_finite()) {
-            return Err(Error::input("loading.fn_ratios", "need at least one finite F/N ratio"));
+        let ratios = &self.loading.fn_ratios;
+        if ratios.is_empty() || ratios.iter().any(|r| !r.is_finite()) {
+            return Err(Error::input(
+                "loading.fn_ratios (--fn-ratios)",
+                "need at least one finite F/N ratio",
+            ));
+        }
+        if let Some(r) = ratios.iter().find(|r| r.abs() > MAX_FN_RATIO) {
+            return Err(Error::input(
+                "loading.fn_ratios (--fn-ratios)",
+                format!(
+                    "F/N = {r:e} is far beyond any friction coefficient (|F/N| <= {MAX_FN_RATIO}); \
+                     the ratio is dimensionless, F and N in the same units"
+                ),
+            ));
+        }
+        for (i, r) in ratios.iter().enumerate() {
+            if ratios[..i].contains(r) {
+                return Err(Error::input(
+                    "loading.fn_ratios (--fn-ratios)",
+                    format!("F/N = {r} is given twice; each load case writes its own files"),
+                ));
+            }
         }
         self.element()?;
         Ok(())
+    }
+
+    /// Advice that does not stop the run: element and material pairs known to lock.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut w = Vec::new();
+        let lock = |nu: f64, what: &str| {
+            format!(
+                "mesh.element = {} with {what} = {nu} (>= 0.499) locks volumetrically and underestimates \
+                 the displacements; use qua8 (or qua4-sri, qua9, tri6)",
+                self.mesh.element
+            )
+        };
+        if matches!(self.mesh.element.as_str(), "qua4" | "tri3") {
+            if self.block.poisson >= 0.499 {
+                w.push(lock(self.block.poisson, "block.poisson"));
+            }
+            if self.plate.model == PlateModel::Elastic && self.plate.poisson >= 0.499 {
+                w.push(lock(self.plate.poisson, "plate.poisson"));
+            }
+        }
+        w
     }
 
     pub fn element(&self) -> Result<ElementChoice> {
@@ -563,6 +605,9 @@ impl Scene {
         })
     }
 }
+
+/// Largest |F/N| accepted: far above any friction coefficient (rubber reaches ~3).
+pub const MAX_FN_RATIO: f64 = 10.0;
 
 fn even(n: usize) -> usize {
     n + n % 2
