@@ -13,7 +13,8 @@ pub mod exit {
     pub const INPUT: i32 = 2;
     /// Numerical refusal: a singular or ill-conditioned system, a failed self-check.
     pub const NUMERICAL: i32 = 3;
-    /// An I/O failure while writing results (disk full, permissions...).
+    /// An I/O failure while writing results (disk full, permissions...), or a resource the
+    /// system refused (threads).
     pub const OUTPUT: i32 = 4;
     /// Interrupted by SIGINT or SIGTERM (128 + SIGINT, as shells report it).
     pub const INTERRUPTED: i32 = 130;
@@ -69,6 +70,10 @@ pub enum Error {
     #[error("{}: {source}", path.display())]
     Io { path: PathBuf, source: std::io::Error },
 
+    /// The system refused a resource (a thread pool...).
+    #[error("the system refused {what}: {why}")]
+    Resource { what: String, why: String },
+
     /// SIGINT or SIGTERM arrived; temporaries were removed.
     #[error("interrupted; the output folder was left as it was")]
     Interrupted,
@@ -98,7 +103,7 @@ impl Error {
             | Error::Read { .. }
             | Error::Output { .. } => exit::INPUT,
             Error::Singular { .. } | Error::Untrustworthy { .. } | Error::SelfCheck { .. } => exit::NUMERICAL,
-            Error::Plot { .. } | Error::Io { .. } => exit::OUTPUT,
+            Error::Plot { .. } | Error::Io { .. } | Error::Resource { .. } => exit::OUTPUT,
             Error::Interrupted => exit::INTERRUPTED,
         }
     }

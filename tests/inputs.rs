@@ -261,3 +261,57 @@ fn self_check_and_load_ratios() {
     let (code, err, _) = check(&d.join("nu"), &["--poisson", "0.4995"]);
     assert!(code == 0 && err.contains("warning") && err.contains("qua8"), "{err}");
 }
+
+#[test]
+fn options_that_cannot_act_or_make_no_sense_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    refused(d, &["--grading", "1.2", "--h-max", "nan"], &["mesh.h_max", "--h-max", "NaN"]);
+    refused(d, &["--grading", "1.2", "--h-max", "-1"], &["--h-max"]);
+    refused(d, &["--h-max", "0.004"], &["--h-max", "--grading"]);
+    refused(d, &["--plate-modulus", "-5"], &["--plate-modulus", "-5"]);
+    refused(d, &["--plate-modulus", "2e9"], &["--plate-modulus", "rigid", "--plate elastic"]);
+    refused(d, &["--tol", "2"], &["--tol", "(0, 1)"]);
+    refused(d, &["--young", "-1"], &["block.young", "--young"]);
+    refused(d, &["--n-thick", "2.5"], &["--n-thick", "whole"]);
+    let scene = d.join("s.toml");
+    std::fs::write(&scene, "[plate]\nyoung = nan\n").unwrap();
+    refused(d, &["--scene", scene.to_str().unwrap()], &["plate.young"]);
+    // converge: the flags its runs set are refused with the one that acts instead; an empty
+    // study names the size limit; its --n-thick list acts.
+    let cv = d.join("cv");
+    let cvs = cv.to_str().unwrap();
+    for (flag, value, instead) in [
+        ("--element", "qua8", "--elements"),
+        ("--fn-ratios", "0.4", "--case"),
+        ("--h", "0.0005", "--n-thick"),
+        ("--grading", "1.2", "grading"),
+        ("--mesh", "m.msh", "meshes the block"),
+    ] {
+        let o = tribofe(&["converge", flag, value, "--out", cvs]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.code() == Some(2) && err.contains(flag) && err.contains(instead), "{flag}: {err}");
+    }
+    let o = tribofe(&["converge", "--max-dofs", "100", "--out", cvs]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.code() == Some(2) && err.contains("every run is above"), "{err}");
+    assert!(!cv.exists());
+    let o =
+        tribofe(&["converge", "--n-thick", "1,2", "--families", "uniform", "--case", "0.41", "--out", cvs]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(cv.join("convergence.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3, "{csv}");
+    // stability's corner study needs three meshes within the limit.
+    let o = tribofe(&[
+        "stability",
+        "--study",
+        "corners",
+        "--corner-max",
+        "2",
+        "--out",
+        d.join("st").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.code() == Some(2) && err.contains("--corner-max"), "{err}");
+    assert!(!d.join("st").exists());
+}

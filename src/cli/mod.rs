@@ -31,7 +31,7 @@ use clap::{Parser, Subcommand};
     about = "2D plane-strain FE verifier for frictional interfaces (SI units)",
     after_help = "Exit status: 0 success; 2 bad input (parameter, scene key, mesh, unreadable file, size \
 above --max-dofs, unusable output folder); 3 numerical refusal (singular or ill-conditioned system, \
-failed self-check); 4 failure while writing results; 130 interrupted (the output folder is left as \
+failed self-check); 4 failure while writing results or threads refused by the system; 130 interrupted (the output folder is left as \
 it was). Inputs are checked before any work starts; results go to a fresh folder renamed into place \
 at the end (README, \"Inputs and failures\")."
 )]
@@ -77,6 +77,11 @@ pub fn write_stdout(args: std::fmt::Arguments) -> tribofe::Result<()> {
 }
 
 pub fn run(cli: Cli) -> tribofe::Result<()> {
+    // Built here so that threads the system refuses are an error, not a panic at first use.
+    rayon::ThreadPoolBuilder::new().build_global().map_err(|e| tribofe::Error::Resource {
+        what: "the worker threads (rayon pool; RAYON_NUM_THREADS sets their number)".into(),
+        why: e.to_string(),
+    })?;
     match cli.command {
         Command::Solve(a) => solve::run(a),
         Command::Check(a) => check::run(a),

@@ -53,9 +53,10 @@ pub struct SceneArgs {
     /// Largest element length with --grading, m (default 2 t).
     #[arg(long)]
     pub h_max: Option<f64>,
-    /// Elements through the thickness (default round(t / h)).
-    #[arg(long)]
-    pub n_thick: Option<usize>,
+    /// Elements through the thickness (default round(t / h)); `converge` takes a list, one
+    /// mesh each (default 1,2,4,8,16,32,64).
+    #[arg(long, value_parser = parse_values)]
+    pub n_thick: Option<Values>,
     /// Element formulation (qua4, qua4-sri, qua4-im, qua8, qua9, tri3, tri6).
     #[arg(long)]
     pub element: Option<String>,
@@ -87,10 +88,23 @@ fn one(flag: &str, v: &Option<Values>) -> tribofe::Result<Option<f64>> {
         Some(Values(x)) => Err(tribofe::Error::input(
             format!("--{flag}"),
             format!(
-                "{} values given; this command takes one (lists and ranges are for `tribofe sweep`)",
-                x.len()
+                "{} values given; this command takes one (lists and ranges are for `tribofe {}`)",
+                x.len(),
+                if flag == "n-thick" { "converge" } else { "sweep" }
             ),
         )),
+    }
+}
+
+/// An element count given as a number: a whole number >= 1.
+pub fn count(flag: &str, v: f64) -> tribofe::Result<usize> {
+    if v.fract() == 0.0 && (1.0..=1e9).contains(&v) {
+        Ok(v as usize)
+    } else {
+        Err(tribofe::Error::input(
+            format!("--{flag}"),
+            format!("{v} must be a whole number of elements >= 1"),
+        ))
     }
 }
 
@@ -111,7 +125,7 @@ impl SceneArgs {
             h: self.h,
             grading: self.grading,
             h_max: self.h_max,
-            n_thick: self.n_thick,
+            n_thick: one("n-thick", &self.n_thick)?.map(|n| count("n-thick", n)).transpose()?,
             element: self.element.clone(),
             mesh: self.mesh.clone(),
             tol: self.tol,
@@ -149,6 +163,19 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
     for w in s.warnings() {
         use std::io::Write;
         let _ = writeln!(std::io::stderr(), "warning: {w}");
+    }
+    if s.plate.model == PlateModel::Rigid {
+        let given = [
+            ("--plate-thickness", args.plate_thickness.is_some()),
+            ("--plate-modulus", args.plate_modulus.is_some()),
+            ("--plate-poisson", args.plate_poisson.is_some()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|g| g.1) {
+            return Err(tribofe::Error::input(
+                *flag,
+                "describes the elastic plate, but the plate is rigid: add --plate elastic (or drop the flag)",
+            ));
+        }
     }
     if let Some(path) = &args.write_scene {
         tribofe::report::write_atomic(path, s.to_toml()?.as_bytes())?;

@@ -212,36 +212,63 @@ impl Scene {
                 Err(Error::input(what, format!("{v} must be a positive number")))
             }
         };
-        pos("block.length (m)", self.block.length)?;
-        pos("block.thickness (m)", self.block.thickness)?;
-        pos("loading.height (m)", self.loading.height)?;
-        pos("mesh.h (m)", self.mesh.h)?;
-        pos("report.tol", self.report.tol)?;
+        pos("block.length (m, --length)", self.block.length)?;
+        pos("block.thickness (m, --thickness)", self.block.thickness)?;
+        pos("loading.height (m, --height)", self.loading.height)?;
+        pos("mesh.h (m, --h)", self.mesh.h)?;
+        pos("report.tol (--tol)", self.report.tol)?;
+        if self.report.tol >= 1.0 {
+            return Err(Error::input(
+                "report.tol (--tol)",
+                format!(
+                    "{} is a relative deviation from the local model value: use a value in (0, 1)",
+                    self.report.tol
+                ),
+            ));
+        }
         if let Some(g) = self.mesh.grading {
             if !(g.is_finite() && g >= 1.0) {
                 return Err(Error::input("mesh.grading", format!("{g} must be a growth ratio >= 1")));
             }
         }
         if let Some(m) = self.mesh.h_max {
-            pos("mesh.h_max (m)", m)?;
-        }
-        Material::plane_strain(self.block.young, self.block.poisson)?;
-        if self.plate.model == PlateModel::Elastic {
-            Material::plane_strain(self.plate.young, self.plate.poisson)?;
-            pos("plate.thickness (m)", self.plate.thickness)?;
-            if self.loading.height > self.block.thickness + self.plate.thickness
-                || self.loading.height <= self.block.thickness
-            {
+            pos("mesh.h_max (m, --h-max)", m)?;
+            if !self.mesh.grading.is_some_and(|g| g > 1.0) {
                 return Err(Error::input(
-                    "loading.height",
-                    format!(
-                        "H = {} m must lie on the elastic plate's left side, in ({}, {}] m",
-                        self.loading.height,
-                        self.block.thickness,
-                        self.block.thickness + self.plate.thickness
-                    ),
+                    "mesh.h_max (--h-max)",
+                    "sets the largest element of a graded mesh: give mesh.grading > 1 (--grading) too",
                 ));
             }
+            if m < self.mesh.h {
+                return Err(Error::input(
+                    "mesh.h_max (--h-max)",
+                    format!("{m} m is smaller than the end size mesh.h = {} m", self.mesh.h),
+                ));
+            }
+        }
+        material(self.block.young, self.block.poisson, "block.young (--young)", "block.poisson (--poisson)")?;
+        // The plate's keys are checked whatever the model, so a scene file never holds a
+        // nonsense value that only a later switch to the elastic plate would reveal.
+        material(
+            self.plate.young,
+            self.plate.poisson,
+            "plate.young (--plate-modulus)",
+            "plate.poisson (--plate-poisson)",
+        )?;
+        pos("plate.thickness (m, --plate-thickness)", self.plate.thickness)?;
+        if self.plate.model == PlateModel::Elastic
+            && (self.loading.height > self.block.thickness + self.plate.thickness
+                || self.loading.height <= self.block.thickness)
+        {
+            return Err(Error::input(
+                "loading.height",
+                format!(
+                    "H = {} m must lie on the elastic plate's left side, in ({}, {}] m",
+                    self.loading.height,
+                    self.block.thickness,
+                    self.block.thickness + self.plate.thickness
+                ),
+            ));
         }
         limits::effective(self.mesh.max_dofs)?;
         if self.mesh.n_thick == Some(0) {
@@ -608,6 +635,16 @@ impl Scene {
 
 /// Largest |F/N| accepted: far above any friction coefficient (rubber reaches ~3).
 pub const MAX_FN_RATIO: f64 = 10.0;
+
+/// [`Material::plane_strain`] with its refusal naming the scene key (`young` or `poisson`).
+fn material(e: f64, nu: f64, young: &str, poisson: &str) -> Result<Material> {
+    Material::plane_strain(e, nu).map_err(|err| match err {
+        Error::Input { what, why } => {
+            Error::input(if what.starts_with("Young") { young } else { poisson }, why)
+        }
+        other => other,
+    })
+}
 
 fn even(n: usize) -> usize {
     n + n % 2

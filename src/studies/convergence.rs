@@ -126,10 +126,10 @@ pub fn run_scene(base: &Scene, o: &StudyOptions, family: Family, element: &str, 
     s.mesh.n_thick = Some(n);
     s.mesh.element = element.to_string();
     s.loading.fn_ratios = vec![o.fn_ratio];
-    if family == Family::Graded {
-        s.mesh.grading = Some(o.grading_ratio);
-        s.mesh.h_max = Some(o.graded_h_max_over_t * t);
-    }
+    (s.mesh.grading, s.mesh.h_max) = match family {
+        Family::Graded => (Some(o.grading_ratio), Some(o.graded_h_max_over_t * t)),
+        Family::Uniform => (None, None),
+    };
     s
 }
 
@@ -140,6 +140,15 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
     }
     if o.n_thick.contains(&0) {
         return Err(Error::input("n-thick", "elements through the thickness must be at least 1"));
+    }
+    if let Some(f) = &base.mesh.file {
+        return Err(Error::input(
+            "mesh.file (--mesh)",
+            format!(
+                "the study meshes the block itself at each size; one file {} cannot be refined by it",
+                crate::error::quote(&f.display().to_string())
+            ),
+        ));
     }
     let limit = crate::scene::limits::effective(base.mesh.max_dofs)?;
     let mut specs = Vec::new();
@@ -158,6 +167,12 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
                 }
             }
         }
+    }
+    if specs.is_empty() {
+        return Err(Error::input(
+            "--max-dofs (mesh.max_dofs)",
+            format!("every run is above the limit of {limit} unknowns: {}", skipped.join("; ")),
+        ));
     }
     // Largest first, so the long runs start early when running concurrently.
     specs.sort_by(|a, b| {
