@@ -75,7 +75,7 @@ pub enum Error {
     Resource { what: String, why: String },
 
     /// SIGINT or SIGTERM arrived; temporaries were removed.
-    #[error("interrupted; the output folder was left as it was")]
+    #[error("interrupted; temporaries removed, the output folder is as before (or complete, if the run had finished)")]
     Interrupted,
 }
 

@@ -315,3 +315,84 @@ fn options_that_cannot_act_or_make_no_sense_are_refused() {
     assert!(o.status.code() == Some(2) && err.contains("--corner-max"), "{err}");
     assert!(!d.join("st").exists());
 }
+
+/// Every file under `dir`, relative, sorted.
+fn tree(dir: &Path) -> Vec<String> {
+    let mut v = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        let name = p.file_name().unwrap().to_string_lossy().into_owned();
+        if p.is_dir() {
+            v.extend(tree(&p).into_iter().map(|s| format!("{name}/{s}")));
+        } else {
+            v.push(name);
+        }
+    }
+    v.sort();
+    v
+}
+
+#[test]
+fn output_folder_is_replaced_whole_or_not_at_all() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = d.join("out");
+    let o = out.to_str().unwrap();
+    let args = ["check", "--h", "2e-4", "--fn-ratios", "0.3,0.6", "--out", o];
+    assert!(tribofe(&args).status.success());
+    let full = tree(&out);
+    assert!(full.contains(&"run.toml".to_string()) && full.contains(&"fields_FN0.6.vtu".to_string()));
+    let run = std::fs::read_to_string(out.join("run.toml")).unwrap();
+    assert!(
+        run.contains("tribofe_version") && run.contains("n_force_n_per_m") && run.contains("[scene.block]")
+    );
+    // The previous folder, marked; a rerun with other ratios replaces it whole (no stale files).
+    std::fs::write(out.join("old"), "").unwrap();
+    let mut old = full.clone();
+    old.push("old".into());
+    old.sort();
+    let other = ["check", "--h", "2e-4", "--out", o];
+    assert!(tribofe(&other).status.success());
+    let new = tree(&out);
+    assert!(!new.contains(&"old".to_string()) && !new.contains(&"fields_FN0.3.vtu".to_string()), "{new:?}");
+    // Killed at points spread over a run (~0.4 s): the folder is the previous one or the new
+    // one, never a mix, and no temporary is left.
+    for (i, ms) in [5u64, 40, 80, 130, 200, 300, 450].into_iter().enumerate() {
+        std::fs::write(out.join("old"), "").unwrap();
+        let before = tree(&out);
+        let mut child = Command::new(env!("CARGO_BIN_EXE_tribofe"))
+            .args(other)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(ms));
+        let sig = if i % 2 == 0 { libc::SIGINT } else { libc::SIGTERM };
+        unsafe { libc::kill(child.id() as i32, sig) };
+        let status = child.wait().unwrap();
+        let after = tree(&out);
+        assert!(after == before || after == new, "killed at {ms} ms ({status:?}): {after:?}");
+        assert!(status.success() || status.code() == Some(130), "{status:?}");
+        let left: Vec<_> = std::fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name()).collect();
+        assert_eq!(left, vec![std::ffi::OsString::from("out")], "killed at {ms} ms");
+    }
+    // A refused run leaves the folder as it was; --out naming a file or a dangling link is
+    // refused before any work.
+    let before = tree(&out);
+    let (code, _, _) = check(d, &["--tol", "2"]);
+    assert_eq!((code, tree(&out)), (2, before));
+    let file = d.join("file");
+    std::fs::write(&file, "keep").unwrap();
+    let link = d.join("link");
+    std::os::unix::fs::symlink(d.join("nowhere"), &link).unwrap();
+    for (target, word) in [(&file, "existing file"), (&link, "symbolic link")] {
+        for cmd in ["check", "converge", "slide", "stability", "solve"] {
+            let t0 = std::time::Instant::now();
+            let r = tribofe(&[cmd, "--out", target.to_str().unwrap()]);
+            let err = String::from_utf8_lossy(&r.stderr);
+            assert!(r.status.code() == Some(2) && err.contains(word), "{cmd}: {err}");
+            assert!(t0.elapsed().as_secs_f64() < 1.0, "{cmd}: refused late");
+        }
+    }
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
+}

@@ -24,6 +24,7 @@ pub use super::scene_args::{scene, SceneArgs};
 
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = scene(&args.scene)?;
+    tribofe::report::outdir::check(&args.out)?;
     let opts = SolverOptions::default();
     let (res, sm) = tribofe::studies::check::run(&scene, &opts)?;
     // The converged figures need the exact rigid plate and the structured mesh of the scene.
@@ -38,16 +39,23 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     if let Some(c) = &converged {
         c.self_check()?;
     }
-    tribofe::report::check::write(&res, converged.as_ref(), &args.out)?;
+    let dir = tribofe::report::outdir::OutDir::begin(&args.out)?;
+    tribofe::report::check::write(&res, converged.as_ref(), dir.path())?;
     if !args.no_fields {
-        tribofe::report::check::write_fields(&res, &sm, &args.out)?;
+        tribofe::report::check::write_fields(&res, &sm, dir.path())?;
     }
+    let command: Vec<String> = std::env::args().collect();
+    tribofe::report::write_atomic(
+        &dir.path().join("run.toml"),
+        tribofe::report::check::run_toml(&res, &command)?.as_bytes(),
+    )?;
+    dir.commit()?;
     out!("{}", tribofe::report::check::table(&res));
     if let Some(c) = &converged {
         out!("{}", tribofe::report::check::converged_table(&res, c));
     }
     outln!(
-        "wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg{}}}",
+        "wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg, run.toml{}}}",
         args.out.display(),
         if args.no_fields { "" } else { ", fields_FN*.vtu/.msh, fields.pvd" }
     );

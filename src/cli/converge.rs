@@ -52,6 +52,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         None => vec![1, 2, 4, 8, 16, 32, 64],
     };
     let scene = super::check::scene(&flat)?;
+    tribofe::report::outdir::check(&args.out)?;
     let families = args.families.iter().map(|f| f.parse::<Family>()).collect::<tribofe::Result<Vec<_>>>()?;
     let o = StudyOptions {
         elements: args.elements.clone(),
@@ -71,7 +72,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    tribofe::report::convergence::write(&st, &args.out)?;
+    let dir = tribofe::report::outdir::OutDir::begin(&args.out)?;
+    tribofe::report::convergence::write(&st, dir.path())?;
+    dir.commit()?;
     out!("{}", tribofe::report::convergence::summary(&st, args.target));
     outln!(
         "wrote {}/{{convergence.csv, error_vs_dofs.svg, error_vs_time.svg, summary.txt}}",

@@ -100,6 +100,7 @@ fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
 pub fn run(a: Args) -> tribofe::Result<()> {
     // The scene flags (shared with check and sweep) are applied and validated in scene_from.
     let scene = scene_from(&a.scene)?;
+    tribofe::report::outdir::check(&a.out)?;
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
     }
@@ -135,9 +136,11 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         res.condensed.n,
         res.run.k_bonded
     );
-    tribofe::report::slide::write(&res, &a.out, &header)?;
+    let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
+    tribofe::report::slide::write(&res, dir.path(), &header)?;
+    dir.commit()?;
     let worst = res.run.states.iter().map(|s| s.violations.max()).fold(0.0, f64::max);
-    let last = res.run.states.last().unwrap();
+    let last = res.run.states.last().ok_or_else(|| Error::input("slide", "the run recorded no state"))?;
     outln!(
         "{}: {} interface nodes, {} events ({}), {} whole-interface slips",
         law.name(),

@@ -55,6 +55,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         sides,
     };
     p.check_size(a.max_dofs)?;
+    tribofe::report::outdir::check(&a.out)?;
     let r = p.solve()?;
     let model = tribofe::fem::assembly::Model {
         tech: p.element.tech,
@@ -89,9 +90,10 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         Field::tensor_2d("stress_Pa", &tensor),
         Field::scalar("von_mises_Pa", s.iter().map(von_mises).collect()),
     ];
-    std::fs::create_dir_all(&a.out).map_err(|e| tribofe::Error::io(&a.out, e))?;
-    write_vtu(&a.out.join("fields.vtu"), &r.mesh, &fields, &[])?;
-    write_msh(&a.out.join("fields.msh"), &r.mesh, &fields, &[])?;
+    let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
+    write_vtu(&dir.path().join("fields.vtu"), &r.mesh, &fields, &[])?;
+    write_msh(&dir.path().join("fields.msh"), &r.mesh, &fields, &[])?;
+    dir.commit()?;
     outln!("wrote {}/{{fields.vtu, fields.msh}}", a.out.display());
     Ok(())
 }

@@ -15,6 +15,31 @@ pub const SUMMARY_HEADER: &str = "FN,N,F,slope_interior,slope_model,tau_center,e
 
 /// Writes `profile_FN<ratio>.csv`, summary.csv and fig2.svg into `dir`, and with a converged
 /// run, `summary_converged.csv` and its profiles under `converged/`.
+/// The absolute loads of one case of `run.toml`.
+#[derive(serde::Serialize)]
+pub struct CaseLoads {
+    pub fn_ratio: f64,
+    pub n_force_n_per_m: f64,
+    pub f_force_n_per_m: f64,
+    pub mean_pressure_pa: f64,
+}
+
+/// `run.toml` of a check: version, `command`, the loads of each case, the effective scene.
+pub fn run_toml(res: &CheckResult, command: &[String]) -> Result<String> {
+    let l = res.scene.block.length;
+    let cases: Vec<CaseLoads> = res
+        .cases
+        .iter()
+        .map(|c| CaseLoads {
+            fn_ratio: c.fn_ratio,
+            n_force_n_per_m: c.n,
+            f_force_n_per_m: c.f,
+            mean_pressure_pa: c.n / l,
+        })
+        .collect();
+    super::run_toml(command, &cases, &res.scene)
+}
+
 pub fn write(res: &CheckResult, converged: Option<&CheckResult>, dir: &Path) -> Result<()> {
     if let Some(c) = converged {
         write(c, None, &dir.join("converged"))?;
