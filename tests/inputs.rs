@@ -396,3 +396,27 @@ fn output_folder_is_replaced_whole_or_not_at_all() {
     }
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
 }
+
+#[test]
+fn converge_target_names_the_run_with_fewest_unknowns() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cv");
+    let args = [
+        "converge",
+        "--n-thick",
+        "1,2,4",
+        "--case",
+        "0.41",
+        "--target",
+        "10",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    // Every run reaches 10 N/L: the winner is the graded t/1 mesh (fewest unknowns), every time.
+    for _ in 0..2 {
+        let o = tribofe(&args);
+        let text = String::from_utf8_lossy(&o.stdout);
+        let line = text.lines().find(|l| l.starts_with("cheapest run")).unwrap_or_default().to_string();
+        assert!(line.contains("graded qua4 h = t/1 ("), "{line}\n{}", String::from_utf8_lossy(&o.stderr));
+    }
+}

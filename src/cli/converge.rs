@@ -18,7 +18,8 @@ pub struct Args {
     /// The load case compared, as F/N.
     #[arg(long, default_value_t = 0.82)]
     pub case: f64,
-    /// Target edge-zone error in units of N/L: name the cheapest run that reaches it.
+    /// Target edge-zone error in units of N/L: name the cheapest run that reaches it (fewest
+    /// unknowns; its time shown beside).
     #[arg(long = "target")]
     pub target: Option<f64>,
     /// Run one mesh at a time (honest per-run times) instead of concurrently.

@@ -18,7 +18,8 @@ pub struct Args {
     /// Reference qua9 mesh of the nu and shape studies: elements through the thickness.
     #[arg(long, default_value_t = 16)]
     pub n_ref: usize,
-    #[arg(long, default_value = "validation/stability")]
+    /// Output directory (`validation/stability` refreshes the committed results).
+    #[arg(long, default_value = "out/stability")]
     pub out: PathBuf,
 }
 

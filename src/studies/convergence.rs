@@ -366,12 +366,15 @@ pub fn edge_error(r: &Run) -> f64 {
     r.errors.edge[0].max(r.errors.edge[1])
 }
 
-/// The fastest run (other than the reference) whose edge-zone error is at most `tol`.
+/// The cheapest run (fewest unknowns; other than the reference) whose edge-zone error is at
+/// most `tol`.
 pub fn cheapest(study: &Study, tol: f64) -> Option<&Run> {
+    // Ranked by a deterministic cost (unknowns, then the factor's size), never by a noisy
+    // wall time: identical studies name the same run.
     (0..study.runs.len())
         .filter(|&i| i != study.reference && edge_error(&study.runs[i]) <= tol)
         .map(|i| &study.runs[i])
-        .min_by(|a, b| a.wall.total_cmp(&b.wall))
+        .min_by(|a, b| a.dofs.cmp(&b.dofs).then(a.factor_mib.total_cmp(&b.factor_mib)))
 }
 
 /// Rounds to two significant digits.

@@ -64,7 +64,10 @@ impl Default for Options {
             grading_ratio: 1.1,
             distortions: vec![0.0, 0.1, 0.2, 0.3],
             seed: 7,
-            unstructured_mesh: Some("meshes/block_unstructured_v41_bin.msh".into()),
+            // The shipped mesh, found from the source tree, not the current directory.
+            unstructured_mesh: Some(
+                concat!(env!("CARGO_MANIFEST_DIR"), "/meshes/block_unstructured_v41_bin.msh").into(),
+            ),
             thin_ratios: vec![1e-1, 1e-2, 1e-3, 1e-4],
             thin_n_thick: 4,
             max_dofs: 600_000,
