@@ -38,7 +38,7 @@ pub enum Error {
     Mesh(String),
 
     /// The problem would not fit: estimated unknowns and memory against the limit.
-    #[error("problem too large: about {dofs:.3e} unknowns and {gib:.1} GiB estimated, above the limit of {limit} unknowns (--max-dofs); {suggestion}")]
+    #[error("problem too large: about {dofs:.3e} unknowns and {} GiB estimated, above the limit of {limit} unknowns (--max-dofs); {suggestion}", crate::scene::num(*gib))]
     TooLarge { dofs: f64, gib: f64, limit: usize, suggestion: String },
 
     /// The reduced stiffness matrix is not positive definite; `node` (tag) and `component`

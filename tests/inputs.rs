@@ -161,7 +161,13 @@ fn size_guard_refuses_before_meshing() {
     // 1e300 m: once a capacity-overflow panic.
     refused(d, &["--h", "1e-6"], &["too large", "1.601e9", "--max-dofs", "--h"]);
     refused(d, &["--thickness", "2"], &["too large", "block.thickness = 2e0 m"]);
-    refused(d, &["--thickness", "1e300"], &["too large", "--max-dofs"]);
+    refused(d, &["--thickness", "1e300"], &["--thickness", "1.0000e300", "units"]);
+    // Scales double precision cannot hold: once "free to move" or "degenerate" after meshing.
+    refused(d, &["--length", "1e-300"], &["--length", "units"]);
+    refused(d, &["--young", "1e300"], &["--young", "units"]);
+    refused(d, &["--height", "1e300"], &["--height"]);
+    refused(d, &["--height", "1000"], &["--height", "L"]);
+    refused(d, &["--length", "0.001"], &["--h", "two elements along x"]);
     // The default scene has 2 x 401 x 3 = 2406 unknowns: the limit acts on both sides of it.
     refused(d, &["--max-dofs", "2000"], &["about 2.406e3 unknowns", "2000"]);
     refused(d, &["--max-dofs", "0"], &["--max-dofs"]);

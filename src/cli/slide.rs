@@ -121,7 +121,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     let res = tribofe::studies::slide::run(&scene, &o, &|f| bar.set_position((f * 1000.0) as u64))?;
     bar.finish_and_clear();
     let args: Vec<String> = std::env::args().collect();
-    let header = format!(
+    let mut header = format!(
         "# written by tribofe {} slide\ncommand = {:?}\nlaw = {:?}\nmu_s = {}\nmu_d = {}\nn_force_N_per_m = {}\nheight_m = {}\nlength_m = {}\nthickness_m = {}\nelement = {:?}\ninterface_nodes = {}\nk_bonded_N_per_m_per_m = {}\n",
         env!("CARGO_PKG_VERSION"),
         args.join(" "),
@@ -136,6 +136,8 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         res.condensed.n,
         res.run.k_bonded
     );
+    header.push('\n');
+    header.push_str(&tribofe::report::scene_section(&scene)?);
     let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
     tribofe::report::slide::write(&res, dir.path(), &header)?;
     dir.commit()?;

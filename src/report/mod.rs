@@ -58,6 +58,15 @@ pub fn run_toml<C: serde::Serialize>(
     toml::to_string(&run).map_err(|e| Error::input("run.toml", e.to_string()))
 }
 
+/// The effective scene as `[scene.*]` tables, to append to a `run.toml` of top-level keys.
+pub fn scene_section(scene: &crate::scene::Scene) -> Result<String> {
+    #[derive(serde::Serialize)]
+    struct Only<'a> {
+        scene: &'a crate::scene::Scene,
+    }
+    toml::to_string(&Only { scene }).map_err(|e| Error::input("run.toml", e.to_string()))
+}
+
 /// `a` as one shell word: quoted when it holds anything but plain characters.
 fn shell_word(a: &str) -> String {
     if !a.is_empty() && a.chars().all(|c| c.is_ascii_alphanumeric() || "-_./,:=+@%".contains(c)) {

@@ -212,10 +212,46 @@ impl Scene {
                 Err(Error::input(what, format!("{v} must be a positive number")))
             }
         };
-        pos("block.length (m, --length)", self.block.length)?;
-        pos("block.thickness (m, --thickness)", self.block.thickness)?;
-        pos("loading.height (m, --height)", self.loading.height)?;
-        pos("mesh.h (m, --h)", self.mesh.h)?;
+        // Lengths and moduli far outside [1e-100, 1e100] under- or overflow in the element
+        // products (h^2, E h^2) before any check can see it; physical values are far inside.
+        let scaled = |what: &str, v: f64, unit: &str| {
+            pos(what, v)?;
+            if (1e-100..=1e100).contains(&v) {
+                Ok(())
+            } else {
+                Err(Error::input(
+                    what,
+                    format!("{} {unit} is outside [1e-100, 1e100] {unit}, where double precision holds the stiffness; check the units", num(v)),
+                ))
+            }
+        };
+        scaled("block.length (m, --length)", self.block.length, "m")?;
+        scaled("block.thickness (m, --thickness)", self.block.thickness, "m")?;
+        scaled("loading.height (m, --height)", self.loading.height, "m")?;
+        scaled("mesh.h (m, --h)", self.mesh.h, "m")?;
+        scaled("block.young (Pa, --young)", self.block.young, "Pa")?;
+        scaled("plate.young (Pa, --plate-modulus)", self.plate.young, "Pa")?;
+        if self.loading.height > MAX_H_OVER_L * self.block.length {
+            return Err(Error::input(
+                "loading.height (--height)",
+                format!(
+                    "H = {} m is over {MAX_H_OVER_L} L (L = {} m): the plate's rotation then carries no precision \
+                     (the global balance error grows like eps (H/L)^2); check the units",
+                    num(self.loading.height),
+                    num(self.block.length)
+                ),
+            ));
+        }
+        if self.mesh.h > self.block.length / 2.0 && self.mesh.file.is_none() {
+            return Err(Error::input(
+                "mesh.h (--h)",
+                format!(
+                    "{} m is larger than half the block length L = {} m: the mesh needs at least two elements along x",
+                    num(self.mesh.h),
+                    num(self.block.length)
+                ),
+            ));
+        }
         pos("report.tol (--tol)", self.report.tol)?;
         if self.report.tol >= 1.0 {
             return Err(Error::input(
@@ -279,7 +315,8 @@ impl Scene {
                 "mesh.h",
                 format!(
                     "{} m is larger than the block thickness {} m: use at most t / 2",
-                    self.mesh.h, self.block.thickness
+                    num(self.mesh.h),
+                    num(self.block.thickness)
                 ),
             ));
         }
@@ -495,11 +532,13 @@ impl Scene {
         limits::check(self.estimate_dofs()?, self.mesh.max_dofs, |grow| {
             format!(
                 "check the units of block.length = {:e} m and block.thickness = {:e} m, use a \
-                 coarser mesh (--h {:.2e} or more, or --grading), or raise --max-dofs if the \
-                 memory is there",
+                 coarser mesh ({}, or --grading), or raise --max-dofs if the memory is there",
                 self.block.length,
                 self.block.thickness,
-                self.mesh.h * grow
+                match self.mesh.h * grow {
+                    h if h.is_finite() => format!("--h {h:.2e} or more"),
+                    _ => "a much larger --h".to_string(),
+                }
             )
         })
     }
@@ -630,6 +669,19 @@ impl Scene {
             dof_v: dv,
             dof_theta: None,
         })
+    }
+}
+
+/// Largest H/L accepted: far beyond any experiment (the paper's is 0.1).
+pub const MAX_H_OVER_L: f64 = 1e3;
+
+/// A number for a message: as written for ordinary magnitudes, in exponent form otherwise
+/// (never 300 digits).
+pub fn num(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:.4e}")
     }
 }
 

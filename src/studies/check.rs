@@ -98,9 +98,9 @@ impl CheckResult {
 
     /// The balance error the solve can achieve: the balance is exact for any displacement
     /// except for the residuals left at the free unknowns, ~ eps kappa of the load (kappa: the
-    /// solver's condition estimate); 100 eps kappa. Measured 0.3-4 eps kappa: rigid default,
-    /// and the elastic plate from 2e4 to 2e12 Pa (`tribofe check --plate elastic
-    /// --plate-modulus E` prints both figures).
+    /// solver's condition estimate); 100 eps kappa. Measured 0.3-8 eps kappa: rigid plate with
+    /// H up to 1e3 L (`--height`), elastic plate from 2e4 to 2e12 Pa (`tribofe check --plate
+    /// elastic --plate-modulus E` prints both figures).
     pub fn balance_limit(&self) -> f64 {
         100.0 * f64::EPSILON * self.solve_report.condition_estimate.max(1.0)
     }
