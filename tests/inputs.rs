@@ -426,3 +426,27 @@ fn converge_target_names_the_run_with_fewest_unknowns() {
         assert!(line.contains("graded qua4 h = t/1 ("), "{line}\n{}", String::from_utf8_lossy(&o.stderr));
     }
 }
+
+#[test]
+fn slide_and_stability_refuse_flags_that_cannot_act() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    for args in [
+        &["slide", "--fn-ratios", "0.4"][..],
+        &["slide", "--tol", "0.1"],
+        &["stability", "--h", "0.0005"],
+        &["stability", "--n-thick", "4"],
+        &["stability", "--fn-ratios", "0.4"],
+        &["stability", "--mesh", "m.msh"],
+    ] {
+        let mut a = args.to_vec();
+        a.extend(["--out", out.to_str().unwrap()]);
+        let o = tribofe(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            o.status.code() == Some(2) && err.contains(args[1]) && err.contains("cannot act"),
+            "{a:?}: {err}"
+        );
+        assert!(!out.exists());
+    }
+}

@@ -31,9 +31,10 @@ use clap::{Parser, Subcommand};
     about = "2D plane-strain FE verifier for frictional interfaces (SI units)",
     after_help = "Exit status: 0 success; 2 bad input (parameter, scene key, mesh, unreadable file, size \
 above --max-dofs, unusable output folder); 3 numerical refusal (singular or ill-conditioned system, \
-failed self-check); 4 failure while writing results or threads refused by the system; 130 interrupted (the output folder is left as \
-it was). Inputs are checked before any work starts; results go to a fresh folder renamed into place \
-at the end (README, \"Inputs and failures\")."
+failed self-check); 4 failure while writing results, or threads refused by the system; 130 \
+interrupted by SIGINT/SIGTERM (temporaries removed, the output folder as before). Inputs are checked \
+before any work starts; results go to a fresh folder renamed into place at the end (all but sweep and \
+precursors; README, \"Inputs and failures\")."
 )]
 pub struct Cli {
     #[command(subcommand)]

@@ -98,7 +98,20 @@ fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
-    // The scene flags (shared with check and sweep) are applied and validated in scene_from.
+    // The scene flags (shared with check and sweep) are applied and validated in scene_from;
+    // two of them belong to the bonded check and cannot act here.
+    for (flag, given, why) in [
+        (
+            "--fn-ratios",
+            a.scene.fn_ratios.is_some(),
+            "slide loads N then X until the interface slides: set --n-force, --x-max",
+        ),
+        ("--tol", a.scene.tol.is_some(), "the edge-zone tolerance belongs to `check`"),
+    ] {
+        if given {
+            return Err(Error::input(flag, format!("cannot act in `slide`: {why}")));
+        }
+    }
     let scene = scene_from(&a.scene)?;
     tribofe::report::outdir::check(&a.out)?;
     if a.dc.is_some() && a.law != "slip-weakening" {

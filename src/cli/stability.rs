@@ -24,6 +24,21 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
+    // Every study sets its own mesh sizes and load case: these flags could not act.
+    let a = &args.scene;
+    for (flag, given) in [
+        ("--h", a.h.is_some()),
+        ("--n-thick", a.n_thick.is_some()),
+        ("--fn-ratios", a.fn_ratios.is_some()),
+        ("--mesh", a.mesh.is_some()),
+    ] {
+        if given {
+            return Err(tribofe::Error::input(
+                flag,
+                "cannot act in `stability`: each study sets its own meshes (--n-ref, --corner-max) and load case",
+            ));
+        }
+    }
     let scene = super::check::scene(&args.scene)?;
     tribofe::report::outdir::check(&args.out)?;
     let studies: Vec<String> = if args.study.is_empty() {
