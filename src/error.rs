@@ -13,7 +13,8 @@ pub mod exit {
     pub const INPUT: i32 = 2;
     /// Numerical refusal: a singular or ill-conditioned system, a failed self-check.
     pub const NUMERICAL: i32 = 3;
-    /// An I/O failure while writing results (disk full, permissions...).
+    /// An I/O failure while writing results (disk full, permissions...), or a resource the
+    /// system refused (threads).
     pub const OUTPUT: i32 = 4;
     /// Interrupted by SIGINT or SIGTERM (128 + SIGINT, as shells report it).
     pub const INTERRUPTED: i32 = 130;
@@ -37,7 +38,7 @@ pub enum Error {
     Mesh(String),
 
     /// The problem would not fit: estimated unknowns and memory against the limit.
-    #[error("problem too large: about {dofs:.3e} unknowns and {gib:.1} GiB estimated, above the limit of {limit} unknowns (--max-dofs); {suggestion}")]
+    #[error("problem too large: about {dofs:.3e} unknowns and {} GiB estimated, above the limit of {limit} unknowns (--max-dofs); {suggestion}", crate::scene::num(*gib))]
     TooLarge { dofs: f64, gib: f64, limit: usize, suggestion: String },
 
     /// The reduced stiffness matrix is not positive definite; `node` (tag) and `component`
@@ -69,8 +70,12 @@ pub enum Error {
     #[error("{}: {source}", path.display())]
     Io { path: PathBuf, source: std::io::Error },
 
+    /// The system refused a resource (a thread pool...).
+    #[error("the system refused {what}: {why}")]
+    Resource { what: String, why: String },
+
     /// SIGINT or SIGTERM arrived; temporaries were removed.
-    #[error("interrupted; the output folder was left as it was")]
+    #[error("interrupted; temporaries removed, the output folder is as before (or complete, if the run had finished)")]
     Interrupted,
 }
 
@@ -98,7 +103,7 @@ impl Error {
             | Error::Read { .. }
             | Error::Output { .. } => exit::INPUT,
             Error::Singular { .. } | Error::Untrustworthy { .. } | Error::SelfCheck { .. } => exit::NUMERICAL,
-            Error::Plot { .. } | Error::Io { .. } => exit::OUTPUT,
+            Error::Plot { .. } | Error::Io { .. } | Error::Resource { .. } => exit::OUTPUT,
             Error::Interrupted => exit::INTERRUPTED,
         }
     }

@@ -161,7 +161,13 @@ fn size_guard_refuses_before_meshing() {
     // 1e300 m: once a capacity-overflow panic.
     refused(d, &["--h", "1e-6"], &["too large", "1.601e9", "--max-dofs", "--h"]);
     refused(d, &["--thickness", "2"], &["too large", "block.thickness = 2e0 m"]);
-    refused(d, &["--thickness", "1e300"], &["too large", "--max-dofs"]);
+    refused(d, &["--thickness", "1e300"], &["--thickness", "1.0000e300", "units"]);
+    // Scales double precision cannot hold: once "free to move" or "degenerate" after meshing.
+    refused(d, &["--length", "1e-300"], &["--length", "units"]);
+    refused(d, &["--young", "1e300"], &["--young", "units"]);
+    refused(d, &["--height", "1e300"], &["--height"]);
+    refused(d, &["--height", "1000"], &["--height", "L"]);
+    refused(d, &["--length", "0.001"], &["--h", "two elements along x"]);
     // The default scene has 2 x 401 x 3 = 2406 unknowns: the limit acts on both sides of it.
     refused(d, &["--max-dofs", "2000"], &["about 2.406e3 unknowns", "2000"]);
     refused(d, &["--max-dofs", "0"], &["--max-dofs"]);
@@ -190,5 +196,257 @@ fn bench_refuses_sizes_and_thread_counts_it_cannot_run() {
         let o = tribofe(args);
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(o.status.code() == Some(2) && err.contains(word), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn max_dofs_acts_on_every_meshing_subcommand_and_is_scene_data() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = d.join("out");
+    let o = out.to_str().unwrap();
+    // The default scene has 2406 unknowns, the default rectangle of `solve` 410.
+    let cases: [&[&str]; 6] = [
+        &["check", "--max-dofs", "2000"],
+        &["slide", "--max-dofs", "2000"],
+        &["stability", "--study", "plate", "--max-dofs", "2000"],
+        &["sweep", "--as-meshed", "--max-dofs", "2000"],
+        &["precursors", "--fe", "--max-dofs", "2000"],
+        &["solve", "--max-dofs", "400"],
+    ];
+    for args in cases {
+        let mut a = args.to_vec();
+        a.extend(["--out", o]);
+        let r = tribofe(&a);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(
+            r.status.code() == Some(2) && err.contains("too large") && err.contains("--max-dofs"),
+            "{a:?}: {err}"
+        );
+        assert!(!out.exists(), "{a:?}: output written");
+    }
+    // A scene file carries the limit (mesh.max_dofs), and --write-scene keeps it.
+    let scene = d.join("s.toml");
+    std::fs::write(&scene, "[mesh]\nmax_dofs = 2000\n").unwrap();
+    refused(d, &["--scene", scene.to_str().unwrap()], &["too large", "2000"]);
+    let written = d.join("w.toml");
+    refused(d, &["--max-dofs", "2000", "--write-scene", written.to_str().unwrap()], &["too large"]);
+    assert!(std::fs::read_to_string(&written).unwrap().contains("max_dofs = 2000"));
+    // No process-wide state: two scenes with different limits in one process.
+    let base = tribofe::scene::Scene::default();
+    let mut small = base.clone();
+    small.mesh.max_dofs = Some(2000);
+    assert!(small.check_size().is_err());
+    assert!(base.check_size().is_ok());
+    assert!(small.check_size().is_err());
+}
+
+#[test]
+fn self_check_and_load_ratios() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // Absurd and duplicated F/N, refused before solving.
+    refused(d, &["--fn-ratios", "1e20"], &["--fn-ratios", "1e20", "friction coefficient"]);
+    refused(d, &["--fn-ratios", "0,0.4,0.4"], &["--fn-ratios", "0.4", "twice"]);
+    // The README's elastic plate at 2e9 Pa passes its self-check (the error relative to the
+    // load, 8e-9, against 100 eps kappa with kappa ~ 9e6).
+    let (code, err, written) = check(d, &["--plate", "elastic", "--plate-modulus", "2e9"]);
+    assert!(code == 0 && written, "{err}");
+    // A balance worse than the solve can explain is a numerical refusal (status 3).
+    let (mut res, _) = tribofe::studies::check::run(
+        &tribofe::scene::Scene::default(),
+        &tribofe::linalg::solve::SolverOptions::default(),
+    )
+    .unwrap();
+    let limit = res.balance_limit();
+    assert!(res.balance_error() <= limit && limit < 1e-11, "{} {limit}", res.balance_error());
+    assert!(res.self_check().is_ok());
+    res.cases[1].metrics.balance_moment = 2.0 * limit;
+    assert_eq!(res.self_check().unwrap_err().exit_status(), 3);
+    // Locking pairs run with a warning naming the better element.
+    let (code, err, _) = check(&d.join("nu"), &["--poisson", "0.4995"]);
+    assert!(code == 0 && err.contains("warning") && err.contains("qua8"), "{err}");
+}
+
+#[test]
+fn options_that_cannot_act_or_make_no_sense_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    refused(d, &["--grading", "1.2", "--h-max", "nan"], &["mesh.h_max", "--h-max", "NaN"]);
+    refused(d, &["--grading", "1.2", "--h-max", "-1"], &["--h-max"]);
+    refused(d, &["--h-max", "0.004"], &["--h-max", "--grading"]);
+    refused(d, &["--plate-modulus", "-5"], &["--plate-modulus", "-5"]);
+    refused(d, &["--plate-modulus", "2e9"], &["--plate-modulus", "rigid", "--plate elastic"]);
+    refused(d, &["--tol", "2"], &["--tol", "(0, 1)"]);
+    refused(d, &["--young", "-1"], &["block.young", "--young"]);
+    refused(d, &["--n-thick", "2.5"], &["--n-thick", "whole"]);
+    let scene = d.join("s.toml");
+    std::fs::write(&scene, "[plate]\nyoung = nan\n").unwrap();
+    refused(d, &["--scene", scene.to_str().unwrap()], &["plate.young"]);
+    // converge: the flags its runs set are refused with the one that acts instead; an empty
+    // study names the size limit; its --n-thick list acts.
+    let cv = d.join("cv");
+    let cvs = cv.to_str().unwrap();
+    for (flag, value, instead) in [
+        ("--element", "qua8", "--elements"),
+        ("--fn-ratios", "0.4", "--case"),
+        ("--h", "0.0005", "--n-thick"),
+        ("--grading", "1.2", "grading"),
+        ("--mesh", "m.msh", "meshes the block"),
+    ] {
+        let o = tribofe(&["converge", flag, value, "--out", cvs]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.code() == Some(2) && err.contains(flag) && err.contains(instead), "{flag}: {err}");
+    }
+    let o = tribofe(&["converge", "--max-dofs", "100", "--out", cvs]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.code() == Some(2) && err.contains("every run is above"), "{err}");
+    assert!(!cv.exists());
+    let o =
+        tribofe(&["converge", "--n-thick", "1,2", "--families", "uniform", "--case", "0.41", "--out", cvs]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(cv.join("convergence.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3, "{csv}");
+    // stability's corner study needs three meshes within the limit.
+    let o = tribofe(&[
+        "stability",
+        "--study",
+        "corners",
+        "--corner-max",
+        "2",
+        "--out",
+        d.join("st").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.code() == Some(2) && err.contains("--corner-max"), "{err}");
+    assert!(!d.join("st").exists());
+}
+
+/// Every file under `dir`, relative, sorted.
+fn tree(dir: &Path) -> Vec<String> {
+    let mut v = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        let name = p.file_name().unwrap().to_string_lossy().into_owned();
+        if p.is_dir() {
+            v.extend(tree(&p).into_iter().map(|s| format!("{name}/{s}")));
+        } else {
+            v.push(name);
+        }
+    }
+    v.sort();
+    v
+}
+
+#[test]
+fn output_folder_is_replaced_whole_or_not_at_all() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = d.join("out");
+    let o = out.to_str().unwrap();
+    let args = ["check", "--h", "2e-4", "--fn-ratios", "0.3,0.6", "--out", o];
+    assert!(tribofe(&args).status.success());
+    let full = tree(&out);
+    assert!(full.contains(&"run.toml".to_string()) && full.contains(&"fields_FN0.6.vtu".to_string()));
+    let run = std::fs::read_to_string(out.join("run.toml")).unwrap();
+    assert!(
+        run.contains("tribofe_version") && run.contains("n_force_n_per_m") && run.contains("[scene.block]")
+    );
+    // The previous folder, marked; a rerun with other ratios replaces it whole (no stale files).
+    std::fs::write(out.join("old"), "").unwrap();
+    let mut old = full.clone();
+    old.push("old".into());
+    old.sort();
+    let other = ["check", "--h", "2e-4", "--out", o];
+    assert!(tribofe(&other).status.success());
+    let new = tree(&out);
+    assert!(!new.contains(&"old".to_string()) && !new.contains(&"fields_FN0.3.vtu".to_string()), "{new:?}");
+    // Killed at points spread over a run (~0.4 s): the folder is the previous one or the new
+    // one, never a mix, and no temporary is left.
+    for (i, ms) in [5u64, 40, 80, 130, 200, 300, 450].into_iter().enumerate() {
+        std::fs::write(out.join("old"), "").unwrap();
+        let before = tree(&out);
+        let mut child = Command::new(env!("CARGO_BIN_EXE_tribofe"))
+            .args(other)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(ms));
+        let sig = if i % 2 == 0 { libc::SIGINT } else { libc::SIGTERM };
+        unsafe { libc::kill(child.id() as i32, sig) };
+        let status = child.wait().unwrap();
+        let after = tree(&out);
+        assert!(after == before || after == new, "killed at {ms} ms ({status:?}): {after:?}");
+        assert!(status.success() || status.code() == Some(130), "{status:?}");
+        let left: Vec<_> = std::fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name()).collect();
+        assert_eq!(left, vec![std::ffi::OsString::from("out")], "killed at {ms} ms");
+    }
+    // A refused run leaves the folder as it was; --out naming a file or a dangling link is
+    // refused before any work.
+    let before = tree(&out);
+    let (code, _, _) = check(d, &["--tol", "2"]);
+    assert_eq!((code, tree(&out)), (2, before));
+    let file = d.join("file");
+    std::fs::write(&file, "keep").unwrap();
+    let link = d.join("link");
+    std::os::unix::fs::symlink(d.join("nowhere"), &link).unwrap();
+    for (target, word) in [(&file, "existing file"), (&link, "symbolic link")] {
+        for cmd in ["check", "converge", "slide", "stability", "solve"] {
+            let t0 = std::time::Instant::now();
+            let r = tribofe(&[cmd, "--out", target.to_str().unwrap()]);
+            let err = String::from_utf8_lossy(&r.stderr);
+            assert!(r.status.code() == Some(2) && err.contains(word), "{cmd}: {err}");
+            assert!(t0.elapsed().as_secs_f64() < 1.0, "{cmd}: refused late");
+        }
+    }
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
+}
+
+#[test]
+fn converge_target_names_the_run_with_fewest_unknowns() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cv");
+    let args = [
+        "converge",
+        "--n-thick",
+        "1,2,4",
+        "--case",
+        "0.41",
+        "--target",
+        "10",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    // Every run reaches 10 N/L: the winner is the graded t/1 mesh (fewest unknowns), every time.
+    for _ in 0..2 {
+        let o = tribofe(&args);
+        let text = String::from_utf8_lossy(&o.stdout);
+        let line = text.lines().find(|l| l.starts_with("cheapest run")).unwrap_or_default().to_string();
+        assert!(line.contains("graded qua4 h = t/1 ("), "{line}\n{}", String::from_utf8_lossy(&o.stderr));
+    }
+}
+
+#[test]
+fn slide_and_stability_refuse_flags_that_cannot_act() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    for args in [
+        &["slide", "--fn-ratios", "0.4"][..],
+        &["slide", "--tol", "0.1"],
+        &["stability", "--h", "0.0005"],
+        &["stability", "--n-thick", "4"],
+        &["stability", "--fn-ratios", "0.4"],
+        &["stability", "--mesh", "m.msh"],
+    ] {
+        let mut a = args.to_vec();
+        a.extend(["--out", out.to_str().unwrap()]);
+        let o = tribofe(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            o.status.code() == Some(2) && err.contains(args[1]) && err.contains("cannot act"),
+            "{a:?}: {err}"
+        );
+        assert!(!out.exists());
     }
 }

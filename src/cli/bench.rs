@@ -68,9 +68,12 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     if args.threads.contains(&0) {
         return Err(tribofe::Error::input("--threads", "0: a run needs at least one thread"));
     }
+    if let Some(dir) = &args.out {
+        tribofe::report::outdir::check(dir)?;
+    }
     // Three n x n matrices of f64 must fit in half the memory.
     let dgemm_bytes = 24.0 * (args.dgemm as f64).powi(2);
-    if dgemm_bytes > 0.5 * tribofe::memory::total_bytes() {
+    if dgemm_bytes > 0.5 * tribofe::scene::limits::total_bytes() {
         return Err(tribofe::Error::input(
             "--dgemm",
             format!(
@@ -124,7 +127,9 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     }
     out!("{}", bench::table(&rows, &dgemm));
     if let Some(dir) = &args.out {
-        bench::write_csv(&rows, &dgemm, dir)?;
+        let d = tribofe::report::outdir::OutDir::begin(dir)?;
+        bench::write_csv(&rows, &dgemm, d.path())?;
+        d.commit()?;
         outln!("wrote {}/{{bench.csv, dgemm.csv}}", dir.display());
     }
     Ok(())

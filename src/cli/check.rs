@@ -15,10 +15,6 @@ pub struct Args {
     /// Skip the field files (fields_FN*.vtu/.msh, fields.pvd) of the whole mesh.
     #[arg(long)]
     pub no_fields: bool,
-    /// Refuse problems above this many unknowns (default: what fits in half this machine's
-    /// memory at about 1.5 kB per unknown, at most 1.5e6).
-    #[arg(long)]
-    pub max_dofs: Option<usize>,
     /// Skip the converged run (graded QUA8) printed next to the scene's mesh.
     #[arg(long)]
     pub no_converged: bool,
@@ -27,10 +23,8 @@ pub struct Args {
 pub use super::scene_args::{scene, SceneArgs};
 
 pub fn run(args: Args) -> tribofe::Result<()> {
-    if let Some(n) = args.max_dofs {
-        tribofe::memory::set_max_dofs(n)?;
-    }
     let scene = scene(&args.scene)?;
+    tribofe::report::outdir::check(&args.out)?;
     let opts = SolverOptions::default();
     let (res, sm) = tribofe::studies::check::run(&scene, &opts)?;
     // The converged figures need the exact rigid plate and the structured mesh of the scene.
@@ -40,16 +34,28 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         }
         _ => None,
     };
-    tribofe::report::check::write(&res, converged.as_ref(), &args.out)?;
-    if !args.no_fields {
-        tribofe::report::check::write_fields(&res, &sm, &args.out)?;
+    // A failed self-check is an error: nothing is written.
+    res.self_check()?;
+    if let Some(c) = &converged {
+        c.self_check()?;
     }
+    let dir = tribofe::report::outdir::OutDir::begin(&args.out)?;
+    tribofe::report::check::write(&res, converged.as_ref(), dir.path())?;
+    if !args.no_fields {
+        tribofe::report::check::write_fields(&res, &sm, dir.path())?;
+    }
+    let command: Vec<String> = std::env::args().collect();
+    tribofe::report::write_atomic(
+        &dir.path().join("run.toml"),
+        tribofe::report::check::run_toml(&res, &command)?.as_bytes(),
+    )?;
+    dir.commit()?;
     out!("{}", tribofe::report::check::table(&res));
     if let Some(c) = &converged {
         out!("{}", tribofe::report::check::converged_table(&res, c));
     }
     outln!(
-        "wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg{}}}",
+        "wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg, run.toml{}}}",
         args.out.display(),
         if args.no_fields { "" } else { ", fields_FN*.vtu/.msh, fields.pvd" }
     );

@@ -15,16 +15,11 @@ pub struct Args {
     /// Mesh families: uniform, graded.
     #[arg(long, value_delimiter = ',', default_value = "uniform,graded")]
     pub families: Vec<String>,
-    /// Elements through the thickness of each mesh (h = t / n).
-    #[arg(long, value_delimiter = ',', default_value = "1,2,4,8,16,32,64")]
-    pub n_thick: Vec<usize>,
-    /// Skip runs above this many DOFs.
-    #[arg(long, default_value_t = 3_000_000)]
-    pub max_dofs: usize,
     /// The load case compared, as F/N.
     #[arg(long, default_value_t = 0.82)]
     pub case: f64,
-    /// Target edge-zone error in units of N/L: name the cheapest run that reaches it.
+    /// Target edge-zone error in units of N/L: name the cheapest run that reaches it (fewest
+    /// unknowns; its time shown beside).
     #[arg(long = "target")]
     pub target: Option<f64>,
     /// Run one mesh at a time (honest per-run times) instead of concurrently.
@@ -35,15 +30,35 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
-    // The study's own limit is the size guard of each of its runs.
-    tribofe::memory::set_max_dofs(args.max_dofs)?;
-    let scene = super::check::scene(&args.scene)?;
+    // The study sets these for each of its runs: given, they could not act.
+    let a = &args.scene;
+    let fixed = [
+        ("--h", a.h.is_some(), "h = t / n comes from --n-thick"),
+        ("--grading", a.grading.is_some(), "the graded family has its own grading (1.15)"),
+        ("--h-max", a.h_max.is_some(), "the graded family has its own largest size (4 t)"),
+        ("--element", a.element.is_some(), "the elements compared are --elements"),
+        ("--fn-ratios", a.fn_ratios.is_some(), "the load case compared is --case"),
+        ("--mesh", a.mesh.is_some(), "the study meshes the block itself at each size"),
+    ];
+    if let Some((flag, _, why)) = fixed.iter().find(|f| f.1) {
+        return Err(tribofe::Error::input(*flag, format!("cannot act in `converge`: {why}")));
+    }
+    let mut flat = args.scene.clone();
+    let n_thick = match flat.n_thick.take() {
+        Some(v) => {
+            v.0.iter()
+                .map(|&n| super::scene_args::count("n-thick", n))
+                .collect::<tribofe::Result<Vec<_>>>()?
+        }
+        None => vec![1, 2, 4, 8, 16, 32, 64],
+    };
+    let scene = super::check::scene(&flat)?;
+    tribofe::report::outdir::check(&args.out)?;
     let families = args.families.iter().map(|f| f.parse::<Family>()).collect::<tribofe::Result<Vec<_>>>()?;
     let o = StudyOptions {
         elements: args.elements.clone(),
         families,
-        n_thick: args.n_thick.clone(),
-        max_dofs: args.max_dofs,
+        n_thick,
         fn_ratio: args.case,
         parallel: !args.serial,
         ..Default::default()
@@ -58,7 +73,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    tribofe::report::convergence::write(&st, &args.out)?;
+    let dir = tribofe::report::outdir::OutDir::begin(&args.out)?;
+    tribofe::report::convergence::write(&st, dir.path())?;
+    dir.commit()?;
     out!("{}", tribofe::report::convergence::summary(&st, args.target));
     outln!(
         "wrote {}/{{convergence.csv, error_vs_dofs.svg, error_vs_time.svg, summary.txt}}",

@@ -31,9 +31,10 @@ use clap::{Parser, Subcommand};
     about = "2D plane-strain FE verifier for frictional interfaces (SI units)",
     after_help = "Exit status: 0 success; 2 bad input (parameter, scene key, mesh, unreadable file, size \
 above --max-dofs, unusable output folder); 3 numerical refusal (singular or ill-conditioned system, \
-failed self-check); 4 failure while writing results; 130 interrupted (the output folder is left as \
-it was). Inputs are checked before any work starts; results go to a fresh folder renamed into place \
-at the end (README, \"Inputs and failures\")."
+failed self-check); 4 failure while writing results, or threads refused by the system; 130 \
+interrupted by SIGINT/SIGTERM (temporaries removed, the output folder as before). Inputs are checked \
+before any work starts; results go to a fresh folder renamed into place at the end (all but sweep and \
+precursors; README, \"Inputs and failures\")."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -76,7 +77,48 @@ pub fn write_stdout(args: std::fmt::Arguments) -> tribofe::Result<()> {
     o.write_fmt(args).and_then(|_| o.flush()).map_err(|e| tribofe::Error::io("standard output", e))
 }
 
+/// SIGINT and SIGTERM are taken by one thread (blocked in all others, so this runs before any
+/// thread starts): it removes the temporary output folders and exits with status 130, leaving
+/// every `--out` as it was. Not for `bench`, whose child processes would inherit the mask.
+fn catch_interrupts() {
+    // SAFETY: plain libc signal-set calls on a local set; the mask is set before any thread
+    // is spawned, so every later thread inherits it.
+    let set = unsafe {
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut set);
+        libc::sigaddset(&mut set, libc::SIGINT);
+        libc::sigaddset(&mut set, libc::SIGTERM);
+        if libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut()) != 0 {
+            return;
+        }
+        set
+    };
+    let waiter = std::thread::Builder::new().name("tribofe-signals".into()).spawn(move || {
+        let mut sig = 0;
+        // SAFETY: `set` is an initialised signal set; sigwait only writes `sig`.
+        if unsafe { libc::sigwait(&set, &mut sig) } == 0 {
+            tribofe::report::outdir::remove_temporaries();
+            use std::io::Write;
+            let _ = writeln!(std::io::stderr(), "error: {}", tribofe::Error::Interrupted);
+            std::process::exit(tribofe::error::exit::INTERRUPTED);
+        }
+    });
+    if waiter.is_err() {
+        // No thread for it: restore the default action rather than ignore interrupts.
+        // SAFETY: as above.
+        unsafe { libc::pthread_sigmask(libc::SIG_UNBLOCK, &set, std::ptr::null_mut()) };
+    }
+}
+
 pub fn run(cli: Cli) -> tribofe::Result<()> {
+    if !matches!(cli.command, Command::Bench(_)) {
+        catch_interrupts();
+    }
+    // Built here so that threads the system refuses are an error, not a panic at first use.
+    rayon::ThreadPoolBuilder::new().build_global().map_err(|e| tribofe::Error::Resource {
+        what: "the worker threads (rayon pool; RAYON_NUM_THREADS sets their number)".into(),
+        why: e.to_string(),
+    })?;
     match cli.command {
         Command::Solve(a) => solve::run(a),
         Command::Check(a) => check::run(a),

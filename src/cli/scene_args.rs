@@ -1,5 +1,5 @@
 //! The scene flags shared by every subcommand that runs the paper's scene (check, converge,
-//! sweep): each overrides one key of the scene file (or of the paper's defaults) and goes
+//! sweep, slide, stability, precursors): each overrides one key of the scene file (or of the paper's defaults) and goes
 //! through the same validation.
 
 use clap::Args as ClapArgs;
@@ -53,9 +53,10 @@ pub struct SceneArgs {
     /// Largest element length with --grading, m (default 2 t).
     #[arg(long)]
     pub h_max: Option<f64>,
-    /// Elements through the thickness (default round(t / h)).
-    #[arg(long)]
-    pub n_thick: Option<usize>,
+    /// Elements through the thickness (default round(t / h)); `converge` takes a list, one
+    /// mesh each (default 1,2,4,8,16,32,64).
+    #[arg(long, value_parser = parse_values)]
+    pub n_thick: Option<Values>,
     /// Element formulation (qua4, qua4-sri, qua4-im, qua8, qua9, tri3, tri6).
     #[arg(long)]
     pub element: Option<String>,
@@ -65,6 +66,10 @@ pub struct SceneArgs {
     /// A Gmsh mesh (.msh 4.1 or 2.2) of the block with physical groups interface, top, block.
     #[arg(long)]
     pub mesh: Option<PathBuf>,
+    /// Refuse meshes above this many unknowns, estimated before meshing (default: what fits in
+    /// half this machine's memory at about 1.5 kB per unknown, at most 1.5e6).
+    #[arg(long)]
+    pub max_dofs: Option<usize>,
 }
 
 /// The values of a sweepable flag: one number, a list `a,b,c`, or a range `a:b:n` (n points,
@@ -83,10 +88,23 @@ fn one(flag: &str, v: &Option<Values>) -> tribofe::Result<Option<f64>> {
         Some(Values(x)) => Err(tribofe::Error::input(
             format!("--{flag}"),
             format!(
-                "{} values given; this command takes one (lists and ranges are for `tribofe sweep`)",
-                x.len()
+                "{} values given; this command takes one (lists and ranges are for `tribofe {}`)",
+                x.len(),
+                if flag == "n-thick" { "converge" } else { "sweep" }
             ),
         )),
+    }
+}
+
+/// An element count given as a number: a whole number >= 1.
+pub fn count(flag: &str, v: f64) -> tribofe::Result<usize> {
+    if v.fract() == 0.0 && (1.0..=1e9).contains(&v) {
+        Ok(v as usize)
+    } else {
+        Err(tribofe::Error::input(
+            format!("--{flag}"),
+            format!("{v} must be a whole number of elements >= 1"),
+        ))
     }
 }
 
@@ -107,10 +125,11 @@ impl SceneArgs {
             h: self.h,
             grading: self.grading,
             h_max: self.h_max,
-            n_thick: self.n_thick,
+            n_thick: one("n-thick", &self.n_thick)?.map(|n| count("n-thick", n)).transpose()?,
             element: self.element.clone(),
             mesh: self.mesh.clone(),
             tol: self.tol,
+            max_dofs: self.max_dofs,
         })
     }
 }
@@ -138,6 +157,23 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
                     "sizes the built-in mesh, but the mesh comes from {}; refine that file instead",
                     tribofe::error::quote(&mesh.display().to_string())
                 ),
+            ));
+        }
+    }
+    for w in s.warnings() {
+        use std::io::Write;
+        let _ = writeln!(std::io::stderr(), "warning: {w}");
+    }
+    if s.plate.model == PlateModel::Rigid {
+        let given = [
+            ("--plate-thickness", args.plate_thickness.is_some()),
+            ("--plate-modulus", args.plate_modulus.is_some()),
+            ("--plate-poisson", args.plate_poisson.is_some()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|g| g.1) {
+            return Err(tribofe::Error::input(
+                *flag,
+                "describes the elastic plate, but the plate is rigid: add --plate elastic (or drop the flag)",
             ));
         }
     }

@@ -98,8 +98,22 @@ fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
-    // The scene flags (shared with check and sweep) are applied and validated in scene_from.
+    // The scene flags (shared with check and sweep) are applied and validated in scene_from;
+    // two of them belong to the bonded check and cannot act here.
+    for (flag, given, why) in [
+        (
+            "--fn-ratios",
+            a.scene.fn_ratios.is_some(),
+            "slide loads N then X until the interface slides: set --n-force, --x-max",
+        ),
+        ("--tol", a.scene.tol.is_some(), "the edge-zone tolerance belongs to `check`"),
+    ] {
+        if given {
+            return Err(Error::input(flag, format!("cannot act in `slide`: {why}")));
+        }
+    }
     let scene = scene_from(&a.scene)?;
+    tribofe::report::outdir::check(&a.out)?;
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
     }
@@ -120,7 +134,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     let res = tribofe::studies::slide::run(&scene, &o, &|f| bar.set_position((f * 1000.0) as u64))?;
     bar.finish_and_clear();
     let args: Vec<String> = std::env::args().collect();
-    let header = format!(
+    let mut header = format!(
         "# written by tribofe {} slide\ncommand = {:?}\nlaw = {:?}\nmu_s = {}\nmu_d = {}\nn_force_N_per_m = {}\nheight_m = {}\nlength_m = {}\nthickness_m = {}\nelement = {:?}\ninterface_nodes = {}\nk_bonded_N_per_m_per_m = {}\n",
         env!("CARGO_PKG_VERSION"),
         args.join(" "),
@@ -135,9 +149,13 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         res.condensed.n,
         res.run.k_bonded
     );
-    tribofe::report::slide::write(&res, &a.out, &header)?;
+    header.push('\n');
+    header.push_str(&tribofe::report::scene_section(&scene)?);
+    let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
+    tribofe::report::slide::write(&res, dir.path(), &header)?;
+    dir.commit()?;
     let worst = res.run.states.iter().map(|s| s.violations.max()).fold(0.0, f64::max);
-    let last = res.run.states.last().unwrap();
+    let last = res.run.states.last().ok_or_else(|| Error::input("slide", "the run recorded no state"))?;
     outln!(
         "{}: {} interface nodes, {} events ({}), {} whole-interface slips",
         law.name(),

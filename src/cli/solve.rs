@@ -40,6 +40,10 @@ pub struct Args {
     pub left: String,
     #[arg(long, default_value = "out/solve")]
     pub out: PathBuf,
+    /// Refuse meshes above this many unknowns (default: what fits in half this machine's
+    /// memory at about 1.5 kB per unknown, at most 1.5e6).
+    #[arg(long)]
+    pub max_dofs: Option<usize>,
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
@@ -50,6 +54,8 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         element: a.element.parse()?,
         sides,
     };
+    p.check_size(a.max_dofs)?;
+    tribofe::report::outdir::check(&a.out)?;
     let r = p.solve()?;
     let model = tribofe::fem::assembly::Model {
         tech: p.element.tech,
@@ -84,9 +90,10 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         Field::tensor_2d("stress_Pa", &tensor),
         Field::scalar("von_mises_Pa", s.iter().map(von_mises).collect()),
     ];
-    std::fs::create_dir_all(&a.out).map_err(|e| tribofe::Error::io(&a.out, e))?;
-    write_vtu(&a.out.join("fields.vtu"), &r.mesh, &fields, &[])?;
-    write_msh(&a.out.join("fields.msh"), &r.mesh, &fields, &[])?;
+    let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
+    write_vtu(&dir.path().join("fields.vtu"), &r.mesh, &fields, &[])?;
+    write_msh(&dir.path().join("fields.msh"), &r.mesh, &fields, &[])?;
+    dir.commit()?;
     outln!("wrote {}/{{fields.vtu, fields.msh}}", a.out.display());
     Ok(())
 }

@@ -18,12 +18,29 @@ pub struct Args {
     /// Reference qua9 mesh of the nu and shape studies: elements through the thickness.
     #[arg(long, default_value_t = 16)]
     pub n_ref: usize,
-    #[arg(long, default_value = "validation/stability")]
+    /// Output directory (`validation/stability` refreshes the committed results).
+    #[arg(long, default_value = "out/stability")]
     pub out: PathBuf,
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
+    // Every study sets its own mesh sizes and load case: these flags could not act.
+    let a = &args.scene;
+    for (flag, given) in [
+        ("--h", a.h.is_some()),
+        ("--n-thick", a.n_thick.is_some()),
+        ("--fn-ratios", a.fn_ratios.is_some()),
+        ("--mesh", a.mesh.is_some()),
+    ] {
+        if given {
+            return Err(tribofe::Error::input(
+                flag,
+                "cannot act in `stability`: each study sets its own meshes (--n-ref, --corner-max) and load case",
+            ));
+        }
+    }
     let scene = super::check::scene(&args.scene)?;
+    tribofe::report::outdir::check(&args.out)?;
     let studies: Vec<String> = if args.study.is_empty() {
         STUDIES.iter().map(|s| s.to_string()).collect()
     } else {
@@ -41,7 +58,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    let files = tribofe::report::stability::write(&res, &args.out)?;
+    let dir = tribofe::report::outdir::OutDir::begin(&args.out)?;
+    let files = tribofe::report::stability::write(&res, dir.path())?;
+    dir.commit()?;
     out!("{}", tribofe::report::stability::summary(&res));
     outln!("wrote {}/{{{}}}", args.out.display(), files.join(", "));
     Ok(())

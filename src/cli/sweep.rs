@@ -31,9 +31,6 @@ pub struct Args {
     /// Verdict: no tension one t inside the trailing end up to this F/N (default: the largest ratio).
     #[arg(long)]
     pub tension_fn: Option<f64>,
-    /// Refuse points above this many unknowns (default: what fits in half this machine's memory).
-    #[arg(long)]
-    pub max_dofs: Option<usize>,
     /// Also run the frictional interface at each point with these static and kinetic
     /// coefficients `MU_S,MU_D` (g = 6 mu_d H/L follows the geometry): FE precursors, F_1,
     /// x_1 and the stick-slip peak against the paper's iteration, in the CSV and two maps.
@@ -50,9 +47,6 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
-    if let Some(n) = args.max_dofs {
-        tribofe::memory::set_max_dofs(n)?;
-    }
     let mut flat = args.scene.clone();
     let mut axes = Vec::new();
     for p in Param::ALL {

@@ -182,7 +182,7 @@ pub fn summary(study: &Study, tol: Option<f64>) -> String {
     if let Some(tol) = tol {
         match cheapest(study, tol) {
             Some(r) => {
-                let _ = writeln!(s, "\ncheapest run reaching edge-zone error <= {tol:e} N/L: {} {} h = t/{} ({} DOFs, {:.3} s, error {:.2e})", r.family.name(), r.element, r.n_thick, r.dofs, r.wall, edge_error(r));
+                let _ = writeln!(s, "\ncheapest run (fewest unknowns) reaching edge-zone error <= {tol:e} N/L: {} {} h = t/{} ({} DOFs; {:.3} s, error {:.2e})", r.family.name(), r.element, r.n_thick, r.dofs, r.wall, edge_error(r));
             }
             None => {
                 let _ =

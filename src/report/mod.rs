@@ -3,6 +3,7 @@
 
 pub mod check;
 pub mod convergence;
+pub mod outdir;
 pub mod precursors;
 pub mod slide;
 pub mod stability;
@@ -16,6 +17,7 @@ use std::path::Path;
 /// failure never leaves a partly written file. Creates missing parent directories; the
 /// temporary file is removed on failure.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let _writing = outdir::write_guard();
     let name = path
         .file_name()
         .ok_or_else(|| Error::input(format!("output path {}", path.display()), "has no file name"))?;
@@ -30,6 +32,48 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&tmp);
         Error::io(path, e)
     })
+}
+
+/// `run.toml`: what produced a folder (tribofe's version, the command line), the absolute
+/// loads of `cases`, and the effective scene under `[scene]` (its tables are a scene file that
+/// reproduces the run).
+pub fn run_toml<C: serde::Serialize>(
+    command: &[String],
+    cases: &C,
+    scene: &crate::scene::Scene,
+) -> Result<String> {
+    #[derive(serde::Serialize)]
+    struct Run<'a, C> {
+        tribofe_version: &'a str,
+        command: String,
+        cases: &'a C,
+        scene: &'a crate::scene::Scene,
+    }
+    let run = Run {
+        tribofe_version: env!("CARGO_PKG_VERSION"),
+        command: command.iter().map(|a| shell_word(a)).collect::<Vec<_>>().join(" "),
+        cases,
+        scene,
+    };
+    toml::to_string(&run).map_err(|e| Error::input("run.toml", e.to_string()))
+}
+
+/// The effective scene as `[scene.*]` tables, to append to a `run.toml` of top-level keys.
+pub fn scene_section(scene: &crate::scene::Scene) -> Result<String> {
+    #[derive(serde::Serialize)]
+    struct Only<'a> {
+        scene: &'a crate::scene::Scene,
+    }
+    toml::to_string(&Only { scene }).map_err(|e| Error::input("run.toml", e.to_string()))
+}
+
+/// `a` as one shell word: quoted when it holds anything but plain characters.
+fn shell_word(a: &str) -> String {
+    if !a.is_empty() && a.chars().all(|c| c.is_ascii_alphanumeric() || "-_./,:=+@%".contains(c)) {
+        a.to_string()
+    } else {
+        format!("'{}'", a.replace('\'', "'\\''"))
+    }
 }
 
 /// Passes `v` through if finite: guards every number written to a file against NaN and infinities.

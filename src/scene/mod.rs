@@ -14,6 +14,7 @@
 //!  x = -L/2                     x = L/2
 //! ```
 
+pub mod limits;
 pub mod overrides;
 pub mod rectangle;
 
@@ -91,6 +92,9 @@ pub struct MeshSpec {
     pub interface: String,
     pub top: String,
     pub block: String,
+    /// Largest number of unknowns a run may have (`--max-dofs`); none = half this machine's
+    /// memory at [`limits::BYTES_PER_DOF`], at most [`limits::DEFAULT_MAX_DOFS_CAP`].
+    pub max_dofs: Option<usize>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -137,6 +141,7 @@ impl Default for MeshSpec {
             interface: "interface".into(),
             top: "top".into(),
             block: "block".into(),
+            max_dofs: None,
         }
     }
 }
@@ -207,37 +212,101 @@ impl Scene {
                 Err(Error::input(what, format!("{v} must be a positive number")))
             }
         };
-        pos("block.length (m)", self.block.length)?;
-        pos("block.thickness (m)", self.block.thickness)?;
-        pos("loading.height (m)", self.loading.height)?;
-        pos("mesh.h (m)", self.mesh.h)?;
-        pos("report.tol", self.report.tol)?;
+        // Lengths and moduli far outside [1e-100, 1e100] under- or overflow in the element
+        // products (h^2, E h^2) before any check can see it; physical values are far inside.
+        let scaled = |what: &str, v: f64, unit: &str| {
+            pos(what, v)?;
+            if (1e-100..=1e100).contains(&v) {
+                Ok(())
+            } else {
+                Err(Error::input(
+                    what,
+                    format!("{} {unit} is outside [1e-100, 1e100] {unit}, where double precision holds the stiffness; check the units", num(v)),
+                ))
+            }
+        };
+        scaled("block.length (m, --length)", self.block.length, "m")?;
+        scaled("block.thickness (m, --thickness)", self.block.thickness, "m")?;
+        scaled("loading.height (m, --height)", self.loading.height, "m")?;
+        scaled("mesh.h (m, --h)", self.mesh.h, "m")?;
+        scaled("block.young (Pa, --young)", self.block.young, "Pa")?;
+        scaled("plate.young (Pa, --plate-modulus)", self.plate.young, "Pa")?;
+        if self.loading.height > MAX_H_OVER_L * self.block.length {
+            return Err(Error::input(
+                "loading.height (--height)",
+                format!(
+                    "H = {} m is over {MAX_H_OVER_L} L (L = {} m): the plate's rotation then carries no precision \
+                     (the global balance error grows like eps (H/L)^2); check the units",
+                    num(self.loading.height),
+                    num(self.block.length)
+                ),
+            ));
+        }
+        if self.mesh.h > self.block.length / 2.0 && self.mesh.file.is_none() {
+            return Err(Error::input(
+                "mesh.h (--h)",
+                format!(
+                    "{} m is larger than half the block length L = {} m: the mesh needs at least two elements along x",
+                    num(self.mesh.h),
+                    num(self.block.length)
+                ),
+            ));
+        }
+        pos("report.tol (--tol)", self.report.tol)?;
+        if self.report.tol >= 1.0 {
+            return Err(Error::input(
+                "report.tol (--tol)",
+                format!(
+                    "{} is a relative deviation from the local model value: use a value in (0, 1)",
+                    self.report.tol
+                ),
+            ));
+        }
         if let Some(g) = self.mesh.grading {
             if !(g.is_finite() && g >= 1.0) {
                 return Err(Error::input("mesh.grading", format!("{g} must be a growth ratio >= 1")));
             }
         }
         if let Some(m) = self.mesh.h_max {
-            pos("mesh.h_max (m)", m)?;
-        }
-        Material::plane_strain(self.block.young, self.block.poisson)?;
-        if self.plate.model == PlateModel::Elastic {
-            Material::plane_strain(self.plate.young, self.plate.poisson)?;
-            pos("plate.thickness (m)", self.plate.thickness)?;
-            if self.loading.height > self.block.thickness + self.plate.thickness
-                || self.loading.height <= self.block.thickness
-            {
+            pos("mesh.h_max (m, --h-max)", m)?;
+            if !self.mesh.grading.is_some_and(|g| g > 1.0) {
                 return Err(Error::input(
-                    "loading.height",
-                    format!(
-                        "H = {} m must lie on the elastic plate's left side, in ({}, {}] m",
-                        self.loading.height,
-                        self.block.thickness,
-                        self.block.thickness + self.plate.thickness
-                    ),
+                    "mesh.h_max (--h-max)",
+                    "sets the largest element of a graded mesh: give mesh.grading > 1 (--grading) too",
+                ));
+            }
+            if m < self.mesh.h {
+                return Err(Error::input(
+                    "mesh.h_max (--h-max)",
+                    format!("{m} m is smaller than the end size mesh.h = {} m", self.mesh.h),
                 ));
             }
         }
+        material(self.block.young, self.block.poisson, "block.young (--young)", "block.poisson (--poisson)")?;
+        // The plate's keys are checked whatever the model, so a scene file never holds a
+        // nonsense value that only a later switch to the elastic plate would reveal.
+        material(
+            self.plate.young,
+            self.plate.poisson,
+            "plate.young (--plate-modulus)",
+            "plate.poisson (--plate-poisson)",
+        )?;
+        pos("plate.thickness (m, --plate-thickness)", self.plate.thickness)?;
+        if self.plate.model == PlateModel::Elastic
+            && (self.loading.height > self.block.thickness + self.plate.thickness
+                || self.loading.height <= self.block.thickness)
+        {
+            return Err(Error::input(
+                "loading.height",
+                format!(
+                    "H = {} m must lie on the elastic plate's left side, in ({}, {}] m",
+                    self.loading.height,
+                    self.block.thickness,
+                    self.block.thickness + self.plate.thickness
+                ),
+            ));
+        }
+        limits::effective(self.mesh.max_dofs)?;
         if self.mesh.n_thick == Some(0) {
             return Err(Error::input("mesh.n_thick", "need at least one element through the thickness"));
         }
@@ -246,15 +315,58 @@ impl Scene {
                 "mesh.h",
                 format!(
                     "{} m is larger than the block thickness {} m: use at most t / 2",
-                    self.mesh.h, self.block.thickness
+                    num(self.mesh.h),
+                    num(self.block.thickness)
                 ),
             ));
         }
-        if self.loading.fn_ratios.is_empty() || self.loading.fn_ratios.iter().any(|r| !r.is_finite()) {
-            return Err(Error::input("loading.fn_ratios", "need at least one finite F/N ratio"));
+        let ratios = &self.loading.fn_ratios;
+        if ratios.is_empty() || ratios.iter().any(|r| !r.is_finite()) {
+            return Err(Error::input(
+                "loading.fn_ratios (--fn-ratios)",
+                "need at least one finite F/N ratio",
+            ));
+        }
+        if let Some(r) = ratios.iter().find(|r| r.abs() > MAX_FN_RATIO) {
+            return Err(Error::input(
+                "loading.fn_ratios (--fn-ratios)",
+                format!(
+                    "F/N = {r:e} is far beyond any friction coefficient (|F/N| <= {MAX_FN_RATIO}); \
+                     the ratio is dimensionless, F and N in the same units"
+                ),
+            ));
+        }
+        for (i, r) in ratios.iter().enumerate() {
+            if ratios[..i].contains(r) {
+                return Err(Error::input(
+                    "loading.fn_ratios (--fn-ratios)",
+                    format!("F/N = {r} is given twice; each load case writes its own files"),
+                ));
+            }
         }
         self.element()?;
         Ok(())
+    }
+
+    /// Advice that does not stop the run: element and material pairs known to lock.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut w = Vec::new();
+        let lock = |nu: f64, what: &str| {
+            format!(
+                "mesh.element = {} with {what} = {nu} (>= 0.499) locks volumetrically and underestimates \
+                 the displacements; use qua8 (or qua4-sri, qua9, tri6)",
+                self.mesh.element
+            )
+        };
+        if matches!(self.mesh.element.as_str(), "qua4" | "tri3") {
+            if self.block.poisson >= 0.499 {
+                w.push(lock(self.block.poisson, "block.poisson"));
+            }
+            if self.plate.model == PlateModel::Elastic && self.plate.poisson >= 0.499 {
+                w.push(lock(self.plate.poisson, "plate.poisson"));
+            }
+        }
+        w
     }
 
     pub fn element(&self) -> Result<ElementChoice> {
@@ -414,25 +526,21 @@ impl Scene {
         Ok(2.0 * (p * nx + 1.0) * (p * rows + 1.0))
     }
 
-    /// Refuses a scene above the size limit ([`crate::memory::max_dofs`]) before meshing.
+    /// Refuses a scene above its size limit (`mesh.max_dofs`, [`limits::effective`]) before
+    /// meshing.
     pub fn check_size(&self) -> Result<()> {
-        let dofs = self.estimate_dofs()?;
-        let limit = crate::memory::max_dofs();
-        if dofs > limit as f64 {
-            let h = self.mesh.h * (dofs / limit as f64).sqrt();
-            return Err(Error::TooLarge {
-                dofs,
-                gib: dofs * crate::memory::BYTES_PER_DOF / (1u64 << 30) as f64,
-                limit,
-                suggestion: format!(
-                    "check the units of block.length = {:e} m and block.thickness = {:e} m, use a \
-                     coarser mesh (--h {h:.2e} or more, or --grading), or raise --max-dofs if the \
-                     memory is there",
-                    self.block.length, self.block.thickness
-                ),
-            });
-        }
-        Ok(())
+        limits::check(self.estimate_dofs()?, self.mesh.max_dofs, |grow| {
+            format!(
+                "check the units of block.length = {:e} m and block.thickness = {:e} m, use a \
+                 coarser mesh ({}, or --grading), or raise --max-dofs if the memory is there",
+                self.block.length,
+                self.block.thickness,
+                match self.mesh.h * grow {
+                    h if h.is_finite() => format!("--h {h:.2e} or more"),
+                    _ => "a much larger --h".to_string(),
+                }
+            )
+        })
     }
 
     /// Refuses a mesh whose geometry contradicts the scene: the figures are normalised by L
@@ -562,6 +670,32 @@ impl Scene {
             dof_theta: None,
         })
     }
+}
+
+/// Largest H/L accepted: far beyond any experiment (the paper's is 0.1).
+pub const MAX_H_OVER_L: f64 = 1e3;
+
+/// A number for a message: as written for ordinary magnitudes, in exponent form otherwise
+/// (never 300 digits).
+pub fn num(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:.4e}")
+    }
+}
+
+/// Largest |F/N| accepted: far above any friction coefficient (rubber reaches ~3).
+pub const MAX_FN_RATIO: f64 = 10.0;
+
+/// [`Material::plane_strain`] with its refusal naming the scene key (`young` or `poisson`).
+fn material(e: f64, nu: f64, young: &str, poisson: &str) -> Result<Material> {
+    Material::plane_strain(e, nu).map_err(|err| match err {
+        Error::Input { what, why } => {
+            Error::input(if what.starts_with("Young") { young } else { poisson }, why)
+        }
+        other => other,
+    })
 }
 
 fn even(n: usize) -> usize {

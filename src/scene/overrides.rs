@@ -25,6 +25,7 @@ pub struct Overrides {
     pub element: Option<String>,
     pub mesh: Option<PathBuf>,
     pub tol: Option<f64>,
+    pub max_dofs: Option<usize>,
 }
 
 macro_rules! set {
@@ -64,6 +65,9 @@ impl Scene {
             s.mesh.file = o.mesh.clone();
         }
         set!(o.tol, s.report.tol);
+        if o.max_dofs.is_some() {
+            s.mesh.max_dofs = o.max_dofs;
+        }
         s.validate()?;
         Ok(s)
     }

@@ -80,6 +80,20 @@ pub struct RectangleResult {
 }
 
 impl RectangleProblem {
+    /// Refuses a rectangle above `limit` unknowns (none: [`super::limits::default_max_dofs`])
+    /// before meshing: 2 (p nx + 1)(p ny + 1) for order p, in f64 so absurd counts cannot overflow.
+    pub fn check_size(&self, limit: Option<usize>) -> Result<()> {
+        let p = self.element.kind.order() as f64;
+        let (nx, ny) = (self.rect.nx as f64, self.rect.ny as f64);
+        super::limits::check(2.0 * (p * nx + 1.0) * (p * ny + 1.0), limit, |grow| {
+            format!(
+                "use fewer elements (--nx {} --ny {} or fewer), or raise --max-dofs if the memory is there",
+                (nx / grow).floor().max(1.0),
+                (ny / grow).floor().max(1.0)
+            )
+        })
+    }
+
     pub fn solve(&self) -> Result<RectangleResult> {
         let mesh = self.rect.clone().kind(self.element.kind).build()?;
         let mut c = Constraints::new(mesh.n_nodes());

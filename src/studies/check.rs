@@ -56,7 +56,9 @@ pub struct Metrics {
     /// Edge-zone widths in units of t (left, right); None where the model value is zero.
     pub edge_p_t: [Option<f64>; 2],
     pub edge_tau_t: [Option<f64>; 2],
-    /// Relative errors of the global balances: sum of interface forces vs N and F, moment vs F H.
+    /// Errors of the global balances relative to the load size: |sum of interface normal
+    /// forces - N| and |sum of shear forces + F| over |N| + |F|, |moment - F H| over
+    /// |N| L/2 + |F| H (the largest moment the loads make), so a large F/N does not inflate them.
     pub balance_n: f64,
     pub balance_f: f64,
     pub balance_moment: f64,
@@ -84,6 +86,44 @@ pub struct CheckResult {
     pub solve_report: SolveReport,
     /// Full displacements of each combined case (for field output) and the model used.
     pub displacements: Vec<Vec<f64>>,
+}
+
+impl CheckResult {
+    /// Worst global-balance error of all load cases (relative to the load size).
+    pub fn balance_error(&self) -> f64 {
+        self.cases
+            .iter()
+            .map(|c| c.metrics.balance_n.max(c.metrics.balance_f).max(c.metrics.balance_moment))
+            .fold(0.0, f64::max)
+    }
+
+    /// The balance error the solve can achieve: the balance is exact for any displacement
+    /// except for the residuals left at the free unknowns, ~ eps kappa of the load (kappa: the
+    /// solver's condition estimate); 100 eps kappa. Measured 0.3-8 eps kappa: rigid plate with
+    /// H up to 1e3 L (`--height`), elastic plate from 2e4 to 2e12 Pa (`tribofe check --plate
+    /// elastic --plate-modulus E` prints both figures).
+    pub fn balance_limit(&self) -> f64 {
+        100.0 * f64::EPSILON * self.solve_report.condition_estimate.max(1.0)
+    }
+
+    /// The check's self-check: refuses results whose global balance is worse than the solve
+    /// can explain ([`CheckResult::balance_limit`]).
+    pub fn self_check(&self) -> Result<()> {
+        let (value, limit) = (self.balance_error(), self.balance_limit());
+        if value > limit || value.is_nan() {
+            return Err(Error::SelfCheck {
+                what: "global balance (interface forces vs N, F and the moment F H, relative to the load)"
+                    .into(),
+                value,
+                limit,
+                hint: "the limit is 100 eps kappa from the solver's condition estimate kappa; \
+                       a larger error means a defect in the model or the mesh: report it with the scene \
+                       (--write-scene)"
+                    .into(),
+            });
+        }
+        Ok(())
+    }
 }
 
 /// The cheapest model the convergence study (`validation/convergence/`) shows to match the
@@ -415,9 +455,9 @@ fn finish(
         let metrics = Metrics {
             slope_corrected,
             interior_dev_p_corrected,
-            balance_n: (sum_ry - n).abs() / n,
-            balance_f: (sum_rx + f).abs() / n,
-            balance_moment: (moment - f * hgt).abs() / (n * hgt),
+            balance_n: (sum_ry - n).abs() / (n.abs() + f.abs()),
+            balance_f: (sum_rx + f).abs() / (n.abs() + f.abs()),
+            balance_moment: (moment - f * hgt).abs() / (n.abs() * l / 2.0 + f.abs() * hgt),
             ..metrics(&x_over_l, &p, &tau, &p_model, &tau_model, slope_model, l, t, scene.report.tol)
         };
         results.push(CaseResult {

@@ -47,8 +47,6 @@ pub struct StudyOptions {
     pub families: Vec<Family>,
     /// Elements through the thickness of each run: h = t / n.
     pub n_thick: Vec<usize>,
-    /// Runs whose estimated DOF count exceeds this are skipped.
-    pub max_dofs: usize,
     /// The load case (F/N) whose profiles are compared.
     pub fn_ratio: f64,
     /// Growth ratio and largest element length (in units of t) of the graded family.
@@ -64,7 +62,6 @@ impl Default for StudyOptions {
             elements: vec!["qua4".into()],
             families: vec![Family::Uniform, Family::Graded],
             n_thick: vec![1, 2, 4, 8, 16, 32, 64],
-            max_dofs: 3_000_000,
             fn_ratio: 0.82,
             grading_ratio: 1.15,
             graded_h_max_over_t: 4.0,
@@ -129,28 +126,11 @@ pub fn run_scene(base: &Scene, o: &StudyOptions, family: Family, element: &str, 
     s.mesh.n_thick = Some(n);
     s.mesh.element = element.to_string();
     s.loading.fn_ratios = vec![o.fn_ratio];
-    if family == Family::Graded {
-        s.mesh.grading = Some(o.grading_ratio);
-        s.mesh.h_max = Some(o.graded_h_max_over_t * t);
-    }
-    s
-}
-
-/// DOFs of a run estimated from the element counts (nodes of a structured grid).
-fn estimate_dofs(s: &Scene) -> Result<usize> {
-    let t = s.block.thickness;
-    let ny = (t / s.mesh.h).round().max(1.0) as usize;
-    let nx = match s.mesh.grading {
-        Some(r) => crate::fem::mesher::spacing(
-            s.block.length,
-            0,
-            Some(crate::fem::mesher::Grading { end: s.mesh.h, ratio: r, max: s.mesh.h_max }),
-        )?
-        .len(),
-        None => (s.block.length / s.mesh.h).round() as usize,
+    (s.mesh.grading, s.mesh.h_max) = match family {
+        Family::Graded => (Some(o.grading_ratio), Some(o.graded_h_max_over_t * t)),
+        Family::Uniform => (None, None),
     };
-    let p = s.element()?.kind.order();
-    Ok(2 * (p * nx + 1) * (p * ny + 1))
+    s
 }
 
 /// Runs the study; `progress` is called after each run (from any thread).
@@ -161,6 +141,16 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
     if o.n_thick.contains(&0) {
         return Err(Error::input("n-thick", "elements through the thickness must be at least 1"));
     }
+    if let Some(f) = &base.mesh.file {
+        return Err(Error::input(
+            "mesh.file (--mesh)",
+            format!(
+                "the study meshes the block itself at each size; one file {} cannot be refined by it",
+                crate::error::quote(&f.display().to_string())
+            ),
+        ));
+    }
+    let limit = crate::scene::limits::effective(base.mesh.max_dofs)?;
     let mut specs = Vec::new();
     let mut skipped = Vec::new();
     for e in &o.elements {
@@ -168,17 +158,27 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
             for &n in &o.n_thick {
                 let s = run_scene(base, o, f, e, n);
                 s.validate()?;
-                let dofs = estimate_dofs(&s)?;
-                if dofs > o.max_dofs {
-                    skipped.push(format!("{} {e} h = t/{n} (~{dofs} DOFs > {})", f.name(), o.max_dofs));
+                // Runs above the scene's size limit (mesh.max_dofs) are skipped and listed.
+                let dofs = s.estimate_dofs()?;
+                if dofs > limit as f64 {
+                    skipped.push(format!("{} {e} h = t/{n} (~{dofs:.3e} DOFs > {limit})", f.name()));
                 } else {
                     specs.push((f, e.clone(), n, s));
                 }
             }
         }
     }
+    if specs.is_empty() {
+        return Err(Error::input(
+            "--max-dofs (mesh.max_dofs)",
+            format!("every run is above the limit of {limit} unknowns: {}", skipped.join("; ")),
+        ));
+    }
     // Largest first, so the long runs start early when running concurrently.
-    specs.sort_by_key(|(_, _, n, s)| std::cmp::Reverse(estimate_dofs(s).unwrap_or(0) + n));
+    specs.sort_by(|a, b| {
+        (b.3.estimate_dofs().unwrap_or(0.0) + b.2 as f64)
+            .total_cmp(&(a.3.estimate_dofs().unwrap_or(0.0) + a.2 as f64))
+    });
     let one = |(f, e, n, s): &(Family, String, usize, Scene)| -> Result<Run> {
         let base = crate::memory::in_use_bytes();
         if !o.parallel {
@@ -366,12 +366,15 @@ pub fn edge_error(r: &Run) -> f64 {
     r.errors.edge[0].max(r.errors.edge[1])
 }
 
-/// The fastest run (other than the reference) whose edge-zone error is at most `tol`.
+/// The cheapest run (fewest unknowns; other than the reference) whose edge-zone error is at
+/// most `tol`.
 pub fn cheapest(study: &Study, tol: f64) -> Option<&Run> {
+    // Ranked by a deterministic cost (unknowns, then the factor's size), never by a noisy
+    // wall time: identical studies name the same run.
     (0..study.runs.len())
         .filter(|&i| i != study.reference && edge_error(&study.runs[i]) <= tol)
         .map(|i| &study.runs[i])
-        .min_by(|a, b| a.wall.total_cmp(&b.wall))
+        .min_by(|a, b| a.dofs.cmp(&b.dofs).then(a.factor_mib.total_cmp(&b.factor_mib)))
 }
 
 /// Rounds to two significant digits.

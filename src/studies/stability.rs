@@ -64,7 +64,10 @@ impl Default for Options {
             grading_ratio: 1.1,
             distortions: vec![0.0, 0.1, 0.2, 0.3],
             seed: 7,
-            unstructured_mesh: Some("meshes/block_unstructured_v41_bin.msh".into()),
+            // The shipped mesh, found from the source tree, not the current directory.
+            unstructured_mesh: Some(
+                concat!(env!("CARGO_MANIFEST_DIR"), "/meshes/block_unstructured_v41_bin.msh").into(),
+            ),
             thin_ratios: vec![1e-1, 1e-2, 1e-3, 1e-4],
             thin_n_thick: 4,
             max_dofs: 600_000,
@@ -282,7 +285,7 @@ impl References {
             s.block.poisson = nu;
             s.mesh.h = s.block.thickness / self.n_ref as f64;
             s.mesh.element = "qua9".into();
-            s.mesh.grading = None;
+            (s.mesh.grading, s.mesh.h_max) = (None, None);
             s.mesh.n_thick = None;
             s.loading.fn_ratios = vec![0.0, fn_ratio];
             let (r, _) = check::run(&s, &SolverOptions::default())?;
@@ -702,12 +705,22 @@ pub fn corners(base: &Scene, o: &Options, progress: Progress) -> Result<CornerSt
         elements: vec!["qua4".into()],
         families: vec![Family::Uniform],
         n_thick: o.corner_n_thick.clone(),
-        max_dofs: usize::MAX,
         fn_ratio: o.fn_ratio,
         parallel: false,
         ..Default::default()
     };
     let study = convergence::study(base, &so, &|r| progress(&format!("corners qua4 t/{}", r.n_thick)))?;
+    // Two successive increments make one ratio: at least three meshes.
+    if study.runs.len() < 3 {
+        return Err(Error::input(
+            "--corner-max",
+            format!(
+                "the corner study needs at least three meshes (t/1, t/2, t/4) within the size limit; got {}{}",
+                study.runs.len(),
+                if study.skipped.is_empty() { String::new() } else { format!(", skipped: {}", study.skipped.join("; ")) }
+            ),
+        ));
+    }
     let p_end: Vec<f64> = study.runs.iter().map(|r| r.p_end[1]).collect();
     let increment_ratios: Vec<f64> = p_end.windows(3).map(|w| (w[2] - w[1]) / (w[1] - w[0])).collect();
     let tail = &increment_ratios[increment_ratios.len().saturating_sub(2)..];
