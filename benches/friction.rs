@@ -31,6 +31,9 @@ fn friction(c: &mut Criterion) {
     let mut fine = Scene::default();
     fine.mesh.h = 0.0004;
     fine.mesh.n_thick = Some(2);
+    g.bench_function("condensation, 1001 interface nodes", |b| {
+        b.iter(|| condense(&fine, &SolverOptions::default()).unwrap())
+    });
     let cf = condense(&fine, &SolverOptions::default()).unwrap();
     let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), ..Default::default() };
     let events = run_condensed(&fine, cf.clone(), 0.0, &o, &|_| {}).unwrap().run.events.len();
