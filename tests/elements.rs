@@ -265,3 +265,39 @@ fn symmetric_with_exactly_three_zero_energy_modes() {
         assert!(ev.min() > -1e-10 * scale, "{} indefinite", ch.name());
     }
 }
+
+/// The rectangular QUA4 against its closed form: on an a x b rectangle every product of
+/// bilinear shape derivatives integrates exactly, giving (xi_i, eta_i = +-1 the reference
+/// coordinates; c = 1/3 for two nodes on the same side, 1/6 otherwise)
+///   K_uu = d11 xi_i xi_j (b/a) c_eta + d33 eta_i eta_j (a/b) c_xi,
+///   K_vv = d22 eta_i eta_j (a/b) c_xi + d33 xi_i xi_j (b/a) c_eta,
+///   K_uv = (d12 xi_i eta_j + d33 eta_i xi_j) / 4.
+/// The 2x2 Gauss rule is exact for these integrands, so the two agree to round-off.
+#[test]
+fn rectangular_qua4_matches_its_closed_form() {
+    let (a, b) = (0.3, 0.2);
+    let d = Material::plane_strain(2.0e3, 0.4).unwrap().d_matrix();
+    let r = ElementKind::Qua4.reference_nodes();
+    let x: Vec<[f64; 2]> = r.iter().map(|p| [(p[0] + 1.0) * a / 2.0, (p[1] + 1.0) * b / 2.0]).collect();
+    let mut k = vec![0.0; 64];
+    tribofe::fem::element::stiffness::stiffness(ElementKind::Qua4, &x, &d, &mut k);
+    let c = |s: f64, t: f64| if s == t { 1.0 / 3.0 } else { 1.0 / 6.0 };
+    let scale = k.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for i in 0..4 {
+        for j in 0..4 {
+            let ([xi, ei], [xj, ej]) = (r[i], r[j]);
+            let uu = d[(0, 0)] * xi * xj * (b / a) * c(ei, ej) + d[(2, 2)] * ei * ej * (a / b) * c(xi, xj);
+            let vv = d[(1, 1)] * ei * ej * (a / b) * c(xi, xj) + d[(2, 2)] * xi * xj * (b / a) * c(ei, ej);
+            let uv = (d[(0, 1)] * xi * ej + d[(2, 2)] * ei * xj) / 4.0;
+            let vu = (d[(0, 1)] * ei * xj + d[(2, 2)] * xi * ej) / 4.0;
+            for (got, want) in [
+                (k[16 * i + 2 * j], uu),
+                (k[16 * i + 8 + 2 * j + 1], vv),
+                (k[16 * i + 2 * j + 1], uv),
+                (k[16 * i + 8 + 2 * j], vu),
+            ] {
+                assert!((got - want).abs() <= 1e-13 * scale, "K[{i},{j}]: {got} vs closed form {want}");
+            }
+        }
+    }
+}
