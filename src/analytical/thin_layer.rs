@@ -105,6 +105,16 @@ impl Corrected {
     }
 }
 
+/// Closed-form p(0) of a thin bonded layer compressed by strain e (parabolic lateral
+/// displacement across the thickness): p = e [M - lambda^2/M cosh(x/l)/cosh(L/2l)],
+/// M = lambda + 2G, l = t sqrt(M / 12 G). In the interior p -> M e (laterally confined).
+pub fn bonded_layer_p0(mat: &crate::fem::material::Material, strain: f64, length: f64, t: f64) -> f64 {
+    let (lam, g) = (mat.lambda(), mat.shear_modulus());
+    let m = lam + 2.0 * g;
+    let ell = t * (m / (12.0 * g)).sqrt();
+    strain * (m - lam * lam / m / (length / (2.0 * ell)).cosh())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -196,6 +196,65 @@ impl Mesh {
         Ok(())
     }
 
+    /// Smallest Jacobian determinant of an element over its mean one (area / reference area):
+    /// 1 for parallelograms and triangles, smaller the more a quad is distorted.
+    pub fn jacobian_quality(&self, e: usize) -> f64 {
+        let mesh = self;
+        let reference_area = if mesh.kind(e).is_quad() { 4.0 } else { 0.5 };
+        mesh.min_jacobian(e) / (mesh.signed_area(e) / reference_area)
+    }
+
+    /// Moves every interior corner node by a random vector of length <= `amp` (deterministic in
+    /// `seed`); quadratic elements get their mid nodes back on straight edges.
+    pub fn distort(&mut self, amp: f64, seed: u64) -> Result<()> {
+        let mesh = self;
+        let (mut xmin, mut xmax, mut ymin, mut ymax) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for p in &mesh.nodes {
+            xmin = xmin.min(p[0]);
+            xmax = xmax.max(p[0]);
+            ymin = ymin.min(p[1]);
+            ymax = ymax.max(p[1]);
+        }
+        let tol = 1e-9 * (xmax - xmin);
+        let inside =
+            |p: &[f64; 2]| p[0] > xmin + tol && p[0] < xmax - tol && p[1] > ymin + tol && p[1] < ymax - tol;
+        let mut corner = vec![false; mesh.n_nodes()];
+        for (_, v) in mesh.elements() {
+            v[..4.min(v.len())].iter().for_each(|&n| corner[n] = true);
+        }
+        let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+        let mut rnd = || {
+            s = s.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for k in 0..mesh.n_nodes() {
+            if corner[k] && inside(&mesh.nodes[k]) {
+                let (r, a) = (amp * rnd(), std::f64::consts::TAU * rnd());
+                mesh.nodes[k][0] += r * a.cos();
+                mesh.nodes[k][1] += r * a.sin();
+            }
+        }
+        for e in 0..mesh.n_elements() {
+            let v = mesh.element_nodes(e).to_vec();
+            if v.len() >= 8 {
+                let c: Vec<[f64; 2]> = v[..4].iter().map(|&n| mesh.nodes[n]).collect();
+                let mid = |a: [f64; 2], b: [f64; 2]| [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+                for k in 0..4 {
+                    mesh.nodes[v[4 + k]] = mid(c[k], c[(k + 1) % 4]);
+                }
+                if v.len() == 9 {
+                    mesh.nodes[v[8]] = mid(mid(c[0], c[2]), mid(c[1], c[3]));
+                }
+            }
+        }
+        for e in 0..mesh.n_elements() {
+            if !(mesh.min_jacobian(e) > 0.0) {
+                return Err(Error::Mesh(format!("distortion {amp} m inverts {}", mesh.describe_element(e))));
+            }
+        }
+        Ok(())
+    }
+
     /// Smallest Jacobian determinant over the element's nodes and centroid.
     pub fn min_jacobian(&self, e: usize) -> f64 {
         let kind = self.kind(e);

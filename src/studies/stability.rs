@@ -6,7 +6,6 @@
 
 use crate::error::{Error, Result};
 use crate::fem::material::Material;
-use crate::fem::mesh::Mesh;
 use crate::linalg::solve::SolverOptions;
 use crate::scene::{PlateModel, Scene};
 use crate::studies::check::interpolate;
@@ -338,16 +337,6 @@ pub struct NuStudy {
     pub reference_p0: Vec<(f64, f64)>,
 }
 
-/// Closed-form p(0) of a thin bonded layer compressed by strain e (parabolic lateral
-/// displacement across the thickness): p = e [M - lambda^2/M cosh(x/l)/cosh(L/2l)],
-/// M = lambda + 2G, l = t sqrt(M / 12 G). In the interior p -> M e (laterally confined).
-pub fn thin_layer_p0(mat: &Material, strain: f64, length: f64, t: f64) -> f64 {
-    let (lam, g) = (mat.lambda(), mat.shear_modulus());
-    let m = lam + 2.0 * g;
-    let ell = t * (m / (12.0 * g)).sqrt();
-    strain * (m - lam * lam / m / (length / (2.0 * ell)).cosh())
-}
-
 /// Closed-form p(0) and N/(L strain) ratios of a run's F/N = 0 case (the first).
 fn closed_form(r: &CheckResult) -> Result<(f64, f64)> {
     let s = &r.scene;
@@ -357,7 +346,10 @@ fn closed_form(r: &CheckResult) -> Result<(f64, f64)> {
     let pmean = c.n / s.block.length;
     let p0 = interpolate(&c.x_over_l, &c.p, 0.0) * pmean;
     let m = mat.lambda() + 2.0 * mat.shear_modulus();
-    Ok((p0 / thin_layer_p0(&mat, strain, s.block.length, s.block.thickness), pmean / (m * strain)))
+    Ok((
+        p0 / crate::analytical::thin_layer::bonded_layer_p0(&mat, strain, s.block.length, s.block.thickness),
+        pmean / (m * strain),
+    ))
 }
 
 fn oscillation(r: &CheckResult, reference: &CheckResult) -> f64 {
@@ -453,56 +445,6 @@ pub struct ShapePoint {
     pub min_jacobian_rel: f64,
 }
 
-/// Moves every interior corner node by a random vector of length <= `amp` (deterministic in
-/// `seed`); quadratic elements get their mid nodes back on straight edges.
-pub fn distort(mesh: &mut Mesh, amp: f64, seed: u64) -> Result<()> {
-    let (mut xmin, mut xmax, mut ymin, mut ymax) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for p in &mesh.nodes {
-        xmin = xmin.min(p[0]);
-        xmax = xmax.max(p[0]);
-        ymin = ymin.min(p[1]);
-        ymax = ymax.max(p[1]);
-    }
-    let tol = 1e-9 * (xmax - xmin);
-    let inside =
-        |p: &[f64; 2]| p[0] > xmin + tol && p[0] < xmax - tol && p[1] > ymin + tol && p[1] < ymax - tol;
-    let mut corner = vec![false; mesh.n_nodes()];
-    for (_, v) in mesh.elements() {
-        v[..4.min(v.len())].iter().for_each(|&n| corner[n] = true);
-    }
-    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut rnd = || {
-        s = s.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
-    for k in 0..mesh.n_nodes() {
-        if corner[k] && inside(&mesh.nodes[k]) {
-            let (r, a) = (amp * rnd(), std::f64::consts::TAU * rnd());
-            mesh.nodes[k][0] += r * a.cos();
-            mesh.nodes[k][1] += r * a.sin();
-        }
-    }
-    for e in 0..mesh.n_elements() {
-        let v = mesh.element_nodes(e).to_vec();
-        if v.len() >= 8 {
-            let c: Vec<[f64; 2]> = v[..4].iter().map(|&n| mesh.nodes[n]).collect();
-            let mid = |a: [f64; 2], b: [f64; 2]| [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
-            for k in 0..4 {
-                mesh.nodes[v[4 + k]] = mid(c[k], c[(k + 1) % 4]);
-            }
-            if v.len() == 9 {
-                mesh.nodes[v[8]] = mid(mid(c[0], c[2]), mid(c[1], c[3]));
-            }
-        }
-    }
-    for e in 0..mesh.n_elements() {
-        if !(mesh.min_jacobian(e) > 0.0) {
-            return Err(Error::Mesh(format!("distortion {amp} m inverts {}", mesh.describe_element(e))));
-        }
-    }
-    Ok(())
-}
-
 pub fn shape(
     base: &Scene,
     o: &Options,
@@ -550,7 +492,7 @@ pub fn shape(
         for &amp in &o.distortions {
             let mut sm = s.build()?;
             let j0 = (0..sm.mesh.n_elements()).map(|k| sm.mesh.min_jacobian(k)).fold(f64::INFINITY, f64::min);
-            distort(&mut sm.mesh, amp * h, o.seed)?;
+            sm.mesh.distort(amp * h, o.seed)?;
             let j1 = (0..sm.mesh.n_elements()).map(|k| sm.mesh.min_jacobian(k)).fold(f64::INFINITY, f64::min);
             let (r, _) = check::run_model(&s, sm, 0.0, &SolverOptions::default(), None)?;
             let errors = errors_against(&r, &rf);
@@ -571,9 +513,8 @@ pub fn shape(
             let mut v = s.clone();
             v.mesh.file = Some(path.clone());
             let sm = v.build()?;
-            let quality = (0..sm.mesh.n_elements())
-                .map(|k| jacobian_quality(&sm.mesh, k))
-                .fold(f64::INFINITY, f64::min);
+            let quality =
+                (0..sm.mesh.n_elements()).map(|k| sm.mesh.jacobian_quality(k)).fold(f64::INFINITY, f64::min);
             let (r, _) = check::run_model(&v, sm, 0.0, &SolverOptions::default(), None)?;
             let errors = errors_against(&r, &rf);
             progress(&format!("shape unstructured {e}"));
@@ -590,13 +531,6 @@ pub fn shape(
         }
     }
     Ok(out)
-}
-
-/// Smallest Jacobian determinant of an element over its mean one (area / reference area):
-/// 1 for parallelograms and triangles, smaller the more a quad is distorted.
-fn jacobian_quality(mesh: &crate::fem::mesh::Mesh, e: usize) -> f64 {
-    let reference_area = if mesh.kind(e).is_quad() { 4.0 } else { 0.5 };
-    mesh.min_jacobian(e) / (mesh.signed_area(e) / reference_area)
 }
 
 // ---------------------------------------------------------------- thin
@@ -682,24 +616,6 @@ pub struct CornerStudy {
     pub nu: f64,
 }
 
-/// Smallest root in (0.5, 1) of (3 - 4 nu) sin^2(lambda pi/2) = 4 (1 - nu)^2 - lambda^2, the
-/// eigenvalue equation of a clamped-free 90 degree wedge in plane strain (stresses ~ r^(lambda - 1)).
-pub fn williams_clamped_free(nu: f64) -> f64 {
-    let f = |l: f64| {
-        (3.0 - 4.0 * nu) * (l * std::f64::consts::FRAC_PI_2).sin().powi(2) - 4.0 * (1.0 - nu).powi(2) + l * l
-    };
-    let (mut a, mut b) = (0.5, 1.0);
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if f(a) * f(m) <= 0.0 {
-            b = m
-        } else {
-            a = m
-        }
-    }
-    0.5 * (a + b)
-}
-
 pub fn corners(base: &Scene, o: &Options, progress: Progress) -> Result<CornerStudy> {
     let so = StudyOptions {
         elements: vec!["qua4".into()],
@@ -725,7 +641,9 @@ pub fn corners(base: &Scene, o: &Options, progress: Progress) -> Result<CornerSt
     let increment_ratios: Vec<f64> = p_end.windows(3).map(|w| (w[2] - w[1]) / (w[1] - w[0])).collect();
     let tail = &increment_ratios[increment_ratios.len().saturating_sub(2)..];
     let factor = tail.iter().sum::<f64>() / tail.len().max(1) as f64;
-    let lw = williams_clamped_free(base.block.poisson);
+    let lw =
+        crate::analytical::williams::clamped_free_exponent(std::f64::consts::FRAC_PI_2, base.block.poisson)?
+            .re;
     Ok(CornerStudy {
         study,
         p_end,
