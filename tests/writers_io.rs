@@ -31,7 +31,7 @@ fn fields(m: &Mesh) -> (Vec<Field>, Vec<Field>) {
     let u: Vec<[f64; 2]> = m.nodes.iter().map(|p| [1e-6 * p[0], -2e-7 * p[0] * p[1]]).collect();
     let temp: Vec<f64> = m.nodes.iter().map(|p| 20.0 + p[1]).collect();
     let stress: Vec<[f64; 4]> = (0..m.n_elements())
-        .map(|e| [-1e6 * e as f64, 2.5e5, 0.3 * (2.5e5 - 1e6 * e as f64), 1e-3 * e as f64])
+        .map(|e| [-1e6 * e as f64, 2.5e5, 1e-3 * e as f64, 0.3 * (2.5e5 - 1e6 * e as f64)])
         .collect();
     (
         vec![Field::vector_2d("displacement", &u), Field::scalar("temperature", temp)],

@@ -5,7 +5,6 @@ use clap::Args as ClapArgs;
 use std::path::PathBuf;
 use tribofe::fem::material::Material;
 use tribofe::fem::mesher::Rectangle;
-use tribofe::fem::recovery::{nodal_stresses, von_mises};
 use tribofe::io::{gmsh_post::write_msh, vtu::write_vtu, Field};
 use tribofe::scene::rectangle::{RectangleProblem, Side, SIDES};
 
@@ -82,14 +81,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         bal[0],
         bal[1]
     );
-    let s = nodal_stresses(&model, u);
-    let disp: Vec<[f64; 2]> = (0..r.mesh.n_nodes()).map(|k| [u[2 * k], u[2 * k + 1]]).collect();
-    let tensor: Vec<[f64; 4]> = s.iter().map(|s| [s[0], s[1], s[3], s[2]]).collect();
-    let fields = [
-        Field::vector_2d("displacement_m", &disp),
-        Field::tensor_2d("stress_Pa", &tensor),
-        Field::scalar("von_mises_Pa", s.iter().map(von_mises).collect()),
-    ];
+    let fields = Field::solution_fields(&model, u);
     let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
     write_vtu(&dir.path().join("fields.vtu"), &r.mesh, &fields, &[])?;
     write_msh(&dir.path().join("fields.msh"), &r.mesh, &fields, &[])?;

@@ -40,12 +40,26 @@ impl Field {
         Self::new(name, 3, values.iter().flat_map(|v| [v[0], v[1], 0.0]).collect())
     }
 
-    /// A plane-strain symmetric tensor given as [xx, yy, zz, xy] (e.g. stress), stored as the
-    /// full 3 x 3 row-major tensor that VTK and Gmsh views expect.
+    /// A plane-strain symmetric tensor given as [xx, yy, xy, zz], the order of
+    /// [`crate::fem::recovery::Stress`], stored as the full 3 x 3 row-major tensor that VTK
+    /// and Gmsh views expect.
     pub fn tensor_2d(name: impl Into<String>, values: &[[f64; 4]]) -> Self {
         let full =
-            values.iter().flat_map(|&[xx, yy, zz, xy]| [xx, xy, 0.0, xy, yy, 0.0, 0.0, 0.0, zz]).collect();
+            values.iter().flat_map(|&[xx, yy, xy, zz]| [xx, xy, 0.0, xy, yy, 0.0, 0.0, 0.0, zz]).collect();
         Self::new(name, 9, full)
+    }
+
+    /// The nodal fields of a solution: displacement, stress (extrapolated from the
+    /// integration points and averaged at nodes) and von Mises stress, in SI units.
+    pub fn solution_fields(model: &crate::fem::assembly::Model, u: &[f64]) -> Vec<Self> {
+        use crate::fem::recovery::{nodal_stresses, von_mises};
+        let disp: Vec<[f64; 2]> = (0..model.mesh.n_nodes()).map(|k| [u[2 * k], u[2 * k + 1]]).collect();
+        let s = nodal_stresses(model, u);
+        vec![
+            Self::vector_2d("displacement_m", &disp),
+            Self::tensor_2d("stress_Pa", &s),
+            Self::scalar("von_mises_Pa", s.iter().map(von_mises).collect()),
+        ]
     }
 
     /// Checks the field fits `n` entries of kind `over` ("point", "cell"...) and holds finite

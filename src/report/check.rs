@@ -364,18 +364,12 @@ pub fn write_fields(
     sm: &crate::scene::SceneModel,
     dir: &Path,
 ) -> Result<Vec<std::path::PathBuf>> {
-    use crate::fem::recovery::{gauss_stresses, nodal_stresses, von_mises};
+    use crate::fem::recovery::gauss_stresses;
     use crate::io::{gmsh_post::write_msh, vtu, Field};
     let model = sm.model();
-    let nn = sm.mesh.n_nodes();
     let mut written = Vec::new();
     let mut pvd = Vec::new();
     for (c, u) in res.cases.iter().zip(&res.displacements) {
-        let disp: Vec<[f64; 2]> = (0..nn).map(|k| [u[2 * k], u[2 * k + 1]]).collect();
-        let s = nodal_stresses(&model, u);
-        // Field::tensor_2d takes (xx, yy, zz, xy).
-        let tensor =
-            |v: &[[f64; 4]]| -> Vec<[f64; 4]> { v.iter().map(|s| [s[0], s[1], s[3], s[2]]).collect() };
         let mean: Vec<[f64; 4]> = (0..sm.mesh.n_elements())
             .map(|e| {
                 let g = gauss_stresses(&model, e, u);
@@ -383,12 +377,8 @@ pub fn write_fields(
                 std::array::from_fn(|i| g.iter().map(|q| q[i]).sum::<f64>() / k)
             })
             .collect();
-        let point = [
-            Field::vector_2d("displacement_m", &disp),
-            Field::tensor_2d("stress_Pa", &tensor(&s)),
-            Field::scalar("von_mises_Pa", s.iter().map(von_mises).collect()),
-        ];
-        let cell = [Field::tensor_2d("stress_mean_Pa", &tensor(&mean))];
+        let point = Field::solution_fields(&model, u);
+        let cell = [Field::tensor_2d("stress_mean_Pa", &mean)];
         let stem = format!("fields_FN{}", ratio_label(c.fn_ratio));
         let vtu_path = dir.join(format!("{stem}.vtu"));
         vtu::write_vtu(&vtu_path, &sm.mesh, &point, &cell)?;
