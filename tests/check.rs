@@ -208,7 +208,7 @@ fn reused_symbolic_analysis_gives_the_fresh_result() {
         )
         .unwrap()
         .0;
-        assert_eq!(reused.timings.symbolic, 0.0);
+        assert_eq!(reused.stats.timings.symbolic, 0.0);
         for (a, b) in fresh.cases.iter().zip(&reused.cases) {
             // Same pattern and ordering: the same arithmetic, so the same numbers.
             assert!(max_diff(&a.p, &b.p) < 1e-14 && max_diff(&a.tau, &b.tau) < 1e-14);

@@ -68,7 +68,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         a.nx,
         a.ny,
         a.element,
-        r.solution.n_unknowns
+        r.solution.stats.n_unknowns
     );
     for (name, f) in SIDES.iter().zip(&r.side_reactions) {
         outln!("  reaction on {name:<6}: Fx = {:>12.5e}, Fy = {:>12.5e}", f[0], f[1]);

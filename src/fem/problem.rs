@@ -63,6 +63,13 @@ pub struct Solution {
     pub reduction: Arc<Reduction>,
     /// Full displacement per case (node DOFs then extra DOFs), m (rad for rotations).
     pub u: Vec<Vec<f64>>,
+    /// Sizes, accuracy and timings of the solve (shared by every result that reports them).
+    pub stats: SolverStats,
+}
+
+/// What a solve cost and how accurate it was: sizes, accuracy report and phase times.
+#[derive(Debug, Clone)]
+pub struct SolverStats {
     pub report: SolveReport,
     pub timings: Timings,
     pub n_unknowns: usize,
@@ -86,10 +93,10 @@ pub fn solve(
     let clock = Instant::now();
     let prepared = Prepared::new(model.mesh, constraints, opts)?;
     let mut sol = prepared.solve(model, constraints, cases, opts, hint)?;
-    sol.timings.pattern = prepared.pattern_time;
-    sol.timings.symbolic = prepared.symbolic_time;
+    sol.stats.timings.pattern = prepared.pattern_time;
+    sol.stats.timings.symbolic = prepared.symbolic_time;
     crate::memory::drop_in_background(prepared);
-    sol.timings.set_wall(clock.elapsed().as_secs_f64());
+    sol.stats.timings.set_wall(clock.elapsed().as_secs_f64());
     Ok(sol)
 }
 
@@ -215,14 +222,16 @@ impl Prepared {
         Ok(Solution {
             reduction: Arc::clone(&self.red),
             u,
-            report,
-            timings: t,
-            n_unknowns: n,
-            matrix_nnz: asm.pattern.nnz(),
-            factor_nnz: solver.factor_nnz(),
-            factor_flops: solver.factor_flops(),
-            dense_seconds: factor.dense_seconds(),
-            supernodal: solver.is_supernodal(),
+            stats: SolverStats {
+                report,
+                timings: t,
+                n_unknowns: n,
+                matrix_nnz: asm.pattern.nnz(),
+                factor_nnz: solver.factor_nnz(),
+                factor_flops: solver.factor_flops(),
+                dense_seconds: factor.dense_seconds(),
+                supernodal: solver.is_supernodal(),
+            },
         })
     }
 }

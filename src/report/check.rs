@@ -118,7 +118,7 @@ pub fn converged_table(paper: &CheckResult, conv: &CheckResult) -> String {
     let _ = writeln!(
         s,
         "converged answer (graded {} mesh, t/16 at the ends, {} unknowns; shown by validation/convergence to match the finest meshes):",
-        conv.scene.mesh.element, conv.n_unknowns
+        conv.scene.mesh.element, conv.stats.n_unknowns
     );
     let _ = writeln!(
         s,
@@ -156,7 +156,7 @@ pub fn table(res: &CheckResult) -> String {
     let _ = writeln!(
         s,
         "tribofe check: block L = {} m, t = {} m, E = {} Pa, nu = {}; {:?} plate; H = {} m; {} elements ({}), {} nodes, {} unknowns",
-        sc.block.length, sc.block.thickness, sc.block.young, sc.block.poisson, sc.plate.model, sc.loading.height, res.n_elements, sc.mesh.element, res.n_nodes, res.n_unknowns
+        sc.block.length, sc.block.thickness, sc.block.young, sc.block.poisson, sc.plate.model, sc.loading.height, res.n_elements, sc.mesh.element, res.n_nodes, res.stats.n_unknowns
     );
     let _ = writeln!(
         s,
@@ -235,22 +235,22 @@ pub fn table(res: &CheckResult) -> String {
     let (worst, limit) = (res.balance_error(), res.balance_limit());
     let verdict = if worst <= limit { "ok, <=" } else { "FAILED, >" };
     let _ = writeln!(s, "global balance (sum of interface forces vs N, F; moment vs F H; relative to the load): worst error {worst:.1e} ({verdict} {limit:.1e} = 100 eps kappa)");
-    let r = &res.solve_report;
+    let r = &res.stats.report;
     let _ = writeln!(
         s,
         "solver: componentwise backward error {:.1e} (after {} refinement steps), condition estimate {:.1e}; time {:.1} ms (mesh {:.1}, pattern {:.1}, assembly {:.1}, symbolic {:.1}, numeric {:.1}, solve {:.1}, recovery {:.1}, other {:.1})",
         r.residual.iter().cloned().fold(0.0, f64::max),
         r.refinement_steps,
         r.condition_estimate,
-        res.timings.total() * 1e3,
-        res.timings.mesh * 1e3,
-        res.timings.pattern * 1e3,
-        res.timings.assembly * 1e3,
-        res.timings.symbolic * 1e3,
-        res.timings.numeric * 1e3,
-        res.timings.solve * 1e3,
-        res.timings.recovery * 1e3,
-        res.timings.other * 1e3
+        res.stats.timings.total() * 1e3,
+        res.stats.timings.mesh * 1e3,
+        res.stats.timings.pattern * 1e3,
+        res.stats.timings.assembly * 1e3,
+        res.stats.timings.symbolic * 1e3,
+        res.stats.timings.numeric * 1e3,
+        res.stats.timings.solve * 1e3,
+        res.stats.timings.recovery * 1e3,
+        res.stats.timings.other * 1e3
     );
     s
 }

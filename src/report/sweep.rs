@@ -55,7 +55,7 @@ pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
             for b in [v.locking_prone, v.interior_ok, v.edges_ok, v.tension_ok, v.holds()] {
                 cells.push(u8::from(b).to_string());
             }
-            cells.push(p.result.n_unknowns.to_string());
+            cells.push(p.result.stats.n_unknowns.to_string());
             if friction {
                 match &p.friction {
                     Some(f) => cells.extend([

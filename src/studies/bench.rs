@@ -187,7 +187,7 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
     let peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
     let prepared = check::prepare(&scene, opts)?;
     let numeric_warm = refactorisation_time(|| {
-        Ok(check::run_model(&scene, scene.build()?, 0.0, opts, Some(&prepared))?.0.timings.numeric)
+        Ok(check::run_model(&scene, scene.build()?, 0.0, opts, Some(&prepared))?.0.stats.timings.numeric)
     })?;
     // Outputs go to a private temporary directory, removed afterwards.
     let dir = std::env::temp_dir().join(format!("tribofe-bench-{}", std::process::id()));
@@ -199,16 +199,16 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
     Ok(Row {
         case: Case::Strip(ny).name(),
         threads: opts.threads,
-        factor: factor_name(res.supernodal),
+        factor: factor_name(res.stats.supernodal),
         ordering: String::new(),
-        dofs: res.n_unknowns,
-        nnz_k: res.matrix_nnz,
-        nnz_l: res.factor_nnz,
-        flops: res.factor_flops,
-        t: res.timings,
+        dofs: res.stats.n_unknowns,
+        nnz_k: res.stats.matrix_nnz,
+        nnz_l: res.stats.factor_nnz,
+        flops: res.stats.factor_flops,
+        t: res.stats.timings,
         output: Some(output),
         peak_mib,
-        dense_s: res.dense_seconds,
+        dense_s: res.stats.dense_seconds,
         numeric_warm,
     })
 }
@@ -231,25 +231,25 @@ fn square(n: usize, opts: &SolverOptions) -> Result<Row> {
     let peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
     let prepared = Prepared::new(&mesh, &c, opts)?;
     let numeric_warm = refactorisation_time(|| {
-        Ok(prepared.solve(&model, &c, std::slice::from_ref(&case), opts, hint)?.timings.numeric)
+        Ok(prepared.solve(&model, &c, std::slice::from_ref(&case), opts, hint)?.stats.timings.numeric)
     })?;
     let clock = Instant::now();
     let stresses = crate::fem::recovery::nodal_stresses(&model, &sol.u[0]);
     std::hint::black_box(stresses);
-    let t = Timings { mesh: mesh_time, recovery: clock.elapsed().as_secs_f64(), ..sol.timings };
+    let t = Timings { mesh: mesh_time, recovery: clock.elapsed().as_secs_f64(), ..sol.stats.timings };
     Ok(Row {
         case: Case::Square(n).name(),
         threads: opts.threads,
-        factor: factor_name(sol.supernodal),
+        factor: factor_name(sol.stats.supernodal),
         ordering: String::new(),
-        dofs: sol.n_unknowns,
-        nnz_k: sol.matrix_nnz,
-        nnz_l: sol.factor_nnz,
-        flops: sol.factor_flops,
+        dofs: sol.stats.n_unknowns,
+        nnz_k: sol.stats.matrix_nnz,
+        nnz_l: sol.stats.factor_nnz,
+        flops: sol.stats.factor_flops,
         t,
         output: None,
         peak_mib,
-        dense_s: sol.dense_seconds,
+        dense_s: sol.stats.dense_seconds,
         numeric_warm,
     })
 }

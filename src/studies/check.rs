@@ -5,9 +5,9 @@
 
 use crate::error::{Error, Result};
 use crate::fem::assembly::Model;
-use crate::fem::problem::{solve, LoadCase, Prepared, Solution, Timings};
+use crate::fem::problem::{solve, LoadCase, Prepared, Solution, SolverStats, Timings};
 use crate::fem::recovery::{elements_touching, nodal_stresses_from};
-use crate::linalg::solve::{SolveReport, SolverOptions};
+use crate::linalg::solve::SolverOptions;
 use crate::precursors::fe::UnitFields;
 use crate::scene::{PlateModel, Scene, SceneModel};
 use std::time::Instant;
@@ -76,14 +76,8 @@ pub struct CheckResult {
     pub unit: UnitFields,
     pub n_nodes: usize,
     pub n_elements: usize,
-    pub n_unknowns: usize,
-    pub matrix_nnz: usize,
-    pub factor_nnz: usize,
-    pub factor_flops: f64,
-    pub dense_seconds: Option<f64>,
-    pub supernodal: bool,
-    pub timings: Timings,
-    pub solve_report: SolveReport,
+    /// The solve's sizes, accuracy and phase times (mesh and recovery included).
+    pub stats: SolverStats,
     /// Full displacements of each combined case (for field output) and the model used.
     pub displacements: Vec<Vec<f64>>,
 }
@@ -103,7 +97,7 @@ impl CheckResult {
     /// H up to 1e3 L (`--height`), elastic plate from 2e4 to 2e12 Pa (`tribofe check --plate
     /// elastic --plate-modulus E` prints both figures).
     pub fn balance_limit(&self) -> f64 {
-        100.0 * f64::EPSILON * self.solve_report.condition_estimate.max(1.0)
+        100.0 * f64::EPSILON * self.stats.report.condition_estimate.max(1.0)
     }
 
     /// The check's self-check: refuses results whose global balance is worse than the solve
@@ -154,7 +148,7 @@ pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneMod
     let sm = scene.build()?;
     let mesh_time = clock.elapsed().as_secs_f64();
     let (mut res, sm) = run_model(scene, sm, mesh_time, opts, None)?;
-    res.timings.set_wall(clock.elapsed().as_secs_f64());
+    res.stats.timings.set_wall(clock.elapsed().as_secs_f64());
     Ok((res, sm))
 }
 
@@ -479,21 +473,14 @@ fn finish(
         });
         displacements.push(u);
     }
-    let timings = Timings { mesh: mesh_time, recovery: clock.elapsed().as_secs_f64(), ..sol.timings };
+    let timings = Timings { mesh: mesh_time, recovery: clock.elapsed().as_secs_f64(), ..sol.stats.timings };
     let res = CheckResult {
         scene: scene.clone(),
         cases: results,
         unit: unit_profiles,
         n_nodes: sm.mesh.n_nodes(),
         n_elements: sm.mesh.n_elements(),
-        n_unknowns: sol.n_unknowns,
-        matrix_nnz: sol.matrix_nnz,
-        factor_nnz: sol.factor_nnz,
-        factor_flops: sol.factor_flops,
-        dense_seconds: sol.dense_seconds,
-        supernodal: sol.supernodal,
-        timings,
-        solve_report: sol.report.clone(),
+        stats: SolverStats { timings, ..sol.stats.clone() },
         displacements,
     };
     Ok(res)

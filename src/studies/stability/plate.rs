@@ -95,7 +95,7 @@ pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy
             };
             let refined = if o.plate_refine && raw.is_some() {
                 run(&e, &refine_opts).ok().map(|(r, _)| {
-                    (plate_raw(&r, &rigid, 0.0, o.fn_ratio).err(), r.solve_report.refinement_steps)
+                    (plate_raw(&r, &rigid, 0.0, o.fn_ratio).err(), r.stats.report.refinement_steps)
                 })
             } else {
                 None
@@ -130,11 +130,11 @@ fn plate_raw(r: &CheckResult, rigid: &CheckResult, time: f64, fn_ratio: f64) -> 
     PlateRaw {
         err_p: ep,
         err_tau: et,
-        backward_error: r.solve_report.residual.iter().cloned().fold(0.0, f64::max),
-        condition: r.solve_report.condition_estimate,
+        backward_error: r.stats.report.residual.iter().cloned().fold(0.0, f64::max),
+        condition: r.stats.report.condition_estimate,
         tilt_rel: if tr != 0.0 { (te - tr).abs() / tr.abs() } else { (te - tr).abs() },
         time,
-        symbolic_time: r.timings.symbolic,
+        symbolic_time: r.stats.timings.symbolic,
     }
 }
 
