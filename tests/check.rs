@@ -152,6 +152,10 @@ fn bad_scene_values_are_clear_errors() {
     std::fs::write(&f, "[block]\nlength = 0.4\nthicknes = 0.002\n").unwrap();
     let e = Scene::from_file(&f).unwrap_err().to_string();
     assert!(e.contains("bad.toml") && e.contains("line 3") && e.contains("thicknes"), "{e}");
+    // A value that parses but fails validation is also located in the file.
+    std::fs::write(&f, "# scene\n[block]\nthickness = 0.002\nlength = -1\n").unwrap();
+    let e = Scene::from_file(&f).unwrap_err().to_string();
+    assert!(e.contains("bad.toml: line 4: block.length"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

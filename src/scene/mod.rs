@@ -200,7 +200,18 @@ impl Scene {
                 scene.mesh.file = Some(dir.join(f));
             }
         }
-        scene.validate()?;
+        scene.validate().map_err(|e| match e {
+            // A value read from this file: say where it is.
+            Error::Input { what, why } => match key_line(&text, &what) {
+                Some(line) => Error::Parse {
+                    file: path.to_path_buf(),
+                    at: format!("line {line}"),
+                    msg: format!("{what}: {why}"),
+                },
+                None => Error::Input { what, why },
+            },
+            e => e,
+        })?;
         Ok(scene)
     }
 
@@ -677,6 +688,26 @@ pub const MAX_H_OVER_L: f64 = 1e3;
 
 /// A number for a message: as written for ordinary magnitudes, in exponent form otherwise
 /// (never 300 digits).
+/// The line (1-based) of `table.key = ...` in a scene file's text, for a parameter named as
+/// validation names it ("block.length (m, --length)"); None when the value is not in the file.
+fn key_line(text: &str, what: &str) -> Option<usize> {
+    let path = what.split_whitespace().next()?;
+    let (table, key) = path.rsplit_once('.')?;
+    let mut current = String::new();
+    for (i, line) in text.lines().enumerate() {
+        let l = line.split('#').next().unwrap_or("").trim();
+        if let Some(h) = l.strip_prefix('[').and_then(|h| h.strip_suffix(']')) {
+            current = h.trim().to_string();
+        } else if let Some((k, _)) = l.split_once('=') {
+            let k = k.trim().trim_matches('"');
+            if (current == table && k == key) || (current.is_empty() && k == path) {
+                return Some(i + 1);
+            }
+        }
+    }
+    None
+}
+
 pub fn num(v: f64) -> String {
     if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
         format!("{v}")
