@@ -8,8 +8,37 @@
 //! - [`studies`]: the paper's check, convergence, stability, benchmarks;
 //! - [`report`]: CSV and SVG output of the studies.
 //!
-//! Beside them: [`analytical`] (closed forms the results are judged against) and
-//! [`precursors`] (the paper's 1D friction model).
+//! Between `fem` and the studies: [`interface`] (contact and friction laws on the block's
+//! base, event-driven). Beside them: [`analytical`] (closed forms the results are judged
+//! against) and [`precursors`] (the paper's 1D friction model).
+//!
+//! # Examples
+//!
+//! The paper's bonded check (L = 40 cm, t = 2 mm, H = 4 cm, F/N = 0, 0.41, 0.82): the
+//! interior pressure slope is within 2 % of the model's 12 (F/N)(H/L) (1.8 % low: the
+//! block's own shear couple shortens the arm to H - t/2, see [`analytical::thin_layer`]).
+//! ```
+//! use tribofe::{linalg::solve::SolverOptions, scene::Scene, studies::check};
+//!
+//! let (result, _model) = check::run(&Scene::default(), &SolverOptions::default())?;
+//! for case in &result.cases {
+//!     let m = &case.metrics;
+//!     assert!((m.slope_interior - m.slope_model).abs() <= 0.02 * m.slope_model + 1e-6);
+//! }
+//! # Ok::<(), tribofe::Error>(())
+//! ```
+//!
+//! The same block on a Coulomb interface (mu = 0.5) under N = 1 N/m, driven until it
+//! slides: the friction force reaches mu N.
+//! ```
+//! use tribofe::{interface::law::Law, scene::Scene, studies::slide};
+//!
+//! let opts = slide::SlideOptions { law: Law::coulomb(0.5)?, ..Default::default() };
+//! let r = slide::run(&Scene::default(), &opts, &|_| {})?;
+//! let f_max = r.run.states.iter().map(|s| s.f).fold(0.0, f64::max);
+//! assert!((f_max - 0.5).abs() < 1e-9);
+//! # Ok::<(), tribofe::Error>(())
+//! ```
 
 pub mod analytical;
 pub mod error;
