@@ -40,9 +40,20 @@ fn every_subcommand_runs_and_writes_what_it_names() {
             &["corners.csv", "corners.svg", "summary.txt"],
         ),
         (
-            &["slide", "--length", "0.05", "--h", "0.001", "--law", "coulomb", "--mu", "0.5", "--out", "sl"],
+            &[
+                "slide", "--length", "0.05", "--h", "0.001", "--law", "coulomb", "--mu", "0.5", "--fields",
+                "1", "--out", "sl",
+            ],
             "sl",
-            &["loading.csv", "events.csv", "states.csv", "fig4_fe.svg", "fronts.svg", "run.toml"],
+            &[
+                "loading.csv",
+                "events.csv",
+                "states.csv",
+                "fig4_fe.svg",
+                "fronts.svg",
+                "run.toml",
+                "fields.pvd",
+            ],
         ),
         (&["sweep", "--length", "0.05", "--thickness", "0.002,0.004", "--out", "sw"], "sw", &["sweep.csv"]),
         (&["precursors", "--out", "pr"], "pr", &["events.csv", "loading.csv", "fig4.svg"]),

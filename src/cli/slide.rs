@@ -48,6 +48,10 @@ pub struct Args {
     /// Cap on events (each keeps the interface state: ~40 bytes per node).
     #[arg(long, default_value_t = 50_000)]
     pub max_events: usize,
+    /// Write the whole block's fields (fields_<state>.vtu, fields.pvd) for this many states
+    /// spread evenly over the run, first and last included (0: none).
+    #[arg(long, default_value_t = 0)]
+    pub fields: usize,
     /// Output directory.
     #[arg(long, default_value = "out/slide")]
     pub out: PathBuf,
@@ -153,6 +157,10 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     header.push_str(&tribofe::report::scene_section(&scene)?);
     let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
     tribofe::report::slide::write(&res, dir.path(), &header)?;
+    if a.fields > 0 {
+        let picks = tribofe::report::slide::spread(res.run.states.len(), a.fields);
+        tribofe::report::slide::write_fields(&res, &picks, dir.path(), &Default::default())?;
+    }
     dir.commit()?;
     let worst = res.run.states.iter().map(|s| s.violations.max()).fold(0.0, f64::max);
     let last = res.run.states.last().ok_or_else(|| Error::input("slide", "the run recorded no state"))?;
@@ -210,8 +218,9 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         );
     }
     outln!(
-        "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml}}",
-        a.out.display()
+        "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml{}}}",
+        a.out.display(),
+        if a.fields > 0 { ", fields_*.vtu, fields.pvd" } else { "" }
     );
     Ok(())
 }

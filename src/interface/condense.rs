@@ -14,7 +14,7 @@ use crate::fem::assembly::Assembler;
 use crate::fem::constraints::dof;
 use crate::linalg::solve::Solver;
 use crate::linalg::solve::SolverOptions;
-use crate::scene::{PlateModel, Scene};
+use crate::scene::{PlateModel, Scene, SceneModel};
 use rayon::prelude::*;
 
 /// The condensed block + plate.
@@ -76,8 +76,11 @@ fn check_element(scene: &Scene) -> Result<()> {
     }
 }
 
-/// Condenses the scene's block and rigid plate (the loading height of `scene` is ignored).
-pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
+/// The scene's block and rigid plate with every boundary DOF prescribed (the interface's u
+/// then v, in x order, then the plate's U0 at the block top, V0 and theta), and those DOFs
+/// in boundary order: the model the condensation, and the fields of any interface state,
+/// are computed on.
+pub fn boundary_model(scene: &Scene) -> Result<(SceneModel, Vec<usize>)> {
     check_element(scene)?;
     if scene.plate.model != PlateModel::Rigid {
         return Err(Error::input(
@@ -91,19 +94,26 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
     let mut sm = sc.build()?;
     let th = sm.dof_theta.expect("rigid plate has theta");
     sm.constraints.fix(th);
-    let model = sm.model();
-    let n = sm.interface.len();
-    if n < 3 {
+    if sm.interface.len() < 3 {
         return Err(Error::input("mesh", "the interface needs at least 3 nodes"));
     }
     let mut bdofs: Vec<usize> = sm.interface.iter().map(|&k| dof(k, 0)).collect();
     bdofs.extend(sm.interface.iter().map(|&k| dof(k, 1)));
     bdofs.extend([sm.dof_u, sm.dof_v, th]);
+    let nf = sm.constraints.n_fixed();
+    if nf != bdofs.len() {
+        return Err(Error::input("scene", format!("{nf} prescribed DOFs, expected {}", bdofs.len())));
+    }
+    Ok((sm, bdofs))
+}
+
+/// Condenses the scene's block and rigid plate (the loading height of `scene` is ignored).
+pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
+    let (sm, bdofs) = boundary_model(scene)?;
+    let model = sm.model();
+    let n = sm.interface.len();
     let nd = bdofs.len();
     let nf = sm.constraints.n_fixed();
-    if nf != nd {
-        return Err(Error::input("scene", format!("{nf} prescribed DOFs, expected {nd}")));
-    }
     let slots: Vec<usize> = bdofs.iter().map(|&d| sm.constraints.fixed_slot(d).unwrap()).collect();
     // One assembly and factorisation; the 2n + 3 right-hand sides -T^T K G e_j are built here
     // from the few elements each unit value touches (the pipeline's per-case assembly of

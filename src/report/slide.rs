@@ -1,13 +1,16 @@
 //! Output of `tribofe slide`: loading.csv, events.csv, states.csv (names and columns read by
 //! scripts: keep them), fig4_fe.svg (loading curve F against F^c with the paper's analytic
-//! iteration for the same r, g) and fronts.svg (slip extents x/L against F/N).
+//! iteration for the same r, g), fronts.svg (slip extents x/L against F/N) and, on request,
+//! a ParaView series of the whole block's fields.
 
 use crate::error::Result;
 use crate::interface::events::{NodeState, Phase};
 use crate::interface::law::Law;
+use crate::io::{vtu, Field};
+use crate::linalg::solve::SolverOptions;
 use crate::report::precursors::render;
 use crate::report::{finite, write_atomic};
-use crate::studies::slide::SlideResult;
+use crate::studies::slide::{state_displacements, SlideResult};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -254,6 +257,54 @@ pub fn write(r: &SlideResult, dir: &Path, header: &str) -> Result<Vec<PathBuf>> 
         out.push(p);
     }
     Ok(out)
+}
+
+/// The whole block through the run for ParaView: `fields_<state>.vtu` for each picked state
+/// (displacement, nodal stresses, von Mises, and `interface_state`: 0 stick, 1 slip, 2 open,
+/// -1 off the interface) and `fields.pvd`, whose timestep is the state index (X repeats while
+/// an instability relaxes at fixed X).
+pub fn write_fields(
+    r: &SlideResult,
+    picks: &[usize],
+    dir: &Path,
+    opts: &SolverOptions,
+) -> Result<Vec<PathBuf>> {
+    let (sm, us) = state_displacements(r, picks, opts)?;
+    let model = sm.model();
+    let mut written = Vec::new();
+    for (&k, u) in picks.iter().zip(&us) {
+        let mut state = vec![-1.0; sm.mesh.n_nodes()];
+        for (&node, s) in sm.interface.iter().zip(&r.run.states[k].states) {
+            state[node] = match s {
+                NodeState::Stick => 0.0,
+                NodeState::Slip(_) => 1.0,
+                NodeState::Open => 2.0,
+            };
+        }
+        let mut point = Field::solution_fields(&model, u);
+        point.push(Field::scalar("interface_state", state));
+        let path = dir.join(format!("fields_{k:06}.vtu"));
+        vtu::write_vtu(&path, &sm.mesh, &point, &[])?;
+        written.push(path);
+    }
+    let entries: Vec<(f64, &Path)> =
+        picks.iter().zip(&written).map(|(&k, p)| (k as f64, p.as_path())).collect();
+    vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
+    written.push(dir.join("fields.pvd"));
+    Ok(written)
+}
+
+/// `k` state indices spread evenly over `n` states, the first and last included.
+pub fn spread(n: usize, k: usize) -> Vec<usize> {
+    match (n, k) {
+        (0, _) | (_, 0) => vec![],
+        (_, 1) => vec![n - 1],
+        _ => {
+            let mut v: Vec<usize> = (0..k).map(|i| (i * (n - 1) + (k - 1) / 2) / (k - 1)).collect();
+            v.dedup();
+            v
+        }
+    }
 }
 
 /// Counts of each event kind, in first-seen order.

@@ -2,11 +2,12 @@
 //! X at height H) -> events, states and classified events, as plain data.
 
 use crate::error::{Error, Result};
-use crate::interface::condense::{condense, Condensed};
+use crate::fem::problem::{solve, LoadCase};
+use crate::interface::condense::{boundary_model, condense, Condensed};
 use crate::interface::events::{run as run_events, NodeState, Problem, Run};
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneModel};
 use std::time::Instant;
 
 #[derive(Debug, Clone)]
@@ -95,6 +96,42 @@ pub fn run_condensed(
         condense_s,
         events_s: clock.elapsed().as_secs_f64(),
     })
+}
+
+/// Displacements of the whole block and plate in the given states (indices into
+/// `res.run.states`): every interface and plate DOF prescribed at the state's value, one
+/// factorisation, one right-hand side per state. Returns the model they live on (the plate's
+/// U is referred to the block top there) and one full displacement vector per state, m.
+pub fn state_displacements(
+    res: &SlideResult,
+    states: &[usize],
+    opts: &SolverOptions,
+) -> Result<(SceneModel, Vec<Vec<f64>>)> {
+    let (sm, bdofs) = boundary_model(&res.scene)?;
+    let n = res.condensed.n;
+    if sm.interface.len() != n {
+        return Err(Error::input("scene", "the result's interface does not match its scene's mesh"));
+    }
+    let nf = sm.constraints.n_fixed();
+    let slots: Vec<usize> = bdofs.iter().map(|&d| sm.constraints.fixed_slot(d).unwrap()).collect();
+    // The states' U is at height H; the model's at the block top: U0 = U_H + (H - t) theta.
+    let arm = res.scene.loading.height - res.scene.block.thickness;
+    let cases = states
+        .iter()
+        .map(|&k| {
+            let st = res.run.states.get(k).ok_or_else(|| {
+                Error::input("state", format!("{k} is past the last state ({})", res.run.states.len()))
+            })?;
+            let b = st.u.iter().chain(&st.gap).copied().chain([st.x + arm * st.tilt, st.v, st.tilt]);
+            let mut g = vec![0.0; nf];
+            for (slot, v) in slots.iter().zip(b) {
+                g[*slot] = v;
+            }
+            Ok(LoadCase { prescribed: g, forces: vec![] })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let sol = solve(&sm.model(), &sm.constraints, &cases, opts, "")?;
+    Ok((sm, sol.u))
 }
 
 /// Coefficients from the paper's (r, g) at the scene's H/L: mu_d = g L/(6 H), mu_s = mu_d/r.
