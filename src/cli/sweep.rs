@@ -62,6 +62,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         }
     }
     let base = scene(&flat)?;
+    tribofe::report::outdir::check(&args.out)?;
     let shard = match &args.shard {
         None => None,
         Some(s) => {
@@ -116,12 +117,18 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         None => "sweep.csv".to_string(),
     };
     let with_header = shard.is_none_or(|(i, _)| i == 1);
-    tribofe::report::write_atomic(
-        &args.out.join(&name),
-        tribofe::report::sweep::csv(&points, with_header)?.as_bytes(),
-    )?;
-    let maps =
-        if shard.is_none() { tribofe::report::sweep::write_maps(&points, &axes, &args.out)? } else { vec![] };
+    let table = tribofe::report::sweep::csv(&points, with_header)?;
+    let maps = if shard.is_some() {
+        // Shards of one sweep share the folder (a Slurm array): each writes its own file, whole.
+        tribofe::report::write_atomic(&args.out.join(&name), table.as_bytes())?;
+        vec![]
+    } else {
+        let dir = tribofe::report::outdir::OutDir::begin(&args.out)?;
+        tribofe::report::write_atomic(&dir.path().join(&name), table.as_bytes())?;
+        let maps = tribofe::report::sweep::write_maps(&points, &axes, dir.path())?;
+        dir.commit()?;
+        maps
+    };
     let cases: usize = points.iter().map(|p| p.result.cases.len()).sum();
     let holds = points.iter().flat_map(|p| &p.verdicts).filter(|v| v.holds()).count();
     outln!(
