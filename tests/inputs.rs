@@ -185,6 +185,14 @@ fn size_guard_refuses_before_meshing() {
     let o = tribofe(&["converge", "--max-dofs", "0", "--out", d.join("cv").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(!d.join("cv").exists());
+    // A frictional interface of 2e5 nodes: 1.2e6 FE unknowns pass, the dense condensed system
+    // (4 x (4e5)^2 doubles, 5 TB) does not.
+    let sl = d.join("sl");
+    let o =
+        tribofe(&["slide", "--length", "20", "--h", "1e-4", "--n-thick", "2", "--out", sl.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.code() == Some(2) && err.contains("200001 nodes") && err.contains("--h"), "{err}");
+    assert!(!sl.exists());
 }
 
 #[test]

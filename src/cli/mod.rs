@@ -15,6 +15,7 @@ macro_rules! outln {
 mod bench;
 mod check;
 mod converge;
+mod edges;
 mod precursors;
 mod scene_args;
 mod slide;
@@ -59,6 +60,9 @@ pub enum Command {
     /// Frictional interface (coulomb, static-kinetic, slip-weakening): N then X at height H, solved event by event.
     #[command(allow_negative_numbers = true)]
     Slide(slide::Args),
+    /// The block's ends on the frictional interface: pre-slip under N vs refinement, trailing-end opening vs the first precursor.
+    #[command(allow_negative_numbers = true)]
+    Edges(edges::Args),
     /// Pipeline benchmark: phase times, sizes, GFLOP/s and peak memory on ~1e6-DOF problems.
     #[command(allow_negative_numbers = true)]
     Bench(bench::Args),
@@ -125,6 +129,7 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Converge(a) => converge::run(a),
         Command::Precursors(args) => precursors::run(args),
         Command::Slide(a) => slide::run(a),
+        Command::Edges(a) => edges::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
         Command::Sweep(a) => sweep::run(a),

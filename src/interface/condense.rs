@@ -97,6 +97,7 @@ pub fn boundary_model(scene: &Scene) -> Result<(SceneModel, Vec<usize>)> {
     if sm.interface.len() < 3 {
         return Err(Error::input("mesh", "the interface needs at least 3 nodes"));
     }
+    crate::scene::limits::check_interface(sm.interface.len())?;
     let mut bdofs: Vec<usize> = sm.interface.iter().map(|&k| dof(k, 0)).collect();
     bdofs.extend(sm.interface.iter().map(|&k| dof(k, 1)));
     bdofs.extend([sm.dof_u, sm.dof_v, th]);

@@ -3,6 +3,7 @@
 
 pub mod check;
 pub mod convergence;
+pub mod edges;
 pub mod outdir;
 pub mod precursors;
 pub mod slide;

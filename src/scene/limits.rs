@@ -54,3 +54,29 @@ pub fn check(dofs: f64, limit: Option<usize>, suggestion: impl FnOnce(f64) -> St
     }
     Ok(())
 }
+
+/// Dense matrices of (2n + 3)^2 doubles a frictional run holds at once: the condensed S, its
+/// copy at the drive height, the inverse of the free system, and one spare (a parallel study's
+/// clone).
+pub const DENSE_COPIES: f64 = 4.0;
+
+/// Refuses a frictional interface of `n` nodes whose dense condensed system would not fit in
+/// half this machine's memory, naming the size and what to change.
+pub fn check_interface(n: usize) -> Result<()> {
+    let nd = (2 * n + 3) as f64;
+    let need = DENSE_COPIES * nd * nd * 8.0;
+    let have = 0.5 * total_bytes();
+    if need > have {
+        let gib = |b: f64| b / (1u64 << 30) as f64;
+        return Err(Error::input(
+            "mesh.h (--h)",
+            format!(
+                "the frictional interface would have {n} nodes: its dense condensed system needs about {:.1} GiB ({DENSE_COPIES} matrices of (2n + 3)^2 doubles), above half this machine's memory ({:.1} GiB); make h along the interface {:.1}x larger or the block shorter",
+                gib(need),
+                gib(have),
+                (need / have).sqrt()
+            ),
+        ));
+    }
+    Ok(())
+}

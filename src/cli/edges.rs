@@ -1,0 +1,119 @@
+//! `tribofe edges`: the block's ends on the frictional interface (pre-slip under N alone
+//! against refinement; the trailing end's opening against the first precursor).
+
+use super::scene_args::{scene as scene_from, SceneArgs};
+use clap::Args as ClapArgs;
+use std::path::PathBuf;
+use tribofe::interface::law::Rule;
+use tribofe::studies::edges::{opening, preslip};
+use tribofe::Error;
+
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Coulomb coefficients of the pre-slip study.
+    #[arg(long, value_delimiter = ',', default_value = "0.3,0.65")]
+    pub mu: Vec<f64>,
+    /// Elements through the thickness (t/h, uniform mesh) of the pre-slip study.
+    #[arg(long, value_delimiter = ',', default_value = "2,4,8,16")]
+    pub refine: Vec<usize>,
+    /// Static and kinetic coefficients of the opening study (default: the paper's r = 0.9,
+    /// g = 0.35 at H/L = 0.1: mu_s = 0.6481, mu_d = 0.5833).
+    #[arg(long, default_value_t = 0.35 / 0.6 / 0.9)]
+    pub mu_s: f64,
+    #[arg(long, default_value_t = 0.35 / 0.6)]
+    pub mu_d: f64,
+    /// Event rule of the opening study: paper or overdamped.
+    #[arg(long, default_value = "paper")]
+    pub rule: String,
+    /// Thickness ratios t/L of the opening study (h = t/2, as the paper's 1 mm on 2 mm).
+    #[arg(long, value_delimiter = ',', default_value = "0.02,0.01,0.005,0.0025")]
+    pub t_over_l: Vec<f64>,
+    /// Drive heights H/L of the opening study.
+    #[arg(long, value_delimiter = ',', default_value = "0.025,0.05,0.1,0.2")]
+    pub h_over_l: Vec<f64>,
+    #[arg(long, default_value = "out/edges")]
+    pub out: PathBuf,
+}
+
+pub fn run(a: Args) -> tribofe::Result<()> {
+    let s = &a.scene;
+    for (flag, given) in [
+        ("--h", s.h.is_some()),
+        ("--grading", s.grading.is_some()),
+        ("--h-max", s.h_max.is_some()),
+        ("--n-thick", s.n_thick.is_some()),
+        ("--height", s.height.is_some()),
+        ("--fn-ratios", s.fn_ratios.is_some()),
+        ("--tol", s.tol.is_some()),
+    ] {
+        if given {
+            return Err(Error::input(
+                flag,
+                "cannot act in `edges`: the meshes come from --refine (pre-slip) and --t-over-l (h = t/2), the heights from --h-over-l",
+            ));
+        }
+    }
+    let scene = scene_from(&a.scene)?;
+    if scene.mesh.file.is_some() {
+        return Err(Error::input("--mesh", "`edges` builds its own meshes; a mesh file cannot act"));
+    }
+    if let Some(k) = a.refine.iter().find(|&&k| k < 2) {
+        return Err(Error::input(
+            "--refine",
+            format!("{k}: the condensation needs at least 2 elements through t"),
+        ));
+    }
+    let rule: Rule = a.rule.parse()?;
+    tribofe::report::outdir::check(&a.out)?;
+    let pre = preslip(&scene, &a.mu, &a.refine)?;
+    let open = opening(&scene, a.mu_s, a.mu_d, rule, &a.t_over_l, &a.h_over_l)?;
+    let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
+    let args: Vec<String> = std::env::args().collect();
+    let files = [
+        ("preslip.csv", tribofe::report::edges::preslip_csv(&pre)?),
+        ("preslip.svg", tribofe::report::edges::preslip_svg(&pre)?),
+        ("opening.csv", tribofe::report::edges::opening_csv(&open)?),
+        (
+            "run.toml",
+            format!(
+                "# written by tribofe {} edges\ncommand = {:?}\nmu_s = {}\nmu_d = {}\nrule = {:?}\n\n{}",
+                env!("CARGO_PKG_VERSION"),
+                args.join(" "),
+                a.mu_s,
+                a.mu_d,
+                a.rule,
+                tribofe::report::scene_section(&scene)?
+            ),
+        ),
+    ];
+    for (name, text) in files {
+        tribofe::report::write_atomic(&dir.path().join(name), text.as_bytes())?;
+    }
+    dir.commit()?;
+    outln!("pre-slip under N alone (coulomb), extent from the left / right end in units of t:");
+    outln!("    mu   t/h  nodes    left   right");
+    for r in &pre {
+        outln!("{:>6} {:>5} {:>6} {:>7.3} {:>7.3}", r.mu, r.t_over_h, r.nodes, r.extent_t[0], r.extent_t[1]);
+    }
+    let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+    outln!("trailing end under the drive (static-kinetic mu_s = {:.4}, mu_d = {:.4}, rule {}), F in units of mu_s N:", a.mu_s, a.mu_d, a.rule);
+    outln!("   t/L    H/L      g  F1 model  F open  open/t  F1 FE  max open/t  opens first");
+    for r in &open {
+        outln!(
+            "{:>6} {:>6} {:>6.3} {:>9.4} {:>7} {:>7} {:>6} {:>11.3} {:>12}",
+            r.t_over_l,
+            r.h_over_l,
+            r.g,
+            r.f1_model,
+            f(r.f_open),
+            r.open_length_t.map_or("-".into(), |v| format!("{v:.2}")),
+            f(r.f1_fe),
+            r.max_open_t,
+            r.opens_first()
+        );
+    }
+    outln!("wrote {}/{{preslip.csv, preslip.svg, opening.csv, run.toml}}", a.out.display());
+    Ok(())
+}

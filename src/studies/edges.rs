@@ -1,0 +1,162 @@
+//! The block's ends on the frictional interface: how far they pre-slip under N alone (which
+//! must converge under refinement, unlike the bonded end values), and whether the trailing
+//! end opens under the drive before the first precursor, over t/L and H/L.
+
+use crate::error::{Error, Result};
+use crate::interface::condense::condense;
+use crate::interface::events::{NodeState, Phase};
+use crate::interface::law::{Law, Rule};
+use crate::linalg::solve::SolverOptions;
+use crate::scene::Scene;
+use crate::studies::slide::{compare_paper, run_condensed, SlideOptions, SlideResult};
+use rayon::prelude::*;
+
+/// Pre-slip under N alone, on one mesh.
+#[derive(Debug, Clone)]
+pub struct Preslip {
+    pub mu: f64,
+    /// Elements through the thickness (t/h) and interface nodes.
+    pub t_over_h: f64,
+    pub nodes: usize,
+    /// Slipping length from the left and right end, in units of t: from the end to midway
+    /// between the last slipping and the first stuck node (0 when the end node sticks).
+    pub extent_t: [f64; 2],
+}
+
+/// Pre-slip extents at both ends for each coulomb `mu` and each refinement t/h (the scene's
+/// other values kept; the mesh uniform with h = t / (t/h)).
+pub fn preslip(scene: &Scene, mus: &[f64], t_over_h: &[usize]) -> Result<Vec<Preslip>> {
+    let t = scene.block.thickness;
+    let mut rows = Vec::new();
+    for &k in t_over_h {
+        let mut sc = scene.clone();
+        sc.mesh.h = t / k as f64;
+        sc.mesh.n_thick = Some(k);
+        sc.check_size()?;
+        let c = condense(&sc, &SolverOptions::default())?;
+        let found: Vec<Preslip> = mus
+            .par_iter()
+            .map(|&mu| {
+                // Any X ends the normal phase; the state after N alone is the last normal one.
+                let o = SlideOptions { law: Law::coulomb(mu)?, x_max: Some(1e-9 * t), ..Default::default() };
+                let r = run_condensed(&sc, c.clone(), 0.0, &o, &|_| {})?;
+                let st = r
+                    .run
+                    .states
+                    .iter()
+                    .rfind(|s| s.phase == Phase::Normal)
+                    .ok_or_else(|| Error::input("edges", "the run recorded no state under N alone"))?;
+                // From an end inwards: the distance to midway between the last slipping node
+                // and the first that does not slip.
+                let ext = |order: Vec<usize>| -> f64 {
+                    let end = c.x[order[0]];
+                    let k = order.iter().take_while(|&&i| matches!(st.states[i], NodeState::Slip(_))).count();
+                    match k {
+                        0 => 0.0,
+                        k if k == order.len() => c.l / t,
+                        k => (0.5 * (c.x[order[k - 1]] + c.x[order[k]]) - end).abs() / t,
+                    }
+                };
+                Ok(Preslip {
+                    mu,
+                    t_over_h: k as f64,
+                    nodes: c.n,
+                    extent_t: [ext((0..c.n).collect()), ext((0..c.n).rev().collect())],
+                })
+            })
+            .collect::<Result<_>>()?;
+        rows.extend(found);
+    }
+    Ok(rows)
+}
+
+/// The trailing end under the drive (static-kinetic, one geometry).
+#[derive(Debug, Clone)]
+pub struct Opening {
+    pub t_over_l: f64,
+    pub h_over_l: f64,
+    /// The paper's g = 6 mu_d H/L, and its first precursor force F_1/(mu_s N).
+    pub g: f64,
+    pub f1_model: f64,
+    /// F/(mu_s N) when a node first opens (None: none opens before the first whole slip),
+    /// and the open length from the trailing end then, in units of t.
+    pub f_open: Option<f64>,
+    pub open_length_t: Option<f64>,
+    /// F/(mu_s N) of the first precursor longer than 5 t (None: none before the first whole slip).
+    pub f1_fe: Option<f64>,
+    /// Largest open length from the trailing end before the first whole slip, in units of t.
+    pub max_open_t: f64,
+}
+
+impl Opening {
+    /// The trailing end opens before the first precursor (or opens with none at all).
+    pub fn opens_first(&self) -> bool {
+        match (self.f_open, self.f1_fe) {
+            (Some(o), Some(f)) => o < f,
+            (Some(_), None) => true,
+            _ => false,
+        }
+    }
+}
+
+/// Open length from the trailing end of a state, in units of t.
+fn open_length_t(r: &SlideResult, k: usize) -> f64 {
+    let c = &r.condensed;
+    let st = &r.run.states[k];
+    let m = st.states.iter().take_while(|s| **s == NodeState::Open).count();
+    if m == 0 {
+        0.0
+    } else {
+        (0.5 * (c.x[m - 1] + c.x[m.min(c.n - 1)]) - c.x[0]) / c.t
+    }
+}
+
+/// For each t/L (h = t/2, the paper's 1 mm on 2 mm) and each H/L (one condensation per t/L),
+/// static-kinetic with `mu_s`, `mu_d`, `rule`, driven to the first whole-interface slip.
+pub fn opening(
+    scene: &Scene,
+    mu_s: f64,
+    mu_d: f64,
+    rule: Rule,
+    t_over_l: &[f64],
+    h_over_l: &[f64],
+) -> Result<Vec<Opening>> {
+    let law = Law::static_kinetic(mu_s, mu_d, rule)?;
+    let l = scene.block.length;
+    let mut rows = Vec::new();
+    for &tl in t_over_l {
+        let mut sc = scene.clone();
+        sc.block.thickness = tl * l;
+        sc.mesh.h = tl * l / 2.0;
+        sc.mesh.n_thick = Some(2);
+        sc.validate()?;
+        sc.check_size()?;
+        let c = condense(&sc, &SolverOptions::default())?;
+        let found: Vec<Opening> = h_over_l
+            .par_iter()
+            .map(|&hl| {
+                let mut s = sc.clone();
+                s.loading.height = hl * l;
+                s.validate()?;
+                let o = SlideOptions { law, cycles: 1, ..Default::default() };
+                let r = run_condensed(&s, c.clone(), 0.0, &o, &|_| {})?;
+                let cmp = compare_paper(&r).ok_or_else(|| Error::input("edges", "no paper comparison"))?;
+                let first_slide =
+                    r.run.events.iter().position(|e| e.kind == "sliding").unwrap_or(r.run.events.len());
+                let k_open = (0..first_slide).find(|&k| r.run.states[k].states[0] == NodeState::Open);
+                Ok(Opening {
+                    t_over_l: tl,
+                    h_over_l: hl,
+                    g: cmp.g,
+                    f1_model: cmp.f1,
+                    f_open: k_open.map(|k| r.run.states[k].f / (mu_s * o.n_force)),
+                    open_length_t: k_open.map(|k| open_length_t(&r, k)),
+                    f1_fe: cmp.f1_fe,
+                    max_open_t: (0..first_slide).map(|k| open_length_t(&r, k)).fold(0.0, f64::max),
+                })
+            })
+            .collect::<Result<_>>()?;
+        rows.extend(found);
+    }
+    Ok(rows)
+}
