@@ -27,9 +27,12 @@ pub struct Args {
     /// Event rule of the opening study: paper or overdamped.
     #[arg(long, default_value = "paper")]
     pub rule: String,
-    /// Thickness ratios t/L of the opening study (h = t/2, as the paper's 1 mm on 2 mm).
+    /// Thickness ratios t/L of the opening study.
     #[arg(long, value_delimiter = ',', default_value = "0.02,0.01,0.005,0.0025")]
     pub t_over_l: Vec<f64>,
+    /// Elements through the thickness (t/h) of the opening study.
+    #[arg(long, value_delimiter = ',', default_value = "2")]
+    pub open_refine: Vec<usize>,
     /// Drive heights H/L of the opening study.
     #[arg(long, value_delimiter = ',', default_value = "0.025,0.05,0.1,0.2")]
     pub h_over_l: Vec<f64>,
@@ -59,7 +62,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     if scene.mesh.file.is_some() {
         return Err(Error::input("--mesh", "`edges` builds its own meshes; a mesh file cannot act"));
     }
-    if let Some(k) = a.refine.iter().find(|&&k| k < 2) {
+    if let Some(k) = a.refine.iter().chain(&a.open_refine).find(|&&k| k < 2) {
         return Err(Error::input(
             "--refine",
             format!("{k}: the condensation needs at least 2 elements through t"),
@@ -68,7 +71,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     let rule: Rule = a.rule.parse()?;
     tribofe::report::outdir::check(&a.out)?;
     let pre = preslip(&scene, &a.mu, &a.refine)?;
-    let open = opening(&scene, a.mu_s, a.mu_d, rule, &a.t_over_l, &a.h_over_l)?;
+    let open = opening(&scene, a.mu_s, a.mu_d, rule, &a.t_over_l, &a.open_refine, &a.h_over_l)?;
     let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
     let args: Vec<String> = std::env::args().collect();
     let files = [
@@ -99,11 +102,12 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     }
     let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
     outln!("trailing end under the drive (static-kinetic mu_s = {:.4}, mu_d = {:.4}, rule {}), F in units of mu_s N:", a.mu_s, a.mu_d, a.rule);
-    outln!("   t/L    H/L      g  F1 model  F open  open/t  F1 FE  max open/t  opens first");
+    outln!("   t/L  t/h    H/L      g  F1 model  F open  open/t  F1 FE  max open/t  opens first");
     for r in &open {
         outln!(
-            "{:>6} {:>6} {:>6.3} {:>9.4} {:>7} {:>7} {:>6} {:>11.3} {:>12}",
+            "{:>6} {:>4} {:>6} {:>6.3} {:>9.4} {:>7} {:>7} {:>6} {:>11.3} {:>12}",
             r.t_over_l,
+            r.t_over_h,
             r.h_over_l,
             r.g,
             r.f1_model,

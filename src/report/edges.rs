@@ -25,13 +25,14 @@ pub fn preslip_csv(rows: &[Preslip]) -> Result<String> {
 
 pub fn opening_csv(rows: &[Opening]) -> Result<String> {
     let mut s = String::from(
-        "t_over_L,H_over_L,g,F1_model_over_mu_s_N,F_open_over_mu_s_N,open_length_over_t,F1_fe_over_mu_s_N,max_open_length_over_t,opens_before_first_precursor\n",
+        "t_over_L,t_over_h,H_over_L,g,F1_model_over_mu_s_N,F_open_over_mu_s_N,open_length_over_t,F1_fe_over_mu_s_N,max_open_length_over_t,opens_before_first_precursor\n",
     );
     for r in rows {
         writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{}",
             r.t_over_l,
+            r.t_over_h,
             r.h_over_l,
             cell("g", Some(r.g))?,
             cell("F_1", Some(r.f1_model))?,

@@ -74,6 +74,8 @@ pub fn preslip(scene: &Scene, mus: &[f64], t_over_h: &[usize]) -> Result<Vec<Pre
 #[derive(Debug, Clone)]
 pub struct Opening {
     pub t_over_l: f64,
+    /// Elements through the thickness.
+    pub t_over_h: f64,
     pub h_over_l: f64,
     /// The paper's g = 6 mu_d H/L, and its first precursor force F_1/(mu_s N).
     pub g: f64,
@@ -111,24 +113,25 @@ fn open_length_t(r: &SlideResult, k: usize) -> f64 {
     }
 }
 
-/// For each t/L (h = t/2, the paper's 1 mm on 2 mm) and each H/L (one condensation per t/L),
-/// static-kinetic with `mu_s`, `mu_d`, `rule`, driven to the first whole-interface slip.
+/// For each t/L, refinement t/h (2: the paper's 1 mm on 2 mm) and H/L (one condensation per
+/// mesh), static-kinetic with `mu_s`, `mu_d`, `rule`, driven to the first whole-interface slip.
 pub fn opening(
     scene: &Scene,
     mu_s: f64,
     mu_d: f64,
     rule: Rule,
     t_over_l: &[f64],
+    t_over_h: &[usize],
     h_over_l: &[f64],
 ) -> Result<Vec<Opening>> {
     let law = Law::static_kinetic(mu_s, mu_d, rule)?;
     let l = scene.block.length;
     let mut rows = Vec::new();
-    for &tl in t_over_l {
+    for (&tl, &k) in t_over_l.iter().flat_map(|tl| t_over_h.iter().map(move |k| (tl, k))) {
         let mut sc = scene.clone();
         sc.block.thickness = tl * l;
-        sc.mesh.h = tl * l / 2.0;
-        sc.mesh.n_thick = Some(2);
+        sc.mesh.h = tl * l / k as f64;
+        sc.mesh.n_thick = Some(k);
         sc.validate()?;
         sc.check_size()?;
         let c = condense(&sc, &SolverOptions::default())?;
@@ -146,6 +149,7 @@ pub fn opening(
                 let k_open = (0..first_slide).find(|&k| r.run.states[k].states[0] == NodeState::Open);
                 Ok(Opening {
                     t_over_l: tl,
+                    t_over_h: k as f64,
                     h_over_l: hl,
                     g: cmp.g,
                     f1_model: cmp.f1,
