@@ -175,7 +175,7 @@ pub fn summary(study: &Study, tol: Option<f64>) -> String {
             ratios.join(", ")
         );
     }
-    let _ = theory(&mut s, study);
+    theory(&mut s, study);
     if !study.skipped.is_empty() {
         let _ = writeln!(s, "\nskipped (over the DOF budget): {}", study.skipped.join("; "));
     }
@@ -355,31 +355,22 @@ pub fn error_vs_time(study: &Study) -> Result<String> {
 
 /// The study next to the theory: Williams' corner exponent against the growth of the end
 /// values, and the clamped-strip decay modes against the decay fitted on the reference.
-fn theory(s: &mut String, study: &Study) -> Result<()> {
-    use crate::analytical::{strip, williams};
-    let nu = study.nu;
-    let lambda = williams::clamped_free_exponent(std::f64::consts::FRAC_PI_2, nu)?;
+fn theory(s: &mut String, study: &Study) {
+    let (nu, th) = (study.nu, &study.theory);
     let _ = writeln!(
         s,
         "  Williams (clamped-free 90-degree corner, plane strain, nu = {nu}): lambda = {:.4}, stress ~ r^-{:.4}, end values grow by 2^(1 - lambda) = {:.4} per halving of h",
-        lambda.re,
-        williams::singularity_exponent(lambda),
-        williams::refinement_growth(lambda)
+        th.lambda.re, th.singularity, th.growth_per_halving
     );
     let _ = writeln!(
         s,
         "  pollution (Babuska): the corner singularity limits every element, even quadratic ones, to order 2 lambda = {:.2} in the smooth zones (compare the orders above)",
-        2.0 * lambda.re
+        2.0 * th.lambda.re
     );
-    let rf = &study.runs[study.reference];
-    let k = crate::studies::convergence::decay_rates(rf, study.t_over_l, 1e-4);
+    let k = th.decay_fitted;
     let f = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.3}"));
     let _ = writeln!(s, "\nedge decay fitted on the reference, |deviation from the far field| ~ exp(-k d/t): k = p {}/{} (left/right), tau {}/{}", f(k[0]), f(k[1]), f(k[2]), f(k[3]));
-    for (name, fam) in
-        [("compression-class", strip::Family::Compression), ("shear-class", strip::Family::Shear)]
-    {
-        let root = strip::slowest_decay(nu, fam)?;
-        let _ = writeln!(s, "  strip clamped on both faces, {name} slowest mode: s t = {:.4}{:+.4}i, k = {:.3}, falls to 5 % within {:.2} t", root.re, root.im, root.re, strip::decay_distance_over_t(nu, fam, 0.05)?);
+    for (name, (root, dist)) in ["compression-class", "shear-class"].iter().zip(th.strip) {
+        let _ = writeln!(s, "  strip clamped on both faces, {name} slowest mode: s t = {:.4}{:+.4}i, k = {:.3}, falls to 5 % within {:.2} t", root.re, root.im, root.re, dist);
     }
-    Ok(())
 }

@@ -116,6 +116,40 @@ pub struct Study {
     /// Index of the reference run (most accurate), against which errors are measured.
     pub reference: usize,
     pub skipped: Vec<String>,
+    pub theory: Theory,
+}
+
+/// The closed forms the study is read against.
+#[derive(Debug, Clone)]
+pub struct Theory {
+    /// Williams' exponent of the clamped-free 90-degree corner (stress ~ r^(lambda - 1)),
+    /// the stress singularity exponent 1 - lambda and the end values' growth per halving of h.
+    pub lambda: crate::analytical::Complex,
+    pub singularity: f64,
+    pub growth_per_halving: f64,
+    /// Decay rates k of |deviation from the far field| ~ exp(-k d/t) fitted on the reference
+    /// (p left, p right, tau left, tau right).
+    pub decay_fitted: [Option<f64>; 4],
+    /// Slowest decay root s t of the strip clamped on both faces, and the distance (in t) over
+    /// which it falls to 5 %: compression class, then shear class.
+    pub strip: [(crate::analytical::Complex, f64); 2],
+}
+
+impl Theory {
+    fn new(nu: f64, reference: &Run, t_over_l: f64) -> Result<Self> {
+        use crate::analytical::{strip, williams};
+        let lambda = williams::clamped_free_exponent(std::f64::consts::FRAC_PI_2, nu)?;
+        let mode = |fam| -> Result<_> {
+            Ok((strip::slowest_decay(nu, fam)?, strip::decay_distance_over_t(nu, fam, 0.05)?))
+        };
+        Ok(Theory {
+            lambda,
+            singularity: williams::singularity_exponent(lambda),
+            growth_per_halving: williams::refinement_growth(lambda),
+            decay_fitted: decay_rates(reference, t_over_l, 1e-4),
+            strip: [mode(strip::Family::Compression)?, mode(strip::Family::Shear)?],
+        })
+    }
 }
 
 /// The scene variant of one run.
@@ -213,7 +247,8 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
     for r in &mut runs {
         r.errors = samples.errors(&r.x, &r.p, &r.tau, &rx, &rp, &rt);
     }
-    Ok(Study { nu: base.block.poisson, t_over_l, runs, reference, skipped })
+    let theory = Theory::new(base.block.poisson, &runs[reference], t_over_l)?;
+    Ok(Study { nu: base.block.poisson, t_over_l, runs, reference, skipped, theory })
 }
 
 fn to_run(family: Family, element: &str, n: usize, r: &CheckResult, wall: f64) -> Run {
