@@ -4,6 +4,11 @@
 mod cli;
 
 use clap::Parser;
+
+// The studies report their own peak heap (converge's peak_heap_mib) through this allocator.
+#[cfg(feature = "count-alloc")]
+#[global_allocator]
+static ALLOCATOR: tribofe::memory::CountingAlloc = tribofe::memory::CountingAlloc;
 use std::io::Write;
 use tribofe::error::exit;
 

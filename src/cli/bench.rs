@@ -69,7 +69,7 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
         return Err(tribofe::Error::input("--threads", "0: a run needs at least one thread"));
     }
     if let Some(dir) = &args.out {
-        tribofe::report::outdir::check(dir)?;
+        tribofe::io::outdir::check(dir)?;
     }
     // Three n x n matrices of f64 must fit in half the memory.
     let dgemm_bytes = 24.0 * (args.dgemm as f64).powi(2);
@@ -127,7 +127,7 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     }
     out!("{}", bench::table(&rows, &dgemm));
     if let Some(dir) = &args.out {
-        let d = tribofe::report::outdir::OutDir::begin(dir)?;
+        let d = tribofe::io::outdir::OutDir::begin(dir)?;
         bench::write_csv(&rows, &dgemm, d.path())?;
         d.commit()?;
         outln!("wrote {}/{{bench.csv, dgemm.csv}}", dir.display());

@@ -24,7 +24,7 @@ pub use super::scene_args::{scene, SceneArgs};
 
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = scene(&args.scene)?;
-    tribofe::report::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out)?;
     let opts = SolverOptions::default();
     let (res, sm) = tribofe::studies::check::run(&scene, &opts)?;
     // The converged figures need the exact rigid plate and the structured mesh of the scene.
@@ -39,7 +39,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     if let Some(c) = &converged {
         c.self_check()?;
     }
-    let dir = tribofe::report::outdir::OutDir::begin(&args.out)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
     tribofe::report::check::write(&res, converged.as_ref(), dir.path())?;
     if !args.no_fields {
         tribofe::report::check::write_fields(&res, &sm, dir.path())?;

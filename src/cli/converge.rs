@@ -53,7 +53,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         None => vec![1, 2, 4, 8, 16, 32, 64],
     };
     let scene = super::check::scene(&flat)?;
-    tribofe::report::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out)?;
     let families = args.families.iter().map(|f| f.parse::<Family>()).collect::<tribofe::Result<Vec<_>>>()?;
     let o = StudyOptions {
         elements: args.elements.clone(),
@@ -73,7 +73,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    let dir = tribofe::report::outdir::OutDir::begin(&args.out)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
     tribofe::report::convergence::write(&st, dir.path())?;
     dir.commit()?;
     out!("{}", tribofe::report::convergence::summary(&st, args.target));

@@ -69,10 +69,10 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         ));
     }
     let rule: Rule = a.rule.parse()?;
-    tribofe::report::outdir::check(&a.out)?;
+    tribofe::io::outdir::check(&a.out)?;
     let pre = preslip(&scene, &a.mu, &a.refine)?;
     let open = opening(&scene, a.mu_s, a.mu_d, rule, &a.t_over_l, &a.open_refine, &a.h_over_l)?;
-    let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&a.out)?;
     let args: Vec<String> = std::env::args().collect();
     let files = [
         ("preslip.csv", tribofe::report::edges::preslip_csv(&pre)?),

@@ -101,7 +101,7 @@ fn catch_interrupts() {
         let mut sig = 0;
         // SAFETY: `set` is an initialised signal set; sigwait only writes `sig`.
         if unsafe { libc::sigwait(&set, &mut sig) } == 0 {
-            tribofe::report::outdir::remove_temporaries();
+            tribofe::io::outdir::remove_temporaries();
             use std::io::Write;
             let _ = writeln!(std::io::stderr(), "error: {}", tribofe::Error::Interrupted);
             std::process::exit(tribofe::error::exit::INTERRUPTED);

@@ -33,7 +33,7 @@ pub struct SceneArgs {
     #[arg(long, value_delimiter = ',')]
     pub fn_ratios: Option<Vec<f64>>,
     /// Plate model: exact rigid body, or meshed elastic plate as in the paper.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = parse_plate, value_name = "rigid|elastic")]
     pub plate: Option<PlateModel>,
     /// Elastic plate thickness, m (default 0.048).
     #[arg(long)]
@@ -76,6 +76,15 @@ pub struct SceneArgs {
 /// both ends included, linear) or `a:b:ng` (geometric). Commands other than `sweep` take one.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Values(pub Vec<f64>);
+
+// The library's enum stays free of clap: the names are parsed here.
+fn parse_plate(s: &str) -> Result<PlateModel, String> {
+    match s {
+        "rigid" => Ok(PlateModel::Rigid),
+        "elastic" => Ok(PlateModel::Elastic),
+        _ => Err(format!("'{s}': use rigid or elastic")),
+    }
+}
 
 fn parse_values(s: &str) -> Result<Values, String> {
     tribofe::studies::sweep::parse_values(s).map(Values).map_err(|e| e.to_string())

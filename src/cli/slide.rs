@@ -117,7 +117,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         }
     }
     let scene = scene_from(&a.scene)?;
-    tribofe::report::outdir::check(&a.out)?;
+    tribofe::io::outdir::check(&a.out)?;
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
     }
@@ -155,7 +155,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     );
     header.push('\n');
     header.push_str(&tribofe::report::scene_section(&scene)?);
-    let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&a.out)?;
     tribofe::report::slide::write(&res, dir.path(), &header)?;
     if a.fields > 0 {
         let picks = tribofe::report::slide::spread(res.run.states.len(), a.fields);

@@ -54,7 +54,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         sides,
     };
     p.check_size(a.max_dofs)?;
-    tribofe::report::outdir::check(&a.out)?;
+    tribofe::io::outdir::check(&a.out)?;
     let r = p.solve()?;
     let model = tribofe::fem::assembly::Model {
         tech: p.element.tech,
@@ -82,7 +82,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         bal[1]
     );
     let fields = Field::solution_fields(&model, u);
-    let dir = tribofe::report::outdir::OutDir::begin(&a.out)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&a.out)?;
     write_vtu(&dir.path().join("fields.vtu"), &r.mesh, &fields, &[])?;
     write_msh(&dir.path().join("fields.msh"), &r.mesh, &fields, &[])?;
     dir.commit()?;

@@ -40,7 +40,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         }
     }
     let scene = super::check::scene(&args.scene)?;
-    tribofe::report::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out)?;
     let studies: Vec<String> = if args.study.is_empty() {
         STUDIES.iter().map(|s| s.to_string()).collect()
     } else {
@@ -58,7 +58,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    let dir = tribofe::report::outdir::OutDir::begin(&args.out)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
     let files = tribofe::report::stability::write(&res, dir.path())?;
     dir.commit()?;
     out!("{}", tribofe::report::stability::summary(&res));

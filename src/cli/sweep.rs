@@ -62,7 +62,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         }
     }
     let base = scene(&flat)?;
-    tribofe::report::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out)?;
     let shard = match &args.shard {
         None => None,
         Some(s) => {
@@ -123,7 +123,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         tribofe::report::write_atomic(&args.out.join(&name), table.as_bytes())?;
         vec![]
     } else {
-        let dir = tribofe::report::outdir::OutDir::begin(&args.out)?;
+        let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
         tribofe::report::write_atomic(&dir.path().join(&name), table.as_bytes())?;
         let maps = tribofe::report::sweep::write_maps(&points, &axes, dir.path())?;
         dir.commit()?;

@@ -6,6 +6,7 @@
 
 use crate::fem::constraints::Reduction;
 use crate::fem::mesh::Mesh;
+pub use crate::linalg::pattern::Bisection;
 use rayon::prelude::*;
 
 /// Regions with at most this many grid points are ordered line by line (short side fastest).
@@ -22,14 +23,6 @@ pub fn nested_dissection(mesh: &Mesh, red: &Reduction) -> Option<Vec<usize>> {
     let mut perm = free_unknowns(&free_index(red), &nodes);
     perm.extend(red.n_free_nodes..red.n_free());
     (perm.len() == red.n_free()).then_some(perm)
-}
-
-/// The first cut of [`nested_dissection`]: the reduced unknowns of the two halves, each in
-/// elimination order, and the separator (one grid line, then every extra DOF).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Bisection {
-    pub parts: [Vec<usize>; 2],
-    pub separator: Vec<usize>,
 }
 
 /// The grid's first nested-dissection cut, or None when the nodes do not form a grid or a

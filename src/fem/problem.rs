@@ -95,7 +95,8 @@ pub fn solve(
     let mut sol = prepared.solve(model, constraints, cases, opts, hint)?;
     sol.stats.timings.pattern = prepared.pattern_time;
     sol.stats.timings.symbolic = prepared.symbolic_time;
-    crate::memory::drop_in_background(prepared);
+    let bytes = prepared.asm.pattern.nnz() * std::mem::size_of::<usize>();
+    crate::memory::drop_in_background(prepared, bytes);
     sol.stats.timings.set_wall(clock.elapsed().as_secs_f64());
     Ok(sol)
 }
@@ -218,7 +219,8 @@ impl Prepared {
             .map(|(c, case)| red.expand(&x[c * n..(c + 1) * n], &case.prescribed))
             .collect();
         t.solve = clock.elapsed().as_secs_f64();
-        crate::memory::drop_in_background(values);
+        let bytes = values.len() * std::mem::size_of::<f64>();
+        crate::memory::drop_in_background(values, bytes);
         Ok(Solution {
             reduction: Arc::clone(&self.red),
             u,

@@ -254,7 +254,7 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
             hint: "refine the mesh or check the material values".into(),
         });
     }
-    let w = crate::studies::check::tributary_widths(&sm);
+    let w = sm.tributary_widths();
     let e_star = scene.block.young / (1.0 - scene.block.poisson.powi(2));
     Ok(Condensed { n, x, w, l: scene.block.length, t, e_star, s, asymmetry: asym, rigid_residual })
 }

@@ -3,6 +3,7 @@
 //! - [`gmsh`] reads Gmsh `.msh` meshes (MSH 4.1 and 2.2, ASCII and binary).
 //! - [`vtu`] writes VTK XML `.vtu` files and `.pvd` collections (ParaView).
 //! - [`gmsh_post`] writes the mesh and `$NodeData`/`$ElementData` views as MSH 4.1 (Gmsh).
+//! - [`outdir`] makes an output folder a unit (written aside, renamed into place).
 //!
 //! Writers take [`Field`]s, plain named arrays, so they do not depend on the solver, and
 //! write atomically: a temporary file in the target directory renamed into place, so a
@@ -10,6 +11,7 @@
 
 pub mod gmsh;
 pub mod gmsh_post;
+pub mod outdir;
 pub mod vtu;
 
 use crate::error::{Error, Result};
@@ -144,7 +146,7 @@ fn check_mesh(mesh: &Mesh) -> Result<()> {
 /// Writes `path` through a temporary file in the same directory, renamed into place only
 /// once `body` succeeded and the data reached the disk.
 fn write_atomic(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
-    let _writing = crate::report::outdir::write_guard();
+    let _writing = crate::io::outdir::write_guard();
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),

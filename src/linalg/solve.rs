@@ -4,8 +4,8 @@
 //! once or twice with the same factor if needed, and rejected if still not trustworthy.
 
 use crate::error::{Error, Result};
-use crate::fem::assembly::Pattern;
-use crate::fem::ordering::Bisection;
+use crate::linalg::pattern::Bisection;
+use crate::linalg::pattern::Pattern;
 use crate::linalg::substructure::{supernodal_flops, TwoDomain, TwoDomainFactor};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};

@@ -1,5 +1,5 @@
 //! Two-domain substructuring: the reduced unknowns split into two halves and the separator
-//! between them ([`crate::fem::ordering::bisection`]). Each half with the separator ordered last is
+//! between them (`fem::ordering::bisection`). Each half with the separator ordered last is
 //! a principal submatrix of K, hence positive definite. faer analyses each half and
 //! [`crate::linalg::multifrontal`] factorises the two at once, one per core: threads inside a front
 //! only help large dense fronts, which a thin strip lacks. The trailing block L_ss of each
@@ -9,9 +9,9 @@
 //! results.
 
 use crate::error::{Error, Result};
-use crate::fem::assembly::Pattern;
-use crate::fem::ordering::Bisection;
 use crate::linalg::multifrontal::{self, supernodal, AssemblyTree, DenseWork};
+use crate::linalg::pattern::Bisection;
+use crate::linalg::pattern::Pattern;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};

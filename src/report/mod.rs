@@ -4,7 +4,6 @@
 pub mod check;
 pub mod convergence;
 pub mod edges;
-pub mod outdir;
 pub mod precursors;
 pub mod slide;
 pub mod stability;
@@ -18,7 +17,7 @@ use std::path::Path;
 /// failure never leaves a partly written file. Creates missing parent directories; the
 /// temporary file is removed on failure.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let _writing = outdir::write_guard();
+    let _writing = crate::io::outdir::write_guard();
     let name = path
         .file_name()
         .ok_or_else(|| Error::input(format!("output path {}", path.display()), "has no file name"))?;

@@ -30,7 +30,7 @@ use crate::fem::mesher::{Grading, Rectangle};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum PlateModel {
     /// Exactly rigid: three unknowns (U, V, theta), every top node tied to them.
@@ -172,6 +172,21 @@ pub struct SceneModel {
 }
 
 impl SceneModel {
+    /// Integral of each interface node's shape function along the interface (m): the width
+    /// over which its consistent nodal force is spread (half the neighbouring edges for linear
+    /// elements; L/6 and 2L/3 per edge for quadratic ones).
+    pub fn tributary_widths(&self) -> Vec<f64> {
+        let mut w = vec![0.0; self.mesh.n_nodes()];
+        let mut f = vec![0.0; 2 * self.mesh.n_nodes()];
+        // A unit normal traction's consistent forces are exactly these integrals.
+        crate::fem::loads::add_edge_traction(&self.mesh, &self.interface_set, &|_| [0.0, 1.0], &mut f)
+            .expect("interface edges exist");
+        for k in 0..self.mesh.n_nodes() {
+            w[k] = f[2 * k + 1];
+        }
+        self.interface.iter().map(|&k| w[k]).collect()
+    }
+
     pub fn model(&self) -> Model<'_> {
         Model {
             mesh: &self.mesh,

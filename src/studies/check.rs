@@ -377,7 +377,7 @@ fn finish(
             "the unit load cases are degenerate (no normal force from pressing the plate)",
         ));
     }
-    let widths = tributary_widths(sm);
+    let widths = sm.tributary_widths();
     let xs: Vec<f64> = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
     let x_over_l: Vec<f64> = xs.iter().map(|x| x / l).collect();
     // Unit fields: combination giving (N, F) = (1, 0) and (0, 1).
@@ -497,21 +497,6 @@ fn plate_tilt(sm: &SceneModel, u: &[f64]) -> f64 {
         )
     });
     (u[2 * r + 1] - u[2 * l + 1]) / (sm.mesh.nodes[r][0] - sm.mesh.nodes[l][0])
-}
-
-/// Integral of each interface node's shape function along the interface (m): the width
-/// over which its consistent nodal force is spread (half the neighbouring edges for linear
-/// elements; L/6 and 2L/3 per edge for quadratic ones).
-pub fn tributary_widths(sm: &SceneModel) -> Vec<f64> {
-    let mut w = vec![0.0; sm.mesh.n_nodes()];
-    let mut f = vec![0.0; 2 * sm.mesh.n_nodes()];
-    // A unit normal traction's consistent forces are exactly these integrals.
-    crate::fem::loads::add_edge_traction(&sm.mesh, &sm.interface_set, &|_| [0.0, 1.0], &mut f)
-        .expect("interface edges exist");
-    for k in 0..sm.mesh.n_nodes() {
-        w[k] = f[2 * k + 1];
-    }
-    sm.interface.iter().map(|&k| w[k]).collect()
 }
 
 #[allow(clippy::too_many_arguments)]

@@ -214,7 +214,7 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
             .total_cmp(&(a.3.estimate_dofs().unwrap_or(0.0) + a.2 as f64))
     });
     let one = |(f, e, n, s): &(Family, String, usize, Scene)| -> Result<Run> {
-        let base = crate::memory::in_use_bytes();
+        let base = crate::memory::in_use_bytes().unwrap_or(0);
         if !o.parallel {
             crate::memory::reset_peak();
         }
@@ -223,7 +223,7 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
         let mut run = to_run(*f, e, *n, &r, clock.elapsed().as_secs_f64());
         if !o.parallel {
             run.peak_mib =
-                Some(crate::memory::peak_bytes().saturating_sub(base) as f64 / (1u64 << 20) as f64);
+                crate::memory::peak_bytes().map(|p| p.saturating_sub(base) as f64 / (1u64 << 20) as f64);
         }
         progress(&run);
         Ok(run)

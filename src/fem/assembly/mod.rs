@@ -7,8 +7,8 @@ mod model;
 mod pattern;
 mod scatter;
 
+pub use crate::linalg::pattern::Pattern;
 pub use model::Model;
-pub use pattern::Pattern;
 
 use crate::error::{Error, Result};
 use crate::fem::constraints::{Reduction, Target};
