@@ -1148,6 +1148,7 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
             (lo..=hi).for_each(|i| in_region[i] = true);
             sv.set_many(&ch)?;
             // Contact consistency of the relaxed state.
+            let mut settled = false;
             for _ in 0..cap {
                 let b = sv.solve()?;
                 let mut changed = false;
@@ -1159,14 +1160,20 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
                         break;
                     }
                     if sv.states[i] == NodeState::Open && g < -td {
-                        sv.set_state(i, NodeState::Stick, u_start[i])?;
+                        // It lands where it is now: sticking it at its position from before
+                        // the relaxation would drag it back, pull it off again, and cycle.
+                        sv.set_state(i, NodeState::Stick, b.b(i, lam))?;
                         changed = true;
                         break;
                     }
                 }
                 if !changed {
+                    settled = true;
                     break;
                 }
+            }
+            if !settled {
+                return Err(stuck_err("paper-rule relaxation (contact)", lam));
             }
         }
         Rule::Overdamped => {
@@ -1187,7 +1194,9 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
                         break;
                     }
                     if sv.states[i] == NodeState::Open && g < -td {
-                        sv.set_state(i, NodeState::Stick, u_start[i])?;
+                        // It lands where it is now: sticking it at its position from before
+                        // the relaxation would drag it back, pull it off again, and cycle.
+                        sv.set_state(i, NodeState::Stick, b.b(i, lam))?;
                         changed = true;
                         break;
                     }
