@@ -209,9 +209,10 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             c.f_max
         );
         outln!(
-            "FE: {} precursors before the first whole slip ({} longer than 5 t), first long one F = {}, x = {}; last peak F = {}",
+            "FE: {} precursors before the first whole slip ({} longer than 5 t, {} advancing the front by more than 5 t), first long one F = {}, x = {}; last peak F = {}",
             c.n_fe,
             c.n_fe_long,
+            c.n_fe_advancing,
             f(c.f1_fe),
             f(c.x1_fe),
             f(c.f_max_fe)

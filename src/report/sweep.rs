@@ -10,7 +10,7 @@ use std::path::Path;
 
 /// Columns of the frictional run (F in units of mu_s N, x in units of L): the FE's precursor
 /// counts, first long precursor and last stick-slip peak, then the paper's iteration.
-const FRICTION_HEADER: &str = "friction_r,friction_g,fe_precursors,fe_precursors_longer_5t,fe_F1_over_mu_s_N,fe_x1_over_L,fe_Fmax_over_mu_s_N,model_precursors,model_F1_over_mu_s_N,model_x1_over_L,model_Fmax_over_mu_s_N";
+const FRICTION_HEADER: &str = "friction_r,friction_g,fe_precursors,fe_precursors_longer_5t,fe_precursors_advancing_5t,fe_F1_over_mu_s_N,fe_x1_over_L,fe_Fmax_over_mu_s_N,model_precursors,model_F1_over_mu_s_N,model_x1_over_L,model_Fmax_over_mu_s_N";
 
 pub fn header(friction: bool) -> String {
     let inputs: Vec<&str> = Param::ALL.iter().map(|p| p.column()).collect();
@@ -63,6 +63,7 @@ pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
                         e(f.g),
                         f.n_fe.to_string(),
                         f.n_fe_long.to_string(),
+                        f.n_fe_advancing.to_string(),
                         opt(f.f1_fe),
                         opt(f.x1_fe),
                         opt(f.f_max_fe),
@@ -86,13 +87,13 @@ pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
 type Quantity = (&'static str, &'static str, fn(&Point, usize) -> Option<f64>);
 
 /// With the frictional run: the FE's last stick-slip peak against the model's F_max, and
-/// the FE's precursors longer than 5 t before the first whole slip.
+/// the FE's precursors that advance the front by more than 5 t before the first whole slip.
 const FRICTION_MAPS: [Quantity; 2] = [
     ("map_friction_fmax_ratio.svg", "stick-slip peak FE / model F_max", |p, _| {
         p.friction.and_then(|f| Some(f.f_max_fe? / f.f_max))
     }),
-    ("map_friction_precursors.svg", "FE precursors longer than 5 t", |p, _| {
-        p.friction.map(|f| f.n_fe_long as f64)
+    ("map_friction_precursors.svg", "FE precursors advancing the front > 5 t", |p, _| {
+        p.friction.map(|f| f.n_fe_advancing as f64)
     }),
 ];
 

@@ -80,31 +80,47 @@ pub struct Cell {
     pub r: f64,
     pub g: f64,
     pub n_model: usize,
-    /// Per rule (order of [`RULES`]): counted precursors, and those longer than 5 t; None
-    /// where the FE run refused (numerical refusal, e.g. an unsettled overdamped relaxation).
+    /// Per rule (order of [`RULES`]): counted precursors, those longer than 5 t, and those
+    /// advancing the front by more than 5 t (the mesh-stable count, [`crate::studies::slide::ADVANCE_T`]); None where
+    /// the FE run refused (a numerical refusal, or the event cap).
     pub n_fe: [Option<usize>; 2],
     pub n_fe_long: [Option<usize>; 2],
+    pub n_fe_advancing: [Option<usize>; 2],
 }
 
 /// n(r, g) at the centres of a `resolution` x `resolution` grid over (0,1)^2 (as
-/// [`crate::precursors::n_map`], g fastest), FE for both rules, cells in parallel, the
-/// interface condensed once.
-pub fn fig5(scene: &Scene, resolution: usize) -> Result<Vec<Cell>> {
+/// [`crate::precursors::n_map`], g fastest), FE for the `rules` given (the others stay None),
+/// cells in parallel, the interface condensed once; `progress` is called after each cell.
+pub fn fig5(
+    scene: &Scene,
+    resolution: usize,
+    rules: &[Rule],
+    progress: &(dyn Fn() + Sync),
+) -> Result<Vec<Cell>> {
     let model = crate::precursors::n_map(resolution)?;
     let c = condense(scene, &SolverOptions::default())?;
     model
         .par_iter()
         .map(|m| {
-            let mut cell = Cell { r: m.r, g: m.g, n_model: m.n, n_fe: [None; 2], n_fe_long: [None; 2] };
-            for (k, &rule) in RULES.iter().enumerate() {
+            let mut cell = Cell {
+                r: m.r,
+                g: m.g,
+                n_model: m.n,
+                n_fe: [None; 2],
+                n_fe_long: [None; 2],
+                n_fe_advancing: [None; 2],
+            };
+            for (k, &rule) in RULES.iter().enumerate().filter(|(_, r)| rules.contains(r)) {
                 let o = opts(scene, m.r, m.g, rule, 1)?;
                 if let Some(cmp) =
                     run_condensed(scene, c.clone(), 0.0, &o, &|_| {}).ok().and_then(|r| compare_paper(&r))
                 {
                     cell.n_fe[k] = Some(cmp.n_fe);
                     cell.n_fe_long[k] = Some(cmp.n_fe_long);
+                    cell.n_fe_advancing[k] = Some(cmp.n_fe_advancing);
                 }
             }
+            progress();
             Ok(cell)
         })
         .collect()

@@ -208,13 +208,21 @@ pub struct PaperComparison {
     pub x1: f64,
     pub f_max: f64,
     /// FE: precursors (events from the trailing edge) before the first whole-interface slip,
-    /// those longer than 5 t, the first of those (F, arrest x/L), and the last stick-slip peak.
+    /// those longer than 5 t, those that advance the front (see [`ADVANCE_T`]), the first long
+    /// one (F, arrest x/L), and the last stick-slip peak.
     pub n_fe: usize,
     pub n_fe_long: usize,
+    pub n_fe_advancing: usize,
     pub f1_fe: Option<f64>,
     pub x1_fe: Option<f64>,
     pub f_max_fe: Option<f64>,
 }
+
+/// A precursor counts as advancing the front when its arrest point lies more than this many t
+/// beyond the farthest arrest point of the precursors before it (the first: when it is longer
+/// than this): renucleations that stop within the edge zone or a few elements of the previous
+/// front are not the paper's precursors, and their number grows with refinement.
+pub const ADVANCE_T: f64 = 5.0;
 
 pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
     if !res.options.law.weakens() {
@@ -230,7 +238,17 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
     let first_slide = evs.iter().position(|e| e.kind == "sliding").unwrap_or(evs.len());
     let pre: Vec<_> = evs[..first_slide].iter().filter(|e| e.kind == "precursor").collect();
     let long: Vec<_> =
-        pre.iter().filter(|e| e.region.is_some_and(|(a, b)| c.x[b] - c.x[a] > 5.0 * c.t)).collect();
+        pre.iter().filter(|e| e.region.is_some_and(|(a, b)| c.x[b] - c.x[a] > ADVANCE_T * c.t)).collect();
+    let mut front = c.x[0];
+    let mut n_fe_advancing = 0;
+    for e in &pre {
+        if let Some((_, b)) = e.region {
+            if c.x[b] > front + ADVANCE_T * c.t {
+                n_fe_advancing += 1;
+                front = c.x[b];
+            }
+        }
+    }
     Some(PaperComparison {
         r,
         g,
@@ -240,6 +258,7 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
         f_max: p.f_max(),
         n_fe: pre.len(),
         n_fe_long: long.len(),
+        n_fe_advancing,
         f1_fe: long.first().map(|e| e.f / k),
         x1_fe: long.first().and_then(|e| e.region).map(|(_, b)| c.x[b] / c.l),
         f_max_fe: evs.iter().rfind(|e| e.kind == "sliding").map(|e| e.f / k),
