@@ -213,3 +213,49 @@ fn two_domains_name_a_free_body() {
         .to_string();
     assert!(err.contains("free to move"), "{err}");
 }
+
+/// Separator edge cases on a path graph (tridiagonal, diagonal 3, off-diagonal -1): one
+/// unknown between the halves, and no separator at all for two disconnected paths. The
+/// solution against A x = b to round-off (cond(A) < 5: ||r||_inf < 1e-14), and a matrix that
+/// is not positive definite names its unknown.
+#[test]
+fn two_domains_with_a_one_unknown_or_empty_separator() {
+    use tribofe::linalg::pattern::{Bisection, Pattern};
+    use tribofe::linalg::substructure::TwoDomain;
+    use tribofe::linalg::NonPositivePivot;
+    let n = 9;
+    // Lower CSC: column j holds (j, j) and (j + 1, j) unless the link is cut.
+    let path = |cut: Option<usize>, bad: Option<usize>| {
+        let (mut col_ptr, mut row_idx, mut values) = (vec![0u32], Vec::new(), Vec::new());
+        for j in 0..n {
+            row_idx.push(j as u32);
+            values.push(if Some(j) == bad { -1.0 } else { 3.0 });
+            if j + 1 < n && Some(j) != cut {
+                row_idx.push(j as u32 + 1);
+                values.push(-1.0);
+            }
+            col_ptr.push(row_idx.len() as u32);
+        }
+        (Pattern { n, col_ptr, row_idx }, values)
+    };
+    let one = Bisection { parts: [(0..4).collect(), (5..9).collect()], separator: vec![4] };
+    let none = Bisection { parts: [(0..4).collect(), (4..9).collect()], separator: vec![] };
+    for (split, cut) in [(one.clone(), None), (none, Some(3))] {
+        let (pattern, values) = path(cut, None);
+        let two = TwoDomain::analyse(&pattern, &split).unwrap();
+        let f = two.factorize(&values).unwrap();
+        let b: Vec<f64> = (0..n).map(|i| i as f64 - 4.0).collect();
+        let mut x = b.clone();
+        two.solve_in_place(&f, &mut x, 1);
+        let ax = |i: usize| {
+            let left = if i > 0 && Some(i - 1) != cut { -x[i - 1] } else { 0.0 };
+            let right = if i + 1 < n && Some(i) != cut { -x[i + 1] } else { 0.0 };
+            3.0 * x[i] + left + right
+        };
+        let r = (0..n).map(|i| (ax(i) - b[i]).abs()).fold(0.0, f64::max);
+        assert!(r < 1e-14, "separator {:?}: residual {r:e}", split.separator);
+    }
+    let (pattern, values) = path(None, Some(6));
+    let two = TwoDomain::analyse(&pattern, &one).unwrap();
+    assert_eq!(two.factorize(&values).err(), Some(NonPositivePivot { unknown: 6 }));
+}

@@ -178,8 +178,9 @@ impl Prepared {
         t.assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
-        let factor =
-            solver.factorize(&asm.pattern, &values).map_err(|k| singular(model, constraints, red, k))?;
+        let factor = solver
+            .factorize(&asm.pattern, &values)
+            .map_err(|e| singular(model, constraints, red, e.unknown))?;
         t.numeric = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();

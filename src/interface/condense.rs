@@ -135,9 +135,9 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
     let asm = Assembler::new(&sm.mesh, &red)?;
     let (values, _) = asm.assemble(&model, &red, &[vec![]], &[vec![0.0; nf]])?;
     let solver = Solver::analyse(&asm.pattern, opts.clone())?;
-    let factor = solver.factorize(&asm.pattern, &values).map_err(|k| Error::Singular {
+    let factor = solver.factorize(&asm.pattern, &values).map_err(|e| Error::Singular {
         detail: format!(
-            "the block's stiffness is not positive definite (pivot {k}) with the interface and plate held"
+            "the block's stiffness is not positive definite ({e}) with the interface and plate held"
         ),
         node: None,
         component: None,

@@ -7,3 +7,19 @@ pub mod multifrontal;
 pub mod pattern;
 pub mod solve;
 pub mod substructure;
+
+/// A numeric factorisation met a pivot that is not positive: the matrix is not positive
+/// definite (a rigid mode left free, or a material that is not). `unknown` is the pivot's
+/// unknown in the numbering of the matrix the caller gave, so the caller can name its node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NonPositivePivot {
+    pub unknown: usize,
+}
+
+impl std::fmt::Display for NonPositivePivot {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "non-positive pivot at unknown {}", self.unknown)
+    }
+}
+
+impl std::error::Error for NonPositivePivot {}

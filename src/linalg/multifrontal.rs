@@ -8,6 +8,7 @@
 //! costs one dense Cholesky, one triangular solve and one rank-w update: the update matrix is
 //! handed to the parent supernode and added into its front (extend-add).
 
+use super::NonPositivePivot;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
@@ -126,7 +127,7 @@ impl DenseWork {
 /// Factorises the matrix whose lower triangle is given column by column (`col_ptr`,
 /// `row_idx` with row >= column, rows in any order; `value(p)` is entry p) into `l`
 /// (`s.len_val()` long, any contents). Returns the dense kernels' work; a non-positive pivot
-/// is returned as its column.
+/// is returned with its column.
 pub fn factorize(
     s: &SymbolicSupernodalCholesky<u32>,
     tree: &AssemblyTree,
@@ -134,7 +135,7 @@ pub fn factorize(
     row_idx: &[u32],
     value: impl Fn(usize) -> f64,
     l: &mut [f64],
-) -> Result<DenseWork, usize> {
+) -> Result<DenseWork, NonPositivePivot> {
     let ns = s.n_supernodes();
     let (begin, end, val_ptr) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_val());
     let widest = (0..ns).map(|k| (end[k] - begin[k]) as usize).max().unwrap_or(0);
@@ -194,7 +195,7 @@ pub fn factorize(
             MemStack::new(&mut mem),
             Default::default(),
         ) {
-            return Err(b + index);
+            return Err(NonPositivePivot { unknown: b + index });
         }
         if r > 0 {
             faer::linalg::triangular_solve::solve_lower_triangular_in_place(
@@ -386,16 +387,15 @@ mod tests {
         factorize_symbolic_cholesky(upper.as_ref(), Side::Upper, SymmetricOrdering::Identity, params).unwrap()
     }
 
-    /// Same factor as faer's left-looking numeric, to round-off (entries of L are O(1) here).
-    #[test]
-    fn matches_faer_numeric() {
-        let (ptr, idx, val) = grid(23, 17, |j| 8.0 + (j % 3) as f64);
-        let sym = symbolic(&ptr, &idx);
+    /// Largest difference between our factor and faer's left-looking numeric one, over the
+    /// lower triangles (the strict upper part of each diagonal block is not part of L), and the
+    /// most children any supernode has in the assembly tree.
+    fn difference_from_faer(ptr: &[u32], idx: &[u32], val: &[f64]) -> (f64, usize) {
+        let sym = symbolic(ptr, idx);
         let s = supernodal(&sym);
-        assert!(s.n_supernodes() > 20, "the test needs a tree, not one front");
         let tree = AssemblyTree::new(s).expect("faer's supernodes form an assembly tree");
         let mut ours = vec![f64::NAN; s.len_val()];
-        let dense = factorize(s, &tree, &ptr, &idx, |p| val[p], &mut ours).unwrap();
+        let dense = factorize(s, &tree, ptr, idx, |p| val[p], &mut ours).unwrap();
         assert!(dense.seconds() > 0.0);
         assert_eq!(dense.by_width.iter().map(|c| c.0).sum::<usize>(), s.n_supernodes());
         // Every column's count squared, once: the same total as the analysis gives.
@@ -403,7 +403,7 @@ mod tests {
         assert_eq!(flops, crate::linalg::substructure::supernodal_flops(s));
         let n = ptr.len() - 1;
         let a =
-            SparseColMatRef::new(SymbolicSparseColMatRef::new_unsorted_checked(n, n, &ptr, None, &idx), &val);
+            SparseColMatRef::new(SymbolicSparseColMatRef::new_unsorted_checked(n, n, ptr, None, idx), val);
         let mut theirs = vec![0.0; s.len_val()];
         let mut mem = MemBuffer::new(sym.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()));
         sym.factorize_numeric_llt(
@@ -416,12 +416,11 @@ mod tests {
             Default::default(),
         )
         .unwrap();
-        // Lower triangles only: the strict upper part of each diagonal block is not part of L.
         let (begin, end, vp) = (s.supernode_begin(), s.supernode_end(), s.col_ptr_for_val());
         let mut worst = 0.0f64;
         for k in 0..s.n_supernodes() {
-            let (w, h) =
-                ((end[k] - begin[k]) as usize, (vp[k + 1] - vp[k]) as usize / (end[k] - begin[k]) as usize);
+            let w = (end[k] - begin[k]) as usize;
+            let h = (vp[k + 1] - vp[k]) as usize / w;
             for j in 0..w {
                 for i in j..h {
                     let q = vp[k] as usize + j * h + i;
@@ -429,7 +428,90 @@ mod tests {
                 }
             }
         }
+        let most_children = (0..s.n_supernodes()).map(|k| tree.children(k).len()).max().unwrap_or(0);
+        (worst, most_children)
+    }
+
+    /// Same factor as faer's left-looking numeric, to round-off (entries of L are O(1) here).
+    #[test]
+    fn matches_faer_numeric() {
+        let (ptr, idx, val) = grid(23, 17, |j| 8.0 + (j % 3) as f64);
+        assert!(
+            supernodal(&symbolic(&ptr, &idx)).n_supernodes() > 20,
+            "the test needs a tree, not one front"
+        );
+        let (worst, _) = difference_from_faer(&ptr, &idx, &val);
         assert!(worst < 1e-13, "largest difference {worst:e}");
+    }
+
+    /// Lower triangle (CSC) of a random matrix whose elimination tree is a random tree: each
+    /// column's parent is one of the next `span` columns and it couples to a random subset of
+    /// its ancestors, so supernodes get many children and fronts many extend-adds. Strictly
+    /// diagonally dominant, hence SPD with O(1) factor entries.
+    fn random_tree_matrix(n: usize, span: usize, seed: u64) -> (Vec<u32>, Vec<u32>, Vec<f64>) {
+        let mut state = seed;
+        let mut next = move || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 33) as usize
+        };
+        let parent: Vec<usize> =
+            (0..n).map(|j| if j + 1 < n { j + 1 + next() % span.min(n - 1 - j) } else { n }).collect();
+        let mut cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+        let mut off_sum = vec![0.0; n];
+        for j in 0..n {
+            let mut a = parent[j];
+            let mut first = true;
+            while a < n {
+                if first || next() % 3 == 0 {
+                    let v = -0.1 - (next() % 9) as f64 / 10.0;
+                    cols[j].push((a, v));
+                    off_sum[j] += v.abs();
+                    off_sum[a] += v.abs();
+                }
+                first = false;
+                a = parent[a];
+            }
+        }
+        let (mut ptr, mut idx, mut val) = (vec![0u32], Vec::new(), Vec::new());
+        for j in 0..n {
+            idx.push(j as u32);
+            val.push(off_sum[j] + 1.0);
+            for &(i, v) in &cols[j] {
+                idx.push(i as u32);
+                val.push(v);
+            }
+            ptr.push(idx.len() as u32);
+        }
+        (ptr, idx, val)
+    }
+
+    /// Branching assembly trees (a chain-shaped grid tree does not exercise extend-add from
+    /// several children): random trees with up to dozens of children per supernode, twenty seeds.
+    #[test]
+    fn matches_faer_numeric_on_random_branching_trees() {
+        let mut most = 0;
+        for seed in 0..20 {
+            let (ptr, idx, val) =
+                random_tree_matrix(200 + 15 * seed as usize, 2 + (7 * seed as usize) % 60, seed);
+            let (worst, children) = difference_from_faer(&ptr, &idx, &val);
+            assert!(worst < 1e-13, "seed {seed}: largest difference {worst:e}");
+            most = most.max(children);
+        }
+        assert!(most >= 9, "the trees branch too little: at most {most} children");
+    }
+
+    /// No right-hand side: the substitutions do nothing and do not fail.
+    #[test]
+    fn substitutions_with_no_right_hand_side() {
+        let (ptr, idx, val) = grid(5, 4, |_| 8.0);
+        let sym = symbolic(&ptr, &idx);
+        let s = supernodal(&sym);
+        let mut l = vec![0.0; s.len_val()];
+        factorize(s, &AssemblyTree::new(s).unwrap(), &ptr, &idx, |p| val[p], &mut l).unwrap();
+        let mut y: Vec<f64> = Vec::new();
+        forward_solve(s, &l, &mut y, 0);
+        backward_solve(s, &l, &mut y, 0);
+        assert!(y.is_empty());
     }
 
     /// Our forward and backward substitutions solve A x = b to a residual of round-off size,
@@ -485,6 +567,9 @@ mod tests {
         let s = supernodal(&sym);
         let tree = AssemblyTree::new(s).unwrap();
         let mut l = vec![0.0; s.len_val()];
-        assert_eq!(factorize(s, &tree, &ptr, &idx, |p| val[p], &mut l).err(), Some(bad));
+        assert_eq!(
+            factorize(s, &tree, &ptr, &idx, |p| val[p], &mut l).err(),
+            Some(NonPositivePivot { unknown: bad })
+        );
     }
 }

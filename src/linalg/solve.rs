@@ -7,6 +7,7 @@ use crate::error::{Error, Result};
 use crate::linalg::pattern::Bisection;
 use crate::linalg::pattern::Pattern;
 use crate::linalg::substructure::{supernodal_flops, TwoDomain, TwoDomainFactor};
+use crate::linalg::NonPositivePivot;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::sparse::linalg::cholesky::{
@@ -169,7 +170,11 @@ impl Solver {
 
     /// Numeric factorisation. A non-positive pivot is mapped back to the unknown it belongs
     /// to (in the reduced numbering) so the caller can name the node.
-    pub fn factorize(&self, pattern: &Pattern, values: &[f64]) -> std::result::Result<Factor<'_>, usize> {
+    pub fn factorize(
+        &self,
+        pattern: &Pattern,
+        values: &[f64],
+    ) -> std::result::Result<Factor<'_>, NonPositivePivot> {
         let symbolic = match &self.backend {
             Backend::Direct(s) => s,
             Backend::TwoDomain(t) => {
@@ -198,9 +203,9 @@ impl Solver {
         );
         match res {
             Ok(_) => Ok(Factor { solver: self, values: FactorValues::Direct(l) }),
-            Err(LltError::NonPositivePivot { index }) => {
-                Err(symbolic.perm().map_or(index, |p| p.arrays().0[index.min(pattern.n - 1)] as usize))
-            }
+            Err(LltError::NonPositivePivot { index }) => Err(NonPositivePivot {
+                unknown: symbolic.perm().map_or(index, |p| p.arrays().0[index.min(pattern.n - 1)] as usize),
+            }),
         }
     }
 }

@@ -12,6 +12,7 @@ use crate::error::{Error, Result};
 use crate::linalg::multifrontal::{self, supernodal, AssemblyTree, DenseWork};
 use crate::linalg::pattern::Bisection;
 use crate::linalg::pattern::Pattern;
+use crate::linalg::NonPositivePivot;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
@@ -118,7 +119,7 @@ impl TwoDomain {
     }
 
     /// Numeric factorisation; a non-positive pivot is returned as its reduced unknown.
-    pub fn factorize(&self, values: &[f64]) -> std::result::Result<TwoDomainFactor, usize> {
+    pub fn factorize(&self, values: &[f64]) -> std::result::Result<TwoDomainFactor, NonPositivePivot> {
         let m = self.separator.len();
         let [wa, wb] = std::mem::take(&mut *self.recycled());
         let (a, b) =
@@ -159,7 +160,9 @@ impl TwoDomain {
                 schur,
                 dense_seconds: da + db + clock.elapsed().as_secs_f64(),
             }),
-            Err(LltError::NonPositivePivot { index }) => Err(self.separator[index.min(m - 1)]),
+            Err(LltError::NonPositivePivot { index }) => {
+                Err(NonPositivePivot { unknown: self.separator[index.min(m - 1)] })
+            }
         }
     }
 
@@ -172,7 +175,7 @@ impl TwoDomain {
         values: &[f64],
         left_looking: bool,
         l: &mut [Vec<f64>; 2],
-    ) -> std::result::Result<DenseWork, usize> {
+    ) -> std::result::Result<DenseWork, NonPositivePivot> {
         let [la, lb] = l;
         let half = |part: &Part, l: &mut Vec<f64>| {
             l.resize(part.symbolic.len_val(), 0.0);
@@ -392,7 +395,7 @@ impl Part {
         values: &[f64],
         m: usize,
         mut l: Vec<f64>,
-    ) -> std::result::Result<(Vec<f64>, Mat<f64>, f64), usize> {
+    ) -> std::result::Result<(Vec<f64>, Mat<f64>, f64), NonPositivePivot> {
         let nl = self.unknowns.len();
         let s = supernodal(&self.symbolic);
         if l.len() != self.symbolic.len_val() {
@@ -420,7 +423,7 @@ impl Part {
         Ok((l, l_ss, dense))
     }
 
-    fn numeric(&self, values: &[f64], l: &mut [f64]) -> std::result::Result<DenseWork, usize> {
+    fn numeric(&self, values: &[f64], l: &mut [f64]) -> std::result::Result<DenseWork, NonPositivePivot> {
         multifrontal::factorize(
             supernodal(&self.symbolic),
             &self.tree,
@@ -429,11 +432,15 @@ impl Part {
             |p| values[self.gather[p] as usize],
             l,
         )
-        .map_err(|j| self.unknowns[j])
+        .map_err(|e| NonPositivePivot { unknown: self.unknowns[e.unknown] })
     }
 
     /// faer's own (left-looking) numeric factorisation on the same structure.
-    fn numeric_left_looking(&self, values: &[f64], l: &mut [f64]) -> std::result::Result<(), usize> {
+    fn numeric_left_looking(
+        &self,
+        values: &[f64],
+        l: &mut [f64],
+    ) -> std::result::Result<(), NonPositivePivot> {
         let nl = self.unknowns.len();
         let local: Vec<f64> = self.gather.iter().map(|&p| values[p as usize]).collect();
         let a = SparseColMatRef::new(
@@ -451,7 +458,9 @@ impl Part {
             MemStack::new(&mut mem),
             Default::default(),
         ) {
-            Err(LltError::NonPositivePivot { index }) => Err(self.unknowns[index.min(nl - 1)]),
+            Err(LltError::NonPositivePivot { index }) => {
+                Err(NonPositivePivot { unknown: self.unknowns[index.min(nl - 1)] })
+            }
             Ok(_) => Ok(()),
         }
     }
