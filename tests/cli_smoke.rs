@@ -76,6 +76,17 @@ fn every_subcommand_runs_and_writes_what_it_names() {
         ),
         (&["sweep", "--length", "0.05", "--thickness", "0.002,0.004", "--out", "sw"], "sw", &["sweep.csv"]),
         (&["precursors", "--out", "pr"], "pr", &["events.csv", "loading.csv", "fig4.svg"]),
+        (
+            &["precursors", "--fe", "--length", "0.05", "--out", "pf"],
+            "pf",
+            &[
+                "summary.csv",
+                "model/fig4.svg",
+                "paper/events.csv",
+                "overdamped/fig4_fe.svg",
+                "paper/run.toml",
+            ],
+        ),
         (&["bench", "--case", "strip2", "--dgemm", "0", "--out", "be"], "be", &["bench.csv"]),
     ];
     for (args, out, files) in cases {

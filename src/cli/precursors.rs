@@ -27,11 +27,20 @@ pub struct Args {
     /// Compute the number of precursors n over the (r, g) square instead (fig. 5).
     #[arg(long, conflicts_with_all = ["r", "g", "events"])]
     map: bool,
-    /// Feed the model with the FE interface fields of the scene (options as for `check`).
+    /// The paper's fig. 4 from the frictional FE on the scene (rigid plate, QUA4): one run per
+    /// event rule (paper, overdamped) next to the analytic iteration; writes summary.csv and
+    /// a folder per rule and one for the model.
     #[arg(long, conflicts_with = "map")]
     fe: bool,
-    /// With --fe: also sweep H/L and t/L around the scene (writes fe_sweep.csv).
-    #[arg(long, requires = "fe")]
+    /// With --fe: whole-interface slips (stick-slip cycles) per run.
+    #[arg(long, default_value_t = 2, requires = "fe")]
+    cycles: usize,
+    /// The earlier comparison: the 1D model fed with the bonded FE interface fields (ill-posed
+    /// at the singular corners, validation/precursors/README.md).
+    #[arg(long, conflicts_with_all = ["map", "fe"])]
+    bonded_fields: bool,
+    /// With --bonded-fields: also sweep H/L and t/L around the scene (writes fe_sweep.csv).
+    #[arg(long, requires = "bonded_fields")]
     sweep: bool,
     #[command(flatten)]
     scene: super::check::SceneArgs,
@@ -49,6 +58,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     }
     if args.fe {
         return fe(&args);
+    }
+    if args.bonded_fields {
+        return bonded_fields(&args);
     }
     let p = Params::new(args.r, args.g)?;
     let events = match args.events {
@@ -79,9 +91,114 @@ fn print_written(paths: &[impl AsRef<Path>]) -> tribofe::Result<()> {
     Ok(())
 }
 
-/// FE-fed precursors: the scene's unit interface fields drive the discrete model, next to the
-/// paper's linear fields on the same cells.
+/// FE fig. 4: the frictional FE for each event rule next to the analytic iteration.
 fn fe(args: &Args) -> tribofe::Result<()> {
+    for (flag, given) in
+        [("--fn-ratios", args.scene.fn_ratios.is_some()), ("--tol", args.scene.tol.is_some())]
+    {
+        if given {
+            return Err(Error::input(
+                flag,
+                "cannot act in `precursors --fe`, which loads N then X until the interface slides",
+            ));
+        }
+    }
+    if args.cycles == 0 {
+        return Err(Error::input("--cycles", "need at least one whole-interface slip"));
+    }
+    let scene = super::check::scene(&args.scene)?;
+    tribofe::io::outdir::check(&args.out)?;
+    let p = Params::new(args.r, args.g)?;
+    let runs = tribofe::studies::precursors_fe::fig4(&scene, p.r(), p.g(), args.cycles)?;
+    if runs.iter().all(|r| r.is_err()) {
+        return runs.into_iter().find_map(|r| r.err()).map_or(Ok(()), Err);
+    }
+    let n = precursors::n_precursors(&p)?;
+    let model = precursors::simulate_to_convergence(&p, CONVERGED, MAX_DEFAULT_EVENTS);
+    let command: Vec<String> = std::env::args().collect();
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
+    let mut summary = String::from(
+        "source,precursors,precursors_longer_5t,precursors_advancing_5t,F1_over_mu_s_N,x1_over_L,Fmax_over_mu_s_N,worst_violation_over_N_per_n\n",
+    );
+    summary.push_str(&format!("model,{n},{n},{n},{},{},{},0\n", p.f1(), model[0].x, p.f_max()));
+    outln!(
+        "r = {}, g = {} (dimensionless; F in units of mu_s N, x in units of L), H/L = {:.4}, t/L = {:.4}",
+        p.r(),
+        p.g(),
+        scene.loading.height / scene.block.length,
+        scene.block.thickness / scene.block.length
+    );
+    outln!(
+        "{:>12} {:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10}",
+        "",
+        "n",
+        "n > 5t",
+        "n advance",
+        "F_1",
+        "x_1",
+        "F_max",
+        "violation"
+    );
+    outln!(
+        "{:>12} {n:>6} {n:>8} {n:>10} {:>9.4} {:>9.4} {:>9.4} {:>10}",
+        "model",
+        p.f1(),
+        model[0].x,
+        p.f_max(),
+        "-"
+    );
+    let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+    for (rule, run) in tribofe::studies::precursors_fe::RULES.iter().zip(&runs) {
+        let name = rule.name();
+        let r = match run {
+            Ok(r) => r,
+            Err(e) => {
+                outln!("{name:>12} refused: {e}");
+                summary.push_str(&format!("{name},-,-,-,-,-,-,-\n"));
+                continue;
+            }
+        };
+        let c = &r.cmp;
+        outln!(
+            "{name:>12} {:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10.1e}",
+            c.n_fe,
+            c.n_fe_long,
+            c.n_fe_advancing,
+            f(c.f1_fe),
+            f(c.x1_fe),
+            f(c.f_max_fe),
+            r.worst_violation
+        );
+        let opt = |v: Option<f64>| v.map_or("-".to_string(), |v| v.to_string());
+        summary.push_str(&format!(
+            "{name},{},{},{},{},{},{},{}\n",
+            c.n_fe,
+            c.n_fe_long,
+            c.n_fe_advancing,
+            opt(c.f1_fe),
+            opt(c.x1_fe),
+            opt(c.f_max_fe),
+            r.worst_violation
+        ));
+        let sub = dir.path().join(name);
+        std::fs::create_dir(&sub).map_err(|e| Error::io(&sub, e))?;
+        let law = r.run.options.law;
+        let what =
+            [("rule", name.to_string()), ("mu_s", law.mu_s().to_string()), ("mu_d", law.mu_d().to_string())];
+        let header = tribofe::report::run_toml(&command, &what, &scene)?;
+        tribofe::report::slide::write(&r.run, &sub, &header, false)?;
+    }
+    report::write_events(&dir.path().join("model"), &p, &model)?;
+    tribofe::report::write_atomic(&dir.path().join("summary.csv"), summary.as_bytes())?;
+    dir.commit()?;
+    outln!("n: precursors before the first whole slip; > 5t: longer than 5 t; advance: moving the front by > 5 t (the mesh-stable count)");
+    outln!("wrote {}/{{summary.csv, model/, paper/, overdamped/}}", args.out.display());
+    Ok(())
+}
+
+/// The 1D model fed with the scene's bonded unit interface fields, next to the paper's linear
+/// fields on the same cells.
+fn bonded_fields(args: &Args) -> tribofe::Result<()> {
     let scene = super::check::scene(&args.scene)?;
     let n_events = args.events.unwrap_or(MAX_DEFAULT_EVENTS);
     let fields = |s: &tribofe::scene::Scene| {

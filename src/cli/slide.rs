@@ -156,7 +156,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     header.push('\n');
     header.push_str(&tribofe::report::scene_section(&scene)?);
     let dir = tribofe::io::outdir::OutDir::begin(&a.out)?;
-    tribofe::report::slide::write(&res, dir.path(), &header)?;
+    tribofe::report::slide::write(&res, dir.path(), &header, true)?;
     if a.fields > 0 {
         let picks = tribofe::report::slide::spread(res.run.states.len(), a.fields);
         tribofe::report::slide::write_fields(&res, &picks, dir.path(), &Default::default())?;

@@ -19,6 +19,16 @@ pub enum Rule {
     Overdamped,
 }
 
+impl Rule {
+    /// The name `FromStr` reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rule::Paper => "paper",
+            Rule::Overdamped => "overdamped",
+        }
+    }
+}
+
 impl std::str::FromStr for Rule {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {

@@ -240,16 +240,19 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
     })
 }
 
-/// Writes every output into `dir`; `header` is the run.toml text (what produced the files).
-pub fn write(r: &SlideResult, dir: &Path, header: &str) -> Result<Vec<PathBuf>> {
-    let files = [
+/// Writes every output into `dir`, `states.csv` (~40 bytes per node and state, hundreds of MB
+/// for long runs) only if `states`; `header` is the run.toml text (what produced the files).
+pub fn write(r: &SlideResult, dir: &Path, header: &str, states: bool) -> Result<Vec<PathBuf>> {
+    let mut files = vec![
         ("loading.csv", loading_csv(r)?),
         ("events.csv", events_csv(r)?),
-        ("states.csv", states_csv(r)?),
         ("fig4_fe.svg", fig4_svg(r)?),
         ("fronts.svg", fronts_svg(r)?),
         ("run.toml", header.to_string()),
     ];
+    if states {
+        files.push(("states.csv", states_csv(r)?));
+    }
     let mut out = Vec::new();
     for (name, text) in files {
         let p = dir.join(name);

@@ -7,8 +7,8 @@
 //! `nucleation` events mark an instability's onset and are not counted on their own.
 //! `n_long` also drops precursors no longer than 5 t (edge-zone events).
 //!
-//! Not done yet (see the report of branch precfe): thin-layer, corners, height-of-drive
-//! studies and the assumption table; assumption 4 (D_c) is pending the slip-weakening law.
+//! Not done yet: the height-of-drive study and the assumption table (issue 18); the corners
+//! are `studies::edges`, D_c is `slide --law slip-weakening`.
 
 use crate::error::Result;
 use crate::interface::condense::{condense, Condensed};
@@ -16,7 +16,7 @@ use crate::interface::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
 use crate::scene::Scene;
 use crate::studies::slide::{
-    coefficients_from_rg, compare_paper, run_condensed, PaperComparison, SlideOptions,
+    coefficients_from_rg, compare_paper, run_condensed, PaperComparison, SlideOptions, SlideResult,
 };
 use rayon::prelude::*;
 
@@ -36,6 +36,8 @@ pub struct Fig4 {
     pub peaks: Vec<f64>,
     /// Worst contact/friction violation over all states (Violations::max).
     pub worst_violation: f64,
+    /// The whole run (events, states), for the report.
+    pub run: SlideResult,
 }
 
 fn opts(scene: &Scene, r: f64, g: f64, rule: Rule, cycles: usize) -> Result<SlideOptions> {
@@ -64,6 +66,7 @@ fn fig4_on(scene: &Scene, c: &Condensed, r: f64, g: f64, rule: Rule, cycles: usi
         x_model: ev.iter().take(cmp.n).map(|e| e.x).collect(),
         peaks: evs.iter().filter(|e| e.kind == "sliding").map(|e| e.f / (o.law.mu_s() * o.n_force)).collect(),
         worst_violation: res.run.states.iter().map(|s| s.violations.max()).fold(0.0, f64::max),
+        run: res,
     })
 }
 
