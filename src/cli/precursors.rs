@@ -115,12 +115,6 @@ fn fe(args: &Args) -> tribofe::Result<()> {
     }
     let n = precursors::n_precursors(&p)?;
     let model = precursors::simulate_to_convergence(&p, CONVERGED, MAX_DEFAULT_EVENTS);
-    let command: Vec<String> = std::env::args().collect();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
-    let mut summary = String::from(
-        "source,precursors,precursors_longer_5t,precursors_advancing_5t,F1_over_mu_s_N,x1_over_L,Fmax_over_mu_s_N,worst_violation_over_N_per_n\n",
-    );
-    summary.push_str(&format!("model,{n},{n},{n},{},{},{},0\n", p.f1(), model[0].x, p.f_max()));
     outln!(
         "r = {}, g = {} (dimensionless; F in units of mu_s N, x in units of L), H/L = {:.4}, t/L = {:.4}",
         p.r(),
@@ -128,6 +122,7 @@ fn fe(args: &Args) -> tribofe::Result<()> {
         scene.loading.height / scene.block.length,
         scene.block.thickness / scene.block.length
     );
+    let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
     outln!(
         "{:>12} {:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10}",
         "",
@@ -147,49 +142,28 @@ fn fe(args: &Args) -> tribofe::Result<()> {
         p.f_max(),
         "-"
     );
-    let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
     for (rule, run) in tribofe::studies::precursors_fe::RULES.iter().zip(&runs) {
-        let name = rule.name();
-        let r = match run {
-            Ok(r) => r,
-            Err(e) => {
-                outln!("{name:>12} refused: {e}");
-                summary.push_str(&format!("{name},-,-,-,-,-,-,-\n"));
-                continue;
+        match run {
+            Ok(r) => {
+                let c = &r.cmp;
+                outln!(
+                    "{:>12} {:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10.1e}",
+                    rule.name(),
+                    c.n_fe,
+                    c.n_fe_long,
+                    c.n_fe_advancing,
+                    f(c.f1_fe),
+                    f(c.x1_fe),
+                    f(c.f_max_fe),
+                    r.worst_violation
+                );
             }
-        };
-        let c = &r.cmp;
-        outln!(
-            "{name:>12} {:>6} {:>8} {:>10} {:>9} {:>9} {:>9} {:>10.1e}",
-            c.n_fe,
-            c.n_fe_long,
-            c.n_fe_advancing,
-            f(c.f1_fe),
-            f(c.x1_fe),
-            f(c.f_max_fe),
-            r.worst_violation
-        );
-        let opt = |v: Option<f64>| v.map_or("-".to_string(), |v| v.to_string());
-        summary.push_str(&format!(
-            "{name},{},{},{},{},{},{},{}\n",
-            c.n_fe,
-            c.n_fe_long,
-            c.n_fe_advancing,
-            opt(c.f1_fe),
-            opt(c.x1_fe),
-            opt(c.f_max_fe),
-            r.worst_violation
-        ));
-        let sub = dir.path().join(name);
-        std::fs::create_dir(&sub).map_err(|e| Error::io(&sub, e))?;
-        let law = r.run.options.law;
-        let what =
-            [("rule", name.to_string()), ("mu_s", law.mu_s().to_string()), ("mu_d", law.mu_d().to_string())];
-        let header = tribofe::report::run_toml(&command, &what, &scene)?;
-        tribofe::report::slide::write(&r.run, &sub, &header, false)?;
+            Err(e) => outln!("{:>12} refused: {e}", rule.name()),
+        }
     }
-    report::write_events(&dir.path().join("model"), &p, &model)?;
-    tribofe::report::write_atomic(&dir.path().join("summary.csv"), summary.as_bytes())?;
+    let command: Vec<String> = std::env::args().collect();
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
+    report::write_fe_fig4(dir.path(), &p, &model, &runs, &command, &scene)?;
     dir.commit()?;
     outln!("n: precursors before the first whole slip; > 5t: longer than 5 t; advance: moving the front by > 5 t (the mesh-stable count)");
     outln!("wrote {}/{{summary.csv, model/, paper/, overdamped/}}", args.out.display());

@@ -372,3 +372,49 @@ pub fn sweep_table(
     write_atomic(path, s.as_bytes())?;
     Ok(rows)
 }
+
+/// `precursors --fe` into `dir`: `summary.csv` (the analytic iteration, then one row per rule
+/// of [`crate::studies::precursors_fe::RULES`], `-` where a run was refused), `model/` (as
+/// [`write_events`]) and a folder per rule (as [`crate::report::slide::write`], no states).
+pub fn write_fe_fig4(
+    dir: &Path,
+    p: &Params,
+    model: &[Event],
+    runs: &[Result<crate::studies::precursors_fe::Fig4>],
+    command: &[String],
+    scene: &crate::scene::Scene,
+) -> Result<Vec<PathBuf>> {
+    let n = crate::precursors::n_precursors(p)?;
+    let x1 = model.first().map_or(f64::NAN, |e| e.x);
+    let mut s = String::from("source,precursors,precursors_longer_5t,precursors_advancing_5t,F1_over_mu_s_N,x1_over_L,Fmax_over_mu_s_N,worst_violation_over_N_per_n\n");
+    let _ = writeln!(s, "model,{n},{n},{n},{},{},{},", finite("F_1", p.f1())?, finite("x_1", x1)?, p.f_max());
+    let mut written = write_events(&dir.join("model"), p, model)?;
+    for (rule, run) in crate::studies::precursors_fe::RULES.iter().zip(runs) {
+        let name = rule.name();
+        let Ok(r) = run else {
+            let _ = writeln!(s, "{name},,,,,,,");
+            continue;
+        };
+        let c = &r.cmp;
+        let _ = writeln!(
+            s,
+            "{name},{},{},{},{},{},{},{:e}",
+            c.n_fe,
+            c.n_fe_long,
+            c.n_fe_advancing,
+            opt(c.f1_fe),
+            opt(c.x1_fe),
+            opt(c.f_max_fe),
+            r.worst_violation
+        );
+        let sub = dir.join(name);
+        ensure_dir(&sub)?;
+        let law = r.run.options.law;
+        let what =
+            [("rule", name.to_string()), ("mu_s", law.mu_s().to_string()), ("mu_d", law.mu_d().to_string())];
+        let header = super::run_toml(command, &what, scene)?;
+        written.extend(super::slide::write(&r.run, &sub, &header, false)?);
+    }
+    written.extend(write_all(dir, &[("summary.csv", s)])?);
+    Ok(written)
+}
