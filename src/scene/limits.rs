@@ -56,9 +56,9 @@ pub fn check(dofs: f64, limit: Option<usize>, suggestion: impl FnOnce(f64) -> St
 }
 
 /// Dense matrices of (2n + 3)^2 doubles a frictional run holds at once: the condensed S, its
-/// copy at the drive height, the inverse of the free system, and one spare (a parallel study's
-/// clone).
-pub const DENSE_COPIES: f64 = 4.0;
+/// copy at the drive height, the inverse of the free system and its spare, and one more (a
+/// parallel study's clone).
+pub const DENSE_COPIES: f64 = 5.0;
 
 /// Refuses a frictional interface of `n` nodes whose dense condensed system would not fit in
 /// half this machine's memory, naming the size and what to change.

@@ -168,10 +168,16 @@ struct Free {
     /// DOF of each free position, and position of each DOF (usize::MAX if constrained).
     dofs: Vec<usize>,
     pos: Vec<usize>,
+    /// Slip coefficient of each free position's row when the inverse was formed.
+    coef: Vec<f64>,
     /// Inverse, stride nd, top-left m x m used.
     inv: Vec<f64>,
-    updates: usize,
-    refreshes: usize,
+}
+
+impl Free {
+    fn empty(nd: usize) -> Free {
+        Free { dofs: vec![], pos: vec![usize::MAX; nd], coef: vec![], inv: vec![0.0; nd * nd] }
+    }
 }
 
 struct Solver<'a> {
@@ -189,6 +195,11 @@ struct Solver<'a> {
     slip0: Vec<f64>,
     slip_acc: Vec<f64>,
     free: Free,
+    /// The free set before the last bulk change: an instability's region and the re-stuck
+    /// interface alternate, and each is a few bordering updates away from its previous self.
+    spare: Option<Free>,
+    updates: usize,
+    refreshes: usize,
     fscale: f64,
     dscale: f64,
     n_force: f64,
@@ -281,18 +292,20 @@ impl<'a> Solver<'a> {
                 component: None,
             });
         }
+        let coef: Vec<f64> = dofs.iter().map(|&d| self.slip_coef(d)).collect();
         let f = &mut self.free;
-        f.pos = vec![usize::MAX; nd];
+        f.pos.iter_mut().for_each(|p| *p = usize::MAX);
         for (k, &d) in dofs.iter().enumerate() {
             f.pos[d] = k;
         }
         f.dofs = dofs;
+        f.coef = coef;
         for i in 0..m {
             for j in 0..m {
                 f.inv[i * nd + j] = inv[(i, j)];
             }
         }
-        f.refreshes += 1;
+        self.refreshes += 1;
         Ok(())
     }
 
@@ -313,6 +326,7 @@ impl<'a> Solver<'a> {
             }
             let dl = f.dofs[last];
             f.dofs.swap(k, last);
+            f.coef.swap(k, last);
             f.pos[dl] = k;
         }
         let s = f.inv[last * nd + last];
@@ -325,8 +339,9 @@ impl<'a> Solver<'a> {
             }
         }
         f.dofs.pop();
+        f.coef.pop();
         f.pos[d] = usize::MAX;
-        f.updates += 1;
+        self.updates += 1;
     }
 
     /// Adds DOF d to the free set (its row uses the current state; O(m^2)).
@@ -336,6 +351,7 @@ impl<'a> Solver<'a> {
         let c: Vec<f64> = self.free.dofs.iter().map(|&a| self.a_entry(a, d)).collect();
         let r: Vec<f64> = self.free.dofs.iter().map(|&b| self.a_entry(d, b)).collect();
         let delta = self.a_entry(d, d);
+        let cd = self.slip_coef(d);
         let f = &mut self.free;
         let y: Vec<f64> = (0..m).map(|i| (0..m).map(|j| f.inv[i * nd + j] * c[j]).sum()).collect();
         let mut z = vec![0.0; m];
@@ -350,6 +366,7 @@ impl<'a> Solver<'a> {
         let sigma = delta - (0..m).map(|i| r[i] * y[i]).sum::<f64>();
         let scale = self.s[d * nd + d].abs().max(f64::MIN_POSITIVE);
         f.dofs.push(d);
+        f.coef.push(cd);
         f.pos[d] = m;
         if !(sigma.abs() > 1e-10 * scale) {
             return self.refresh();
@@ -365,7 +382,7 @@ impl<'a> Solver<'a> {
             f.inv[m * nd + j] = -z[j] / sigma;
         }
         f.inv[m * nd + m] = 1.0 / sigma;
-        f.updates += 1;
+        self.updates += 1;
         Ok(())
     }
 
@@ -409,8 +426,9 @@ impl<'a> Solver<'a> {
         Ok(())
     }
 
-    /// Changes many nodes at once: incremental below 32 changes, one full LU above (cheaper
-    /// than O(m^2) per change when a whole region flips).
+    /// Changes many nodes at once: incremental below 32 changes; above, from whichever of
+    /// the current and the spare inverse is fewer bordering updates away, or by one full LU
+    /// when both are far (cheaper than O(m^2) per change when a whole region flips).
     fn set_many(&mut self, changes: &[(usize, NodeState, f64)]) -> Result<()> {
         if changes.len() < 32 {
             for &(i, st, a) in changes {
@@ -422,7 +440,47 @@ impl<'a> Solver<'a> {
             self.enter(i, st, a);
         }
         self.g = None;
-        self.refresh()
+        self.rebase()
+    }
+
+    /// Brings the free inverse to the current states after bulk changes.
+    fn rebase(&mut self) -> Result<()> {
+        let target: Vec<usize> = (0..self.nd).filter(|&d| self.is_free(d)).collect();
+        let cost = |f: &Free| {
+            let stale =
+                f.dofs.iter().zip(&f.coef).filter(|&(&d, &c)| !self.is_free(d) || c != self.slip_coef(d));
+            let fresh = target.iter().filter(|&&d| f.pos[d] == usize::MAX);
+            stale.count() + fresh.count()
+        };
+        let here = cost(&self.free);
+        let there = self.spare.as_ref().map_or(usize::MAX, cost);
+        // Bordering is O(m^2) a change against O(m^3) for the LU; past ~m/8 changes the
+        // drift and the cost favour the LU.
+        let limit = (target.len() / 8).max(32);
+        let spare = self.spare.get_or_insert_with(|| Free::empty(self.nd));
+        if there < here.min(limit) || here > limit {
+            std::mem::swap(&mut self.free, spare);
+        }
+        if here.min(there) > limit {
+            return self.refresh();
+        }
+        let stale: Vec<usize> = self
+            .free
+            .dofs
+            .iter()
+            .zip(&self.free.coef)
+            .filter(|&(&d, &c)| !self.is_free(d) || c != self.slip_coef(d))
+            .map(|(&d, _)| d)
+            .collect();
+        for d in stale {
+            self.remove(d);
+        }
+        for d in target {
+            if self.free.pos[d] == usize::MAX {
+                self.add(d)?;
+            }
+        }
+        Ok(())
     }
 
     /// New coefficients of slipping nodes' rows (slip weakening).
@@ -571,6 +629,7 @@ impl<'a> Solver<'a> {
         let n = self.n;
         let (tf, td) = (1e-9 * self.fscale, 1e-9 * self.dscale);
         let (rate_f, rate_d) = self.rate_tols(a);
+        let mut unstable = None;
         for i in 0..n {
             let mu_s = self.mu_stick[i];
             let (t, p, u, g) = (a.f(i, lam), a.f(n + i, lam), a.b(i, lam), a.b(n + i, lam));
@@ -607,11 +666,12 @@ impl<'a> Solver<'a> {
                             if creep && !allow_continuous_slip { "creep" } else { "slip" },
                         ));
                     }
-                    return Ok(Fix::Instability(i));
+                    unstable = unstable.or(Some(i));
                 }
             }
         }
-        Ok(Fix::None)
+        // An instability starts from a consistent state: every other change comes first.
+        Ok(unstable.map_or(Fix::None, Fix::Instability))
     }
 
     fn creep_fraction(&self) -> f64 {
@@ -777,13 +837,10 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
         mu_stick: vec![pb.law.mu_s(); n],
         slip0: vec![0.0; n],
         slip_acc: vec![0.0; n],
-        free: Free {
-            dofs: vec![],
-            pos: vec![usize::MAX; nd],
-            inv: vec![0.0; nd * nd],
-            updates: 0,
-            refreshes: 0,
-        },
+        free: Free::empty(nd),
+        spare: None,
+        updates: 0,
+        refreshes: 0,
         fscale: pb.n_force / n as f64,
         dscale: 1.0,
         n_force: pb.n_force,
@@ -902,17 +959,19 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                     let (region, backslip, all_slip) = instability(&mut sv, &a, lam, i0)?;
                     // Zeno guard: a node that relaxes alone twice in a row (the trailing corner
                     // as p -> 0) slides on continuously at mu_d (creep) until its slip rate
-                    // reverses or it opens.
-                    let zeno = region == (i0, i0) && last_region == Some((i0, i0));
-                    if zeno {
+                    // reverses or it opens. It is recorded once the contact around it is
+                    // consistent again (its pressure may fall below zero as it slides).
+                    if region == (i0, i0) && last_region == Some((i0, i0)) {
                         let b = sv.solve()?;
                         let sg = if b.f(i0, lam) > 0.0 { -1.0 } else { 1.0 };
                         sv.set_state(i0, NodeState::Slip(sg), 0.0)?;
+                        pending = Some(("creep", i0));
+                        continue;
                     }
                     let a2 = sv.solve()?;
                     let st = sv.record(&a2, lam, Some(&prev_u));
                     prev_u.clone_from(&st.u);
-                    let kind = if zeno { "creep" } else { classify(&sv.states, region, &mut slipped) };
+                    let kind = classify(&sv.states, region, &mut slipped);
                     if kind == "sliding" {
                         out.sliding_events += 1;
                     }
@@ -1099,8 +1158,8 @@ fn push(out: &mut Run, pb: &Problem, ev: Event, st: State) -> Result<()> {
 }
 
 fn finish(mut out: Run, sv: &Solver) -> Result<Run> {
-    out.updates = sv.free.updates;
-    out.refreshes = sv.free.refreshes;
+    out.updates = sv.updates;
+    out.refreshes = sv.refreshes;
     Ok(out)
 }
 
