@@ -50,6 +50,10 @@ pub enum Error {
     #[error("untrustworthy solution: {detail}; {hint}")]
     Untrustworthy { detail: String, hint: String },
 
+    /// A frictional run needed more events than its cap before reaching its end.
+    #[error("the run needs more than {cap} events (stopped at X = {x:.6e} m, F/N = {f_over_n:.6}); raise --max-events or lower --x-max/--cycles")]
+    EventCap { cap: usize, x: f64, f_over_n: f64 },
+
     /// A self-check of the results (global balance...) failed beyond its threshold.
     #[error("self-check failed: {what} = {value:.2e} exceeds {limit:.1e}; {hint}")]
     SelfCheck { what: String, value: f64, limit: f64, hint: String },
@@ -101,7 +105,8 @@ impl Error {
             | Error::Mesh(_)
             | Error::TooLarge { .. }
             | Error::Read { .. }
-            | Error::Output { .. } => exit::INPUT,
+            | Error::Output { .. }
+            | Error::EventCap { .. } => exit::INPUT,
             Error::Singular { .. } | Error::Untrustworthy { .. } | Error::SelfCheck { .. } => exit::NUMERICAL,
             Error::Plot { .. } | Error::Io { .. } | Error::Resource { .. } => exit::OUTPUT,
             Error::Interrupted => exit::INTERRUPTED,

@@ -34,7 +34,7 @@ fn slide(scene: &Scene, law: Law, x_max: Option<f64>) -> SlideResult {
 }
 
 fn worst_violation(r: &SlideResult) -> f64 {
-    r.run.states.iter().map(|s| s.violations.max()).fold(0.0, f64::max)
+    r.run.max_violation
 }
 
 #[test]

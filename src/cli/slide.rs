@@ -162,7 +162,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         tribofe::report::slide::write_fields(&res, &picks, dir.path(), &Default::default())?;
     }
     dir.commit()?;
-    let worst = res.run.states.iter().map(|s| s.violations.max()).fold(0.0, f64::max);
+    let worst = res.run.max_violation;
     let last = res.run.states.last().ok_or_else(|| Error::input("slide", "the run recorded no state"))?;
     outln!(
         "{}: {} interface nodes, {} events ({}), {} whole-interface slips",

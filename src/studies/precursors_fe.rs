@@ -65,7 +65,7 @@ fn fig4_on(scene: &Scene, c: &Condensed, r: f64, g: f64, rule: Rule, cycles: usi
             .collect(),
         x_model: ev.iter().take(cmp.n).map(|e| e.x).collect(),
         peaks: evs.iter().filter(|e| e.kind == "sliding").map(|e| e.f / (o.law.mu_s() * o.n_force)).collect(),
-        worst_violation: res.run.states.iter().map(|s| s.violations.max()).fold(0.0, f64::max),
+        worst_violation: res.run.max_violation,
         run: res,
     })
 }
@@ -77,27 +77,70 @@ pub fn fig4(scene: &Scene, r: f64, g: f64, cycles: usize) -> Result<Vec<Result<F
     Ok(RULES.iter().map(|&rule| fig4_on(scene, &c, r, g, rule, cycles)).collect())
 }
 
-/// One cell of FE fig. 5.
+/// One rule's run in one cell of FE fig. 5.
+#[derive(Debug, Clone, Copy)]
+pub enum CellRun {
+    /// Reached the first whole-interface slip. Counts as in [`PaperComparison`]; the first
+    /// slip's peak F/(mu_s N); the events, the worst violation (N/n) and the wall time, s.
+    Done {
+        n: usize,
+        n_long: usize,
+        n_advancing: usize,
+        f_max: Option<f64>,
+        events: usize,
+        violation: f64,
+        seconds: f64,
+    },
+    /// Needed more than the cap of events before the first whole slip.
+    Capped { seconds: f64 },
+    /// Refused by the event solver (a relaxation that did not settle...).
+    Refused { seconds: f64 },
+}
+
+impl CellRun {
+    pub fn status(&self) -> &'static str {
+        match self {
+            CellRun::Done { .. } => "done",
+            CellRun::Capped { .. } => "capped",
+            CellRun::Refused { .. } => "refused",
+        }
+    }
+    pub fn seconds(&self) -> f64 {
+        match *self {
+            CellRun::Done { seconds, .. } | CellRun::Capped { seconds } | CellRun::Refused { seconds } => {
+                seconds
+            }
+        }
+    }
+    /// The mesh-stable count (front-advancing precursors) of a finished run.
+    pub fn n_advancing(&self) -> Option<usize> {
+        match *self {
+            CellRun::Done { n_advancing, .. } => Some(n_advancing),
+            _ => None,
+        }
+    }
+}
+
+/// One cell of FE fig. 5: the analytic n and F_max, and per rule (order of [`RULES`]) the FE
+/// run, None for a rule not asked for.
 #[derive(Debug, Clone, Copy)]
 pub struct Cell {
     pub r: f64,
     pub g: f64,
     pub n_model: usize,
-    /// Per rule (order of [`RULES`]): counted precursors, those longer than 5 t, and those
-    /// advancing the front by more than 5 t (the mesh-stable count, [`crate::studies::slide::ADVANCE_T`]); None where
-    /// the FE run refused (a numerical refusal, or the event cap).
-    pub n_fe: [Option<usize>; 2],
-    pub n_fe_long: [Option<usize>; 2],
-    pub n_fe_advancing: [Option<usize>; 2],
+    pub f_max_model: f64,
+    pub runs: [Option<CellRun>; 2],
 }
 
 /// n(r, g) at the centres of a `resolution` x `resolution` grid over (0,1)^2 (as
-/// [`crate::precursors::n_map`], g fastest), FE for the `rules` given (the others stay None),
-/// cells in parallel, the interface condensed once; `progress` is called after each cell.
+/// [`crate::precursors::n_map`], g fastest), FE for the `rules` given, cells in parallel, the
+/// interface condensed once; each run stops at the first whole-interface slip or after
+/// `max_events` events (then [`CellRun::Capped`]); `progress` is called after each cell.
 pub fn fig5(
     scene: &Scene,
     resolution: usize,
     rules: &[Rule],
+    max_events: usize,
     progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<Cell>> {
     let model = crate::precursors::n_map(resolution)?;
@@ -105,23 +148,34 @@ pub fn fig5(
     model
         .par_iter()
         .map(|m| {
-            let mut cell = Cell {
-                r: m.r,
-                g: m.g,
-                n_model: m.n,
-                n_fe: [None; 2],
-                n_fe_long: [None; 2],
-                n_fe_advancing: [None; 2],
-            };
+            let p = crate::precursors::Params::new(m.r, m.g)?;
+            let mut cell = Cell { r: m.r, g: m.g, n_model: m.n, f_max_model: p.f_max(), runs: [None; 2] };
             for (k, &rule) in RULES.iter().enumerate().filter(|(_, r)| rules.contains(r)) {
-                let o = opts(scene, m.r, m.g, rule, 1)?;
-                if let Some(cmp) =
-                    run_condensed(scene, c.clone(), 0.0, &o, &|_| {}).ok().and_then(|r| compare_paper(&r))
-                {
-                    cell.n_fe[k] = Some(cmp.n_fe);
-                    cell.n_fe_long[k] = Some(cmp.n_fe_long);
-                    cell.n_fe_advancing[k] = Some(cmp.n_fe_advancing);
-                }
+                let o = SlideOptions { max_events, keep_states: false, ..opts(scene, m.r, m.g, rule, 1)? };
+                let clock = std::time::Instant::now();
+                let res = run_condensed(scene, c.clone(), 0.0, &o, &|_| {});
+                let seconds = clock.elapsed().as_secs_f64();
+                cell.runs[k] = Some(match res {
+                    Ok(res) => {
+                        let cmp = compare_paper(&res).ok_or_else(|| {
+                            crate::Error::input("r, g", "outside the accessible square 0 < r, g < 1")
+                        })?;
+                        CellRun::Done {
+                            n: cmp.n_fe,
+                            n_long: cmp.n_fe_long,
+                            n_advancing: cmp.n_fe_advancing,
+                            f_max: cmp.f_max_fe,
+                            events: res.run.events.len(),
+                            violation: res.run.max_violation,
+                            seconds,
+                        }
+                    }
+                    Err(crate::Error::EventCap { .. }) => CellRun::Capped { seconds },
+                    Err(crate::Error::Untrustworthy { .. } | crate::Error::Singular { .. }) => {
+                        CellRun::Refused { seconds }
+                    }
+                    Err(e) => return Err(e),
+                });
             }
             progress();
             Ok(cell)

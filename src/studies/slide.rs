@@ -18,6 +18,8 @@ pub struct SlideOptions {
     pub x_max: Option<f64>,
     pub cycles: usize,
     pub max_events: usize,
+    /// See [`Problem::keep_states`].
+    pub keep_states: bool,
     pub creep_fraction: f64,
 }
 
@@ -30,6 +32,7 @@ impl Default for SlideOptions {
             x_max: None,
             cycles: p.cycles,
             max_events: p.max_events,
+            keep_states: p.keep_states,
             creep_fraction: p.creep_fraction,
         }
     }
@@ -82,6 +85,7 @@ pub fn run_condensed(
         x_max: o.x_max,
         cycles: o.cycles,
         max_events: o.max_events,
+        keep_states: o.keep_states,
         creep_fraction: o.creep_fraction,
     };
     if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {

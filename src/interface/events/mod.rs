@@ -53,8 +53,11 @@ pub struct Problem {
     /// first; for coulomb, None = 5 % past the first whole-interface slip.
     pub x_max: Option<f64>,
     pub cycles: usize,
-    /// Cap on recorded events (a run that needs more stops with an error saying so).
+    /// Cap on recorded events (a run that needs more stops with [`Error::EventCap`]).
     pub max_events: usize,
+    /// Keep every event's state (false: only the last, for studies that need the events
+    /// alone; a state is ~40 bytes per node).
+    pub keep_states: bool,
     /// Static-kinetic: nodes whose pressure force is below this fraction of the mean nodal
     /// force N/n slide continuously at mu_d (creep) instead of triggering an instability
     /// (the Zeno sequence of ever smaller events as p -> 0 at the trailing corner).
@@ -69,6 +72,7 @@ impl Default for Problem {
             x_max: None,
             cycles: 10,
             max_events: 50_000,
+            keep_states: true,
             creep_fraction: 1e-3,
         }
     }
@@ -154,7 +158,10 @@ pub struct Event {
 #[derive(Debug, Clone)]
 pub struct Run {
     pub events: Vec<Event>,
+    /// One state per event, or only the last one ([`Problem::keep_states`] false).
     pub states: Vec<State>,
+    /// Largest [`Violations::max`] over every recorded state, kept or not.
+    pub max_violation: f64,
     /// Tangential stiffness of the all-stuck interface dF/dX, N/m per m (F^c = k_bonded X).
     pub k_bonded: f64,
     pub sliding_events: usize,
@@ -208,9 +215,12 @@ struct Solver<'a> {
     /// S b0 and S b1 over the constrained values, or None to rebuild.
     g: Option<(Vec<f64>, Vec<f64>)>,
     g_updates: usize,
+    /// The last solve's result, until the states, anchors, coefficients or phase change.
+    last: Option<Affine>,
 }
 
 /// Affine solution b = b0 + lam b1, f = f0 + lam f1 over all DOFs.
+#[derive(Clone)]
 struct Affine {
     b0: Vec<f64>,
     b1: Vec<f64>,
@@ -485,6 +495,7 @@ impl<'a> Solver<'a> {
 
     /// New coefficients of slipping nodes' rows (slip weakening).
     fn set_coefficients(&mut self, changes: &[(usize, f64)]) -> Result<()> {
+        self.last = None;
         if changes.len() < 32 {
             for &(i, mu) in changes {
                 self.remove(i);
@@ -521,10 +532,20 @@ impl<'a> Solver<'a> {
         }
         self.states[i] = new;
         self.anchor[i] = anchor;
+        self.last = None;
     }
 
     /// The affine solution of the current state set.
     fn solve(&mut self) -> Result<Affine> {
+        if let Some(a) = &self.last {
+            return Ok(a.clone());
+        }
+        let a = self.solve_now()?;
+        self.last = Some(a.clone());
+        Ok(a)
+    }
+
+    fn solve_now(&mut self) -> Result<Affine> {
         let nd = self.nd;
         let (iu, iv) = (self.iu(), self.iv());
         let mut b0 = vec![0.0; nd];
@@ -547,17 +568,13 @@ impl<'a> Solver<'a> {
         // change) and rebuilt in one pass over S after bulk changes or 256 updates; the free
         // rows' right-hand sides are read from it, and f = g + sum_k z_k S[free_k, :].
         if self.g.is_none() {
+            // S is symmetric: S b = sum over the nonzero b_j of b_j S[j, :] (contiguous rows).
             let mut g0 = vec![0.0; nd];
             let mut g1 = vec![0.0; nd];
-            for i in 0..nd {
-                let row = &s[i * nd..(i + 1) * nd];
-                let (mut x0, mut x1) = (0.0, 0.0);
-                for j in 0..nd {
-                    x0 += row[j] * b0[j];
-                    x1 += row[j] * b1[j];
+            for (g, b) in [(&mut g0, &b0), (&mut g1, &b1)] {
+                for (j, &bj) in b.iter().enumerate().filter(|(_, &v)| v != 0.0) {
+                    g.iter_mut().zip(&s[j * nd..(j + 1) * nd]).for_each(|(g, v)| *g += bj * v);
                 }
-                g0[i] = x0;
-                g1[i] = x1;
             }
             self.g = Some((g0, g1));
             self.g_updates = 0;
@@ -848,6 +865,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
         creep: pb.creep_fraction,
         g: None,
         g_updates: 0,
+        last: None,
     };
     sv.refresh()?;
     // Bonded stiffness and the displacement scale (|V| under N) from the all-stuck solution.
@@ -863,9 +881,17 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     sv.dscale = v_scale;
     sv.phase = Phase::Normal;
     sv.g = None;
+    sv.last = None;
 
-    let mut out =
-        Run { events: vec![], states: vec![], k_bonded, sliding_events: 0, updates: 0, refreshes: 0 };
+    let mut out = Run {
+        events: vec![],
+        states: vec![],
+        max_violation: 0.0,
+        k_bonded,
+        sliding_events: 0,
+        updates: 0,
+        refreshes: 0,
+    };
     let max_fix = 20 * n + 100;
     let is_sk = pb.law.weakens();
     let mut prev_u: Vec<f64> = vec![0.0; n];
@@ -909,6 +935,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     // pre-slipped node sticks and re-arms to mu_s.
     sv.phase = Phase::Drive;
     sv.g = None;
+    sv.last = None;
     lam = 0.0;
     if is_sk {
         for i in 0..n {
@@ -1142,15 +1169,11 @@ impl Event {
 
 fn push(out: &mut Run, pb: &Problem, ev: Event, st: State) -> Result<()> {
     if out.events.len() >= pb.max_events {
-        return Err(Error::input(
-            "max events",
-            format!(
-                "the run needs more than {} events (at X = {:.6e} m, F/N = {:.6}); raise the cap or lower x-max/cycles",
-                pb.max_events,
-                st.x,
-                st.f / pb.n_force
-            ),
-        ));
+        return Err(Error::EventCap { cap: pb.max_events, x: st.x, f_over_n: st.f / pb.n_force });
+    }
+    out.max_violation = out.max_violation.max(st.violations.max());
+    if !pb.keep_states {
+        out.states.clear();
     }
     out.events.push(ev);
     out.states.push(st);
@@ -1184,9 +1207,10 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
     for i in 0..n {
         if sv.states[i] != NodeState::Open && sv.states[i] != NodeState::Stick {
             sv.set_state(i, NodeState::Stick, u_start[i])?;
-        } else if sv.states[i] == NodeState::Stick {
+        } else if sv.states[i] == NodeState::Stick && sv.anchor[i] != u_start[i] {
             sv.anchor[i] = u_start[i];
             sv.g = None;
+            sv.last = None;
         }
     }
     let mut in_region = vec![false; n];
