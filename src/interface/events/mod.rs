@@ -983,6 +983,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                         push(&mut out, pb, Event::simple(kind, &st, i), st)?;
                     }
                     let f_before = a.f(sv.iu(), lam);
+                    let before = sv.states.clone();
                     let (region, backslip, all_slip) = instability(&mut sv, &a, lam, i0)?;
                     // Zeno guard: a node that relaxes alone twice in a row (the trailing corner
                     // as p -> 0) slides on continuously at mu_d (creep) until its slip rate
@@ -998,7 +999,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                     let a2 = sv.solve()?;
                     let st = sv.record(&a2, lam, Some(&prev_u));
                     prev_u.clone_from(&st.u);
-                    let kind = classify(&sv.states, region, &mut slipped);
+                    let kind = classify(&before, &sv.states, region, &mut slipped);
                     if kind == "sliding" {
                         out.sliding_events += 1;
                     }
@@ -1083,14 +1084,22 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     }
 }
 
-/// Kind of an instability over `region` (first, last node) given the states after it, and
-/// `slipped`, the nodes slipped in instabilities since the last whole-interface slip (updated):
-/// `sliding` when the region covers every contact node (with the overdamped rule some may
-/// have re-stuck before the end of the relaxation), `precursor` when it starts at the first
+/// Kind of an instability over `region` (first, last node) given the states before and after
+/// it, and `slipped`, the nodes slipped in instabilities since the last whole-interface slip
+/// (updated): `sliding` when the region covers every node in contact both before and after
+/// (with the overdamped rule some may have re-stuck before the end of the relaxation; an
+/// open or creeping corner that re-closes in the relaxation is no obstacle to a whole slip),
+/// `precursor` when it starts at the first
 /// contact node (the trailing edge), `tip-advance` when it touches the run of slipped nodes
 /// grown from there (an arrested front creeping on), `nucleation` elsewhere.
-fn classify(states: &[NodeState], region: (usize, usize), slipped: &mut [bool]) -> &'static str {
-    let contact: Vec<usize> = (0..states.len()).filter(|&k| states[k] != NodeState::Open).collect();
+fn classify(
+    before: &[NodeState],
+    states: &[NodeState],
+    region: (usize, usize),
+    slipped: &mut [bool],
+) -> &'static str {
+    let contact: Vec<usize> =
+        (0..states.len()).filter(|&k| states[k] != NodeState::Open && before[k] != NodeState::Open).collect();
     let covers =
         contact.first().is_some_and(|&c0| region.0 <= c0) && contact.last().is_some_and(|&c1| region.1 >= c1);
     let kind = if covers {

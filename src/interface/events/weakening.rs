@@ -69,7 +69,7 @@ pub(super) fn drive(
                 .filter(|&i| matches!(states_pre[i], NodeState::Slip(_)))
                 .min_by(|&i, &j| mu_pre[i].total_cmp(&mu_pre[j]))
                 .unwrap_or(i0);
-            let kind = classify(&sv.states, (first, last), &mut slipped);
+            let kind = classify(&states_pre, &sv.states, (first, last), &mut slipped);
             heal(sv, &a, lam)?;
             let b = sv.solve()?;
             let st = sv.record(&b, lam, Some(&prev_u));
