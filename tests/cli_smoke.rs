@@ -87,6 +87,23 @@ fn every_subcommand_runs_and_writes_what_it_names() {
                 "paper/run.toml",
             ],
         ),
+        (
+            &[
+                "precursors",
+                "--fe",
+                "--map",
+                "--resolution",
+                "3",
+                "--rules",
+                "paper,overdamped",
+                "--length",
+                "0.05",
+                "--out",
+                "pm",
+            ],
+            "pm",
+            &["fig5_fe.csv", "boundary_fe.csv", "fig5_fe.svg", "run.toml"],
+        ),
         (&["bench", "--case", "strip2", "--dgemm", "0", "--out", "be"], "be", &["bench.csv"]),
     ];
     for (args, out, files) in cases {

@@ -458,3 +458,26 @@ fn slide_and_stability_refuse_flags_that_cannot_act() {
         assert!(!out.exists());
     }
 }
+
+#[test]
+/// `precursors --fe --map`: bad grid, cap or rule refused with the input status and the flag
+/// named, nothing written.
+fn fe_fig5_refuses_bad_options() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = out.to_str().unwrap();
+    let cases: [(&[&str], &str); 4] = [
+        (&["--resolution", "1"], "resolution"),
+        (&["--max-events", "0"], "--max-events"),
+        (&["--rules", "paper,fast"], "fast"),
+        (&["--cycles", "3"], "--cycles"),
+    ];
+    for (args, word) in cases {
+        let mut a = vec!["precursors", "--fe", "--map", "--out", o];
+        a.extend_from_slice(args);
+        let r = tribofe(&a);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(r.status.code() == Some(2) && err.contains(word), "{a:?}: {err}");
+        assert!(!out.exists(), "{a:?}: output written");
+    }
+}

@@ -24,17 +24,26 @@ pub struct Args {
     /// Number of events [default: until |F - F_max| < 1e-6, at most 200].
     #[arg(long)]
     events: Option<usize>,
-    /// Compute the number of precursors n over the (r, g) square instead (fig. 5).
+    /// Compute the number of precursors n over the (r, g) square instead (fig. 5); with --fe,
+    /// from the frictional FE next to the model.
     #[arg(long, conflicts_with_all = ["r", "g", "events"])]
     map: bool,
     /// The paper's fig. 4 from the frictional FE on the scene (rigid plate, QUA4): one run per
     /// event rule (paper, overdamped) next to the analytic iteration; writes summary.csv and
-    /// a folder per rule and one for the model.
-    #[arg(long, conflicts_with = "map")]
+    /// a folder per rule and one for the model. With --map, the FE fig. 5.
+    #[arg(long)]
     fe: bool,
-    /// With --fe: whole-interface slips (stick-slip cycles) per run.
-    #[arg(long, default_value_t = 2, requires = "fe")]
-    cycles: usize,
+    /// With --fe: whole-interface slips (stick-slip cycles) per run [default: 2].
+    #[arg(long, requires = "fe", conflicts_with = "map")]
+    cycles: Option<usize>,
+    /// With --fe --map: event rules to run in every cell, comma separated: paper, overdamped
+    /// (about 45 s for 20 x 20 on the paper's scene; overdamped adds about 200 s, and most of
+    /// its cells exceed the event cap).
+    #[arg(long, value_delimiter = ',', default_value = "paper", requires = "fe")]
+    rules: Vec<tribofe::interface::law::Rule>,
+    /// With --fe --map: events per cell before the cell is reported as capped (grey).
+    #[arg(long, default_value_t = 2000, requires = "fe")]
+    max_events: usize,
     /// The earlier comparison: the 1D model fed with the bonded FE interface fields (ill-posed
     /// at the singular corners, validation/precursors/README.md).
     #[arg(long, conflicts_with_all = ["map", "fe"])]
@@ -44,17 +53,21 @@ pub struct Args {
     sweep: bool,
     #[command(flatten)]
     scene: super::check::SceneArgs,
-    /// Grid points per axis for --map (cell centres), 2..=400.
-    #[arg(long, default_value_t = 40, requires = "map")]
-    resolution: usize,
+    /// Grid points per axis for --map (cell centres), 2..=400 [default: 40, with --fe 20].
+    #[arg(long, requires = "map")]
+    resolution: Option<usize>,
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
+    if args.map && args.fe {
+        return fe_map(&args);
+    }
     if args.map {
-        let map = precursors::n_map(args.resolution)?;
+        let resolution = args.resolution.unwrap_or(40);
+        let map = precursors::n_map(resolution)?;
         let n_max = map.iter().map(|m| m.n).max().unwrap_or(0);
-        outln!("n(r, g) on a {0} x {0} grid: n from 0 to {n_max}", args.resolution);
-        return print_written(&report::write_map(&args.out, &map, args.resolution)?);
+        outln!("n(r, g) on a {0} x {0} grid: n from 0 to {n_max}", resolution);
+        return print_written(&report::write_map(&args.out, &map, resolution)?);
     }
     if args.fe {
         return fe(&args);
@@ -91,8 +104,8 @@ fn print_written(paths: &[impl AsRef<Path>]) -> tribofe::Result<()> {
     Ok(())
 }
 
-/// FE fig. 4: the frictional FE for each event rule next to the analytic iteration.
-fn fe(args: &Args) -> tribofe::Result<()> {
+/// The scene of `precursors --fe`, refusing the scene flags that cannot act there.
+fn fe_scene(args: &Args) -> tribofe::Result<tribofe::scene::Scene> {
     for (flag, given) in
         [("--fn-ratios", args.scene.fn_ratios.is_some()), ("--tol", args.scene.tol.is_some())]
     {
@@ -103,13 +116,20 @@ fn fe(args: &Args) -> tribofe::Result<()> {
             ));
         }
     }
-    if args.cycles == 0 {
-        return Err(Error::input("--cycles", "need at least one whole-interface slip"));
-    }
     let scene = super::check::scene(&args.scene)?;
     tribofe::io::outdir::check(&args.out)?;
+    Ok(scene)
+}
+
+/// FE fig. 4: the frictional FE for each event rule next to the analytic iteration.
+fn fe(args: &Args) -> tribofe::Result<()> {
+    let cycles = args.cycles.unwrap_or(2);
+    if cycles == 0 {
+        return Err(Error::input("--cycles", "need at least one whole-interface slip"));
+    }
     let p = Params::new(args.r, args.g)?;
-    let runs = tribofe::studies::precursors_fe::fig4(&scene, p.r(), p.g(), args.cycles)?;
+    let scene = fe_scene(args)?;
+    let runs = tribofe::studies::precursors_fe::fig4(&scene, p.r(), p.g(), cycles)?;
     if runs.iter().all(|r| r.is_err()) {
         return runs.into_iter().find_map(|r| r.err()).map_or(Ok(()), Err);
     }
@@ -167,6 +187,69 @@ fn fe(args: &Args) -> tribofe::Result<()> {
     dir.commit()?;
     outln!("n: precursors before the first whole slip; > 5t: longer than 5 t; advance: moving the front by > 5 t (the mesh-stable count)");
     outln!("wrote {}/{{summary.csv, model/, paper/, overdamped/}}", args.out.display());
+    Ok(())
+}
+
+/// FE fig. 5: n over the (r, g) grid from the frictional FE for each rule asked for, next to
+/// the model's map.
+fn fe_map(args: &Args) -> tribofe::Result<()> {
+    use tribofe::studies::precursors_fe::{self as pfe, RULES};
+    let resolution = args.resolution.unwrap_or(20);
+    if args.max_events == 0 {
+        return Err(Error::input("--max-events", "need at least one event per cell"));
+    }
+    let mut rules = args.rules.clone();
+    rules.dedup();
+    let scene = fe_scene(args)?;
+    let bar = indicatif::ProgressBar::new((resolution * resolution) as u64).with_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cells, {elapsed} (eta {eta})").unwrap(),
+    );
+    let clock = std::time::Instant::now();
+    let cells = pfe::fig5(&scene, resolution, &rules, args.max_events, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    let wall = clock.elapsed().as_secs_f64();
+    outln!(
+        "FE fig. 5 on a {0} x {0} grid (H/L = {1:.4}, t/L = {2:.4}), {3:.1} s wall on {4} threads; per cell at most {5} events",
+        resolution,
+        scene.loading.height / scene.block.length,
+        scene.block.thickness / scene.block.length,
+        wall,
+        rayon::current_num_threads(),
+        args.max_events
+    );
+    for (k, rule) in RULES.iter().enumerate().filter(|(_, r)| rules.contains(r)) {
+        let runs: Vec<_> = cells.iter().filter_map(|c| c.runs[k]).collect();
+        let count = |s: &str| runs.iter().filter(|r| r.status() == s).count();
+        let seconds: f64 = runs.iter().map(|r| r.seconds()).sum();
+        let agree = cells
+            .iter()
+            .filter(|c| c.runs[k].and_then(|r| r.n_advancing()).is_some_and(|n| (n > 0) == (c.n_model > 0)))
+            .count();
+        outln!(
+            "{:>12}: {} done, {} capped, {} refused; {:.1} s in cells; precursors or none as the model in {}/{} finished cells",
+            rule.name(),
+            count("done"),
+            count("capped"),
+            count("refused"),
+            seconds,
+            agree,
+            count("done")
+        );
+    }
+    let command: Vec<String> = std::env::args().collect();
+    let what = [
+        ("resolution", resolution.to_string()),
+        ("max_events_per_cell", args.max_events.to_string()),
+        ("rules", rules.iter().map(|r| r.name()).collect::<Vec<_>>().join(",")),
+        ("wall_seconds", format!("{wall:.1}")),
+    ];
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
+    report::write_fe_fig5(dir.path(), &cells, resolution, &what, &command, &scene)?;
+    dir.commit()?;
+    outln!(
+        "counts: front-advancing precursors (> 5 t) before the first whole slip; capped: over --max-events"
+    );
+    outln!("wrote {}/{{fig5_fe.csv, boundary_fe.csv, fig5_fe.svg, run.toml}}", args.out.display());
     Ok(())
 }
 

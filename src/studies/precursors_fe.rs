@@ -182,3 +182,33 @@ pub fn fig5(
         })
         .collect()
 }
+
+/// The measured no-precursor boundary of one rule (index into [`RULES`]) in a fig. 5 grid:
+/// per r column (ascending), the model's lowest g with n > 0 and the FE's lowest g whose run
+/// made a front-advancing precursor. The FE value is None when no finished cell of the
+/// column made one, or when a capped or refused cell lies below it (the boundary is then
+/// unknown).
+pub fn boundary(cells: &[Cell], rule: usize) -> Vec<(f64, Option<f64>, Option<f64>)> {
+    let mut rs: Vec<f64> = cells.iter().map(|c| c.r).collect();
+    rs.sort_by(f64::total_cmp);
+    rs.dedup();
+    rs.into_iter()
+        .map(|r| {
+            let mut col: Vec<&Cell> = cells.iter().filter(|c| c.r == r).collect();
+            col.sort_by(|a, b| a.g.total_cmp(&b.g));
+            let model = col.iter().find(|c| c.n_model > 0).map(|c| c.g);
+            let mut fe = None;
+            for c in &col {
+                match c.runs[rule].as_ref().map(|run| run.n_advancing()) {
+                    Some(Some(0)) => {}
+                    Some(Some(_)) => {
+                        fe = Some(c.g);
+                        break;
+                    }
+                    _ => break,
+                }
+            }
+            (r, model, fe)
+        })
+        .collect()
+}
