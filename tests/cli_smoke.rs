@@ -104,6 +104,16 @@ fn every_subcommand_runs_and_writes_what_it_names() {
             "pm",
             &["fig5_fe.csv", "boundary_fe.csv", "fig5_fe.svg", "run.toml"],
         ),
+        (
+            &["precursors", "--fe", "--thin-layer", "0.04,0.02", "--length", "0.05", "--out", "pt"],
+            "pt",
+            &["thin_layer.csv", "thin_layer.svg", "run.toml"],
+        ),
+        (
+            &["precursors", "--fe", "--heights", "0.05,0.1", "--length", "0.05", "--out", "ph"],
+            "ph",
+            &["heights.csv", "heights.svg", "run.toml"],
+        ),
         (&["bench", "--case", "strip2", "--dgemm", "0", "--out", "be"], "be", &["bench.csv"]),
     ];
     for (args, out, files) in cases {

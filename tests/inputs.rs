@@ -460,20 +460,24 @@ fn slide_and_stability_refuse_flags_that_cannot_act() {
 }
 
 #[test]
-/// `precursors --fe --map`: bad grid, cap or rule refused with the input status and the flag
+/// `precursors --fe` studies (--map, --thin-layer, --heights): bad grid, cap, rule, t/L or H/L refused with the input status and the flag
 /// named, nothing written.
 fn fe_fig5_refuses_bad_options() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let o = out.to_str().unwrap();
-    let cases: [(&[&str], &str); 4] = [
-        (&["--resolution", "1"], "resolution"),
-        (&["--max-events", "0"], "--max-events"),
-        (&["--rules", "paper,fast"], "fast"),
-        (&["--cycles", "3"], "--cycles"),
+    let cases: [(&[&str], &str); 8] = [
+        (&["--map", "--resolution", "1"], "resolution"),
+        (&["--map", "--max-events", "0"], "--max-events"),
+        (&["--map", "--rules", "paper,fast"], "fast"),
+        (&["--map", "--cycles", "3"], "--cycles"),
+        (&["--thin-layer", "0.01,0"], "--thin-layer"),
+        (&["--thin-layer", "0.01", "--map"], "--map"),
+        (&["--heights", "0.1,0.3"], "--heights"),
+        (&["--heights", "-0.1"], "--heights"),
     ];
     for (args, word) in cases {
-        let mut a = vec!["precursors", "--fe", "--map", "--out", o];
+        let mut a = vec!["precursors", "--fe", "--out", o];
         a.extend_from_slice(args);
         let r = tribofe(&a);
         let err = String::from_utf8_lossy(&r.stderr);

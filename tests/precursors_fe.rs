@@ -121,3 +121,73 @@ fn fe_fig5_on_the_paper_mesh() {
         }
     }
 }
+
+#[test]
+/// The thin-layer limit of the `paper` rule (h = t, 2 elements through t, H/L = 0.1). The FE
+/// is converged in t/L (F_1 within 0.5 % between t/L = 0.0025 and 0.00125 at each (r, g)).
+/// Against the model at t/L = 0.00125, tolerances from the measured offsets
+/// (validation/precursors/README.md): at (0.9, 0.35) F_1 within 0.5 %, x_1 within 0.01 L,
+/// F_max 4-7 % below; at (0.8, 0.5) F_1 within 5 %, x_1 within 0.06 L, F_max within 10 %; at
+/// (0.95, 0.2) F_1 within 10 % and F_max within 4 %, but the first long precursor arrests
+/// more than 0.25 L beyond the model's x_1. The FE always makes at least the model's n of
+/// front-advancing precursors, and at most 10 times as many (65 against 8 at (0.8, 0.5)).
+fn thin_layer_limit_against_the_model() {
+    use tribofe::studies::precursors_fe::thin_layer;
+    let cases = [
+        (0.9, 0.35, 0.005, 0.01, (0.04, 0.07)),
+        (0.8, 0.5, 0.05, 0.06, (0.0, 0.10)),
+        (0.95, 0.2, 0.10, f64::INFINITY, (0.0, 0.04)),
+    ];
+    for (r, g, tol_f1, tol_x1, (fmax_lo, fmax_hi)) in cases {
+        let rows = thin_layer(&Scene::default(), r, g, &[0.0025, 0.00125], &|_| {}).unwrap();
+        let c: Vec<_> = rows.iter().map(|row| row.fig4.as_ref().unwrap().cmp).collect();
+        let (a, b) = (c[0], c[1]);
+        assert!((a.f1_fe.unwrap() / b.f1_fe.unwrap() - 1.0).abs() < 0.005, "({r},{g}) not converged");
+        let dev_f1 = (b.f1_fe.unwrap() / b.f1 - 1.0).abs();
+        let dev_x1 = (b.x1_fe.unwrap() - b.x1).abs();
+        let low_fmax = 1.0 - b.f_max_fe.unwrap() / b.f_max;
+        assert!(dev_f1 < tol_f1, "({r},{g}) F_1 {:?} vs {}", b.f1_fe, b.f1);
+        assert!(dev_x1 < tol_x1, "({r},{g}) x_1 {:?} vs {}", b.x1_fe, b.x1);
+        if tol_x1.is_infinite() {
+            assert!(dev_x1 > 0.25, "({r},{g}) x_1 {:?} vs {}", b.x1_fe, b.x1);
+        }
+        assert!(low_fmax > fmax_lo && low_fmax < fmax_hi, "({r},{g}) F_max {:?} vs {}", b.f_max_fe, b.f_max);
+        assert!(
+            b.n_fe_advancing >= b.n && b.n_fe_advancing <= 10 * b.n,
+            "({r},{g}) n {} vs {}",
+            b.n_fe_advancing,
+            b.n
+        );
+    }
+}
+
+#[test]
+/// The height of the drive at the fixed coefficients of (0.9, 0.35) on the paper's scene:
+/// torque controls the first precursor as the model says (F_1 within 2 %, x_1 within 0.035 L
+/// for g from 0.17 to 0.96), the FE's count grows with g, and the peak stays below mu_s N and
+/// within 7 % below the model's F_max.
+fn height_of_the_drive_controls_the_first_precursor() {
+    let hs = [0.05, 0.1, 0.15, 0.2, 0.25, 0.275];
+    let rows = tribofe::studies::precursors_fe::heights(&Scene::default(), 0.9, 0.35, &hs, &|_| {}).unwrap();
+    let mut last = 0;
+    for row in &rows {
+        let c = row.fig4.as_ref().unwrap().cmp;
+        assert!(
+            (c.f1_fe.unwrap() / c.f1 - 1.0).abs() < 0.02,
+            "H/L {} F_1 {:?} vs {}",
+            row.value,
+            c.f1_fe,
+            c.f1
+        );
+        assert!((c.x1_fe.unwrap() - c.x1).abs() < 0.035, "H/L {} x_1 {:?} vs {}", row.value, c.x1_fe, c.x1);
+        assert!(c.n_fe_advancing >= last, "H/L {}: n {} after {last}", row.value, c.n_fe_advancing);
+        last = c.n_fe_advancing;
+        let f_max = c.f_max_fe.unwrap();
+        assert!(
+            f_max < 1.0 && f_max > 0.93 * c.f_max && f_max < c.f_max,
+            "H/L {} F_max {f_max} vs {}",
+            row.value,
+            c.f_max
+        );
+    }
+}

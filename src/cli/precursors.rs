@@ -36,6 +36,16 @@ pub struct Args {
     /// With --fe: whole-interface slips (stick-slip cycles) per run [default: 2].
     #[arg(long, requires = "fe", conflicts_with = "map")]
     cycles: Option<usize>,
+    /// With --fe: the thin-layer study instead, the `paper` rule at (r, g) on blocks of these
+    /// t/L (comma separated, e.g. 0.02,0.01,0.005,0.0025,0.00125) at the scene's L and H/L, h
+    /// = t with 2 elements through t; writes thin_layer.csv and thin_layer.svg.
+    #[arg(long, value_delimiter = ',', requires = "fe", conflicts_with_all = ["map", "cycles"])]
+    thin_layer: Option<Vec<f64>>,
+    /// With --fe: the height-of-drive study instead, the `paper` rule with the coefficients of
+    /// (r, g) at the scene's H kept fixed, at these H/L (comma separated; g = 6 mu_d H/L must
+    /// stay below 1); writes heights.csv and heights.svg.
+    #[arg(long, value_delimiter = ',', requires = "fe", conflicts_with_all = ["map", "cycles", "thin_layer"])]
+    heights: Option<Vec<f64>>,
     /// With --fe --map: event rules to run in every cell, comma separated: paper, overdamped
     /// (about 45 s for 20 x 20 on the paper's scene; overdamped adds about 200 s, and most of
     /// its cells exceed the event cap).
@@ -68,6 +78,12 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         let n_max = map.iter().map(|m| m.n).max().unwrap_or(0);
         outln!("n(r, g) on a {0} x {0} grid: n from 0 to {n_max}", resolution);
         return print_written(&report::write_map(&args.out, &map, resolution)?);
+    }
+    if args.fe && args.thin_layer.is_some() {
+        return thin_layer(&args);
+    }
+    if args.fe && args.heights.is_some() {
+        return heights(&args);
     }
     if args.fe {
         return fe(&args);
@@ -181,12 +197,179 @@ fn fe(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{:>12} refused: {e}", rule.name()),
         }
     }
+    outln!("n: precursors before the first whole slip; > 5t: longer than 5 t; advance: moving the front by > 5 t (the mesh-stable count)");
+    outln!("\nthe model's field assumptions measured on each run (states before the first whole slip; interior: > 5 t from the ends):");
+    outln!(
+        "{:>12} {:>11} {:>11} {:>11} {:>11} {:>11}",
+        "",
+        "1: shear",
+        "1: tip",
+        "2: pressure",
+        "3: F_corner",
+        "3: x_nucl"
+    );
+    for (rule, run) in tribofe::studies::precursors_fe::RULES.iter().zip(&runs) {
+        if let Ok(r) = run {
+            let e = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2e}"));
+            let fc = &r.fields;
+            outln!(
+                "{:>12} {:>11} {:>11} {:>11.2e} {:>11} {:>11}",
+                rule.name(),
+                e(fc.shear_far),
+                e(fc.shear_tip),
+                fc.pressure,
+                f(fc.f_corner),
+                f(fc.x_nucleation)
+            );
+        }
+    }
+    outln!("1: largest |tau - F^c/L|/(F^c/L) on never-slipped nodes > 5 t ahead of the front; tip: tau/(F^c/L) - 1 just ahead of it");
+    outln!("2: largest |p - (N/L + 12 F H x/L^3)|/(N/L); 3: F/(mu_s N) when the trailing node opens or creeps, x/L where the first long precursor began");
     let command: Vec<String> = std::env::args().collect();
     let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
     report::write_fe_fig4(dir.path(), &p, &model, &runs, &command, &scene)?;
     dir.commit()?;
-    outln!("n: precursors before the first whole slip; > 5t: longer than 5 t; advance: moving the front by > 5 t (the mesh-stable count)");
     outln!("wrote {}/{{summary.csv, model/, paper/, overdamped/}}", args.out.display());
+    Ok(())
+}
+
+/// The thin-layer limit: the `paper` rule at (r, g) over t/L against the model.
+fn thin_layer(args: &Args) -> tribofe::Result<()> {
+    use tribofe::studies::precursors_fe as pfe;
+    let ts = args.thin_layer.clone().unwrap_or_default();
+    if let Some(bad) = ts.iter().find(|t| !(t.is_finite() && **t > 0.0 && **t <= 0.5)) {
+        return Err(Error::input("--thin-layer", format!("t/L = {bad}: need 0 < t/L <= 0.5")));
+    }
+    let p = Params::new(args.r, args.g)?;
+    let scene = fe_scene(args)?;
+    let bar = indicatif::ProgressBar::new(ts.len() as u64).with_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} thicknesses, {elapsed}").unwrap(),
+    );
+    let rows = pfe::thin_layer(&scene, p.r(), p.g(), &ts, &|_| bar.inc(1))?;
+    bar.finish_and_clear();
+    let n = precursors::n_precursors(&p)?;
+    outln!(
+        "thin-layer limit, rule paper, (r, g) = ({}, {}), H/L = {:.4}; F in units of mu_s N, x in units of L",
+        p.r(),
+        p.g(),
+        scene.loading.height / scene.block.length
+    );
+    outln!(
+        "{:>9} {:>6} {:>9} {:>9} {:>9} {:>10} {:>11} {:>9}",
+        "t/L",
+        "n adv",
+        "F_1",
+        "x_1",
+        "F_max",
+        "F_corner",
+        "violation",
+        "time, s"
+    );
+    let x1 = precursors::simulate(&p, 1)[0].x;
+    outln!(
+        "{:>9} {n:>6} {:>9.4} {:>9.4} {:>9.4} {:>10} {:>11} {:>9}",
+        "model",
+        p.f1(),
+        x1,
+        p.f_max(),
+        "-",
+        "-",
+        "-"
+    );
+    let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+    for row in &rows {
+        match &row.fig4 {
+            Ok(r) => outln!(
+                "{:>9} {:>6} {:>9} {:>9} {:>9} {:>10} {:>11.1e} {:>9.1}",
+                row.value,
+                r.cmp.n_fe_advancing,
+                f(r.cmp.f1_fe),
+                f(r.cmp.x1_fe),
+                f(r.cmp.f_max_fe),
+                f(r.fields.f_corner),
+                r.worst_violation,
+                row.seconds
+            ),
+            Err(e) => outln!("{:>9} refused: {e}", row.value),
+        }
+    }
+    let rate = |g: fn(&tribofe::studies::slide::PaperComparison) -> Option<f64>| {
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .filter_map(|r| r.fig4.as_ref().ok().and_then(|f| g(&f.cmp)).map(|v| (r.value, v)))
+            .collect();
+        pfe::log_slope(&pts).map_or("-".to_string(), |s| format!("{s:.2}"))
+    };
+    outln!(
+        "rates (slope of log |deviation| against log t/L): F_1 {}, x_1 {}, F_max {}",
+        rate(|c| c.f1_fe.map(|v| v / c.f1 - 1.0)),
+        rate(|c| c.x1_fe.map(|v| v - c.x1)),
+        rate(|c| c.f_max_fe.map(|v| v / c.f_max - 1.0))
+    );
+    let command: Vec<String> = std::env::args().collect();
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
+    report::write_thin_layer(dir.path(), &p, &rows, &command, &scene)?;
+    dir.commit()?;
+    outln!("wrote {}/{{thin_layer.csv, thin_layer.svg, run.toml}}", args.out.display());
+    Ok(())
+}
+
+/// The height of the drive: the `paper` rule at fixed coefficients over H/L against the model.
+fn heights(args: &Args) -> tribofe::Result<()> {
+    let hs = args.heights.clone().unwrap_or_default();
+    let p = Params::new(args.r, args.g)?;
+    let scene = fe_scene(args)?;
+    let mu = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g())?;
+    let bar = indicatif::ProgressBar::new(hs.len() as u64).with_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} heights, {elapsed}").unwrap(),
+    );
+    let rows = tribofe::studies::precursors_fe::heights(&scene, p.r(), p.g(), &hs, &|_| bar.inc(1))?;
+    bar.finish_and_clear();
+    outln!(
+        "height of the drive, rule paper, mu_s = {:.4}, mu_d = {:.4} (r = {}), t/L = {:.4}; F in units of mu_s N, x in units of L",
+        mu.0,
+        mu.1,
+        p.r(),
+        scene.block.thickness / scene.block.length
+    );
+    outln!(
+        "{:>7} {:>6} {:>13} {:>17} {:>17} {:>17} {:>9}",
+        "H/L",
+        "g",
+        "n model/FE",
+        "F_1 model/FE",
+        "x_1 model/FE",
+        "F_max model/FE",
+        "violation"
+    );
+    let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+    for row in &rows {
+        match &row.fig4 {
+            Ok(r) => {
+                let c = &r.cmp;
+                outln!(
+                    "{:>7.4} {:>6.4} {:>6}/{:<6} {:>8.4}/{:<8} {:>8.4}/{:<8} {:>8.4}/{:<8} {:>9.1e}",
+                    row.value,
+                    c.g,
+                    c.n,
+                    c.n_fe_advancing,
+                    c.f1,
+                    f(c.f1_fe),
+                    c.x1,
+                    f(c.x1_fe),
+                    c.f_max,
+                    f(c.f_max_fe),
+                    r.worst_violation
+                );
+            }
+            Err(e) => outln!("{:>7.4} refused: {e}", row.value),
+        }
+    }
+    let command: Vec<String> = std::env::args().collect();
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
+    report::write_heights(dir.path(), mu, &rows, &command, &scene)?;
+    dir.commit()?;
+    outln!("wrote {}/{{heights.csv, heights.svg, run.toml}}", args.out.display());
     Ok(())
 }
 

@@ -212,17 +212,6 @@ fn err(e: impl std::fmt::Display) -> Error {
     Error::plot("convergence chart", e)
 }
 
-fn range(v: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
-    let (lo, hi) = v
-        .filter(|x| *x > 0.0 && x.is_finite())
-        .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
-    if lo.is_finite() {
-        (lo / 2.0)..(hi * 2.0)
-    } else {
-        1e-6..1.0
-    }
-}
-
 /// Error (max of p and tau) against DOFs, log-log, one panel per zone.
 pub fn error_vs_dofs(study: &Study) -> Result<String> {
     let mut svg = String::new();
@@ -250,8 +239,8 @@ pub fn error_vs_dofs(study: &Study) -> Result<String> {
                 .x_label_area_size(40)
                 .y_label_area_size(60)
                 .build_cartesian_2d(
-                    range(pts.iter().map(|p| p.0)).log_scale(),
-                    range(pts.iter().map(|p| p.1)).log_scale(),
+                    super::log_range(pts.iter().map(|p| p.0)).log_scale(),
+                    super::log_range(pts.iter().map(|p| p.1)).log_scale(),
                 )
                 .map_err(err)?;
             chart
@@ -309,8 +298,8 @@ pub fn error_vs_time(study: &Study) -> Result<String> {
             .x_label_area_size(45)
             .y_label_area_size(65)
             .build_cartesian_2d(
-                range(pts.iter().map(|p| p.0)).log_scale(),
-                range(pts.iter().map(|p| p.1)).log_scale(),
+                super::log_range(pts.iter().map(|p| p.0)).log_scale(),
+                super::log_range(pts.iter().map(|p| p.1)).log_scale(),
             )
             .map_err(err)?;
         chart

@@ -105,3 +105,15 @@ pub fn csv(header: &str, rows: &[Vec<f64>]) -> Result<String> {
 pub fn ratio_label(r: f64) -> String {
     format!("{r}")
 }
+
+/// An axis range for a log scale over the finite positive values, padded by 2x each way.
+pub(crate) fn log_range(v: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
+    let (lo, hi) = v
+        .filter(|x| *x > 0.0 && x.is_finite())
+        .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+    if lo.is_finite() {
+        (lo / 2.0)..(hi * 2.0)
+    } else {
+        1e-6..1.0
+    }
+}

@@ -386,26 +386,33 @@ pub fn write_fe_fig4(
 ) -> Result<Vec<PathBuf>> {
     let n = crate::precursors::n_precursors(p)?;
     let x1 = model.first().map_or(f64::NAN, |e| e.x);
-    let mut s = String::from("source,precursors,precursors_longer_5t,precursors_advancing_5t,F1_over_mu_s_N,x1_over_L,Fmax_over_mu_s_N,worst_violation_over_N_per_n\n");
-    let _ = writeln!(s, "model,{n},{n},{n},{},{},{},", finite("F_1", p.f1())?, finite("x_1", x1)?, p.f_max());
+    let mut s = format!("source,precursors,precursors_longer_5t,precursors_advancing_5t,F1_over_mu_s_N,x1_over_L,Fmax_over_mu_s_N,worst_violation_over_N_per_n,{FIELD_COLUMNS}\n");
+    let _ = writeln!(
+        s,
+        "model,{n},{n},{n},{},{},{},,0,0,0,,-0.5",
+        finite("F_1", p.f1())?,
+        finite("x_1", x1)?,
+        p.f_max()
+    );
     let mut written = write_events(&dir.join("model"), p, model)?;
     for (rule, run) in crate::studies::precursors_fe::RULES.iter().zip(runs) {
         let name = rule.name();
         let Ok(r) = run else {
-            let _ = writeln!(s, "{name},,,,,,,");
+            let _ = writeln!(s, "{name},,,,,,,,,,,,");
             continue;
         };
         let c = &r.cmp;
         let _ = writeln!(
             s,
-            "{name},{},{},{},{},{},{},{:e}",
+            "{name},{},{},{},{},{},{},{:e},{}",
             c.n_fe,
             c.n_fe_long,
             c.n_fe_advancing,
             opt(c.f1_fe),
             opt(c.x1_fe),
             opt(c.f_max_fe),
-            r.worst_violation
+            r.worst_violation,
+            field_values(&r.fields)
         );
         let sub = dir.join(name);
         ensure_dir(&sub)?;
@@ -592,6 +599,241 @@ pub fn write_fe_fig5(
             ("fig5_fe.csv", fe_fig5_csv(cells)?),
             ("boundary_fe.csv", fe_boundary_csv(cells)?),
             ("fig5_fe.svg", fe_fig5_svg(cells, resolution)?),
+            ("run.toml", super::run_toml(command, &what, scene)?),
+        ],
+    )
+}
+
+/// Header fragment and values of [`crate::studies::precursors_fe::FieldChecks`] for CSVs.
+const FIELD_COLUMNS: &str =
+    "shear_far_rel_dev,shear_tip_rel_excess,pressure_dev_over_pmean,F_corner_over_mu_s_N,x_nucleation_over_L";
+
+fn field_values(f: &crate::studies::precursors_fe::FieldChecks) -> String {
+    format!(
+        "{},{},{:e},{},{}",
+        opt(f.shear_far.map(|v| format!("{v:e}"))),
+        opt(f.shear_tip.map(|v| format!("{v:e}"))),
+        f.pressure,
+        opt(f.f_corner),
+        opt(f.x_nucleation)
+    )
+}
+
+/// A series' CSV (`thin_layer.csv`, `heights.csv`): per value of `param` the model's n, F_1,
+/// x_1 and F_max, the `paper` rule's front-advancing count, F_1, x_1 and first whole-slip peak,
+/// their deviations (relative; x_1 in units of t), the field checks, the worst violation and
+/// the wall time.
+pub fn series_csv(param: &str, rows: &[crate::studies::precursors_fe::SeriesRow]) -> Result<String> {
+    let mut s = format!(
+        "{param},r,g,model_precursors,model_F1_over_mu_s_N,model_x1_over_L,model_Fmax_over_mu_s_N,precursors,precursors_longer_5t,precursors_advancing_5t,F1_over_mu_s_N,x1_over_L,Fmax_over_mu_s_N,F1_rel_dev,x1_dev_over_t,Fmax_rel_dev,{FIELD_COLUMNS},max_violation_over_N_per_n,seconds\n"
+    );
+    for row in rows {
+        let Ok(f) = &row.fig4 else {
+            let _ = writeln!(s, "{}{}{:.3}", row.value, ",".repeat(22), row.seconds);
+            continue;
+        };
+        let c = &f.cmp;
+        let t_over_l = f.run.condensed.t / f.run.condensed.l;
+        let rel = |v: Option<f64>, m: f64| opt(v.map(|v| v / m - 1.0));
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:e},{:.3}",
+            row.value,
+            c.r,
+            c.g,
+            c.n,
+            c.f1,
+            c.x1,
+            c.f_max,
+            c.n_fe,
+            c.n_fe_long,
+            c.n_fe_advancing,
+            opt(c.f1_fe),
+            opt(c.x1_fe),
+            opt(c.f_max_fe),
+            rel(c.f1_fe, c.f1),
+            opt(c.x1_fe.map(|x| (x - c.x1) / t_over_l)),
+            rel(c.f_max_fe, c.f_max),
+            field_values(&f.fields),
+            f.worst_violation,
+            row.seconds
+        );
+    }
+    Ok(s)
+}
+
+/// The thin-layer figure: |F_1 - model|/model, |x_1 - model|/L and |F_max - model|/model
+/// against t/L (log-log), and the front-advancing count against t/L with the model's n.
+pub fn thin_layer_svg(p: &Params, rows: &[crate::studies::precursors_fe::SeriesRow]) -> Result<String> {
+    let n = crate::precursors::n_precursors(p)?;
+    let ok: Vec<(f64, &crate::studies::precursors_fe::Fig4)> =
+        rows.iter().filter_map(|r| r.fig4.as_ref().ok().map(|f| (r.value, f))).collect();
+    type Get = fn(&crate::studies::slide::PaperComparison) -> Option<f64>;
+    let series: [(&str, Get, RGBColor); 3] = [
+        ("|F_1 - model| / model", |c| c.f1_fe.map(|v| (v / c.f1 - 1.0).abs()), BLUE),
+        ("|x_1 - model| / L", |c| c.x1_fe.map(|v| (v - c.x1).abs()), RED),
+        ("|F_max - model| / model", |c| c.f_max_fe.map(|v| (v / c.f_max - 1.0).abs()), GREEN),
+    ];
+    let pts = |g: Get| -> Vec<(f64, f64)> {
+        ok.iter().filter_map(|(tl, f)| g(&f.cmp).filter(|v| *v > 0.0).map(|v| (*tl, v))).collect()
+    };
+    let xr = super::log_range(ok.iter().map(|q| q.0));
+    render("thin_layer.svg", (1100, 480), |root| {
+        let (left, right) = root.split_horizontally(560);
+        let all: Vec<f64> = series.iter().flat_map(|s| pts(s.1)).map(|q| q.1).collect();
+        let mut chart = ChartBuilder::on(&left)
+            .caption(format!("rule paper against the model, (r, g) = ({}, {})", p.r(), p.g()), (FONT, 16))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(xr.clone().log_scale(), super::log_range(all.into_iter()).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("t / L")
+            .y_desc("deviation (dimensionless)")
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()?;
+        for (name, g, col) in series {
+            let line = pts(g);
+            chart
+                .draw_series(LineSeries::new(line.clone(), col.stroke_width(2)))?
+                .label(name)
+                .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], col.stroke_width(2)));
+            chart.draw_series(line.into_iter().map(|q| Circle::new(q, 3, col.filled())))?;
+        }
+        chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
+        let counts: Vec<(f64, f64)> = ok.iter().map(|(tl, f)| (*tl, f.cmp.n_fe_advancing as f64)).collect();
+        let ymax = counts.iter().map(|q| q.1).fold(n as f64, f64::max) * 1.2 + 1.0;
+        let mut chart = ChartBuilder::on(&right)
+            .caption("precursors before the first whole slip", (FONT, 16))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(50)
+            .build_cartesian_2d(xr.log_scale(), 0.0..ymax)?;
+        chart
+            .configure_mesh()
+            .x_desc("t / L")
+            .y_desc("n")
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()?;
+        chart
+            .draw_series(LineSeries::new(counts.clone(), BLUE.stroke_width(2)))?
+            .label("FE, rule paper: advancing the front > 5 t")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLUE.stroke_width(2)));
+        chart.draw_series(counts.into_iter().map(|q| Circle::new(q, 3, BLUE.filled())))?;
+        let (x0, x1) = (
+            ok.iter().map(|q| q.0).fold(f64::INFINITY, f64::min),
+            ok.iter().map(|q| q.0).fold(0.0, f64::max),
+        );
+        chart
+            .draw_series(LineSeries::new([(x0, n as f64), (x1, n as f64)], BLACK.stroke_width(2)))?
+            .label(format!("model: n = {n}"))
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLACK.stroke_width(2)));
+        chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
+        Ok(())
+    })
+}
+
+/// Writes the thin-layer study (`thin_layer.csv`, `thin_layer.svg`, `run.toml`) into `dir`.
+pub fn write_thin_layer(
+    dir: &Path,
+    p: &Params,
+    rows: &[crate::studies::precursors_fe::SeriesRow],
+    command: &[String],
+    scene: &crate::scene::Scene,
+) -> Result<Vec<PathBuf>> {
+    ensure_dir(dir)?;
+    let what = [("r", p.r()), ("g", p.g())];
+    write_all(
+        dir,
+        &[
+            ("thin_layer.csv", series_csv("t_over_L", rows)?),
+            ("thin_layer.svg", thin_layer_svg(p, rows)?),
+            ("run.toml", super::run_toml(command, &what, scene)?),
+        ],
+    )
+}
+
+/// The height-of-drive figure: n, F_1 and F_max, and x_1 against g = 6 mu_d H/L, the FE
+/// (`paper` rule, points) next to the model (lines), at fixed friction coefficients.
+pub fn heights_svg(rows: &[crate::studies::precursors_fe::SeriesRow]) -> Result<String> {
+    let ok: Vec<&crate::studies::slide::PaperComparison> =
+        rows.iter().filter_map(|r| r.fig4.as_ref().ok().map(|f| &f.cmp)).collect();
+    type Pair = fn(&crate::studies::slide::PaperComparison) -> (f64, Option<f64>);
+    type Series<'a> = Vec<(&'a str, Pair, RGBColor)>;
+    let panels: [(&str, &str, Series); 3] = [
+        (
+            "precursors (FE: advancing the front > 5 t)",
+            "n",
+            vec![("n", |c| (c.n as f64, Some(c.n_fe_advancing as f64)), BLUE)],
+        ),
+        (
+            "first precursor and peak (FE: first whole slip)",
+            "F / (mu_s N)",
+            vec![("F_1", |c| (c.f1, c.f1_fe), BLUE), ("F_max", |c| (c.f_max, c.f_max_fe), RED)],
+        ),
+        ("first precursor's arrest", "x_1 / L", vec![("x_1", |c| (c.x1, c.x1_fe), BLUE)]),
+    ];
+    render("heights.svg", (1350, 450), |root| {
+        for (area, (title, ylab, series)) in root.split_evenly((1, 3)).iter().zip(&panels) {
+            let vals: Vec<f64> = ok
+                .iter()
+                .flat_map(|c| {
+                    series.iter().flat_map(move |s| {
+                        let (m, f) = (s.1)(c);
+                        std::iter::once(m).chain(f)
+                    })
+                })
+                .collect();
+            let (lo, hi) =
+                vals.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+            let pad = 0.08 * (hi - lo).max(1e-3);
+            let mut chart = ChartBuilder::on(area)
+                .caption(*title, (FONT, 16))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(55)
+                .build_cartesian_2d(0.0..1.0, (lo - pad)..(hi + pad))?;
+            chart.configure_mesh().x_desc("g = 6 mu_d H / L").y_desc(*ylab).draw()?;
+            for &(name, get, col) in series {
+                let model: Vec<(f64, f64)> = ok.iter().map(|c| (c.g, get(c).0)).collect();
+                let fe: Vec<(f64, f64)> = ok.iter().filter_map(|c| get(c).1.map(|v| (c.g, v))).collect();
+                chart
+                    .draw_series(LineSeries::new(model, col.stroke_width(2)))?
+                    .label(format!("{name}, model"))
+                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], col.stroke_width(2)));
+                chart
+                    .draw_series(fe.into_iter().map(|q| Circle::new(q, 4, col.filled())))?
+                    .label(format!("{name}, FE"))
+                    .legend(move |(x, y)| Circle::new((x + 9, y), 4, col.filled()));
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperLeft)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .draw()?;
+        }
+        Ok(())
+    })
+}
+
+/// Writes the height-of-drive study (`heights.csv`, `heights.svg`, `run.toml`) into `dir`.
+pub fn write_heights(
+    dir: &Path,
+    mu: (f64, f64),
+    rows: &[crate::studies::precursors_fe::SeriesRow],
+    command: &[String],
+    scene: &crate::scene::Scene,
+) -> Result<Vec<PathBuf>> {
+    ensure_dir(dir)?;
+    let what = [("mu_s", mu.0), ("mu_d", mu.1)];
+    write_all(
+        dir,
+        &[
+            ("heights.csv", series_csv("H_over_L", rows)?),
+            ("heights.svg", heights_svg(rows)?),
             ("run.toml", super::run_toml(command, &what, scene)?),
         ],
     )

@@ -377,17 +377,6 @@ fn err(e: impl std::fmt::Display) -> Error {
     Error::plot("stability chart", e)
 }
 
-fn range(v: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
-    let (lo, hi) = v
-        .filter(|x| *x > 0.0 && x.is_finite())
-        .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
-    if lo.is_finite() {
-        (lo / 2.0)..(hi * 2.0)
-    } else {
-        1e-6..1.0
-    }
-}
-
 type Series = (String, Vec<(f64, f64)>);
 
 /// Log-log panels side by side, each with titled series (positive values only).
@@ -407,8 +396,8 @@ fn panels(size: (u32, u32), specs: &[(&str, &str, &str, Vec<Series>)]) -> Result
                 .x_label_area_size(40)
                 .y_label_area_size(60)
                 .build_cartesian_2d(
-                    range(pts().map(|p| p.0)).log_scale(),
-                    range(pts().map(|p| p.1)).log_scale(),
+                    super::log_range(pts().map(|p| p.0)).log_scale(),
+                    super::log_range(pts().map(|p| p.1)).log_scale(),
                 )
                 .map_err(err)?;
             chart

@@ -12,11 +12,12 @@
 
 use crate::error::Result;
 use crate::interface::condense::{condense, Condensed};
+use crate::interface::events::NodeState;
 use crate::interface::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
 use crate::scene::Scene;
 use crate::studies::slide::{
-    coefficients_from_rg, compare_paper, run_condensed, PaperComparison, SlideOptions, SlideResult,
+    coefficients_from_rg, compare_paper, run_condensed, PaperComparison, SlideOptions, SlideResult, ADVANCE_T,
 };
 use rayon::prelude::*;
 
@@ -36,6 +37,8 @@ pub struct Fig4 {
     pub peaks: Vec<f64>,
     /// Worst contact/friction violation over all states (Violations::max).
     pub worst_violation: f64,
+    /// The model's field assumptions measured on this run.
+    pub fields: FieldChecks,
     /// The whole run (events, states), for the report.
     pub run: SlideResult,
 }
@@ -66,8 +69,71 @@ fn fig4_on(scene: &Scene, c: &Condensed, r: f64, g: f64, rule: Rule, cycles: usi
         x_model: ev.iter().take(cmp.n).map(|e| e.x).collect(),
         peaks: evs.iter().filter(|e| e.kind == "sliding").map(|e| e.f / (o.law.mu_s() * o.n_force)).collect(),
         worst_violation: res.run.max_violation,
+        fields: field_checks(&res),
         run: res,
     })
+}
+
+/// The model's assumptions on the interface fields, measured on the states of a run before its
+/// first whole-interface slip (dimensionless; "interior": farther than 5 t from both ends).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FieldChecks {
+    /// Assumption 1 (homogeneous shear): over the states after the counted precursors, the
+    /// largest |tau - F^c/L|/(F^c/L) on interior nodes that never slipped and lie more than
+    /// 5 t ahead of the front (F^c = k_bonded X, the shear an all-stuck interface carries).
+    pub shear_far: Option<f64>,
+    /// The largest tau/(F^c/L) - 1 at the first node ahead of an arrested front (its
+    /// crack-tip concentration, which the model leaves out).
+    pub shear_tip: Option<f64>,
+    /// Assumption 2 (linear pressure set by F alone): the largest |p - (N/L + 12 F H x/L^3)|
+    /// over N/L on interior contact nodes, over every state.
+    pub pressure: f64,
+    /// Assumption 3: F/(mu_s N) when the trailing node first opens or creeps (None: not
+    /// before the first whole slip), and x/L where the first long precursor's slip began.
+    pub f_corner: Option<f64>,
+    pub x_nucleation: Option<f64>,
+}
+
+/// Measures [`FieldChecks`] on a run that kept its states.
+pub fn field_checks(res: &SlideResult) -> FieldChecks {
+    let c = &res.condensed;
+    let (evs, states) = (&res.run.events, &res.run.states);
+    let first = evs.iter().position(|e| e.kind == "sliding").unwrap_or(evs.len()).min(states.len());
+    let (pm, h, edge) = (res.p_mean(), res.scene.loading.height, ADVANCE_T * c.t);
+    let interior = |i: usize| (c.x[i] - c.x[0]).min(c.x[c.n - 1] - c.x[i]) > edge;
+    let mut out = FieldChecks::default();
+    let mut slipped = vec![false; c.n];
+    let mut front = None::<usize>;
+    let max_opt = |a: Option<f64>, b: f64| Some(a.map_or(b, |a| a.max(b)));
+    for (e, st) in evs[..first].iter().zip(&states[..first]) {
+        for i in (0..c.n).filter(|&i| interior(i) && st.states[i] != NodeState::Open) {
+            let linear = pm + 12.0 * st.f * h * c.x[i] / c.l.powi(3);
+            out.pressure = out.pressure.max((st.p_force[i] / c.w[i] - linear).abs() / pm);
+        }
+        if out.f_corner.is_none() && e.node == 0 && matches!(e.kind, "open" | "creep") {
+            out.f_corner = Some(st.f / (res.options.law.mu_s() * res.options.n_force));
+        }
+        if let Some((a, b)) = e.region {
+            (a..=b).for_each(|k| slipped[k] = true);
+            if e.kind != "precursor" {
+                continue;
+            }
+            if out.x_nucleation.is_none() && c.x[b] - c.x[a] > edge {
+                out.x_nucleation = Some(c.x[a] / c.l);
+            }
+            front = Some(front.map_or(b, |f| f.max(b)));
+            let f = front.unwrap_or(b);
+            let tau_c = res.f_c(st.x) / c.l;
+            if f + 1 < c.n && tau_c > 0.0 {
+                let tau = |i: usize| -st.t_force[i] / c.w[i];
+                out.shear_tip = max_opt(out.shear_tip, tau(f + 1) / tau_c - 1.0);
+                for i in (f + 1..c.n).filter(|&i| interior(i) && !slipped[i] && c.x[i] - c.x[f] > edge) {
+                    out.shear_far = max_opt(out.shear_far, (tau(i) - tau_c).abs() / tau_c);
+                }
+            }
+        }
+    }
+    out
 }
 
 /// FE fig. 4 for (r, g) on `scene`, one condensation for both rules; each rule's run may
@@ -211,4 +277,101 @@ pub fn boundary(cells: &[Cell], rule: usize) -> Vec<(f64, Option<f64>, Option<f6
             (r, model, fe)
         })
         .collect()
+}
+
+/// One run of a one-parameter series of FE fig. 4 runs (rule `paper`): the parameter's value,
+/// the run (or why it was refused) and its wall time (condensation and events), s.
+pub struct SeriesRow {
+    pub value: f64,
+    pub fig4: Result<Fig4>,
+    pub seconds: f64,
+}
+
+/// The thin-layer limit (issue 18): the `paper` rule at (r, g) on blocks of thickness
+/// t = (t/L) L at the scene's L and H/L, h = t with 2 elements through t (the meshes of
+/// validation/friction), one cycle each, thickest first; `progress` after each.
+pub fn thin_layer(
+    scene: &Scene,
+    r: f64,
+    g: f64,
+    t_over_l: &[f64],
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Vec<SeriesRow>> {
+    let mut ts = t_over_l.to_vec();
+    ts.sort_by(|a, b| b.total_cmp(a));
+    let mut scenes = Vec::with_capacity(ts.len());
+    for &tl in &ts {
+        let mut s = scene.clone();
+        s.block.thickness = tl * scene.block.length;
+        s.mesh.h = s.block.thickness;
+        s.mesh.n_thick = Some(2);
+        s.validate().map_err(|e| crate::Error::input("--thin-layer", format!("t/L = {tl}: {e}")))?;
+        crate::scene::limits::check_interface((s.block.length / s.mesh.h).round() as usize + 1)?;
+        scenes.push(s);
+    }
+    let mut rows = Vec::with_capacity(ts.len());
+    for (tl, s) in ts.into_iter().zip(&scenes) {
+        let clock = std::time::Instant::now();
+        let c = condense(s, &SolverOptions::default())?;
+        let fig4 = fig4_on(s, &c, r, g, Rule::Paper, 1);
+        rows.push(SeriesRow { value: tl, fig4, seconds: clock.elapsed().as_secs_f64() });
+        progress(tl);
+    }
+    Ok(rows)
+}
+
+/// The height of the drive (issue 18): the `paper` rule with the coefficients of (r, g) at
+/// the scene's H kept fixed while H/L takes the given values (so g = 6 mu_d H/L moves with
+/// it; each must stay in (0, 1)); one condensation, one cycle per height.
+pub fn heights(
+    scene: &Scene,
+    r: f64,
+    g: f64,
+    h_over_l: &[f64],
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Vec<SeriesRow>> {
+    let (_, mu_d) = coefficients_from_rg(scene, r, g)?;
+    let l = scene.block.length;
+    let mut hs = h_over_l.to_vec();
+    hs.sort_by(f64::total_cmp);
+    for &hl in &hs {
+        let gh = 6.0 * mu_d * hl;
+        if !(hl > 0.0 && gh < 1.0) {
+            return Err(crate::Error::input(
+                "--heights",
+                format!(
+                    "H/L = {hl} gives g = 6 mu_d H/L = {gh:.4} with mu_d = {mu_d:.4}; need 0 < H/L < {:.4}",
+                    1.0 / (6.0 * mu_d)
+                ),
+            ));
+        }
+    }
+    let c = condense(scene, &SolverOptions::default())?;
+    let mut rows = Vec::with_capacity(hs.len());
+    for hl in hs {
+        let clock = std::time::Instant::now();
+        let mut s = scene.clone();
+        s.loading.height = hl * l;
+        let fig4 = fig4_on(&s, &c, r, 6.0 * mu_d * hl, Rule::Paper, 1);
+        rows.push(SeriesRow { value: hl, fig4, seconds: clock.elapsed().as_secs_f64() });
+        progress(hl);
+    }
+    Ok(rows)
+}
+
+/// Least-squares slope of log |y| against log x (the convergence rate), over the finite,
+/// nonzero points; None for fewer than two.
+pub fn log_slope(points: &[(f64, f64)]) -> Option<f64> {
+    let p: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && y.abs() > 0.0)
+        .map(|(x, y)| (x.ln(), y.abs().ln()))
+        .collect();
+    if p.len() < 2 {
+        return None;
+    }
+    let m = p.len() as f64;
+    let (sx, sy) = (p.iter().map(|q| q.0).sum::<f64>() / m, p.iter().map(|q| q.1).sum::<f64>() / m);
+    let sxx: f64 = p.iter().map(|q| (q.0 - sx).powi(2)).sum();
+    (sxx > 0.0).then(|| p.iter().map(|q| (q.0 - sx) * (q.1 - sy)).sum::<f64>() / sxx)
 }
