@@ -191,3 +191,18 @@ fn height_of_the_drive_controls_the_first_precursor() {
         );
     }
 }
+
+#[test]
+/// The thin-layer study's order and limit: exact on v = 1 + 0.5 x^2 (order 2, limit 1) and
+/// on v = 2 - x (order 1), None when the differences do not shrink.
+fn richardson_order_and_limit() {
+    use tribofe::studies::precursors_fe::richardson;
+    let pts: Vec<(f64, f64)> = [0.04, 0.02, 0.01].iter().map(|&x| (x, 1.0 + 0.5 * x * x)).collect();
+    let (p, lim) = richardson(&pts).unwrap();
+    assert!((p - 2.0).abs() < 1e-9 && (lim - 1.0).abs() < 1e-12, "{p} {lim}");
+    let pts: Vec<(f64, f64)> = [0.1, 0.02, 0.01, 0.005].iter().map(|&x| (x, 2.0 - x)).collect();
+    let (p, lim) = richardson(&pts).unwrap();
+    assert!((p - 1.0).abs() < 1e-9 && (lim - 2.0).abs() < 1e-12, "{p} {lim}");
+    assert!(richardson(&[(0.04, 1.0), (0.02, 1.1), (0.01, 1.2)]).is_none());
+    assert!(richardson(&[(0.02, 1.0), (0.01, 1.1)]).is_none());
+}

@@ -293,19 +293,39 @@ fn thin_layer(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{:>9} refused: {e}", row.value),
         }
     }
-    let rate = |g: fn(&tribofe::studies::slide::PaperComparison) -> Option<f64>| {
+    type Get = fn(&tribofe::studies::slide::PaperComparison) -> (f64, Option<f64>);
+    let quantities: [(&str, Get); 3] =
+        [("F_1", |c| (c.f1, c.f1_fe)), ("x_1", |c| (c.x1, c.x1_fe)), ("F_max", |c| (c.f_max, c.f_max_fe))];
+    for (name, get) in quantities {
+        let mut model = f64::NAN;
         let pts: Vec<(f64, f64)> = rows
             .iter()
-            .filter_map(|r| r.fig4.as_ref().ok().and_then(|f| g(&f.cmp)).map(|v| (r.value, v)))
+            .filter_map(|r| r.fig4.as_ref().ok())
+            .filter_map(|f| {
+                let (m, v) = get(&f.cmp);
+                model = m;
+                v.map(|v| (f.run.condensed.t / f.run.condensed.l, v))
+            })
             .collect();
-        pfe::log_slope(&pts).map_or("-".to_string(), |s| format!("{s:.2}"))
-    };
-    outln!(
-        "rates (slope of log |deviation| against log t/L): F_1 {}, x_1 {}, F_max {}",
-        rate(|c| c.f1_fe.map(|v| v / c.f1 - 1.0)),
-        rate(|c| c.x1_fe.map(|v| v - c.x1)),
-        rate(|c| c.f_max_fe.map(|v| v / c.f_max - 1.0))
-    );
+        let offset = |v: f64| {
+            if name == "x_1" {
+                format!("{:+.4} L", v - model)
+            } else {
+                format!("{:+.2} %", 100.0 * (v / model - 1.0))
+            }
+        };
+        match (pfe::richardson(&pts), pts.last()) {
+            (Some((p, lim)), _) => outln!(
+                "{name}: observed order {p:.2} in t/L, limit {lim:.4}, offset from the model {}",
+                offset(lim)
+            ),
+            (None, Some(&(_, v))) => outln!(
+                "{name}: no asymptotic range in the last three t/L; finest {v:.4}, offset from the model {}",
+                offset(v)
+            ),
+            (None, None) => outln!("{name}: -"),
+        }
+    }
     let command: Vec<String> = std::env::args().collect();
     let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
     report::write_thin_layer(dir.path(), &p, &rows, &command, &scene)?;

@@ -359,19 +359,21 @@ pub fn heights(
     Ok(rows)
 }
 
-/// Least-squares slope of log |y| against log x (the convergence rate), over the finite,
-/// nonzero points; None for fewer than two.
-pub fn log_slope(points: &[(f64, f64)]) -> Option<f64> {
-    let p: Vec<(f64, f64)> = points
-        .iter()
-        .filter(|(x, y)| *x > 0.0 && y.abs() > 0.0)
-        .map(|(x, y)| (x.ln(), y.abs().ln()))
-        .collect();
-    if p.len() < 2 {
+/// Observed convergence order and extrapolated limit of a quantity from its last three values
+/// at refinement parameters x (e.g. t/L) sorted from coarse to fine: with differences
+/// d1 = v1 - v2, d2 = v2 - v3, the order p = ln(d1/d2)/ln(x1/x2) (assuming x1/x2 = x2/x3) and
+/// the limit v3 - d2/((x2/x3)^p - 1). None when the differences do not shrink at an order
+/// above 1/4 (no asymptotic range: the last value is then the best estimate).
+pub fn richardson(points: &[(f64, f64)]) -> Option<(f64, f64)> {
+    let [(x1, v1), (x2, v2), (x3, v3)] = points.get(points.len().checked_sub(3)?..)? else {
+        return None;
+    };
+    let (d1, d2) = (v1 - v2, v2 - v3);
+    if d1 == 0.0 || d2 == 0.0 || d1.signum() != d2.signum() || d2.abs() >= d1.abs() {
         return None;
     }
-    let m = p.len() as f64;
-    let (sx, sy) = (p.iter().map(|q| q.0).sum::<f64>() / m, p.iter().map(|q| q.1).sum::<f64>() / m);
-    let sxx: f64 = p.iter().map(|q| (q.0 - sx).powi(2)).sum();
-    (sxx > 0.0).then(|| p.iter().map(|q| (q.0 - sx) * (q.1 - sy)).sum::<f64>() / sxx)
+    let p = (d1 / d2).ln() / (x1 / x2).ln();
+    let q = (x2 / x3).powf(p);
+    // Below order 1/4 the extrapolation amplifies round-off and node-spacing jumps.
+    (p.is_finite() && p > 0.25).then(|| (p, v3 - d2 / (q - 1.0)))
 }

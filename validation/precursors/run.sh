@@ -1,0 +1,22 @@
+#!/bin/sh
+# Reruns every FE precursor study quoted in validation/precursors/README.md and in README.md
+# (release build; about 7 minutes on 2 cores, 4 of them the overdamped fig. 5). Each command's
+# printed summary is saved as <name>.txt next to its output folder.
+set -e
+cd "$(dirname "$0")/../.."
+cargo build --release --quiet
+B=./target/release/tribofe
+D=validation/precursors
+run() { out=$1; shift; $B precursors --fe "$@" --out $D/$out > $D/$out.txt; cat $D/$out.txt; }
+# Fig. 4 on the paper's scene, both rules, with the field checks.
+run fe_fig4
+# Fig. 5 on the paper's scene: the paper rule (the default, ~45 s), then both rules.
+run fe_fig5 --map
+run fe_fig5_overdamped --map --rules paper,overdamped
+# Thin-layer limit at H/L = 0.1 (h = t, 2 elements through t) for five (r, g).
+for rg in 0.9:0.35 0.8:0.5 0.95:0.2 0.7:0.3 0.5:0.6; do
+  r=${rg%:*}; g=${rg#*:}
+  run thin_layer_r${r}_g$g --thin-layer 0.02,0.01,0.005,0.0025,0.00125,0.000625 --r $r --g $g
+done
+# Height of the drive at the coefficients of (0.9, 0.35) (mu_s = 0.648, mu_d = 0.583).
+run heights --heights 0.01,0.025,0.05,0.075,0.1,0.125,0.15,0.175,0.2,0.225,0.25,0.275
