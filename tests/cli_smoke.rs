@@ -114,6 +114,24 @@ fn every_subcommand_runs_and_writes_what_it_names() {
             "ph",
             &["heights.csv", "heights.svg", "run.toml"],
         ),
+        (
+            &[
+                "precursors",
+                "--fe",
+                "--dc",
+                "1e-6",
+                "--length",
+                "0.05",
+                "--thickness",
+                "0.004",
+                "--h",
+                "0.002",
+                "--out",
+                "pd",
+            ],
+            "pd",
+            &["dc.csv", "dc.svg", "run.toml"],
+        ),
         (&["bench", "--case", "strip2", "--dgemm", "0", "--out", "be"], "be", &["bench.csv"]),
     ];
     for (args, out, files) in cases {

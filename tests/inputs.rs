@@ -460,13 +460,13 @@ fn slide_and_stability_refuse_flags_that_cannot_act() {
 }
 
 #[test]
-/// `precursors --fe` studies (--map, --thin-layer, --heights): bad grid, cap, rule, t/L or H/L refused with the input status and the flag
+/// `precursors --fe` studies (--map, --thin-layer, --heights, --dc): bad grid, cap, rule, t/L, H/L or D_c refused with the input status and the flag
 /// named, nothing written.
 fn fe_fig5_refuses_bad_options() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let o = out.to_str().unwrap();
-    let cases: [(&[&str], &str); 8] = [
+    let cases: [(&[&str], &str); 10] = [
         (&["--map", "--resolution", "1"], "resolution"),
         (&["--map", "--max-events", "0"], "--max-events"),
         (&["--map", "--rules", "paper,fast"], "fast"),
@@ -475,6 +475,8 @@ fn fe_fig5_refuses_bad_options() {
         (&["--thin-layer", "0.01", "--map"], "--map"),
         (&["--heights", "0.1,0.3"], "--heights"),
         (&["--heights", "-0.1"], "--heights"),
+        (&["--dc", "1e-6,0"], "dc"),
+        (&["--dc", "1e-6", "--heights", "0.1"], "--heights"),
     ];
     for (args, word) in cases {
         let mut a = vec!["precursors", "--fe", "--out", o];

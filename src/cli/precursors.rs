@@ -46,12 +46,18 @@ pub struct Args {
     /// stay below 1); writes heights.csv and heights.svg.
     #[arg(long, value_delimiter = ',', requires = "fe", conflicts_with_all = ["map", "cycles", "thin_layer"])]
     heights: Option<Vec<f64>>,
+    /// With --fe: the event-rule study instead, the `paper` rule and slip-weakening with each
+    /// of these D_c (m, comma separated) at (r, g) on the scene, one cycle; writes dc.csv and
+    /// dc.svg. Resolved when the nucleation length G D_c/((mu_s - mu_d) N/L) spans h.
+    #[arg(long, value_delimiter = ',', requires = "fe", conflicts_with_all = ["map", "cycles", "thin_layer", "heights"])]
+    dc: Option<Vec<f64>>,
     /// With --fe --map: event rules to run in every cell, comma separated: paper, overdamped
     /// (about 45 s for 20 x 20 on the paper's scene; overdamped adds about 200 s, and most of
     /// its cells exceed the event cap).
     #[arg(long, value_delimiter = ',', default_value = "paper", requires = "fe")]
     rules: Vec<tribofe::interface::law::Rule>,
-    /// With --fe --map: events per cell before the cell is reported as capped (grey).
+    /// With --fe --map: events per cell before the cell is reported as capped (grey); with
+    /// --dc, per run before the run is refused.
     #[arg(long, default_value_t = 2000, requires = "fe")]
     max_events: usize,
     /// The earlier comparison: the 1D model fed with the bonded FE interface fields (ill-posed
@@ -84,6 +90,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     }
     if args.fe && args.heights.is_some() {
         return heights(&args);
+    }
+    if args.fe && args.dc.is_some() {
+        return dc(&args);
     }
     if args.fe {
         return fe(&args);
@@ -393,6 +402,94 @@ fn heights(args: &Args) -> tribofe::Result<()> {
     Ok(())
 }
 
+/// Event rule and D_c: the `paper` rule and slip-weakening with each D_c at (r, g).
+fn dc(args: &Args) -> tribofe::Result<()> {
+    let dcs = args.dc.clone().unwrap_or_default();
+    let p = Params::new(args.r, args.g)?;
+    let scene = fe_scene(args)?;
+    let (ms, md) = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g())?;
+    for &d in &dcs {
+        tribofe::interface::law::Law::slip_weakening(ms, md, d)?;
+    }
+    let bar = indicatif::ProgressBar::new(dcs.len() as u64 + 1)
+        .with_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed}").unwrap());
+    let rows =
+        tribofe::studies::precursors_fe::dc_series(&scene, p.r(), p.g(), &dcs, args.max_events, &|_| {
+            bar.inc(1)
+        })?;
+    bar.finish_and_clear();
+    let b = &scene.block;
+    let (shear_modulus, pressure) = (b.young / (2.0 * (1.0 + b.poisson)), 1.0 / b.length);
+    outln!(
+        "event rule and D_c at (r, g) = ({}, {}): mu_s = {ms:.4}, mu_d = {md:.4}, t/L = {:.4}, h = {:e} m; F in units of mu_s N, x in units of L",
+        p.r(),
+        p.g(),
+        b.thickness / b.length,
+        scene.mesh.h
+    );
+    outln!(
+        "{:>9} {:>8} {:>7} {:>10} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8}",
+        "D_c, m",
+        "kappa",
+        "L_c/h",
+        "Appendix",
+        "n adv",
+        "F_1",
+        "x_1",
+        "F_max",
+        "events",
+        "time, s"
+    );
+    let x1 = precursors::simulate(&p, 1)[0].x;
+    outln!(
+        "{:>9} {:>8} {:>7} {:>10} {:>6} {:>8.4} {:>8.4} {:>8.4} {:>8} {:>8}",
+        "model",
+        "-",
+        "-",
+        "-",
+        precursors::n_precursors(&p)?,
+        p.f1(),
+        x1,
+        p.f_max(),
+        "-",
+        "-"
+    );
+    let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+    for row in &rows {
+        let d = row.value;
+        let lc = shear_modulus * d / ((ms - md) * pressure);
+        let (name, kappa, lch, appendix) = if d == 0.0 {
+            ("paper".to_string(), "-".to_string(), "-".to_string(), "-".to_string())
+        } else {
+            (
+                format!("{d:.1e}"),
+                format!("{:.3}", lc / b.thickness),
+                format!("{:.2}", lc / scene.mesh.h),
+                format!("{:.2e}", b.young / pressure * d / b.thickness * (ms - md) / (2.0 * md)),
+            )
+        };
+        match &row.fig4 {
+            Ok(r) => outln!(
+                "{name:>9} {kappa:>8} {lch:>7} {appendix:>10} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8.1}",
+                r.cmp.n_fe_advancing,
+                f(r.cmp.f1_fe),
+                f(r.cmp.x1_fe),
+                f(r.cmp.f_max_fe),
+                r.run.run.events.len(),
+                row.seconds
+            ),
+            Err(e) => outln!("{name:>9} {kappa:>8} {lch:>7} {appendix:>10} refused: {e}"),
+        }
+    }
+    outln!("kappa = G D_c/((mu_s - mu_d) p t) (stable above 1); L_c = kappa t, the nucleation length; Appendix: (E/p)(D_c/t)(mu_s - mu_d)/(2 mu_d), the excess mu(x) - mu_d below which the Appendix's Griffith argument lets a front arrest");
+    let command: Vec<String> = std::env::args().collect();
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
+    report::write_dc(dir.path(), &rows, &command, &scene)?;
+    dir.commit()?;
+    outln!("wrote {}/{{dc.csv, dc.svg, run.toml}}", args.out.display());
+    Ok(())
+}
+
 /// FE fig. 5: n over the (r, g) grid from the frictional FE for each rule asked for, next to
 /// the model's map.
 fn fe_map(args: &Args) -> tribofe::Result<()> {
@@ -424,10 +521,7 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
         let runs: Vec<_> = cells.iter().filter_map(|c| c.runs[k]).collect();
         let count = |s: &str| runs.iter().filter(|r| r.status() == s).count();
         let seconds: f64 = runs.iter().map(|r| r.seconds()).sum();
-        let agree = cells
-            .iter()
-            .filter(|c| c.runs[k].and_then(|r| r.n_advancing()).is_some_and(|n| (n > 0) == (c.n_model > 0)))
-            .count();
+        let st = pfe::fig5_stats(&cells, k, resolution);
         outln!(
             "{:>12}: {} done, {} capped, {} refused; {:.1} s in cells; precursors or none as the model in {}/{} finished cells",
             rule.name(),
@@ -435,8 +529,25 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
             count("capped"),
             count("refused"),
             seconds,
-            agree,
-            count("done")
+            st.agree,
+            st.done
+        );
+        let pc = |v: Option<[f64; 3]>| {
+            v.map_or("-".to_string(), |[m, a, b]| {
+                format!("median {:+.1} %, from {:+.1} to {:+.1} %", 100.0 * m, 100.0 * a, 100.0 * b)
+            })
+        };
+        outln!("{:>12}  first-slip peak against the model's F_max: {}", "", pc(st.f_max_dev));
+        outln!(
+            "{:>12}  n advancing over the model's n (cells with n >= 3): {}",
+            "",
+            st.n_ratio.map_or("-".to_string(), |[m, a, b]| format!("median {m:.2}, from {a:.2} to {b:.2}"))
+        );
+        outln!(
+            "{:>12}  first g with a precursor minus (1 - r)/2: {}; steps up in g where n falls: {}",
+            "",
+            st.boundary_offset.map_or("-".to_string(), |[a, b]| format!("from {a:+.3} to {b:+.3}")),
+            st.decreases_in_g
         );
     }
     let command: Vec<String> = std::env::args().collect();

@@ -179,6 +179,29 @@ fn viridis(c: f64) -> RGBColor {
     RGBColor(mix(A[k].0, A[k + 1].0), mix(A[k].1, A[k + 1].1), mix(A[k].2, A[k + 1].2))
 }
 
+/// The colour key of an n map (logarithmic in 1 + n) down the `key` area; returns the y below it.
+fn n_key(
+    key: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    n_max: usize,
+    colour: &dyn Fn(usize) -> RGBColor,
+) -> std::result::Result<i32, Box<dyn std::error::Error>> {
+    key.draw(&Text::new("n (log colour scale)", (0, 40), (FONT, 14)))?;
+    let mut shown: Vec<usize> =
+        [0, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000]
+            .into_iter()
+            .filter(|&v| v < n_max)
+            .collect();
+    shown.push(n_max);
+    let mut y = 60;
+    for &v in &shown {
+        key.draw(&Rectangle::new([(10, y), (36, y + 20)], colour(v).filled()))?;
+        let label = if v == n_max { format!("{v} (max)") } else { v.to_string() };
+        key.draw(&Text::new(label, (44, y + 4), (FONT, 13)))?;
+        y += 25;
+    }
+    Ok(y)
+}
+
 /// The paper's fig. 5: n(r, g) as a colour map (logarithmic in 1 + n, since n runs from 0
 /// to thousands near (1, 1)), with a colour key and the no-precursor line g = (1-r)/2.
 pub fn fig5_svg(map: &[MapPoint], resolution: usize) -> Result<String> {
@@ -214,22 +237,7 @@ pub fn fig5_svg(map: &[MapPoint], resolution: usize) -> Result<String> {
             .border_style(BLACK)
             .label_font((FONT, 14))
             .draw()?;
-        key.draw(&Text::new("n (log colour scale)", (0, 40), (FONT, 14)))?;
-        let mut shown: Vec<usize> =
-            [0, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000]
-                .into_iter()
-                .filter(|&v| v < n_max)
-                .collect();
-        shown.push(n_max);
-        for (row, &v) in shown.iter().enumerate() {
-            let y = 60 + 28 * row as i32;
-            key.draw(&Rectangle::new([(10, y), (40, y + 22)], colour(v).filled()))?;
-            key.draw(&Text::new(
-                if v == n_max { format!("{v} (max)") } else { v.to_string() },
-                (48, y + 5),
-                (FONT, 14),
-            ))?;
-        }
+        n_key(&key, n_max, &colour)?;
         Ok(())
     })
 }
@@ -552,22 +560,7 @@ pub fn fe_fig5_svg(cells: &[crate::studies::precursors_fe::Cell], resolution: us
                 )?;
             }
         }
-        key.draw(&Text::new("n (log colour)", (0, 40), (FONT, 14)))?;
-        let mut shown: Vec<usize> = [0, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000]
-            .into_iter()
-            .filter(|&v| v < n_max)
-            .collect();
-        shown.push(n_max);
-        let mut y = 60;
-        for &v in &shown {
-            key.draw(&Rectangle::new([(10, y), (36, y + 20)], colour(v).filled()))?;
-            key.draw(&Text::new(
-                if v == n_max { format!("{v} (max)") } else { v.to_string() },
-                (44, y + 4),
-                (FONT, 13),
-            ))?;
-            y += 25;
-        }
+        let mut y = n_key(&key, n_max, &colour)?;
         for (fill, what) in [(RGBColor(160, 160, 160), "event cap"), (BLACK, "refused")] {
             key.draw(&Rectangle::new([(10, y), (36, y + 20)], fill.filled()))?;
             key.draw(&Text::new(what, (44, y + 4), (FONT, 13)))?;
@@ -755,13 +748,28 @@ pub fn write_thin_layer(
     )
 }
 
+/// A model value and the FE's (if any) of one quantity of a [`PaperComparison`].
+type Pair = fn(&crate::studies::slide::PaperComparison) -> (f64, Option<f64>);
+/// Named, coloured quantities drawn on one panel.
+type Series<'a> = Vec<(&'a str, Pair, RGBColor)>;
+
+/// A y range covering the model and FE values of `series` over `cmps`, padded by 8 %.
+fn series_range<'a>(
+    cmps: impl Iterator<Item = &'a crate::studies::slide::PaperComparison>,
+    series: &[(&str, Pair, RGBColor)],
+) -> std::ops::Range<f64> {
+    let (lo, hi) = cmps
+        .flat_map(|c| series.iter().flat_map(move |s| std::iter::once((s.1)(c).0).chain((s.1)(c).1)))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let pad = 0.08 * (hi - lo).max(1e-3);
+    (lo - pad)..(hi + pad)
+}
+
 /// The height-of-drive figure: n, F_1 and F_max, and x_1 against g = 6 mu_d H/L, the FE
 /// (`paper` rule, points) next to the model (lines), at fixed friction coefficients.
 pub fn heights_svg(rows: &[crate::studies::precursors_fe::SeriesRow]) -> Result<String> {
     let ok: Vec<&crate::studies::slide::PaperComparison> =
         rows.iter().filter_map(|r| r.fig4.as_ref().ok().map(|f| &f.cmp)).collect();
-    type Pair = fn(&crate::studies::slide::PaperComparison) -> (f64, Option<f64>);
-    type Series<'a> = Vec<(&'a str, Pair, RGBColor)>;
     let panels: [(&str, &str, Series); 3] = [
         (
             "precursors (FE: advancing the front > 5 t)",
@@ -777,24 +785,13 @@ pub fn heights_svg(rows: &[crate::studies::precursors_fe::SeriesRow]) -> Result<
     ];
     render("heights.svg", (1350, 450), |root| {
         for (area, (title, ylab, series)) in root.split_evenly((1, 3)).iter().zip(&panels) {
-            let vals: Vec<f64> = ok
-                .iter()
-                .flat_map(|c| {
-                    series.iter().flat_map(move |s| {
-                        let (m, f) = (s.1)(c);
-                        std::iter::once(m).chain(f)
-                    })
-                })
-                .collect();
-            let (lo, hi) =
-                vals.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-            let pad = 0.08 * (hi - lo).max(1e-3);
+            let yr = series_range(ok.iter().copied(), series);
             let mut chart = ChartBuilder::on(area)
                 .caption(*title, (FONT, 16))
                 .margin(12)
                 .x_label_area_size(40)
                 .y_label_area_size(55)
-                .build_cartesian_2d(0.0..1.0, (lo - pad)..(hi + pad))?;
+                .build_cartesian_2d(0.0..1.0, yr)?;
             chart.configure_mesh().x_desc("g = 6 mu_d H / L").y_desc(*ylab).draw()?;
             for &(name, get, col) in series {
                 let model: Vec<(f64, f64)> = ok.iter().map(|c| (c.g, get(c).0)).collect();
@@ -834,6 +831,94 @@ pub fn write_heights(
         &[
             ("heights.csv", series_csv("H_over_L", rows)?),
             ("heights.svg", heights_svg(rows)?),
+            ("run.toml", super::run_toml(command, &what, scene)?),
+        ],
+    )
+}
+
+/// The D_c figure: F_1 and F_max, x_1, and the front-advancing count against D_c (log),
+/// slip-weakening (points) next to the `paper` rule (dashed) and the model (solid).
+pub fn dc_svg(rows: &[crate::studies::precursors_fe::SeriesRow]) -> Result<String> {
+    use crate::studies::slide::PaperComparison;
+    let ok: Vec<(f64, &PaperComparison)> =
+        rows.iter().filter_map(|r| r.fig4.as_ref().ok().map(|f| (r.value, &f.cmp))).collect();
+    let paper = ok.iter().find(|q| q.0 == 0.0).map(|q| q.1);
+    let sw: Vec<(f64, &PaperComparison)> = ok.iter().filter(|q| q.0 > 0.0).copied().collect();
+    let panels: [(&str, Series); 3] = [
+        ("F / (mu_s N)", vec![("F_1", |c| (c.f1, c.f1_fe), BLUE), ("F_max", |c| (c.f_max, c.f_max_fe), RED)]),
+        ("x_1 / L", vec![("x_1", |c| (c.x1, c.x1_fe), BLUE)]),
+        ("n (FE: advancing > 5 t)", vec![("n", |c| (c.n as f64, Some(c.n_fe_advancing as f64)), BLUE)]),
+    ];
+    let xr = super::log_range(sw.iter().map(|q| q.0));
+    render("dc.svg", (1350, 450), |root| {
+        for (area, (ylab, series)) in root.split_evenly((1, 3)).iter().zip(&panels) {
+            let yr = series_range(ok.iter().map(|q| q.1), series);
+            let mut chart = ChartBuilder::on(area)
+                .caption(*ylab, (FONT, 16))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(55)
+                .build_cartesian_2d(xr.clone().log_scale(), yr)?;
+            chart
+                .configure_mesh()
+                .x_labels(4)
+                .x_desc("D_c (m)")
+                .x_label_formatter(&|v| format!("{v:.0e}"))
+                .draw()?;
+            for &(name, get, col) in series {
+                let pts: Vec<(f64, f64)> = sw.iter().filter_map(|(d, c)| get(c).1.map(|v| (*d, v))).collect();
+                chart
+                    .draw_series(LineSeries::new(pts.clone(), col.stroke_width(2)))?
+                    .label(format!("{name}, slip-weakening"))
+                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], col.stroke_width(2)));
+                chart.draw_series(pts.into_iter().map(|q| Circle::new(q, 4, col.filled())))?;
+                if let Some(pc) = paper {
+                    let (m, f) = get(pc);
+                    if let Some(f) = f {
+                        chart
+                            .draw_series(DashedLineSeries::new(
+                                [(xr.start, f), (xr.end, f)],
+                                6,
+                                4,
+                                col.stroke_width(1),
+                            ))?
+                            .label(format!("{name}, rule paper"))
+                            .legend(move |(x, y)| {
+                                PathElement::new([(x, y), (x + 18, y)], col.stroke_width(1))
+                            });
+                    }
+                    chart
+                        .draw_series(LineSeries::new(
+                            [(xr.start, m), (xr.end, m)],
+                            col.mix(0.4).stroke_width(3),
+                        ))?
+                        .label(format!("{name}, model"))
+                        .legend(move |(x, y)| {
+                            PathElement::new([(x, y), (x + 18, y)], col.mix(0.4).stroke_width(3))
+                        });
+                }
+            }
+            chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
+        }
+        Ok(())
+    })
+}
+
+/// Writes the D_c study (`dc.csv`: the series CSV with D_c_m = 0 for the `paper` rule,
+/// `dc.svg`, `run.toml`) into `dir`.
+pub fn write_dc(
+    dir: &Path,
+    rows: &[crate::studies::precursors_fe::SeriesRow],
+    command: &[String],
+    scene: &crate::scene::Scene,
+) -> Result<Vec<PathBuf>> {
+    ensure_dir(dir)?;
+    let what: [(&str, f64); 0] = [];
+    write_all(
+        dir,
+        &[
+            ("dc.csv", series_csv("Dc_m", rows)?),
+            ("dc.svg", dc_svg(rows)?),
             ("run.toml", super::run_toml(command, &what, scene)?),
         ],
     )

@@ -27,6 +27,7 @@ pub const RULES: [Rule; 2] = [Rule::Paper, Rule::Overdamped];
 /// One rule's FE fig. 4 next to the analytic iteration (forces in units of mu_s N, x in L).
 #[derive(Debug, Clone)]
 pub struct Fig4 {
+    /// The static-kinetic rule (`paper` for slip-weakening runs: the law is in `run`).
     pub rule: Rule,
     pub cmp: PaperComparison,
     /// Arrest positions x_i/L of the counted precursors, in order.
@@ -43,13 +44,18 @@ pub struct Fig4 {
     pub run: SlideResult,
 }
 
-fn opts(scene: &Scene, r: f64, g: f64, rule: Rule, cycles: usize) -> Result<SlideOptions> {
+/// The static-kinetic law of (r, g) on `scene` with `rule`.
+fn sk(scene: &Scene, r: f64, g: f64, rule: Rule) -> Result<Law> {
     let (ms, md) = coefficients_from_rg(scene, r, g)?;
-    Ok(SlideOptions { law: Law::static_kinetic(ms, md, rule)?, cycles, ..Default::default() })
+    Law::static_kinetic(ms, md, rule)
 }
 
-fn fig4_on(scene: &Scene, c: &Condensed, r: f64, g: f64, rule: Rule, cycles: usize) -> Result<Fig4> {
-    let o = opts(scene, r, g, rule, cycles)?;
+/// One run with the options `o` on the condensed interface, next to the iteration at (r, g).
+fn fig4_on(scene: &Scene, c: &Condensed, r: f64, g: f64, o: SlideOptions) -> Result<Fig4> {
+    let rule = match o.law {
+        Law::StaticKinetic { rule, .. } => rule,
+        Law::Coulomb { .. } | Law::SlipWeakening { .. } => Rule::Paper,
+    };
     let res = run_condensed(scene, c.clone(), 0.0, &o, &|_| {})?;
     let cmp = compare_paper(&res)
         .ok_or_else(|| crate::Error::input("r, g", "outside the accessible square 0 < r, g < 1"))?;
@@ -140,7 +146,18 @@ pub fn field_checks(res: &SlideResult) -> FieldChecks {
 /// be refused on its own (the overdamped relaxation can cycle without settling).
 pub fn fig4(scene: &Scene, r: f64, g: f64, cycles: usize) -> Result<Vec<Result<Fig4>>> {
     let c = condense(scene, &SolverOptions::default())?;
-    Ok(RULES.iter().map(|&rule| fig4_on(scene, &c, r, g, rule, cycles)).collect())
+    Ok(RULES
+        .iter()
+        .map(|&rule| {
+            fig4_on(
+                scene,
+                &c,
+                r,
+                g,
+                SlideOptions { law: sk(scene, r, g, rule)?, cycles, ..Default::default() },
+            )
+        })
+        .collect())
 }
 
 /// One rule's run in one cell of FE fig. 5.
@@ -217,7 +234,13 @@ pub fn fig5(
             let p = crate::precursors::Params::new(m.r, m.g)?;
             let mut cell = Cell { r: m.r, g: m.g, n_model: m.n, f_max_model: p.f_max(), runs: [None; 2] };
             for (k, &rule) in RULES.iter().enumerate().filter(|(_, r)| rules.contains(r)) {
-                let o = SlideOptions { max_events, keep_states: false, ..opts(scene, m.r, m.g, rule, 1)? };
+                let o = SlideOptions {
+                    law: sk(scene, m.r, m.g, rule)?,
+                    cycles: 1,
+                    max_events,
+                    keep_states: false,
+                    ..Default::default()
+                };
                 let clock = std::time::Instant::now();
                 let res = run_condensed(scene, c.clone(), 0.0, &o, &|_| {});
                 let seconds = clock.elapsed().as_secs_f64();
@@ -313,7 +336,13 @@ pub fn thin_layer(
     for (tl, s) in ts.into_iter().zip(&scenes) {
         let clock = std::time::Instant::now();
         let c = condense(s, &SolverOptions::default())?;
-        let fig4 = fig4_on(s, &c, r, g, Rule::Paper, 1);
+        let fig4 = fig4_on(
+            s,
+            &c,
+            r,
+            g,
+            SlideOptions { law: sk(s, r, g, Rule::Paper)?, cycles: 1, ..Default::default() },
+        );
         rows.push(SeriesRow { value: tl, fig4, seconds: clock.elapsed().as_secs_f64() });
         progress(tl);
     }
@@ -352,7 +381,14 @@ pub fn heights(
         let clock = std::time::Instant::now();
         let mut s = scene.clone();
         s.loading.height = hl * l;
-        let fig4 = fig4_on(&s, &c, r, 6.0 * mu_d * hl, Rule::Paper, 1);
+        let gh = 6.0 * mu_d * hl;
+        let fig4 = fig4_on(
+            &s,
+            &c,
+            r,
+            gh,
+            SlideOptions { law: sk(&s, r, gh, Rule::Paper)?, cycles: 1, ..Default::default() },
+        );
         rows.push(SeriesRow { value: hl, fig4, seconds: clock.elapsed().as_secs_f64() });
         progress(hl);
     }
@@ -376,4 +412,96 @@ pub fn richardson(points: &[(f64, f64)]) -> Option<(f64, f64)> {
     let q = (x2 / x3).powf(p);
     // Below order 1/4 the extrapolation amplifies round-off and node-spacing jumps.
     (p.is_finite() && p > 0.25).then(|| (p, v3 - d2 / (q - 1.0)))
+}
+
+/// One rule's FE fig. 5 against the model, over the finished cells.
+#[derive(Debug, Clone, Copy)]
+pub struct Fig5Stats {
+    /// Cells where FE and model agree on "precursors or none".
+    pub agree: usize,
+    pub done: usize,
+    /// FE first-slip peak over the model's F_max, minus 1: median, least, largest.
+    pub f_max_dev: Option<[f64; 3]>,
+    /// Front-advancing count over the model's n where n >= 3: median, least, largest.
+    pub n_ratio: Option<[f64; 3]>,
+    /// The FE's boundary minus the paper's line (1 - r)/2 at the cell's lower edge, over the
+    /// columns where it is known: least, largest.
+    pub boundary_offset: Option<[f64; 2]>,
+    /// Adjacent finished cells of a column where the upper one has fewer front-advancing
+    /// precursors than the lower one.
+    pub decreases_in_g: usize,
+}
+
+fn spread(mut v: Vec<f64>) -> Option<[f64; 3]> {
+    v.sort_by(f64::total_cmp);
+    (!v.is_empty()).then(|| [v[v.len() / 2], v[0], v[v.len() - 1]])
+}
+
+/// [`Fig5Stats`] of rule `k` (index into [`RULES`]) on a grid of the given resolution.
+pub fn fig5_stats(cells: &[Cell], k: usize, resolution: usize) -> Fig5Stats {
+    let done: Vec<(&Cell, CellRun)> =
+        cells.iter().filter_map(|c| c.runs[k].filter(|r| r.status() == "done").map(|r| (c, r))).collect();
+    let half = 0.5 / resolution as f64;
+    let offsets: Vec<f64> =
+        boundary(cells, k).iter().filter_map(|&(r, _, g)| g.map(|g| g - half - (1.0 - r) / 2.0)).collect();
+    let mut decreases = 0;
+    let mut by_r: Vec<&(&Cell, CellRun)> = done.iter().collect();
+    by_r.sort_by(|a, b| a.0.r.total_cmp(&b.0.r).then(a.0.g.total_cmp(&b.0.g)));
+    for w in by_r.windows(2) {
+        if w[0].0.r == w[1].0.r && w[1].1.n_advancing() < w[0].1.n_advancing() {
+            decreases += 1;
+        }
+    }
+    Fig5Stats {
+        agree: done
+            .iter()
+            .filter(|(c, r)| r.n_advancing().is_some_and(|n| (n > 0) == (c.n_model > 0)))
+            .count(),
+        done: done.len(),
+        f_max_dev: spread(
+            done.iter()
+                .filter_map(|(c, r)| match r {
+                    CellRun::Done { f_max: Some(f), .. } => Some(f / c.f_max_model - 1.0),
+                    _ => None,
+                })
+                .collect(),
+        ),
+        n_ratio: spread(
+            done.iter()
+                .filter(|(c, _)| c.n_model >= 3)
+                .filter_map(|(c, r)| r.n_advancing().map(|n| n as f64 / c.n_model as f64))
+                .collect(),
+        ),
+        boundary_offset: spread(offsets).map(|[_, lo, hi]| [lo, hi]),
+        decreases_in_g: decreases,
+    }
+}
+
+/// Event rule and D_c (issue 18, assumption 4): at (r, g) on `scene`, the `paper` rule (row
+/// value 0) and then slip-weakening with each D_c (m, largest first), one condensation, one
+/// cycle each; a run over `max_events` is refused on its own row.
+pub fn dc_series(
+    scene: &Scene,
+    r: f64,
+    g: f64,
+    dcs: &[f64],
+    max_events: usize,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Vec<SeriesRow>> {
+    let (ms, md) = coefficients_from_rg(scene, r, g)?;
+    let mut ds = dcs.to_vec();
+    ds.sort_by(|a, b| b.total_cmp(a));
+    let laws = std::iter::once(Ok((0.0, sk(scene, r, g, Rule::Paper)?)))
+        .chain(ds.iter().map(|&d| Law::slip_weakening(ms, md, d).map(|l| (d, l))))
+        .collect::<Result<Vec<_>>>()?;
+    let c = condense(scene, &SolverOptions::default())?;
+    let mut rows = Vec::with_capacity(laws.len());
+    for (d, law) in laws {
+        let clock = std::time::Instant::now();
+        let fig4 =
+            fig4_on(scene, &c, r, g, SlideOptions { law, cycles: 1, max_events, ..Default::default() });
+        rows.push(SeriesRow { value: d, fig4, seconds: clock.elapsed().as_secs_f64() });
+        progress(d);
+    }
+    Ok(rows)
 }

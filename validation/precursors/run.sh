@@ -20,3 +20,6 @@ for rg in 0.9:0.35 0.8:0.5 0.95:0.2 0.7:0.3 0.5:0.6; do
 done
 # Height of the drive at the coefficients of (0.9, 0.35) (mu_s = 0.648, mu_d = 0.583).
 run heights --heights 0.01,0.025,0.05,0.075,0.1,0.125,0.15,0.175,0.2,0.225,0.25,0.275
+# Event rule and D_c on the slip-weakening scene of validation/friction (L = 10 cm, t = 4 mm,
+# h = 1 mm): the paper rule, then D_c from stable (kappa = 1.1) to under-resolved (L_c/h = 0.44).
+run dc --dc 1e-6,3e-7,1e-7 --length 0.1 --thickness 0.004 --h 0.001 --n-thick 8 --max-events 20000
