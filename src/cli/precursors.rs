@@ -206,7 +206,7 @@ fn fe(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{:>12} refused: {e}", rule.name()),
         }
     }
-    outln!("n: precursors before the first whole slip; > 5t: longer than 5 t; advance: moving the front by > 5 t (the mesh-stable count)");
+    outln!("n: precursors before the first whole slip; > 5t: longer than 5 t; advance: moving the front by > 5 t (the count least sensitive to the mesh)");
     outln!("\nthe model's field assumptions measured on each run (states before the first whole slip; interior: > 5 t from the ends):");
     outln!(
         "{:>12} {:>11} {:>11} {:>11} {:>11} {:>11}",

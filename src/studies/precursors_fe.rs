@@ -195,7 +195,7 @@ impl CellRun {
             }
         }
     }
-    /// The mesh-stable count (front-advancing precursors) of a finished run.
+    /// The front-advancing count (the least mesh-sensitive) of a finished run.
     pub fn n_advancing(&self) -> Option<usize> {
         match *self {
             CellRun::Done { n_advancing, .. } => Some(n_advancing),
