@@ -246,9 +246,6 @@ fn fe(args: &Args) -> tribofe::Result<()> {
 fn thin_layer(args: &Args) -> tribofe::Result<()> {
     use tribofe::studies::precursors_fe as pfe;
     let ts = args.thin_layer.clone().unwrap_or_default();
-    if let Some(bad) = ts.iter().find(|t| !(t.is_finite() && **t > 0.0 && **t <= 0.5)) {
-        return Err(Error::input("--thin-layer", format!("t/L = {bad}: need 0 < t/L <= 0.5")));
-    }
     let p = Params::new(args.r, args.g)?;
     let scene = fe_scene(args)?;
     let bar = indicatif::ProgressBar::new(ts.len() as u64).with_style(
@@ -498,8 +495,7 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
     if args.max_events == 0 {
         return Err(Error::input("--max-events", "need at least one event per cell"));
     }
-    let mut rules = args.rules.clone();
-    rules.dedup();
+    let rules: Vec<_> = RULES.iter().copied().filter(|r| args.rules.contains(r)).collect();
     let scene = fe_scene(args)?;
     let bar = indicatif::ProgressBar::new((resolution * resolution) as u64).with_style(
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cells, {elapsed} (eta {eta})").unwrap(),

@@ -1,14 +1,15 @@
 //! Precursors from the frictional FE itself (issue 18): the paper's fig. 4 and fig. 5
-//! recomputed on a scene, the interface condensed once and reused for every rule and cell.
+//! recomputed on a scene, the interface condensed once and reused for every rule and cell;
+//! the model's field assumptions measured on a run ([`FieldChecks`]); and the one-parameter
+//! series that test its limits: thin layer ([`thin_layer`]), height of the drive
+//! ([`heights`]) and event rule against D_c ([`dc_series`]). The corners are
+//! `studies::edges`.
 //!
 //! What counts as a precursor: an event classified `precursor` (slip nucleated at the
 //! trailing edge and arrested inside the contact) before the first `sliding` event. Edge
 //! pre-slip, tip advances of an arrested front, creep, open/close are not counted;
 //! `nucleation` events mark an instability's onset and are not counted on their own.
 //! `n_long` also drops precursors no longer than 5 t (edge-zone events).
-//!
-//! Not done yet: the height-of-drive study and the assumption table (issue 18); the corners
-//! are `studies::edges`, D_c is `slide --law slip-weakening`.
 
 use crate::error::Result;
 use crate::interface::condense::{condense, Condensed};
@@ -324,6 +325,9 @@ pub fn thin_layer(
     ts.sort_by(|a, b| b.total_cmp(a));
     let mut scenes = Vec::with_capacity(ts.len());
     for &tl in &ts {
+        if !(tl.is_finite() && tl > 0.0 && tl <= 0.5) {
+            return Err(crate::Error::input("--thin-layer", format!("t/L = {tl}: need 0 < t/L <= 0.5")));
+        }
         let mut s = scene.clone();
         s.block.thickness = tl * scene.block.length;
         s.mesh.h = s.block.thickness;
@@ -363,6 +367,7 @@ pub fn heights(
     let l = scene.block.length;
     let mut hs = h_over_l.to_vec();
     hs.sort_by(f64::total_cmp);
+    let mut scenes = Vec::with_capacity(hs.len());
     for &hl in &hs {
         let gh = 6.0 * mu_d * hl;
         if !(hl > 0.0 && gh < 1.0) {
@@ -374,13 +379,15 @@ pub fn heights(
                 ),
             ));
         }
+        let mut s = scene.clone();
+        s.loading.height = hl * l;
+        s.validate().map_err(|e| crate::Error::input("--heights", format!("H/L = {hl}: {e}")))?;
+        scenes.push(s);
     }
     let c = condense(scene, &SolverOptions::default())?;
     let mut rows = Vec::with_capacity(hs.len());
-    for hl in hs {
+    for (hl, s) in hs.into_iter().zip(scenes) {
         let clock = std::time::Instant::now();
-        let mut s = scene.clone();
-        s.loading.height = hl * l;
         let gh = 6.0 * mu_d * hl;
         let fig4 = fig4_on(
             &s,
