@@ -130,7 +130,7 @@ fn every_subcommand_runs_and_writes_what_it_names() {
                 "pd",
             ],
             "pd",
-            &["dc.csv", "dc.svg", "run.toml"],
+            &["dc.csv", "dc.svg", "run.toml", "paper/fig4_fe.svg", "dc_1e-6/events.csv"],
         ),
         (&["bench", "--case", "strip2", "--dgemm", "0", "--out", "be"], "be", &["bench.csv"]),
     ];

@@ -47,8 +47,8 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', requires = "fe", conflicts_with_all = ["map", "cycles", "thin_layer"])]
     heights: Option<Vec<f64>>,
     /// With --fe: the event-rule study instead, the `paper` rule and slip-weakening with each
-    /// of these D_c (m, comma separated) at (r, g) on the scene, one cycle; writes dc.csv and
-    /// dc.svg. Resolved when the nucleation length G D_c/((mu_s - mu_d) N/L) spans h.
+    /// of these D_c (m, comma separated) at (r, g) on the scene, one cycle; writes dc.csv,
+    /// dc.svg and each run's fig. 4 in its own folder. Resolved when the nucleation length G D_c/((mu_s - mu_d) N/L) spans h.
     #[arg(long, value_delimiter = ',', requires = "fe", conflicts_with_all = ["map", "cycles", "thin_layer", "heights"])]
     dc: Option<Vec<f64>>,
     /// With --fe --map: event rules to run in every cell, comma separated: paper, overdamped
@@ -483,7 +483,7 @@ fn dc(args: &Args) -> tribofe::Result<()> {
     let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
     report::write_dc(dir.path(), &rows, &command, &scene)?;
     dir.commit()?;
-    outln!("wrote {}/{{dc.csv, dc.svg, run.toml}}", args.out.display());
+    outln!("wrote {}/{{dc.csv, dc.svg, run.toml, paper/, dc_<D_c>/}}", args.out.display());
     Ok(())
 }
 

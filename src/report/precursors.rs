@@ -904,8 +904,9 @@ pub fn dc_svg(rows: &[crate::studies::precursors_fe::SeriesRow]) -> Result<Strin
     })
 }
 
-/// Writes the D_c study (`dc.csv`: the series CSV with D_c_m = 0 for the `paper` rule,
-/// `dc.svg`, `run.toml`) into `dir`.
+/// Writes the D_c study into `dir`: `dc.csv` (the series CSV, D_c_m = 0 for the `paper`
+/// rule), `dc.svg`, `run.toml`, and each run's fig. 4 in `paper/` and `dc_<D_c>/`
+/// (`events.csv`, `loading.csv`, `fig4_fe.svg`, `fronts.svg`, `run.toml`).
 pub fn write_dc(
     dir: &Path,
     rows: &[crate::studies::precursors_fe::SeriesRow],
@@ -914,12 +915,23 @@ pub fn write_dc(
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
     let what: [(&str, f64); 0] = [];
-    write_all(
+    let mut written = write_all(
         dir,
         &[
             ("dc.csv", series_csv("Dc_m", rows)?),
             ("dc.svg", dc_svg(rows)?),
             ("run.toml", super::run_toml(command, &what, scene)?),
         ],
-    )
+    )?;
+    for row in rows {
+        let Ok(f) = &row.fig4 else { continue };
+        let name = if row.value == 0.0 { "paper".to_string() } else { format!("dc_{:e}", row.value) };
+        let sub = dir.join(&name);
+        ensure_dir(&sub)?;
+        let law = f.run.options.law;
+        let what = [("law", law.name()), ("mu_s", law.mu_s().to_string()), ("mu_d", law.mu_d().to_string())];
+        let header = super::run_toml(command, &what, scene)?;
+        written.extend(super::slide::write(&f.run, &sub, &header, false)?);
+    }
+    Ok(written)
 }
