@@ -122,6 +122,25 @@ fn print_table(events: &[Event]) -> tribofe::Result<()> {
     Ok(())
 }
 
+/// A progress bar over `len` items called `what`.
+fn counter(len: usize, what: &str) -> indicatif::ProgressBar {
+    let style = format!("{{bar:40}} {{pos}}/{{len}} {what}, {{elapsed}}");
+    indicatif::ProgressBar::new(len as u64)
+        .with_style(indicatif::ProgressStyle::with_template(&style).unwrap())
+}
+
+/// Writes a study's folder whole: `write` fills a temporary sibling of `out` (given the
+/// command line for its run.toml), which replaces `out` only once everything is written.
+fn write_whole(
+    out: &Path,
+    write: impl FnOnce(&Path, &[String]) -> tribofe::Result<Vec<PathBuf>>,
+) -> tribofe::Result<()> {
+    let command: Vec<String> = std::env::args().collect();
+    let dir = tribofe::io::outdir::OutDir::begin(out)?;
+    write(dir.path(), &command)?;
+    dir.commit()
+}
+
 fn print_written(paths: &[impl AsRef<Path>]) -> tribofe::Result<()> {
     for p in paths {
         outln!("wrote {}", p.as_ref().display());
@@ -234,10 +253,7 @@ fn fe(args: &Args) -> tribofe::Result<()> {
     }
     outln!("1: largest |tau - F^c/L|/(F^c/L) on never-slipped nodes > 5 t ahead of the front; tip: tau/(F^c/L) - 1 just ahead of it");
     outln!("2: largest |p - (N/L + 12 F H x/L^3)|/(N/L); 3: F/(mu_s N) when the trailing node opens or creeps, x/L where the first long precursor began");
-    let command: Vec<String> = std::env::args().collect();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
-    report::write_fe_fig4(dir.path(), &p, &model, &runs, &command, &scene)?;
-    dir.commit()?;
+    write_whole(&args.out, |dir, command| report::write_fe_fig4(dir, &p, &model, &runs, command, &scene))?;
     outln!("wrote {}/{{summary.csv, model/, paper/, overdamped/}}", args.out.display());
     Ok(())
 }
@@ -248,9 +264,7 @@ fn thin_layer(args: &Args) -> tribofe::Result<()> {
     let ts = args.thin_layer.clone().unwrap_or_default();
     let p = Params::new(args.r, args.g)?;
     let scene = fe_scene(args)?;
-    let bar = indicatif::ProgressBar::new(ts.len() as u64).with_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} thicknesses, {elapsed}").unwrap(),
-    );
+    let bar = counter(ts.len(), "thicknesses");
     let rows = pfe::thin_layer(&scene, p.r(), p.g(), &ts, &|_| bar.inc(1))?;
     bar.finish_and_clear();
     let n = precursors::n_precursors(&p)?;
@@ -299,20 +313,8 @@ fn thin_layer(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{:>9} refused: {e}", row.value),
         }
     }
-    type Get = fn(&tribofe::studies::slide::PaperComparison) -> (f64, Option<f64>);
-    let quantities: [(&str, Get); 3] =
-        [("F_1", |c| (c.f1, c.f1_fe)), ("x_1", |c| (c.x1, c.x1_fe)), ("F_max", |c| (c.f_max, c.f_max_fe))];
-    for (name, get) in quantities {
-        let mut model = f64::NAN;
-        let pts: Vec<(f64, f64)> = rows
-            .iter()
-            .filter_map(|r| r.fig4.as_ref().ok())
-            .filter_map(|f| {
-                let (m, v) = get(&f.cmp);
-                model = m;
-                v.map(|v| (f.run.condensed.t / f.run.condensed.l, v))
-            })
-            .collect();
+    for lim in pfe::thin_layer_limits(&rows) {
+        let (name, model) = (lim.name, lim.model);
         let offset = |v: f64| {
             if name == "x_1" {
                 format!("{:+.4} L", v - model)
@@ -320,22 +322,19 @@ fn thin_layer(args: &Args) -> tribofe::Result<()> {
                 format!("{:+.2} %", 100.0 * (v / model - 1.0))
             }
         };
-        match (pfe::richardson(&pts), pts.last()) {
-            (Some((p, lim)), _) => outln!(
-                "{name}: observed order {p:.2} in t/L, limit {lim:.4}, offset from the model {}",
-                offset(lim)
+        match (lim.order_limit, lim.finest) {
+            (Some((p, v)), _) => outln!(
+                "{name}: observed order {p:.2} in t/L, limit {v:.4}, offset from the model {}",
+                offset(v)
             ),
-            (None, Some(&(_, v))) => outln!(
+            (None, Some(v)) => outln!(
                 "{name}: no asymptotic range in the last three t/L; finest {v:.4}, offset from the model {}",
                 offset(v)
             ),
             (None, None) => outln!("{name}: -"),
         }
     }
-    let command: Vec<String> = std::env::args().collect();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
-    report::write_thin_layer(dir.path(), &p, &rows, &command, &scene)?;
-    dir.commit()?;
+    write_whole(&args.out, |dir, command| report::write_thin_layer(dir, &p, &rows, command, &scene))?;
     outln!("wrote {}/{{thin_layer.csv, thin_layer.svg, run.toml}}", args.out.display());
     Ok(())
 }
@@ -346,9 +345,7 @@ fn heights(args: &Args) -> tribofe::Result<()> {
     let p = Params::new(args.r, args.g)?;
     let scene = fe_scene(args)?;
     let mu = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g())?;
-    let bar = indicatif::ProgressBar::new(hs.len() as u64).with_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} heights, {elapsed}").unwrap(),
-    );
+    let bar = counter(hs.len(), "heights");
     let rows = tribofe::studies::precursors_fe::heights(&scene, p.r(), p.g(), &hs, &|_| bar.inc(1))?;
     bar.finish_and_clear();
     outln!(
@@ -391,10 +388,7 @@ fn heights(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{:>7.4} refused: {e}", row.value),
         }
     }
-    let command: Vec<String> = std::env::args().collect();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
-    report::write_heights(dir.path(), mu, &rows, &command, &scene)?;
-    dir.commit()?;
+    write_whole(&args.out, |dir, command| report::write_heights(dir, mu, &rows, command, &scene))?;
     outln!("wrote {}/{{heights.csv, heights.svg, run.toml}}", args.out.display());
     Ok(())
 }
@@ -405,18 +399,15 @@ fn dc(args: &Args) -> tribofe::Result<()> {
     let p = Params::new(args.r, args.g)?;
     let scene = fe_scene(args)?;
     let (ms, md) = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g())?;
-    for &d in &dcs {
-        tribofe::interface::law::Law::slip_weakening(ms, md, d)?;
-    }
-    let bar = indicatif::ProgressBar::new(dcs.len() as u64 + 1)
-        .with_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed}").unwrap());
+    let bar = counter(dcs.len() + 1, "runs");
     let rows =
         tribofe::studies::precursors_fe::dc_series(&scene, p.r(), p.g(), &dcs, args.max_events, &|_| {
             bar.inc(1)
         })?;
     bar.finish_and_clear();
     let b = &scene.block;
-    let (shear_modulus, pressure) = (b.young / (2.0 * (1.0 + b.poisson)), 1.0 / b.length);
+    // dc_series runs at the default normal force.
+    let n_force = tribofe::studies::slide::SlideOptions::default().n_force;
     outln!(
         "event rule and D_c at (r, g) = ({}, {}): mu_s = {ms:.4}, mu_d = {md:.4}, t/L = {:.4}, h = {:e} m; F in units of mu_s N, x in units of L",
         p.r(),
@@ -454,16 +445,12 @@ fn dc(args: &Args) -> tribofe::Result<()> {
     let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
     for row in &rows {
         let d = row.value;
-        let lc = shear_modulus * d / ((ms - md) * pressure);
         let (name, kappa, lch, appendix) = if d == 0.0 {
             ("paper".to_string(), "-".to_string(), "-".to_string(), "-".to_string())
         } else {
-            (
-                format!("{d:.1e}"),
-                format!("{:.3}", lc / b.thickness),
-                format!("{:.2}", lc / scene.mesh.h),
-                format!("{:.2e}", b.young / pressure * d / b.thickness * (ms - md) / (2.0 * md)),
-            )
+            let (kappa, lch, appendix) =
+                tribofe::studies::precursors_fe::dc_scales(&scene, ms, md, n_force, d);
+            (format!("{d:.1e}"), format!("{kappa:.3}"), format!("{lch:.2}"), format!("{appendix:.2e}"))
         };
         match &row.fig4 {
             Ok(r) => outln!(
@@ -479,10 +466,7 @@ fn dc(args: &Args) -> tribofe::Result<()> {
         }
     }
     outln!("kappa = G D_c/((mu_s - mu_d) p t) (stable above 1); L_c = kappa t, the nucleation length; Appendix: (E/p)(D_c/t)(mu_s - mu_d)/(2 mu_d), the excess mu(x) - mu_d below which the Appendix's Griffith argument lets a front arrest");
-    let command: Vec<String> = std::env::args().collect();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
-    report::write_dc(dir.path(), &rows, &command, &scene)?;
-    dir.commit()?;
+    write_whole(&args.out, |dir, command| report::write_dc(dir, &rows, command, &scene))?;
     outln!("wrote {}/{{dc.csv, dc.svg, run.toml, paper/, dc_<D_c>/}}", args.out.display());
     Ok(())
 }
@@ -546,16 +530,15 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
             st.decreases_in_g
         );
     }
-    let command: Vec<String> = std::env::args().collect();
     let what = [
         ("resolution", resolution.to_string()),
         ("max_events_per_cell", args.max_events.to_string()),
         ("rules", rules.iter().map(|r| r.name()).collect::<Vec<_>>().join(",")),
         ("wall_seconds", format!("{wall:.1}")),
     ];
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
-    report::write_fe_fig5(dir.path(), &cells, resolution, &what, &command, &scene)?;
-    dir.commit()?;
+    write_whole(&args.out, |dir, command| {
+        report::write_fe_fig5(dir, &cells, resolution, &what, command, &scene)
+    })?;
     outln!(
         "counts: front-advancing precursors (> 5 t) before the first whole slip; capped: over --max-events"
     );

@@ -512,3 +512,48 @@ pub fn dc_series(
     }
     Ok(rows)
 }
+
+/// The length scales of slip-weakening with D_c on `scene` (N = n_force, p = N/L,
+/// G = E/(2(1 + nu))): kappa = G D_c/((mu_s - mu_d) p t), the thin-layer stability number
+/// (stable above 1); the nucleation length L_c = kappa t over the element size h; and the
+/// Appendix's threshold (E/p)(D_c/t)(mu_s - mu_d)/(2 mu_d), the excess mu(x) - mu_d below
+/// which its Griffith argument lets a front arrest.
+pub fn dc_scales(scene: &Scene, mu_s: f64, mu_d: f64, n_force: f64, dc: f64) -> (f64, f64, f64) {
+    let b = &scene.block;
+    let p = n_force / b.length;
+    let lc = b.young / (2.0 * (1.0 + b.poisson)) * dc / ((mu_s - mu_d) * p);
+    (lc / b.thickness, lc / scene.mesh.h, b.young / p * dc / b.thickness * (mu_s - mu_d) / (2.0 * mu_d))
+}
+
+/// A thin-layer series' F_1, x_1 and F_max against t/L: the model's value, the observed order
+/// and Richardson limit of the last three thicknesses ([`richardson`], None without an
+/// asymptotic range) and the finest run's value.
+pub struct Limit {
+    pub name: &'static str,
+    pub model: f64,
+    pub order_limit: Option<(f64, f64)>,
+    pub finest: Option<f64>,
+}
+
+/// [`Limit`]s of F_1, x_1 and F_max over the finished rows of [`thin_layer`].
+pub fn thin_layer_limits(rows: &[SeriesRow]) -> Vec<Limit> {
+    type Get = fn(&PaperComparison) -> (f64, Option<f64>);
+    let quantities: [(&str, Get); 3] =
+        [("F_1", |c| (c.f1, c.f1_fe)), ("x_1", |c| (c.x1, c.x1_fe)), ("F_max", |c| (c.f_max, c.f_max_fe))];
+    quantities
+        .into_iter()
+        .map(|(name, get)| {
+            let mut model = f64::NAN;
+            let pts: Vec<(f64, f64)> = rows
+                .iter()
+                .filter_map(|r| r.fig4.as_ref().ok())
+                .filter_map(|f| {
+                    let (m, v) = get(&f.cmp);
+                    model = m;
+                    v.map(|v| (f.run.condensed.t / f.run.condensed.l, v))
+                })
+                .collect();
+            Limit { name, model, order_limit: richardson(&pts), finest: pts.last().map(|q| q.1) }
+        })
+        .collect()
+}
