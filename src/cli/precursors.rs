@@ -241,11 +241,11 @@ fn fe(args: &Args) -> tribofe::Result<()> {
             let e = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.2e}"));
             let fc = &r.fields;
             outln!(
-                "{:>12} {:>11} {:>11} {:>11.2e} {:>11} {:>11}",
+                "{:>12} {:>11} {:>11} {:>11} {:>11} {:>11}",
                 rule.name(),
                 e(fc.shear_far),
                 e(fc.shear_tip),
-                fc.pressure,
+                e(fc.pressure),
                 f(fc.f_corner),
                 f(fc.x_nucleation)
             );

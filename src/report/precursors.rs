@@ -603,10 +603,10 @@ const FIELD_COLUMNS: &str =
 
 fn field_values(f: &crate::studies::precursors_fe::FieldChecks) -> String {
     format!(
-        "{},{},{:e},{},{}",
+        "{},{},{},{},{}",
         opt(f.shear_far.map(|v| format!("{v:e}"))),
         opt(f.shear_tip.map(|v| format!("{v:e}"))),
-        f.pressure,
+        opt(f.pressure.map(|v| format!("{v:e}"))),
         opt(f.f_corner),
         opt(f.x_nucleation)
     )

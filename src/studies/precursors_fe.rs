@@ -93,8 +93,9 @@ pub struct FieldChecks {
     /// crack-tip concentration, which the model leaves out).
     pub shear_tip: Option<f64>,
     /// Assumption 2 (linear pressure set by F alone): the largest |p - (N/L + 12 F H x/L^3)|
-    /// over N/L on interior contact nodes, over every state.
-    pub pressure: f64,
+    /// over N/L on interior contact nodes, over every state (None: no interior contact node,
+    /// a block shorter than 10 t).
+    pub pressure: Option<f64>,
     /// Assumption 3: F/(mu_s N) when the trailing node first opens or creeps (None: not
     /// before the first whole slip), and x/L where the first long precursor's slip began.
     pub f_corner: Option<f64>,
@@ -115,7 +116,7 @@ pub fn field_checks(res: &SlideResult) -> FieldChecks {
     for (e, st) in evs[..first].iter().zip(&states[..first]) {
         for i in (0..c.n).filter(|&i| interior(i) && st.states[i] != NodeState::Open) {
             let linear = pm + 12.0 * st.f * h * c.x[i] / c.l.powi(3);
-            out.pressure = out.pressure.max((st.p_force[i] / c.w[i] - linear).abs() / pm);
+            out.pressure = max_opt(out.pressure, (st.p_force[i] / c.w[i] - linear).abs() / pm);
         }
         if out.f_corner.is_none() && e.node == 0 && matches!(e.kind, "open" | "creep") {
             out.f_corner = Some(st.f / (res.options.law.mu_s() * res.options.n_force));
