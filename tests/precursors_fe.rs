@@ -206,3 +206,18 @@ fn richardson_order_and_limit() {
     assert!(richardson(&[(0.04, 1.0), (0.02, 1.1), (0.01, 1.2)]).is_none());
     assert!(richardson(&[(0.02, 1.0), (0.01, 1.1)]).is_none());
 }
+
+#[test]
+/// Assumption 2's check: the interior pressure stays within 5 % of N/L of the linear law at
+/// t/L = 0.01 (1.6 % measured, validation/precursors), and is undefined, not 0, on a block
+/// with no node farther than 5 t from both ends (L = 5 cm, t = 2 cm).
+fn interior_pressure_check_defined_only_with_an_interior() {
+    let f = fig4(&thin(0.004), 0.9, 0.35, 1).unwrap().remove(0).unwrap();
+    let p = f.fields.pressure.unwrap();
+    assert!(p > 0.0 && p < 0.05, "{p}");
+    let mut sc = Scene::default();
+    sc.block.length = 0.05;
+    sc.block.thickness = 0.02;
+    let f = fig4(&sc, 0.9, 0.35, 1).unwrap().remove(0).unwrap();
+    assert!(f.fields.pressure.is_none(), "{:?}", f.fields.pressure);
+}
