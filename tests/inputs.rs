@@ -460,13 +460,14 @@ fn slide_and_stability_refuse_flags_that_cannot_act() {
 }
 
 #[test]
-/// `precursors --fe` studies (--map, --thin-layer, --heights, --dc): bad grid, cap, rule, t/L, H/L or D_c refused with the input status and the flag
+/// `precursors --fe` studies (--map, --thin-layer, --heights, --dc): bad grid, cap, rule, t/L, H/L or D_c refused,
+/// and mesh flags or a mesh file with --thin-layer (it meshes each thickness itself) with the input status and the flag
 /// named, nothing written.
 fn fe_fig5_refuses_bad_options() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     let o = out.to_str().unwrap();
-    let cases: [(&[&str], &str); 10] = [
+    let cases: [(&[&str], &str); 12] = [
         (&["--map", "--resolution", "1"], "resolution"),
         (&["--map", "--max-events", "0"], "--max-events"),
         (&["--map", "--rules", "paper,fast"], "fast"),
@@ -477,6 +478,16 @@ fn fe_fig5_refuses_bad_options() {
         (&["--heights", "-0.1"], "--heights"),
         (&["--dc", "1e-6,0"], "dc"),
         (&["--dc", "1e-6", "--heights", "0.1"], "--heights"),
+        (&["--thin-layer", "0.01", "--h", "0.001"], "--h"),
+        (
+            &[
+                "--thin-layer",
+                "0.01",
+                "--mesh",
+                concat!(env!("CARGO_MANIFEST_DIR"), "/meshes/block_regular_v41_ascii.msh"),
+            ],
+            "mesh file",
+        ),
     ];
     for (args, word) in cases {
         let mut a = vec!["precursors", "--fe", "--out", o];

@@ -262,6 +262,18 @@ fn fe(args: &Args) -> tribofe::Result<()> {
 fn thin_layer(args: &Args) -> tribofe::Result<()> {
     use tribofe::studies::precursors_fe as pfe;
     let ts = args.thin_layer.clone().unwrap_or_default();
+    let a = &args.scene;
+    for (flag, given) in [
+        ("--thickness", a.thickness.is_some()),
+        ("--h", a.h.is_some()),
+        ("--n-thick", a.n_thick.is_some()),
+        ("--grading", a.grading.is_some()),
+        ("--h-max", a.h_max.is_some()),
+    ] {
+        if given {
+            return Err(Error::input(flag, "cannot act with --thin-layer, which sets t = (t/L) L, h = t and 2 elements through t per run"));
+        }
+    }
     let p = Params::new(args.r, args.g)?;
     let scene = fe_scene(args)?;
     let bar = counter(ts.len(), "thicknesses");

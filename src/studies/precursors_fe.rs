@@ -313,8 +313,9 @@ pub struct SeriesRow {
 }
 
 /// The thin-layer limit (issue 18): the `paper` rule at (r, g) on blocks of thickness
-/// t = (t/L) L at the scene's L and H/L, h = t with 2 elements through t (the meshes of
-/// validation/friction), one cycle each, thickest first; `progress` after each.
+/// t = (t/L) L at the scene's L and H/L, a regular mesh with h = t and 2 elements through t
+/// (the meshes of validation/friction; a scene's mesh file is refused), one cycle each,
+/// thickest first; `progress` after each.
 pub fn thin_layer(
     scene: &Scene,
     r: f64,
@@ -322,6 +323,12 @@ pub fn thin_layer(
     t_over_l: &[f64],
     progress: &(dyn Fn(f64) + Sync),
 ) -> Result<Vec<SeriesRow>> {
+    if let Some(file) = &scene.mesh.file {
+        return Err(crate::Error::input(
+            "--thin-layer",
+            format!("meshes its own blocks, one per t/L; drop the mesh file {}", file.display()),
+        ));
+    }
     let mut ts = t_over_l.to_vec();
     ts.sort_by(|a, b| b.total_cmp(a));
     let mut scenes = Vec::with_capacity(ts.len());
@@ -333,6 +340,7 @@ pub fn thin_layer(
         s.block.thickness = tl * scene.block.length;
         s.mesh.h = s.block.thickness;
         s.mesh.n_thick = Some(2);
+        (s.mesh.grading, s.mesh.h_max) = (None, None);
         s.validate().map_err(|e| crate::Error::input("--thin-layer", format!("t/L = {tl}: {e}")))?;
         crate::scene::limits::check_interface((s.block.length / s.mesh.h).round() as usize + 1)?;
         scenes.push(s);
