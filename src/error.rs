@@ -51,8 +51,10 @@ pub enum Error {
     Untrustworthy { detail: String, hint: String },
 
     /// A frictional run needed more events than its cap before reaching its end.
-    #[error("the run needs more than {cap} events (stopped at X = {x:.6e} m, F/N = {f_over_n:.6}); raise --max-events or lower --x-max/--cycles")]
-    EventCap { cap: usize, x: f64, f_over_n: f64 },
+    /// `precursors`: events classified as precursors before the first whole-interface slip;
+    /// `f_peak_over_n`: the largest F/N reached (both up to the cap).
+    #[error("the run needs more than {cap} events (stopped at X = {x:.6e} m, F/N = {f_over_n:.6}, after {precursors} precursors and a peak F/N = {f_peak_over_n:.6}); raise --max-events or lower --x-max/--cycles")]
+    EventCap { cap: usize, x: f64, f_over_n: f64, precursors: usize, f_peak_over_n: f64 },
 
     /// A self-check of the results (global balance...) failed beyond its threshold.
     #[error("self-check failed: {what} = {value:.2e} exceeds {limit:.1e}; {hint}")]

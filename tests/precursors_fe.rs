@@ -5,6 +5,7 @@
 //! admissibility to round-off, also at (0.5, 0.6), where the trailing corner opens long before
 //! the first precursor and the model does not hold (validation/edges/README.md).
 
+use tribofe::interface::events::NodeState;
 use tribofe::interface::law::{Law, Rule};
 use tribofe::scene::Scene;
 use tribofe::studies::precursors_fe::{fig4, fig5, CellRun};
@@ -220,4 +221,78 @@ fn interior_pressure_check_defined_only_with_an_interior() {
     sc.block.thickness = 0.02;
     let f = fig4(&sc, 0.9, 0.35, 1).unwrap().remove(0).unwrap();
     assert!(f.fields.pressure.is_none(), "{:?}", f.fields.pressure);
+}
+
+#[test]
+/// A run stopped by its event cap reports what it had reached: the precursors among the
+/// recorded events (the same as the uncapped run's first events) and the peak force, which
+/// no admissible state can lift above mu_s N (|T_i| <= mu_s P_i at every node).
+fn event_cap_reports_precursors_and_peak_so_far() {
+    let sc = Scene::default();
+    let (ms, md) = coefficients_from_rg(&sc, 0.9, 0.35).unwrap();
+    let o = SlideOptions {
+        law: Law::static_kinetic(ms, md, Rule::Overdamped).unwrap(),
+        cycles: 1,
+        max_events: 50_000,
+        ..Default::default()
+    };
+    let full = run(&sc, &o, &|_| {}).unwrap();
+    let cap = 2000;
+    assert!(full.run.events.len() > cap + 100, "{} events", full.run.events.len());
+    let head = &full.run.events[..cap];
+    let want = head.iter().filter(|e| e.kind == "precursor").count();
+    let peak = head.iter().map(|e| e.f).fold(0.0, f64::max);
+    match run(&sc, &SlideOptions { max_events: cap, ..o }, &|_| {}) {
+        Err(tribofe::Error::EventCap { cap: c, precursors, f_peak_over_n, .. }) => {
+            assert_eq!(c, cap);
+            assert_eq!(precursors, want);
+            assert!(want > 0);
+            assert!(f_peak_over_n >= peak * (1.0 - 1e-12), "{f_peak_over_n} < {peak}");
+            assert!(f_peak_over_n <= ms * (1.0 + 1e-9), "{f_peak_over_n} > mu_s = {ms}");
+        }
+        other => panic!("expected the event cap, got {:?}", other.map(|r| r.run.events.len())),
+    }
+}
+
+#[test]
+/// The front crossing (Problem::end_at_crossing). With the overdamped rule at (0.5, 0.5) the
+/// slip crosses the paper's interface in many events and no one event slips it whole: the run
+/// ends at the first event after which the slipped regions (and creeping corners) join from the
+/// trailing contact node to the one before the leading corner, and not before. The paper rule at (0.9, 0.35) slips whole in one event
+/// before any crossing, so the option changes nothing there.
+fn front_crossing_ends_the_cycle_only_when_the_regions_join() {
+    let sc = Scene::default();
+    let opts = |r: f64, g: f64, rule: Rule, end_at_crossing: bool| {
+        let (ms, md) = coefficients_from_rg(&sc, r, g).unwrap();
+        SlideOptions {
+            law: Law::static_kinetic(ms, md, rule).unwrap(),
+            cycles: 1,
+            max_events: 5000,
+            end_at_crossing,
+            ..Default::default()
+        }
+    };
+    let res = run(&sc, &opts(0.5, 0.5, Rule::Overdamped, true), &|_| {}).unwrap();
+    let evs = &res.run.events;
+    let last = evs.last().unwrap();
+    assert_eq!(last.kind, "crossing");
+    assert!(res.run.max_violation < 1e-8, "violation {}", res.run.max_violation);
+    let n = res.condensed.n;
+    let st = res.run.states.last().unwrap();
+    let mut covered = vec![false; n];
+    for (k, e) in evs.iter().enumerate() {
+        if let Some((a, b)) = e.region {
+            (a..=b).for_each(|i| covered[i] = true);
+        }
+        if e.kind == "creep" {
+            covered[e.node] = true;
+        }
+        let contact: Vec<usize> = (0..n).filter(|&i| st.states[i] != NodeState::Open).collect();
+        let all = contact[..contact.len() - 1].iter().all(|&i| covered[i]);
+        assert_eq!(all, k + 1 == evs.len(), "coverage complete at event {k} of {}", evs.len());
+    }
+    let plain = run(&sc, &opts(0.9, 0.35, Rule::Paper, false), &|_| {}).unwrap();
+    let with = run(&sc, &opts(0.9, 0.35, Rule::Paper, true), &|_| {}).unwrap();
+    assert_eq!(plain.run.events.len(), with.run.events.len());
+    assert_eq!(with.run.events.last().unwrap().kind, "sliding");
 }

@@ -33,7 +33,8 @@ pub struct Args {
     /// a folder per rule and one for the model. With --map, the FE fig. 5.
     #[arg(long)]
     fe: bool,
-    /// With --fe: whole-interface slips (stick-slip cycles) per run [default: 2].
+    /// With --fe: stick-slip cycles per run, each ending when the slip has crossed the
+    /// interface (a whole slip, or a front crossing over several events) [default: 2].
     #[arg(long, requires = "fe", conflicts_with = "map")]
     cycles: Option<usize>,
     /// With --fe: the thin-layer study instead, the `paper` rule at (r, g) on blocks of these
@@ -52,8 +53,8 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', requires = "fe", conflicts_with_all = ["map", "cycles", "thin_layer", "heights"])]
     dc: Option<Vec<f64>>,
     /// With --fe --map: event rules to run in every cell, comma separated: paper, overdamped
-    /// (about 45 s for 20 x 20 on the paper's scene; overdamped adds about 200 s, and most of
-    /// its cells exceed the event cap).
+    /// (about 10 s for 20 x 20 on the paper's scene; overdamped adds about 4 minutes, and 163
+    /// of its 400 cells exceed the event cap).
     #[arg(long, value_delimiter = ',', default_value = "paper", requires = "fe")]
     rules: Vec<tribofe::interface::law::Rule>,
     /// With --fe --map: events per cell before the cell is reported as capped (grey); with
@@ -225,8 +226,8 @@ fn fe(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{:>12} refused: {e}", rule.name()),
         }
     }
-    outln!("n: precursors before the first whole slip; > 5t: longer than 5 t; advance: moving the front by > 5 t (the count least sensitive to the mesh)");
-    outln!("\nthe model's field assumptions measured on each run (states before the first whole slip; interior: > 5 t from the ends):");
+    outln!("n: precursors before the first whole slip or front crossing; > 5t: longer than 5 t; advance: moving the front by > 5 t (the count least sensitive to the mesh)");
+    outln!("\nthe model's field assumptions measured on each run (states before the end of the first cycle; interior: > 5 t from the ends):");
     outln!(
         "{:>12} {:>11} {:>11} {:>11} {:>11} {:>11}",
         "",
@@ -515,9 +516,10 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
         let seconds: f64 = runs.iter().map(|r| r.seconds()).sum();
         let st = pfe::fig5_stats(&cells, k, resolution);
         outln!(
-            "{:>12}: {} done, {} capped, {} refused; {:.1} s in cells; precursors or none as the model in {}/{} finished cells",
+            "{:>12}: {} done ({} ended by a front crossing), {} capped, {} refused; {:.1} s in cells; precursors or none as the model in {}/{} finished cells",
             rule.name(),
             count("done"),
+            st.crossings,
             count("capped"),
             count("refused"),
             seconds,
@@ -541,6 +543,14 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
             st.boundary_offset.map_or("-".to_string(), |[a, b]| format!("from {a:+.3} to {b:+.3}")),
             st.decreases_in_g
         );
+        if let Some([m, a, b]) = st.capped_precursors {
+            outln!(
+                "{:>12}  capped cells: {m:.0} precursors at the cap (median, from {a:.0} to {b:.0}); {} of {} past the model's F_max",
+                "",
+                st.capped_above_f_max,
+                st.capped
+            );
+        }
     }
     let what = [
         ("resolution", resolution.to_string()),
@@ -552,7 +562,7 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
         report::write_fe_fig5(dir, &cells, resolution, &what, command, &scene)
     })?;
     outln!(
-        "counts: front-advancing precursors (> 5 t) before the first whole slip; capped: over --max-events"
+        "counts: front-advancing precursors (> 5 t) before the first whole slip or front crossing (the slipped nodes joining edge to edge); capped: over --max-events"
     );
     outln!("wrote {}/{{fig5_fe.csv, boundary_fe.csv, fig5_fe.svg, run.toml}}", args.out.display());
     Ok(())

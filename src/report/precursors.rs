@@ -436,7 +436,8 @@ pub fn write_fe_fig4(
 
 /// `fig5_fe.csv`: per cell the model's n and F_max, then per rule its status (done, capped,
 /// refused, or empty when not run), the three counts, the first slip's peak, the events, the
-/// worst violation and the wall time.
+/// worst violation, the wall time, for a capped run the precursors and the peak force reached
+/// at the cap, and for a finished one what ended its cycle (whole-slip or crossing).
 pub fn fe_fig5_csv(cells: &[crate::studies::precursors_fe::Cell]) -> Result<String> {
     use crate::studies::precursors_fe::{CellRun, RULES};
     let mut s = String::from("r,g,model_precursors,model_Fmax_over_mu_s_N");
@@ -444,7 +445,7 @@ pub fn fe_fig5_csv(cells: &[crate::studies::precursors_fe::Cell]) -> Result<Stri
         let k = rule.name();
         let _ = write!(
             s,
-            ",{k}_status,{k}_precursors,{k}_precursors_longer_5t,{k}_precursors_advancing_5t,{k}_Fmax_over_mu_s_N,{k}_events,{k}_max_violation_over_N_per_n,{k}_seconds"
+            ",{k}_status,{k}_precursors,{k}_precursors_longer_5t,{k}_precursors_advancing_5t,{k}_Fmax_over_mu_s_N,{k}_events,{k}_max_violation_over_N_per_n,{k}_seconds,{k}_precursors_at_cap,{k}_Fpeak_at_cap_over_mu_s_N,{k}_cycle_end"
         );
     }
     s.push('\n');
@@ -459,17 +460,21 @@ pub fn fe_fig5_csv(cells: &[crate::studies::precursors_fe::Cell]) -> Result<Stri
         );
         for run in &c.runs {
             match run {
-                Some(CellRun::Done { n, n_long, n_advancing, f_max, events, violation, seconds }) => {
+                Some(CellRun::Done { crossing, n, n_long, n_advancing, f_max, events, violation, seconds }) => {
+                    let end = if *crossing { "crossing" } else { "whole-slip" };
                     let _ = write!(
                         s,
-                        ",done,{n},{n_long},{n_advancing},{},{events},{violation:e},{seconds:.3}",
+                        ",done,{n},{n_long},{n_advancing},{},{events},{violation:e},{seconds:.3},,,{end}",
                         opt(*f_max)
                     );
                 }
-                Some(other) => {
-                    let _ = write!(s, ",{},,,,,,,{:.3}", other.status(), other.seconds());
+                Some(CellRun::Capped { seconds, precursors, f_peak }) => {
+                    let _ = write!(s, ",capped,,,,,,,{seconds:.3},{precursors},{},", finite("F peak", *f_peak)?);
                 }
-                None => s.push_str(",,,,,,,,"),
+                Some(CellRun::Refused { seconds }) => {
+                    let _ = write!(s, ",refused,,,,,,,{seconds:.3},,,");
+                }
+                None => s.push_str(",,,,,,,,,,,"),
             }
         }
         s.push('\n');

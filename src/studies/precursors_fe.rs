@@ -57,13 +57,15 @@ fn fig4_on(scene: &Scene, c: &Condensed, r: f64, g: f64, o: SlideOptions) -> Res
         Law::StaticKinetic { rule, .. } => rule,
         Law::Coulomb { .. } | Law::SlipWeakening { .. } => Rule::Paper,
     };
+    // Cycles end as the model's do, when the slip has crossed the interface.
+    let o = SlideOptions { end_at_crossing: true, ..o };
     let res = run_condensed(scene, c.clone(), 0.0, &o, &|_| {})?;
     let cmp = compare_paper(&res)
         .ok_or_else(|| crate::Error::input("r, g", "outside the accessible square 0 < r, g < 1"))?;
     let p = crate::precursors::Params::new(r, g)?;
     let ev = crate::precursors::simulate(&p, cmp.n.max(1));
     let evs = &res.run.events;
-    let first = evs.iter().position(|e| e.kind == "sliding").unwrap_or(evs.len());
+    let first = evs.iter().position(|e| e.ends_cycle()).unwrap_or(evs.len());
     let cx = &res.condensed;
     Ok(Fig4 {
         rule,
@@ -74,7 +76,7 @@ fn fig4_on(scene: &Scene, c: &Condensed, r: f64, g: f64, o: SlideOptions) -> Res
             .filter_map(|e| e.region.map(|(_, b)| cx.x[b] / cx.l))
             .collect(),
         x_model: ev.iter().take(cmp.n).map(|e| e.x).collect(),
-        peaks: evs.iter().filter(|e| e.kind == "sliding").map(|e| e.f / (o.law.mu_s() * o.n_force)).collect(),
+        peaks: evs.iter().filter(|e| e.ends_cycle()).map(|e| e.f / (o.law.mu_s() * o.n_force)).collect(),
         worst_violation: res.run.max_violation,
         fields: field_checks(&res),
         run: res,
@@ -106,7 +108,7 @@ pub struct FieldChecks {
 pub fn field_checks(res: &SlideResult) -> FieldChecks {
     let c = &res.condensed;
     let (evs, states) = (&res.run.events, &res.run.states);
-    let first = evs.iter().position(|e| e.kind == "sliding").unwrap_or(evs.len()).min(states.len());
+    let first = evs.iter().position(|e| e.ends_cycle()).unwrap_or(evs.len()).min(states.len());
     let (pm, h, edge) = (res.p_mean(), res.scene.loading.height, ADVANCE_T * c.t);
     let interior = |i: usize| (c.x[i] - c.x[0]).min(c.x[c.n - 1] - c.x[i]) > edge;
     let mut out = FieldChecks::default();
@@ -165,9 +167,12 @@ pub fn fig4(scene: &Scene, r: f64, g: f64, cycles: usize) -> Result<Vec<Result<F
 /// One rule's run in one cell of FE fig. 5.
 #[derive(Debug, Clone, Copy)]
 pub enum CellRun {
-    /// Reached the first whole-interface slip. Counts as in [`PaperComparison`]; the first
-    /// slip's peak F/(mu_s N); the events, the worst violation (N/n) and the wall time, s.
+    /// Reached the end of the first cycle: a whole-interface slip, or (`crossing`) a front
+    /// crossing ([`crate::interface::events::Problem::end_at_crossing`]). Counts as in
+    /// [`PaperComparison`]; the peak F/(mu_s N) that ended it; the events, the worst
+    /// violation (N/n) and the wall time, s.
     Done {
+        crossing: bool,
         n: usize,
         n_long: usize,
         n_advancing: usize,
@@ -177,7 +182,9 @@ pub enum CellRun {
         seconds: f64,
     },
     /// Needed more than the cap of events before the first whole slip.
-    Capped { seconds: f64 },
+    /// Over the event cap: the precursors recorded so far (a lower bound on n) and the
+    /// largest F reached, in units of mu_s N.
+    Capped { seconds: f64, precursors: usize, f_peak: f64 },
     /// Refused by the event solver (a relaxation that did not settle...).
     Refused { seconds: f64 },
 }
@@ -192,7 +199,7 @@ impl CellRun {
     }
     pub fn seconds(&self) -> f64 {
         match *self {
-            CellRun::Done { seconds, .. } | CellRun::Capped { seconds } | CellRun::Refused { seconds } => {
+            CellRun::Done { seconds, .. } | CellRun::Capped { seconds, .. } | CellRun::Refused { seconds } => {
                 seconds
             }
         }
@@ -241,6 +248,7 @@ pub fn fig5(
                     cycles: 1,
                     max_events,
                     keep_states: false,
+                    end_at_crossing: true,
                     ..Default::default()
                 };
                 let clock = std::time::Instant::now();
@@ -252,6 +260,7 @@ pub fn fig5(
                             crate::Error::input("r, g", "outside the accessible square 0 < r, g < 1")
                         })?;
                         CellRun::Done {
+                            crossing: res.run.events.iter().find(|e| e.ends_cycle()).is_some_and(|e| e.kind == "crossing"),
                             n: cmp.n_fe,
                             n_long: cmp.n_fe_long,
                             n_advancing: cmp.n_fe_advancing,
@@ -261,11 +270,12 @@ pub fn fig5(
                             seconds,
                         }
                     }
-                    Err(crate::Error::EventCap { .. }) => CellRun::Capped { seconds },
-                    Err(crate::Error::Untrustworthy { .. } | crate::Error::Singular { .. }) => {
-                        CellRun::Refused { seconds }
+                    Err(crate::Error::EventCap { precursors, f_peak_over_n, .. }) => {
+                        CellRun::Capped { seconds, precursors, f_peak: f_peak_over_n / o.law.mu_s() }
                     }
-                    Err(e) => return Err(e),
+                    // One cell's failure is that cell's result, not the map's.
+                    Err(e @ crate::Error::Interrupted) => return Err(e),
+                    Err(_) => CellRun::Refused { seconds },
                 });
             }
             progress();
@@ -446,6 +456,13 @@ pub struct Fig5Stats {
     /// Adjacent finished cells of a column where the upper one has fewer front-advancing
     /// precursors than the lower one.
     pub decreases_in_g: usize,
+    /// Capped cells: how many, how many of them had already passed the model's F_max, and
+    /// their precursors at the cap (median, least, largest).
+    pub capped: usize,
+    pub capped_above_f_max: usize,
+    pub capped_precursors: Option<[f64; 3]>,
+    /// Finished cells whose cycle ended at a front crossing, not a whole slip.
+    pub crossings: usize,
 }
 
 fn spread(mut v: Vec<f64>) -> Option<[f64; 3]> {
@@ -457,6 +474,13 @@ fn spread(mut v: Vec<f64>) -> Option<[f64; 3]> {
 pub fn fig5_stats(cells: &[Cell], k: usize, resolution: usize) -> Fig5Stats {
     let done: Vec<(&Cell, CellRun)> =
         cells.iter().filter_map(|c| c.runs[k].filter(|r| r.status() == "done").map(|r| (c, r))).collect();
+    let capped: Vec<(&Cell, usize, f64)> = cells
+        .iter()
+        .filter_map(|c| match c.runs[k] {
+            Some(CellRun::Capped { precursors, f_peak, .. }) => Some((c, precursors, f_peak)),
+            _ => None,
+        })
+        .collect();
     let half = 0.5 / resolution as f64;
     let offsets: Vec<f64> =
         boundary(cells, k).iter().filter_map(|&(r, _, g)| g.map(|g| g - half - (1.0 - r) / 2.0)).collect();
@@ -490,6 +514,10 @@ pub fn fig5_stats(cells: &[Cell], k: usize, resolution: usize) -> Fig5Stats {
         ),
         boundary_offset: spread(offsets).map(|[_, lo, hi]| [lo, hi]),
         decreases_in_g: decreases,
+        crossings: done.iter().filter(|(_, r)| matches!(r, CellRun::Done { crossing: true, .. })).count(),
+        capped: capped.len(),
+        capped_above_f_max: capped.iter().filter(|&&(c, _, f)| f > c.f_max_model).count(),
+        capped_precursors: spread(capped.iter().map(|&(_, n, _)| n as f64).collect()),
     }
 }
 

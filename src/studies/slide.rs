@@ -21,6 +21,8 @@ pub struct SlideOptions {
     /// See [`Problem::keep_states`].
     pub keep_states: bool,
     pub creep_fraction: f64,
+    /// See [`Problem::end_at_crossing`].
+    pub end_at_crossing: bool,
 }
 
 impl Default for SlideOptions {
@@ -34,6 +36,7 @@ impl Default for SlideOptions {
             max_events: p.max_events,
             keep_states: p.keep_states,
             creep_fraction: p.creep_fraction,
+            end_at_crossing: p.end_at_crossing,
         }
     }
 }
@@ -87,6 +90,7 @@ pub fn run_condensed(
         max_events: o.max_events,
         keep_states: o.keep_states,
         creep_fraction: o.creep_fraction,
+        end_at_crossing: o.end_at_crossing,
     };
     if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
         return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
@@ -239,7 +243,7 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
     let ev = crate::precursors::simulate(&p, 1);
     let k = mu_s * res.options.n_force;
     let evs = &res.run.events;
-    let first_slide = evs.iter().position(|e| e.kind == "sliding").unwrap_or(evs.len());
+    let first_slide = evs.iter().position(|e| e.ends_cycle()).unwrap_or(evs.len());
     let pre: Vec<_> = evs[..first_slide].iter().filter(|e| e.kind == "precursor").collect();
     let long: Vec<_> =
         pre.iter().filter(|e| e.region.is_some_and(|(a, b)| c.x[b] - c.x[a] > ADVANCE_T * c.t)).collect();
@@ -265,6 +269,6 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
         n_fe_advancing,
         f1_fe: long.first().map(|e| e.f / k),
         x1_fe: long.first().and_then(|e| e.region).map(|(_, b)| c.x[b] / c.l),
-        f_max_fe: evs.iter().rfind(|e| e.kind == "sliding").map(|e| e.f / k),
+        f_max_fe: evs.iter().rfind(|e| e.ends_cycle()).map(|e| e.f / k),
     })
 }

@@ -62,6 +62,11 @@ pub struct Problem {
     /// force N/n slide continuously at mu_d (creep) instead of triggering an instability
     /// (the Zeno sequence of ever smaller events as p -> 0 at the trailing corner).
     pub creep_fraction: f64,
+    /// Static-kinetic: a cycle also ends at a front crossing, the event after which the nodes
+    /// slipped since the last cycle's end make one run from the trailing contact node to the
+    /// one before the leading corner (kind "crossing"; the overdamped rule's front crosses in many events and
+    /// its one-event whole slip may come long after, see validation/precursors).
+    pub end_at_crossing: bool,
 }
 
 impl Default for Problem {
@@ -74,6 +79,7 @@ impl Default for Problem {
             max_events: 50_000,
             keep_states: true,
             creep_fraction: 1e-3,
+            end_at_crossing: false,
         }
     }
 }
@@ -140,6 +146,8 @@ impl State {
 /// One event (one recorded state follows it).
 #[derive(Debug, Clone)]
 pub struct Event {
+    /// What happened: normal-load, edge-preslip, precursor, nucleation, tip-advance,
+    /// sliding, crossing ([`Problem::end_at_crossing`]), slip, stick, open, close, creep, end.
     pub kind: &'static str,
     /// Force before the event's relaxation (instabilities) or at it, N/m; X, m.
     pub f: f64,
@@ -971,6 +979,9 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                     if fixes > max_fix {
                         return Err(stuck_err("drive", lam));
                     }
+                    if what == "creep" {
+                        slipped[i] = true; // a creeping corner has slipped (front crossing)
+                    }
                     if matches!(what, "open" | "close" | "creep") && pending.is_none() {
                         pending = Some((what, i));
                     }
@@ -999,8 +1010,8 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                     let a2 = sv.solve()?;
                     let st = sv.record(&a2, lam, Some(&prev_u));
                     prev_u.clone_from(&st.u);
-                    let kind = classify(&before, &sv.states, region, &mut slipped);
-                    if kind == "sliding" {
+                    let kind = classify(&before, &sv.states, region, &mut slipped, pb.end_at_crossing);
+                    if kind == "sliding" || kind == "crossing" {
                         out.sliding_events += 1;
                     }
                     last_region = Some(region);
@@ -1044,6 +1055,18 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
         }
         let next = sv.next_event(&a, lam);
         if next.is_none_or(|(d, _, _)| lam + d >= x_end) {
+            // Static-kinetic: every contact node creeping at mu_d is a steady whole slip that
+            // no further event can end.
+            let contact = (0..n).filter(|&k| sv.states[k] != NodeState::Open).count();
+            let slipping = (0..n).filter(|&k| matches!(sv.states[k], NodeState::Slip(_))).count();
+            if is_sk && next.is_none() && contact > 0 && slipping == contact {
+                out.sliding_events += 1;
+                let st = sv.record(&a, lam, Some(&prev_u));
+                let ev = Event { all_slipping: true, ..Event::simple("sliding", &st, 0) };
+                push(&mut out, pb, ev, st)?;
+                progress(1.0);
+                return finish(out, &sv);
+            }
             if !x_end.is_finite() {
                 return Err(Error::input(
                     "x-max",
@@ -1091,12 +1114,15 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
 /// open or creeping corner that re-closes in the relaxation is no obstacle to a whole slip),
 /// `precursor` when it starts at the first
 /// contact node (the trailing edge), `tip-advance` when it touches the run of slipped nodes
-/// grown from there (an arrested front creeping on), `nucleation` elsewhere.
+/// grown from there (an arrested front creeping on), `nucleation` elsewhere; with `crossing`,
+/// `crossing` for an event that is not a whole slip but completes the run of slipped (or
+/// creeping) nodes from the first contact node to the last but one.
 fn classify(
     before: &[NodeState],
     states: &[NodeState],
     region: (usize, usize),
     slipped: &mut [bool],
+    crossing: bool,
 ) -> &'static str {
     let contact: Vec<usize> =
         (0..states.len()).filter(|&k| states[k] != NodeState::Open && before[k] != NodeState::Open).collect();
@@ -1115,10 +1141,18 @@ fn classify(
             "nucleation"
         }
     };
-    if kind == "sliding" {
-        slipped.iter_mut().for_each(|v| *v = false);
-    } else {
+    if kind != "sliding" {
         (region.0..=region.1).for_each(|k| slipped[k] = true);
+    }
+    // The leading corner node is left out: its pressure is singular in the discrete model
+    // and it holds after every node behind it has slipped (overdamped rule at (0.5, 0.5)).
+    let crossed = || {
+        let (Some(&c0), Some(&c1)) = (contact.first(), contact.last()) else { return false };
+        (c0..c1).all(|k| slipped[k] || states[k] == NodeState::Open || before[k] == NodeState::Open)
+    };
+    let kind = if kind != "sliding" && crossing && crossed() { "crossing" } else { kind };
+    if matches!(kind, "sliding" | "crossing") {
+        slipped.iter_mut().for_each(|v| *v = false);
     }
     kind
 }
@@ -1162,6 +1196,11 @@ fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<
 }
 
 impl Event {
+    /// Whether the event ends a stick-slip cycle (a whole slip, or a front crossing).
+    pub fn ends_cycle(&self) -> bool {
+        matches!(self.kind, "sliding" | "crossing")
+    }
+
     fn simple(kind: &'static str, st: &State, node: usize) -> Event {
         Event {
             kind,
@@ -1178,7 +1217,14 @@ impl Event {
 
 fn push(out: &mut Run, pb: &Problem, ev: Event, st: State) -> Result<()> {
     if out.events.len() >= pb.max_events {
-        return Err(Error::EventCap { cap: pb.max_events, x: st.x, f_over_n: st.f / pb.n_force });
+        let before_slide = out.events.iter().take_while(|e| e.kind != "sliding");
+        return Err(Error::EventCap {
+            cap: pb.max_events,
+            x: st.x,
+            f_over_n: st.f / pb.n_force,
+            precursors: before_slide.filter(|e| e.kind == "precursor").count(),
+            f_peak_over_n: out.events.iter().map(|e| e.f).fold(st.f, f64::max) / pb.n_force,
+        });
     }
     out.max_violation = out.max_violation.max(st.violations.max());
     if !pb.keep_states {

@@ -69,12 +69,12 @@ pub(super) fn drive(
                 .filter(|&i| matches!(states_pre[i], NodeState::Slip(_)))
                 .min_by(|&i, &j| mu_pre[i].total_cmp(&mu_pre[j]))
                 .unwrap_or(i0);
-            let kind = classify(&states_pre, &sv.states, (first, last), &mut slipped);
+            let kind = classify(&states_pre, &sv.states, (first, last), &mut slipped, pb.end_at_crossing);
             heal(sv, &a, lam)?;
             let b = sv.solve()?;
             let st = sv.record(&b, lam, Some(&prev_u));
             prev_u.clone_from(&st.u);
-            if kind == "sliding" {
+            if kind == "sliding" || kind == "crossing" {
                 out.sliding_events += 1;
             }
             let ev = Event {
