@@ -460,7 +460,16 @@ pub fn fe_fig5_csv(cells: &[crate::studies::precursors_fe::Cell]) -> Result<Stri
         );
         for run in &c.runs {
             match run {
-                Some(CellRun::Done { crossing, n, n_long, n_advancing, f_max, events, violation, seconds }) => {
+                Some(CellRun::Done {
+                    crossing,
+                    n,
+                    n_long,
+                    n_advancing,
+                    f_max,
+                    events,
+                    violation,
+                    seconds,
+                }) => {
                     let end = if *crossing { "crossing" } else { "whole-slip" };
                     let _ = write!(
                         s,
@@ -469,7 +478,8 @@ pub fn fe_fig5_csv(cells: &[crate::studies::precursors_fe::Cell]) -> Result<Stri
                     );
                 }
                 Some(CellRun::Capped { seconds, precursors, f_peak }) => {
-                    let _ = write!(s, ",capped,,,,,,,{seconds:.3},{precursors},{},", finite("F peak", *f_peak)?);
+                    let _ =
+                        write!(s, ",capped,,,,,,,{seconds:.3},{precursors},{},", finite("F peak", *f_peak)?);
                 }
                 Some(CellRun::Refused { seconds }) => {
                     let _ = write!(s, ",refused,,,,,,,{seconds:.3},,,");

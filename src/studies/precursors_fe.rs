@@ -199,9 +199,9 @@ impl CellRun {
     }
     pub fn seconds(&self) -> f64 {
         match *self {
-            CellRun::Done { seconds, .. } | CellRun::Capped { seconds, .. } | CellRun::Refused { seconds } => {
-                seconds
-            }
+            CellRun::Done { seconds, .. }
+            | CellRun::Capped { seconds, .. }
+            | CellRun::Refused { seconds } => seconds,
         }
     }
     /// The front-advancing count (the least mesh-sensitive) of a finished run.
@@ -260,7 +260,12 @@ pub fn fig5(
                             crate::Error::input("r, g", "outside the accessible square 0 < r, g < 1")
                         })?;
                         CellRun::Done {
-                            crossing: res.run.events.iter().find(|e| e.ends_cycle()).is_some_and(|e| e.kind == "crossing"),
+                            crossing: res
+                                .run
+                                .events
+                                .iter()
+                                .find(|e| e.ends_cycle())
+                                .is_some_and(|e| e.kind == "crossing"),
                             n: cmp.n_fe,
                             n_long: cmp.n_fe_long,
                             n_advancing: cmp.n_fe_advancing,

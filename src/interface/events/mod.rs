@@ -64,8 +64,8 @@ pub struct Problem {
     pub creep_fraction: f64,
     /// Static-kinetic: a cycle also ends at a front crossing, the event after which the nodes
     /// slipped since the last cycle's end make one run from the trailing contact node to the
-    /// one before the leading corner (kind "crossing"; the overdamped rule's front crosses in many events and
-    /// its one-event whole slip may come long after, see validation/precursors).
+    /// one before the leading corner (kind "crossing"; the overdamped rule's front crosses in
+    /// many events and its one-event whole slip may come long after, validation/precursors).
     pub end_at_crossing: bool,
 }
 
@@ -1217,7 +1217,7 @@ impl Event {
 
 fn push(out: &mut Run, pb: &Problem, ev: Event, st: State) -> Result<()> {
     if out.events.len() >= pb.max_events {
-        let before_slide = out.events.iter().take_while(|e| e.kind != "sliding");
+        let before_slide = out.events.iter().take_while(|e| !e.ends_cycle());
         return Err(Error::EventCap {
             cap: pb.max_events,
             x: st.x,
