@@ -531,7 +531,7 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
                 format!("median {:+.1} %, from {:+.1} to {:+.1} %", 100.0 * m, 100.0 * a, 100.0 * b)
             })
         };
-        outln!("{:>12}  first-slip peak against the model's F_max: {}", "", pc(st.f_max_dev));
+        outln!("{:>12}  first-cycle peak against the model's F_max: {}", "", pc(st.f_max_dev));
         outln!(
             "{:>12}  n advancing over the model's n (cells with n >= 3): {}",
             "",

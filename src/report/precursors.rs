@@ -435,7 +435,7 @@ pub fn write_fe_fig4(
 }
 
 /// `fig5_fe.csv`: per cell the model's n and F_max, then per rule its status (done, capped,
-/// refused, or empty when not run), the three counts, the first slip's peak, the events, the
+/// refused, or empty when not run), the three counts, the first cycle's peak, the events, the
 /// worst violation, the wall time, for a capped run the precursors and the peak force reached
 /// at the cap, and for a finished one what ended its cycle (whole-slip or crossing).
 pub fn fe_fig5_csv(cells: &[crate::studies::precursors_fe::Cell]) -> Result<String> {

@@ -451,7 +451,7 @@ pub struct Fig5Stats {
     /// Cells where FE and model agree on "precursors or none".
     pub agree: usize,
     pub done: usize,
-    /// FE first-slip peak over the model's F_max, minus 1: median, least, largest.
+    /// FE first cycle's peak over the model's F_max, minus 1: median, least, largest.
     pub f_max_dev: Option<[f64; 3]>,
     /// Front-advancing count over the model's n where n >= 3: median, least, largest.
     pub n_ratio: Option<[f64; 3]>,
