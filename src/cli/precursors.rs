@@ -53,7 +53,7 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', requires = "fe", conflicts_with_all = ["map", "cycles", "thin_layer", "heights"])]
     dc: Option<Vec<f64>>,
     /// With --fe --map: event rules to run in every cell, comma separated: paper, overdamped
-    /// (about 10 s for 20 x 20 on the paper's scene; overdamped adds about 4 minutes, and 163
+    /// (about 10 s for 20 x 20 on the paper's scene; overdamped adds about 4 minutes, and 164
     /// of its 400 cells exceed the event cap).
     #[arg(long, value_delimiter = ',', default_value = "paper", requires = "fe")]
     rules: Vec<tribofe::interface::law::Rule>,

@@ -1316,6 +1316,9 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
         }
         Rule::Overdamped => {
             let mut awake = vec![false; n];
+            // Where each node last started slipping: a node that closed in the relaxation
+            // starts from where it landed, not from the event's start.
+            let mut u_join = u_start.clone();
             in_region[i0] = true;
             awake[i0] = true;
             sv.set_state(i0, NodeState::Slip(dir(t_start[i0])), 0.0)?;
@@ -1335,6 +1338,7 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
                         // It lands where it is now: sticking it at its position from before
                         // the relaxation would drag it back, pull it off again, and cycle.
                         sv.set_state(i, NodeState::Stick, b.b(i, lam))?;
+                        u_join[i] = b.b(i, lam);
                         changed = true;
                         break;
                     }
@@ -1342,16 +1346,16 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
                 if changed {
                     continue;
                 }
-                // Backward slip: the worst re-sticks at its start position.
+                // Backward slip: the worst re-sticks where it started slipping.
                 let worst = (0..n)
                     .filter_map(|i| match sv.states[i] {
-                        NodeState::Slip(s) => Some((i, s * (b.b(i, lam) - u_start[i]))),
+                        NodeState::Slip(s) => Some((i, s * (b.b(i, lam) - u_join[i]))),
                         _ => None,
                     })
                     .filter(|&(_, d)| d < -td)
                     .min_by(|x, y| x.1.total_cmp(&y.1));
                 if let Some((i, _)) = worst {
-                    sv.set_state(i, NodeState::Stick, u_start[i])?;
+                    sv.set_state(i, NodeState::Stick, u_join[i])?;
                     continue;
                 }
                 // Cascade: every stuck node above its threshold joins.
