@@ -394,7 +394,7 @@ pub fn write_fe_fig4(
 ) -> Result<Vec<PathBuf>> {
     let n = crate::precursors::n_precursors(p)?;
     let x1 = model.first().map_or(f64::NAN, |e| e.x);
-    let mut s = format!("source,precursors,precursors_longer_5t,precursors_advancing_5t,F1_over_mu_s_N,x1_over_L,Fmax_over_mu_s_N,worst_violation_over_N_per_n,{FIELD_COLUMNS}\n");
+    let mut s = format!("source,{FE_COLUMNS},worst_violation_over_N_per_n,{FIELD_COLUMNS}\n");
     let _ = writeln!(
         s,
         "model,{n},{n},{n},{},{},{},,0,0,0,,-0.5",
@@ -409,19 +409,8 @@ pub fn write_fe_fig4(
             let _ = writeln!(s, "{name},,,,,,,,,,,,");
             continue;
         };
-        let c = &r.cmp;
-        let _ = writeln!(
-            s,
-            "{name},{},{},{},{},{},{},{:e},{}",
-            c.n_fe,
-            c.n_fe_long,
-            c.n_fe_advancing,
-            opt(c.f1_fe),
-            opt(c.x1_fe),
-            opt(c.f_max_fe),
-            r.worst_violation,
-            field_values(&r.fields)
-        );
+        let _ =
+            writeln!(s, "{name},{},{:e},{}", fe_values(&r.cmp), r.worst_violation, field_values(&r.fields));
         let sub = dir.join(name);
         ensure_dir(&sub)?;
         let law = r.run.options.law;
@@ -612,6 +601,22 @@ pub fn write_fe_fig5(
     )
 }
 
+/// Header fragment and values of a run's counts, first precursor and peak for CSVs.
+const FE_COLUMNS: &str =
+    "precursors,precursors_longer_5t,precursors_advancing_5t,F1_over_mu_s_N,x1_over_L,Fmax_over_mu_s_N";
+
+fn fe_values(c: &crate::studies::slide::PaperComparison) -> String {
+    format!(
+        "{},{},{},{},{},{}",
+        c.n_fe,
+        c.n_fe_long,
+        c.n_fe_advancing,
+        opt(c.f1_fe),
+        opt(c.x1_fe),
+        opt(c.f_max_fe)
+    )
+}
+
 /// Header fragment and values of [`crate::studies::precursors_fe::FieldChecks`] for CSVs.
 const FIELD_COLUMNS: &str =
     "shear_far_rel_dev,shear_tip_rel_excess,pressure_dev_over_pmean,F_corner_over_mu_s_N,x_nucleation_over_L";
@@ -633,7 +638,7 @@ fn field_values(f: &crate::studies::precursors_fe::FieldChecks) -> String {
 /// the wall time.
 pub fn series_csv(param: &str, rows: &[crate::studies::precursors_fe::SeriesRow]) -> Result<String> {
     let mut s = format!(
-        "{param},r,g,model_precursors,model_F1_over_mu_s_N,model_x1_over_L,model_Fmax_over_mu_s_N,precursors,precursors_longer_5t,precursors_advancing_5t,F1_over_mu_s_N,x1_over_L,Fmax_over_mu_s_N,F1_rel_dev,x1_dev_over_t,Fmax_rel_dev,{FIELD_COLUMNS},max_violation_over_N_per_n,seconds\n"
+        "{param},r,g,model_precursors,model_F1_over_mu_s_N,model_x1_over_L,model_Fmax_over_mu_s_N,{FE_COLUMNS},F1_rel_dev,x1_dev_over_t,Fmax_rel_dev,{FIELD_COLUMNS},max_violation_over_N_per_n,seconds\n"
     );
     for row in rows {
         let Ok(f) = &row.fig4 else {
@@ -645,7 +650,7 @@ pub fn series_csv(param: &str, rows: &[crate::studies::precursors_fe::SeriesRow]
         let rel = |v: Option<f64>, m: f64| opt(v.map(|v| v / m - 1.0));
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:e},{:.3}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{:e},{:.3}",
             row.value,
             c.r,
             c.g,
@@ -653,12 +658,7 @@ pub fn series_csv(param: &str, rows: &[crate::studies::precursors_fe::SeriesRow]
             c.f1,
             c.x1,
             c.f_max,
-            c.n_fe,
-            c.n_fe_long,
-            c.n_fe_advancing,
-            opt(c.f1_fe),
-            opt(c.x1_fe),
-            opt(c.f_max_fe),
+            fe_values(c),
             rel(c.f1_fe, c.f1),
             opt(c.x1_fe.map(|x| (x - c.x1) / t_over_l)),
             rel(c.f_max_fe, c.f_max),

@@ -246,6 +246,12 @@ impl Affine {
 }
 
 impl<'a> Solver<'a> {
+    /// Every node in contact slipping, and at least one in contact (a whole slip).
+    fn all_contact_slipping(&self) -> bool {
+        self.states.iter().all(|s| *s != NodeState::Stick)
+            && self.states.iter().any(|s| matches!(s, NodeState::Slip(_)))
+    }
+
     fn iu(&self) -> usize {
         2 * self.n
     }
@@ -1011,7 +1017,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                     let st = sv.record(&a2, lam, Some(&prev_u));
                     prev_u.clone_from(&st.u);
                     let kind = classify(&before, &sv.states, region, &mut slipped, pb.end_at_crossing);
-                    if kind == "sliding" || kind == "crossing" {
+                    if ends_cycle(kind) {
                         out.sliding_events += 1;
                     }
                     last_region = Some(region);
@@ -1039,27 +1045,21 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
             push(&mut out, pb, Event::simple(kind, &st, i), st)?;
         }
         // Coulomb: the first whole-interface slip; by default the run ends 5 % further.
-        if !is_sk && !sliding_seen {
-            let contact = (0..n).filter(|&k| sv.states[k] != NodeState::Open).count();
-            let slipping = (0..n).filter(|&k| matches!(sv.states[k], NodeState::Slip(_))).count();
-            if contact > 0 && slipping == contact {
-                sliding_seen = true;
-                out.sliding_events += 1;
-                let st = sv.record(&a, lam, Some(&prev_u));
-                prev_u.clone_from(&st.u);
-                push(&mut out, pb, Event::simple("sliding", &st, 0), st)?;
-                if pb.x_max.is_none() {
-                    x_end = lam + 0.05 * lam.max(pb.n_force / k_bonded);
-                }
+        if !is_sk && !sliding_seen && sv.all_contact_slipping() {
+            sliding_seen = true;
+            out.sliding_events += 1;
+            let st = sv.record(&a, lam, Some(&prev_u));
+            prev_u.clone_from(&st.u);
+            push(&mut out, pb, Event::simple("sliding", &st, 0), st)?;
+            if pb.x_max.is_none() {
+                x_end = lam + 0.05 * lam.max(pb.n_force / k_bonded);
             }
         }
         let next = sv.next_event(&a, lam);
         if next.is_none_or(|(d, _, _)| lam + d >= x_end) {
             // Static-kinetic: every contact node creeping at mu_d is a steady whole slip that
             // no further event can end.
-            let contact = (0..n).filter(|&k| sv.states[k] != NodeState::Open).count();
-            let slipping = (0..n).filter(|&k| matches!(sv.states[k], NodeState::Slip(_))).count();
-            if is_sk && next.is_none() && contact > 0 && slipping == contact {
+            if is_sk && next.is_none() && sv.all_contact_slipping() {
                 out.sliding_events += 1;
                 let st = sv.record(&a, lam, Some(&prev_u));
                 let ev = Event { all_slipping: true, ..Event::simple("sliding", &st, 0) };
@@ -1151,7 +1151,7 @@ fn classify(
         (c0..c1).all(|k| slipped[k] || states[k] == NodeState::Open || before[k] == NodeState::Open)
     };
     let kind = if kind != "sliding" && crossing && crossed() { "crossing" } else { kind };
-    if matches!(kind, "sliding" | "crossing") {
+    if ends_cycle(kind) {
         slipped.iter_mut().for_each(|v| *v = false);
     }
     kind
@@ -1195,10 +1195,15 @@ fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<
     }
 }
 
+/// Whether an event of this kind ends a stick-slip cycle (a whole slip, or a front crossing).
+fn ends_cycle(kind: &str) -> bool {
+    matches!(kind, "sliding" | "crossing")
+}
+
 impl Event {
     /// Whether the event ends a stick-slip cycle (a whole slip, or a front crossing).
     pub fn ends_cycle(&self) -> bool {
-        matches!(self.kind, "sliding" | "crossing")
+        ends_cycle(self.kind)
     }
 
     fn simple(kind: &'static str, st: &State, node: usize) -> Event {
@@ -1385,8 +1390,7 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
         }
     }
     let b = sv.solve()?;
-    let all_slip = (0..n).all(|i| matches!(sv.states[i], NodeState::Slip(_) | NodeState::Open))
-        && (0..n).any(|i| matches!(sv.states[i], NodeState::Slip(_)));
+    let all_slip = sv.all_contact_slipping();
     let mut backslip = 0;
     let mut ch = Vec::new();
     for i in 0..n {

@@ -14,7 +14,9 @@
 //! stops in a stable process zone resumes at the coefficient it had reached. A slipping node
 //! whose relaxation would move it backwards within a step sticks where the step started.
 
-use super::{classify, finish, push, stuck_err, Affine, Event, Fix, NodeState, Problem, Run, Solver};
+use super::{
+    classify, ends_cycle, finish, push, stuck_err, Affine, Event, Fix, NodeState, Problem, Run, Solver,
+};
 use crate::error::Result;
 
 /// Steps per D_c of slip of the fastest slipping node (step control).
@@ -62,8 +64,7 @@ pub(super) fn drive(
             while last + 1 < n && went(last + 1) {
                 last += 1;
             }
-            let all_slipping = (0..n).all(|i| sv.states[i] != NodeState::Stick)
-                && sv.states.iter().any(|s| matches!(s, NodeState::Slip(_)));
+            let all_slipping = sv.all_contact_slipping();
             // Nucleation: the most weakened node slipping when the step began.
             let node = (first..=last)
                 .filter(|&i| matches!(states_pre[i], NodeState::Slip(_)))
@@ -74,7 +75,7 @@ pub(super) fn drive(
             let b = sv.solve()?;
             let st = sv.record(&b, lam, Some(&prev_u));
             prev_u.clone_from(&st.u);
-            if kind == "sliding" || kind == "crossing" {
+            if ends_cycle(kind) {
                 out.sliding_events += 1;
             }
             let ev = Event {
@@ -117,9 +118,7 @@ pub(super) fn drive(
             push(&mut out, pb, Event::simple(kind, &st, i), st)?;
         }
         // Steady sliding: every contact node slipping at mu_d; nothing re-sticks any more.
-        let contact = (0..n).filter(|&i| sv.states[i] != NodeState::Open).count();
-        let steady = (0..n).filter(|&i| matches!(sv.states[i], NodeState::Slip(_))).count() == contact
-            && contact > 0
+        let steady = sv.all_contact_slipping()
             && (0..n).all(|i| sv.states[i] == NodeState::Open || sv.mu_slip[i] <= sv.law.mu_d());
         if steady {
             out.sliding_events += 1;
