@@ -89,6 +89,14 @@ impl Law {
         }
     }
 
+    /// d(kinetic)/d(slip) (1/m): the weakening rate while 0 <= slip < D_c, else 0.
+    pub fn kinetic_slope(&self, slip: f64) -> f64 {
+        match *self {
+            Law::SlipWeakening { mu_s, mu_d, dc } if (0.0..dc).contains(&slip) => -(mu_s - mu_d) / dc,
+            _ => 0.0,
+        }
+    }
+
     /// Whether the law has a static peak above the kinetic level (stick-slip instabilities).
     pub fn weakens(&self) -> bool {
         !matches!(self, Law::Coulomb { .. })

@@ -23,6 +23,8 @@ pub struct SlideOptions {
     pub creep_fraction: f64,
     /// See [`Problem::end_at_crossing`].
     pub end_at_crossing: bool,
+    /// See [`Problem::newton`].
+    pub newton: bool,
 }
 
 impl Default for SlideOptions {
@@ -37,6 +39,7 @@ impl Default for SlideOptions {
             keep_states: p.keep_states,
             creep_fraction: p.creep_fraction,
             end_at_crossing: p.end_at_crossing,
+            newton: p.newton,
         }
     }
 }
@@ -91,6 +94,7 @@ pub fn run_condensed(
         keep_states: o.keep_states,
         creep_fraction: o.creep_fraction,
         end_at_crossing: o.end_at_crossing,
+        newton: o.newton,
     };
     if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
         return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));

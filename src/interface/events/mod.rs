@@ -67,6 +67,10 @@ pub struct Problem {
     /// one before the leading corner (kind "crossing"; the overdamped rule's front crosses in
     /// many events and its one-event whole slip may come long after, validation/precursors).
     pub end_at_crossing: bool,
+    /// Slip weakening: each relaxation's coefficients by Newton where a stable equilibrium is
+    /// near (the same equilibrium, in a few iterates); false: plain fixed point throughout,
+    /// the slower reference.
+    pub newton: bool,
 }
 
 impl Default for Problem {
@@ -80,6 +84,7 @@ impl Default for Problem {
             keep_states: true,
             creep_fraction: 1e-3,
             end_at_crossing: false,
+            newton: true,
         }
     }
 }
@@ -183,8 +188,9 @@ struct Free {
     /// DOF of each free position, and position of each DOF (usize::MAX if constrained).
     dofs: Vec<usize>,
     pos: Vec<usize>,
-    /// Slip coefficient of each free position's row when the inverse was formed.
-    coef: Vec<f64>,
+    /// Slip coefficient and Newton spring of each free position's row when the inverse was
+    /// formed.
+    coef: Vec<(f64, f64)>,
     /// Inverse, stride nd, top-left m x m used.
     inv: Vec<f64>,
 }
@@ -209,6 +215,15 @@ struct Solver<'a> {
     mu_stick: Vec<f64>,
     slip0: Vec<f64>,
     slip_acc: Vec<f64>,
+    /// Slip weakening's Newton linearisation of a slipping node's row: the spring
+    /// k = (d mu/d slip) p on its own slip and the slip where it was taken (0: none).
+    spring: Vec<f64>,
+    spring_u: Vec<f64>,
+    /// Rate fixes stick the slipping node running back fastest before any other change.
+    /// Node order alone can cycle: a node at its threshold slips, runs back together with a
+    /// slipping neighbour, sticks first (lower index) and slips again, where sticking the
+    /// neighbour would have settled it.
+    stick_fastest_first: bool,
     free: Free,
     /// The free set before the last bulk change: an instability's region and the re-stuck
     /// interface alternate, and each is a few bordering updates away from its previous self.
@@ -272,15 +287,22 @@ impl<'a> Solver<'a> {
         0.0
     }
 
+    /// Row key of DOF d: its slip coefficient and Newton spring (what the inverse depends on).
+    fn row_key(&self, d: usize) -> (f64, f64) {
+        (self.slip_coef(d), if d < self.n { self.spring[d] } else { 0.0 })
+    }
+
     /// Entry of the equation of DOF a on the unknown DOF b.
     fn a_entry(&self, a: usize, b: usize) -> f64 {
         let c = self.slip_coef(a);
-        let v = self.s[a * self.nd + b];
+        let mut v = self.s[a * self.nd + b];
         if c != 0.0 {
-            v + c * self.s[(a + self.n) * self.nd + b]
-        } else {
-            v
+            v += c * self.s[(a + self.n) * self.nd + b];
         }
+        if a == b && a < self.n {
+            v += self.spring[a];
+        }
+        v
     }
 
     fn is_free(&self, d: usize) -> bool {
@@ -316,7 +338,7 @@ impl<'a> Solver<'a> {
                 component: None,
             });
         }
-        let coef: Vec<f64> = dofs.iter().map(|&d| self.slip_coef(d)).collect();
+        let coef: Vec<(f64, f64)> = dofs.iter().map(|&d| self.row_key(d)).collect();
         let f = &mut self.free;
         f.pos.iter_mut().for_each(|p| *p = usize::MAX);
         for (k, &d) in dofs.iter().enumerate() {
@@ -375,7 +397,7 @@ impl<'a> Solver<'a> {
         let c: Vec<f64> = self.free.dofs.iter().map(|&a| self.a_entry(a, d)).collect();
         let r: Vec<f64> = self.free.dofs.iter().map(|&b| self.a_entry(d, b)).collect();
         let delta = self.a_entry(d, d);
-        let cd = self.slip_coef(d);
+        let cd = self.row_key(d);
         let f = &mut self.free;
         let y: Vec<f64> = (0..m).map(|i| (0..m).map(|j| f.inv[i * nd + j] * c[j]).sum()).collect();
         let mut z = vec![0.0; m];
@@ -472,7 +494,7 @@ impl<'a> Solver<'a> {
         let target: Vec<usize> = (0..self.nd).filter(|&d| self.is_free(d)).collect();
         let cost = |f: &Free| {
             let stale =
-                f.dofs.iter().zip(&f.coef).filter(|&(&d, &c)| !self.is_free(d) || c != self.slip_coef(d));
+                f.dofs.iter().zip(&f.coef).filter(|&(&d, &c)| !self.is_free(d) || c != self.row_key(d));
             let fresh = target.iter().filter(|&&d| f.pos[d] == usize::MAX);
             stale.count() + fresh.count()
         };
@@ -493,7 +515,7 @@ impl<'a> Solver<'a> {
             .dofs
             .iter()
             .zip(&self.free.coef)
-            .filter(|&(&d, &c)| !self.is_free(d) || c != self.slip_coef(d))
+            .filter(|&(&d, &c)| !self.is_free(d) || c != self.row_key(d))
             .map(|(&d, _)| d)
             .collect();
         for d in stale {
@@ -507,21 +529,25 @@ impl<'a> Solver<'a> {
         Ok(())
     }
 
-    /// New coefficients of slipping nodes' rows (slip weakening).
-    fn set_coefficients(&mut self, changes: &[(usize, f64)]) -> Result<()> {
+    /// New coefficients of slipping nodes' rows (slip weakening): (node, mu, spring, the slip
+    /// the spring is centred on).
+    fn set_coefficients(&mut self, changes: &[(usize, f64, f64, f64)]) -> Result<()> {
         self.last = None;
-        if changes.len() < 32 {
-            for &(i, mu) in changes {
+        let small = changes.len() < 32;
+        for &(i, mu, k, u) in changes {
+            if small {
                 self.remove(i);
-                self.mu_slip[i] = mu;
+            }
+            (self.mu_slip[i], self.spring[i], self.spring_u[i]) = (mu, k, u);
+            if small {
                 self.add(i)?;
             }
-            return Ok(());
         }
-        for &(i, mu) in changes {
-            self.mu_slip[i] = mu;
+        if small {
+            Ok(())
+        } else {
+            self.refresh()
         }
-        self.refresh()
     }
 
     /// Every node forgets its slip: thresholds back to mu_s (slip weakening's healing).
@@ -543,6 +569,9 @@ impl<'a> Solver<'a> {
                 self.mu_stick[i] = self.law.kinetic(self.slip_acc[i]);
             }
             _ => {}
+        }
+        if !matches!(new, NodeState::Slip(_)) {
+            self.spring[i] = 0.0;
         }
         self.states[i] = new;
         self.anchor[i] = anchor;
@@ -607,6 +636,9 @@ impl<'a> Solver<'a> {
                     s0 -= c * g0[a + self.n];
                     s1 -= c * g1[a + self.n];
                 }
+                if a < self.n {
+                    s0 += self.spring[a] * self.spring_u[a];
+                }
                 r0[k] = s0;
                 r1[k] = s1;
             }
@@ -638,10 +670,13 @@ impl<'a> Solver<'a> {
             let big = f0.iter().chain(&f1).fold(1e-300f64, |m, v| m.max(v.abs()));
             for &a in self.free.dofs.iter() {
                 let c = self.slip_coef(a);
-                let q0 =
-                    f0[a] + if c != 0.0 { c * f0[a + self.n] } else { 0.0 } - if a == iv { fk0 } else { 0.0 };
-                let q1 =
-                    f1[a] + if c != 0.0 { c * f1[a + self.n] } else { 0.0 } - if a == iv { fk1 } else { 0.0 };
+                let (k, ku) = if a < self.n { (self.spring[a], self.spring_u[a]) } else { (0.0, 0.0) };
+                let q0 = f0[a] + if c != 0.0 { c * f0[a + self.n] } else { 0.0 }
+                    - if a == iv { fk0 } else { 0.0 }
+                    + k * (c0[a] - ku);
+                let q1 = f1[a] + if c != 0.0 { c * f1[a + self.n] } else { 0.0 }
+                    - if a == iv { fk1 } else { 0.0 }
+                    + k * c1[a];
                 res = res.max(q0.abs()).max(q1.abs());
             }
             if res > 1e-10 * big && attempt == 0 {
@@ -660,6 +695,19 @@ impl<'a> Solver<'a> {
         let n = self.n;
         let (tf, td) = (1e-9 * self.fscale, 1e-9 * self.dscale);
         let (rate_f, rate_d) = self.rate_tols(a);
+        if self.stick_fastest_first {
+            // The slipping node running back fastest sticks first (see the field).
+            let back = (0..n)
+                .filter_map(|i| match self.states[i] {
+                    NodeState::Slip(s) if s * a.b1[i] < -rate_d => Some((i, s * a.b1[i])),
+                    _ => None,
+                })
+                .min_by(|x, y| x.1.total_cmp(&y.1));
+            if let Some((i, _)) = back {
+                self.set_state(i, NodeState::Stick, a.b(i, lam))?;
+                return Ok(Fix::Changed(i, "stick"));
+            }
+        }
         let mut unstable = None;
         for i in 0..n {
             let mu_s = self.mu_stick[i];
@@ -868,6 +916,9 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
         mu_stick: vec![pb.law.mu_s(); n],
         slip0: vec![0.0; n],
         slip_acc: vec![0.0; n],
+        spring: vec![0.0; n],
+        spring_u: vec![0.0; n],
+        stick_fastest_first: false,
         free: Free::empty(nd),
         spare: None,
         updates: 0,

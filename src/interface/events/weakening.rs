@@ -47,7 +47,7 @@ pub(super) fn drive(
         let f_pre = a0.f(sv.iu(), lam);
         let states_pre = sv.states.clone();
         let mu_pre = sv.mu_slip.clone();
-        let (a, touched) = settle(sv, lam, cap, &u_pre)?;
+        let (a, touched) = settle(sv, lam, cap, &u_pre, dc, pb.newton)?;
         let moved: Vec<f64> = (0..n).map(|i| (a.b(i, lam) - u_pre[i]).abs()).collect();
         let (i0, jump) =
             moved.iter().enumerate().fold((0, 0.0), |b, (i, &m)| if m > b.1 { (i, m) } else { b });
@@ -160,31 +160,45 @@ pub(super) fn drive(
 /// Equilibrium at fixed X with every slipping node's coefficient at its slip: state changes
 /// first (one at a time, as for the other laws), then the coefficients. Returns the solution
 /// and the nodes that slipped at some iterate.
-fn settle(sv: &mut Solver, lam: f64, cap: usize, u_pre: &[f64]) -> Result<(Affine, Vec<bool>)> {
+fn settle(
+    sv: &mut Solver,
+    lam: f64,
+    cap: usize,
+    u_pre: &[f64],
+    dc: f64,
+    newton: bool,
+) -> Result<(Affine, Vec<bool>)> {
     let n = sv.n;
     // Looser than the state tolerances (1e-9): a node set slipping at its threshold by its
     // rate may settle a force tolerance's worth behind where it stood.
     let td = 1e-6 * sv.dscale;
     let mut touched = vec![false; n];
+    // Newton from the start; after it fails (a runaway), again once fixed point has
+    // contracted for 3 iterates in a row (the runaway has arrested and is settling).
+    let (allowed, mut newton, mut last, mut shrinking) = (newton, newton, f64::INFINITY, 0);
+    let mut stuck_at = vec![None; n];
     // A relaxation may run through every node and its coefficients converge geometrically.
     for _ in 0..50 * cap {
         let a = sv.solve()?;
-        if let Fix::Changed(..) = sv.rate_fix(&a, lam, true)? {
+        if let Fix::Changed(i, what) = sv.rate_fix(&a, lam, true)? {
+            // A node stuck by its rate again where it was stuck before in this settle is a
+            // cycle in node order: order the sticks by speed from now on.
+            if what == "stick" {
+                let u = sv.anchor[i];
+                if stuck_at[i].is_some_and(|v: f64| (u - v).abs() <= 1e-12 * sv.dscale) {
+                    sv.stick_fastest_first = true;
+                }
+                stuck_at[i] = Some(u);
+            }
             continue;
         }
-        let mut change = Vec::new();
         let mut back = None;
         for i in 0..n {
             if let NodeState::Slip(s) = sv.states[i] {
                 touched[i] = true;
-                let u = a.b(i, lam);
-                if s * (u - u_pre[i]) < -td {
+                if s * (a.b(i, lam) - u_pre[i]) < -td {
                     back = Some(i);
                     break;
-                }
-                let mu = sv.law.kinetic(sv.slip_acc[i] + s * (u - sv.slip0[i]));
-                if (mu - sv.mu_slip[i]).abs() > 1e-12 * sv.law.mu_s() {
-                    change.push((i, mu));
                 }
             }
         }
@@ -192,12 +206,104 @@ fn settle(sv: &mut Solver, lam: f64, cap: usize, u_pre: &[f64]) -> Result<(Affin
             sv.set_state(i, NodeState::Stick, u_pre[i])?;
             continue;
         }
+        let change = coefficients(sv, &a, lam, false);
         if change.is_empty() {
+            sv.stick_fastest_first = false;
             return Ok((a, touched));
         }
+        let step = change.iter().map(|c| (c.1 - sv.mu_slip[c.0]).abs()).fold(0.0, f64::max);
+        shrinking = if step < last { shrinking + 1 } else { 0 };
+        last = step;
         sv.set_coefficients(&change)?;
+        if newton || (allowed && shrinking >= 3) {
+            newton = newton_coefficients(sv, lam, u_pre, dc, td)?;
+            shrinking = 0;
+        }
     }
     Err(stuck_err("slip-weakening relaxation", lam))
+}
+
+/// The slipping nodes' coefficients at their slips in `a` where they differ by more than
+/// 1e-12 mu_s from their rows', with Newton springs (d mu/d slip) p centred there if asked.
+fn coefficients(sv: &Solver, a: &Affine, lam: f64, springs: bool) -> Vec<(usize, f64, f64, f64)> {
+    let tol = 1e-12 * sv.law.mu_s();
+    let mut change = Vec::new();
+    for i in 0..sv.n {
+        if let NodeState::Slip(s) = sv.states[i] {
+            let u = a.b(i, lam);
+            let slip = sv.slip_acc[i] + s * (u - sv.slip0[i]);
+            let mu = sv.law.kinetic(slip);
+            let k = if springs { sv.law.kinetic_slope(slip) * a.f(sv.n + i, lam) } else { 0.0 };
+            if (mu - sv.mu_slip[i]).abs() > tol || k != sv.spring[i] {
+                change.push((i, mu, k, u));
+            }
+        }
+    }
+    change
+}
+
+/// Whether the frozen system A stays stable under the weakening springs K: det(I + A^-1 K) > 0
+/// over the springs' rows (A^-1 K has real eigenvalues >= 0 for a symmetric A, and the first
+/// one past 1 is where fixed point starts to run away and the tangent A + K turns indefinite).
+fn stable(sv: &Solver, springs: &[(usize, f64)]) -> bool {
+    let m = springs.len();
+    if m == 0 {
+        return true;
+    }
+    let (nd, f) = (sv.nd, &sv.free);
+    let pos: Vec<usize> = springs.iter().map(|&(i, _)| f.pos[i]).collect();
+    let mat = nalgebra::DMatrix::from_fn(m, m, |r, c| {
+        f64::from(u8::from(r == c)) + springs[r].1 * f.inv[pos[r] * nd + pos[c]]
+    });
+    mat.lu().determinant() > 0.0
+}
+
+/// Newton iterates allowed on the coefficients.
+const NEWTON_MAX: usize = 30;
+
+/// The coefficients by Newton at fixed states, each slipping row linearised in its own slip:
+/// a few iterates where fixed point (each iterate a solve with the coefficients frozen) needs
+/// hundreds near a patch's critical length, and to the same equilibrium (checked against fixed
+/// point to 1e-4 D_c on the validation scenes). Returns false, with the coefficients back where
+/// Newton started, when an iterate moves a node by more than D_c/2 from where Newton started
+/// or back past `u_pre`, does not converge, or converges to an unstable equilibrium: past the
+/// critical length there is no stable equilibrium nearby and the relaxation must run away by
+/// fixed point. Leaves no spring.
+fn newton_coefficients(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f64) -> Result<bool> {
+    let n = sv.n;
+    let start: Vec<(usize, f64, f64, f64)> = (0..n)
+        .filter(|&i| matches!(sv.states[i], NodeState::Slip(_)))
+        .map(|i| (i, sv.mu_slip[i], 0.0, 0.0))
+        .collect();
+    let mut a = sv.solve()?;
+    let u0: Vec<f64> = (0..n).map(|i| a.b(i, lam)).collect();
+    for _ in 0..NEWTON_MAX {
+        let change = coefficients(sv, &a, lam, true);
+        if change.iter().all(|c| (c.1 - sv.mu_slip[c.0]).abs() <= 1e-12 * sv.law.mu_s()) {
+            // Converged: the spring-free rows at these coefficients, if the equilibrium is
+            // one that fixed point would reach (stable).
+            let keep: Vec<_> = change.iter().map(|&(i, mu, _, _)| (i, mu, 0.0, 0.0)).collect();
+            let springs: Vec<(usize, f64)> =
+                change.iter().filter(|c| c.2 != 0.0).map(|c| (c.0, c.2)).collect();
+            sv.set_coefficients(&keep)?;
+            if !stable(sv, &springs) {
+                break;
+            }
+            return Ok(true);
+        }
+        sv.set_coefficients(&change)?;
+        a = sv.solve()?;
+        let wild = start.iter().any(|&(i, ..)| {
+            let NodeState::Slip(s) = sv.states[i] else { return false };
+            let u = a.b(i, lam);
+            (u - u0[i]).abs() > 0.5 * dc || s * (u - u_pre[i]) < -td
+        });
+        if wild {
+            break;
+        }
+    }
+    sv.set_coefficients(&start)?;
+    Ok(false)
 }
 
 /// Every slipping node sticks where it is and heals to mu_s (end of an instability).
