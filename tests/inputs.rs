@@ -442,6 +442,7 @@ fn slide_and_stability_refuse_flags_that_cannot_act() {
     for args in [
         &["slide", "--fn-ratios", "0.4"][..],
         &["slide", "--tol", "0.1"],
+        &["slide", "--newton"],
         &["stability", "--h", "0.0005"],
         &["stability", "--n-thick", "4"],
         &["stability", "--fn-ratios", "0.4"],

@@ -48,6 +48,11 @@ pub struct Args {
     /// Cap on events (each keeps the interface state: ~40 bytes per node).
     #[arg(long, default_value_t = 50_000)]
     pub max_events: usize,
+    /// Slip weakening: each relaxation's coefficients by Newton where a stable equilibrium is
+    /// near (the same equilibria, fewer updates; validation/friction/README.md). Default: fixed
+    /// point, the reference.
+    #[arg(long)]
+    pub newton: bool,
     /// Write the whole block's fields (fields_<state>.vtu, fields.pvd) for this many states
     /// spread evenly over the run, first and last included (0: none).
     #[arg(long, default_value_t = 0)]
@@ -121,6 +126,9 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
     }
+    if a.newton && a.law != "slip-weakening" {
+        return Err(Error::input("newton", "--newton cannot act without --law slip-weakening"));
+    }
     let law = law(&a, &scene)?;
     let o = SlideOptions {
         law,
@@ -128,6 +136,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         x_max: a.x_max,
         cycles: a.cycles,
         max_events: a.max_events,
+        newton: a.newton,
         ..Default::default()
     };
     let bar = ProgressBar::new(1000).with_style(
