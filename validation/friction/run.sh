@@ -41,6 +41,11 @@ for p in 2:0.004 4:0.002 8:0.001 16:0.0005; do
   nt=${p%:*}; h=${p#*:}
   run sw_nt$nt --length 0.1 --thickness 0.004 --h $h --n-thick $nt --law slip-weakening --r 0.9 --g 0.35 --dc 3e-7 --cycles 1
 done
+# The same three coarsest runs with Newton on the coefficients (--newton).
+for p in 2:0.004 4:0.002 8:0.001; do
+  nt=${p%:*}; h=${p#*:}
+  run sw_nt${nt}_newton --length 0.1 --thickness 0.004 --h $h --n-thick $nt --law slip-weakening --r 0.9 --g 0.35 --dc 3e-7 --cycles 1 --newton
+done
 run sw_stable --length 0.1 --thickness 0.004 --h 0.002 --n-thick 4 --law slip-weakening --r 0.9 --g 0.35 --dc 1e-5 --cycles 1
 run sw_dc0 --length 0.1 --thickness 0.004 --h 0.001 --n-thick 8 --law slip-weakening --r 0.9 --g 0.35 --dc 1e-10 --cycles 1
 run sw_overdamped --length 0.1 --thickness 0.004 --h 0.001 --n-thick 8 --law static-kinetic --rule overdamped --r 0.9 --g 0.35 --cycles 1
