@@ -263,12 +263,12 @@ const NEWTON_MAX: usize = 30;
 
 /// The coefficients by Newton at fixed states, each slipping row linearised in its own slip:
 /// a few iterates where fixed point (each iterate a solve with the coefficients frozen) needs
-/// hundreds near a patch's critical length, and to the same equilibrium (checked against fixed
-/// point to 1e-4 D_c on the validation scenes). Returns false, with the coefficients back where
-/// Newton started, when an iterate moves a node by more than D_c/2 from where Newton started
-/// or back past `u_pre`, does not converge, or converges to an unstable equilibrium: past the
-/// critical length there is no stable equilibrium nearby and the relaxation must run away by
-/// fixed point. Leaves no spring.
+/// hundreds near a patch's critical length, and to the same equilibrium (checked against
+/// fixed point to 1e-4 D_c on validation/friction's sw_nt4). Returns false, with the
+/// coefficients back where Newton started, when an iterate moves a node by more than D_c/2
+/// from where Newton started or back past `u_pre`, does not converge, or converges to an
+/// unstable equilibrium: past the critical length there is no stable equilibrium nearby and
+/// the relaxation must run away by fixed point. Leaves no spring.
 fn newton_coefficients(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f64) -> Result<bool> {
     let n = sv.n;
     let start: Vec<(usize, f64, f64, f64)> = (0..n)
