@@ -226,6 +226,10 @@ struct Solver<'a> {
     /// slipping neighbour, sticks first (lower index) and slips again, where sticking the
     /// neighbour would have settled it.
     stick_fastest_first: bool,
+    /// Open nodes that close only by penetrating while not separating: a corner at zero
+    /// pressure can cycle stick, slip, open (its pressure falls) and close (its gap closes, or
+    /// it penetrates by round-off while separating).
+    hold_open: Vec<bool>,
     free: Free,
     /// The free set before the last bulk change: an instability's region and the re-stuck
     /// interface alternate, and each is a few bordering updates away from its previous self.
@@ -723,7 +727,12 @@ impl<'a> Solver<'a> {
                     }
                 }
                 NodeState::Open => {
-                    if g < -td || (g <= td && g1 < -rate_d) {
+                    let close = if self.hold_open[i] {
+                        g < -td && g1 <= rate_d
+                    } else {
+                        g < -td || (g <= td && g1 < -rate_d)
+                    };
+                    if close {
                         self.set_state(i, NodeState::Stick, u)?;
                         return Ok(Fix::Changed(i, "close"));
                     }
@@ -921,6 +930,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
         spring: vec![0.0; n],
         spring_u: vec![0.0; n],
         stick_fastest_first: false,
+        hold_open: vec![false; n],
         free: Free::empty(nd),
         spare: None,
         updates: 0,

@@ -183,10 +183,17 @@ fn settle(
         if let Fix::Changed(i, what) = sv.rate_fix(&a, lam, true)? {
             // A node stuck by its rate again where it was stuck before in this settle is a
             // cycle in node order: order the sticks by speed from now on.
-            if what == "stick" {
+            // Likewise a node closed again where it closed before: it stays open until it
+            // penetrates.
+            if what == "stick" || what == "close" {
                 let u = sv.anchor[i];
                 if stuck_at[i].is_some_and(|v: f64| (u - v).abs() <= 1e-12 * sv.dscale) {
-                    sv.stick_fastest_first = true;
+                    if what == "stick" {
+                        sv.stick_fastest_first = true;
+                    } else {
+                        sv.set_state(i, NodeState::Open, 0.0)?;
+                        sv.hold_open[i] = true;
+                    }
                 }
                 stuck_at[i] = Some(u);
             }
@@ -209,6 +216,7 @@ fn settle(
         let change = coefficients(sv, &a, lam, false);
         if change.is_empty() {
             sv.stick_fastest_first = false;
+            sv.hold_open.iter_mut().for_each(|h| *h = false);
             return Ok((a, touched));
         }
         let step = change.iter().map(|c| (c.1 - sv.mu_slip[c.0]).abs()).fold(0.0, f64::max);
