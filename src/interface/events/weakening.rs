@@ -181,10 +181,9 @@ fn settle(
     for _ in 0..50 * cap {
         let a = sv.solve()?;
         if let Fix::Changed(i, what) = sv.rate_fix(&a, lam, true)? {
-            // A node stuck by its rate again where it was stuck before in this settle is a
-            // cycle in node order: order the sticks by speed from now on.
-            // Likewise a node closed again where it closed before: it stays open until it
-            // penetrates.
+            // A node stuck (closed) again where it was stuck (closed) before in this settle is
+            // a cycle: from now on the sticks go by speed (a stick), or the node stays open
+            // until it penetrates without separating (a close).
             if what == "stick" || what == "close" {
                 let u = sv.anchor[i];
                 if stuck_at[i].is_some_and(|v: f64| (u - v).abs() <= 1e-12 * sv.dscale) {
