@@ -306,13 +306,23 @@ fn results_per_unit_n_do_not_depend_on_n() {
 /// L_c ~ kappa t; above, every point is held by its own layer stiffness G/t and slip grows
 /// stably until the whole interface slides at mu_d N.
 fn weakening(h: f64, n_thick: usize, dc: f64) -> SlideResult {
+    weakening_with(h, n_thick, (0.9, 0.35), dc, |law| SlideOptions { law, cycles: 1, ..Default::default() })
+}
+
+/// The same scene at (r, g) with the options `o` gives for the law.
+fn weakening_with(
+    h: f64,
+    n_thick: usize,
+    (r, g): (f64, f64),
+    dc: f64,
+    o: impl Fn(Law) -> SlideOptions,
+) -> SlideResult {
     let mut sc = thin(0.004);
     sc.block.length = 0.1;
     sc.mesh.h = h;
     sc.mesh.n_thick = Some(n_thick);
-    let (ms, md) = coefficients_from_rg(&sc, 0.9, 0.35).unwrap();
-    let o = SlideOptions { law: Law::slip_weakening(ms, md, dc).unwrap(), cycles: 1, ..Default::default() };
-    run(&sc, &o, &|_| {}).unwrap()
+    let (ms, md) = coefficients_from_rg(&sc, r, g).unwrap();
+    run(&sc, &o(Law::slip_weakening(ms, md, dc).unwrap()), &|_| {}).unwrap()
 }
 
 fn peak(r: &SlideResult) -> f64 {
@@ -377,14 +387,8 @@ fn slip_weakening_tends_to_the_abrupt_drop() {
 #[test]
 fn slip_weakening_newton_reaches_the_fixed_point_equilibria() {
     let go = |newton: bool| {
-        let mut sc = thin(0.004);
-        sc.block.length = 0.1;
-        sc.mesh.h = 0.001;
-        sc.mesh.n_thick = Some(8);
-        let (ms, md) = coefficients_from_rg(&sc, 0.9, 0.35).unwrap();
-        let law = Law::slip_weakening(ms, md, 3e-7).unwrap();
-        let o = SlideOptions { law, cycles: 1, x_max: Some(1.1e-5), newton, ..Default::default() };
-        run(&sc, &o, &|_| {}).unwrap().run
+        let o = |law| SlideOptions { law, cycles: 1, x_max: Some(1.1e-5), newton, ..Default::default() };
+        weakening_with(0.001, 8, (0.9, 0.35), 3e-7, o).run
     };
     let (a, b) = (go(true), go(false));
     assert!(
@@ -416,12 +420,8 @@ fn slip_weakening_newton_reaches_the_fixed_point_equilibria() {
 /// admissible states.
 #[test]
 fn slip_weakening_rate_cycles_in_node_order_are_broken() {
-    let mut sc = thin(0.004);
-    sc.block.length = 0.1;
-    let (ms, md) = coefficients_from_rg(&sc, 0.9, 0.35).unwrap();
-    let law = Law::slip_weakening(ms, md, 3e-7).unwrap();
-    let o = SlideOptions { law, cycles: 1, newton: true, ..Default::default() };
-    let r = run(&sc, &o, &|_| {}).unwrap();
+    let o = |law| SlideOptions { law, cycles: 1, newton: true, ..Default::default() };
+    let r = weakening_with(0.004, 2, (0.9, 0.35), 3e-7, o);
     let p = peak(&r);
     assert!(p > 0.9 && p < 1.0, "peak {p} outside (mu_d/mu_s, 1)");
     let v = worst_violation(&r);
@@ -434,13 +434,8 @@ fn slip_weakening_rate_cycles_in_node_order_are_broken() {
 /// separating. The run finishes with admissible states.
 #[test]
 fn slip_weakening_corner_open_close_cycles_are_broken() {
-    let mut sc = thin(0.004);
-    sc.block.length = 0.1;
-    sc.mesh.h = 0.001;
-    sc.mesh.n_thick = Some(8);
-    let (ms, md) = coefficients_from_rg(&sc, 0.8, 0.5).unwrap();
-    let law = Law::slip_weakening(ms, md, 3e-7).unwrap();
-    let r = run(&sc, &SlideOptions { law, cycles: 1, ..Default::default() }, &|_| {}).unwrap();
+    let o = |law| SlideOptions { law, cycles: 1, ..Default::default() };
+    let r = weakening_with(0.001, 8, (0.8, 0.5), 3e-7, o);
     let p = peak(&r);
     assert!(p > 0.8 && p < 1.0, "peak {p} outside (mu_d/mu_s, 1)");
     let v = worst_violation(&r);
