@@ -68,18 +68,21 @@ fn no_long_precursor_without_torque() {
     assert_eq!(long, 0);
 }
 
+/// Static-kinetic options at (r, g) on the paper's scene: one cycle, at most `max_events`.
+fn paper_scene_options(r: f64, g: f64, rule: Rule, max_events: usize) -> SlideOptions {
+    let (ms, md) = coefficients_from_rg(&Scene::default(), r, g).unwrap();
+    SlideOptions {
+        law: Law::static_kinetic(ms, md, rule).unwrap(),
+        cycles: 1,
+        max_events,
+        ..Default::default()
+    }
+}
+
 /// A static-kinetic run on the paper's scene up to the first whole slip (or `x_max`).
 fn paper_scene_run(r: f64, g: f64, x_max: Option<f64>) -> tribofe::studies::slide::SlideResult {
-    let sc = Scene::default();
-    let (ms, md) = coefficients_from_rg(&sc, r, g).unwrap();
-    let o = SlideOptions {
-        law: Law::static_kinetic(ms, md, Rule::Paper).unwrap(),
-        cycles: 1,
-        x_max,
-        max_events: 5000,
-        ..Default::default()
-    };
-    run(&sc, &o, &|_| {}).unwrap()
+    let o = SlideOptions { x_max, ..paper_scene_options(r, g, Rule::Paper, 5000) };
+    run(&Scene::default(), &o, &|_| {}).unwrap()
 }
 
 #[test]
@@ -227,13 +230,8 @@ fn interior_pressure_check_defined_only_with_an_interior() {
 /// no admissible state can lift above mu_s N (|T_i| <= mu_s P_i at every node).
 fn event_cap_reports_precursors_and_peak_so_far() {
     let sc = Scene::default();
-    let (ms, md) = coefficients_from_rg(&sc, 0.9, 0.35).unwrap();
-    let o = SlideOptions {
-        law: Law::static_kinetic(ms, md, Rule::Overdamped).unwrap(),
-        cycles: 1,
-        max_events: 50_000,
-        ..Default::default()
-    };
+    let o = paper_scene_options(0.9, 0.35, Rule::Overdamped, 50_000);
+    let ms = o.law.mu_s();
     let full = run(&sc, &o, &|_| {}).unwrap();
     let cap = 2000;
     assert!(full.run.events.len() > cap + 100, "{} events", full.run.events.len());
@@ -260,15 +258,9 @@ fn event_cap_reports_precursors_and_peak_so_far() {
 /// before any crossing, so the option changes nothing there.
 fn front_crossing_ends_the_cycle_only_when_the_regions_join() {
     let sc = Scene::default();
-    let opts = |r: f64, g: f64, rule: Rule, end_at_crossing: bool| {
-        let (ms, md) = coefficients_from_rg(&sc, r, g).unwrap();
-        SlideOptions {
-            law: Law::static_kinetic(ms, md, rule).unwrap(),
-            cycles: 1,
-            max_events: 5000,
-            end_at_crossing,
-            ..Default::default()
-        }
+    let opts = |r: f64, g: f64, rule: Rule, end_at_crossing: bool| SlideOptions {
+        end_at_crossing,
+        ..paper_scene_options(r, g, rule, 5000)
     };
     let res = run(&sc, &opts(0.5, 0.5, Rule::Overdamped, true), &|_| {}).unwrap();
     let evs = &res.run.events;
@@ -301,15 +293,8 @@ fn front_crossing_ends_the_cycle_only_when_the_regions_join() {
 /// against its position at the event's start, re-stuck there, opened, closed... Backward slip
 /// is now measured from where the node last started slipping; the run ends admissible.
 fn overdamped_relaxation_settles_after_a_corner_closes() {
-    let sc = Scene::default();
-    let (ms, md) = coefficients_from_rg(&sc, 0.475, 0.175).unwrap();
-    let o = SlideOptions {
-        law: Law::static_kinetic(ms, md, Rule::Overdamped).unwrap(),
-        cycles: 1,
-        max_events: 2000,
-        ..Default::default()
-    };
-    let res = run(&sc, &o, &|_| {}).unwrap();
+    let o = paper_scene_options(0.475, 0.175, Rule::Overdamped, 2000);
+    let res = run(&Scene::default(), &o, &|_| {}).unwrap();
     assert_eq!(res.run.sliding_events, 1);
     assert!(res.run.max_violation < 1e-8, "violation {}", res.run.max_violation);
 }
