@@ -50,7 +50,7 @@ pub struct Args {
     pub max_events: usize,
     /// Slip weakening: each relaxation's coefficients by Newton where a stable equilibrium is
     /// near (the same equilibria, fewer updates; validation/friction/README.md). Default: fixed
-    /// point, the reference.
+    /// point, the reference (Newton only where a relaxation is unsettled after 10^4 iterates).
     #[arg(long)]
     pub newton: bool,
     /// Write the whole block's fields (fields_<state>.vtu, fields.pvd) for this many states

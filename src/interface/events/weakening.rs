@@ -174,11 +174,14 @@ fn settle(
     let td = 1e-6 * sv.dscale;
     let mut touched = vec![false; n];
     // Newton from the start; after it fails (a runaway), again once fixed point has
-    // contracted for 3 iterates in a row (the runaway has arrested and is settling).
-    let (allowed, mut newton, mut last, mut shrinking) = (newton, newton, f64::INFINITY, 0);
+    // contracted for 3 iterates in a row (the runaway has arrested and is settling). Without
+    // `newton`, from SLOW_FP iterates on: a patch near its critical length contracts by
+    // 1 - 1e-4 an iterate and would need ~1e5 of them.
+    let (mut trying, mut last, mut shrinking) = (newton, f64::INFINITY, 0);
+    let allowed = |it: usize| newton || it >= SLOW_FP;
     let mut stuck_at = vec![None; n];
     // A relaxation may run through every node and its coefficients converge geometrically.
-    for _ in 0..50 * cap {
+    for it in 0..50 * cap {
         let a = sv.solve()?;
         if let Fix::Changed(i, what) = sv.rate_fix(&a, lam, true)? {
             // A node stuck (closed) again where it was stuck (closed) before in this settle is
@@ -222,8 +225,8 @@ fn settle(
         shrinking = if step < last { shrinking + 1 } else { 0 };
         last = step;
         sv.set_coefficients(&change)?;
-        if newton || (allowed && shrinking >= 3) {
-            newton = newton_coefficients(sv, lam, u_pre, dc, td)?;
+        if trying || (allowed(it) && shrinking >= 3) {
+            trying = newton_coefficients(sv, lam, u_pre, dc, td)?;
             shrinking = 0;
         }
     }
@@ -264,6 +267,10 @@ fn stable(sv: &Solver, springs: &[(usize, f64)]) -> bool {
     });
     mat.lu().determinant() > 0.0
 }
+
+/// Fixed-point iterates of one relaxation after which Newton is tried even without
+/// `Problem::newton`.
+const SLOW_FP: usize = 10000;
 
 /// Newton iterates allowed on the coefficients.
 const NEWTON_MAX: usize = 30;
