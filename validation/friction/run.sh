@@ -1,5 +1,6 @@
 #!/bin/sh
-# Reruns every study quoted in validation/friction/README.md (release build; ~3 min on 2 cores).
+# Reruns every study quoted in validation/friction/README.md but the round-off study
+# (sensitivity.py); release build, about 20 minutes on 2 cores, most of it sw_nt16.
 # Each run writes loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml and
 # prints its summary, captured in <dir>/summary.txt.
 set -e
