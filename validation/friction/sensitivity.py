@@ -52,7 +52,7 @@ def one(case, k, tmp):
 
 def main():
     with tempfile.TemporaryDirectory() as tmp, concurrent.futures.ThreadPoolExecutor(2) as pool:
-        rows = list(pool.map(lambda a: one(*a, tmp), [(c, k, ) for c in CASES for k in KS]))
+        rows = list(pool.map(lambda a: one(*a, tmp), [(c, k) for c in CASES for k in KS]))
     with open(os.path.join(HERE, "sensitivity.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["case", "k", "length_m", "events", "precursors", "advancing",

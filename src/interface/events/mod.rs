@@ -70,8 +70,8 @@ pub struct Problem {
     /// Slip weakening: each relaxation's coefficients by Newton where a stable equilibrium is
     /// near (the same equilibria in a few iterates instead of hundreds); false (the default):
     /// fixed point, the reference, with Newton only for a relaxation still unsettled after
-    /// 10^4 iterates (a patch near its critical length). Event sequences amplify round-off differences
-    /// after ~100 events, so the two give different event counts for long runs
+    /// 10^4 iterates (a patch near its critical length). Event sequences amplify round-off
+    /// differences after ~100 events, so the two give different event counts for long runs
     /// (validation/friction/README.md).
     pub newton: bool,
 }
