@@ -317,12 +317,18 @@ fn weakening_with(
     dc: f64,
     o: impl Fn(Law) -> SlideOptions,
 ) -> SlideResult {
+    let sc = weakening_scene(h, n_thick);
+    let (ms, md) = coefficients_from_rg(&sc, r, g).unwrap();
+    run(&sc, &o(Law::slip_weakening(ms, md, dc).unwrap()), &|_| {}).unwrap()
+}
+
+/// The slip-weakening scene's block and mesh: L = 10 cm, t = 4 mm, element size h.
+fn weakening_scene(h: f64, n_thick: usize) -> Scene {
     let mut sc = thin(0.004);
     sc.block.length = 0.1;
     sc.mesh.h = h;
     sc.mesh.n_thick = Some(n_thick);
-    let (ms, md) = coefficients_from_rg(&sc, r, g).unwrap();
-    run(&sc, &o(Law::slip_weakening(ms, md, dc).unwrap()), &|_| {}).unwrap()
+    sc
 }
 
 fn peak(r: &SlideResult) -> f64 {
@@ -363,10 +369,7 @@ fn slip_weakening_above_the_critical_distance_is_stable() {
 #[test]
 fn slip_weakening_tends_to_the_abrupt_drop() {
     let r = weakening(0.001, 8, 1e-10);
-    let mut sc = thin(0.004);
-    sc.block.length = 0.1;
-    sc.mesh.h = 0.001;
-    sc.mesh.n_thick = Some(8);
+    let sc = weakening_scene(0.001, 8);
     let (ms, md) = coefficients_from_rg(&sc, 0.9, 0.35).unwrap();
     let o = SlideOptions {
         law: Law::static_kinetic(ms, md, Rule::Overdamped).unwrap(),
@@ -449,10 +452,8 @@ fn slip_weakening_corner_open_close_cycles_are_broken() {
 #[test]
 fn slip_weakening_slow_relaxations_settle() {
     for k in 0..10 {
-        let mut sc = thin(0.004);
-        sc.block.length = 0.1 * (1.0 + 1e-11 * k as f64);
-        sc.mesh.h = 0.004;
-        sc.mesh.n_thick = Some(2);
+        let mut sc = weakening_scene(0.004, 2);
+        sc.block.length *= 1.0 + 1e-11 * k as f64;
         let (ms, md) = coefficients_from_rg(&sc, 0.9, 0.35).unwrap();
         let law = Law::slip_weakening(ms, md, 3e-7).unwrap();
         let r = run(&sc, &SlideOptions { law, cycles: 1, ..Default::default() }, &|_| {})

@@ -46,7 +46,8 @@ def one(case, k, tmp):
     r = subprocess.run(cmd, capture_output=True, text=True)
     m = SUMMARY.search(r.stdout)
     if r.returncode != 0 or not m:
-        return name, k, l, None, (r.stderr or r.stdout).strip().splitlines()[-1]
+        said = (r.stderr or r.stdout).strip().splitlines()
+        return name, k, l, None, said[-1] if said else f"exit status {r.returncode}"
     return name, k, l, m.groupdict(), ""
 
 
