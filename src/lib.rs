@@ -41,6 +41,7 @@
 //! ```
 
 pub mod analytical;
+pub mod cancel;
 pub mod error;
 pub mod fem;
 pub mod interface;
@@ -52,4 +53,5 @@ pub mod report;
 pub mod scene;
 pub mod studies;
 
+pub use cancel::Cancel;
 pub use error::{Error, Result};

@@ -54,6 +54,8 @@ pub struct StudyOptions {
     pub graded_h_max_over_t: f64,
     /// Run the meshes concurrently (faster overall; per-run times then share the cores).
     pub parallel: bool,
+    /// Checked before each run.
+    pub cancel: crate::Cancel,
 }
 
 impl Default for StudyOptions {
@@ -66,6 +68,7 @@ impl Default for StudyOptions {
             grading_ratio: 1.15,
             graded_h_max_over_t: 4.0,
             parallel: true,
+            cancel: crate::Cancel::new(),
         }
     }
 }
@@ -214,6 +217,7 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
             .total_cmp(&(a.3.estimate_dofs().unwrap_or(0.0) + a.2 as f64))
     });
     let one = |(f, e, n, s): &(Family, String, usize, Scene)| -> Result<Run> {
+        o.cancel.check()?;
         let base = crate::memory::in_use_bytes().unwrap_or(0);
         if !o.parallel {
             crate::memory::reset_peak();

@@ -25,6 +25,8 @@ pub struct SlideOptions {
     pub end_at_crossing: bool,
     /// See [`Problem::newton`].
     pub newton: bool,
+    /// See [`Problem::cancel`].
+    pub cancel: crate::Cancel,
 }
 
 impl Default for SlideOptions {
@@ -40,6 +42,7 @@ impl Default for SlideOptions {
             creep_fraction: p.creep_fraction,
             end_at_crossing: p.end_at_crossing,
             newton: p.newton,
+            cancel: p.cancel,
         }
     }
 }
@@ -95,6 +98,7 @@ pub fn run_condensed(
         creep_fraction: o.creep_fraction,
         end_at_crossing: o.end_at_crossing,
         newton: o.newton,
+        cancel: o.cancel.clone(),
     };
     if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
         return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));

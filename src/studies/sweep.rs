@@ -127,6 +127,8 @@ pub struct SweepOptions {
     pub solver: SolverOptions,
     /// Also run the frictional interface at each point (`None`: the check only).
     pub friction: Option<FrictionSweep>,
+    /// Checked before each point (and at each event of a frictional point).
+    pub cancel: crate::Cancel,
 }
 
 /// The frictional quantities of each point: the static-kinetic law with fixed coefficients
@@ -163,6 +165,7 @@ impl Default for SweepOptions {
             verdict: VerdictOptions::default(),
             solver: SolverOptions::default(),
             friction: None,
+            cancel: crate::Cancel::new(),
         }
     }
 }
@@ -370,6 +373,7 @@ pub fn run(
     let solved: Vec<Vec<Point>> = subgroups
         .into_par_iter()
         .map(|(g, sub)| {
+            o.cancel.check()?;
             let clock = Instant::now();
             let first = &sub[0].1;
             let k = decays.iter().find(|d| d.0 == first.block.poisson).map(|d| d.1);
@@ -399,13 +403,18 @@ pub fn run(
             sub.into_iter()
                 .zip(results)
                 .map(|((index, scene), mut result)| {
+                    o.cancel.check()?;
                     let clock = Instant::now();
                     result.displacements.clear();
                     let verdicts = result.cases.iter().map(|c| verdict(&result, c, &o.verdict)).collect();
                     let friction = match (&o.friction, law) {
                         (Some(f), Some(law)) => {
-                            let so =
-                                super::slide::SlideOptions { law, cycles: f.cycles, ..Default::default() };
+                            let so = super::slide::SlideOptions {
+                                law,
+                                cycles: f.cycles,
+                                cancel: o.cancel.clone(),
+                                ..Default::default()
+                            };
                             let r = super::slide::run(&FrictionSweep::scene(&scene), &so, &|_| {})?;
                             super::slide::compare_paper(&r)
                         }

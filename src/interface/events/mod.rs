@@ -74,6 +74,8 @@ pub struct Problem {
     /// differences after ~100 events, so the two give different event counts for long runs
     /// (validation/friction/README.md).
     pub newton: bool,
+    /// Checked at every event: once cancelled, the run returns [`Error::Interrupted`].
+    pub cancel: crate::Cancel,
 }
 
 impl Default for Problem {
@@ -88,6 +90,7 @@ impl Default for Problem {
             creep_fraction: 1e-3,
             end_at_crossing: false,
             newton: false,
+            cancel: crate::Cancel::new(),
         }
     }
 }
@@ -1285,6 +1288,7 @@ impl Event {
 }
 
 fn push(out: &mut Run, pb: &Problem, ev: Event, st: State) -> Result<()> {
+    pb.cancel.check()?;
     if out.events.len() >= pb.max_events {
         let before_slide = out.events.iter().take_while(|e| !e.ends_cycle());
         return Err(Error::EventCap {

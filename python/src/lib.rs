@@ -1,0 +1,610 @@
+//! The `tribofe._tribofe` extension: conversions between Python and the tribofe library, and
+//! nothing else. Every number comes from the Rust library; this layer turns its results into
+//! numpy arrays and dicts, its errors into the exception classes of `tribofe.errors` (one per
+//! exit status of the command), releases the GIL during the work and turns the interrupt key
+//! into a cancellation of the run ([`tribofe::Cancel`]).
+
+use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use std::path::PathBuf;
+use tribofe::interface::law::{Law, Rule};
+use tribofe::scene::{Overrides, PlateModel, Scene as RsScene};
+use tribofe::{Cancel, Error};
+
+/// The exception class of `tribofe.errors` for an error of the library.
+fn to_py(e: Error) -> PyErr {
+    let class = match e.exit_status() {
+        2 => "InputError",
+        3 => "NumericalError",
+        130 => "Interrupted",
+        _ => "OutputError",
+    };
+    let msg = e.to_string();
+    Python::attach(|py| {
+        let made = py
+            .import("tribofe.errors")
+            .and_then(|m| m.getattr(class))
+            .and_then(|c| c.call1((msg.clone(), e.exit_status())));
+        match made {
+            Ok(obj) => PyErr::from_value(obj),
+            Err(err) => err,
+        }
+    })
+}
+
+/// Runs `work` without the GIL. Every `poll` (the run's progress callback) takes the GIL back
+/// briefly: a pending interrupt key cancels the run, and the Python callback gets the fraction.
+fn run_detached<T: Send>(
+    py: Python<'_>,
+    progress: Option<Py<PyAny>>,
+    work: impl FnOnce(&Cancel, &(dyn Fn(f64) + Sync)) -> tribofe::Result<T> + Send,
+) -> PyResult<T> {
+    let cancel = Cancel::new();
+    let pending: std::sync::Mutex<Option<PyErr>> = std::sync::Mutex::new(None);
+    let poll = |frac: f64| {
+        Python::attach(|py| {
+            let outcome = py.check_signals().and_then(|_| match &progress {
+                Some(cb) => cb.call1(py, (frac,)).map(|_| ()),
+                None => Ok(()),
+            });
+            if let Err(err) = outcome {
+                pending.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert(err);
+                cancel.cancel();
+            }
+        })
+    };
+    let result = py.detach(|| work(&cancel, &poll));
+    if let Some(err) = pending.lock().unwrap_or_else(|e| e.into_inner()).take() {
+        return Err(err); // KeyboardInterrupt, or the progress callback's own exception
+    }
+    // A signal that arrived after the last progress point still ends the call here.
+    py.check_signals()?;
+    result.map_err(to_py)
+}
+
+fn f64_arg(v: &Bound<'_, PyAny>, key: &str) -> PyResult<f64> {
+    v.extract::<f64>().map_err(|_| PyTypeError::new_err(format!("{key}: expected a number (SI units)")))
+}
+
+/// The paper's scene with overrides; every keyword is a scene key in SI units.
+#[pyclass(module = "tribofe._tribofe", name = "Scene", frozen)]
+struct Scene {
+    inner: RsScene,
+}
+
+const SCENE_KEYS: &str = "length, thickness, young, poisson, height, fn_ratios, plate, plate_thickness, \
+plate_young, plate_poisson, h, grading, h_max, n_thick, element, mesh, tol, max_dofs";
+
+fn overrides(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Overrides> {
+    let mut o = Overrides::default();
+    let Some(kw) = kwargs else { return Ok(o) };
+    for (k, v) in kw.iter() {
+        let key: String = k.extract()?;
+        let f = |v: &Bound<'_, PyAny>| f64_arg(v, &key).map(Some);
+        match key.as_str() {
+            "length" => o.length = f(&v)?,
+            "thickness" => o.thickness = f(&v)?,
+            "young" => o.young = f(&v)?,
+            "poisson" => o.poisson = f(&v)?,
+            "height" => o.height = f(&v)?,
+            "plate_thickness" => o.plate_thickness = f(&v)?,
+            "plate_young" => o.plate_young = f(&v)?,
+            "plate_poisson" => o.plate_poisson = f(&v)?,
+            "h" => o.h = f(&v)?,
+            "grading" => o.grading = f(&v)?,
+            "h_max" => o.h_max = f(&v)?,
+            "tol" => o.tol = f(&v)?,
+            "fn_ratios" => {
+                o.fn_ratios = Some(
+                    v.extract().map_err(|_| PyTypeError::new_err("fn_ratios: expected a list of numbers"))?,
+                )
+            }
+            "n_thick" => {
+                o.n_thick =
+                    Some(v.extract().map_err(|_| PyTypeError::new_err("n_thick: expected a whole number"))?)
+            }
+            "max_dofs" => {
+                o.max_dofs =
+                    Some(v.extract().map_err(|_| PyTypeError::new_err("max_dofs: expected a whole number"))?)
+            }
+            "element" => o.element = Some(v.extract()?),
+            "mesh" => o.mesh = Some(PathBuf::from(v.str()?.to_string())),
+            "plate" => {
+                let s: String = v.extract()?;
+                o.plate = Some(match s.as_str() {
+                    "rigid" => PlateModel::Rigid,
+                    "elastic" => PlateModel::Elastic,
+                    _ => {
+                        return Err(to_py(Error::input(
+                            "plate",
+                            format!("'{}': use rigid or elastic", tribofe::error::quote(&s)),
+                        )))
+                    }
+                })
+            }
+            other => {
+                return Err(to_py(Error::input(
+                    tribofe::error::quote(other),
+                    format!("not a scene key; the keys are {SCENE_KEYS}"),
+                )))
+            }
+        }
+    }
+    Ok(o)
+}
+
+#[pymethods]
+impl Scene {
+    #[new]
+    #[pyo3(signature = (**kwargs))]
+    fn new(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
+        let o = overrides(kwargs)?;
+        Ok(Scene { inner: RsScene::default().apply(&o).map_err(to_py)? })
+    }
+
+    /// Reads a scene file (TOML; every key defaults to the paper's value).
+    #[staticmethod]
+    fn from_toml(path: PathBuf) -> PyResult<Scene> {
+        Ok(Scene { inner: RsScene::from_file(&path).map_err(to_py)? })
+    }
+
+    /// The scene as TOML text (every key), a template to edit.
+    fn to_toml(&self) -> PyResult<String> {
+        self.inner.to_toml().map_err(to_py)
+    }
+
+    /// The same scene with some keys changed (validated like the constructor).
+    #[pyo3(signature = (**kwargs))]
+    fn replace(&self, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
+        let o = overrides(kwargs)?;
+        Ok(Scene { inner: self.inner.apply(&o).map_err(to_py)? })
+    }
+
+    #[getter]
+    fn length(&self) -> f64 {
+        self.inner.block.length
+    }
+    #[getter]
+    fn thickness(&self) -> f64 {
+        self.inner.block.thickness
+    }
+    #[getter]
+    fn young(&self) -> f64 {
+        self.inner.block.young
+    }
+    #[getter]
+    fn poisson(&self) -> f64 {
+        self.inner.block.poisson
+    }
+    #[getter]
+    fn height(&self) -> f64 {
+        self.inner.loading.height
+    }
+    #[getter]
+    fn fn_ratios(&self) -> Vec<f64> {
+        self.inner.loading.fn_ratios.clone()
+    }
+    #[getter]
+    fn h(&self) -> f64 {
+        self.inner.mesh.h
+    }
+    #[getter]
+    fn element(&self) -> String {
+        self.inner.mesh.element.clone()
+    }
+
+    /// Estimated number of unknowns of the scene's mesh.
+    fn estimate_dofs(&self) -> PyResult<f64> {
+        self.inner.estimate_dofs().map_err(to_py)
+    }
+
+    fn __repr__(&self) -> String {
+        let s = &self.inner;
+        let mesh = match &s.mesh.file {
+            Some(f) => format!("mesh={:?}", f.display().to_string()),
+            None => format!("h={} m, element={:?}", s.mesh.h, s.mesh.element),
+        };
+        format!(
+            "Scene(L={} m, t={} m, E={} Pa, nu={}, H={} m, plate={:?}, F/N={:?}, {mesh})",
+            s.block.length,
+            s.block.thickness,
+            s.block.young,
+            s.block.poisson,
+            s.loading.height,
+            format!("{:?}", s.plate.model).to_lowercase(),
+            s.loading.fn_ratios
+        )
+    }
+
+    fn __eq__(&self, other: &Scene) -> bool {
+        self.inner == other.inner
+    }
+}
+
+fn arr<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
+    PyArray1::from_slice(py, v)
+}
+
+/// The paper's bonded check; returns a dict: `cases` (one dict per F/N with numpy profiles,
+/// stresses in units of the mean pressure N/L) and `summary` (numbers of the run).
+#[pyfunction]
+#[pyo3(signature = (scene=None))]
+fn check<'py>(py: Python<'py>, scene: Option<PyRef<'_, Scene>>) -> PyResult<Bound<'py, PyDict>> {
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let opts = tribofe::linalg::solve::SolverOptions::default();
+    let (res, _model) = run_detached(py, None, |cancel, _| {
+        cancel.check()?;
+        let r = tribofe::studies::check::run(&scene, &opts)?;
+        r.0.self_check()?;
+        Ok(r)
+    })?;
+    let out = PyDict::new(py);
+    let cases = PyList::empty(py);
+    for c in &res.cases {
+        let d = PyDict::new(py);
+        d.set_item("fn_ratio", c.fn_ratio)?;
+        d.set_item("N_N_per_m", c.n)?;
+        d.set_item("F_N_per_m", c.f)?;
+        d.set_item("tilt_rad", c.tilt)?;
+        d.set_item("x_over_L", arr(py, &c.x_over_l))?;
+        d.set_item("p_over_pmean", arr(py, &c.p))?;
+        d.set_item("tau_over_pmean", arr(py, &c.tau))?;
+        d.set_item("p_model", arr(py, &c.p_model))?;
+        d.set_item("tau_model", arr(py, &c.tau_model))?;
+        d.set_item("p_extrap", arr(py, &c.p_extrap))?;
+        d.set_item("tau_extrap", arr(py, &c.tau_extrap))?;
+        d.set_item("p_corrected", arr(py, &c.p_corrected))?;
+        let m = &c.metrics;
+        let md = PyDict::new(py);
+        md.set_item("slope_interior", m.slope_interior)?;
+        md.set_item("slope_model", m.slope_model)?;
+        md.set_item("slope_corrected", m.slope_corrected)?;
+        md.set_item("interior_dev_p", m.interior_dev_p)?;
+        md.set_item("interior_dev_tau", m.interior_dev_tau)?;
+        md.set_item("tau_center", m.tau_center)?;
+        md.set_item("edge_p_over_t", m.edge_p_t.to_vec())?;
+        md.set_item("edge_tau_over_t", m.edge_tau_t.to_vec())?;
+        md.set_item("balance_n", m.balance_n)?;
+        md.set_item("balance_f", m.balance_f)?;
+        md.set_item("balance_moment", m.balance_moment)?;
+        d.set_item("metrics", md)?;
+        cases.append(d)?;
+    }
+    out.set_item("cases", cases)?;
+    out.set_item("n_nodes", res.n_nodes)?;
+    out.set_item("n_elements", res.n_elements)?;
+    out.set_item("balance_error", res.balance_error())?;
+    Ok(out)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn law(
+    scene: &RsScene,
+    name: &str,
+    mu: Option<f64>,
+    mu_s: Option<f64>,
+    mu_d: Option<f64>,
+    r: Option<f64>,
+    g: Option<f64>,
+    rule: &str,
+    dc: Option<f64>,
+) -> tribofe::Result<Law> {
+    let rule: Rule = rule.parse()?;
+    let pair = |r, g| tribofe::studies::slide::coefficients_from_rg(scene, r, g);
+    match name {
+        "coulomb" => {
+            if mu_s.is_some() || mu_d.is_some() || r.is_some() || dc.is_some() {
+                return Err(Error::input("law", "coulomb takes mu (or g alone), not mu_s/mu_d/r/dc"));
+            }
+            match (mu, g) {
+                (Some(m), None) => Law::coulomb(m),
+                (None, Some(g)) => Law::coulomb(g * scene.block.length / (6.0 * scene.loading.height)),
+                (None, None) => Law::coulomb(0.5),
+                _ => Err(Error::input("mu", "give mu or g, not both")),
+            }
+        }
+        "static-kinetic" | "slip-weakening" => {
+            if mu.is_some() {
+                return Err(Error::input("mu", format!("{name} takes mu_s and mu_d (or r and g)")));
+            }
+            let (s, d) = match (mu_s, mu_d, r, g) {
+                (Some(s), Some(d), None, None) => (s, d),
+                (None, None, Some(r), Some(g)) => pair(r, g)?,
+                (None, None, None, None) => pair(0.9, 0.35)?,
+                _ => return Err(Error::input("mu_s/mu_d", "give both mu_s and mu_d, or both r and g")),
+            };
+            match (name, dc) {
+                ("slip-weakening", Some(dc)) => Law::slip_weakening(s, d, dc),
+                ("slip-weakening", None) => {
+                    Err(Error::input("dc", "slip-weakening needs dc, the weakening slip in m"))
+                }
+                (_, Some(_)) => Err(Error::input("dc", "dc belongs to law='slip-weakening'")),
+                _ => Law::static_kinetic(s, d, rule),
+            }
+        }
+        other => Err(Error::input(
+            "law",
+            format!("'{}': use coulomb, static-kinetic or slip-weakening", tribofe::error::quote(other)),
+        )),
+    }
+}
+
+/// The frictional interface under N then the drive X at height H, event by event.
+#[pyfunction]
+#[pyo3(signature = (scene=None, law="coulomb", *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
+    rule="paper", dc=None, n_force=1.0, x_max=None, cycles=10, max_events=50_000, newton=false,
+    keep_states=true, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn slide<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    law: &str,
+    mu: Option<f64>,
+    mu_s: Option<f64>,
+    mu_d: Option<f64>,
+    r: Option<f64>,
+    g: Option<f64>,
+    rule: &str,
+    dc: Option<f64>,
+    n_force: f64,
+    x_max: Option<f64>,
+    cycles: usize,
+    max_events: usize,
+    newton: bool,
+    keep_states: bool,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let law = self::law(&scene, law, mu, mu_s, mu_d, r, g, rule, dc).map_err(to_py)?;
+    if newton && !law.weakens() {
+        return Err(to_py(Error::input("newton", "newton cannot act without law='slip-weakening'")));
+    }
+    let res = run_detached(py, progress, |cancel, poll| {
+        let o = tribofe::studies::slide::SlideOptions {
+            law,
+            n_force,
+            x_max,
+            cycles,
+            max_events,
+            newton,
+            keep_states,
+            cancel: cancel.clone(),
+            ..Default::default()
+        };
+        tribofe::studies::slide::run(&scene, &o, &|f| poll(f))
+    })?;
+    slide_result(py, &res)
+}
+
+fn slide_result<'py>(
+    py: Python<'py>,
+    res: &tribofe::studies::slide::SlideResult,
+) -> PyResult<Bound<'py, PyDict>> {
+    let run = &res.run;
+    let c = &res.condensed;
+    let col =
+        |f: &dyn Fn(&tribofe::interface::events::State) -> f64| run.states.iter().map(f).collect::<Vec<_>>();
+    let loading = PyDict::new(py);
+    loading.set_item("X_m", arr(py, &col(&|s| s.x)))?;
+    loading.set_item("F_N_per_m", arr(py, &col(&|s| s.f)))?;
+    loading.set_item("N_N_per_m", arr(py, &col(&|s| s.n_force)))?;
+    loading.set_item("Fc_N_per_m", arr(py, &col(&|s| res.f_c(s.x))))?;
+    loading.set_item("tilt_rad", arr(py, &col(&|s| s.tilt)))?;
+    loading.set_item("V_m", arr(py, &col(&|s| s.v)))?;
+    // The events table as the command writes it (its derived columns live in the report layer).
+    let events = columns(py, &tribofe::report::slide::events_csv(res).map_err(to_py)?)?;
+    let out = PyDict::new(py);
+    out.set_item("law", res.options.law.name())?;
+    out.set_item("mu_s", res.options.law.mu_s())?;
+    out.set_item("mu_d", res.options.law.mu_d())?;
+    out.set_item("n_force_N_per_m", res.options.n_force)?;
+    out.set_item("x_over_L", arr(py, &c.x.iter().map(|x| x / c.l).collect::<Vec<_>>()))?;
+    out.set_item("width_m", arr(py, &c.w))?;
+    out.set_item("loading", loading)?;
+    out.set_item("events", events)?;
+    out.set_item("sliding_events", run.sliding_events)?;
+    out.set_item("max_violation", run.max_violation)?;
+    out.set_item("condense_s", res.condense_s)?;
+    out.set_item("events_s", res.events_s)?;
+    // Interface states as (states x nodes) arrays: forces per node in N/m, slip and gap in m,
+    // state codes 0 stick, 1 slip, 2 open.
+    let n = c.n;
+    let grid = |f: &dyn Fn(&tribofe::interface::events::State, usize) -> f64| -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rows: Vec<Vec<f64>> = run.states.iter().map(|s| (0..n).map(|i| f(s, i)).collect()).collect();
+        if rows.is_empty() {
+            return Ok(PyArray2::zeros(py, [0, n], false));
+        }
+        PyArray2::from_vec2(py, &rows).map_err(|e| PyTypeError::new_err(e.to_string()))
+    };
+    use tribofe::interface::events::NodeState;
+    let states = PyDict::new(py);
+    states.set_item("p_force_N_per_m", grid(&|s, i| s.p_force[i])?)?;
+    states.set_item("t_force_N_per_m", grid(&|s, i| s.t_force[i])?)?;
+    states.set_item("slip_m", grid(&|s, i| s.u[i])?)?;
+    states.set_item("gap_m", grid(&|s, i| s.gap[i])?)?;
+    states.set_item(
+        "state_code",
+        grid(&|s, i| match s.states[i] {
+            NodeState::Stick => 0.0,
+            NodeState::Slip(_) => 1.0,
+            NodeState::Open => 2.0,
+        })?,
+    )?;
+    out.set_item("states", states)?;
+    Ok(out)
+}
+
+/// A CSV table (header line, then rows) as a dict of columns: numbers as float arrays, the
+/// rest as lists of strings.
+fn columns<'py>(py: Python<'py>, csv: &str) -> PyResult<Bound<'py, PyDict>> {
+    let mut lines = csv.lines();
+    let names: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    let out = PyDict::new(py);
+    for (j, name) in names.iter().enumerate() {
+        let cells: Vec<&str> = rows.iter().map(|r| r.get(j).copied().unwrap_or("")).collect();
+        let ints: Option<Vec<i64>> = cells.iter().map(|c| c.parse::<i64>().ok()).collect();
+        let nums: Option<Vec<f64>> = cells.iter().map(|c| c.parse::<f64>().ok()).collect();
+        match (ints, nums) {
+            (Some(v), _) if !v.is_empty() => out.set_item(*name, PyArray1::from_vec(py, v))?,
+            (_, Some(v)) => out.set_item(*name, arr(py, &v))?,
+            _ => out.set_item(*name, cells)?,
+        }
+    }
+    Ok(out)
+}
+
+/// The paper's analytic event iteration for (r, g): a dict of columns (F, F^c and relaxed
+/// force in units of mu_s N, arrest x in units of L) plus n and F_max.
+#[pyfunction]
+#[pyo3(signature = (r=0.9, g=0.35, events=None))]
+fn precursors_model<'py>(
+    py: Python<'py>,
+    r: f64,
+    g: f64,
+    events: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::precursors as pm;
+    let p = pm::Params::new(r, g).map_err(to_py)?;
+    let n = pm::n_precursors(&p).map_err(to_py)?;
+    let count = events.unwrap_or(n + 1);
+    if count > pm::MAX_PRECURSORS {
+        return Err(to_py(Error::input("events", format!("at most {} events", pm::MAX_PRECURSORS))));
+    }
+    let ev = pm::simulate(&p, count);
+    let out = PyDict::new(py);
+    out.set_item("r", r)?;
+    out.set_item("g", g)?;
+    out.set_item("n", n)?;
+    out.set_item("F_1", p.f1())?;
+    out.set_item("F_max", pm::f_max(&p))?;
+    out.set_item("event", ev.iter().map(|e| e.i).collect::<Vec<_>>())?;
+    out.set_item("F_over_mu_s_N", arr(py, &ev.iter().map(|e| e.f).collect::<Vec<_>>()))?;
+    out.set_item("Fc_over_mu_s_N", arr(py, &ev.iter().map(|e| e.fc).collect::<Vec<_>>()))?;
+    out.set_item("x_arrest_over_L", arr(py, &ev.iter().map(|e| e.x).collect::<Vec<_>>()))?;
+    out.set_item("F_relaxed_over_mu_s_N", arr(py, &ev.iter().map(|e| e.fstar).collect::<Vec<_>>()))?;
+    out.set_item("stick_slip", ev.iter().map(|e| e.stick_slip).collect::<Vec<_>>())?;
+    Ok(out)
+}
+
+/// One swept parameter: a list of numbers, or the command's text form (`a,b,c`, `a:b:n`,
+/// `a:b:ng`).
+fn axis_values(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+    if let Ok(text) = v.extract::<String>() {
+        return tribofe::studies::sweep::parse_values(&text).map_err(to_py);
+    }
+    if let Ok(x) = v.extract::<f64>() {
+        return Ok(vec![x]);
+    }
+    v.extract::<Vec<f64>>()
+        .map_err(|_| PyTypeError::new_err(format!("{key}: expected a number, a list of numbers or 'a:b:n'")))
+}
+
+/// The bonded check over the product of the given parameter values; returns the columns of
+/// the command's `sweep.csv`.
+#[pyfunction]
+#[pyo3(signature = (scene=None, *, length=None, thickness=None, height=None, young=None, poisson=None,
+    converged=true, friction=None, rule="paper", cycles=1, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn sweep<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    length: Option<Bound<'py, PyAny>>,
+    thickness: Option<Bound<'py, PyAny>>,
+    height: Option<Bound<'py, PyAny>>,
+    young: Option<Bound<'py, PyAny>>,
+    poisson: Option<Bound<'py, PyAny>>,
+    converged: bool,
+    friction: Option<(f64, f64)>,
+    rule: &str,
+    cycles: usize,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::sweep::{self as sw, Axis, Param};
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let mut axes = Vec::new();
+    for (param, v) in [
+        (Param::Length, length),
+        (Param::Thickness, thickness),
+        (Param::Height, height),
+        (Param::Young, young),
+        (Param::Poisson, poisson),
+    ] {
+        if let Some(v) = v {
+            axes.push(Axis { param, values: axis_values(param.flag(), &v)? });
+        }
+    }
+    let total: usize = axes.iter().map(|a| a.values.len()).product();
+    let friction = match friction {
+        Some((mu_s, mu_d)) => {
+            Some(sw::FrictionSweep { mu_s, mu_d, rule: rule.parse().map_err(to_py)?, cycles })
+        }
+        None => None,
+    };
+    let points = run_detached(py, progress, |cancel, poll| {
+        let o = sw::SweepOptions { converged, friction, cancel: cancel.clone(), ..Default::default() };
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        sw::run(&scene, &axes, &o, &|_| {
+            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            poll(k as f64 / total.max(1) as f64)
+        })
+    })?;
+    columns(py, &tribofe::report::sweep::csv(&points, true).map_err(to_py)?)
+}
+
+/// Mesh and element convergence of the check; returns the columns of `convergence.csv` and
+/// the printed summary under `"summary"`.
+#[pyfunction]
+#[pyo3(signature = (scene=None, *, elements=vec!["qua4".to_string()], families=vec!["uniform".to_string(), "graded".to_string()],
+    n_thick=vec![1, 2, 4, 8, 16, 32, 64], fn_ratio=0.82, parallel=true, target=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn converge<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    elements: Vec<String>,
+    families: Vec<String>,
+    n_thick: Vec<usize>,
+    fn_ratio: f64,
+    parallel: bool,
+    target: Option<f64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::convergence as cv;
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let families =
+        families.iter().map(|f| f.parse()).collect::<tribofe::Result<Vec<cv::Family>>>().map_err(to_py)?;
+    let total = elements.len() * families.len() * n_thick.len();
+    let study = run_detached(py, progress, |cancel, poll| {
+        let o = cv::StudyOptions {
+            elements,
+            families,
+            n_thick,
+            fn_ratio,
+            parallel,
+            cancel: cancel.clone(),
+            ..Default::default()
+        };
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        cv::study(&scene, &o, &|_| {
+            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            poll(k as f64 / total.max(1) as f64)
+        })
+    })?;
+    let out = columns(py, &tribofe::report::convergence::csv(&study).map_err(to_py)?)?;
+    out.set_item("summary", tribofe::report::convergence::summary(&study, target))?;
+    Ok(out)
+}
+
+#[pymodule]
+fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Scene>()?;
+    m.add_function(wrap_pyfunction!(check, m)?)?;
+    m.add_function(wrap_pyfunction!(slide, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_model, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(converge, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

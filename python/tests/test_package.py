@@ -1,0 +1,165 @@
+"""The Python package against the command built from the same library.
+
+Tolerances: the command writes CSV numbers with 12 or more significant digits, so values read
+back agree with the package's float64 arrays to ~1e-12 relative; 1e-10 (relative, with an
+absolute floor of 1e-12 N/L for values that are zero in theory) leaves room for printing only.
+"""
+
+import csv
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import tribofe
+from conftest import run_cli
+
+
+def read_csv(path: Path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {k: [r[k] for r in rows] for k in rows[0]}
+
+
+def floats(col):
+    return np.array([float(v) for v in col])
+
+
+def test_check_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "check"
+    r = run_cli(tribofe_bin, "check", "--out", str(out), "--no-converged", "--no-fields")
+    assert r.returncode == 0, r.stderr
+    res = tribofe.check()
+    assert [c.fn_ratio for c in res.cases] == [0.0, 0.41, 0.82]
+    for case in res.cases:
+        name = "0" if case.fn_ratio == 0 else f"{case.fn_ratio:g}"
+        cli = read_csv(out / f"profile_FN{name}.csv")
+        for col in ("x_over_L", "p_over_pmean", "tau_over_pmean", "p_model", "tau_model", "p_corrected"):
+            np.testing.assert_allclose(getattr(case, col), floats(cli[col]), rtol=1e-10, atol=1e-12, err_msg=col)
+    # The paper's check itself (README): interior slope at F/N = 0.82 is 0.96604 against 0.984.
+    assert abs(res.cases[2].metrics["slope_interior"] - 0.96604) < 5e-6
+    assert res.balance_error < 1e-12
+
+
+def test_slide_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "slide"
+    args = ["--law", "static-kinetic", "--r", "0.9", "--g", "0.35", "--cycles", "1"]
+    r = run_cli(tribofe_bin, "slide", *args, "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    res = tribofe.slide(law="static-kinetic", r=0.9, g=0.35, cycles=1, progress=False)
+    loading = read_csv(out / "loading.csv")
+    for col in ("X_m", "F_N_per_m", "N_N_per_m", "Fc_N_per_m", "tilt_rad"):
+        np.testing.assert_allclose(np.asarray(res.loading[col]), floats(loading[col]), rtol=1e-10, atol=1e-18, err_msg=col)
+    events = read_csv(out / "events.csv")
+    assert list(res.events["kind"]) == events["kind"]
+    np.testing.assert_allclose(np.asarray(res.events["F_over_mu_s_N"]), floats(events["F_over_mu_s_N"]), rtol=1e-12)
+    # States as (states x nodes) arrays: every state balances the normal force N = 1 N/m.
+    p = res.states["p_force_N_per_m"]
+    assert p.shape == (len(events["kind"]), len(res.x_over_L))
+    drive = np.asarray(res.loading["N_N_per_m"]) > 0
+    np.testing.assert_allclose(p[drive].sum(axis=1), np.asarray(res.loading["N_N_per_m"])[drive], rtol=1e-9)
+    assert set(np.unique(res.states["state_code"])) <= {0.0, 1.0, 2.0}
+
+
+def test_paper_model():
+    m = tribofe.precursors.model(0.9, 0.35)
+    # The paper's iteration: n = 10, F_1 = 1 - g/(r + g)... = 0.72, F_max = 1/(1 + (g/r)(1 - r)).
+    assert m["n"] == 10
+    assert abs(m["F_1"] - 0.72) < 1e-12
+    assert abs(m["F_max"] - 1 / (1 + (0.35 / 0.9) * 0.1)) < 1e-12
+    assert len(m["events"]["event"]) == 11
+
+
+def test_sweep_and_converge_tables():
+    df = tribofe.sweep(thickness=[0.002, 0.004], height="0.02:0.08:3", progress=False)
+    assert len(df["point"]) == 2 * 3 * 3  # points x F/N
+    t, summary = tribofe.converge(n_thick=[1, 2, 4], progress=False)
+    assert len(t["t_over_h"] if "t_over_h" in t else t[list(t.keys())[0]]) == 6
+    assert "reference" in summary
+
+
+@pytest.mark.parametrize(
+    "kwargs, flags",
+    [
+        ({"thickness": -1.0}, ["--thickness", "-1"]),
+        ({"poisson": 0.5}, ["--poisson", "0.5"]),
+        ({"element": "qua5"}, ["--element", "qua5"]),
+    ],
+)
+def test_bad_input_raises_the_commands_message(tribofe_bin, tmp_path, kwargs, flags):
+    r = run_cli(tribofe_bin, "check", *flags, "--out", str(tmp_path / "x"))
+    assert r.returncode == 2
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.Scene(**kwargs)
+    assert e.value.status == 2
+    assert r.stderr.strip() == f"error: {e.value}"
+
+
+def test_errors_are_exceptions_not_crashes():
+    with pytest.raises(tribofe.InputError, match="not a scene key"):
+        tribofe.Scene(lenght=0.4)
+    with pytest.raises(TypeError):
+        tribofe.Scene(length="long")
+    with pytest.raises(tribofe.InputError, match="law"):
+        tribofe.slide(law="rubber", progress=False)
+    with pytest.raises(tribofe.InputError):
+        tribofe.precursors.model(1.5, 0.35)
+    # A run that needs more events than its cap: the command's status 2, as an exception.
+    with pytest.raises(tribofe.InputError, match="more than 3 events"):
+        tribofe.slide(law="static-kinetic", max_events=3, progress=False)
+
+
+def test_scene_toml_round_trip(tmp_path):
+    s = tribofe.Scene(thickness=0.004, height=0.08)
+    path = tmp_path / "scene.toml"
+    path.write_text(s.to_toml())
+    assert tribofe.Scene.from_toml(str(path)) == s
+    assert s.replace(height=0.04) == tribofe.Scene(thickness=0.004)
+
+
+def test_two_threads_equal_serial():
+    scenes = [tribofe.Scene(thickness=0.002), tribofe.Scene(thickness=0.004, height=0.06)]
+    serial = [tribofe.check(s).cases[2].p_over_pmean for s in scenes]
+    results = [None, None]
+
+    def work(i):
+        results[i] = tribofe.check(scenes[i]).cases[2].p_over_pmean
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for a, b in zip(serial, results):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_interrupt_stops_a_long_run_within_a_second(tmp_path):
+    # Slip weakening with D_c = 1 um on the paper's mesh runs for minutes (docs/friction.md);
+    # SIGINT after 3 s must end it with KeyboardInterrupt within a second, leaving no file.
+    script = textwrap.dedent(
+        """
+        import time, tribofe
+        t0 = time.monotonic()
+        try:
+            tribofe.slide(law="slip-weakening", r=0.9, g=0.35, dc=1e-6, cycles=1, progress=False)
+            print("finished")
+        except KeyboardInterrupt as e:
+            print("interrupted", type(e).__name__, time.monotonic() - t0, flush=True)
+        """
+    )
+    p = subprocess.Popen([sys.executable, "-c", script], cwd=tmp_path, stdout=subprocess.PIPE, text=True)
+    time.sleep(3.0)
+    sent = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    out, _ = p.communicate(timeout=30)
+    waited = time.monotonic() - sent
+    assert out.startswith("interrupted"), out
+    assert waited < 1.0 + 0.5, f"took {waited:.2f} s after SIGINT (1 s asked, 0.5 s for the interpreter to exit)"
+    assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,339 @@
+"""tribofe from Python: the Rust library's studies with numpy arrays in and out.
+
+Units are SI throughout (m, Pa, N per metre of width); dimensionless quantities say so in
+their names (``x_over_L``, ``p_over_pmean``, ``F_over_mu_s_N``).
+
+>>> import tribofe
+>>> r = tribofe.check()                     # the paper's scene
+>>> case = r.cases[2]                       # F/N = 0.82
+>>> case.x_over_L, case.p_over_pmean        # numpy arrays
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable, Dict, List, Optional
+
+import numpy as np
+
+from . import errors
+from ._tribofe import Scene, __version__
+from ._tribofe import check as _check
+from ._tribofe import converge as _converge
+from ._tribofe import precursors_model as _precursors_model
+from ._tribofe import slide as _slide
+from ._tribofe import sweep as _sweep
+from .errors import InputError, Interrupted, NumericalError, OutputError, TribofeError
+
+__all__ = [
+    "Scene",
+    "check",
+    "slide",
+    "precursors",
+    "sweep",
+    "converge",
+    "CheckResult",
+    "CheckCase",
+    "SlideResult",
+    "TribofeError",
+    "InputError",
+    "NumericalError",
+    "OutputError",
+    "Interrupted",
+    "errors",
+    "__version__",
+]
+
+
+def _table(columns: Dict[str, Any]):
+    """A pandas DataFrame when pandas is installed, else the dict of arrays itself."""
+    try:
+        import pandas as pd
+    except ImportError:
+        return columns
+    return pd.DataFrame(columns)
+
+
+def _progress(progress, desc: str):
+    """The progress callback: ``True`` draws a tqdm bar when tqdm is installed, a callable
+    gets the done fraction in [0, 1], ``None``/``False`` stays silent. Returns (callback, close)."""
+    if callable(progress):
+        return progress, lambda: None
+    if not progress:
+        return None, lambda: None
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        return None, lambda: None
+    bar = tqdm(total=1000, desc=desc, unit="‰", leave=False)
+
+    def update(frac: float) -> None:
+        bar.n = int(1000 * min(max(frac, 0.0), 1.0))
+        bar.refresh()
+
+    return update, bar.close
+
+
+@dataclass(frozen=True)
+class CheckCase:
+    """One load case of the bonded check; stresses in units of the mean pressure N/L."""
+
+    fn_ratio: float
+    N_N_per_m: float
+    F_N_per_m: float
+    tilt_rad: float
+    x_over_L: np.ndarray
+    p_over_pmean: np.ndarray
+    tau_over_pmean: np.ndarray
+    p_model: np.ndarray
+    tau_model: np.ndarray
+    p_extrap: np.ndarray
+    tau_extrap: np.ndarray
+    p_corrected: np.ndarray
+    metrics: Dict[str, Any]
+
+    def profile(self):
+        """The interface profile as a table (DataFrame with pandas), the columns of
+        ``profile_FN<ratio>.csv``."""
+        return _table(
+            {
+                k: getattr(self, k)
+                for k in (
+                    "x_over_L",
+                    "p_over_pmean",
+                    "tau_over_pmean",
+                    "p_model",
+                    "tau_model",
+                    "p_extrap",
+                    "tau_extrap",
+                    "p_corrected",
+                )
+            }
+        )
+
+    def __repr__(self) -> str:
+        m = self.metrics
+        return (
+            f"CheckCase(F/N={self.fn_ratio}, {len(self.x_over_L)} interface nodes, interior slope "
+            f"{m['slope_interior']:.5f} (model {m['slope_model']:.5f}, corrected {m['slope_corrected']:.5f}), "
+            f"tau(0)={m['tau_center']:.5f} N/L)"
+        )
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """The paper's bonded check: one :class:`CheckCase` per F/N."""
+
+    scene: Scene
+    cases: List[CheckCase]
+    n_nodes: int
+    n_elements: int
+    balance_error: float
+
+    def summary(self):
+        """One row per F/N with the interior slopes, tau(0) and edge-zone widths (in units of t)."""
+        rows: Dict[str, list] = {}
+        for c in self.cases:
+            row = {"fn_ratio": c.fn_ratio, "N_N_per_m": c.N_N_per_m, "F_N_per_m": c.F_N_per_m}
+            for k, v in c.metrics.items():
+                if isinstance(v, list):
+                    for side, x in zip(("left", "right"), v):
+                        row[f"{k}_{side}"] = np.nan if x is None else x
+                else:
+                    row[k] = v
+            for k, v in row.items():
+                rows.setdefault(k, []).append(v)
+        return _table({k: np.asarray(v) for k, v in rows.items()})
+
+    def __repr__(self) -> str:
+        lines = [f"CheckResult({self.scene!r}, {self.n_nodes} nodes, {self.n_elements} elements, balance {self.balance_error:.1e})"]
+        lines += [f"  {c!r}" for c in self.cases]
+        return "\n".join(lines)
+
+
+def check(scene: Optional[Scene] = None) -> CheckResult:
+    """The paper's bonded check (fig. 2) on ``scene`` (default: the paper's).
+
+    Raises :class:`InputError` for a bad scene, :class:`NumericalError` for a refused solve.
+    """
+    scene = scene if scene is not None else Scene()
+    raw = _check(scene)
+    cases = [CheckCase(**c) for c in raw["cases"]]
+    return CheckResult(scene, cases, raw["n_nodes"], raw["n_elements"], raw["balance_error"])
+
+
+@dataclass(frozen=True)
+class SlideResult:
+    """A frictional run: the loading curve and events as tables, the interface states as
+    (states x nodes) arrays (``states['p_force_N_per_m']`` etc.; ``state_code`` 0 stick,
+    1 slip, 2 open)."""
+
+    law: str
+    mu_s: float
+    mu_d: float
+    n_force_N_per_m: float
+    x_over_L: np.ndarray
+    width_m: np.ndarray
+    loading: Any
+    events: Any
+    states: Dict[str, np.ndarray]
+    sliding_events: int
+    max_violation: float
+    condense_s: float
+    events_s: float
+
+    def __repr__(self) -> str:
+        n_ev = len(self.events["event"]) if "event" in self.events else 0
+        return (
+            f"SlideResult({self.law}, {len(self.x_over_L)} interface nodes, {n_ev} events, "
+            f"{self.sliding_events} whole slips, largest violation {self.max_violation:.1e} of N/n, "
+            f"{self.condense_s + self.events_s:.3f} s)"
+        )
+
+
+def slide(
+    scene: Optional[Scene] = None,
+    law: str = "coulomb",
+    *,
+    mu: Optional[float] = None,
+    mu_s: Optional[float] = None,
+    mu_d: Optional[float] = None,
+    r: Optional[float] = None,
+    g: Optional[float] = None,
+    rule: str = "paper",
+    dc: Optional[float] = None,
+    n_force: float = 1.0,
+    x_max: Optional[float] = None,
+    cycles: int = 10,
+    max_events: int = 50_000,
+    newton: bool = False,
+    keep_states: bool = True,
+    progress: Any = True,
+) -> SlideResult:
+    """The frictional interface under the normal force ``n_force`` (N/m), then the plate's
+    drive X (m) at height H, solved event by event (as ``tribofe slide``).
+
+    ``law``: ``"coulomb"`` (``mu``), ``"static-kinetic"`` (``mu_s``, ``mu_d`` or the paper's
+    ``r``, ``g``; ``rule`` ``"paper"`` or ``"overdamped"``) or ``"slip-weakening"`` (plus
+    ``dc``, m). The interrupt key stops the run within an event (:class:`KeyboardInterrupt`).
+    ``progress``: True for a tqdm bar (when tqdm is installed), a callable for the fraction
+    done, False for silence.
+    """
+    cb, close = _progress(progress, f"slide {law}")
+    try:
+        raw = _slide(
+            scene if scene is not None else Scene(),
+            law,
+            mu=mu,
+            mu_s=mu_s,
+            mu_d=mu_d,
+            r=r,
+            g=g,
+            rule=rule,
+            dc=dc,
+            n_force=n_force,
+            x_max=x_max,
+            cycles=cycles,
+            max_events=max_events,
+            newton=newton,
+            keep_states=keep_states,
+            progress=cb,
+        )
+    finally:
+        close()
+    raw["loading"] = _table(raw["loading"])
+    raw["events"] = _table(raw["events"])
+    return SlideResult(**raw)
+
+
+def sweep(
+    scene: Optional[Scene] = None,
+    *,
+    length: Any = None,
+    thickness: Any = None,
+    height: Any = None,
+    young: Any = None,
+    poisson: Any = None,
+    converged: bool = True,
+    friction: Optional[tuple] = None,
+    rule: str = "paper",
+    cycles: int = 1,
+    progress: Any = True,
+):
+    """The bonded check over the product of the given values (each a number, a list, or the
+    command's text ``"a:b:n"`` / ``"a:b:ng"`` for n linear / geometric points), as
+    ``tribofe sweep``: one row per point and F/N with the columns of ``sweep.csv``
+    (a pandas DataFrame when pandas is installed, else a dict of arrays).
+    ``friction=(mu_s, mu_d)`` also runs the frictional interface at each point."""
+    cb, close = _progress(progress, "sweep")
+    try:
+        cols = _sweep(
+            scene if scene is not None else Scene(),
+            length=length,
+            thickness=thickness,
+            height=height,
+            young=young,
+            poisson=poisson,
+            converged=converged,
+            friction=friction,
+            rule=rule,
+            cycles=cycles,
+            progress=cb,
+        )
+    finally:
+        close()
+    return _table(cols)
+
+
+def converge(
+    scene: Optional[Scene] = None,
+    *,
+    elements: Any = ("qua4",),
+    families: Any = ("uniform", "graded"),
+    n_thick: Any = (1, 2, 4, 8, 16, 32, 64),
+    fn_ratio: float = 0.82,
+    parallel: bool = True,
+    target: Optional[float] = None,
+    progress: Any = True,
+):
+    """Mesh and element convergence of the check (``tribofe converge``): returns
+    ``(table, summary)``, the rows of ``convergence.csv`` and the printed reading (orders,
+    edge widths, the cheapest run reaching ``target``, an edge-zone error in units of N/L)."""
+    cb, close = _progress(progress, "converge")
+    try:
+        cols = _converge(
+            scene if scene is not None else Scene(),
+            elements=list(elements),
+            families=list(families),
+            n_thick=list(n_thick),
+            fn_ratio=fn_ratio,
+            parallel=parallel,
+            target=target,
+            progress=cb,
+        )
+    finally:
+        close()
+    summary = cols.pop("summary")
+    return _table(cols), summary
+
+
+class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
+    """The paper's 1D precursor model."""
+
+    @staticmethod
+    def model(r: float = 0.9, g: float = 0.35, events: Optional[int] = None) -> Dict[str, Any]:
+        """The paper's analytic event iteration for r = mu_d/mu_s and g = 6 mu_d H/L: the
+        events (forces in units of mu_s N, arrest x in units of L) as a table under
+        ``"events"``, with ``n`` (precursors), ``F_1`` and ``F_max``. ``events`` defaults
+        to n + 1 (the precursors and the first whole slip)."""
+        raw = _precursors_model(r, g, events)
+        cols = (
+            "event",
+            "F_over_mu_s_N",
+            "Fc_over_mu_s_N",
+            "x_arrest_over_L",
+            "F_relaxed_over_mu_s_N",
+            "stick_slip",
+        )
+        table = _table({k: np.asarray(raw.pop(k)) for k in cols})
+        return {**raw, "events": table}
