@@ -187,7 +187,7 @@ def simulate(mesh, K, m, dt, steps, tau0, w, sigma0=SIGMA0, mu_s=MU_S, mu_d=MU_D
         # C^{n+1/2} = 1/2 v^{n+1/2} M v^{n+1/2} + 1/2 u^{n+1} K u^n, and
         # C^{n+1/2} - C^{n-1/2} = F^n . (u^{n+1} - u^{n-1}) / 2, F^n the external force.
         W = D = 0.0
-        en = {k: [] for k in ("C", "W", "D", "kin", "strain", "corr_bound")}
+        en = {k: [] for k in ("C", "W", "D", "W_half", "D_half", "kin", "strain", "corr_bound")}
     snaps = {}
     for n in range(steps + 1):
         f = -(K @ u)
@@ -232,6 +232,8 @@ def simulate(mesh, K, m, dt, steps, tau0, w, sigma0=SIGMA0, mu_s=MU_S, mu_d=MU_D
             en["D"].append(D + 0.5 * dD)
             W += dW
             D += dD
+            en["W_half"].append(W)  # work to time n + 1/2, the partner of C^{n+1/2}
+            en["D_half"].append(D)
             en["C"].append(C)
         u = u_new
         d = d + dt * np.abs(v[bx])
