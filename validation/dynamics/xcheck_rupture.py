@@ -179,6 +179,7 @@ def simulate(mesh, K, m, dt, steps, tau0, w, sigma0=SIGMA0, mu_s=MU_S, mu_d=MU_D
     d = np.zeros(bx.size)
     d_hist = np.empty((steps + 1, bx.size))
     slipping_hist = np.zeros(steps + 1, dtype=np.int64)
+    fd_hist = np.empty(steps + 1)
     min_sigma = math.inf
     T = None
     fext = np.zeros(mesh.ndof)
@@ -198,6 +199,7 @@ def simulate(mesh, K, m, dt, steps, tau0, w, sigma0=SIGMA0, mu_s=MU_S, mu_d=MU_D
         strength = mu * sigma
         T = np.where(np.abs(tstar) <= strength, tstar, strength * np.sign(tstar))
         d_hist[n] = d
+        fd_hist[n] = float(np.dot(tau0 - T, w))
         slipping_hist[n] = int(np.count_nonzero(np.abs(tstar) > strength))
         if n in snapshots:
             snaps[n] = {"d": d.copy(), "T": T.copy(), "vx": v[bx].copy(), "sigma": sigma.copy()}
@@ -238,7 +240,7 @@ def simulate(mesh, K, m, dt, steps, tau0, w, sigma0=SIGMA0, mu_s=MU_S, mu_d=MU_D
         u = u_new
         d = d + dt * np.abs(v[bx])
     out = {"d_hist": d_hist, "T": T, "min_sigma": min_sigma, "u": u, "v": v,
-           "slipping": slipping_hist, "snapshots": snaps}
+           "slipping": slipping_hist, "snapshots": snaps, "fd_hist": fd_hist}
     if track_energy:
         out["energy"] = {k: np.array(val) for k, val in en.items()}
     return out
@@ -273,15 +275,24 @@ def cohesive_zone_estimate(dc=DC, sigma0=SIGMA0, mu_s=MU_S, mu_d=MU_D):
     return 9 * math.pi / 32 * G * dc / ((1 - NU) * (mu_s - mu_d) * sigma0)
 
 
-def measured_cohesive_zone(x, d, dc, h):
-    """Length of the process zone on x > 0 at one instant: from the rightmost node with d >= Dc
-    (weakening complete) to the tip (rightmost node with d >= Dc/100), nan if none."""
+def measured_cohesive_zone(x, d_hist, dc, h, lo=FRONT_X[0], hi=FRONT_X[1]):
+    """Process-zone length of the x > 0 front: at each step whose tip (rightmost node with
+    d >= Dc/100) lies in [lo, hi], the distance from the rightmost node with d >= Dc (weakening
+    complete) to the tip. Returns (mean, min, max, count), nan when no step qualifies."""
     right = x >= 0
-    full = np.nonzero(right & (d >= dc))[0]
-    tip = np.nonzero(right & (d >= dc / 100.0))[0]
-    if full.size == 0 or tip.size == 0:
-        return math.nan
-    return float(x[tip.max()] - x[full.max()])
+    vals = []
+    for d in d_hist:
+        tip = np.nonzero(right & (d >= dc / 100.0))[0]
+        full = np.nonzero(right & (d >= dc))[0]
+        if tip.size == 0 or full.size == 0:
+            continue
+        xt = x[tip.max()]
+        if lo - XTOL * h <= xt <= hi + XTOL * h:
+            vals.append(xt - x[full.max()])
+    if not vals:
+        return math.nan, math.nan, math.nan, 0
+    v = np.array(vals)
+    return float(v.mean()), float(v.min()), float(v.max()), v.size
 
 
 def run(h, S, dc, t_end, sigma0=SIGMA0, track_energy=False, snapshots=(), **kw):
@@ -301,6 +312,7 @@ def run(h, S, dc, t_end, sigma0=SIGMA0, track_energy=False, snapshots=(), **kw):
     res.update(mesh=mesh, K=K, m=m, dt=dt, steps=steps, w=w, xb=xb, tau0=tau0, t_arr=t_arr,
                c_p=c_p, c_s=c_s)
     res["force_drop"] = float(np.sum((tau0 - res["T"]) * w))
+    res["force_drop_hist"] = res.pop("fd_hist")
     res["front_speed"], res["front_npts"] = front_speed(xb, t_arr, h=h)
     return res
 
@@ -357,10 +369,13 @@ def main(argv=None):
     print(f"  c_p = {c_p:.5f}, c_s = {c_s:.5f}, c_R = {c_r:.5f} m/s")
     print(f"  front speed (x in [0.03, 0.08] m, {res['front_npts']} nodes) = {fs:.5f} m/s "
           f"= {fs / c_s:.4f} c_s = {fs / c_r:.4f} c_R; tip at t_end x = {tip:.4f} m")
-    print(f"  force drop at t_end = {res['force_drop']:.9e} N/m; min sigma = "
-          f"{res['min_sigma']:.6f} Pa")
+    last = res["force_drop_hist"][-10:]
+    print(f"  force drop at t_end = {res['force_drop']:.9e} N/m (last 10 steps: "
+          f"{last.min():.4e} .. {last.max():.4e}); min sigma = {res['min_sigma']:.6f} Pa")
+    cz = measured_cohesive_zone(xb, res["d_hist"], a.dc, a.h)
     print(f"  cohesive zone estimate (9 pi/32) G Dc/((1-nu)(tau_s-tau_d)) = {lam0:.4e} m "
-          f"= {lam0 / a.h:.2f} h")
+          f"= {lam0 / a.h:.2f} h; measured (tip to d = D_c, tip in [0.03, 0.08] m, "
+          f"{cz[3]} steps) mean {cz[0]:.4e} m, range {cz[1]:.4e} .. {cz[2]:.4e} m")
     print(f"  wrote {os.path.join(a.out, 'arrival.csv')} ({int(reached.sum())} rows), "
           f"{os.path.join(a.out, 'summary.csv')}")
     return 0
