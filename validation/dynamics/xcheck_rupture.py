@@ -340,14 +340,23 @@ def main(argv=None):
     ap.add_argument("--t-end", type=float, default=0.1, help="end time, s (default 0.1)")
     ap.add_argument("--out", required=True, help="output folder (created)")
     ap.add_argument("--quiet", action="store_true")
+    ap.add_argument("--symmetric-fault", action="store_true",
+                    help="leave the spec: base nodes free in y, strength mu(d) sigma0 (the "
+                    "symmetric-fault half-space of Andrews), for reference runs only")
+    ap.add_argument("--sigma-fixed", action="store_true",
+                    help="leave the spec: keep u_y = 0 on the base but use mu(d) sigma0 as the "
+                    "strength (no normal-stress coupling), for reference runs only")
     a = ap.parse_args(argv)
     for name, val in (("--h", a.h), ("--dc", a.dc), ("--t-end", a.t_end)):
         if not (math.isfinite(val) and val > 0):
             ap.error(f"{name} {val}: must be a positive number")
     if not (math.isfinite(a.S) and a.S > 0):
         ap.error(f"--S {a.S}: must be positive (tau0 between mu_d sigma0 and mu_s sigma0)")
+    if a.symmetric_fault and a.sigma_fixed:
+        ap.error("--symmetric-fault and --sigma-fixed: choose one")
     try:
-        res = run(a.h, a.S, a.dc, a.t_end, snapshots=())
+        res = run(a.h, a.S, a.dc, a.t_end, base_y_free=a.symmetric_fault,
+                  sigma_fixed=a.sigma_fixed)
     except ValueError as e:
         ap.error(str(e))
     write_outputs(res, a.out)
@@ -363,7 +372,9 @@ def main(argv=None):
     tip = xb[reached].max() if reached.any() else math.nan
     fs = res["front_speed"]
     lam0 = cohesive_zone_estimate(dc=a.dc)
-    print(f"rupture xcheck: h = {a.h:g} m ({res['mesh'].ndof} dofs), S = {a.S:g}, "
+    variant = (" [NOT the spec: symmetric-fault base]" if a.symmetric_fault else
+               " [NOT the spec: strength mu(d) sigma0]" if a.sigma_fixed else "")
+    print(f"rupture xcheck{variant}: h = {a.h:g} m ({res['mesh'].ndof} dofs), S = {a.S:g}, "
           f"D_c = {a.dc:g} m, dt = {res['dt']:.6e} s, steps = {res['steps']}, "
           f"{res['wall_s']:.2f} s wall")
     print(f"  c_p = {c_p:.5f}, c_s = {c_s:.5f}, c_R = {c_r:.5f} m/s")
