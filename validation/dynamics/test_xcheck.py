@@ -266,3 +266,38 @@ def test_spec_scene_outputs(tmp_path):
     assert summ[0] == "force_drop_n_per_m,min_sigma_pa,steps,dt_s,front_speed_m_per_s"
     vals = [float(s) for s in summ[1].split(",")]
     assert all(math.isfinite(v) for v in vals) and vals[2] == 414 and vals[0] > 0
+
+
+# ---------------------------------------------------------------- compare.py
+
+
+def _write_run(folder, arrivals, summary):
+    folder.mkdir()
+    (folder / "arrival.csv").write_text(
+        "x_m,t_arrival_s\n" + "".join(f"{x!r},{t!r}\n" for x, t in arrivals))
+    (folder / "summary.csv").write_text(
+        "force_drop_n_per_m,min_sigma_pa,steps,dt_s,front_speed_m_per_s\n"
+        + ",".join(repr(v) for v in summary) + "\n")
+
+
+def test_compare_tolerances(tmp_path, capsys):
+    """compare.py: 0 within tolerance, 1 for an arrival 1.5 dt off or a force drop 2e-6 off,
+    2 for a missing file or different steps."""
+    import compare
+
+    dt = 1e-3
+    arr = [(0.001 * i, 0.01 + 0.002 * i) for i in range(60)]
+    base = (0.04, 0.4, 100, dt, 0.5)
+    _write_run(tmp_path / "a", arr, base)
+    _write_run(tmp_path / "b", [(x, t + 0.5 * dt) for x, t in arr], base)
+    _write_run(tmp_path / "c", [(x, t + (1.5 * dt if i == 7 else 0)) for i, (x, t) in
+                                enumerate(arr)], base)
+    _write_run(tmp_path / "d", arr, (0.04 * (1 + 2e-6),) + base[1:])
+    _write_run(tmp_path / "e", arr, base[:2] + (101,) + base[3:])
+    a = str(tmp_path / "a")
+    assert compare.main([a, str(tmp_path / "b")]) == 0
+    assert compare.main([a, str(tmp_path / "c")]) == 1
+    assert "1.5" in capsys.readouterr().out
+    assert compare.main([a, str(tmp_path / "d")]) == 1
+    assert compare.main([a, str(tmp_path / "e")]) == 2
+    assert compare.main([a, str(tmp_path / "missing")]) == 2
