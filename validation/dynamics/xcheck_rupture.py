@@ -295,11 +295,11 @@ def measured_cohesive_zone(x, d_hist, dc, h, lo=FRONT_X[0], hi=FRONT_X[1]):
     return float(v.mean()), float(v.min()), float(v.max()), v.size
 
 
-def run(h, S, dc, t_end, sigma0=SIGMA0, track_energy=False, snapshots=(), **kw):
+def run(h, S, dc, t_end, sigma0=SIGMA0, track_energy=False, snapshots=(), courant=0.5, **kw):
     c_p, c_s = wave_speeds()
     mesh = centred_block(h)
     K, m = assemble(mesh, plane_strain_D(), RHO)
-    dt = 0.5 * h / c_p
+    dt = courant * h / c_p  # the spec: 0.5 h / c_p
     steps = int(round(t_end / dt))
     w = tributary_widths(mesh)
     xb = mesh.x[mesh.base]
@@ -343,6 +343,8 @@ def main(argv=None):
     ap.add_argument("--symmetric-fault", action="store_true",
                     help="leave the spec: base nodes free in y, strength mu(d) sigma0 (the "
                     "symmetric-fault half-space of Andrews), for reference runs only")
+    ap.add_argument("--courant", type=float, default=0.5,
+                    help="dt = COURANT h / c_p; the spec's 0.5 is the default, others leave it")
     ap.add_argument("--sigma-fixed", action="store_true",
                     help="leave the spec: keep u_y = 0 on the base but use mu(d) sigma0 as the "
                     "strength (no normal-stress coupling), for reference runs only")
@@ -354,9 +356,11 @@ def main(argv=None):
         ap.error(f"--S {a.S}: must be positive (tau0 between mu_d sigma0 and mu_s sigma0)")
     if a.symmetric_fault and a.sigma_fixed:
         ap.error("--symmetric-fault and --sigma-fixed: choose one")
+    if not (math.isfinite(a.courant) and 0 < a.courant <= 0.5):
+        ap.error(f"--courant {a.courant}: must be in (0, 0.5] (0.5 is the spec's)")
     try:
         res = run(a.h, a.S, a.dc, a.t_end, base_y_free=a.symmetric_fault,
-                  sigma_fixed=a.sigma_fixed)
+                  sigma_fixed=a.sigma_fixed, courant=a.courant)
     except ValueError as e:
         ap.error(str(e))
     write_outputs(res, a.out)
@@ -374,6 +378,8 @@ def main(argv=None):
     lam0 = cohesive_zone_estimate(dc=a.dc)
     variant = (" [NOT the spec: symmetric-fault base]" if a.symmetric_fault else
                " [NOT the spec: strength mu(d) sigma0]" if a.sigma_fixed else "")
+    if a.courant != 0.5:
+        variant += f" [NOT the spec: dt = {a.courant:g} h/c_p]"
     print(f"rupture xcheck{variant}: h = {a.h:g} m ({res['mesh'].ndof} dofs), S = {a.S:g}, "
           f"D_c = {a.dc:g} m, dt = {res['dt']:.6e} s, steps = {res['steps']}, "
           f"{res['wall_s']:.2f} s wall")
