@@ -36,11 +36,12 @@ fn to_py(e: Error) -> PyErr {
 
 /// Runs `work` without the GIL. Every `poll` (the run's progress callback) takes the GIL back
 /// briefly: a pending interrupt key cancels the run, and the Python callback gets the fraction.
+/// Returns the result and the wall time of `work` itself (the Rust core), s.
 fn run_detached<T: Send>(
     py: Python<'_>,
     progress: Option<Py<PyAny>>,
     work: impl FnOnce(&Cancel, &(dyn Fn(f64) + Sync)) -> tribofe::Result<T> + Send,
-) -> PyResult<T> {
+) -> PyResult<(T, f64)> {
     let cancel = Cancel::new();
     let pending: std::sync::Mutex<Option<PyErr>> = std::sync::Mutex::new(None);
     let poll = |frac: f64| {
@@ -55,7 +56,10 @@ fn run_detached<T: Send>(
             }
         })
     };
-    let result = py.detach(|| work(&cancel, &poll));
+    let result = py.detach(|| {
+        let clock = std::time::Instant::now();
+        work(&cancel, &poll).map(|r| (r, clock.elapsed().as_secs_f64()))
+    });
     if let Some(err) = pending.lock().unwrap_or_else(|e| e.into_inner()).take() {
         return Err(err); // KeyboardInterrupt, or the progress callback's own exception
     }
@@ -234,7 +238,7 @@ fn arr<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
 fn check<'py>(py: Python<'py>, scene: Option<PyRef<'_, Scene>>) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let opts = tribofe::linalg::solve::SolverOptions::default();
-    let (res, _model) = run_detached(py, None, |cancel, _| {
+    let ((res, _model), core_s) = run_detached(py, None, |cancel, _| {
         cancel.check()?;
         let r = tribofe::studies::check::run(&scene, &opts)?;
         r.0.self_check()?;
@@ -276,6 +280,7 @@ fn check<'py>(py: Python<'py>, scene: Option<PyRef<'_, Scene>>) -> PyResult<Boun
     out.set_item("n_nodes", res.n_nodes)?;
     out.set_item("n_elements", res.n_elements)?;
     out.set_item("balance_error", res.balance_error())?;
+    out.set_item("core_s", core_s)?;
     Ok(out)
 }
 
@@ -361,7 +366,7 @@ fn slide<'py>(
     if newton && !law.weakens() {
         return Err(to_py(Error::input("newton", "newton cannot act without law='slip-weakening'")));
     }
-    let res = run_detached(py, progress, |cancel, poll| {
+    let (res, core_s) = run_detached(py, progress, |cancel, poll| {
         let o = tribofe::studies::slide::SlideOptions {
             law,
             n_force,
@@ -375,7 +380,9 @@ fn slide<'py>(
         };
         tribofe::studies::slide::run(&scene, &o, &|f| poll(f))
     })?;
-    slide_result(py, &res)
+    let out = slide_result(py, &res)?;
+    out.set_item("core_s", core_s)?;
+    Ok(out)
 }
 
 fn slide_result<'py>(
@@ -403,6 +410,10 @@ fn slide_result<'py>(
     out.set_item("x_over_L", arr(py, &c.x.iter().map(|x| x / c.l).collect::<Vec<_>>()))?;
     out.set_item("width_m", arr(py, &c.w))?;
     out.set_item("loading", loading)?;
+    // The drive phase as the paper's fig. 4: (F^c, F) / (mu_s N), each instability a drop.
+    let (fc, f): (Vec<f64>, Vec<f64>) = tribofe::report::slide::fe_curve(res).into_iter().unzip();
+    out.set_item("curve_Fc_over_mu_s_N", arr(py, &fc))?;
+    out.set_item("curve_F_over_mu_s_N", arr(py, &f))?;
     out.set_item("events", events)?;
     out.set_item("sliding_events", run.sliding_events)?;
     out.set_item("max_violation", run.max_violation)?;
@@ -436,8 +447,8 @@ fn slide_result<'py>(
     Ok(out)
 }
 
-/// A CSV table (header line, then rows) as a dict of columns: numbers as float arrays, the
-/// rest as lists of strings.
+/// A CSV table (header line, then rows) as a dict of columns: whole numbers as int arrays,
+/// numbers as float arrays (empty cells NaN), the rest as lists of strings.
 fn columns<'py>(py: Python<'py>, csv: &str) -> PyResult<Bound<'py, PyDict>> {
     let mut lines = csv.lines();
     let names: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
@@ -446,7 +457,10 @@ fn columns<'py>(py: Python<'py>, csv: &str) -> PyResult<Bound<'py, PyDict>> {
     for (j, name) in names.iter().enumerate() {
         let cells: Vec<&str> = rows.iter().map(|r| r.get(j).copied().unwrap_or("")).collect();
         let ints: Option<Vec<i64>> = cells.iter().map(|c| c.parse::<i64>().ok()).collect();
-        let nums: Option<Vec<f64>> = cells.iter().map(|c| c.parse::<f64>().ok()).collect();
+        // An empty cell is a value the command leaves undefined (e.g. an edge zone that does
+        // not exist): NaN in a numeric column.
+        let nums: Option<Vec<f64>> =
+            cells.iter().map(|c| if c.is_empty() { Some(f64::NAN) } else { c.parse::<f64>().ok() }).collect();
         match (ints, nums) {
             (Some(v), _) if !v.is_empty() => out.set_item(*name, PyArray1::from_vec(py, v))?,
             (_, Some(v)) => out.set_item(*name, arr(py, &v))?,
@@ -486,6 +500,10 @@ fn precursors_model<'py>(
     out.set_item("x_arrest_over_L", arr(py, &ev.iter().map(|e| e.x).collect::<Vec<_>>()))?;
     out.set_item("F_relaxed_over_mu_s_N", arr(py, &ev.iter().map(|e| e.fstar).collect::<Vec<_>>()))?;
     out.set_item("stick_slip", ev.iter().map(|e| e.stick_slip).collect::<Vec<_>>())?;
+    // The loading curve of the paper's fig. 4: (F^c, F) / (mu_s N) with each event's drop.
+    let (fc, f): (Vec<f64>, Vec<f64>) = pm::loading_curve(&ev).into_iter().unzip();
+    out.set_item("curve_Fc_over_mu_s_N", arr(py, &fc))?;
+    out.set_item("curve_F_over_mu_s_N", arr(py, &f))?;
     Ok(out)
 }
 
@@ -543,7 +561,7 @@ fn sweep<'py>(
         }
         None => None,
     };
-    let points = run_detached(py, progress, |cancel, poll| {
+    let (points, _) = run_detached(py, progress, |cancel, poll| {
         let o = sw::SweepOptions { converged, friction, cancel: cancel.clone(), ..Default::default() };
         let done = std::sync::atomic::AtomicUsize::new(0);
         sw::run(&scene, &axes, &o, &|_| {
@@ -576,7 +594,7 @@ fn converge<'py>(
     let families =
         families.iter().map(|f| f.parse()).collect::<tribofe::Result<Vec<cv::Family>>>().map_err(to_py)?;
     let total = elements.len() * families.len() * n_thick.len();
-    let study = run_detached(py, progress, |cancel, poll| {
+    let (study, _) = run_detached(py, progress, |cancel, poll| {
         let o = cv::StudyOptions {
             elements,
             families,

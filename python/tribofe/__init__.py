@@ -129,6 +129,7 @@ class CheckResult:
     n_nodes: int
     n_elements: int
     balance_error: float
+    core_s: float = field(default=0.0, compare=False)
 
     def summary(self):
         """One row per F/N with the interior slopes, tau(0) and edge-zone widths (in units of t)."""
@@ -159,7 +160,7 @@ def check(scene: Optional[Scene] = None) -> CheckResult:
     scene = scene if scene is not None else Scene()
     raw = _check(scene)
     cases = [CheckCase(**c) for c in raw["cases"]]
-    return CheckResult(scene, cases, raw["n_nodes"], raw["n_elements"], raw["balance_error"])
+    return CheckResult(scene, cases, raw["n_nodes"], raw["n_elements"], raw["balance_error"], raw["core_s"])
 
 
 @dataclass(frozen=True)
@@ -175,12 +176,15 @@ class SlideResult:
     x_over_L: np.ndarray
     width_m: np.ndarray
     loading: Any
+    curve_Fc_over_mu_s_N: np.ndarray
+    curve_F_over_mu_s_N: np.ndarray
     events: Any
     states: Dict[str, np.ndarray]
     sliding_events: int
     max_violation: float
     condense_s: float
     events_s: float
+    core_s: float = field(default=0.0, compare=False)
 
     def __repr__(self) -> str:
         n_ev = len(self.events["event"]) if "event" in self.events else 0
