@@ -10,6 +10,7 @@ use tribofe::interface::law::{Law, Rule};
 use tribofe::scene::Scene;
 use tribofe::studies::precursors_fe::{fig4, fig5, CellRun};
 use tribofe::studies::slide::{coefficients_from_rg, run, SlideOptions};
+use tribofe::Cancel;
 
 /// A block of thickness t with h = t and 2 elements through the thickness.
 fn thin(t: f64) -> Scene {
@@ -25,7 +26,7 @@ fn paper_rule_first_precursor_and_peak_near_the_analytic_iteration() {
     let sc = thin(0.004);
     let t_over_l = 0.004 / sc.block.length;
     for (r, g) in [(0.9, 0.35), (0.8, 0.5)] {
-        let f = fig4(&sc, r, g, 2).unwrap().remove(0).unwrap();
+        let f = fig4(&sc, r, g, 2, &Cancel::new()).unwrap().remove(0).unwrap();
         assert_eq!(f.rule, Rule::Paper);
         let c = f.cmp;
         let (f1, x1) = (c.f1_fe.unwrap(), c.x1_fe.unwrap());
@@ -37,13 +38,13 @@ fn paper_rule_first_precursor_and_peak_near_the_analytic_iteration() {
 
 #[test]
 fn paper_rule_states_are_admissible() {
-    let f = fig4(&thin(0.004), 0.9, 0.35, 2).unwrap().remove(0).unwrap();
+    let f = fig4(&thin(0.004), 0.9, 0.35, 2, &Cancel::new()).unwrap().remove(0).unwrap();
     assert!(f.worst_violation < 1e-8, "violation {}", f.worst_violation);
     assert!((f.cmp.f_max_fe.unwrap() / f.cmp.f_max - 1.0).abs() < 0.07);
     // An open trailing node that the relaxation closes lands where it is: it once was stuck
     // back at its position from before the event, cycled open/closed, and a state was
     // recorded penetrating the flat by 0.31 of the gap scale.
-    let f = fig4(&thin(0.004), 0.5, 0.6, 2).unwrap().remove(0).unwrap();
+    let f = fig4(&thin(0.004), 0.5, 0.6, 2, &Cancel::new()).unwrap().remove(0).unwrap();
     assert!(f.worst_violation < 1e-8, "violation {}", f.worst_violation);
 }
 
@@ -105,7 +106,7 @@ fn whole_slip_past_an_open_corner_and_admissible_creep() {
 /// 0.12 below the paper's line g = (1 - r)/2 (the measured 20 x 20 boundary lies at most
 /// 0.09 below it), and at least one more than 0.1 above it.
 fn fe_fig5_on_the_paper_mesh() {
-    let cells = fig5(&Scene::default(), 5, &[Rule::Paper], 2000, &|| {}).unwrap();
+    let cells = fig5(&Scene::default(), 5, &[Rule::Paper], 2000, &Cancel::new(), &|| {}).unwrap();
     assert_eq!(cells.len(), 25);
     for c in &cells {
         let run = c.runs[0].unwrap();
@@ -214,13 +215,13 @@ fn richardson_order_and_limit() {
 /// t/L = 0.01 (1.6 % measured, validation/precursors), and is undefined, not 0, on a block
 /// with no node farther than 5 t from both ends (L = 5 cm, t = 2 cm).
 fn interior_pressure_check_defined_only_with_an_interior() {
-    let f = fig4(&thin(0.004), 0.9, 0.35, 1).unwrap().remove(0).unwrap();
+    let f = fig4(&thin(0.004), 0.9, 0.35, 1, &Cancel::new()).unwrap().remove(0).unwrap();
     let p = f.fields.pressure.unwrap();
     assert!(p > 0.0 && p < 0.05, "{p}");
     let mut sc = Scene::default();
     sc.block.length = 0.05;
     sc.block.thickness = 0.02;
-    let f = fig4(&sc, 0.9, 0.35, 1).unwrap().remove(0).unwrap();
+    let f = fig4(&sc, 0.9, 0.35, 1, &Cancel::new()).unwrap().remove(0).unwrap();
     assert!(f.fields.pressure.is_none(), "{:?}", f.fields.pressure);
 }
 

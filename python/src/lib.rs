@@ -615,6 +615,131 @@ fn converge<'py>(
     Ok(out)
 }
 
+fn comparison<'py>(
+    py: Python<'py>,
+    c: &tribofe::studies::slide::PaperComparison,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("r", c.r)?;
+    d.set_item("g", c.g)?;
+    d.set_item("n_model", c.n)?;
+    d.set_item("F_1_model", c.f1)?;
+    d.set_item("x_1_model", c.x1)?;
+    d.set_item("F_max_model", c.f_max)?;
+    d.set_item("n_fe", c.n_fe)?;
+    d.set_item("n_fe_long", c.n_fe_long)?;
+    d.set_item("n_fe_advancing", c.n_fe_advancing)?;
+    d.set_item("F_1_fe", c.f1_fe)?;
+    d.set_item("x_1_fe", c.x1_fe)?;
+    d.set_item("F_max_fe", c.f_max_fe)?;
+    Ok(d)
+}
+
+/// The paper's fig. 4 from the frictional FE, one dict per static-kinetic rule (paper,
+/// overdamped): the comparison with the model (forces in units of mu_s N, x in units of L),
+/// the precursors' arrest positions, the peaks, and the whole run as `slide` returns it.
+#[pyfunction]
+#[pyo3(signature = (scene=None, r=0.9, g=0.35, cycles=1, progress=None))]
+fn precursors_fe_fig4<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    r: f64,
+    g: f64,
+    cycles: usize,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let (runs, _) = run_detached(py, progress, |cancel, poll| {
+        let runs = tribofe::studies::precursors_fe::fig4(&scene, r, g, cycles, cancel)?;
+        poll(1.0);
+        Ok(runs)
+    })?;
+    let out = PyList::empty(py);
+    for run in runs {
+        let f = run.map_err(to_py)?;
+        let d = PyDict::new(py);
+        d.set_item("rule", f.rule.name())?;
+        d.set_item("comparison", comparison(py, &f.cmp)?)?;
+        d.set_item("x_arrest_fe_over_L", arr(py, &f.x_fe))?;
+        d.set_item("x_arrest_model_over_L", arr(py, &f.x_model))?;
+        d.set_item("peaks_over_mu_s_N", arr(py, &f.peaks))?;
+        d.set_item("worst_violation", f.worst_violation)?;
+        d.set_item("run", slide_result(py, &f.run)?)?;
+        out.append(d)?;
+    }
+    Ok(out)
+}
+
+/// The paper's fig. 5 from the frictional FE: one row per (r, g) cell and rule with the
+/// model's n and F_max and the FE run's status and counts.
+#[pyfunction]
+#[pyo3(signature = (scene=None, resolution=20, rules=vec!["paper".to_string()], max_events=2000, progress=None))]
+fn precursors_fe_fig5<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    resolution: usize,
+    rules: Vec<String>,
+    max_events: usize,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::precursors_fe::{self as pfe, CellRun};
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let rules = rules.iter().map(|r| r.parse()).collect::<tribofe::Result<Vec<Rule>>>().map_err(to_py)?;
+    let total = resolution * resolution;
+    let (cells, _) = run_detached(py, progress, |cancel, poll| {
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        pfe::fig5(&scene, resolution, &rules, max_events, cancel, &|| {
+            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            poll(k as f64 / total.max(1) as f64)
+        })
+    })?;
+    let (mut r, mut g, mut n_model, mut f_max_model, mut rule, mut status) =
+        (vec![], vec![], vec![], vec![], vec![], vec![]);
+    let (mut n, mut n_long, mut n_adv, mut f_max, mut events, mut seconds) =
+        (vec![], vec![], vec![], vec![], vec![], vec![]);
+    for c in &cells {
+        for (k, run) in c.runs.iter().enumerate() {
+            let Some(run) = run else { continue };
+            r.push(c.r);
+            g.push(c.g);
+            n_model.push(c.n_model as f64);
+            f_max_model.push(c.f_max_model);
+            rule.push(pfe::RULES[k].name());
+            status.push(run.status());
+            seconds.push(run.seconds());
+            let (a, b, d, e, ev) = match *run {
+                CellRun::Done { n, n_long, n_advancing, f_max, events, .. } => {
+                    (n as f64, n_long as f64, n_advancing as f64, f_max.unwrap_or(f64::NAN), events as f64)
+                }
+                CellRun::Capped { precursors, f_peak, .. } => {
+                    (precursors as f64, f64::NAN, f64::NAN, f_peak, f64::NAN)
+                }
+                CellRun::Refused { .. } => (f64::NAN, f64::NAN, f64::NAN, f64::NAN, f64::NAN),
+            };
+            n.push(a);
+            n_long.push(b);
+            n_adv.push(d);
+            f_max.push(e);
+            events.push(ev);
+        }
+    }
+    let out = PyDict::new(py);
+    out.set_item("r", arr(py, &r))?;
+    out.set_item("g", arr(py, &g))?;
+    out.set_item("n_model", arr(py, &n_model))?;
+    out.set_item("F_max_model_over_mu_s_N", arr(py, &f_max_model))?;
+    out.set_item("rule", rule)?;
+    out.set_item("status", status)?;
+    // Capped cells: n is the lower bound recorded and F_max the largest F reached.
+    out.set_item("n_fe", arr(py, &n))?;
+    out.set_item("n_fe_long", arr(py, &n_long))?;
+    out.set_item("n_fe_advancing", arr(py, &n_adv))?;
+    out.set_item("F_max_fe_over_mu_s_N", arr(py, &f_max))?;
+    out.set_item("events", arr(py, &events))?;
+    out.set_item("seconds", arr(py, &seconds))?;
+    Ok(out)
+}
+
 #[pymodule]
 fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
@@ -623,6 +748,8 @@ fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(precursors_model, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(converge, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_fe_fig4, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_fe_fig5, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

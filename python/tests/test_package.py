@@ -76,6 +76,22 @@ def test_paper_model():
     assert len(m["events"]["event"]) == 11
 
 
+def test_fe_precursor_studies():
+    # The FE fig. 4 on the paper's scene: README's headline n = 17 (rule paper) and 8
+    # (overdamped) front-advancing precursors, F_1 = 0.7264 and 0.7319 mu_s N.
+    runs = tribofe.precursors.fe_fig4(r=0.9, g=0.35)
+    by_rule = {run["rule"]: run["comparison"] for run in runs}
+    assert by_rule["paper"]["n_fe_advancing"] == 17
+    assert by_rule["overdamped"]["n_fe_advancing"] == 8
+    assert abs(by_rule["paper"]["F_1_fe"] - 0.7264) < 5e-5
+    assert abs(by_rule["overdamped"]["F_1_fe"] - 0.7319) < 5e-5
+    cells = tribofe.precursors.fe_fig5(resolution=4, progress=False)
+    assert len(cells["r"]) == 16 and set(cells["status"]) <= {"done", "capped", "refused"}
+    # The model's n in each cell equals the paper's iteration.
+    for r, g, n in zip(cells["r"], cells["g"], cells["n_model"]):
+        assert n == tribofe.precursors.model(r, g)["n"]
+
+
 def test_sweep_and_converge_tables():
     df = tribofe.sweep(thickness=[0.002, 0.004], height="0.02:0.08:3", progress=False)
     assert len(df["point"]) == 2 * 3 * 3  # points x F/N

@@ -20,6 +20,8 @@ from . import errors
 from ._tribofe import Scene, __version__
 from ._tribofe import check as _check
 from ._tribofe import converge as _converge
+from ._tribofe import precursors_fe_fig4 as _fe_fig4
+from ._tribofe import precursors_fe_fig5 as _fe_fig5
 from ._tribofe import precursors_model as _precursors_model
 from ._tribofe import slide as _slide
 from ._tribofe import sweep as _sweep
@@ -341,3 +343,41 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         )
         table = _table({k: np.asarray(raw.pop(k)) for k in cols})
         return {**raw, "events": table}
+
+    @staticmethod
+    def fe_fig4(scene: Optional[Scene] = None, r: float = 0.9, g: float = 0.35, cycles: int = 1, progress: Any = False):
+        """The paper's fig. 4 from the frictional FE on ``scene`` (``tribofe precursors
+        fig4``-like): one dict per static-kinetic rule (``"paper"``, ``"overdamped"``) with the
+        comparison against the model (n, F_1, x_1, F_max; forces in units of mu_s N, x in units
+        of L), the precursors' arrest positions and the whole run as a :class:`SlideResult`."""
+        cb, close = _progress(progress, "fig. 4 (FE)")
+        try:
+            runs = _fe_fig4(scene if scene is not None else Scene(), r, g, cycles, progress=cb)
+        finally:
+            close()
+        for run in runs:
+            raw = run["run"]
+            raw["loading"] = _table(raw["loading"])
+            raw["events"] = _table(raw["events"])
+            run["run"] = SlideResult(**raw)
+        return runs
+
+    @staticmethod
+    def fe_fig5(
+        scene: Optional[Scene] = None,
+        resolution: int = 20,
+        rules: Any = ("paper",),
+        max_events: int = 2000,
+        progress: Any = True,
+    ):
+        """The paper's fig. 5 from the frictional FE: one row per (r, g) cell centre of a
+        ``resolution`` x ``resolution`` grid and rule, with the model's n and F_max and the FE
+        run's status (done, capped, refused) and counts. A DataFrame with pandas."""
+        cb, close = _progress(progress, "fig. 5 (FE)")
+        try:
+            cols = _fe_fig5(
+                scene if scene is not None else Scene(), resolution, list(rules), max_events, progress=cb
+            )
+        finally:
+            close()
+        return _table(cols)

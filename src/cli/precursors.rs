@@ -174,7 +174,7 @@ fn fe(args: &Args) -> tribofe::Result<()> {
     }
     let p = Params::new(args.r, args.g)?;
     let scene = fe_scene(args)?;
-    let runs = tribofe::studies::precursors_fe::fig4(&scene, p.r(), p.g(), cycles)?;
+    let runs = tribofe::studies::precursors_fe::fig4(&scene, p.r(), p.g(), cycles, &tribofe::Cancel::new())?;
     if runs.iter().all(|r| r.is_err()) {
         return runs.into_iter().find_map(|r| r.err()).map_or(Ok(()), Err);
     }
@@ -498,7 +498,8 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cells, {elapsed} (eta {eta})").unwrap(),
     );
     let clock = std::time::Instant::now();
-    let cells = pfe::fig5(&scene, resolution, &rules, args.max_events, &|| bar.inc(1))?;
+    let cells =
+        pfe::fig5(&scene, resolution, &rules, args.max_events, &tribofe::Cancel::new(), &|| bar.inc(1))?;
     bar.finish_and_clear();
     let wall = clock.elapsed().as_secs_f64();
     outln!(

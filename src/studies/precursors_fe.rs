@@ -148,7 +148,13 @@ pub fn field_checks(res: &SlideResult) -> FieldChecks {
 
 /// FE fig. 4 for (r, g) on `scene`, one condensation for both rules; each rule's run may
 /// be refused on its own (the overdamped relaxation can cycle without settling).
-pub fn fig4(scene: &Scene, r: f64, g: f64, cycles: usize) -> Result<Vec<Result<Fig4>>> {
+pub fn fig4(
+    scene: &Scene,
+    r: f64,
+    g: f64,
+    cycles: usize,
+    cancel: &crate::Cancel,
+) -> Result<Vec<Result<Fig4>>> {
     let c = condense(scene, &SolverOptions::default())?;
     Ok(RULES
         .iter()
@@ -158,7 +164,12 @@ pub fn fig4(scene: &Scene, r: f64, g: f64, cycles: usize) -> Result<Vec<Result<F
                 &c,
                 r,
                 g,
-                SlideOptions { law: sk(scene, r, g, rule)?, cycles, ..Default::default() },
+                SlideOptions {
+                    law: sk(scene, r, g, rule)?,
+                    cycles,
+                    cancel: cancel.clone(),
+                    ..Default::default()
+                },
             )
         })
         .collect())
@@ -233,6 +244,7 @@ pub fn fig5(
     resolution: usize,
     rules: &[Rule],
     max_events: usize,
+    cancel: &crate::Cancel,
     progress: &(dyn Fn() + Sync),
 ) -> Result<Vec<Cell>> {
     let model = crate::precursors::n_map(resolution)?;
@@ -249,6 +261,7 @@ pub fn fig5(
                     max_events,
                     keep_states: false,
                     end_at_crossing: true,
+                    cancel: cancel.clone(),
                     ..Default::default()
                 };
                 let clock = std::time::Instant::now();
