@@ -233,12 +233,19 @@ fn arr<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray1<f64>> {
 
 /// The paper's bonded check; returns a dict: `cases` (one dict per F/N with numpy profiles,
 /// stresses in units of the mean pressure N/L) and `summary` (numbers of the run).
+/// With `fields`, also the whole block: node coordinates (n x 2, m), and per case the
+/// displacement (n x 2, m) and the nodal stresses (n x 4: sigma_xx, sigma_yy, sigma_xy,
+/// sigma_zz, Pa; extrapolated from the integration points and averaged).
 #[pyfunction]
-#[pyo3(signature = (scene=None))]
-fn check<'py>(py: Python<'py>, scene: Option<PyRef<'_, Scene>>) -> PyResult<Bound<'py, PyDict>> {
+#[pyo3(signature = (scene=None, fields=false))]
+fn check<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    fields: bool,
+) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let opts = tribofe::linalg::solve::SolverOptions::default();
-    let ((res, _model), core_s) = run_detached(py, None, |cancel, _| {
+    let ((res, sm), core_s) = run_detached(py, None, |cancel, _| {
         cancel.check()?;
         let r = tribofe::studies::check::run(&scene, &opts)?;
         r.0.self_check()?;
@@ -281,6 +288,24 @@ fn check<'py>(py: Python<'py>, scene: Option<PyRef<'_, Scene>>) -> PyResult<Boun
     out.set_item("n_elements", res.n_elements)?;
     out.set_item("balance_error", res.balance_error())?;
     out.set_item("core_s", core_s)?;
+    if fields {
+        let model = sm.model();
+        let grid = |rows: Vec<Vec<f64>>| {
+            PyArray2::from_vec2(py, &rows).map_err(|e| PyTypeError::new_err(e.to_string()))
+        };
+        let f = PyDict::new(py);
+        f.set_item("nodes_m", grid(sm.mesh.nodes.iter().map(|p| p.to_vec()).collect())?)?;
+        let (mut disp, mut stress) = (Vec::new(), Vec::new());
+        for u in &res.displacements {
+            // The block's node DOFs come first (a rigid plate's three unknowns follow).
+            disp.push(grid(u[..2 * sm.mesh.nodes.len()].chunks(2).map(|c| c.to_vec()).collect())?);
+            let s = tribofe::fem::recovery::nodal_stresses(&model, u);
+            stress.push(grid(s.iter().map(|v| v.to_vec()).collect())?);
+        }
+        f.set_item("displacement_m", disp)?;
+        f.set_item("stress_Pa", stress)?;
+        out.set_item("fields", f)?;
+    }
     Ok(out)
 }
 

@@ -67,6 +67,24 @@ def test_slide_equals_the_command(tribofe_bin, tmp_path):
     assert set(np.unique(res.states["state_code"])) <= {0.0, 1.0, 2.0}
 
 
+def test_check_fields_on_request():
+    res = tribofe.check(fields=True)
+    f = res.fields
+    assert f["nodes_m"].shape == (res.n_nodes, 2)
+    assert len(f["displacement_m"]) == 3 and f["displacement_m"][2].shape == (res.n_nodes, 2)
+    # The base is bonded (u = v = 0 at y = 0), and the nodal sigma_yy on the base, averaged
+    # with the tributary widths, is the mean pressure -N/L (1 % for the extrapolation error).
+    base = np.abs(f["nodes_m"][:, 1]) < 1e-12
+    assert np.all(f["displacement_m"][2][base] == 0.0)
+    case = res.cases[0]
+    x = f["nodes_m"][base, 0]
+    order = np.argsort(x)
+    syy = f["stress_Pa"][0][base, 1][order]
+    mean = np.trapezoid(syy, x[order]) / (x.max() - x.min())
+    assert abs(mean + case.N_N_per_m / 0.4) < 0.01 * case.N_N_per_m / 0.4
+    assert tribofe.check().fields is None
+
+
 def test_paper_model():
     m = tribofe.precursors.model(0.9, 0.35)
     # The paper's iteration: n = 10, F_1 = 1 - g/(r + g)... = 0.72, F_max = 1/(1 + (g/r)(1 - r)).

@@ -132,6 +132,7 @@ class CheckResult:
     n_elements: int
     balance_error: float
     core_s: float = field(default=0.0, compare=False)
+    fields: Optional[Dict[str, Any]] = field(default=None, compare=False, repr=False)
 
     def summary(self):
         """One row per F/N with the interior slopes, tau(0) and edge-zone widths (in units of t)."""
@@ -154,15 +155,21 @@ class CheckResult:
         return "\n".join(lines)
 
 
-def check(scene: Optional[Scene] = None) -> CheckResult:
+def check(scene: Optional[Scene] = None, fields: bool = False) -> CheckResult:
     """The paper's bonded check (fig. 2) on ``scene`` (default: the paper's).
+
+    With ``fields=True``, ``result.fields`` holds the whole block: ``nodes_m`` (n x 2) and per
+    F/N ``displacement_m`` (n x 2, m) and ``stress_Pa`` (n x 4: sigma_xx, sigma_yy, sigma_xy,
+    sigma_zz, nodal values extrapolated from the integration points and averaged).
 
     Raises :class:`InputError` for a bad scene, :class:`NumericalError` for a refused solve.
     """
     scene = scene if scene is not None else Scene()
-    raw = _check(scene)
+    raw = _check(scene, fields)
     cases = [CheckCase(**c) for c in raw["cases"]]
-    return CheckResult(scene, cases, raw["n_nodes"], raw["n_elements"], raw["balance_error"], raw["core_s"])
+    return CheckResult(
+        scene, cases, raw["n_nodes"], raw["n_elements"], raw["balance_error"], raw["core_s"], raw.get("fields")
+    )
 
 
 @dataclass(frozen=True)
