@@ -38,7 +38,7 @@ pub enum Error {
     Mesh(String),
 
     /// The problem would not fit: estimated unknowns and memory against the limit.
-    #[error("problem too large: about {dofs:.3e} unknowns and {} GiB estimated, above the limit of {limit} unknowns (--max-dofs); {suggestion}", crate::scene::num(*gib))]
+    #[error("problem too large: about {dofs:.3e} unknowns and {} GiB estimated, above the limit of {limit} unknowns (--max-dofs); {suggestion}", num(*gib))]
     TooLarge { dofs: f64, gib: f64, limit: usize, suggestion: String },
 
     /// The reduced stiffness matrix is not positive definite; `node` (tag) and `component`
@@ -113,6 +113,15 @@ impl Error {
             Error::Plot { .. } | Error::Io { .. } | Error::Resource { .. } => exit::OUTPUT,
             Error::Interrupted => exit::INTERRUPTED,
         }
+    }
+}
+
+/// A value for a message: plain in [1e-4, 1e6), else in scientific notation.
+pub fn num(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:.4e}")
     }
 }
 

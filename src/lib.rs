@@ -10,7 +10,8 @@
 //!
 //! Between `fem` and the studies: [`interface`] (contact and friction laws on the block's
 //! base, event-driven). Beside them: [`analytical`] (closed forms the results are judged
-//! against) and [`precursors`] (the paper's 1D friction model).
+//! against), [`precursors`] (the paper's 1D friction model), [`numeric`] (helpers on sampled
+//! profiles) and [`cancel`] (a host's token to stop a long run).
 //!
 //! # Examples
 //!
@@ -48,6 +49,7 @@ pub mod interface;
 pub mod io;
 pub mod linalg;
 pub mod memory;
+pub mod numeric;
 pub mod precursors;
 pub mod report;
 pub mod scene;

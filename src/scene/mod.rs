@@ -20,7 +20,7 @@ pub mod rectangle;
 
 pub use overrides::Overrides;
 
-use crate::error::{Error, Result};
+use crate::error::{num, Error, Result};
 use crate::fem::assembly::Model;
 use crate::fem::constraints::{dof, Constraints};
 use crate::fem::element::stiffness::{ElementChoice, Technology};
@@ -721,14 +721,6 @@ fn key_line(text: &str, what: &str) -> Option<usize> {
         }
     }
     None
-}
-
-pub fn num(v: f64) -> String {
-    if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
-        format!("{v}")
-    } else {
-        format!("{v:.4e}")
-    }
 }
 
 /// Largest |F/N| accepted: far above any friction coefficient (rubber reaches ~3).

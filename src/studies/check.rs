@@ -8,6 +8,7 @@ use crate::fem::assembly::Model;
 use crate::fem::problem::{solve, LoadCase, Prepared, Solution, SolverStats, Timings};
 use crate::fem::recovery::{elements_touching, nodal_stresses_from};
 use crate::linalg::solve::SolverOptions;
+use crate::numeric::{interpolate, line_fit};
 use crate::precursors::fe::UnitFields;
 use crate::scene::{PlateModel, Scene, SceneModel};
 use std::time::Instant;
@@ -573,28 +574,4 @@ fn interior_nodes(x_over_l: &[f64], l: f64, t: f64) -> Vec<usize> {
 /// Largest |v - model| over the nodes; NaN (undefined, reported as `-`) when there are none.
 fn max_dev(nodes: &[usize], v: &[f64], model: &[f64]) -> f64 {
     nodes.iter().map(|&i| (v[i] - model[i]).abs()).reduce(f64::max).unwrap_or(f64::NAN)
-}
-
-/// Linear interpolation of a profile v(x) at x0 (x sorted; extrapolates linearly outside).
-pub fn interpolate(x: &[f64], v: &[f64], x0: f64) -> f64 {
-    let i = x.partition_point(|&a| a < x0).clamp(1, x.len() - 1);
-    let s = (x0 - x[i - 1]) / (x[i] - x[i - 1]);
-    v[i - 1] + s * (v[i] - v[i - 1])
-}
-
-/// Least-squares line through the points: (intercept, slope); None with fewer than two points.
-pub fn line_fit(points: impl IntoIterator<Item = (f64, f64)>) -> Option<(f64, f64)> {
-    let (mut m, mut sx, mut sy, mut sxx, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for (x, y) in points {
-        m += 1.0;
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        sxy += x * y;
-    }
-    if m < 2.0 {
-        return None;
-    }
-    let slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
-    Some(((sy - slope * sx) / m, slope))
 }

@@ -6,8 +6,9 @@
 use crate::error::{Error, Result};
 use crate::fem::problem::Timings;
 use crate::linalg::solve::SolverOptions;
+use crate::numeric::{interpolate, line_fit};
 use crate::scene::Scene;
-use crate::studies::check::{self, interpolate, line_fit, CheckResult};
+use crate::studies::check::{self, CheckResult};
 use rayon::prelude::*;
 use std::time::Instant;
 

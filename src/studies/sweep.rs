@@ -441,8 +441,8 @@ fn verdict(res: &CheckResult, c: &super::check::CaseResult, o: &VerdictOptions) 
     let edge_zone_fraction = widest * t / l;
     let u = &res.unit;
     let x0 = -0.5 + t / l;
-    let pn = super::check::interpolate(&u.x_over_l, &u.p_per_n, x0);
-    let pf = super::check::interpolate(&u.x_over_l, &u.p_per_f, x0);
+    let pn = crate::numeric::interpolate(&u.x_over_l, &u.p_per_n, x0);
+    let pf = crate::numeric::interpolate(&u.x_over_l, &u.p_per_f, x0);
     let tension_onset_fn = if pf < 0.0 { Some(-pn / pf) } else { None };
     let fn_check = o.tension_fn.unwrap_or_else(|| s.loading.fn_ratios.iter().cloned().fold(0.0, f64::max));
     let el = s.mesh.element.as_str();

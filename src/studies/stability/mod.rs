@@ -7,8 +7,8 @@
 use crate::error::{Error, Result};
 use crate::fem::material::Material;
 use crate::linalg::solve::SolverOptions;
+use crate::numeric::interpolate;
 use crate::scene::{PlateModel, Scene};
-use crate::studies::check::interpolate;
 use crate::studies::check::{self, CheckResult};
 use crate::studies::convergence::{self, zone_errors, Family, StudyOptions, ZoneErrors};
 use std::collections::HashMap;

@@ -44,7 +44,8 @@ pub fn thin(base: &Scene, o: &Options, progress: Progress) -> Result<Vec<ThinPoi
         let time = clock.elapsed().as_secs_f64();
         let c = &r.cases[0];
         let mid: Vec<usize> = (0..c.x_over_l.len()).filter(|&i| c.x_over_l[i].abs() < 0.25).collect();
-        let slope = check::line_fit(mid.iter().map(|&i| (c.x_over_l[i], c.p[i]))).map_or(f64::NAN, |l| l.1);
+        let slope =
+            crate::numeric::line_fit(mid.iter().map(|&i| (c.x_over_l[i], c.p[i]))).map_or(f64::NAN, |l| l.1);
         let model = c.metrics.slope_model;
         let mt = &c.metrics;
         progress(&format!("thin t/L {tl:.0e}"));
