@@ -5,6 +5,7 @@
 
 use tribofe::analytical::partial_slip;
 use tribofe::interface::condense::condense;
+use tribofe::interface::events::EventKind;
 use tribofe::interface::events::Phase;
 use tribofe::interface::law::{Law, Rule};
 use tribofe::linalg::solve::SolverOptions;
@@ -54,7 +55,7 @@ fn condensed_stiffness_is_symmetric_and_free_of_rigid_motions() {
 fn large_mu_reproduces_the_bonded_check() {
     let scene = coarse();
     let r = slide(&scene, Law::coulomb(1e6).unwrap(), Some(1e-6));
-    assert!(r.run.events.iter().all(|e| matches!(e.kind, "normal-load" | "end")));
+    assert!(r.run.events.iter().all(|e| matches!(e.kind, EventKind::NormalLoad | EventKind::End)));
     let (s0, s1) = (&r.run.states[0], r.run.states.last().unwrap());
     let mut sc = scene.clone();
     sc.loading.fn_ratios = vec![0.0, 0.41, 0.82];
@@ -100,7 +101,7 @@ fn coulomb_whole_sliding_is_at_mu_n_and_every_state_is_admissible() {
         .events
         .iter()
         .enumerate()
-        .filter(|(_, e)| matches!(e.kind, "sliding" | "end"))
+        .filter(|(_, e)| matches!(e.kind, EventKind::Sliding | EventKind::End))
         .map(|(k, _)| k)
         .collect();
     assert_eq!(sliding.len(), 2, "one sliding event, then the end 5 % further");
@@ -161,7 +162,7 @@ fn static_kinetic_slides_at_mu_d_n_and_cycles() {
             SlideOptions { law: Law::static_kinetic(ms, md, rule).unwrap(), cycles: 3, ..Default::default() };
         let r = run(&sc, &o, &|_| {}).unwrap();
         assert_eq!(r.run.sliding_events, 3);
-        for e in r.run.events.iter().filter(|e| e.kind == "sliding") {
+        for e in r.run.events.iter().filter(|e| e.kind == EventKind::Sliding) {
             // Paper rule: the whole interface relaxes to mu_d p, so F* = mu_d N to round-off.
             // Overdamped: nodes whose slip would reverse re-stick and may carry less than
             // mu_d p, so only |F*| <= mu_s N holds (friction bound summed over the nodes).
@@ -177,7 +178,7 @@ fn static_kinetic_slides_at_mu_d_n_and_cycles() {
             }
             assert!(e.f > e.f_relaxed, "a whole-interface slip drops the force");
         }
-        assert!(r.run.events.iter().any(|e| e.kind == "precursor"), "{rule:?}: no precursor");
+        assert!(r.run.events.iter().any(|e| e.kind == EventKind::Precursor), "{rule:?}: no precursor");
         let v = worst_violation(&r);
         assert!(v < 1e-9, "{rule:?}: largest violation {v:e}");
     }
@@ -194,7 +195,7 @@ fn paper_rule_peak_force_near_the_analytic_f_max() {
     let r = run(&sc, &o, &|_| {}).unwrap();
     assert_eq!(r.run.sliding_events, 10);
     let f_max = tribofe::precursors::Params::new(0.9, 0.35).unwrap().f_max();
-    let peak = r.run.events.iter().rfind(|e| e.kind == "sliding").unwrap().f / ms;
+    let peak = r.run.events.iter().rfind(|e| e.kind == EventKind::Sliding).unwrap().f / ms;
     assert!((peak / f_max - 1.0).abs() < 0.07, "FE peak {peak} vs analytic {f_max}");
 }
 
@@ -332,7 +333,7 @@ fn weakening_scene(h: f64, n_thick: usize) -> Scene {
 }
 
 fn peak(r: &SlideResult) -> f64 {
-    r.run.events.iter().rfind(|e| e.kind == "sliding").unwrap().f / r.options.law.mu_s()
+    r.run.events.iter().rfind(|e| e.kind == EventKind::Sliding).unwrap().f / r.options.law.mu_s()
 }
 
 /// kappa = 0.33 (D_c = 0.3 um, L_c ~ 1.3 mm): the stick-slip peak on h = 2 mm and 1 mm agrees
@@ -346,7 +347,7 @@ fn slip_weakening_peak_converges_under_refinement() {
     assert!((pa / pb - 1.0).abs() < 0.01, "peaks {pa} (h = 2 mm), {pb} (h = 1 mm)");
     assert!(pb > 0.9 && pb < 1.0, "peak {pb} outside (mu_d/mu_s, 1)");
     for r in [&a, &b] {
-        assert!(r.run.events.iter().any(|e| e.kind == "precursor"));
+        assert!(r.run.events.iter().any(|e| e.kind == EventKind::Precursor));
         let v = worst_violation(r);
         assert!(v < 2e-6, "largest violation {v:e}");
     }

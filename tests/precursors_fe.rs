@@ -5,6 +5,7 @@
 //! admissibility to round-off, also at (0.5, 0.6), where the trailing corner opens long before
 //! the first precursor and the model does not hold (validation/edges/README.md).
 
+use tribofe::interface::events::EventKind;
 use tribofe::interface::events::NodeState;
 use tribofe::interface::law::{Law, Rule};
 use tribofe::scene::Scene;
@@ -61,10 +62,12 @@ fn no_long_precursor_without_torque() {
     let res = run(&sc, &o, &|_| {}).unwrap();
     let c = &res.condensed;
     let evs = &res.run.events;
-    let first = evs.iter().position(|e| e.kind == "sliding").unwrap();
+    let first = evs.iter().position(|e| e.kind == EventKind::Sliding).unwrap();
     let long = evs[..first]
         .iter()
-        .filter(|e| e.kind == "precursor" && e.region.is_some_and(|(a, b)| c.x[b] - c.x[a] > 5.0 * c.t))
+        .filter(|e| {
+            e.kind == EventKind::Precursor && e.region.is_some_and(|(a, b)| c.x[b] - c.x[a] > 5.0 * c.t)
+        })
         .count();
     assert_eq!(long, 0);
 }
@@ -237,7 +240,7 @@ fn event_cap_reports_precursors_and_peak_so_far() {
     let cap = 2000;
     assert!(full.run.events.len() > cap + 100, "{} events", full.run.events.len());
     let head = &full.run.events[..cap];
-    let want = head.iter().filter(|e| e.kind == "precursor").count();
+    let want = head.iter().filter(|e| e.kind == EventKind::Precursor).count();
     let peak = head.iter().map(|e| e.f).fold(0.0, f64::max);
     match run(&sc, &SlideOptions { max_events: cap, ..o }, &|_| {}) {
         Err(tribofe::Error::EventCap { cap: c, precursors, f_peak_over_n, .. }) => {
@@ -266,7 +269,7 @@ fn front_crossing_ends_the_cycle_only_when_the_regions_join() {
     let res = run(&sc, &opts(0.5, 0.5, Rule::Overdamped, true), &|_| {}).unwrap();
     let evs = &res.run.events;
     let last = evs.last().unwrap();
-    assert_eq!(last.kind, "crossing");
+    assert_eq!(last.kind, EventKind::Crossing);
     assert!(res.run.max_violation < 1e-8, "violation {}", res.run.max_violation);
     let n = res.condensed.n;
     let st = res.run.states.last().unwrap();
@@ -275,7 +278,7 @@ fn front_crossing_ends_the_cycle_only_when_the_regions_join() {
         if let Some((a, b)) = e.region {
             (a..=b).for_each(|i| covered[i] = true);
         }
-        if e.kind == "creep" {
+        if e.kind == EventKind::Creep {
             covered[e.node] = true;
         }
         let contact: Vec<usize> = (0..n).filter(|&i| st.states[i] != NodeState::Open).collect();
@@ -285,7 +288,7 @@ fn front_crossing_ends_the_cycle_only_when_the_regions_join() {
     let plain = run(&sc, &opts(0.9, 0.35, Rule::Paper, false), &|_| {}).unwrap();
     let with = run(&sc, &opts(0.9, 0.35, Rule::Paper, true), &|_| {}).unwrap();
     assert_eq!(plain.run.events.len(), with.run.events.len());
-    assert_eq!(with.run.events.last().unwrap().kind, "sliding");
+    assert_eq!(with.run.events.last().unwrap().kind, EventKind::Sliding);
 }
 
 #[test]

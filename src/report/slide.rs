@@ -314,9 +314,9 @@ pub fn spread(n: usize, k: usize) -> Vec<usize> {
 pub fn kind_counts(r: &SlideResult) -> Vec<(&'static str, usize)> {
     let mut v: Vec<(&'static str, usize)> = Vec::new();
     for e in &r.run.events {
-        match v.iter_mut().find(|k| k.0 == e.kind) {
+        match v.iter_mut().find(|k| k.0 == e.kind.name()) {
             Some(k) => k.1 += 1,
-            None => v.push((e.kind, 1)),
+            None => v.push((e.kind.name(), 1)),
         }
     }
     v

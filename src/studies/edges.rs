@@ -4,6 +4,7 @@
 
 use crate::error::{Error, Result};
 use crate::interface::condense::condense;
+use crate::interface::events::EventKind;
 use crate::interface::events::{NodeState, Phase};
 use crate::interface::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
@@ -144,8 +145,12 @@ pub fn opening(
                 let o = SlideOptions { law, cycles: 1, ..Default::default() };
                 let r = run_condensed(&s, c.clone(), 0.0, &o, &|_| {})?;
                 let cmp = compare_paper(&r).ok_or_else(|| Error::input("edges", "no paper comparison"))?;
-                let first_slide =
-                    r.run.events.iter().position(|e| e.kind == "sliding").unwrap_or(r.run.events.len());
+                let first_slide = r
+                    .run
+                    .events
+                    .iter()
+                    .position(|e| e.kind == EventKind::Sliding)
+                    .unwrap_or(r.run.events.len());
                 let k_open = (0..first_slide).find(|&k| r.run.states[k].states[0] == NodeState::Open);
                 Ok(Opening {
                     t_over_l: tl,

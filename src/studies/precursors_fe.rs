@@ -13,6 +13,7 @@
 
 use crate::error::Result;
 use crate::interface::condense::{condense, Condensed};
+use crate::interface::events::EventKind;
 use crate::interface::events::NodeState;
 use crate::interface::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
@@ -72,7 +73,7 @@ fn fig4_on(scene: &Scene, c: &Condensed, r: f64, g: f64, o: SlideOptions) -> Res
         cmp,
         x_fe: evs[..first]
             .iter()
-            .filter(|e| e.kind == "precursor")
+            .filter(|e| e.kind == EventKind::Precursor)
             .filter_map(|e| e.region.map(|(_, b)| cx.x[b] / cx.l))
             .collect(),
         x_model: ev.iter().take(cmp.n).map(|e| e.x).collect(),
@@ -120,12 +121,12 @@ pub fn field_checks(res: &SlideResult) -> FieldChecks {
             let linear = pm + 12.0 * st.f * h * c.x[i] / c.l.powi(3);
             out.pressure = max_opt(out.pressure, (st.p_force[i] / c.w[i] - linear).abs() / pm);
         }
-        if out.f_corner.is_none() && e.node == 0 && matches!(e.kind, "open" | "creep") {
+        if out.f_corner.is_none() && e.node == 0 && matches!(e.kind, EventKind::Open | EventKind::Creep) {
             out.f_corner = Some(st.f / (res.options.law.mu_s() * res.options.n_force));
         }
         if let Some((a, b)) = e.region {
             (a..=b).for_each(|k| slipped[k] = true);
-            if e.kind != "precursor" {
+            if e.kind != EventKind::Precursor {
                 continue;
             }
             if out.x_nucleation.is_none() && c.x[b] - c.x[a] > edge {
@@ -278,7 +279,7 @@ pub fn fig5(
                                 .events
                                 .iter()
                                 .find(|e| e.ends_cycle())
-                                .is_some_and(|e| e.kind == "crossing"),
+                                .is_some_and(|e| e.kind == EventKind::Crossing),
                             n: cmp.n_fe,
                             n_long: cmp.n_fe_long,
                             n_advancing: cmp.n_fe_advancing,

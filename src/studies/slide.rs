@@ -4,6 +4,7 @@
 use crate::error::{Error, Result};
 use crate::fem::problem::{solve, LoadCase};
 use crate::interface::condense::{boundary_model, condense, Condensed};
+use crate::interface::events::EventKind;
 use crate::interface::events::{run as run_events, NodeState, Problem, Run};
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
@@ -252,7 +253,7 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
     let k = mu_s * res.options.n_force;
     let evs = &res.run.events;
     let first_slide = evs.iter().position(|e| e.ends_cycle()).unwrap_or(evs.len());
-    let pre: Vec<_> = evs[..first_slide].iter().filter(|e| e.kind == "precursor").collect();
+    let pre: Vec<_> = evs[..first_slide].iter().filter(|e| e.kind == EventKind::Precursor).collect();
     let long: Vec<_> =
         pre.iter().filter(|e| e.region.is_some_and(|(a, b)| c.x[b] - c.x[a] > ADVANCE_T * c.t)).collect();
     let mut front = c.x[0];

@@ -16,7 +16,10 @@ use crate::error::{Error, Result};
 use crate::interface::law::{Law, Rule};
 use faer::linalg::solvers::DenseSolveCore;
 
+mod kind;
 mod weakening;
+
+pub use kind::EventKind;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum NodeState {
@@ -64,7 +67,7 @@ pub struct Problem {
     pub creep_fraction: f64,
     /// Static-kinetic: a cycle also ends at a front crossing, the event after which the nodes
     /// slipped since the last cycle's end make one run from the trailing contact node to the
-    /// one before the leading corner (kind "crossing"; the overdamped rule's front crosses in
+    /// one before the leading corner (kind EventKind::Crossing; the overdamped rule's front crosses in
     /// many events and its one-event whole slip may come long after, validation/precursors).
     pub end_at_crossing: bool,
     /// Slip weakening: each relaxation's coefficients by Newton where a stable equilibrium is
@@ -157,9 +160,8 @@ impl State {
 /// One event (one recorded state follows it).
 #[derive(Debug, Clone)]
 pub struct Event {
-    /// What happened: normal-load, edge-preslip, precursor, nucleation, tip-advance,
-    /// sliding, crossing ([`Problem::end_at_crossing`]), slip, stick, open, close, creep, end.
-    pub kind: &'static str,
+    /// What happened.
+    pub kind: EventKind,
     /// Force before the event's relaxation (instabilities) or at it, N/m; X, m.
     pub f: f64,
     pub x: f64,
@@ -715,7 +717,7 @@ impl<'a> Solver<'a> {
                 .min_by(|x, y| x.1.total_cmp(&y.1));
             if let Some((i, _)) = back {
                 self.set_state(i, NodeState::Stick, a.b(i, lam))?;
-                return Ok(Fix::Changed(i, "stick"));
+                return Ok(Fix::Changed(i, EventKind::Stick));
             }
         }
         let mut unstable = None;
@@ -727,7 +729,7 @@ impl<'a> Solver<'a> {
                 NodeState::Stick | NodeState::Slip(_) => {
                     if p < -tf || (p <= tf && p1 < -rate_f) {
                         self.set_state(i, NodeState::Open, 0.0)?;
-                        return Ok(Fix::Changed(i, "open"));
+                        return Ok(Fix::Changed(i, EventKind::Open));
                     }
                 }
                 NodeState::Open => {
@@ -738,14 +740,14 @@ impl<'a> Solver<'a> {
                     };
                     if close {
                         self.set_state(i, NodeState::Stick, u)?;
-                        return Ok(Fix::Changed(i, "close"));
+                        return Ok(Fix::Changed(i, EventKind::Close));
                     }
                 }
             }
             if let NodeState::Slip(s) = self.states[i] {
                 if s * u1 < -rate_d {
                     self.set_state(i, NodeState::Stick, u)?;
-                    return Ok(Fix::Changed(i, "stick"));
+                    return Ok(Fix::Changed(i, EventKind::Stick));
                 }
             }
             if self.states[i] == NodeState::Stick {
@@ -757,7 +759,7 @@ impl<'a> Solver<'a> {
                         self.set_state(i, NodeState::Slip(-sg), 0.0)?;
                         return Ok(Fix::Changed(
                             i,
-                            if creep && !allow_continuous_slip { "creep" } else { "slip" },
+                            if creep && !allow_continuous_slip { EventKind::Creep } else { EventKind::Slip },
                         ));
                     }
                     unstable = unstable.or(Some(i));
@@ -890,7 +892,7 @@ impl<'a> Solver<'a> {
 #[derive(Debug, Clone, Copy)]
 enum Fix {
     None,
-    Changed(usize, &'static str),
+    Changed(usize, EventKind),
     Instability(usize),
 }
 
@@ -979,7 +981,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
 
     // Phase 1: N from 0 to its value; proportional loading, so the rate problem at 0 decides.
     let mut lam = 0.0;
-    let mut pending: Option<(&'static str, usize)> = None;
+    let mut pending: Option<(EventKind, usize)> = None;
     let mut idle = 0;
     let mut a;
     loop {
@@ -1005,9 +1007,9 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     lam = 1.0;
     let st = sv.record(&a, lam, Some(&prev_u));
     let pre: Vec<usize> = (0..n).filter(|&i| matches!(st.states[i], NodeState::Slip(_))).collect();
-    let mut ev = Event::simple("normal-load", &st, pre.first().copied().unwrap_or(0));
+    let mut ev = Event::simple(EventKind::NormalLoad, &st, pre.first().copied().unwrap_or(0));
     if !pre.is_empty() {
-        ev.kind = "edge-preslip";
+        ev.kind = EventKind::EdgePreslip;
     }
     prev_u.clone_from(&st.u);
     push(&mut out, pb, ev, st)?;
@@ -1052,10 +1054,12 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                     if fixes > max_fix {
                         return Err(stuck_err("drive", lam));
                     }
-                    if what == "creep" {
+                    if what == EventKind::Creep {
                         slipped[i] = true; // a creeping corner has slipped (front crossing)
                     }
-                    if matches!(what, "open" | "close" | "creep") && pending.is_none() {
+                    if matches!(what, EventKind::Open | EventKind::Close | EventKind::Creep)
+                        && pending.is_none()
+                    {
                         pending = Some((what, i));
                     }
                 }
@@ -1077,14 +1081,14 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                         let b = sv.solve()?;
                         let sg = if b.f(i0, lam) > 0.0 { -1.0 } else { 1.0 };
                         sv.set_state(i0, NodeState::Slip(sg), 0.0)?;
-                        pending = Some(("creep", i0));
+                        pending = Some((EventKind::Creep, i0));
                         continue;
                     }
                     let a2 = sv.solve()?;
                     let st = sv.record(&a2, lam, Some(&prev_u));
                     prev_u.clone_from(&st.u);
                     let kind = classify(&before, &sv.states, region, &mut slipped, pb.end_at_crossing);
-                    if ends_cycle(kind) {
+                    if kind.ends_cycle() {
                         out.sliding_events += 1;
                     }
                     last_region = Some(region);
@@ -1117,7 +1121,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
             out.sliding_events += 1;
             let st = sv.record(&a, lam, Some(&prev_u));
             prev_u.clone_from(&st.u);
-            push(&mut out, pb, Event::simple("sliding", &st, 0), st)?;
+            push(&mut out, pb, Event::simple(EventKind::Sliding, &st, 0), st)?;
             if pb.x_max.is_none() {
                 x_end = lam + 0.05 * lam.max(pb.n_force / k_bonded);
             }
@@ -1129,7 +1133,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
             if is_sk && next.is_none() && sv.all_contact_slipping() {
                 out.sliding_events += 1;
                 let st = sv.record(&a, lam, Some(&prev_u));
-                let ev = Event { all_slipping: true, ..Event::simple("sliding", &st, 0) };
+                let ev = Event { all_slipping: true, ..Event::simple(EventKind::Sliding, &st, 0) };
                 push(&mut out, pb, ev, st)?;
                 progress(1.0);
                 return finish(out, &sv);
@@ -1142,7 +1146,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
             }
             lam = x_end;
             let st = sv.record(&a, lam, Some(&prev_u));
-            push(&mut out, pb, Event::simple("end", &st, 0), st)?;
+            push(&mut out, pb, Event::simple(EventKind::End, &st, 0), st)?;
             progress(1.0);
             return finish(out, &sv);
         }
@@ -1163,9 +1167,9 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
                 let left = i > 0 && matches!(sv.states[i - 1], NodeState::Slip(_));
                 let right = i + 1 < n && matches!(sv.states[i + 1], NodeState::Slip(_));
                 if left || right {
-                    "tip-advance"
+                    EventKind::TipAdvance
                 } else {
-                    "nucleation"
+                    EventKind::Nucleation
                 }
             }
             _ => hit_kind(h),
@@ -1190,25 +1194,25 @@ fn classify(
     region: (usize, usize),
     slipped: &mut [bool],
     crossing: bool,
-) -> &'static str {
+) -> EventKind {
     let contact: Vec<usize> =
         (0..states.len()).filter(|&k| states[k] != NodeState::Open && before[k] != NodeState::Open).collect();
     let covers =
         contact.first().is_some_and(|&c0| region.0 <= c0) && contact.last().is_some_and(|&c1| region.1 >= c1);
     let kind = if covers {
-        "sliding"
+        EventKind::Sliding
     } else if contact.first() == Some(&region.0) {
-        "precursor"
+        EventKind::Precursor
     } else {
         let c0 = contact.first().copied().unwrap_or(0);
         let tip = (c0..states.len()).take_while(|&k| slipped[k]).last();
         if tip.is_some_and(|k| region.0 <= k + 1) {
-            "tip-advance"
+            EventKind::TipAdvance
         } else {
-            "nucleation"
+            EventKind::Nucleation
         }
     };
-    if kind != "sliding" {
+    if kind != EventKind::Sliding {
         (region.0..=region.1).for_each(|k| slipped[k] = true);
     }
     // The leading corner node is left out: its pressure is singular in the discrete model
@@ -1217,8 +1221,8 @@ fn classify(
         let (Some(&c0), Some(&c1)) = (contact.first(), contact.last()) else { return false };
         (c0..c1).all(|k| slipped[k] || states[k] == NodeState::Open || before[k] == NodeState::Open)
     };
-    let kind = if kind != "sliding" && crossing && crossed() { "crossing" } else { kind };
-    if ends_cycle(kind) {
+    let kind = if kind != EventKind::Sliding && crossing && crossed() { EventKind::Crossing } else { kind };
+    if kind.ends_cycle() {
         slipped.iter_mut().for_each(|v| *v = false);
     }
     kind
@@ -1237,11 +1241,11 @@ fn settle_continuous(sv: &mut Solver, lam: f64, cont: bool, cap: usize, what: &s
     Err(stuck_err(what, lam))
 }
 
-fn hit_kind(h: Hit) -> &'static str {
+fn hit_kind(h: Hit) -> EventKind {
     match h {
-        Hit::Open => "open",
-        Hit::Close => "close",
-        Hit::Friction(_) => "slip",
+        Hit::Open => EventKind::Open,
+        Hit::Close => EventKind::Close,
+        Hit::Friction(_) => EventKind::Slip,
     }
 }
 
@@ -1262,18 +1266,13 @@ fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<
     }
 }
 
-/// Whether an event of this kind ends a stick-slip cycle (a whole slip, or a front crossing).
-fn ends_cycle(kind: &str) -> bool {
-    matches!(kind, "sliding" | "crossing")
-}
-
 impl Event {
     /// Whether the event ends a stick-slip cycle (a whole slip, or a front crossing).
     pub fn ends_cycle(&self) -> bool {
-        ends_cycle(self.kind)
+        self.kind.ends_cycle()
     }
 
-    fn simple(kind: &'static str, st: &State, node: usize) -> Event {
+    fn simple(kind: EventKind, st: &State, node: usize) -> Event {
         Event {
             kind,
             f: st.f,
@@ -1295,7 +1294,7 @@ fn push(out: &mut Run, pb: &Problem, ev: Event, st: State) -> Result<()> {
             cap: pb.max_events,
             x: st.x,
             f_over_n: st.f / pb.n_force,
-            precursors: before_slide.filter(|e| e.kind == "precursor").count(),
+            precursors: before_slide.filter(|e| e.kind == EventKind::Precursor).count(),
             f_peak_over_n: out.events.iter().map(|e| e.f).fold(st.f, f64::max) / pb.n_force,
         });
     }

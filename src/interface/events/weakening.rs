@@ -15,7 +15,7 @@
 //! whose relaxation would move it backwards within a step sticks where the step started.
 
 use super::{
-    classify, ends_cycle, finish, push, stuck_err, Affine, Event, Fix, NodeState, Problem, Run, Solver,
+    classify, finish, push, stuck_err, Affine, Event, EventKind, Fix, NodeState, Problem, Run, Solver,
 };
 use crate::error::Result;
 
@@ -75,7 +75,7 @@ pub(super) fn drive(
             let b = sv.solve()?;
             let st = sv.record(&b, lam, Some(&prev_u));
             prev_u.clone_from(&st.u);
-            if ends_cycle(kind) {
+            if kind.ends_cycle() {
                 out.sliding_events += 1;
             }
             let ev = Event {
@@ -104,14 +104,14 @@ pub(super) fn drive(
                         |k: Option<usize>| k.is_some_and(|k| matches!(sv.states[k], NodeState::Slip(_)));
                     let neighbour = next_to(i.checked_sub(1)) || next_to((i + 1 < n).then_some(i + 1));
                     if neighbour {
-                        "tip-advance"
+                        EventKind::TipAdvance
                     } else {
-                        "nucleation"
+                        EventKind::Nucleation
                     }
                 }
-                (NodeState::Slip(_), NodeState::Stick) => "stick",
-                (_, NodeState::Open) => "open",
-                _ => "close",
+                (NodeState::Slip(_), NodeState::Stick) => EventKind::Stick,
+                (_, NodeState::Open) => EventKind::Open,
+                _ => EventKind::Close,
             };
             let st = sv.record(&a, lam, Some(&prev_u));
             prev_u.clone_from(&st.u);
@@ -123,7 +123,7 @@ pub(super) fn drive(
         if steady {
             out.sliding_events += 1;
             let st = sv.record(&a, lam, Some(&prev_u));
-            push(&mut out, pb, Event::simple("sliding", &st, 0), st)?;
+            push(&mut out, pb, Event::simple(EventKind::Sliding, &st, 0), st)?;
             progress(1.0);
             return finish(out, sv);
         }
@@ -143,7 +143,7 @@ pub(super) fn drive(
                 ));
             }
             let st = sv.record(&a, x_end, Some(&prev_u));
-            push(&mut out, pb, Event::simple("end", &st, 0), st)?;
+            push(&mut out, pb, Event::simple(EventKind::End, &st, 0), st)?;
             progress(1.0);
             return finish(out, sv);
         }
@@ -187,10 +187,10 @@ fn settle(
             // A node stuck (closed) again where it was stuck (closed) before in this settle is
             // a cycle: from now on the sticks go by speed (a stick), or the node stays open
             // until it penetrates without separating (a close).
-            if what == "stick" || what == "close" {
+            if what == EventKind::Stick || what == EventKind::Close {
                 let u = sv.anchor[i];
                 if stuck_at[i].is_some_and(|v: f64| (u - v).abs() <= 1e-12 * sv.dscale) {
-                    if what == "stick" {
+                    if what == EventKind::Stick {
                         sv.stick_fastest_first = true;
                     } else {
                         sv.set_state(i, NodeState::Open, 0.0)?;
