@@ -38,6 +38,9 @@ pub struct Args {
     pub h_over_l: Vec<f64>,
     #[arg(long, default_value = "out/edges")]
     pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    pub force: bool,
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
@@ -69,26 +72,25 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         ));
     }
     let rule: Rule = a.rule.parse()?;
-    tribofe::io::outdir::check(&a.out)?;
+    tribofe::io::outdir::check(&a.out, a.force)?;
     let pre = preslip(&scene, &a.mu, &a.refine)?;
     let open = opening(&scene, a.mu_s, a.mu_d, rule, &a.t_over_l, &a.open_refine, &a.h_over_l)?;
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out)?;
-    let args: Vec<String> = std::env::args().collect();
+    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
     let files = [
         ("preslip.csv", tribofe::report::edges::preslip_csv(&pre)?),
         ("preslip.svg", tribofe::report::edges::preslip_svg(&pre)?),
         ("opening.csv", tribofe::report::edges::opening_csv(&open)?),
         (
             "run.toml",
-            format!(
-                "# written by tribofe {} edges\ncommand = {:?}\nmu_s = {}\nmu_d = {}\nrule = {:?}\n\n{}",
-                env!("CARGO_PKG_VERSION"),
-                args.join(" "),
-                a.mu_s,
-                a.mu_d,
-                a.rule,
-                tribofe::report::scene_section(&scene)?
-            ),
+            tribofe::report::run_toml(
+                super::invocation(),
+                &[
+                    ("mu_s", toml::Value::from(a.mu_s)),
+                    ("mu_d", toml::Value::from(a.mu_d)),
+                    ("rule", toml::Value::from(a.rule.clone())),
+                ],
+                &scene,
+            )?,
         ),
     ];
     for (name, text) in files {

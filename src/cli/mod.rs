@@ -2,8 +2,8 @@
 //! and prints; errors bubble up to `main` as one message and the exit status of
 //! [`tribofe::Error::exit_status`].
 
-/// `print!` that returns a write failure (closed pipe, full disk) to the caller with `?`
-/// instead of panicking; `main` ends quietly on a closed pipe.
+/// `print!` into the command's standard output, which `main` writes once the command has
+/// returned, so its results are on disk before any line is printed ([`write_stdout`]).
 macro_rules! out {
     ($($t:tt)*) => { $crate::cli::write_stdout(format_args!($($t)*))? };
 }
@@ -33,9 +33,12 @@ use clap::{Parser, Subcommand};
     after_help = "Exit status: 0 success; 2 bad input (parameter, scene key, mesh, unreadable file, size \
 above --max-dofs, unusable output folder); 3 numerical refusal (singular or ill-conditioned system, \
 failed self-check); 4 failure while writing results, or threads refused by the system; 130 \
-interrupted by SIGINT/SIGTERM (temporaries removed, the output folder as before). Inputs are checked \
-before any work starts; results go to a fresh folder renamed into place at the end (all but sweep and \
-precursors; README, \"Inputs and failures\")."
+interrupted by SIGINT/SIGTERM (temporaries removed, the output folder as before); 141 standard output \
+closed before everything was printed (`| head`; the results are on disk, written before anything is \
+printed). Inputs are checked before any work starts; results go to a fresh folder renamed into place \
+at the end. --out refuses an existing folder that holds files tribofe did not write (no run.toml of \
+a previous run) unless --force is given; every folder holds a run.toml (version, source revision, \
+date, host, command line, options, scene; docs/outputs-and-provenance.md)."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -74,11 +77,95 @@ pub enum Command {
     Sweep(sweep::Args),
 }
 
-/// Writes to standard output and flushes, so a closed pipe is seen here, not at exit.
+/// What the command prints, held until it returns: its output folder is committed before
+/// the first line reaches a pipe that may close (`tribofe precursors | head -1`).
+static STDOUT: std::sync::Mutex<String> = std::sync::Mutex::new(String::new());
+
+/// Appends to the held standard output ([`flush_stdout`] writes it). Returns a Result so the
+/// `out!` call sites keep their `?`.
 pub fn write_stdout(args: std::fmt::Arguments) -> tribofe::Result<()> {
+    use std::fmt::Write;
+    let _ = STDOUT.lock().unwrap_or_else(|e| e.into_inner()).write_fmt(args);
+    Ok(())
+}
+
+/// Writes the held standard output, control bytes quoted ([`tribofe::error::quote_lines`]).
+pub fn flush_stdout() -> std::io::Result<()> {
     use std::io::Write;
+    let text = std::mem::take(&mut *STDOUT.lock().unwrap_or_else(|e| e.into_inner()));
     let mut o = std::io::stdout().lock();
-    o.write_fmt(args).and_then(|_| o.flush()).map_err(|e| tribofe::Error::io("standard output", e))
+    o.write_all(tribofe::error::quote_lines(&text).as_bytes()).and_then(|_| o.flush())
+}
+
+/// The command line and every option's value, for the run.toml of every command.
+static INVOCATION: std::sync::OnceLock<tribofe::report::run_file::Invocation> = std::sync::OnceLock::new();
+
+/// The invocation recorded by [`parse`] (empty when the command was built otherwise).
+pub fn invocation() -> &'static tribofe::report::run_file::Invocation {
+    INVOCATION.get_or_init(Default::default)
+}
+
+/// Parses the command line and records it with every option's effective value (given or
+/// default) for run.toml.
+pub fn parse() -> Result<Cli, clap::Error> {
+    use clap::{CommandFactory, FromArgMatches};
+    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let cmd = Cli::command();
+    let m = cmd.clone().try_get_matches_from(&args)?;
+    let cli = Cli::from_arg_matches(&m)?;
+    let mut options = toml::Table::new();
+    if let (Some((name, sub)), Some(sc)) =
+        (m.subcommand(), m.subcommand_name().and_then(|n| cmd.find_subcommand(n)))
+    {
+        options.insert("subcommand".into(), toml::Value::String(name.into()));
+        for arg in sc.get_arguments() {
+            let id = arg.get_id().as_str();
+            let Ok(Some(raw)) = sub.try_get_raw(id) else { continue };
+            let switch = !arg.get_action().takes_values();
+            let vals: Vec<toml::Value> = raw
+                .map(|v| {
+                    let v = v.to_string_lossy().into_owned();
+                    match (switch, v.as_str()) {
+                        (true, "true") => toml::Value::Boolean(true),
+                        (true, "false") => toml::Value::Boolean(false),
+                        _ => toml::Value::String(v),
+                    }
+                })
+                .collect();
+            let key = arg.get_long().unwrap_or(id).to_string();
+            let v = match &vals[..] {
+                [one] => one.clone(),
+                _ => toml::Value::Array(vals),
+            };
+            options.insert(key, v);
+        }
+    }
+    let inv = tribofe::report::run_file::Invocation {
+        args: args.iter().map(|a| a.to_string_lossy().into_owned()).collect(),
+        options,
+    };
+    let _ = INVOCATION.set(inv);
+    Ok(cli)
+}
+
+/// Writes the folder's run.toml ([`tribofe::report::run_file`]) with this invocation.
+pub fn write_run_file(
+    dir: &std::path::Path,
+    scene: Option<&tribofe::scene::Scene>,
+    results: &impl serde::Serialize,
+) -> tribofe::Result<()> {
+    tribofe::report::run_file::write(dir, invocation(), scene, results)
+}
+
+/// [`write_run_file`] under another name (`run_<I>of<N>.toml` of a sweep shard).
+pub fn write_run_file_named(
+    dir: &std::path::Path,
+    name: &str,
+    scene: Option<&tribofe::scene::Scene>,
+    results: &impl serde::Serialize,
+) -> tribofe::Result<()> {
+    let text = tribofe::report::run_file::run_toml(invocation(), scene, results)?;
+    tribofe::report::write_atomic(&dir.join(name), text.as_bytes())
 }
 
 /// SIGINT and SIGTERM are taken by one thread (blocked in all others, so this runs before any

@@ -171,7 +171,7 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
     }
     for w in s.warnings() {
         use std::io::Write;
-        let _ = writeln!(std::io::stderr(), "warning: {w}");
+        let _ = writeln!(std::io::stderr(), "warning: {}", tribofe::error::quote_lines(&w.to_string()));
     }
     if s.plate.model == PlateModel::Rigid {
         let given = [

@@ -21,6 +21,9 @@ pub struct Args {
     /// Output directory (`validation/stability` refreshes the committed results).
     #[arg(long, default_value = "out/stability")]
     pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    pub force: bool,
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
@@ -40,7 +43,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         }
     }
     let scene = super::check::scene(&args.scene)?;
-    tribofe::io::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out, args.force)?;
     let studies: Vec<String> = if args.study.is_empty() {
         STUDIES.iter().map(|s| s.to_string()).collect()
     } else {
@@ -58,8 +61,10 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
-    let files = tribofe::report::stability::write(&res, dir.path())?;
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
+    let mut files = tribofe::report::stability::write(&res, dir.path())?;
+    super::write_run_file(dir.path(), Some(&scene), &tribofe::report::run_file::NoResults {})?;
+    files.push("run.toml".into());
     dir.commit()?;
     out!("{}", tribofe::report::stability::summary(&res));
     outln!("wrote {}/{{{}}}", args.out.display(), files.join(", "));

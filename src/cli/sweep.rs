@@ -44,6 +44,10 @@ pub struct Args {
     pub cycles: usize,
     #[arg(long, default_value = "out/sweep")]
     pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted);
+    /// with --shard, write into it without deleting anything.
+    #[arg(long)]
+    pub force: bool,
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
@@ -62,7 +66,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         }
     }
     let base = scene(&flat)?;
-    tribofe::io::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out, args.force)?;
     let shard = match &args.shard {
         None => None,
         Some(s) => {
@@ -116,15 +120,25 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         Some((i, n)) => format!("sweep_{i}of{n}.csv"),
         None => "sweep.csv".to_string(),
     };
+    let results = [
+        ("points", toml::Value::from(points.len() as i64)),
+        ("grid_points", toml::Value::from(total as i64)),
+        ("wall_seconds", toml::Value::from(wall)),
+    ];
     let with_header = shard.is_none_or(|(i, _)| i == 1);
     let table = tribofe::report::sweep::csv(&points, with_header)?;
     let maps = if shard.is_some() {
         // Shards of one sweep share the folder (a Slurm array): each writes its own file, whole.
+        // Each shard's provenance in its own run file, whole, next to its table.
+        let (i, n) = shard.unwrap_or((1, 1));
+        std::fs::create_dir_all(&args.out).map_err(|e| tribofe::Error::io(&args.out, e))?;
+        super::write_run_file_named(&args.out, &format!("run_{i}of{n}.toml"), Some(&base), &results)?;
         tribofe::report::write_atomic(&args.out.join(&name), table.as_bytes())?;
         vec![]
     } else {
-        let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
+        let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
         tribofe::report::write_atomic(&dir.path().join(&name), table.as_bytes())?;
+        super::write_run_file(dir.path(), Some(&base), &results)?;
         let maps = tribofe::report::sweep::write_maps(&points, &axes, dir.path())?;
         dir.commit()?;
         maps
