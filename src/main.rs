@@ -16,7 +16,7 @@ fn main() {
         Ok(a) => a,
         Err(e) => {
             // clap's own messages echo the arguments: control bytes quoted as everywhere else.
-            let text = tribofe::error::quote_lines(&e.render().to_string());
+            let text = tribofe::error::quote_lines(&e.render().ansi().to_string());
             let _ = if e.use_stderr() {
                 write!(std::io::stderr(), "{text}")
             } else {

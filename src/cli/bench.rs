@@ -69,6 +69,9 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     if args.threads.is_empty() {
         args.threads.push(std::thread::available_parallelism().map_or(1, |n| n.get()));
     }
+    if args.repeat == 0 {
+        return Err(tribofe::Error::input("--repeat", "0: a setting needs at least one run"));
+    }
     if args.threads.contains(&0) {
         return Err(tribofe::Error::input("--threads", "0: a run needs at least one thread"));
     }

@@ -44,23 +44,11 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
-    let s = &a.scene;
-    for (flag, given) in [
-        ("--h", s.h.is_some()),
-        ("--grading", s.grading.is_some()),
-        ("--h-max", s.h_max.is_some()),
-        ("--n-thick", s.n_thick.is_some()),
-        ("--height", s.height.is_some()),
-        ("--fn-ratios", s.fn_ratios.is_some()),
-        ("--tol", s.tol.is_some()),
-    ] {
-        if given {
-            return Err(Error::input(
-                flag,
-                "cannot act in `edges`: the meshes come from --refine (pre-slip) and --t-over-l (h = t/2), the heights from --h-over-l",
-            ));
-        }
-    }
+    super::scene_args::refuse_inapplicable(
+        &a.scene,
+        &["--h", "--grading", "--h-max", "--n-thick", "--height", "--fn-ratios", "--tol", "--mesh"],
+        "`edges` builds its own meshes: --refine (pre-slip) and --t-over-l (h = t/2), the heights from --h-over-l",
+    )?;
     let scene = scene_from(&a.scene)?;
     if scene.mesh.file.is_some() {
         return Err(Error::input("--mesh", "`edges` builds its own meshes; a mesh file cannot act"));

@@ -100,17 +100,62 @@ pub fn flush_stdout() -> std::io::Result<()> {
 /// The command line and every option's value, for the run.toml of every command.
 static INVOCATION: std::sync::OnceLock<tribofe::report::run_file::Invocation> = std::sync::OnceLock::new();
 
+/// The options typed on the command line (clap ids: `n_ref`, `max_events`), not defaulted.
+static GIVEN: std::sync::OnceLock<std::collections::BTreeSet<String>> = std::sync::OnceLock::new();
+
+/// Whether option `id` (its field name) was typed, rather than left at its default.
+pub fn given(id: &str) -> bool {
+    GIVEN.get().is_some_and(|g| g.contains(id))
+}
+
 /// The invocation recorded by [`parse`] (empty when the command was built otherwise).
 pub fn invocation() -> &'static tribofe::report::run_file::Invocation {
     INVOCATION.get_or_init(Default::default)
+}
+
+/// `--flag -1,2` as `--flag=-1,2`: clap reads a lone negative number after a flag as its value
+/// (allow_negative_numbers) but a negative list or range (`-1,2`, `-1:1:5`) as an unknown
+/// flag. A word after a long flag that takes a value is joined to it when it starts with `-`
+/// and a digit or `.`, which no flag does.
+fn join_negative_values(cmd: &clap::Command, args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
+    let sub = args.iter().skip(1).find_map(|a| a.to_str().and_then(|a| cmd.find_subcommand(a)));
+    let Some(sub) = sub else { return args };
+    let takes_value = |long: &str| {
+        sub.get_arguments().any(|a| {
+            a.get_action().takes_values()
+                && (a.get_long() == Some(long) || a.get_all_aliases().is_some_and(|al| al.contains(&long)))
+        })
+    };
+    let mut out = Vec::with_capacity(args.len());
+    let mut it = args.into_iter().peekable();
+    while let Some(a) = it.next() {
+        let flag = a.to_str().and_then(|s| s.strip_prefix("--")).filter(|f| !f.contains('=') && !f.is_empty());
+        let next_negative = it.peek().and_then(|n| n.to_str()).is_some_and(|n| {
+            let mut c = n.chars();
+            c.next() == Some('-') && c.next().is_some_and(|c| c.is_ascii_digit() || c == '.')
+        });
+        match flag {
+            Some(f) if next_negative && takes_value(f) => {
+                let mut joined = a.clone();
+                joined.push("=");
+                joined.push(it.next().unwrap_or_default());
+                out.push(joined);
+            }
+            _ => out.push(a),
+        }
+    }
+    out
 }
 
 /// Parses the command line and records it with every option's effective value (given or
 /// default) for run.toml.
 pub fn parse() -> Result<Cli, clap::Error> {
     use clap::{CommandFactory, FromArgMatches};
-    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
-    let cmd = Cli::command();
+    let typed: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let args = join_negative_values(&Cli::command(), typed.clone());
+    // Plain styles: the rendered error then holds no escape codes of clap's own, and the
+    // user's bytes are kept (not stripped) for `main` to quote.
+    let cmd = Cli::command().styles(clap::builder::Styles::plain());
     let m = cmd.clone().try_get_matches_from(&args)?;
     let cli = Cli::from_arg_matches(&m)?;
     let mut options = toml::Table::new();
@@ -118,8 +163,12 @@ pub fn parse() -> Result<Cli, clap::Error> {
         (m.subcommand(), m.subcommand_name().and_then(|n| cmd.find_subcommand(n)))
     {
         options.insert("subcommand".into(), toml::Value::String(name.into()));
+        let mut given = std::collections::BTreeSet::new();
         for arg in sc.get_arguments() {
             let id = arg.get_id().as_str();
+            if sub.value_source(id) == Some(clap::parser::ValueSource::CommandLine) {
+                given.insert(id.to_string());
+            }
             let Ok(Some(raw)) = sub.try_get_raw(id) else { continue };
             let switch = !arg.get_action().takes_values();
             let vals: Vec<toml::Value> = raw
@@ -139,9 +188,10 @@ pub fn parse() -> Result<Cli, clap::Error> {
             };
             options.insert(key, v);
         }
+        let _ = GIVEN.set(given);
     }
     let inv = tribofe::report::run_file::Invocation {
-        args: args.iter().map(|a| a.to_string_lossy().into_owned()).collect(),
+        args: typed.iter().map(|a| a.to_string_lossy().into_owned()).collect(),
         options,
     };
     let _ = INVOCATION.set(inv);
@@ -210,15 +260,53 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         what: "the worker threads (rayon pool; RAYON_NUM_THREADS sets their number)".into(),
         why: e.to_string(),
     })?;
+    // The library names its parameters (mu, N, Poisson's ratio); the user typed flags.
+    const LAW: &[(&str, &str)] = &[
+        ("mu", "--mu"),
+        ("mu-s", "--mu-s"),
+        ("mu-d", "--mu-d"),
+        ("mu-s/mu-d", "--mu-s/--mu-d"),
+        ("dc", "--dc"),
+        ("N", "--n-force"),
+        ("x-max", "--x-max"),
+        ("cycles", "--cycles"),
+        ("law", "--law"),
+        ("newton", "--newton"),
+        ("r", "--r"),
+        ("g", "--g"),
+        ("r, g", "--r, --g"),
+    ];
     match cli.command {
-        Command::Solve(a) => solve::run(a),
+        Command::Solve(a) => solve::run(a).map_err(|e| {
+            typed_flag(e, &[("Poisson's ratio", "--poisson"), ("Young's modulus", "--young"), ("mesh", "--nx/--ny")])
+        }),
         Command::Check(a) => check::run(a),
         Command::Converge(a) => converge::run(a),
-        Command::Precursors(args) => precursors::run(args),
-        Command::Slide(a) => slide::run(a),
-        Command::Edges(a) => edges::run(a),
+        Command::Precursors(args) => precursors::run(args).map_err(|e| typed_flag(e, LAW)),
+        Command::Slide(a) => slide::run(a).map_err(|e| typed_flag(e, LAW)),
+        Command::Edges(a) => edges::run(a).map_err(|e| typed_flag(e, LAW)),
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
-        Command::Sweep(a) => sweep::run(a),
+        Command::Sweep(a) => sweep::run(a).map_err(|e| {
+            typed_flag(e, &[("mu-s", "--friction"), ("mu-d", "--friction"), ("cycles", "--cycles")])
+        }),
+    }
+}
+
+/// A refusal naming a library parameter (`what` equal to, or starting with, a name of `names`
+/// and a space) renamed to the flag the user typed.
+fn typed_flag(e: tribofe::Error, names: &[(&str, &str)]) -> tribofe::Error {
+    match e {
+        tribofe::Error::Input { what, why } => {
+            let hit = names.iter().find_map(|(name, flag)| {
+                if what == *name {
+                    Some(flag.to_string())
+                } else {
+                    what.strip_prefix(name).filter(|r| r.starts_with(' ')).map(|r| format!("{flag}{r}"))
+                }
+            });
+            tribofe::Error::Input { what: hit.unwrap_or(what), why }
+        }
+        e => e,
     }
 }

@@ -80,6 +80,33 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
+    // The model's iteration and map are dimensionless in r and g: no scene can act on them.
+    if !args.fe && !args.bonded_fields && args.scene.any() {
+        let flag = super::scene_args::FLAG_KEYS
+            .iter()
+            .map(|(f, _)| *f)
+            .chain(["--scene", "--write-scene"])
+            .find(|f| args.scene.has(f))
+            .unwrap_or("--scene");
+        return Err(Error::input(
+            flag,
+            "cannot act without --fe (or --bonded-fields): the model's precursors depend on r and g only",
+        ));
+    }
+    if args.fe {
+        if args.events.is_some() {
+            return Err(Error::input(
+                "--events",
+                "cannot act with --fe, whose runs end at whole-interface slips (--cycles); its cap is --max-events",
+            ));
+        }
+        if super::given("max_events") && !args.map && args.dc.is_none() {
+            return Err(Error::input("--max-events", "cannot act here: it caps --fe --map cells and --fe --dc runs"));
+        }
+        if super::given("rules") && !args.map {
+            return Err(Error::input("--rules", "cannot act without --map: --fe runs every rule for fig. 4"));
+        }
+    }
     if args.map && args.fe {
         return fe_map(&args);
     }

@@ -112,22 +112,18 @@ fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
 pub fn run(a: Args) -> tribofe::Result<()> {
     // The scene flags (shared with check and sweep) are applied and validated in scene_from;
     // two of them belong to the bonded check and cannot act here.
-    for (flag, given, why) in [
-        (
-            "--fn-ratios",
-            a.scene.fn_ratios.is_some(),
-            "slide loads N then X until the interface slides: set --n-force, --x-max",
-        ),
-        ("--tol", a.scene.tol.is_some(), "the edge-zone tolerance belongs to `check`"),
-    ] {
-        if given {
-            return Err(Error::input(flag, format!("cannot act in `slide`: {why}")));
-        }
-    }
+    super::scene_args::refuse_inapplicable(
+        &a.scene,
+        &["--fn-ratios", "--tol"],
+        "`slide` loads N then X until the interface slides (--n-force, --x-max); the load ratios and the edge-zone tolerance belong to `check`",
+    )?;
     let scene = scene_from(&a.scene)?;
     tribofe::io::outdir::check(&a.out, a.force)?;
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
+    }
+    if super::given("rule") && a.law != "static-kinetic" {
+        return Err(Error::input("--rule", "the event rule belongs to --law static-kinetic"));
     }
     if a.newton && a.law != "slip-weakening" {
         return Err(Error::input("newton", "--newton cannot act without --law slip-weakening"));

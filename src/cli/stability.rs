@@ -28,20 +28,11 @@ pub struct Args {
 
 pub fn run(args: Args) -> tribofe::Result<()> {
     // Every study sets its own mesh sizes and load case: these flags could not act.
-    let a = &args.scene;
-    for (flag, given) in [
-        ("--h", a.h.is_some()),
-        ("--n-thick", a.n_thick.is_some()),
-        ("--fn-ratios", a.fn_ratios.is_some()),
-        ("--mesh", a.mesh.is_some()),
-    ] {
-        if given {
-            return Err(tribofe::Error::input(
-                flag,
-                "cannot act in `stability`: each study sets its own meshes (--n-ref, --corner-max) and load case",
-            ));
-        }
-    }
+    super::scene_args::refuse_inapplicable(
+        &args.scene,
+        &["--h", "--n-thick", "--fn-ratios", "--mesh"],
+        "each `stability` study sets its own meshes (--n-ref, --corner-max) and load case",
+    )?;
     let scene = super::check::scene(&args.scene)?;
     tribofe::io::outdir::check(&args.out, args.force)?;
     let studies: Vec<String> = if args.study.is_empty() {
@@ -49,6 +40,15 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     } else {
         args.study.clone()
     };
+    let runs = |names: &[&str]| studies.iter().any(|s| names.contains(&s.as_str()));
+    for (id, flag, needs) in [("n_ref", "--n-ref", &["nu", "shape"][..]), ("corner_max", "--corner-max", &["corners"])] {
+        if super::given(id) && !runs(needs) {
+            return Err(tribofe::Error::input(
+                flag,
+                format!("cannot act: it sizes the {} study, not run here (--study)", needs.join(" and ")),
+            ));
+        }
+    }
     let corner_n_thick =
         std::iter::successors(Some(1usize), |n| Some(2 * n)).take_while(|&n| n <= args.corner_max).collect();
     let o = Options { n_ref: args.n_ref, corner_n_thick, ..Default::default() };

@@ -65,6 +65,36 @@ pub fn run(args: Args) -> tribofe::Result<()> {
             axes.push(Axis { param: p, values: v.0 });
         }
     }
+    super::scene_args::refuse_inapplicable(
+        &args.scene,
+        &["--mesh"],
+        "the sweep varies the block's geometry, which a mesh file fixes",
+    )?;
+    if !args.as_meshed {
+        super::scene_args::refuse_inapplicable(
+            &args.scene,
+            &["--h", "--grading", "--h-max", "--n-thick", "--element"],
+            "each point is solved on the converged model (graded QUA8, t/16 at the ends); add --as-meshed to use the scene's mesh settings",
+        )?;
+    }
+    if args.friction.is_none() {
+        for (id, flag) in [("rule", "--rule"), ("cycles", "--cycles")] {
+            if super::given(id) {
+                return Err(tribofe::Error::input(
+                    flag,
+                    "cannot act without --friction MU_S,MU_D (the frictional run it sets up)",
+                ));
+            }
+        }
+    }
+    if let Some(v) = args.tension_fn {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(tribofe::Error::input(
+                "--tension-fn",
+                format!("{v}: give the F/N ratio (> 0, dimensionless) up to which no tension is allowed"),
+            ));
+        }
+    }
     let base = scene(&flat)?;
     tribofe::io::outdir::check(&args.out, args.force)?;
     let shard = match &args.shard {

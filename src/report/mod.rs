@@ -18,6 +18,9 @@ use std::path::Path;
 /// failure never leaves a partly written file. Creates missing parent directories; the
 /// temporary file is removed on failure.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    if path.extension().is_some_and(|e| e == "csv") {
+        refuse_non_finite_cells(path, bytes)?;
+    }
     let _writing = crate::io::outdir::write_guard();
     let name = path
         .file_name()
@@ -33,6 +36,23 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&tmp);
         Error::io(path, e)
     })
+}
+
+/// The guard of every CSV file written: a cell that reads as NaN or an infinity is refused
+/// (an error naming the file, line and column), never written as a result.
+fn refuse_non_finite_cells(path: &Path, bytes: &[u8]) -> Result<()> {
+    let text = String::from_utf8_lossy(bytes);
+    for (i, line) in text.lines().enumerate() {
+        for (j, cell) in line.split(',').enumerate() {
+            if cell.trim().parse::<f64>().is_ok_and(|v| !v.is_finite()) {
+                return Err(Error::input(
+                    format!("{} line {} column {}", path.display(), i + 1, j + 1),
+                    format!("'{}' is not a finite number; refusing to write it as a result", cell.trim()),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// `run.toml` ([`run_file::run_toml`]) with the command's figures `cases` under `[results]`:
