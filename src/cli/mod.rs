@@ -94,7 +94,12 @@ pub fn flush_stdout() -> std::io::Result<()> {
     use std::io::Write;
     let text = std::mem::take(&mut *STDOUT.lock().unwrap_or_else(|e| e.into_inner()));
     let mut o = std::io::stdout().lock();
-    o.write_all(tribofe::error::quote_lines(&text).as_bytes()).and_then(|_| o.flush())
+    // Line by line, as a filter writes: a reader that stops early (`| head -1`) is seen as a
+    // closed pipe on the next line, not hidden in one large write into the pipe's buffer.
+    for line in tribofe::error::quote_lines(&text).split_inclusive('\n') {
+        o.write_all(line.as_bytes()).and_then(|_| o.flush())?;
+    }
+    Ok(())
 }
 
 /// The command line and every option's value, for the run.toml of every command.

@@ -150,11 +150,14 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         Some((i, n)) => format!("sweep_{i}of{n}.csv"),
         None => "sweep.csv".to_string(),
     };
-    let results = [
+    let results: toml::Table = [
         ("points", toml::Value::from(points.len() as i64)),
         ("grid_points", toml::Value::from(total as i64)),
         ("wall_seconds", toml::Value::from(wall)),
-    ];
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .collect();
     let with_header = shard.is_none_or(|(i, _)| i == 1);
     let table = tribofe::report::sweep::csv(&points, with_header)?;
     let maps = if shard.is_some() {
