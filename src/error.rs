@@ -18,6 +18,10 @@ pub mod exit {
     pub const OUTPUT: i32 = 4;
     /// Interrupted by SIGINT or SIGTERM (128 + SIGINT, as shells report it).
     pub const INTERRUPTED: i32 = 130;
+    /// Standard output closed before everything was printed (`tribofe check | head -1`);
+    /// 128 + SIGPIPE, as shells report a process ended by a closed pipe. The results were
+    /// written to disk before anything was printed.
+    pub const BROKEN_PIPE: i32 = 141;
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -131,12 +135,26 @@ pub fn quote(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 2);
     for c in s.chars() {
         if c.is_control() {
-            out.extend(c.escape_default());
+            // `\x1b` for the C0 controls and DEL, as a shell's $'...' writes them.
+            if (c as u32) < 0x80 {
+                out.push_str(&format!("\\x{:02x}", c as u32));
+            } else {
+                out.extend(c.escape_unicode());
+            }
         } else {
             out.push(c);
         }
     }
     out
+}
+
+/// Quotes a whole message for a terminal: as [`quote`], but line breaks and tabs kept. Every
+/// message, warning and printed table goes through it on its way out.
+pub fn quote_lines(s: &str) -> String {
+    if !s.chars().any(|c| c.is_control() && c != '\n' && c != '\t') {
+        return s.to_string();
+    }
+    s.split('\n').map(|l| l.split('\t').map(quote).collect::<Vec<_>>().join("\t")).collect::<Vec<_>>().join("\n")
 }
 
 pub type Result<T> = std::result::Result<T, Error>;

@@ -3,7 +3,6 @@
 #[macro_use]
 mod cli;
 
-use clap::Parser;
 
 // The studies report their own peak heap (converge's peak_heap_mib) through this allocator.
 #[cfg(feature = "count-alloc")]
@@ -13,13 +12,33 @@ use std::io::Write;
 use tribofe::error::exit;
 
 fn main() {
-    let args = cli::Cli::parse();
-    let status = match cli::run(args) {
-        Ok(()) => exit::OK,
-        // A closed pipe (`tribofe check | head`) is a normal end for a Unix filter: the reader
-        // has what it wanted. Rust ignores SIGPIPE, so the write returns EPIPE and lands here.
-        Err(tribofe::Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => exit::OK,
+    let args = match cli::parse() {
+        Ok(a) => a,
         Err(e) => {
+            // clap's own messages echo the arguments: control bytes quoted as everywhere else.
+            let text = tribofe::error::quote_lines(&e.render().ansi().to_string());
+            let _ = if e.use_stderr() {
+                write!(std::io::stderr(), "{text}")
+            } else {
+                write!(std::io::stdout(), "{text}")
+            };
+            std::process::exit(e.exit_code());
+        }
+    };
+    let result = cli::run(args);
+    // Results are on disk by now: a closed pipe only loses the printed copy.
+    let printed = cli::flush_stdout();
+    let status = match (result, printed) {
+        (Err(e), _) => {
+            let _ = writeln!(std::io::stderr(), "error: {}", tribofe::error::quote_lines(&e.to_string()));
+            e.exit_status()
+        }
+        (Ok(()), Ok(())) => exit::OK,
+        // Rust ignores SIGPIPE, so a closed pipe is an EPIPE error here; the shell's status for
+        // a process killed by SIGPIPE tells a script the output was cut.
+        (Ok(()), Err(e)) if e.kind() == std::io::ErrorKind::BrokenPipe => exit::BROKEN_PIPE,
+        (Ok(()), Err(e)) => {
+            let e = tribofe::Error::io("standard output", e);
             let _ = writeln!(std::io::stderr(), "error: {e}");
             e.exit_status()
         }

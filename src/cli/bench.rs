@@ -33,6 +33,10 @@ pub struct Args {
     /// Writes bench.csv and dgemm.csv here.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    #[arg(requires = "out")]
+    pub force: bool,
     /// Runs the cases in this process (peak memory is then cumulative).
     #[arg(long)]
     pub in_process: bool,
@@ -65,11 +69,14 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     if args.threads.is_empty() {
         args.threads.push(std::thread::available_parallelism().map_or(1, |n| n.get()));
     }
+    if args.repeat == 0 {
+        return Err(tribofe::Error::input("--repeat", "0: a setting needs at least one run"));
+    }
     if args.threads.contains(&0) {
         return Err(tribofe::Error::input("--threads", "0: a run needs at least one thread"));
     }
     if let Some(dir) = &args.out {
-        tribofe::io::outdir::check(dir)?;
+        tribofe::io::outdir::check(dir, args.force)?;
     }
     // Three n x n matrices of f64 must fit in half the memory.
     let dgemm_bytes = 24.0 * (args.dgemm as f64).powi(2);
@@ -127,10 +134,11 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     }
     out!("{}", bench::table(&rows, &dgemm));
     if let Some(dir) = &args.out {
-        let d = tribofe::io::outdir::OutDir::begin(dir)?;
+        let d = tribofe::io::outdir::OutDir::begin(dir, args.force)?;
         bench::write_csv(&rows, &dgemm, d.path())?;
+        super::write_run_file(d.path(), None, &tribofe::report::run_file::NoResults {})?;
         d.commit()?;
-        outln!("wrote {}/{{bench.csv, dgemm.csv}}", dir.display());
+        outln!("wrote {}/{{bench.csv, dgemm.csv, run.toml}}", dir.display());
     }
     Ok(())
 }

@@ -12,6 +12,9 @@ pub struct Args {
     /// Output directory.
     #[arg(long, default_value = "out/check")]
     pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    pub force: bool,
     /// Skip the field files (fields_FN*.vtu/.msh, fields.pvd) of the whole mesh.
     #[arg(long)]
     pub no_fields: bool,
@@ -24,7 +27,7 @@ pub use super::scene_args::{scene, SceneArgs};
 
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = scene(&args.scene)?;
-    tribofe::io::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out, args.force)?;
     let opts = SolverOptions::default();
     let (res, sm) = tribofe::studies::check::run(&scene, &opts)?;
     // The converged figures need the exact rigid plate and the structured mesh of the scene.
@@ -39,15 +42,14 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     if let Some(c) = &converged {
         c.self_check()?;
     }
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
     tribofe::report::check::write(&res, converged.as_ref(), dir.path())?;
     if !args.no_fields {
         tribofe::report::check::write_fields(&res, &sm, dir.path())?;
     }
-    let command: Vec<String> = std::env::args().collect();
     tribofe::report::write_atomic(
         &dir.path().join("run.toml"),
-        tribofe::report::check::run_toml(&res, &command)?.as_bytes(),
+        tribofe::report::check::run_toml(&res, super::invocation())?.as_bytes(),
     )?;
     dir.commit()?;
     out!("{}", tribofe::report::check::table(&res));

@@ -27,6 +27,9 @@ pub struct Args {
     pub serial: bool,
     #[arg(long, default_value = "out/converge")]
     pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    pub force: bool,
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
@@ -53,7 +56,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         None => vec![1, 2, 4, 8, 16, 32, 64],
     };
     let scene = super::check::scene(&flat)?;
-    tribofe::io::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out, args.force)?;
     let families = args.families.iter().map(|f| f.parse::<Family>()).collect::<tribofe::Result<Vec<_>>>()?;
     let o = StudyOptions {
         elements: args.elements.clone(),
@@ -73,12 +76,13 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
     tribofe::report::convergence::write(&st, dir.path())?;
+    super::write_run_file(dir.path(), Some(&scene), &tribofe::report::run_file::NoResults {})?;
     dir.commit()?;
     out!("{}", tribofe::report::convergence::summary(&st, args.target));
     outln!(
-        "wrote {}/{{convergence.csv, error_vs_dofs.svg, error_vs_time.svg, summary.txt}}",
+        "wrote {}/{{convergence.csv, error_vs_dofs.svg, error_vs_time.svg, summary.txt, run.toml}}",
         args.out.display()
     );
     Ok(())

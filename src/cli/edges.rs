@@ -38,26 +38,17 @@ pub struct Args {
     pub h_over_l: Vec<f64>,
     #[arg(long, default_value = "out/edges")]
     pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    pub force: bool,
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
-    let s = &a.scene;
-    for (flag, given) in [
-        ("--h", s.h.is_some()),
-        ("--grading", s.grading.is_some()),
-        ("--h-max", s.h_max.is_some()),
-        ("--n-thick", s.n_thick.is_some()),
-        ("--height", s.height.is_some()),
-        ("--fn-ratios", s.fn_ratios.is_some()),
-        ("--tol", s.tol.is_some()),
-    ] {
-        if given {
-            return Err(Error::input(
-                flag,
-                "cannot act in `edges`: the meshes come from --refine (pre-slip) and --t-over-l (h = t/2), the heights from --h-over-l",
-            ));
-        }
-    }
+    super::scene_args::refuse_inapplicable(
+        &a.scene,
+        &["--h", "--grading", "--h-max", "--n-thick", "--height", "--fn-ratios", "--tol", "--mesh"],
+        "`edges` builds its own meshes: --refine (pre-slip) and --t-over-l (h = t/2), the heights from --h-over-l",
+    )?;
     let scene = scene_from(&a.scene)?;
     if scene.mesh.file.is_some() {
         return Err(Error::input("--mesh", "`edges` builds its own meshes; a mesh file cannot act"));
@@ -69,26 +60,25 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         ));
     }
     let rule: Rule = a.rule.parse()?;
-    tribofe::io::outdir::check(&a.out)?;
+    tribofe::io::outdir::check(&a.out, a.force)?;
     let pre = preslip(&scene, &a.mu, &a.refine)?;
     let open = opening(&scene, a.mu_s, a.mu_d, rule, &a.t_over_l, &a.open_refine, &a.h_over_l)?;
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out)?;
-    let args: Vec<String> = std::env::args().collect();
+    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
     let files = [
         ("preslip.csv", tribofe::report::edges::preslip_csv(&pre)?),
         ("preslip.svg", tribofe::report::edges::preslip_svg(&pre)?),
         ("opening.csv", tribofe::report::edges::opening_csv(&open)?),
         (
             "run.toml",
-            format!(
-                "# written by tribofe {} edges\ncommand = {:?}\nmu_s = {}\nmu_d = {}\nrule = {:?}\n\n{}",
-                env!("CARGO_PKG_VERSION"),
-                args.join(" "),
-                a.mu_s,
-                a.mu_d,
-                a.rule,
-                tribofe::report::scene_section(&scene)?
-            ),
+            tribofe::report::run_toml(
+                super::invocation(),
+                &[
+                    ("mu_s", toml::Value::from(a.mu_s)),
+                    ("mu_d", toml::Value::from(a.mu_d)),
+                    ("rule", toml::Value::from(a.rule.clone())),
+                ],
+                &scene,
+            )?,
         ),
     ];
     for (name, text) in files {

@@ -2,8 +2,8 @@
 //! and prints; errors bubble up to `main` as one message and the exit status of
 //! [`tribofe::Error::exit_status`].
 
-/// `print!` that returns a write failure (closed pipe, full disk) to the caller with `?`
-/// instead of panicking; `main` ends quietly on a closed pipe.
+/// `print!` into the command's standard output, which `main` writes once the command has
+/// returned, so its results are on disk before any line is printed ([`write_stdout`]).
 macro_rules! out {
     ($($t:tt)*) => { $crate::cli::write_stdout(format_args!($($t)*))? };
 }
@@ -33,9 +33,12 @@ use clap::{Parser, Subcommand};
     after_help = "Exit status: 0 success; 2 bad input (parameter, scene key, mesh, unreadable file, size \
 above --max-dofs, unusable output folder); 3 numerical refusal (singular or ill-conditioned system, \
 failed self-check); 4 failure while writing results, or threads refused by the system; 130 \
-interrupted by SIGINT/SIGTERM (temporaries removed, the output folder as before). Inputs are checked \
-before any work starts; results go to a fresh folder renamed into place at the end (all but sweep and \
-precursors; README, \"Inputs and failures\")."
+interrupted by SIGINT/SIGTERM (temporaries removed, the output folder as before); 141 standard output \
+closed before everything was printed (`| head`; the results are on disk, written before anything is \
+printed). Inputs are checked before any work starts; results go to a fresh folder renamed into place \
+at the end. --out refuses an existing folder that holds files tribofe did not write (no run.toml of \
+a previous run) unless --force is given; every folder holds a run.toml (version, source revision, \
+date, host, command line, options, scene; docs/outputs-and-provenance.md)."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -74,11 +77,150 @@ pub enum Command {
     Sweep(sweep::Args),
 }
 
-/// Writes to standard output and flushes, so a closed pipe is seen here, not at exit.
+/// What the command prints, held until it returns: its output folder is committed before
+/// the first line reaches a pipe that may close (`tribofe precursors | head -1`).
+static STDOUT: std::sync::Mutex<String> = std::sync::Mutex::new(String::new());
+
+/// Appends to the held standard output ([`flush_stdout`] writes it). Returns a Result so the
+/// `out!` call sites keep their `?`.
 pub fn write_stdout(args: std::fmt::Arguments) -> tribofe::Result<()> {
+    use std::fmt::Write;
+    let _ = STDOUT.lock().unwrap_or_else(|e| e.into_inner()).write_fmt(args);
+    Ok(())
+}
+
+/// Writes the held standard output, control bytes quoted ([`tribofe::error::quote_lines`]).
+pub fn flush_stdout() -> std::io::Result<()> {
     use std::io::Write;
+    let text = std::mem::take(&mut *STDOUT.lock().unwrap_or_else(|e| e.into_inner()));
     let mut o = std::io::stdout().lock();
-    o.write_fmt(args).and_then(|_| o.flush()).map_err(|e| tribofe::Error::io("standard output", e))
+    // Line by line, as a filter writes: a reader that stops early (`| head -1`) is seen as a
+    // closed pipe on the next line, not hidden in one large write into the pipe's buffer.
+    for line in tribofe::error::quote_lines(&text).split_inclusive('\n') {
+        o.write_all(line.as_bytes()).and_then(|_| o.flush())?;
+    }
+    Ok(())
+}
+
+/// The command line and every option's value, for the run.toml of every command.
+static INVOCATION: std::sync::OnceLock<tribofe::report::run_file::Invocation> = std::sync::OnceLock::new();
+
+/// The options typed on the command line (clap ids: `n_ref`, `max_events`), not defaulted.
+static GIVEN: std::sync::OnceLock<std::collections::BTreeSet<String>> = std::sync::OnceLock::new();
+
+/// Whether option `id` (its field name) was typed, rather than left at its default.
+pub fn given(id: &str) -> bool {
+    GIVEN.get().is_some_and(|g| g.contains(id))
+}
+
+/// The invocation recorded by [`parse`] (empty when the command was built otherwise).
+pub fn invocation() -> &'static tribofe::report::run_file::Invocation {
+    INVOCATION.get_or_init(Default::default)
+}
+
+/// `--flag -1,2` as `--flag=-1,2`: clap reads a lone negative number after a flag as its value
+/// (allow_negative_numbers) but a negative list or range (`-1,2`, `-1:1:5`) as an unknown
+/// flag. A word after a long flag that takes a value is joined to it when it starts with `-`
+/// and a digit or `.`, which no flag does.
+fn join_negative_values(cmd: &clap::Command, args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
+    let sub = args.iter().skip(1).find_map(|a| a.to_str().and_then(|a| cmd.find_subcommand(a)));
+    let Some(sub) = sub else { return args };
+    let takes_value = |long: &str| {
+        sub.get_arguments().any(|a| {
+            a.get_action().takes_values()
+                && (a.get_long() == Some(long) || a.get_all_aliases().is_some_and(|al| al.contains(&long)))
+        })
+    };
+    let mut out = Vec::with_capacity(args.len());
+    let mut it = args.into_iter().peekable();
+    while let Some(a) = it.next() {
+        let flag = a.to_str().and_then(|s| s.strip_prefix("--")).filter(|f| !f.contains('=') && !f.is_empty());
+        let next_negative = it.peek().and_then(|n| n.to_str()).is_some_and(|n| {
+            let mut c = n.chars();
+            c.next() == Some('-') && c.next().is_some_and(|c| c.is_ascii_digit() || c == '.')
+        });
+        match flag {
+            Some(f) if next_negative && takes_value(f) => {
+                let mut joined = a.clone();
+                joined.push("=");
+                joined.push(it.next().unwrap_or_default());
+                out.push(joined);
+            }
+            _ => out.push(a),
+        }
+    }
+    out
+}
+
+/// Parses the command line and records it with every option's effective value (given or
+/// default) for run.toml.
+pub fn parse() -> Result<Cli, clap::Error> {
+    use clap::{CommandFactory, FromArgMatches};
+    let typed: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let args = join_negative_values(&Cli::command(), typed.clone());
+    // Plain styles: the rendered error then holds no escape codes of clap's own, and the
+    // user's bytes are kept (not stripped) for `main` to quote.
+    let cmd = Cli::command().styles(clap::builder::Styles::plain());
+    let m = cmd.clone().try_get_matches_from(&args)?;
+    let cli = Cli::from_arg_matches(&m)?;
+    let mut options = toml::Table::new();
+    if let (Some((name, sub)), Some(sc)) =
+        (m.subcommand(), m.subcommand_name().and_then(|n| cmd.find_subcommand(n)))
+    {
+        options.insert("subcommand".into(), toml::Value::String(name.into()));
+        let mut given = std::collections::BTreeSet::new();
+        for arg in sc.get_arguments() {
+            let id = arg.get_id().as_str();
+            if sub.value_source(id) == Some(clap::parser::ValueSource::CommandLine) {
+                given.insert(id.to_string());
+            }
+            let Ok(Some(raw)) = sub.try_get_raw(id) else { continue };
+            let switch = !arg.get_action().takes_values();
+            let vals: Vec<toml::Value> = raw
+                .map(|v| {
+                    let v = v.to_string_lossy().into_owned();
+                    match (switch, v.as_str()) {
+                        (true, "true") => toml::Value::Boolean(true),
+                        (true, "false") => toml::Value::Boolean(false),
+                        _ => toml::Value::String(v),
+                    }
+                })
+                .collect();
+            let key = arg.get_long().unwrap_or(id).to_string();
+            let v = match &vals[..] {
+                [one] => one.clone(),
+                _ => toml::Value::Array(vals),
+            };
+            options.insert(key, v);
+        }
+        let _ = GIVEN.set(given);
+    }
+    let inv = tribofe::report::run_file::Invocation {
+        args: typed.iter().map(|a| a.to_string_lossy().into_owned()).collect(),
+        options,
+    };
+    let _ = INVOCATION.set(inv);
+    Ok(cli)
+}
+
+/// Writes the folder's run.toml ([`tribofe::report::run_file`]) with this invocation.
+pub fn write_run_file(
+    dir: &std::path::Path,
+    scene: Option<&tribofe::scene::Scene>,
+    results: &impl serde::Serialize,
+) -> tribofe::Result<()> {
+    tribofe::report::run_file::write(dir, invocation(), scene, results)
+}
+
+/// [`write_run_file`] under another name (`run_<I>of<N>.toml` of a sweep shard).
+pub fn write_run_file_named(
+    dir: &std::path::Path,
+    name: &str,
+    scene: Option<&tribofe::scene::Scene>,
+    results: &impl serde::Serialize,
+) -> tribofe::Result<()> {
+    let text = tribofe::report::run_file::run_toml(invocation(), scene, results)?;
+    tribofe::report::write_atomic(&dir.join(name), text.as_bytes())
 }
 
 /// SIGINT and SIGTERM are taken by one thread (blocked in all others, so this runs before any
@@ -123,15 +265,53 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         what: "the worker threads (rayon pool; RAYON_NUM_THREADS sets their number)".into(),
         why: e.to_string(),
     })?;
+    // The library names its parameters (mu, N, Poisson's ratio); the user typed flags.
+    const LAW: &[(&str, &str)] = &[
+        ("mu", "--mu"),
+        ("mu-s", "--mu-s"),
+        ("mu-d", "--mu-d"),
+        ("mu-s/mu-d", "--mu-s/--mu-d"),
+        ("dc", "--dc"),
+        ("N", "--n-force"),
+        ("x-max", "--x-max"),
+        ("cycles", "--cycles"),
+        ("law", "--law"),
+        ("newton", "--newton"),
+        ("r", "--r"),
+        ("g", "--g"),
+        ("r, g", "--r, --g"),
+    ];
     match cli.command {
-        Command::Solve(a) => solve::run(a),
+        Command::Solve(a) => solve::run(a).map_err(|e| {
+            typed_flag(e, &[("Poisson's ratio", "--poisson"), ("Young's modulus", "--young"), ("mesh", "--nx/--ny")])
+        }),
         Command::Check(a) => check::run(a),
         Command::Converge(a) => converge::run(a),
-        Command::Precursors(args) => precursors::run(args),
-        Command::Slide(a) => slide::run(a),
-        Command::Edges(a) => edges::run(a),
+        Command::Precursors(args) => precursors::run(args).map_err(|e| typed_flag(e, LAW)),
+        Command::Slide(a) => slide::run(a).map_err(|e| typed_flag(e, LAW)),
+        Command::Edges(a) => edges::run(a).map_err(|e| typed_flag(e, LAW)),
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
-        Command::Sweep(a) => sweep::run(a),
+        Command::Sweep(a) => sweep::run(a).map_err(|e| {
+            typed_flag(e, &[("mu-s", "--friction"), ("mu-d", "--friction"), ("cycles", "--cycles")])
+        }),
+    }
+}
+
+/// A refusal naming a library parameter (`what` equal to, or starting with, a name of `names`
+/// and a space) renamed to the flag the user typed.
+fn typed_flag(e: tribofe::Error, names: &[(&str, &str)]) -> tribofe::Error {
+    match e {
+        tribofe::Error::Input { what, why } => {
+            let hit = names.iter().find_map(|(name, flag)| {
+                if what == *name {
+                    Some(flag.to_string())
+                } else {
+                    what.strip_prefix(name).filter(|r| r.starts_with(' ')).map(|r| format!("{flag}{r}"))
+                }
+            });
+            tribofe::Error::Input { what: hit.unwrap_or(what), why }
+        }
+        e => e,
     }
 }

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::precursors::{self, Event, Params};
 use tribofe::report::precursors as report;
+use tribofe::report::run_file::Invocation;
 use tribofe::Error;
 
 /// Events are iterated until |F - F_max| < this (or MAX_DEFAULT_EVENTS) unless --events is given.
@@ -21,6 +22,9 @@ pub struct Args {
     /// Output directory (created if needed).
     #[arg(long, default_value = "out/precursors")]
     out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    force: bool,
     /// Number of events [default: until |F - F_max| < 1e-6, at most 200].
     #[arg(long)]
     events: Option<usize>,
@@ -76,6 +80,33 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
+    // The model's iteration and map are dimensionless in r and g: no scene can act on them.
+    if !args.fe && !args.bonded_fields && args.scene.any() {
+        let flag = super::scene_args::FLAG_KEYS
+            .iter()
+            .map(|(f, _)| *f)
+            .chain(["--scene", "--write-scene"])
+            .find(|f| args.scene.has(f))
+            .unwrap_or("--scene");
+        return Err(Error::input(
+            flag,
+            "cannot act without --fe (or --bonded-fields): the model's precursors depend on r and g only",
+        ));
+    }
+    if args.fe {
+        if args.events.is_some() {
+            return Err(Error::input(
+                "--events",
+                "cannot act with --fe, whose runs end at whole-interface slips (--cycles); its cap is --max-events",
+            ));
+        }
+        if super::given("max_events") && !args.map && args.dc.is_none() {
+            return Err(Error::input("--max-events", "cannot act here: it caps --fe --map cells and --fe --dc runs"));
+        }
+        if super::given("rules") && !args.map {
+            return Err(Error::input("--rules", "cannot act without --map: --fe runs every rule for fig. 4"));
+        }
+    }
     if args.map && args.fe {
         return fe_map(&args);
     }
@@ -83,8 +114,15 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         let resolution = args.resolution.unwrap_or(40);
         let map = precursors::n_map(resolution)?;
         let n_max = map.iter().map(|m| m.n).max().unwrap_or(0);
+        tribofe::io::outdir::check(&args.out, args.force)?;
+        let results = [("resolution", resolution as i64), ("n_max", n_max as i64)];
+        let written = write_whole(&args.out, args.force, |dir, inv| {
+            let mut w = report::write_map(dir, &map, resolution)?;
+            w.push(run_file(dir, inv, None, &results)?);
+            Ok(w)
+        })?;
         outln!("n(r, g) on a {0} x {0} grid: n from 0 to {n_max}", resolution);
-        return print_written(&report::write_map(&args.out, &map, resolution)?);
+        return print_written(&written);
     }
     if args.fe && args.thin_layer.is_some() {
         return thin_layer(&args);
@@ -102,16 +140,30 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         return bonded_fields(&args);
     }
     let p = Params::new(args.r, args.g)?;
+    tribofe::io::outdir::check(&args.out, args.force)?;
     let events = match args.events {
         Some(0) => return Err(Error::input("--events 0", "need at least one event")),
         Some(n) => precursors::simulate(&p, n),
         None => precursors::simulate_to_convergence(&p, CONVERGED, MAX_DEFAULT_EVENTS),
     };
-    print_table(&events)?;
     let n = precursors::n_precursors(&p)?;
+    let results = [
+        ("r", toml::Value::from(p.r())),
+        ("g", toml::Value::from(p.g())),
+        ("precursors", toml::Value::from(n as i64)),
+        ("F_1_over_mu_s_N", toml::Value::from(p.f1())),
+        ("F_max_over_mu_s_N", toml::Value::from(p.f_max())),
+        ("events", toml::Value::from(events.len() as i64)),
+    ];
+    let written = write_whole(&args.out, args.force, |dir, inv| {
+        let mut w = report::write_events(dir, &p, &events)?;
+        w.push(run_file(dir, inv, None, &results)?);
+        Ok(w)
+    })?;
+    print_table(&events)?;
     outln!("r = {}, g = {} (dimensionless; forces in units of mu_s N, x in units of L)", p.r(), p.g());
     outln!("F_1 = {:.6}   n = {n} precursors   F_max = {:.6}", p.f1(), p.f_max());
-    print_written(&report::write_events(&args.out, &p, &events)?)
+    print_written(&written)
 }
 
 fn print_table(events: &[Event]) -> tribofe::Result<()> {
@@ -131,15 +183,41 @@ fn counter(len: usize, what: &str) -> indicatif::ProgressBar {
 }
 
 /// Writes a study's folder whole: `write` fills a temporary sibling of `out` (given the
-/// command line for its run.toml), which replaces `out` only once everything is written.
+/// invocation for its run.toml), which replaces `out` only once everything is written.
+/// Returns the files written, as paths under `out`.
 fn write_whole(
     out: &Path,
-    write: impl FnOnce(&Path, &[String]) -> tribofe::Result<Vec<PathBuf>>,
-) -> tribofe::Result<()> {
-    let command: Vec<String> = std::env::args().collect();
-    let dir = tribofe::io::outdir::OutDir::begin(out)?;
-    write(dir.path(), &command)?;
-    dir.commit()
+    force: bool,
+    write: impl FnOnce(&Path, &Invocation) -> tribofe::Result<Vec<PathBuf>>,
+) -> tribofe::Result<Vec<PathBuf>> {
+    let dir = tribofe::io::outdir::OutDir::begin(out, force)?;
+    let tmp = dir.path().to_path_buf();
+    let files = write(&tmp, super::invocation())?;
+    dir.commit()?;
+    Ok(files.into_iter().map(|p| p.strip_prefix(&tmp).map_or(p.clone(), |r| out.join(r))).collect())
+}
+
+/// Writes `dir/run.toml`; returns its path.
+fn run_file(
+    dir: &Path,
+    inv: &Invocation,
+    scene: Option<&tribofe::scene::Scene>,
+    results: &impl serde::Serialize,
+) -> tribofe::Result<PathBuf> {
+    let results = toml::Value::try_from(results).map_err(|e| Error::input("run.toml", e.to_string()))?;
+    let results = match results {
+        toml::Value::Array(a) => a
+            .into_iter()
+            .filter_map(|kv| match kv.as_array().map(|a| &a[..]) {
+                Some([toml::Value::String(k), v]) => Some((k.clone(), v.clone())),
+                _ => None,
+            })
+            .collect::<toml::Table>(),
+        toml::Value::Table(t) => t,
+        _ => toml::Table::new(),
+    };
+    tribofe::report::run_file::write(dir, inv, scene, &results)?;
+    Ok(dir.join(tribofe::io::outdir::RUN_FILE))
 }
 
 fn print_written(paths: &[impl AsRef<Path>]) -> tribofe::Result<()> {
@@ -162,7 +240,7 @@ fn fe_scene(args: &Args) -> tribofe::Result<tribofe::scene::Scene> {
         }
     }
     let scene = super::check::scene(&args.scene)?;
-    tribofe::io::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out, args.force)?;
     Ok(scene)
 }
 
@@ -254,8 +332,18 @@ fn fe(args: &Args) -> tribofe::Result<()> {
     }
     outln!("1: largest |tau - F^c/L|/(F^c/L) on never-slipped nodes > 5 t ahead of the front; tip: tau/(F^c/L) - 1 just ahead of it");
     outln!("2: largest |p - (N/L + 12 F H x/L^3)|/(N/L); 3: F/(mu_s N) when the trailing node opens or creeps, x/L where the first long precursor began");
-    write_whole(&args.out, |dir, command| report::write_fe_fig4(dir, &p, &model, &runs, command, &scene))?;
-    outln!("wrote {}/{{summary.csv, model/, paper/, overdamped/}}", args.out.display());
+    let results = [
+        ("r", toml::Value::from(p.r())),
+        ("g", toml::Value::from(p.g())),
+        ("cycles", toml::Value::from(cycles as i64)),
+        ("model_precursors", toml::Value::from(n as i64)),
+    ];
+    write_whole(&args.out, args.force, |dir, inv| {
+        let mut w = report::write_fe_fig4(dir, &p, &model, &runs, inv, &scene)?;
+        w.push(run_file(dir, inv, Some(&scene), &results)?);
+        Ok(w)
+    })?;
+    outln!("wrote {}/{{summary.csv, run.toml, model/, paper/, overdamped/}}", args.out.display());
     Ok(())
 }
 
@@ -347,7 +435,7 @@ fn thin_layer(args: &Args) -> tribofe::Result<()> {
             (None, None) => outln!("{name}: -"),
         }
     }
-    write_whole(&args.out, |dir, command| report::write_thin_layer(dir, &p, &rows, command, &scene))?;
+    write_whole(&args.out, args.force, |dir, inv| report::write_thin_layer(dir, &p, &rows, inv, &scene))?;
     outln!("wrote {}/{{thin_layer.csv, thin_layer.svg, run.toml}}", args.out.display());
     Ok(())
 }
@@ -401,7 +489,7 @@ fn heights(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{:>7.4} refused: {e}", row.value),
         }
     }
-    write_whole(&args.out, |dir, command| report::write_heights(dir, mu, &rows, command, &scene))?;
+    write_whole(&args.out, args.force, |dir, inv| report::write_heights(dir, mu, &rows, inv, &scene))?;
     outln!("wrote {}/{{heights.csv, heights.svg, run.toml}}", args.out.display());
     Ok(())
 }
@@ -479,7 +567,7 @@ fn dc(args: &Args) -> tribofe::Result<()> {
         }
     }
     outln!("kappa = G D_c/((mu_s - mu_d) p t) (stable above 1); L_c = kappa t, the nucleation length; Appendix: (E/p)(D_c/t)(mu_s - mu_d)/(2 mu_d), the excess mu(x) - mu_d below which the Appendix's Griffith argument lets a front arrest");
-    write_whole(&args.out, |dir, command| report::write_dc(dir, &rows, command, &scene))?;
+    write_whole(&args.out, args.force, |dir, inv| report::write_dc(dir, &rows, inv, &scene))?;
     outln!("wrote {}/{{dc.csv, dc.svg, run.toml, paper/, dc_<D_c>/}}", args.out.display());
     Ok(())
 }
@@ -559,8 +647,8 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
         ("rules", rules.iter().map(|r| r.name()).collect::<Vec<_>>().join(",")),
         ("wall_seconds", format!("{wall:.1}")),
     ];
-    write_whole(&args.out, |dir, command| {
-        report::write_fe_fig5(dir, &cells, resolution, &what, command, &scene)
+    write_whole(&args.out, args.force, |dir, inv| {
+        report::write_fe_fig5(dir, &cells, resolution, &what, inv, &scene)
     })?;
     outln!(
         "counts: front-advancing precursors (> 5 t) before the first whole slip or front crossing (the slipped nodes joining edge to edge); capped: over --max-events"
@@ -579,7 +667,8 @@ fn bonded_fields(args: &Args) -> tribofe::Result<()> {
     };
     let c = tribofe::precursors::fe::compare(&fields(&scene)?, args.r, args.g, n_events)?;
     print_comparison(&c)?;
-    let mut written = report::write_comparison(&args.out, &c)?;
+    tribofe::io::outdir::check(&args.out, args.force)?;
+    let mut sweep_fields = Vec::new();
     if args.sweep {
         let (l, h0, t0) = (
             scene.block.length,
@@ -588,19 +677,36 @@ fn bonded_fields(args: &Args) -> tribofe::Result<()> {
         );
         let hs = [0.25 * h0, 0.5 * h0, h0, 2.0 * h0];
         let ts = [0.5 * t0, t0, 2.0 * t0, 4.0 * t0];
-        let path = args.out.join("fe_sweep.csv");
-        report::sweep_table(&path, &hs, &ts, args.r, args.g, n_events, |h, t| {
-            let mut s = scene.clone();
-            s.loading.height = h * l;
-            s.block.thickness = t * l;
-            s.mesh.h = s.mesh.h.min(s.block.thickness / 2.0);
-            eprintln!("sweep: H/L = {h}, t/L = {t}");
-            let mut f = fields(&s)?;
-            (f.h_over_l, f.t_over_l) = (h, t); // exact keys for the table
-            Ok(f)
+        for &h in &hs {
+            for &t in &ts {
+                let mut s = scene.clone();
+                s.loading.height = h * l;
+                s.block.thickness = t * l;
+                s.mesh.h = s.mesh.h.min(s.block.thickness / 2.0);
+                eprintln!("sweep: H/L = {h}, t/L = {t}");
+                let mut f = fields(&s)?;
+                (f.h_over_l, f.t_over_l) = (h, t); // exact keys for the table
+                sweep_fields.push(f);
+            }
+        }
+        let written = write_whole(&args.out, args.force, |dir, inv| {
+            let mut w = report::write_comparison(dir, &c)?;
+            let path = dir.join("fe_sweep.csv");
+            let mut it = sweep_fields.into_iter();
+            report::sweep_table(&path, &hs, &ts, args.r, args.g, n_events, |_, _| {
+                it.next().ok_or_else(|| Error::input("--sweep", "internal: sweep fields out of order"))
+            })?;
+            w.push(path);
+            w.push(run_file(dir, inv, Some(&scene), &[("r", args.r), ("g", args.g)])?);
+            Ok(w)
         })?;
-        written.push(path);
+        return print_written(&written);
     }
+    let written = write_whole(&args.out, args.force, |dir, inv| {
+        let mut w = report::write_comparison(dir, &c)?;
+        w.push(run_file(dir, inv, Some(&scene), &[("r", args.r), ("g", args.g)])?);
+        Ok(w)
+    })?;
     print_written(&written)
 }
 

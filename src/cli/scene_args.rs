@@ -143,6 +143,92 @@ impl SceneArgs {
     }
 }
 
+/// Each scene flag and the scene-file key it overrides.
+pub const FLAG_KEYS: &[(&str, &str)] = &[
+    ("--length", "block.length"),
+    ("--thickness", "block.thickness"),
+    ("--young", "block.young"),
+    ("--poisson", "block.poisson"),
+    ("--height", "loading.height"),
+    ("--fn-ratios", "loading.fn_ratios"),
+    ("--plate", "plate.model"),
+    ("--plate-thickness", "plate.thickness"),
+    ("--plate-modulus", "plate.young"),
+    ("--plate-poisson", "plate.poisson"),
+    ("--h", "mesh.h"),
+    ("--grading", "mesh.grading"),
+    ("--h-max", "mesh.h_max"),
+    ("--n-thick", "mesh.n_thick"),
+    ("--element", "mesh.element"),
+    ("--tol", "report.tol"),
+    ("--mesh", "mesh.file"),
+    ("--max-dofs", "mesh.max_dofs"),
+];
+
+impl SceneArgs {
+    /// Whether scene flag `flag` (a name of [`FLAG_KEYS`]) was given.
+    pub fn has(&self, flag: &str) -> bool {
+        match flag {
+            "--length" => self.length.is_some(),
+            "--thickness" => self.thickness.is_some(),
+            "--young" => self.young.is_some(),
+            "--poisson" => self.poisson.is_some(),
+            "--height" => self.height.is_some(),
+            "--fn-ratios" => self.fn_ratios.is_some(),
+            "--plate" => self.plate.is_some(),
+            "--plate-thickness" => self.plate_thickness.is_some(),
+            "--plate-modulus" => self.plate_modulus.is_some(),
+            "--plate-poisson" => self.plate_poisson.is_some(),
+            "--h" => self.h.is_some(),
+            "--grading" => self.grading.is_some(),
+            "--h-max" => self.h_max.is_some(),
+            "--n-thick" => self.n_thick.is_some(),
+            "--element" => self.element.is_some(),
+            "--tol" => self.tol.is_some(),
+            "--mesh" => self.mesh.is_some(),
+            "--max-dofs" => self.max_dofs.is_some(),
+            "--scene" => self.scene.is_some(),
+            "--write-scene" => self.write_scene.is_some(),
+            _ => false,
+        }
+    }
+
+    /// Whether any scene flag (or a scene file) was given.
+    pub fn any(&self) -> bool {
+        FLAG_KEYS.iter().any(|(f, _)| self.has(f)) || self.scene.is_some() || self.write_scene.is_some()
+    }
+}
+
+/// The value of `key` ("table.key") in `scene`, as TOML.
+fn key_value(scene: &Scene, key: &str) -> Option<toml::Value> {
+    let v = toml::Value::try_from(scene).ok()?;
+    let (table, k) = key.split_once('.')?;
+    v.get(table)?.get(k).cloned()
+}
+
+/// Refuses the scene settings of `flags` that cannot act in this command: each given as a flag,
+/// or set in the --scene file to other than the paper's default. `why` says why.
+pub fn refuse_inapplicable(args: &SceneArgs, flags: &[&str], why: &str) -> tribofe::Result<()> {
+    for flag in flags {
+        if args.has(flag) {
+            return Err(tribofe::Error::input(*flag, format!("cannot act here: {why}")));
+        }
+    }
+    let Some(file) = &args.scene else { return Ok(()) };
+    let from_file = Scene::from_file(file)?;
+    let default = Scene::default();
+    for flag in flags {
+        let Some((_, key)) = FLAG_KEYS.iter().find(|(f, _)| f == flag) else { continue };
+        if key_value(&from_file, key) != key_value(&default, key) {
+            return Err(tribofe::Error::input(
+                format!("{key} in {}", tribofe::error::quote(&file.display().to_string())),
+                format!("cannot act here: {why} (remove the key or set it back to the default)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The scene file (or the paper's defaults) with the flags applied and validated; writes it
 /// to `--write-scene` when asked.
 pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
@@ -171,20 +257,14 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
     }
     for w in s.warnings() {
         use std::io::Write;
-        let _ = writeln!(std::io::stderr(), "warning: {w}");
+        let _ = writeln!(std::io::stderr(), "warning: {}", tribofe::error::quote_lines(&w.to_string()));
     }
     if s.plate.model == PlateModel::Rigid {
-        let given = [
-            ("--plate-thickness", args.plate_thickness.is_some()),
-            ("--plate-modulus", args.plate_modulus.is_some()),
-            ("--plate-poisson", args.plate_poisson.is_some()),
-        ];
-        if let Some((flag, _)) = given.iter().find(|g| g.1) {
-            return Err(tribofe::Error::input(
-                *flag,
-                "describes the elastic plate, but the plate is rigid: add --plate elastic (or drop the flag)",
-            ));
-        }
+        refuse_inapplicable(
+            args,
+            &["--plate-thickness", "--plate-modulus", "--plate-poisson"],
+            "it describes the elastic plate, but the plate is rigid; add --plate elastic",
+        )?;
     }
     if let Some(path) = &args.write_scene {
         tribofe::report::write_atomic(path, s.to_toml()?.as_bytes())?;

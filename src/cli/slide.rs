@@ -60,6 +60,9 @@ pub struct Args {
     /// Output directory.
     #[arg(long, default_value = "out/slide")]
     pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    pub force: bool,
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
@@ -109,22 +112,18 @@ fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
 pub fn run(a: Args) -> tribofe::Result<()> {
     // The scene flags (shared with check and sweep) are applied and validated in scene_from;
     // two of them belong to the bonded check and cannot act here.
-    for (flag, given, why) in [
-        (
-            "--fn-ratios",
-            a.scene.fn_ratios.is_some(),
-            "slide loads N then X until the interface slides: set --n-force, --x-max",
-        ),
-        ("--tol", a.scene.tol.is_some(), "the edge-zone tolerance belongs to `check`"),
-    ] {
-        if given {
-            return Err(Error::input(flag, format!("cannot act in `slide`: {why}")));
-        }
-    }
+    super::scene_args::refuse_inapplicable(
+        &a.scene,
+        &["--fn-ratios", "--tol"],
+        "`slide` loads N then X until the interface slides (--n-force, --x-max); the load ratios and the edge-zone tolerance belong to `check`",
+    )?;
     let scene = scene_from(&a.scene)?;
-    tribofe::io::outdir::check(&a.out)?;
+    tribofe::io::outdir::check(&a.out, a.force)?;
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
+    }
+    if super::given("rule") && a.law != "static-kinetic" {
+        return Err(Error::input("--rule", "the event rule belongs to --law static-kinetic"));
     }
     if a.newton && a.law != "slip-weakening" {
         return Err(Error::input("newton", "--newton cannot act without --law slip-weakening"));
@@ -146,25 +145,16 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     bar.set_message(format!("slide {}", law.name()));
     let res = tribofe::studies::slide::run(&scene, &o, &|f| bar.set_position((f * 1000.0) as u64))?;
     bar.finish_and_clear();
-    let args: Vec<String> = std::env::args().collect();
-    let mut header = format!(
-        "# written by tribofe {} slide\ncommand = {:?}\nlaw = {:?}\nmu_s = {}\nmu_d = {}\nn_force_N_per_m = {}\nheight_m = {}\nlength_m = {}\nthickness_m = {}\nelement = {:?}\ninterface_nodes = {}\nk_bonded_N_per_m_per_m = {}\n",
-        env!("CARGO_PKG_VERSION"),
-        args.join(" "),
-        law.name(),
-        law.mu_s(),
-        law.mu_d(),
-        a.n_force,
-        scene.loading.height,
-        scene.block.length,
-        scene.block.thickness,
-        scene.mesh.element,
-        res.condensed.n,
-        res.run.k_bonded
-    );
-    header.push('\n');
-    header.push_str(&tribofe::report::scene_section(&scene)?);
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out)?;
+    let results = [
+        ("law", toml::Value::from(law.name())),
+        ("mu_s", toml::Value::from(law.mu_s())),
+        ("mu_d", toml::Value::from(law.mu_d())),
+        ("n_force_N_per_m", toml::Value::from(a.n_force)),
+        ("interface_nodes", toml::Value::from(res.condensed.n as i64)),
+        ("k_bonded_N_per_m_per_m", toml::Value::from(res.run.k_bonded)),
+    ];
+    let header = tribofe::report::run_toml(super::invocation(), &results, &scene)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
     tribofe::report::slide::write(&res, dir.path(), &header, true)?;
     if a.fields > 0 {
         let picks = tribofe::report::slide::spread(res.run.states.len(), a.fields);

@@ -39,6 +39,9 @@ pub struct Args {
     pub left: String,
     #[arg(long, default_value = "out/solve")]
     pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    pub force: bool,
     /// Refuse meshes above this many unknowns (default: what fits in half this machine's
     /// memory at about 1.5 kB per unknown, at most 1.5e6).
     #[arg(long)]
@@ -54,7 +57,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         sides,
     };
     p.check_size(a.max_dofs)?;
-    tribofe::io::outdir::check(&a.out)?;
+    tribofe::io::outdir::check(&a.out, a.force)?;
     let r = p.solve()?;
     let model = tribofe::fem::assembly::Model {
         tech: p.element.tech,
@@ -82,10 +85,16 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         bal[1]
     );
     let fields = Field::solution_fields(&model, u);
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
     write_vtu(&dir.path().join("fields.vtu"), &r.mesh, &fields, &[])?;
     write_msh(&dir.path().join("fields.msh"), &r.mesh, &fields, &[])?;
+    let mut results = toml::Table::new();
+    results.insert("unknowns".into(), (r.solution.stats.n_unknowns as i64).into());
+    for (name, f) in SIDES.iter().zip(&r.side_reactions) {
+        results.insert(format!("reaction_{name}_n_per_m"), toml::Value::try_from(f).map_err(|e| tribofe::Error::input("run.toml", e.to_string()))?);
+    }
+    super::write_run_file(dir.path(), None, &results)?;
     dir.commit()?;
-    outln!("wrote {}/{{fields.vtu, fields.msh}}", a.out.display());
+    outln!("wrote {}/{{fields.vtu, fields.msh, run.toml}}", a.out.display());
     Ok(())
 }

@@ -21,31 +21,34 @@ pub struct Args {
     /// Output directory (`validation/stability` refreshes the committed results).
     #[arg(long, default_value = "out/stability")]
     pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    pub force: bool,
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
     // Every study sets its own mesh sizes and load case: these flags could not act.
-    let a = &args.scene;
-    for (flag, given) in [
-        ("--h", a.h.is_some()),
-        ("--n-thick", a.n_thick.is_some()),
-        ("--fn-ratios", a.fn_ratios.is_some()),
-        ("--mesh", a.mesh.is_some()),
-    ] {
-        if given {
-            return Err(tribofe::Error::input(
-                flag,
-                "cannot act in `stability`: each study sets its own meshes (--n-ref, --corner-max) and load case",
-            ));
-        }
-    }
+    super::scene_args::refuse_inapplicable(
+        &args.scene,
+        &["--h", "--n-thick", "--fn-ratios", "--mesh"],
+        "each `stability` study sets its own meshes (--n-ref, --corner-max) and load case",
+    )?;
     let scene = super::check::scene(&args.scene)?;
-    tribofe::io::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out, args.force)?;
     let studies: Vec<String> = if args.study.is_empty() {
         STUDIES.iter().map(|s| s.to_string()).collect()
     } else {
         args.study.clone()
     };
+    let runs = |names: &[&str]| studies.iter().any(|s| names.contains(&s.as_str()));
+    for (id, flag, needs) in [("n_ref", "--n-ref", &["nu", "shape"][..]), ("corner_max", "--corner-max", &["corners"])] {
+        if super::given(id) && !runs(needs) {
+            return Err(tribofe::Error::input(
+                flag,
+                format!("cannot act: it sizes the {} study, not run here (--study)", needs.join(" and ")),
+            ));
+        }
+    }
     let corner_n_thick =
         std::iter::successors(Some(1usize), |n| Some(2 * n)).take_while(|&n| n <= args.corner_max).collect();
     let o = Options { n_ref: args.n_ref, corner_n_thick, ..Default::default() };
@@ -58,8 +61,10 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
-    let files = tribofe::report::stability::write(&res, dir.path())?;
+    let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
+    let mut files = tribofe::report::stability::write(&res, dir.path())?;
+    super::write_run_file(dir.path(), Some(&scene), &tribofe::report::run_file::NoResults {})?;
+    files.push("run.toml".into());
     dir.commit()?;
     out!("{}", tribofe::report::stability::summary(&res));
     outln!("wrote {}/{{{}}}", args.out.display(), files.join(", "));

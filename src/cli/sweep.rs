@@ -44,6 +44,10 @@ pub struct Args {
     pub cycles: usize,
     #[arg(long, default_value = "out/sweep")]
     pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted);
+    /// with --shard, write into it without deleting anything.
+    #[arg(long)]
+    pub force: bool,
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
@@ -61,8 +65,38 @@ pub fn run(args: Args) -> tribofe::Result<()> {
             axes.push(Axis { param: p, values: v.0 });
         }
     }
+    super::scene_args::refuse_inapplicable(
+        &args.scene,
+        &["--mesh"],
+        "the sweep varies the block's geometry, which a mesh file fixes",
+    )?;
+    if !args.as_meshed {
+        super::scene_args::refuse_inapplicable(
+            &args.scene,
+            &["--h", "--grading", "--h-max", "--n-thick", "--element"],
+            "each point is solved on the converged model (graded QUA8, t/16 at the ends); add --as-meshed to use the scene's mesh settings",
+        )?;
+    }
+    if args.friction.is_none() {
+        for (id, flag) in [("rule", "--rule"), ("cycles", "--cycles")] {
+            if super::given(id) {
+                return Err(tribofe::Error::input(
+                    flag,
+                    "cannot act without --friction MU_S,MU_D (the frictional run it sets up)",
+                ));
+            }
+        }
+    }
+    if let Some(v) = args.tension_fn {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(tribofe::Error::input(
+                "--tension-fn",
+                format!("{v}: give the F/N ratio (> 0, dimensionless) up to which no tension is allowed"),
+            ));
+        }
+    }
     let base = scene(&flat)?;
-    tribofe::io::outdir::check(&args.out)?;
+    tribofe::io::outdir::check(&args.out, args.force)?;
     let shard = match &args.shard {
         None => None,
         Some(s) => {
@@ -116,15 +150,28 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         Some((i, n)) => format!("sweep_{i}of{n}.csv"),
         None => "sweep.csv".to_string(),
     };
+    let results: toml::Table = [
+        ("points", toml::Value::from(points.len() as i64)),
+        ("grid_points", toml::Value::from(total as i64)),
+        ("wall_seconds", toml::Value::from(wall)),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .collect();
     let with_header = shard.is_none_or(|(i, _)| i == 1);
     let table = tribofe::report::sweep::csv(&points, with_header)?;
     let maps = if shard.is_some() {
         // Shards of one sweep share the folder (a Slurm array): each writes its own file, whole.
+        // Each shard's provenance in its own run file, whole, next to its table.
+        let (i, n) = shard.unwrap_or((1, 1));
+        std::fs::create_dir_all(&args.out).map_err(|e| tribofe::Error::io(&args.out, e))?;
+        super::write_run_file_named(&args.out, &format!("run_{i}of{n}.toml"), Some(&base), &results)?;
         tribofe::report::write_atomic(&args.out.join(&name), table.as_bytes())?;
         vec![]
     } else {
-        let dir = tribofe::io::outdir::OutDir::begin(&args.out)?;
+        let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
         tribofe::report::write_atomic(&dir.path().join(&name), table.as_bytes())?;
+        super::write_run_file(dir.path(), Some(&base), &results)?;
         let maps = tribofe::report::sweep::write_maps(&points, &axes, dir.path())?;
         dir.commit()?;
         maps

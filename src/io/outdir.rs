@@ -1,7 +1,9 @@
 //! The output folder as a unit: a run writes into a fresh hidden sibling folder and renames it
 //! into place at the end (an atomic exchange with the previous folder where Linux allows), so
 //! `--out` holds either the previous complete result or the new one, never a mix; on an error
-//! the temporary folder is removed ([`Drop`]), on SIGINT/SIGTERM by [`remove_temporaries`].
+//! the temporary folder is removed ([`Drop`]), on SIGINT/SIGTERM by [`remove_temporaries`],
+//! after a SIGKILL by the next run on that folder ([`remove_orphans`]). An existing folder is
+//! replaced only when tribofe wrote it (its `run.toml`) or the caller forces it ([`check`]).
 
 use crate::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -28,32 +30,126 @@ pub struct OutDir {
     committed: bool,
 }
 
-/// Refuses an output path that cannot become a folder (an existing file, a dangling
-/// symbolic link, no final name), before any work.
-pub fn check(out: &Path) -> Result<()> {
-    let bad = |why: &str| Err(Error::Output { path: out.to_path_buf(), why: why.into() });
-    if out.file_name().is_none() {
-        return bad("has no final name (use e.g. out/check)");
+/// The run file every output folder holds (`run.toml`); a folder is tribofe's when it holds one
+/// that starts with [`RUN_FILE_MARKER`] and has a `[tribofe]` table.
+pub const RUN_FILE: &str = "run.toml";
+/// The first line of every run file starts with this.
+pub const RUN_FILE_MARKER: &str = "# written by tribofe";
+
+/// Whether `dir` holds a run file written by tribofe: `run.toml`, or the `run_<I>of<N>.toml`
+/// of a sharded sweep (see [`RUN_FILE`]).
+pub fn is_tribofe_folder(dir: &Path) -> bool {
+    if is_run_file(&dir.join(RUN_FILE)) {
+        return true;
     }
+    let Ok(entries) = std::fs::read_dir(dir) else { return false };
+    entries.flatten().take(10_000).any(|e| {
+        let name = e.file_name().to_string_lossy().into_owned();
+        name.starts_with("run_") && name.ends_with(".toml") && name.contains("of") && is_run_file(&e.path())
+    })
+}
+
+/// Whether `path` is a run file: the marker line first and a `[tribofe]` table.
+fn is_run_file(path: &Path) -> bool {
+    use std::io::Read;
+    let mut head = String::new();
+    // The marker and the table come first: a bounded read, whatever the file's size.
+    let read = std::fs::File::open(path).and_then(|f| f.take(64 * 1024).read_to_string(&mut head));
+    read.is_ok() && head.starts_with(RUN_FILE_MARKER) && head.lines().any(|l| l.trim() == "[tribofe]")
+}
+
+/// Refuses an output path that cannot become a folder (an existing file, a dangling
+/// symbolic link, no final name) and, unless `force`, an existing folder that holds anything
+/// and was not written by tribofe ([`is_tribofe_folder`]), before any work. Removes the
+/// orphaned temporaries of killed runs on that folder ([`remove_orphans`]).
+pub fn check(out: &Path, force: bool) -> Result<()> {
+    let bad = |why: String| Err(Error::Output { path: out.to_path_buf(), why });
+    if out.file_name().is_none() {
+        return bad("has no final name (use e.g. out/check)".into());
+    }
+    remove_orphans(out);
     match std::fs::symlink_metadata(out) {
-        Ok(m) if m.is_dir() => Ok(()),
-        Ok(m) if m.file_type().is_symlink() => {
-            if out.is_dir() {
-                bad("is a symbolic link; give the folder it points to")
-            } else {
-                bad("is a symbolic link to nothing or to a file; remove it or choose another --out")
+        Ok(m) if m.is_dir() => {
+            if force || is_tribofe_folder(out) {
+                return Ok(());
+            }
+            let mut entries = std::fs::read_dir(out).map_err(|e| Error::io(out, e))?;
+            match entries.next() {
+                None => Ok(()),
+                Some(e) => {
+                    let first = e.map(|e| e.file_name().to_string_lossy().into_owned()).unwrap_or_default();
+                    bad(format!(
+                        "exists and holds files tribofe did not write (e.g. '{}'; no run.toml of a \
+                         previous tribofe run): give --force to replace the whole folder, or choose \
+                         another --out",
+                        crate::error::quote(&first)
+                    ))
+                }
             }
         }
-        Ok(_) => bad("is an existing file, not a folder; remove it or choose another --out"),
+        Ok(m) if m.file_type().is_symlink() => {
+            if out.is_dir() {
+                bad("is a symbolic link; give the folder it points to".into())
+            } else {
+                bad("is a symbolic link to nothing or to a file; remove it or choose another --out".into())
+            }
+        }
+        Ok(_) => bad("is an existing file, not a folder; remove it or choose another --out".into()),
         Err(_) => Ok(()),
     }
 }
 
+/// Removes the hidden temporaries `.<name>.tmp-<pid>` (and `.<name>.tmp-<pid>.old`) next to
+/// `out` whose process is gone: what a SIGKILL (or a power cut) left behind. A live pid keeps
+/// its folder (another run under way); a reused pid keeps it until that process ends.
+pub fn remove_orphans(out: &Path) {
+    let Some(name) = out.file_name() else { return };
+    let prefix = format!(".{}.tmp-", name.to_string_lossy());
+    let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let Ok(entries) = std::fs::read_dir(parent) else { return };
+    for e in entries.flatten() {
+        let file = e.file_name().to_string_lossy().into_owned();
+        let Some(rest) = file.strip_prefix(&prefix) else { continue };
+        let pid = rest.strip_suffix(".old").unwrap_or(rest);
+        let Ok(pid) = pid.parse::<i32>() else { continue };
+        if pid > 0 && pid != std::process::id() as i32 && !alive(pid) {
+            let _ = std::fs::remove_dir_all(e.path());
+        }
+    }
+    // Inside a tribofe folder written in place (sweep shards): the files `.<file>.<pid>.tmp`
+    // of a killed writer ([`crate::report::write_atomic`]).
+    if !is_tribofe_folder(out) {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(out) else { return };
+    for e in entries.flatten() {
+        let file = e.file_name().to_string_lossy().into_owned();
+        let Some(pid) = file
+            .strip_prefix('.')
+            .and_then(|f| f.strip_suffix(".tmp"))
+            .and_then(|f| f.rsplit_once('.'))
+            .and_then(|(_, pid)| pid.parse::<i32>().ok())
+        else {
+            continue;
+        };
+        if pid > 0 && pid != std::process::id() as i32 && !alive(pid) && e.path().is_file() {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
+}
+
+/// Whether a process `pid` exists (signal 0 probes without sending anything).
+fn alive(pid: i32) -> bool {
+    // SAFETY: kill with signal 0 sends nothing; it only reports whether the pid exists.
+    let r = unsafe { libc::kill(pid, 0) };
+    r == 0 || std::io::Error::last_os_error().raw_os_error() != Some(libc::ESRCH)
+}
+
 impl OutDir {
-    /// Checks `out` ([`check`]) and creates the temporary sibling folder
+    /// Checks `out` ([`check`], `force` as there) and creates the temporary sibling folder
     /// `.<name>.tmp-<pid>` (and the parent folders).
-    pub fn begin(out: &Path) -> Result<OutDir> {
-        check(out)?;
+    pub fn begin(out: &Path, force: bool) -> Result<OutDir> {
+        check(out, force)?;
         let _writing = write_guard();
         let name = out.file_name().unwrap_or_default().to_string_lossy();
         let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));

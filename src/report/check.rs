@@ -25,7 +25,7 @@ pub struct CaseLoads {
 }
 
 /// `run.toml` of a check: version, `command`, the loads of each case, the effective scene.
-pub fn run_toml(res: &CheckResult, command: &[String]) -> Result<String> {
+pub fn run_toml(res: &CheckResult, inv: &super::run_file::Invocation) -> Result<String> {
     let l = res.scene.block.length;
     let cases: Vec<CaseLoads> = res
         .cases
@@ -37,7 +37,7 @@ pub fn run_toml(res: &CheckResult, command: &[String]) -> Result<String> {
             mean_pressure_pa: c.n / l,
         })
         .collect();
-    super::run_toml(command, &cases, &res.scene)
+    super::run_toml(inv, &cases, &res.scene)
 }
 
 pub fn write(res: &CheckResult, converged: Option<&CheckResult>, dir: &Path) -> Result<()> {

@@ -5,6 +5,7 @@ pub mod check;
 pub mod convergence;
 pub mod edges;
 pub mod precursors;
+pub mod run_file;
 pub mod slide;
 pub mod stability;
 pub mod sweep;
@@ -17,6 +18,9 @@ use std::path::Path;
 /// failure never leaves a partly written file. Creates missing parent directories; the
 /// temporary file is removed on failure.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    if path.extension().is_some_and(|e| e == "csv") {
+        refuse_non_finite_cells(path, bytes)?;
+    }
     let _writing = crate::io::outdir::write_guard();
     let name = path
         .file_name()
@@ -34,46 +38,41 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     })
 }
 
-/// `run.toml`: what produced a folder (tribofe's version, the command line), the absolute
-/// loads of `cases`, and the effective scene under `[scene]` (its tables are a scene file that
-/// reproduces the run).
+/// The guard of every CSV file written: a cell that reads as NaN or an infinity is refused
+/// (an error naming the file, line and column), never written as a result.
+fn refuse_non_finite_cells(path: &Path, bytes: &[u8]) -> Result<()> {
+    let text = String::from_utf8_lossy(bytes);
+    for (i, line) in text.lines().enumerate() {
+        for (j, cell) in line.split(',').enumerate() {
+            if cell.trim().parse::<f64>().is_ok_and(|v| !v.is_finite()) {
+                return Err(Error::input(
+                    format!("{} line {} column {}", path.display(), i + 1, j + 1),
+                    format!("'{}' is not a finite number; refusing to write it as a result", cell.trim()),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `run.toml` ([`run_file::run_toml`]) with the command's figures `cases` under `[results]`:
+/// `(name, value)` pairs as keys, a list of records as `[[results.cases]]`.
 pub fn run_toml<C: serde::Serialize>(
-    command: &[String],
+    inv: &run_file::Invocation,
     cases: &C,
     scene: &crate::scene::Scene,
 ) -> Result<String> {
-    #[derive(serde::Serialize)]
-    struct Run<'a, C> {
-        tribofe_version: &'a str,
-        command: String,
-        cases: &'a C,
-        scene: &'a crate::scene::Scene,
-    }
-    let run = Run {
-        tribofe_version: env!("CARGO_PKG_VERSION"),
-        command: command.iter().map(|a| shell_word(a)).collect::<Vec<_>>().join(" "),
-        cases,
-        scene,
+    let v = toml::Value::try_from(cases).map_err(|e| Error::input("run.toml", e.to_string()))?;
+    let pair = |x: &toml::Value| match x.as_array().map(|a| &a[..]) {
+        Some([toml::Value::String(k), v]) => Some((k.clone(), v.clone())),
+        _ => None,
     };
-    toml::to_string(&run).map_err(|e| Error::input("run.toml", e.to_string()))
-}
-
-/// The effective scene as `[scene.*]` tables, to append to a `run.toml` of top-level keys.
-pub fn scene_section(scene: &crate::scene::Scene) -> Result<String> {
-    #[derive(serde::Serialize)]
-    struct Only<'a> {
-        scene: &'a crate::scene::Scene,
-    }
-    toml::to_string(&Only { scene }).map_err(|e| Error::input("run.toml", e.to_string()))
-}
-
-/// `a` as one shell word: quoted when it holds anything but plain characters.
-fn shell_word(a: &str) -> String {
-    if !a.is_empty() && a.chars().all(|c| c.is_ascii_alphanumeric() || "-_./,:=+@%".contains(c)) {
-        a.to_string()
-    } else {
-        format!("'{}'", a.replace('\'', "'\\''"))
-    }
+    let results: toml::Table = match v {
+        toml::Value::Table(t) => t,
+        toml::Value::Array(a) if a.iter().all(|x| pair(x).is_some()) => a.iter().filter_map(pair).collect(),
+        v => [("cases".to_string(), v)].into_iter().collect(),
+    };
+    run_file::run_toml(inv, Some(scene), &results)
 }
 
 /// Passes `v` through if finite: guards every number written to a file against NaN and infinities.

@@ -389,7 +389,7 @@ pub fn write_fe_fig4(
     p: &Params,
     model: &[Event],
     runs: &[Result<crate::studies::precursors_fe::Fig4>],
-    command: &[String],
+    inv: &super::run_file::Invocation,
     scene: &crate::scene::Scene,
 ) -> Result<Vec<PathBuf>> {
     let n = crate::precursors::n_precursors(p)?;
@@ -416,7 +416,7 @@ pub fn write_fe_fig4(
         let law = r.run.options.law;
         let what =
             [("rule", name.to_string()), ("mu_s", law.mu_s().to_string()), ("mu_d", law.mu_d().to_string())];
-        let header = super::run_toml(command, &what, scene)?;
+        let header = super::run_toml(inv, &what, scene)?;
         written.extend(super::slide::write(&r.run, &sub, &header, false)?);
     }
     written.extend(write_all(dir, &[("summary.csv", s)])?);
@@ -586,7 +586,7 @@ pub fn write_fe_fig5(
     cells: &[crate::studies::precursors_fe::Cell],
     resolution: usize,
     what: &[(&str, String)],
-    command: &[String],
+    inv: &super::run_file::Invocation,
     scene: &crate::scene::Scene,
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
@@ -596,7 +596,7 @@ pub fn write_fe_fig5(
             ("fig5_fe.csv", fe_fig5_csv(cells)?),
             ("boundary_fe.csv", fe_boundary_csv(cells)?),
             ("fig5_fe.svg", fe_fig5_svg(cells, resolution)?),
-            ("run.toml", super::run_toml(command, &what, scene)?),
+            ("run.toml", super::run_toml(inv, &what, scene)?),
         ],
     )
 }
@@ -748,7 +748,7 @@ pub fn write_thin_layer(
     dir: &Path,
     p: &Params,
     rows: &[crate::studies::precursors_fe::SeriesRow],
-    command: &[String],
+    inv: &super::run_file::Invocation,
     scene: &crate::scene::Scene,
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
@@ -758,7 +758,7 @@ pub fn write_thin_layer(
         &[
             ("thin_layer.csv", series_csv("t_over_L", rows)?),
             ("thin_layer.svg", thin_layer_svg(p, rows)?),
-            ("run.toml", super::run_toml(command, &what, scene)?),
+            ("run.toml", super::run_toml(inv, &what, scene)?),
         ],
     )
 }
@@ -836,7 +836,7 @@ pub fn write_heights(
     dir: &Path,
     mu: (f64, f64),
     rows: &[crate::studies::precursors_fe::SeriesRow],
-    command: &[String],
+    inv: &super::run_file::Invocation,
     scene: &crate::scene::Scene,
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
@@ -846,7 +846,7 @@ pub fn write_heights(
         &[
             ("heights.csv", series_csv("H_over_L", rows)?),
             ("heights.svg", heights_svg(rows)?),
-            ("run.toml", super::run_toml(command, &what, scene)?),
+            ("run.toml", super::run_toml(inv, &what, scene)?),
         ],
     )
 }
@@ -925,7 +925,7 @@ pub fn dc_svg(rows: &[crate::studies::precursors_fe::SeriesRow]) -> Result<Strin
 pub fn write_dc(
     dir: &Path,
     rows: &[crate::studies::precursors_fe::SeriesRow],
-    command: &[String],
+    inv: &super::run_file::Invocation,
     scene: &crate::scene::Scene,
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
@@ -935,7 +935,7 @@ pub fn write_dc(
         &[
             ("dc.csv", series_csv("Dc_m", rows)?),
             ("dc.svg", dc_svg(rows)?),
-            ("run.toml", super::run_toml(command, &what, scene)?),
+            ("run.toml", super::run_toml(inv, &what, scene)?),
         ],
     )?;
     for row in rows {
@@ -945,7 +945,7 @@ pub fn write_dc(
         ensure_dir(&sub)?;
         let law = f.run.options.law;
         let what = [("law", law.name()), ("mu_s", law.mu_s().to_string()), ("mu_d", law.mu_d().to_string())];
-        let header = super::run_toml(command, &what, scene)?;
+        let header = super::run_toml(inv, &what, scene)?;
         written.extend(super::slide::write(&f.run, &sub, &header, false)?);
     }
     Ok(written)

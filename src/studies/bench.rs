@@ -75,8 +75,15 @@ pub struct Row {
 }
 
 impl Row {
+    /// Unknowns per second of the whole pipeline; 0 when no time was measured at all (never
+    /// infinite: `bench --case square1` once wrote `inf` from times rounded to 0 in the CSV).
     pub fn dofs_per_s(&self) -> f64 {
-        self.dofs as f64 / self.t.total()
+        let total = self.t.total();
+        if total > 0.0 {
+            self.dofs as f64 / total
+        } else {
+            0.0
+        }
     }
     pub fn gflops(&self) -> f64 {
         rate(self.flops, self.t.numeric)
@@ -96,10 +103,12 @@ impl Row {
         let t = &self.t;
         let out = self.output.map_or(String::new(), |v| format!("{v:.4}"));
         let dense = self.dense_s.map_or(String::new(), |v| format!("{v:.4}"));
+        // Empty when the system does not report the peak (not NaN).
+        let peak = if self.peak_mib.is_finite() { format!("{:.1}", self.peak_mib) } else { String::new() };
         format!(
-            "{},{},{},{},{},{},{},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{out},{:.0},{:.3},{:.1},{dense},{:.4}",
+            "{},{},{},{},{},{},{},{:.4},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{out},{:.0},{:.3},{peak},{dense},{:.4e}",
             self.case, self.threads, self.factor, self.ordering, self.dofs, self.nnz_k, self.nnz_l, self.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery,
-            t.other, t.total(), self.dofs_per_s(), self.gflops(), self.peak_mib, self.numeric_warm
+            t.other, t.total(), self.dofs_per_s(), self.gflops(), self.numeric_warm
         )
     }
 
@@ -133,7 +142,7 @@ impl Row {
             flops: num(7)? * 1e9,
             t,
             output: if f[17].is_empty() { None } else { Some(num(17)?) },
-            peak_mib: num(20)?,
+            peak_mib: if f[20].is_empty() { f64::NAN } else { num(20)? },
             dense_s: if f[21].is_empty() { None } else { Some(num(21)?) },
             numeric_warm: num(22)?,
         })
