@@ -356,19 +356,24 @@ where
     Ok(())
 }
 
-/// Field files of every load case for ParaView (`fields_FN<ratio>.vtu` and `fields.pvd`) and
-/// Gmsh (`fields_FN<ratio>.msh`): displacement, nodal stresses (extrapolated and averaged),
-/// von Mises, and the mean integration-point stress of each element.
+/// Field files of every load case for ParaView (`fields_FN<ratio>.vtu` and `fields.pvd`, whose
+/// timestep is the case's F/N) and/or Gmsh (`fields_FN<ratio>.msh`), as `format` asks:
+/// displacement, nodal stresses (extrapolated and averaged), von Mises, and the mean
+/// integration-point stress of each element (docs/outputs.md).
 pub fn write_fields(
     res: &CheckResult,
     sm: &crate::scene::SceneModel,
     dir: &Path,
+    format: crate::io::FieldFormat,
 ) -> Result<Vec<std::path::PathBuf>> {
     use crate::fem::recovery::gauss_stresses;
     use crate::io::{gmsh_post::write_msh, vtu, Field};
     let model = sm.model();
     let mut written = Vec::new();
     let mut pvd = Vec::new();
+    if format == crate::io::FieldFormat::None {
+        return Ok(written);
+    }
     for (c, u) in res.cases.iter().zip(&res.displacements) {
         let mean: Vec<[f64; 4]> = (0..sm.mesh.n_elements())
             .map(|e| {
@@ -380,16 +385,23 @@ pub fn write_fields(
         let point = Field::solution_fields(&model, u);
         let cell = [Field::tensor_2d("stress_mean_Pa", &mean)];
         let stem = format!("fields_FN{}", ratio_label(c.fn_ratio));
-        let vtu_path = dir.join(format!("{stem}.vtu"));
-        vtu::write_vtu(&vtu_path, &sm.mesh, &point, &cell)?;
-        write_msh(&dir.join(format!("{stem}.msh")), &sm.mesh, &point, &cell)?;
-        written.push(vtu_path);
-        pvd.push(c.fn_ratio);
+        if format.vtu() {
+            let vtu_path = dir.join(format!("{stem}.vtu"));
+            vtu::write_vtu(&vtu_path, &sm.mesh, &point, &cell)?;
+            pvd.push((c.fn_ratio, vtu_path));
+        }
+        if format.msh() {
+            let msh_path = dir.join(format!("{stem}.msh"));
+            write_msh(&msh_path, &sm.mesh, &point, &cell)?;
+            written.push(msh_path);
+        }
     }
-    // The collection's "timestep" is the load case's F/N.
-    let entries: Vec<(f64, &Path)> = pvd.iter().zip(&written).map(|(r, p)| (*r, p.as_path())).collect();
-    vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
-    written.push(dir.join("fields.pvd"));
+    if format.vtu() {
+        let entries: Vec<(f64, &Path)> = pvd.iter().map(|(r, p)| (*r, p.as_path())).collect();
+        vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
+        written.extend(pvd.into_iter().map(|(_, p)| p));
+        written.push(dir.join("fields.pvd"));
+    }
     Ok(written)
 }
 
