@@ -262,19 +262,31 @@ pub fn write(r: &SlideResult, dir: &Path, header: &str, states: bool) -> Result<
     Ok(out)
 }
 
-/// The whole block through the run for ParaView: `fields_<state>.vtu` for each picked state
-/// (displacement, nodal stresses, von Mises, and `interface_state`: 0 stick, 1 slip, 2 open,
-/// -1 off the interface) and `fields.pvd`, whose timestep is the state index (X repeats while
-/// an instability relaxes at fixed X).
+/// The whole block through the run: for each picked state `fields_<state>.vtu` (ParaView)
+/// and/or `fields_<state>.msh` (Gmsh) as `format` asks, with displacement, nodal stresses, von
+/// Mises, `interface_state` (0 stick, 1 slip, 2 open, -1 off the interface) and `event` (the
+/// state's row in loading.csv, the same at every node); with .vtu, `fields.pvd`, whose
+/// timestep is the drive X in m (pick the states with [`field_states`]: one per X).
 pub fn write_fields(
     r: &SlideResult,
     picks: &[usize],
     dir: &Path,
     opts: &SolverOptions,
+    format: crate::io::FieldFormat,
 ) -> Result<Vec<PathBuf>> {
+    if format == crate::io::FieldFormat::None || picks.is_empty() {
+        return Ok(Vec::new());
+    }
+    if let Some(w) = picks.windows(2).find(|w| r.run.states[w[1]].x <= r.run.states[w[0]].x) {
+        return Err(crate::error::Error::input(
+            "fields",
+            format!("states {} and {} do not advance X: the .pvd needs increasing X", w[0], w[1]),
+        ));
+    }
     let (sm, us) = state_displacements(r, picks, opts)?;
     let model = sm.model();
     let mut written = Vec::new();
+    let mut pvd = Vec::new();
     for (&k, u) in picks.iter().zip(&us) {
         let mut state = vec![-1.0; sm.mesh.n_nodes()];
         for (&node, s) in sm.interface.iter().zip(&r.run.states[k].states) {
@@ -286,15 +298,34 @@ pub fn write_fields(
         }
         let mut point = Field::solution_fields(&model, u);
         point.push(Field::scalar("interface_state", state));
-        let path = dir.join(format!("fields_{k:06}.vtu"));
-        vtu::write_vtu(&path, &sm.mesh, &point, &[])?;
-        written.push(path);
+        point.push(Field::scalar("event", vec![k as f64; sm.mesh.n_nodes()]));
+        if format.vtu() {
+            let path = dir.join(format!("fields_{k:06}.vtu"));
+            vtu::write_vtu(&path, &sm.mesh, &point, &[])?;
+            pvd.push((r.run.states[k].x, path));
+        }
+        if format.msh() {
+            let path = dir.join(format!("fields_{k:06}.msh"));
+            crate::io::gmsh_post::write_msh(&path, &sm.mesh, &point, &[])?;
+            written.push(path);
+        }
     }
-    let entries: Vec<(f64, &Path)> =
-        picks.iter().zip(&written).map(|(&k, p)| (k as f64, p.as_path())).collect();
-    vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
-    written.push(dir.join("fields.pvd"));
+    if format.vtu() {
+        let entries: Vec<(f64, &Path)> = pvd.iter().map(|(x, p)| (*x, p.as_path())).collect();
+        vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
+        written.extend(pvd.into_iter().map(|(_, p)| p));
+        written.push(dir.join("fields.pvd"));
+    }
     Ok(written)
+}
+
+/// Up to `k` states for the field files, one per drive X (the settled state, the last at
+/// that X: an instability relaxes at fixed X, so its intermediate states share the X),
+/// spread evenly over the run, the first and last X included.
+pub fn field_states(r: &SlideResult, k: usize) -> Vec<usize> {
+    let s = &r.run.states;
+    let settled: Vec<usize> = (0..s.len()).filter(|&i| i + 1 == s.len() || s[i + 1].x != s[i].x).collect();
+    spread(settled.len(), k.min(settled.len())).into_iter().map(|i| settled[i]).collect()
 }
 
 /// `k` state indices spread evenly over `n` states, the first and last included.
