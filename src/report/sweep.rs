@@ -28,8 +28,8 @@ fn opt(v: Option<f64>) -> String {
     v.map_or(String::new(), e)
 }
 
-/// The table; with `with_header` false (shards after the first) the rows only, so that the
-/// shards' files concatenate into the unsharded table.
+/// The table, with its header line if `with_header` (every file `sweep` writes has it, shards
+/// included, so each reads alone; [`merge`] joins shards).
 pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
     let mut s = String::new();
     let friction = points.iter().any(|p| p.friction.is_some());
@@ -81,6 +81,93 @@ pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
         }
     }
     Ok(s)
+}
+
+/// Shard `(i, n)` of a shard file name `sweep_<i>of<n>.csv`.
+pub fn shard_of(name: &str) -> Option<(usize, usize)> {
+    let (i, n) = name.strip_prefix("sweep_")?.strip_suffix(".csv")?.split_once("of")?;
+    Some((i.parse().ok()?, n.parse().ok()?))
+}
+
+/// Joins shard tables, given as (file name `sweep_<i>of<n>.csv`, text), into the whole sweep's
+/// table: one header, rows in shard order. Every shard 1..=n must be there once and all must
+/// share one header; a shard written rows-only (before shards carried the header) takes it
+/// from the others. Point numbers must increase from shard to shard.
+pub fn merge(parts: &[(String, String)]) -> Result<String> {
+    let mut shards: Vec<(usize, usize, &str, &str)> = Vec::new();
+    for (name, text) in parts {
+        let (i, n) = shard_of(name).filter(|&(i, n)| i >= 1 && i <= n).ok_or_else(|| {
+            Error::input(
+                crate::error::quote(name),
+                "is not a shard file name sweep_<I>of<N>.csv with 1 <= I <= N",
+            )
+        })?;
+        shards.push((i, n, name, text));
+    }
+    shards.sort_by_key(|s| s.0);
+    let n =
+        shards.first().ok_or_else(|| Error::input("--merge", "no shard file sweep_<I>of<N>.csv found"))?.1;
+    if let Some(s) = shards.iter().find(|s| s.1 != n) {
+        return Err(Error::input(s.2, format!("is a shard of {} but others are of {n}: not one sweep", s.1)));
+    }
+    if let Some(w) = shards.windows(2).find(|w| w[0].0 == w[1].0) {
+        return Err(Error::input(
+            w[1].2,
+            format!("shard {} is given twice ({} and {})", w[0].0, w[0].2, w[1].2),
+        ));
+    }
+    let have: Vec<usize> = shards.iter().map(|s| s.0).collect();
+    let missing: Vec<String> =
+        (1..=n).filter(|i| !have.contains(i)).map(|i| format!("sweep_{i}of{n}.csv")).collect();
+    if !missing.is_empty() {
+        return Err(Error::input(
+            "--merge",
+            format!("missing shard(s) {}: run them or add their folder", missing.join(", ")),
+        ));
+    }
+    let is_header = |l: &str| l.starts_with("point,");
+    let header = shards
+        .iter()
+        .filter_map(|s| s.3.lines().next().filter(|l| is_header(l)))
+        .next()
+        .ok_or_else(|| Error::input("--merge", "no shard has a header line"))?;
+    let mut out = format!("{header}\n");
+    let mut last_point = 0usize;
+    for (_, _, name, text) in &shards {
+        let mut lines = text.lines().peekable();
+        match lines.peek() {
+            Some(l) if is_header(l) && *l != header => {
+                return Err(Error::input(*name, "has another header than the other shards: not one sweep"))
+            }
+            Some(l) if is_header(l) => {
+                lines.next();
+            }
+            _ => {}
+        }
+        let mut first = true;
+        for (k, line) in lines.enumerate().filter(|(_, l)| !l.trim().is_empty()) {
+            let point: usize = line.split(',').next().and_then(|v| v.parse().ok()).ok_or_else(|| {
+                Error::input(
+                    *name,
+                    format!("row {}: no point number in '{}'", k + 1, crate::error::quote(line)),
+                )
+            })?;
+            if point < last_point || (first && point == last_point) {
+                return Err(Error::input(
+                    *name,
+                    format!(
+                        "row {}: point {point} does not follow point {last_point} of the shards before",
+                        k + 1
+                    ),
+                ));
+            }
+            first = false;
+            last_point = point;
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    Ok(out)
 }
 
 /// A map: name, title, value per (point, case).
