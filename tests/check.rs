@@ -293,3 +293,69 @@ fn heights_from_one_factorisation_equal_single_checks() {
         }
     }
 }
+
+/// `check --fields` writes the formats asked for and nothing else; `--n-force` is checked
+/// before any work and scales N and F in summary.csv (the profiles do not move).
+#[test]
+fn field_formats_and_normal_force() {
+    let exe = env!("CARGO_BIN_EXE_tribofe");
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str], out: &str| {
+        let o = std::process::Command::new(exe)
+            .args(["check", "--h", "0.001", "--no-converged", "--out"])
+            .arg(dir.path().join(out))
+            .args(args)
+            .output()
+            .unwrap();
+        let names: Vec<String> = std::fs::read_dir(dir.path().join(out))
+            .map(|d| {
+                let mut v: Vec<String> = d
+                    .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                    .filter(|n| n.starts_with("fields"))
+                    .collect();
+                v.sort();
+                v
+            })
+            .unwrap_or_default();
+        (o, names)
+    };
+    let vtu = ["fields.pvd", "fields_FN0.41.vtu", "fields_FN0.82.vtu", "fields_FN0.vtu"];
+    let msh = ["fields_FN0.41.msh", "fields_FN0.82.msh", "fields_FN0.msh"];
+    assert_eq!(run(&[], "a").1, vtu);
+    assert_eq!(run(&["--fields", "msh"], "b").1, msh);
+    assert_eq!(run(&["--fields", "none"], "c").1, Vec::<String>::new());
+    assert_eq!(run(&["--no-fields"], "d").1, Vec::<String>::new());
+    let mut both: Vec<&str> = vtu.iter().chain(&msh).copied().collect();
+    both.sort();
+    assert_eq!(run(&["--fields", "both"], "e").1, both);
+    for bad in [
+        &["--n-force", "-1"][..],
+        &["--n-force", "nan"],
+        &["--fields", "xml"],
+        &["--fields", "vtu", "--no-fields"],
+    ] {
+        let (o, _) = run(bad, "bad");
+        assert_eq!(o.status.code(), Some(2), "{bad:?}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(!dir.path().join("bad").exists(), "{bad:?}");
+    }
+    let (o, _) = run(&["--n-force", "200", "--fields", "none"], "f");
+    assert!(o.status.success());
+    let summary = |d: &str| -> Vec<Vec<String>> {
+        std::fs::read_to_string(dir.path().join(d).join("summary.csv"))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(String::from).collect())
+            .collect()
+    };
+    for (a, f) in summary("a").iter().zip(summary("f")) {
+        let num = |v: &str| v.parse::<f64>().unwrap();
+        assert_eq!(num(&f[1]), 200.0, "N is the requested force");
+        // F = (F/N) N to round-off; the shape columns (slopes, tau(0)) unchanged to round-off.
+        assert!((num(&f[2]) - num(&f[0]) * 200.0).abs() <= 1e-12 * 200.0, "{f:?}");
+        for col in [3, 4, 5] {
+            let (x, y) = (num(&a[col]), num(&f[col]));
+            assert!((x - y).abs() <= 1e-12 * x.abs().max(1.0), "column {col}: {x} vs {y}");
+        }
+    }
+}

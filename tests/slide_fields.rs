@@ -39,3 +39,54 @@ fn full_field_reactions_are_the_condensed_interface_forces() {
     }
     assert!(state_displacements(&r, &[last + 1], &SolverOptions::default()).is_err());
 }
+
+/// `slide --fields`: one state per drive X, the .pvd's timesteps are those X (m), increasing,
+/// and each file's `event` field is its state's row.
+#[test]
+fn field_series_is_indexed_by_x() {
+    let mut s = Scene::default();
+    s.mesh.h = 0.002;
+    s.mesh.n_thick = Some(2);
+    let o = SlideOptions {
+        law: Law::static_kinetic(0.5, 0.45, "paper".parse().unwrap()).unwrap(),
+        ..Default::default()
+    };
+    let r = run(&s, &o, &|_| {}).unwrap();
+    let picks = tribofe::report::slide::field_states(&r, 6);
+    assert_eq!(picks.len(), 6);
+    assert_eq!(*picks.last().unwrap(), r.run.states.len() - 1);
+    let xs: Vec<f64> = picks.iter().map(|&k| r.run.states[k].x).collect();
+    assert!(xs.windows(2).all(|w| w[1] > w[0]), "{xs:?}");
+    // Each pick is the settled state of its X: the next state has moved on.
+    assert!(picks.iter().all(|&k| k + 1 == r.run.states.len() || r.run.states[k + 1].x != r.run.states[k].x));
+    // A huge request is capped at the number of distinct X, not allocated.
+    assert!(tribofe::report::slide::field_states(&r, usize::MAX).len() <= r.run.states.len());
+    let dir = tempfile::tempdir().unwrap();
+    let written = tribofe::report::slide::write_fields(
+        &r,
+        &picks[..3],
+        dir.path(),
+        &SolverOptions::default(),
+        tribofe::io::FieldFormat::Vtu,
+    )
+    .unwrap();
+    assert_eq!(written.len(), 4);
+    let pvd = std::fs::read_to_string(dir.path().join("fields.pvd")).unwrap();
+    for &k in &picks[..3] {
+        let line =
+            format!("timestep=\"{:e}\" group=\"\" part=\"0\" file=\"fields_{k:06}.vtu\"", r.run.states[k].x);
+        assert!(pvd.contains(&line), "{line}\n{pvd}");
+        let bytes = std::fs::read(dir.path().join(format!("fields_{k:06}.vtu"))).unwrap();
+        let text = String::from_utf8_lossy(&bytes[..4096.min(bytes.len())]).into_owned();
+        assert!(text.contains("Name=\"event\"") && text.contains("Name=\"interface_state\""));
+    }
+    // Picks that do not advance X are refused: the .pvd would repeat a time.
+    assert!(tribofe::report::slide::write_fields(
+        &r,
+        &[picks[1], picks[0]],
+        dir.path(),
+        &SolverOptions::default(),
+        tribofe::io::FieldFormat::Vtu
+    )
+    .is_err());
+}

@@ -1,7 +1,7 @@
 //! Issue 19: the corrected thin-layer model against FE, and the sweep's table against single
 //! checks, its shards, and the thread count.
 
-use tribofe::report::sweep::csv;
+use tribofe::report::sweep::{csv, merge};
 use tribofe::scene::{Overrides, Scene};
 use tribofe::studies::check::{converged_scene, run};
 use tribofe::studies::sweep::{self, parse_values, Axis, Param, SweepOptions};
@@ -103,14 +103,35 @@ fn sweep_rows_equal_single_checks_shards_and_thread_counts() {
             }
         }
     }
-    // Shards (contiguous, header in the first only) concatenate into the same table.
-    let mut joined = String::new();
+    // Shards (contiguous, each with the header) merge into the same table, given in any order.
+    let mut parts = Vec::new();
     for i in 1..=4 {
         let so = SweepOptions { shard: Some((i, 4)), ..Default::default() };
-        let part = sweep::run(&base, &axes(), &so, &|_| {}).unwrap();
-        joined.push_str(&csv(&part, i == 1).unwrap());
+        let part = csv(&sweep::run(&base, &axes(), &so, &|_| {}).unwrap(), true).unwrap();
+        assert_eq!(part.lines().next(), table.lines().next(), "shard {i} has the header");
+        parts.push((format!("sweep_{i}of4.csv"), part));
     }
+    parts.reverse();
+    let joined = merge(&parts).unwrap();
     assert_eq!(strip_time(&joined), strip_time(&table));
+    // A rows-only shard (as written before shards had headers) takes the others' header.
+    let mut legacy = parts.clone();
+    legacy[1].1 = legacy[1].1.split_once('\n').unwrap().1.to_string();
+    assert_eq!(merge(&legacy).unwrap(), joined);
+    // Refusals: a missing shard, one given twice, shards of different sweeps, rows out of order.
+    let msg = merge(&parts[1..]).unwrap_err().to_string();
+    assert!(msg.contains("missing shard(s) sweep_4of4.csv"), "{msg}");
+    let mut twice = parts.clone();
+    twice[0].0 = "sweep_3of4.csv".into();
+    assert!(merge(&twice).unwrap_err().to_string().contains("given twice"));
+    let mut other = parts.clone();
+    other[0].1 = other[0].1.replacen("point,", "point,extra,", 1);
+    assert!(merge(&other).unwrap_err().to_string().contains("another header"));
+    let mut swapped = parts.clone();
+    let (a, b) = (swapped[0].1.clone(), swapped[3].1.clone());
+    (swapped[0].1, swapped[3].1) = (b, a);
+    assert!(merge(&swapped).unwrap_err().to_string().contains("does not follow"));
+    assert!(merge(&[("notes.csv".into(), String::new())]).is_err());
     // One thread or two: the same table.
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
     let t1 = one.install(|| csv(&sweep::run(&base, &axes(), &o, &|_| {}).unwrap(), true).unwrap());
@@ -118,6 +139,53 @@ fn sweep_rows_equal_single_checks_shards_and_thread_counts() {
     let t2 = two.install(|| csv(&sweep::run(&base, &axes(), &o, &|_| {}).unwrap(), true).unwrap());
     assert_eq!(strip_time(&t1), strip_time(&table));
     assert_eq!(strip_time(&t2), strip_time(&table));
+}
+
+#[test]
+fn merge_cli_joins_shard_files_and_keeps_foreign_files() {
+    let exe = env!("CARGO_BIN_EXE_tribofe");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sw");
+    let sweep = |extra: &[&str]| {
+        let mut a = vec![
+            "sweep",
+            "--as-meshed",
+            "--h",
+            "0.001",
+            "--length",
+            "0.05",
+            "--thickness",
+            "0.002,0.004,0.006",
+        ];
+        a.extend_from_slice(extra);
+        std::process::Command::new(exe).args(&a).output().unwrap()
+    };
+    for i in 1..=2 {
+        let o = sweep(&["--shard", &format!("{i}/2"), "--out", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let whole = sweep(&["--out", dir.path().join("whole").to_str().unwrap()]);
+    assert!(whole.status.success(), "{}", String::from_utf8_lossy(&whole.stderr));
+    let shard2 = std::fs::read_to_string(out.join("sweep_2of2.csv")).unwrap();
+    assert!(shard2.starts_with("point,"), "every shard has the header");
+    let merged = std::process::Command::new(exe)
+        .args(["sweep", "--merge", out.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(merged.status.success(), "{}", String::from_utf8_lossy(&merged.stderr));
+    let a = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let b = std::fs::read_to_string(dir.path().join("whole/sweep.csv")).unwrap();
+    assert_eq!(strip_time(&a), strip_time(&b));
+    // A sweep.csv tribofe did not write is not replaced (exit 2).
+    let foreign = dir.path().join("mine");
+    std::fs::create_dir(&foreign).unwrap();
+    std::fs::write(foreign.join("sweep.csv"), "my notes\n").unwrap();
+    let o = std::process::Command::new(exe)
+        .args(["sweep", "--merge", out.to_str().unwrap(), "--out", foreign.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read_to_string(foreign.join("sweep.csv")).unwrap(), "my notes\n");
 }
 
 #[test]

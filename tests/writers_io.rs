@@ -39,46 +39,36 @@ fn fields(m: &Mesh) -> (Vec<Field>, Vec<Field>) {
     )
 }
 
-fn decode_base64(s: &str) -> Vec<u8> {
-    let val = |c: u8| match c {
-        b'A'..=b'Z' => c - b'A',
-        b'a'..=b'z' => c - b'a' + 26,
-        b'0'..=b'9' => c - b'0' + 52,
-        b'+' => 62,
-        b'/' => 63,
-        _ => panic!("not base64: {c}"),
-    };
-    let s = s.trim().trim_end_matches('=').as_bytes();
-    let mut out = Vec::new();
-    for chunk in s.chunks(4) {
-        let n = chunk.iter().enumerate().fold(0u32, |n, (i, &c)| n | (val(c) as u32) << (18 - 6 * i));
-        out.extend_from_slice(&n.to_be_bytes()[1..chunk.len()]);
-    }
-    out
-}
-
-/// Every `DataArray` of a `.vtu` written by us: name -> (type, components, raw bytes).
-fn data_arrays(xml: &str) -> BTreeMap<String, (String, usize, Vec<u8>)> {
+/// Every `DataArray` of a `.vtu` written by us: name -> (type, components, raw bytes), read
+/// from the raw appended block at each array's offset (after its UInt64 byte count).
+fn data_arrays(bytes: &[u8]) -> BTreeMap<String, (String, usize, Vec<u8>)> {
+    let marker = b"<AppendedData encoding=\"raw\">";
+    let at = bytes.windows(marker.len()).position(|w| w == marker).expect("raw appended data");
+    let start = at + bytes[at..].iter().position(|&b| b == b'_').unwrap() + 1;
+    let xml = std::str::from_utf8(&bytes[..at]).unwrap();
+    assert!(!xml.contains("format=\"binary\"") && !xml.contains("format=\"ascii\""));
     let attr = |tag: &str, name: &str| {
         tag.split(&format!(" {name}=\"")).nth(1).map(|s| s[..s.find('"').unwrap()].to_string())
     };
     let mut out = BTreeMap::new();
     for piece in xml.split("<DataArray").skip(1) {
-        let (tag, rest) = piece.split_once('>').unwrap();
-        let body = &rest[..rest.find("</DataArray>").unwrap()];
-        let raw = decode_base64(body);
-        let n = u64::from_le_bytes(raw[..8].try_into().unwrap()) as usize;
-        assert_eq!(n, raw.len() - 8, "byte count header of {tag}");
+        let tag = &piece[..piece.find("/>").unwrap()];
+        assert_eq!(attr(tag, "format").unwrap(), "appended");
+        let off = start + attr(tag, "offset").unwrap().parse::<usize>().unwrap();
+        let n = u64::from_le_bytes(bytes[off..off + 8].try_into().unwrap()) as usize;
         let name = attr(tag, "Name").unwrap();
         out.insert(
             name,
             (
                 attr(tag, "type").unwrap(),
                 attr(tag, "NumberOfComponents").unwrap().parse().unwrap(),
-                raw[8..].to_vec(),
+                bytes[off + 8..off + 8 + n].to_vec(),
             ),
         );
     }
+    // The arrays tile the block exactly: nothing unread between or after them.
+    let total: usize = out.values().map(|a| 8 + a.2.len()).sum();
+    assert_eq!(&bytes[start + total..], b"\n  </AppendedData>\n</VTKFile>\n");
     out
 }
 
@@ -135,13 +125,14 @@ fn vtu_arrays_decode_to_what_was_written() {
     vtu::write_pvd(&dir.join("cases.pvd"), &[(0.0, &path), (1.0, &path)]).unwrap();
     gmsh_post::write_msh(&dir.join("result.msh"), &m, &pd, &cd).unwrap();
 
-    let xml = std::fs::read_to_string(&path).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    let xml = String::from_utf8_lossy(&bytes);
     assert!(xml.contains(&format!(
         "NumberOfPoints=\"{}\" NumberOfCells=\"{}\"",
         m.n_nodes(),
         m.n_elements()
     )));
-    let a = data_arrays(&xml);
+    let a = data_arrays(&bytes);
     let names: Vec<&str> = a.keys().map(|s| s.as_str()).collect();
     assert_eq!(
         names,
@@ -266,7 +257,8 @@ fn gmsh_output_reads_back_identical() {
     for (what, m) in [("tiny_mixed", tiny), ("qua9", quad)] {
         let (pd, cd) = fields(&m);
         let path = dir.path().join(format!("{what}.msh"));
-        gmsh_post::write_msh(&path, &m, &pd, &cd).unwrap();
+        // Without element views the sets are written; with them, the elements only.
+        gmsh_post::write_msh(&path, &m, &pd, &[]).unwrap();
         let back = gmsh::read(&path).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(back.nodes, m.nodes, "{what}: coordinates round-trip exactly");
         assert_eq!(
@@ -295,6 +287,12 @@ fn gmsh_output_reads_back_identical() {
         };
         assert_eq!(sorted(&back.element_sets), sorted(&m.element_sets), "{what}");
 
+        gmsh_post::write_msh(&path, &m, &pd, &cd).unwrap();
+        let with_views = gmsh::read(&path).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(with_views.nodes, m.nodes, "{what}");
+        assert_eq!(with_views.elements().collect::<Vec<_>>(), m.elements().collect::<Vec<_>>(), "{what}");
+        assert!(with_views.edge_sets.is_empty() && with_views.node_sets.is_empty(), "{what}");
+        assert_eq!(sorted(&with_views.element_sets), sorted(&m.element_sets), "{what}");
         let text = std::fs::read_to_string(&path).unwrap();
         for (section, fs, n) in [("NodeData", &pd, m.n_nodes()), ("ElementData", &cd, m.n_elements())] {
             let v = views(&text, section);

@@ -2,6 +2,7 @@
 
 use clap::Args as ClapArgs;
 use std::path::PathBuf;
+use tribofe::io::FieldFormat;
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::PlateModel;
 
@@ -15,9 +16,19 @@ pub struct Args {
     /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
     #[arg(long)]
     pub force: bool,
-    /// Skip the field files (fields_FN*.vtu/.msh, fields.pvd) of the whole mesh.
-    #[arg(long)]
+    /// Field files of the whole mesh: vtu (fields_FN*.vtu + fields.pvd, ParaView, raw binary),
+    /// msh (fields_FN*.msh, Gmsh ASCII: ~1.2x larger and several times slower), both, or none.
+    #[arg(long, default_value = "vtu", value_parser = ["vtu", "msh", "both", "none"])]
+    pub fields: String,
+    /// Same as --fields none.
+    #[arg(long, conflicts_with = "fields")]
     pub no_fields: bool,
+    /// Normal force N, N/m, of every load case (F = (F/N) N). Profiles are in units of N/L and
+    /// do not depend on it; the absolute fields, forces and plate motions scale with it.
+    /// Default: the force of pressing the rigid plate down by 0.05 t (85.438 N/m for the
+    /// paper's block).
+    #[arg(long, value_name = "N_PER_M")]
+    pub n_force: Option<f64>,
     /// Skip the converged run (graded QUA8) printed next to the scene's mesh.
     #[arg(long)]
     pub no_converged: bool,
@@ -27,16 +38,28 @@ pub use super::scene_args::{scene, SceneArgs};
 
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = scene(&args.scene)?;
+    let fields: FieldFormat = if args.no_fields { FieldFormat::None } else { args.fields.parse()? };
+    if let Some(n) = args.n_force {
+        if !(n.is_finite() && n > 0.0) {
+            return Err(tribofe::Error::input("--n-force", format!("{n} N/m: give a positive normal force")));
+        }
+    }
     tribofe::io::outdir::check(&args.out, args.force)?;
     let opts = SolverOptions::default();
-    let (res, sm) = tribofe::studies::check::run(&scene, &opts)?;
+    let (mut res, sm) = tribofe::studies::check::run(&scene, &opts)?;
     // The converged figures need the exact rigid plate and the structured mesh of the scene.
-    let converged = match (scene.plate.model, &scene.mesh.file, args.no_converged) {
+    let mut converged = match (scene.plate.model, &scene.mesh.file, args.no_converged) {
         (PlateModel::Rigid, None, false) => {
             Some(tribofe::studies::check::run(&tribofe::studies::check::converged_scene(&scene), &opts)?.0)
         }
         _ => None,
     };
+    if let Some(n) = args.n_force {
+        res.scale_to_normal_force(n)?;
+        if let Some(c) = &mut converged {
+            c.scale_to_normal_force(n)?;
+        }
+    }
     // A failed self-check is an error: nothing is written.
     res.self_check()?;
     if let Some(c) = &converged {
@@ -44,9 +67,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     }
     let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
     tribofe::report::check::write(&res, converged.as_ref(), dir.path())?;
-    if !args.no_fields {
-        tribofe::report::check::write_fields(&res, &sm, dir.path())?;
-    }
+    let clock = std::time::Instant::now();
+    tribofe::report::check::write_fields(&res, &sm, dir.path(), fields)?;
+    let fields_s = clock.elapsed().as_secs_f64();
     tribofe::report::write_atomic(
         &dir.path().join("run.toml"),
         tribofe::report::check::run_toml(&res, super::invocation())?.as_bytes(),
@@ -59,7 +82,15 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     outln!(
         "wrote {}/{{profile_FN*.csv, summary.csv, fig2.svg, run.toml{}}}",
         args.out.display(),
-        if args.no_fields { "" } else { ", fields_FN*.vtu/.msh, fields.pvd" }
+        match fields {
+            FieldFormat::Vtu => ", fields_FN*.vtu, fields.pvd",
+            FieldFormat::Msh => ", fields_FN*.msh",
+            FieldFormat::Both => ", fields_FN*.vtu/.msh, fields.pvd",
+            FieldFormat::None => "",
+        }
     );
+    if fields != FieldFormat::None {
+        outln!("fields ({}): {:.2} s", fields.name(), fields_s);
+    }
     Ok(())
 }

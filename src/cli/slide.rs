@@ -53,10 +53,15 @@ pub struct Args {
     /// point, the reference (Newton only where a relaxation is unsettled after 10^4 iterates).
     #[arg(long)]
     pub newton: bool,
-    /// Write the whole block's fields (fields_<state>.vtu, fields.pvd) for this many states
-    /// spread evenly over the run, first and last included (0: none).
+    /// Write the whole block's fields for this many states spread evenly over the drive X, one
+    /// per X (the settled state), first and last included (0: none); fields.pvd is indexed by
+    /// X in m, each file holds its `event` (docs/outputs.md).
     #[arg(long, default_value_t = 0)]
     pub fields: usize,
+    /// Format of the --fields files: vtu (fields_<event>.vtu + fields.pvd, ParaView), msh
+    /// (fields_<event>.msh, Gmsh) or both.
+    #[arg(long, default_value = "vtu", value_parser = ["vtu", "msh", "both"])]
+    pub field_format: String,
     /// Output directory.
     #[arg(long, default_value = "out/slide")]
     pub out: PathBuf,
@@ -118,6 +123,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         "`slide` loads N then X until the interface slides (--n-force, --x-max); the load ratios and the edge-zone tolerance belong to `check`",
     )?;
     let scene = scene_from(&a.scene)?;
+    let field_format: tribofe::io::FieldFormat = a.field_format.parse()?;
     tribofe::io::outdir::check(&a.out, a.force)?;
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
@@ -157,8 +163,8 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
     tribofe::report::slide::write(&res, dir.path(), &header, true)?;
     if a.fields > 0 {
-        let picks = tribofe::report::slide::spread(res.run.states.len(), a.fields);
-        tribofe::report::slide::write_fields(&res, &picks, dir.path(), &Default::default())?;
+        let picks = tribofe::report::slide::field_states(&res, a.fields);
+        tribofe::report::slide::write_fields(&res, &picks, dir.path(), &Default::default(), field_format)?;
     }
     dir.commit()?;
     let worst = res.run.max_violation;
@@ -220,7 +226,12 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     outln!(
         "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml{}}}",
         a.out.display(),
-        if a.fields > 0 { ", fields_*.vtu, fields.pvd" } else { "" }
+        match (a.fields, field_format) {
+            (0, _) => "",
+            (_, tribofe::io::FieldFormat::Msh) => ", fields_*.msh",
+            (_, tribofe::io::FieldFormat::Both) => ", fields_*.vtu/.msh, fields.pvd",
+            _ => ", fields_*.vtu, fields.pvd",
+        }
     );
     Ok(())
 }

@@ -18,8 +18,8 @@ pub struct Args {
     /// (graded QUA8, t/16 at the ends).
     #[arg(long)]
     pub as_meshed: bool,
-    /// Run only part I of N (1-based), a contiguous block of points; shard 1 writes the CSV
-    /// header, the others rows only, so `cat` joins them into the unsharded table.
+    /// Run only part I of N (1-based), a contiguous block of points, written as
+    /// OUT/sweep_IofN.csv with the header (each shard reads alone); join them with --merge.
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
     /// Verdict: largest interior |p - model| and |tau - model|, in units of N/L.
@@ -42,6 +42,10 @@ pub struct Args {
     /// Whole-interface slips of the frictional run (the last one's peak is F_max).
     #[arg(long, default_value_t = 3)]
     pub cycles: usize,
+    /// Join shard tables instead of sweeping: folders holding sweep_IofN.csv files (or the
+    /// files), written as OUT/sweep.csv (every shard 1..N required, one header).
+    #[arg(long, value_name = "DIR", num_args = 1..)]
+    pub merge: Vec<PathBuf>,
     #[arg(long, default_value = "out/sweep")]
     pub out: PathBuf,
     /// Replace the --out folder even if it holds files tribofe did not write (they are deleted);
@@ -51,6 +55,9 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> tribofe::Result<()> {
+    if !args.merge.is_empty() {
+        return merge(&args);
+    }
     let mut flat = args.scene.clone();
     let mut axes = Vec::new();
     for p in Param::ALL {
@@ -158,8 +165,8 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     .into_iter()
     .map(|(k, v)| (k.to_string(), v))
     .collect();
-    let with_header = shard.is_none_or(|(i, _)| i == 1);
-    let table = tribofe::report::sweep::csv(&points, with_header)?;
+    // Every shard's table carries the header, so each reads alone (sweep --merge joins them).
+    let table = tribofe::report::sweep::csv(&points, true)?;
     let maps = if shard.is_some() {
         // Shards of one sweep share the folder (a Slurm array): each writes its own file, whole.
         // Each shard's provenance in its own run file, whole, next to its table.
@@ -188,6 +195,72 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         "wrote {}/{name}{}",
         args.out.display(),
         if maps.is_empty() { String::new() } else { format!(", {}", maps.join(", ")) }
+    );
+    Ok(())
+}
+
+/// `--merge`: reads the shard files, joins them (tribofe::report::sweep::merge) and writes
+/// OUT/sweep.csv, replacing only a sweep table (a file whose first line is the same header).
+fn merge(args: &Args) -> tribofe::Result<()> {
+    use tribofe::error::quote;
+    use tribofe::Error;
+    let s = &args.scene;
+    let swept = [&s.length, &s.thickness, &s.height, &s.young, &s.poisson].iter().any(|v| v.is_some());
+    if args.shard.is_some() || args.friction.is_some() || swept {
+        return Err(Error::input(
+            "--merge",
+            "joins finished shards and computes nothing: give it without --shard, --friction or swept values",
+        ));
+    }
+    let mut files = Vec::new();
+    for p in &args.merge {
+        if p.is_dir() {
+            let entries = std::fs::read_dir(p).map_err(|e| Error::read(p, e))?;
+            for e in entries {
+                let path = e.map_err(|e| Error::read(p, e))?.path();
+                let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+                if tribofe::report::sweep::shard_of(&name).is_some() {
+                    files.push((name, path));
+                }
+            }
+        } else if p.is_file() {
+            let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            files.push((name, p.clone()));
+        } else {
+            return Err(Error::input(
+                "--merge",
+                format!("'{}' is neither a folder nor a file", quote(&p.display().to_string())),
+            ));
+        }
+    }
+    let parts = files
+        .iter()
+        .map(|(name, path)| {
+            Ok((name.clone(), std::fs::read_to_string(path).map_err(|e| Error::read(path, e))?))
+        })
+        .collect::<tribofe::Result<Vec<_>>>()?;
+    let table = tribofe::report::sweep::merge(&parts)?;
+    let header = table.lines().next().unwrap_or_default();
+    let target = args.out.join("sweep.csv");
+    if target.exists() {
+        let old = std::fs::read_to_string(&target).map_err(|e| Error::read(&target, e))?;
+        if old.lines().next() != Some(header) {
+            return Err(Error::input(
+                "--out",
+                format!(
+                    "'{}' exists and is not a table of this sweep: give another --out",
+                    quote(&target.display().to_string())
+                ),
+            ));
+        }
+    }
+    std::fs::create_dir_all(&args.out).map_err(|e| Error::io(&args.out, e))?;
+    tribofe::report::write_atomic(&target, table.as_bytes())?;
+    outln!(
+        "joined {} shards, {} rows, into {}",
+        parts.len(),
+        table.lines().count() - 1,
+        quote(&target.display().to_string())
     );
     Ok(())
 }

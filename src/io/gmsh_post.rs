@@ -7,7 +7,9 @@
 //!
 //! Physical groups attach to entities, so elements are written in runs sharing the same set
 //! membership (one surface entity per distinct membership) and kind, in mesh order; each edge
-//! set gets its own curve entity, each node of a node set its own point entity.
+//! set gets its own curve entity, each node of a node set its own point entity. A file with
+//! element views holds the block's elements only (no edge or node sets), so that every
+//! element has a value of every view, as meshio requires.
 
 use super::{check_fields, check_mesh, element_tag, io_err, write_atomic, Field};
 use crate::error::{Error, Result};
@@ -35,6 +37,12 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
             format!("'{name}' cannot be a Gmsh physical name (empty, quote or line break)"),
         ));
     }
+    // Element views must cover every element for meshio (`Incompatible cell data` otherwise),
+    // and the lines and points of edge and node sets have no value of a block field: with
+    // element data, only the block's elements (and their element sets) are written.
+    let none = (BTreeMap::new(), BTreeMap::new());
+    let (edge_sets, node_sets) =
+        if element_data.is_empty() { (&mesh.edge_sets, &mesh.node_sets) } else { (&none.0, &none.1) };
     let node_tags: Vec<u64> = (0..mesh.n_nodes()).map(|n| mesh.node_tag(n)).collect();
     let elem_tags: Vec<u64> = (0..mesh.n_elements()).map(|e| element_tag(mesh, e)).collect();
     for (tags, what) in [(&node_tags, "node"), (&elem_tags, "element")] {
@@ -69,7 +77,7 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
     if surfaces.is_empty() {
         surfaces.push(Vec::new()); // the nodes' entity
     }
-    for (name, edges) in &mesh.edge_sets {
+    for (name, edges) in edge_sets {
         if let Some(n) =
             edges.iter().flat_map(|e| e.nodes().collect::<Vec<_>>()).find(|&n| n >= mesh.n_nodes())
         {
@@ -78,7 +86,7 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
     }
     // Points: one entity per node of any node set, with the tags of all sets holding it.
     let mut points: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
-    for (g, (name, set)) in mesh.node_sets.iter().enumerate() {
+    for (g, (name, set)) in node_sets.iter().enumerate() {
         for &n in set {
             if n >= mesh.n_nodes() {
                 return Err(out_of_range(name, n, mesh.n_nodes(), "node"));
@@ -99,11 +107,11 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
     write_atomic(path, |w| {
         let e = io_err(path);
         writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat").map_err(&e)?;
-        let n_names = mesh.node_sets.len() + mesh.edge_sets.len() + mesh.element_sets.len();
+        let n_names = node_sets.len() + edge_sets.len() + mesh.element_sets.len();
         writeln!(w, "$PhysicalNames\n{n_names}").map_err(&e)?;
         for (dim, names) in [
-            (0, mesh.node_sets.keys().collect::<Vec<_>>()),
-            (1, mesh.edge_sets.keys().collect()),
+            (0, node_sets.keys().collect::<Vec<_>>()),
+            (1, edge_sets.keys().collect()),
             (2, mesh.element_sets.keys().collect()),
         ] {
             for (g, name) in names.into_iter().enumerate() {
@@ -114,7 +122,7 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
             w,
             "$EndPhysicalNames\n$Entities\n{} {} {} 0",
             points.len(),
-            mesh.edge_sets.len(),
+            edge_sets.len(),
             surfaces.len()
         )
         .map_err(&e)?;
@@ -123,7 +131,7 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
             let p = mesh.nodes[n];
             writeln!(w, "{} {:e} {:e} 0 {}{}", i + 1, p[0], p[1], groups.len(), tags(groups)).map_err(&e)?;
         }
-        for g in 1..=mesh.edge_sets.len() {
+        for g in 1..=edge_sets.len() {
             writeln!(w, "{g} {bbox} 1 {g} 0").map_err(&e)?;
         }
         for (i, groups) in surfaces.iter().enumerate() {
@@ -155,7 +163,7 @@ pub fn write_msh(path: &Path, mesh: &Mesh, node_data: &[Field], element_data: &[
             push((2, elem_entity[el], kind.gmsh_type()), elem_tags[el], &mut nodes.iter().copied());
         }
         let mut next_tag = elem_tags.iter().max().map_or(1, |t| t + 1);
-        for (g, edges) in mesh.edge_sets.values().enumerate() {
+        for (g, edges) in edge_sets.values().enumerate() {
             for edge in edges {
                 push((1, g + 1, if edge.mid.is_some() { 8 } else { 1 }), next_tag, &mut edge.nodes());
                 next_tag += 1;

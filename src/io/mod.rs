@@ -19,6 +19,47 @@ use crate::fem::mesh::Mesh;
 use std::io::Write;
 use std::path::Path;
 
+/// Which field files a command writes: `.vtu` for ParaView (raw binary, fast), `.msh` for
+/// Gmsh (ASCII, several times larger and slower), both, or none.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FieldFormat {
+    #[default]
+    Vtu,
+    Msh,
+    Both,
+    None,
+}
+
+impl FieldFormat {
+    pub fn vtu(self) -> bool {
+        matches!(self, Self::Vtu | Self::Both)
+    }
+    pub fn msh(self) -> bool {
+        matches!(self, Self::Msh | Self::Both)
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Vtu => "vtu",
+            Self::Msh => "msh",
+            Self::Both => "both",
+            Self::None => "none",
+        }
+    }
+}
+
+impl std::str::FromStr for FieldFormat {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "vtu" => Ok(Self::Vtu),
+            "msh" => Ok(Self::Msh),
+            "both" => Ok(Self::Both),
+            "none" => Ok(Self::None),
+            _ => Err(Error::input("--fields", format!("'{s}': use vtu, msh, both or none"))),
+        }
+    }
+}
+
 /// A named array over the points or the cells of a mesh, `components` values per entry
 /// (entry-major: the components of entry 0, then of entry 1...).
 #[derive(Debug, Clone, PartialEq)]

@@ -278,36 +278,82 @@ fn err(e: impl std::fmt::Display) -> Error {
 }
 
 /// Fig. 2 of the paper redrawn: p/(N/L) open symbols, tau/(N/L) full symbols, model dashed;
-/// below, the two edge zones (10 t wide, L/4 for a short block) with every node.
+/// below, the two edge zones (10 t wide, L/4 for a short block). The stress axis spans the
+/// profiles and the models but not the nodes within t/10 of the ends, where the clamped-free
+/// corners are singular (their values grow without bound under refinement): those are drawn
+/// as triangles on the frame, pointing off scale, and the end values are written in a note.
 pub fn fig2(res: &CheckResult) -> Result<String> {
+    let l = res.scene.block.length;
+    let t = res.scene.block.thickness;
+    let near_end = |x: f64| x.abs() > 0.5 - 0.1 * t / l;
+    let (mut ymin, mut ymax) = (0.0f64, 1.0f64);
+    for c in &res.cases {
+        for i in 0..c.x_over_l.len() {
+            let mut v = vec![c.p_model[i], c.tau_model[i]];
+            if !near_end(c.x_over_l[i]) || c.x_over_l.len() < 3 {
+                v.extend([c.p[i], c.tau[i]]);
+            }
+            for v in v.into_iter().filter(|v| v.is_finite()) {
+                (ymin, ymax) = (ymin.min(v), ymax.max(v));
+            }
+        }
+    }
+    let pad = 0.08 * (ymax - ymin);
+    let yr = (ymin - pad)..(ymax + 2.5 * pad); // room for the legend
+    let mut notes = Vec::new();
+    for c in &res.cases {
+        let mut off = Vec::new();
+        for (name, v) in [("p", &c.p), ("tau", &c.tau)] {
+            for (end, i) in [("-L/2", 0), ("+L/2", v.len().saturating_sub(1))] {
+                if let Some(&x) = v.get(i) {
+                    if x < yr.start || x > yr.end {
+                        off.push(format!("{name}({end}) = {x:.3}"));
+                    }
+                }
+            }
+        }
+        if !off.is_empty() {
+            notes.push(format!("F/N = {}: {}", c.fn_ratio, off.join(", ")));
+        }
+    }
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (1000, 820)).into_drawing_area();
+        let height = 830 + 16 * (notes.len() as u32 + 1);
+        let root = SVGBackend::with_string(&mut svg, (1000, height)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
-        let (top, bottom) = root.split_vertically(470);
+        let (top, rest) = root.split_vertically(470);
+        let (bottom, foot) = rest.split_vertically(350);
         let halves = bottom.split_evenly((1, 2));
-        let l = res.scene.block.length;
-        let t = res.scene.block.thickness;
-        let ymax = res.cases.iter().flat_map(|c| c.p.iter().chain(&c.tau)).fold(1.0f64, |m, &v| m.max(v));
-        let ymin = res.cases.iter().flat_map(|c| c.p.iter().chain(&c.tau)).fold(0.0f64, |m, &v| m.min(v));
-        let main_y = (ymin - 0.05)..(ymax + 0.1);
-        panel(&top, res, -0.5..0.5, main_y, "Interface stresses (fig. 2 of the paper): open = pressure p/(N/L), full = shear tau/(N/L), dashed = model", 9)?;
+        panel(&top, res, -0.5..0.5, yr.clone(), "Interface stresses (fig. 2 of the paper): open = pressure p/(N/L), full = shear tau/(N/L), dashed = model", 150)?;
         let zone = crate::studies::check::interior_margin(l, t) / l;
-        let zy = (ymin - 0.05)..(ymax + 0.1);
-        panel(&halves[0], res, (-0.5 - 0.05 * zone)..(-0.5 + zone), zy.clone(), "Trailing edge zone", 1)?;
-        panel(&halves[1], res, (0.5 - zone)..(0.5 + 0.05 * zone), zy, "Leading edge zone", 1)?;
+        panel(&halves[0], res, (-0.5 - 0.05 * zone)..(-0.5 + zone), yr.clone(), "Trailing edge zone", 80)?;
+        panel(&halves[1], res, (0.5 - zone)..(0.5 + 0.05 * zone), yr, "Leading edge zone", 80)?;
+        if !notes.is_empty() {
+            let font = ("sans-serif", 13);
+            foot.draw(&Text::new(
+                "Off scale (triangles on the frame): end-node values, in units of N/L; singular corners, not converged:".to_string(),
+                (15, 2),
+                font,
+            ))
+            .map_err(err)?;
+            for (k, n) in notes.iter().enumerate() {
+                foot.draw(&Text::new(n.clone(), (30, 18 + 16 * k as i32), font)).map_err(err)?;
+            }
+        }
         root.present().map_err(err)?;
     }
     Ok(svg)
 }
 
+/// One panel; at most about `markers` symbols per series (every k-th node), and values outside
+/// `yr` drawn as triangles on the frame pointing the way they leave it.
 fn panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     res: &CheckResult,
     xr: std::ops::Range<f64>,
     yr: std::ops::Range<f64>,
     title: &str,
-    every: usize,
+    markers_per_series: usize,
 ) -> Result<()>
 where
     DB::ErrorType: 'static,
@@ -317,7 +363,7 @@ where
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(55)
-        .build_cartesian_2d(xr.clone(), yr)
+        .build_cartesian_2d(xr.clone(), yr.clone())
         .map_err(err)?;
     chart
         .configure_mesh()
@@ -330,15 +376,37 @@ where
         let col = COLORS[k % COLORS.len()];
         let pts: Vec<usize> =
             (0..c.x_over_l.len()).filter(|&i| c.x_over_l[i] >= xr.start && c.x_over_l[i] <= xr.end).collect();
-        let sel: Vec<usize> =
-            pts.iter().copied().enumerate().filter(|(j, _)| j % every == 0).map(|(_, i)| i).collect();
+        let every = pts.len().div_ceil(markers_per_series.max(1)).max(1);
+        // Every k-th node, and always the ends of the range (the edge values).
+        let sel: Vec<usize> = pts
+            .iter()
+            .copied()
+            .enumerate()
+            .filter(|&(j, _)| j % every == 0 || j + 1 == pts.len())
+            .map(|(_, i)| i)
+            .collect();
         let model_p: Vec<(f64, f64)> = pts.iter().map(|&i| (c.x_over_l[i], c.p_model[i])).collect();
         let model_t: Vec<(f64, f64)> = pts.iter().map(|&i| (c.x_over_l[i], c.tau_model[i])).collect();
         chart.draw_series(DashedLineSeries::new(model_p, 6, 4, col.stroke_width(1))).map_err(err)?;
         chart.draw_series(DashedLineSeries::new(model_t, 6, 4, col.stroke_width(1))).map_err(err)?;
         let label = format!("F/N = {}", c.fn_ratio);
-        markers(&mut chart, sel.iter().map(|&i| (c.x_over_l[i], c.p[i])).collect(), k, col, false)?;
-        markers(&mut chart, sel.iter().map(|&i| (c.x_over_l[i], c.tau[i])).collect(), k, col, true)?;
+        for (v, filled) in [(&c.p, false), (&c.tau, true)] {
+            let inside =
+                sel.iter().filter(|&&i| yr.contains(&v[i])).map(|&i| (c.x_over_l[i], v[i])).collect();
+            markers(&mut chart, inside, k, col, filled)?;
+            // Off scale: every such node (not only every k-th), on the frame.
+            let off = pts.iter().filter(|&&i| v[i].is_finite() && !yr.contains(&v[i]));
+            let style = if filled { col.filled() } else { col.stroke_width(1) };
+            chart
+                .draw_series(off.map(|&i| {
+                    let up = v[i] > yr.end;
+                    let y = if up { yr.end } else { yr.start };
+                    let tip = if up { -7 } else { 7 };
+                    EmptyElement::at((c.x_over_l[i], y))
+                        + Polygon::new(vec![(-5, 0), (5, 0), (0, tip)], style)
+                }))
+                .map_err(err)?;
+        }
         // Legend entry: the case's colour (the marker shape follows the case order).
         chart
             .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
@@ -356,19 +424,24 @@ where
     Ok(())
 }
 
-/// Field files of every load case for ParaView (`fields_FN<ratio>.vtu` and `fields.pvd`) and
-/// Gmsh (`fields_FN<ratio>.msh`): displacement, nodal stresses (extrapolated and averaged),
-/// von Mises, and the mean integration-point stress of each element.
+/// Field files of every load case for ParaView (`fields_FN<ratio>.vtu` and `fields.pvd`, whose
+/// timestep is the case's F/N) and/or Gmsh (`fields_FN<ratio>.msh`), as `format` asks:
+/// displacement, nodal stresses (extrapolated and averaged), von Mises, and the mean
+/// integration-point stress of each element (docs/outputs.md).
 pub fn write_fields(
     res: &CheckResult,
     sm: &crate::scene::SceneModel,
     dir: &Path,
+    format: crate::io::FieldFormat,
 ) -> Result<Vec<std::path::PathBuf>> {
     use crate::fem::recovery::gauss_stresses;
     use crate::io::{gmsh_post::write_msh, vtu, Field};
     let model = sm.model();
     let mut written = Vec::new();
     let mut pvd = Vec::new();
+    if format == crate::io::FieldFormat::None {
+        return Ok(written);
+    }
     for (c, u) in res.cases.iter().zip(&res.displacements) {
         let mean: Vec<[f64; 4]> = (0..sm.mesh.n_elements())
             .map(|e| {
@@ -380,16 +453,23 @@ pub fn write_fields(
         let point = Field::solution_fields(&model, u);
         let cell = [Field::tensor_2d("stress_mean_Pa", &mean)];
         let stem = format!("fields_FN{}", ratio_label(c.fn_ratio));
-        let vtu_path = dir.join(format!("{stem}.vtu"));
-        vtu::write_vtu(&vtu_path, &sm.mesh, &point, &cell)?;
-        write_msh(&dir.join(format!("{stem}.msh")), &sm.mesh, &point, &cell)?;
-        written.push(vtu_path);
-        pvd.push(c.fn_ratio);
+        if format.vtu() {
+            let vtu_path = dir.join(format!("{stem}.vtu"));
+            vtu::write_vtu(&vtu_path, &sm.mesh, &point, &cell)?;
+            pvd.push((c.fn_ratio, vtu_path));
+        }
+        if format.msh() {
+            let msh_path = dir.join(format!("{stem}.msh"));
+            write_msh(&msh_path, &sm.mesh, &point, &cell)?;
+            written.push(msh_path);
+        }
     }
-    // The collection's "timestep" is the load case's F/N.
-    let entries: Vec<(f64, &Path)> = pvd.iter().zip(&written).map(|(r, p)| (*r, p.as_path())).collect();
-    vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
-    written.push(dir.join("fields.pvd"));
+    if format.vtu() {
+        let entries: Vec<(f64, &Path)> = pvd.iter().map(|(r, p)| (*r, p.as_path())).collect();
+        vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
+        written.extend(pvd.into_iter().map(|(_, p)| p));
+        written.push(dir.join("fields.pvd"));
+    }
     Ok(written)
 }
 

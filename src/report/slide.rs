@@ -179,63 +179,113 @@ pub fn fig4_svg(r: &SlideResult) -> Result<String> {
     })
 }
 
-/// Space-time picture: for each instability its slipped extent x/L at its force F/N (blue);
-/// for continuous slip (coulomb, creep) each state's runs of slipping nodes at its F/N (red).
+/// Space-time picture, one row per event of the drive phase (the row of events.csv, so rows
+/// never overlap however many precursors there are): each instability's slipped extent x/L
+/// (blue for a precursor, dark red for a slip of the whole interface) and, for continuous slip
+/// (coulomb, creep), each state's runs of slipping nodes (light red); on the right, F/N at
+/// each event on the same rows, so the force of each front can be read across.
 pub fn fronts_svg(r: &SlideResult) -> Result<String> {
     let c = &r.condensed;
     let n = r.options.n_force;
-    let mut segs: Vec<(f64, f64, f64)> = Vec::new();
+    let mut segs: Vec<(f64, f64, f64, bool)> = Vec::new();
     let mut runs: Vec<(f64, f64, f64)> = Vec::new();
-    for (e, st) in r.run.events.iter().zip(&r.run.states) {
+    let mut force: Vec<(f64, f64)> = Vec::new();
+    for (k, (e, st)) in r.run.events.iter().zip(&r.run.states).enumerate() {
         if st.phase != Phase::Drive {
             continue;
         }
+        let y = k as f64;
+        force.push((st.f / n, y));
         if let Some((a, b)) = e.region {
-            segs.push((c.x[a] / c.l, c.x[b] / c.l, e.f / n));
+            segs.push((c.x[a] / c.l, c.x[b] / c.l, y, a == 0 && b + 1 == c.n));
         }
         let mut i = 0;
         while i < c.n {
             if matches!(st.states[i], NodeState::Slip(_)) {
                 let j = (i..c.n).find(|&k| !matches!(st.states[k], NodeState::Slip(_))).unwrap_or(c.n);
-                runs.push((c.x[i] / c.l, c.x[j - 1] / c.l, st.f / n));
+                runs.push((c.x[i] / c.l, c.x[j - 1] / c.l, y));
                 i = j;
             } else {
                 i += 1;
             }
         }
     }
-    let f_top = r.run.states.iter().fold(0.1f64, |m, s| m.max(s.f / n)) * 1.1;
-    render("fronts.svg", (900, 650), |root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption(format!("Slip fronts, FE {}", r.options.law.name()), (FONT, 20))
-            .margin(15)
+    let (y0, y1) = force.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    // Room above the last row for the legend.
+    let (y0, y1) = if y0 <= y1 { (y0 - 0.5, y1 + 0.5 + 0.16 * (y1 - y0 + 1.0)) } else { (0.0, 1.0) };
+    let f_top = force.iter().fold(0.1f64, |m, p| m.max(p.0)) * 1.05;
+    let f_bottom = force.iter().fold(0.0f64, |m, p| m.min(p.0));
+    // Row thickness: a full row each while they are wider than a pixel.
+    let rows = (y1 - y0).max(1.0);
+    let width = ((500.0 / rows).floor() as u32).clamp(1, 4);
+    let slips = segs.iter().filter(|s| s.3).count();
+    render("fronts.svg", (1000, 700), |root| {
+        let root = root.titled(
+            &format!(
+                "Slip fronts, FE {}: {} instabilities ({} whole-interface slips)",
+                r.options.law.name(),
+                segs.len(),
+                slips
+            ),
+            (FONT, 19),
+        )?;
+        let (left, right) = root.split_horizontally(740);
+        let mut chart = ChartBuilder::on(&left)
+            .margin(12)
             .x_label_area_size(45)
-            .y_label_area_size(65)
-            .build_cartesian_2d(-0.5..0.5, 0.0..f_top)?;
+            .y_label_area_size(70)
+            .build_cartesian_2d(-0.5..0.5, y0..y1)?;
         chart
             .configure_mesh()
+            .disable_y_mesh()
             .x_desc("position along the interface x / L (trailing edge -1/2)  (dimensionless)")
-            .y_desc("friction force F / N  (dimensionless)")
+            .y_desc("event (row of events.csv, drive phase)")
+            .y_label_formatter(&|v: &f64| format!("{v:.0}"))
             .draw()?;
+        let light = RGBColor(240, 130, 130);
+        let dark = RGBColor(150, 0, 0);
         chart
             .draw_series(
-                runs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], RED.stroke_width(1))),
+                runs.iter().map(|&(a, b, y)| PathElement::new([(a, y), (b, y)], light.stroke_width(width))),
             )?
             .label("slipping nodes of each state (continuous slip)")
-            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED));
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], light.stroke_width(3)));
         chart
             .draw_series(
-                segs.iter().map(|&(a, b, f)| PathElement::new([(a, f), (b, f)], BLUE.stroke_width(2))),
+                segs.iter()
+                    .filter(|s| !s.3)
+                    .map(|&(a, b, y, _)| PathElement::new([(a, y), (b, y)], BLUE.stroke_width(width))),
             )?
-            .label("extent of each instability at its force")
-            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+            .label("extent of each precursor")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE.stroke_width(3)));
+        chart
+            .draw_series(
+                segs.iter()
+                    .filter(|s| s.3)
+                    .map(|&(a, b, y, _)| PathElement::new([(a, y), (b, y)], dark.stroke_width(width))),
+            )?
+            .label("slip of the whole interface")
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], dark.stroke_width(3)));
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
+            .position(SeriesLabelPosition::UpperLeft)
             .background_style(WHITE.mix(0.9))
             .border_style(BLACK)
-            .label_font((FONT, 14))
+            .label_font((FONT, 13))
             .draw()?;
+        let mut f_chart = ChartBuilder::on(&right)
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(10)
+            .build_cartesian_2d(f_bottom..f_top, y0..y1)?;
+        f_chart
+            .configure_mesh()
+            .disable_y_mesh()
+            .y_labels(0)
+            .x_labels(4)
+            .x_desc("F / N at the event (dimensionless)")
+            .draw()?;
+        f_chart.draw_series(LineSeries::new(force.iter().copied(), BLACK.stroke_width(1)))?;
         Ok(())
     })
 }
@@ -262,19 +312,31 @@ pub fn write(r: &SlideResult, dir: &Path, header: &str, states: bool) -> Result<
     Ok(out)
 }
 
-/// The whole block through the run for ParaView: `fields_<state>.vtu` for each picked state
-/// (displacement, nodal stresses, von Mises, and `interface_state`: 0 stick, 1 slip, 2 open,
-/// -1 off the interface) and `fields.pvd`, whose timestep is the state index (X repeats while
-/// an instability relaxes at fixed X).
+/// The whole block through the run: for each picked state `fields_<state>.vtu` (ParaView)
+/// and/or `fields_<state>.msh` (Gmsh) as `format` asks, with displacement, nodal stresses, von
+/// Mises, `interface_state` (0 stick, 1 slip, 2 open, -1 off the interface) and `event` (the
+/// state's row in loading.csv, the same at every node); with .vtu, `fields.pvd`, whose
+/// timestep is the drive X in m (pick the states with [`field_states`]: one per X).
 pub fn write_fields(
     r: &SlideResult,
     picks: &[usize],
     dir: &Path,
     opts: &SolverOptions,
+    format: crate::io::FieldFormat,
 ) -> Result<Vec<PathBuf>> {
+    if format == crate::io::FieldFormat::None || picks.is_empty() {
+        return Ok(Vec::new());
+    }
+    if let Some(w) = picks.windows(2).find(|w| r.run.states[w[1]].x <= r.run.states[w[0]].x) {
+        return Err(crate::error::Error::input(
+            "fields",
+            format!("states {} and {} do not advance X: the .pvd needs increasing X", w[0], w[1]),
+        ));
+    }
     let (sm, us) = state_displacements(r, picks, opts)?;
     let model = sm.model();
     let mut written = Vec::new();
+    let mut pvd = Vec::new();
     for (&k, u) in picks.iter().zip(&us) {
         let mut state = vec![-1.0; sm.mesh.n_nodes()];
         for (&node, s) in sm.interface.iter().zip(&r.run.states[k].states) {
@@ -286,15 +348,34 @@ pub fn write_fields(
         }
         let mut point = Field::solution_fields(&model, u);
         point.push(Field::scalar("interface_state", state));
-        let path = dir.join(format!("fields_{k:06}.vtu"));
-        vtu::write_vtu(&path, &sm.mesh, &point, &[])?;
-        written.push(path);
+        point.push(Field::scalar("event", vec![k as f64; sm.mesh.n_nodes()]));
+        if format.vtu() {
+            let path = dir.join(format!("fields_{k:06}.vtu"));
+            vtu::write_vtu(&path, &sm.mesh, &point, &[])?;
+            pvd.push((r.run.states[k].x, path));
+        }
+        if format.msh() {
+            let path = dir.join(format!("fields_{k:06}.msh"));
+            crate::io::gmsh_post::write_msh(&path, &sm.mesh, &point, &[])?;
+            written.push(path);
+        }
     }
-    let entries: Vec<(f64, &Path)> =
-        picks.iter().zip(&written).map(|(&k, p)| (k as f64, p.as_path())).collect();
-    vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
-    written.push(dir.join("fields.pvd"));
+    if format.vtu() {
+        let entries: Vec<(f64, &Path)> = pvd.iter().map(|(x, p)| (*x, p.as_path())).collect();
+        vtu::write_pvd(&dir.join("fields.pvd"), &entries)?;
+        written.extend(pvd.into_iter().map(|(_, p)| p));
+        written.push(dir.join("fields.pvd"));
+    }
     Ok(written)
+}
+
+/// Up to `k` states for the field files, one per drive X (the settled state, the last at
+/// that X: an instability relaxes at fixed X, so its intermediate states share the X),
+/// spread evenly over the run, the first and last X included.
+pub fn field_states(r: &SlideResult, k: usize) -> Vec<usize> {
+    let s = &r.run.states;
+    let settled: Vec<usize> = (0..s.len()).filter(|&i| i + 1 == s.len() || s[i + 1].x != s[i].x).collect();
+    spread(settled.len(), k.min(settled.len())).into_iter().map(|i| settled[i]).collect()
 }
 
 /// `k` state indices spread evenly over `n` states, the first and last included.

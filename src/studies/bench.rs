@@ -66,6 +66,9 @@ pub struct Row {
     pub flops: f64,
     pub t: Timings,
     pub output: Option<f64>,
+    /// Writing the default field files (`check --fields vtu`: one raw-binary .vtu per load
+    /// case and the .pvd), s; None where the case writes none.
+    pub fields: Option<f64>,
     /// VmHWM of the process that ran the case (before the refactorisation runs), MiB.
     pub peak_mib: f64,
     /// Core-seconds the numeric factorisation spent in dense kernels (two-domain solver only).
@@ -97,7 +100,7 @@ impl Row {
         self.dense_s.map(|d| rate(self.flops, d))
     }
 
-    pub const CSV_HEADER: &'static str = "case,threads,factor,ordering,dofs,nnz_k,nnz_l,gflop,mesh_s,pattern_s,assembly_s,symbolic_s,numeric_s,solve_s,recovery_s,other_s,total_s,output_s,dofs_per_s,gflops,peak_mib,dense_core_s,numeric_warm_s";
+    pub const CSV_HEADER: &'static str = "case,threads,factor,ordering,dofs,nnz_k,nnz_l,gflop,mesh_s,pattern_s,assembly_s,symbolic_s,numeric_s,solve_s,recovery_s,other_s,total_s,output_s,dofs_per_s,gflops,peak_mib,dense_core_s,numeric_warm_s,fields_s";
 
     pub fn to_csv(&self) -> String {
         let t = &self.t;
@@ -105,8 +108,9 @@ impl Row {
         let dense = self.dense_s.map_or(String::new(), |v| format!("{v:.4}"));
         // Empty when the system does not report the peak (not NaN).
         let peak = if self.peak_mib.is_finite() { format!("{:.1}", self.peak_mib) } else { String::new() };
+        let fields = self.fields.map_or(String::new(), |v| format!("{v:.4}"));
         format!(
-            "{},{},{},{},{},{},{},{:.4},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{out},{:.0},{:.3},{peak},{dense},{:.4e}",
+            "{},{},{},{},{},{},{},{:.4},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{out},{:.0},{:.3},{peak},{dense},{:.4e},{fields}",
             self.case, self.threads, self.factor, self.ordering, self.dofs, self.nnz_k, self.nnz_l, self.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery,
             t.other, t.total(), self.dofs_per_s(), self.gflops(), self.numeric_warm
         )
@@ -145,6 +149,7 @@ impl Row {
             peak_mib: if f[20].is_empty() { f64::NAN } else { num(20)? },
             dense_s: if f[21].is_empty() { None } else { Some(num(21)?) },
             numeric_warm: num(22)?,
+            fields: if f[23].is_empty() { None } else { Some(num(23)?) },
         })
     }
 }
@@ -192,7 +197,7 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
     let mut scene = Scene::default();
     scene.mesh.h = scene.block.thickness / ny as f64;
     scene.mesh.n_thick = Some(ny);
-    let (res, _) = check::run(&scene, opts)?;
+    let (res, sm) = check::run(&scene, opts)?;
     let peak_mib = peak_memory_mib().unwrap_or(f64::NAN);
     let prepared = check::prepare(&scene, opts)?;
     let numeric_warm = refactorisation_time(|| {
@@ -203,8 +208,12 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
     let clock = Instant::now();
     let written = crate::report::check::write(&res, None, &dir);
     let output = clock.elapsed().as_secs_f64();
+    let clock = Instant::now();
+    let fields = written
+        .and_then(|_| crate::report::check::write_fields(&res, &sm, &dir, crate::io::FieldFormat::Vtu));
+    let fields_s = clock.elapsed().as_secs_f64();
     let _ = std::fs::remove_dir_all(&dir);
-    written?;
+    fields?;
     Ok(Row {
         case: Case::Strip(ny).name(),
         threads: opts.threads,
@@ -216,6 +225,7 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
         flops: res.stats.factor_flops,
         t: res.stats.timings,
         output: Some(output),
+        fields: Some(fields_s),
         peak_mib,
         dense_s: res.stats.dense_seconds,
         numeric_warm,
@@ -257,6 +267,7 @@ fn square(n: usize, opts: &SolverOptions) -> Result<Row> {
         flops: sol.stats.factor_flops,
         t,
         output: None,
+        fields: None,
         peak_mib,
         dense_s: sol.stats.dense_seconds,
         numeric_warm,
@@ -353,8 +364,8 @@ pub fn best(rows: Vec<Row>) -> Option<Row> {
 /// factorisation's rate is compared with.
 pub fn table(rows: &[Row], dgemm: &[(usize, f64)]) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6} | {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>6} {:>6} | {:>8} {:>6} {:>5} | {:>6} {:>5} {:>6} | {:>7}",
-        "case", "th", "factor", "ord", "DOFs", "nnz(K)", "nnz(L)", "GFLOP", "mesh", "patt", "asm", "symb", "numer", "solve", "recov", "other", "total", "output", "DOF/s", "GF/s", "%peak", "refact", "%peak", "%front", "MiB");
+    let _ = writeln!(s, "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6} | {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} | {:>6} {:>6} {:>6} | {:>8} {:>6} {:>5} | {:>6} {:>5} {:>6} | {:>7}",
+        "case", "th", "factor", "ord", "DOFs", "nnz(K)", "nnz(L)", "GFLOP", "mesh", "patt", "asm", "symb", "numer", "solve", "recov", "other", "total", "output", "fields", "DOF/s", "GF/s", "%peak", "refact", "%peak", "%front", "MiB");
     for r in rows {
         let t = &r.t;
         let dgemm_rate = dgemm.iter().find(|d| d.0 == r.threads).map(|d| d.1);
@@ -364,12 +375,12 @@ pub fn table(rows: &[Row], dgemm: &[(usize, f64)]) -> String {
             .map_or("-".to_string(), |(g, f)| format!("{:.1}", 100.0 * f * r.threads as f64 / g));
         let _ = writeln!(
             s,
-            "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6.2} | {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} | {:>6.2} {:>6} | {:>8.2e} {:>6.2} {:>5} | {:>6.3} {:>5} {:>6} | {:>7.0}",
+            "{:<11} {:>2} {:<10} {:<4} {:>9} {:>9} {:>10} {:>6.2} | {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} | {:>6.2} {:>6} {:>6} | {:>8.2e} {:>6.2} {:>5} | {:>6.3} {:>5} {:>6} | {:>7.0}",
             r.case, r.threads, r.factor, r.ordering, r.dofs, r.nnz_k, r.nnz_l, r.flops / 1e9, t.mesh, t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, t.recovery, t.other, t.total(),
-            r.output.map_or("-".into(), |v| format!("{v:.3}")), r.dofs_per_s(), r.gflops(), percent(r.gflops()), r.numeric_warm, percent(r.gflops_warm()), front, r.peak_mib
+            r.output.map_or("-".into(), |v| format!("{v:.3}")), r.fields.map_or("-".into(), |v| format!("{v:.3}")), r.dofs_per_s(), r.gflops(), percent(r.gflops()), r.numeric_warm, percent(r.gflops_warm()), front, r.peak_mib
         );
     }
-    let _ = writeln!(s, "times in s; symb = ordering + symbolic analysis; solve = all load cases + condition probe + residual check; other = the rest of the run's wall time (total = wall time, mesh to recovery); %peak = numeric GFLOP/s / DGEMM GFLOP/s at the same thread count");
+    let _ = writeln!(s, "times in s; symb = ordering + symbolic analysis; solve = all load cases + condition probe + residual check; other = the rest of the run's wall time (total = wall time, mesh to recovery); output = CSVs and fig2.svg; fields = the default field files (check --fields vtu); %peak = numeric GFLOP/s / DGEMM GFLOP/s at the same thread count");
     let _ = writeln!(s, "refact = numeric factorisation again with the same analysis and, with two domains, the factor's memory reused (as in a sweep); first-touch page faults of fresh memory make up most of the difference");
     let _ = writeln!(s, "%front = the dense kernels' own rate on this factorisation's fronts, per core, / DGEMM per core: the ceiling of %peak for any code using them (two-domain solver only)");
     for (th, g) in dgemm {
@@ -416,12 +427,13 @@ mod tests {
             flops: 7.141e9,
             t,
             output: Some(0.08),
+            fields: Some(1.5),
             peak_mib: 1036.0,
             dense_s: Some(0.4088),
             numeric_warm: 0.3563,
         };
-        for (output, dense_s) in [(Some(0.08), Some(0.4088)), (None, None)] {
-            let r = Row { output, dense_s, ..row.clone() };
+        for (output, dense_s, fields) in [(Some(0.08), Some(0.4088), Some(1.5)), (None, None, None)] {
+            let r = Row { output, dense_s, fields, ..row.clone() };
             let back = Row::from_csv(&r.to_csv()).unwrap();
             assert_eq!(
                 (back.case.as_str(), back.threads, back.dofs, back.nnz_l),
@@ -431,6 +443,7 @@ mod tests {
                 (back.output, back.dense_s, back.numeric_warm, back.t.numeric, back.t.other),
                 (output, dense_s, 0.3563, 0.5, 0.005)
             );
+            assert_eq!(back.fields, fields);
             assert!((back.flops - 7.141e9).abs() < 1e5 && back.peak_mib == 1036.0);
         }
         assert!(Row::from_csv("strip50,2").is_err());
