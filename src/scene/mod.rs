@@ -483,6 +483,17 @@ impl Scene {
             )));
         }
         self.check_mesh_geometry(&m, path)?;
+        crate::fem::mesh_check::check_block(
+            &m,
+            &self.mesh.block,
+            &self.mesh.interface,
+            &self.mesh.top,
+            self.block.thickness,
+        )
+        .map_err(|e| match e {
+            Error::Mesh(why) => Error::Mesh(format!("{}: {why}", crate::error::quote(&path.display().to_string()))),
+            other => other,
+        })?;
         let want = self.element()?;
         let kinds = m.kinds_present();
         // The kind comes from the file: plain `qua4` (the default) names no kind, only the
