@@ -538,8 +538,22 @@ impl Scene {
     /// Unknowns of the structured mesh, estimated from the scene alone (no allocation; f64
     /// so that absurd sizes do not overflow).
     pub fn estimate_dofs(&self) -> Result<f64> {
+        let (t, h) = (self.block.thickness, self.mesh.h);
+        let nx = self.estimate_nx();
+        let ny = self.mesh.n_thick.map_or((t / h).round().max(1.0), |n| n as f64);
+        let rows = match self.plate.model {
+            PlateModel::Rigid => ny,
+            PlateModel::Elastic => ny + self.plate.thickness / (t / 2.0).max(h) + 1.0,
+        };
+        let p = self.element()?.kind.order() as f64;
+        Ok(2.0 * (p * nx + 1.0) * (p * rows + 1.0))
+    }
+
+    /// Elements along x of the structured mesh, uniform or graded, estimated from the scene
+    /// alone (f64 so that absurd sizes do not overflow).
+    pub fn estimate_nx(&self) -> f64 {
         let (l, t, h) = (self.block.length, self.block.thickness, self.mesh.h);
-        let nx = match self.mesh.grading {
+        match self.mesh.grading {
             Some(r) if r > 1.0 => {
                 // Elements grow from h by r up to h_max, from both ends.
                 let hm = self.mesh.h_max.unwrap_or(2.0 * t).max(h);
@@ -553,14 +567,7 @@ impl Scene {
             }
             _ => (l / h).round(),
         }
-        .max(2.0);
-        let ny = self.mesh.n_thick.map_or((t / h).round().max(1.0), |n| n as f64);
-        let rows = match self.plate.model {
-            PlateModel::Rigid => ny,
-            PlateModel::Elastic => ny + self.plate.thickness / (t / 2.0).max(h) + 1.0,
-        };
-        let p = self.element()?.kind.order() as f64;
-        Ok(2.0 * (p * nx + 1.0) * (p * rows + 1.0))
+        .max(2.0)
     }
 
     /// Refuses a scene above its size limit (`mesh.max_dofs`, [`limits::effective`]) before

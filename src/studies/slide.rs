@@ -101,9 +101,10 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
             ),
         ));
     }
-    if o.keep_states {
-        // Interface nodes from the spacing (the run checks again with the exact count).
-        let n = (scene.block.length / scene.mesh.h).round().max(2.0) + 1.0;
+    if o.keep_states && scene.mesh.file.is_none() {
+        // Interface nodes of the structured mesh (the run checks again with the exact count,
+        // and for a mesh file).
+        let n = scene.estimate_nx() + 1.0;
         crate::scene::limits::check_bytes(
             o.max_events as f64 * (40.0 * n + 200.0),
             "--max-events",
