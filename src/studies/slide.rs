@@ -112,6 +112,17 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
             "lower --max-events",
         )?;
     }
+    if let Some(x) = o.x_max {
+        if x > scene.block.length {
+            return Err(Error::input(
+                "--x-max",
+                format!(
+                    "{x:e} m is beyond the block's length L = {} m: the interface model is one of small displacements; give X <= L",
+                    scene.block.length
+                ),
+            ));
+        }
+    }
     if let Law::Coulomb { mu } = o.law {
         if mu == 0.0 {
             return Err(Error::input(
