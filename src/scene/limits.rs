@@ -93,12 +93,20 @@ fn cgroup_max() -> Option<f64> {
     None
 }
 
+/// Largest `--max-dofs` accepted.
+pub const MAX_DOFS_LIMIT: usize = 1_000_000_000_000;
+
 /// The limit to apply: `limit` if given, else [`default_max_dofs`]; 0 is refused.
 pub fn effective(limit: Option<usize>) -> Result<usize> {
     match limit {
         Some(0) => {
             Err(Error::input("--max-dofs (mesh.max_dofs)", "0: the limit must allow at least one unknown"))
         }
+        // Far above any machine, and within what run.toml (a TOML integer, i64) can record.
+        Some(n) if n > MAX_DOFS_LIMIT => Err(Error::input(
+            "--max-dofs (mesh.max_dofs)",
+            format!("{n}: at most {MAX_DOFS_LIMIT:e} unknowns (1.5 PB at {BYTES_PER_DOF} bytes each)"),
+        )),
         Some(n) => Ok(n),
         None => Ok(default_max_dofs()),
     }

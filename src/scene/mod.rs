@@ -491,7 +491,9 @@ impl Scene {
             self.block.thickness,
         )
         .map_err(|e| match e {
-            Error::Mesh(why) => Error::Mesh(format!("{}: {why}", crate::error::quote(&path.display().to_string()))),
+            Error::Mesh(why) => {
+                Error::Mesh(format!("{}: {why}", crate::error::quote(&path.display().to_string())))
+            }
             other => other,
         })?;
         let want = self.element()?;
@@ -754,6 +756,14 @@ pub const MAX_FN_RATIO: f64 = 10.0;
 
 /// [`Material::plane_strain`] with its refusal naming the scene key (`young` or `poisson`).
 fn material(e: f64, nu: f64, young: &str, poisson: &str) -> Result<Material> {
+    // A ratio this small is 0 to every digit the solve keeps, and its subnormal products
+    // slow the arithmetic a hundredfold (issue 31: `edges --poisson 1e-308` ran past a minute).
+    if nu != 0.0 && nu.abs() < 1e-100 {
+        return Err(Error::input(
+            poisson,
+            format!("{nu:e} is 0 to every digit kept: give 0 or |nu| >= 1e-100"),
+        ));
+    }
     Material::plane_strain(e, nu).map_err(|err| match err {
         Error::Input { what, why } => {
             Error::input(if what.starts_with("Young") { young } else { poisson }, why)
