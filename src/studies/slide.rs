@@ -105,6 +105,8 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
         // Interface nodes of the structured mesh (the run checks again with the exact count,
         // and for a mesh file).
         let n = scene.estimate_nx() + 1.0;
+        // The dense condensed system first: it is the size that matters most (names --h).
+        crate::scene::limits::check_interface(n as usize)?;
         crate::scene::limits::check_bytes(
             o.max_events as f64 * (40.0 * n + 200.0),
             "--max-events",
