@@ -80,7 +80,7 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     }
     // Three n x n matrices of f64 must fit in half the memory.
     let dgemm_bytes = 24.0 * (args.dgemm as f64).powi(2);
-    if dgemm_bytes > 0.5 * tribofe::scene::limits::total_bytes() {
+    if dgemm_bytes > 0.5 * tribofe::scene::limits::memory_bytes().0 {
         return Err(tribofe::Error::input(
             "--dgemm",
             format!(

@@ -3,9 +3,13 @@
 
 use super::scene_args::{scene as scene_from, SceneArgs};
 use clap::Args as ClapArgs;
+use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use tribofe::interface::law::Rule;
-use tribofe::studies::edges::{opening, preslip};
+use tribofe::studies::edges::{opening_graded, preslip_graded};
+
+/// Most values of a list flag (or opening runs): each is a mesh or a run of seconds.
+const MAX_LIST: usize = 1000;
 use tribofe::Error;
 
 #[derive(ClapArgs, Debug)]
@@ -31,8 +35,13 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', default_value = "0.02,0.01,0.005,0.0025")]
     pub t_over_l: Vec<f64>,
     /// Elements through the thickness (t/h) of the opening study.
-    #[arg(long, value_delimiter = ',', default_value = "2")]
+    #[arg(long, value_delimiter = ',', default_value = "8")]
     pub open_refine: Vec<usize>,
+    /// Growth ratio of the element length along x from h = t/(t/h) at both ends up to t/2 in
+    /// the middle, for both studies; 1: uniform meshes with h = t/(t/h) everywhere (the
+    /// committed validation/edges study).
+    #[arg(long, default_value_t = 1.05)]
+    pub end_grading: f64,
     /// Drive heights H/L of the opening study.
     #[arg(long, value_delimiter = ',', default_value = "0.025,0.05,0.1,0.2")]
     pub h_over_l: Vec<f64>,
@@ -59,10 +68,44 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             format!("{k}: the condensation needs at least 2 elements through t"),
         ));
     }
+    if !(a.end_grading.is_finite() && (1.0..=2.0).contains(&a.end_grading)) {
+        return Err(Error::input(
+            "--end-grading",
+            format!("{}: a growth ratio in [1, 2] (1: uniform meshes)", a.end_grading),
+        ));
+    }
+    for (flag, n) in [("--mu", a.mu.len()), ("--refine", a.refine.len())] {
+        if n > MAX_LIST {
+            return Err(Error::input(flag, format!("{n} values: at most {MAX_LIST}")));
+        }
+    }
+    let runs = a.t_over_l.len().saturating_mul(a.open_refine.len()).saturating_mul(a.h_over_l.len());
+    if runs > MAX_LIST {
+        return Err(Error::input(
+            "--t-over-l / --open-refine / --h-over-l",
+            format!("{runs} opening runs: at most {MAX_LIST}"),
+        ));
+    }
     let rule: Rule = a.rule.parse()?;
     tribofe::io::outdir::check(&a.out, a.force)?;
-    let pre = preslip(&scene, &a.mu, &a.refine)?;
-    let open = opening(&scene, a.mu_s, a.mu_d, rule, &a.t_over_l, &a.open_refine, &a.h_over_l)?;
+    let grading = (a.end_grading > 1.0).then_some(a.end_grading);
+    let bar = ProgressBar::new((a.refine.len() + runs) as u64).with_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} meshes and runs, {elapsed}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let pre = preslip_graded(&scene, &a.mu, &a.refine, grading, &|| bar.inc(1))?;
+    let open = opening_graded(
+        &scene,
+        a.mu_s,
+        a.mu_d,
+        rule,
+        &a.t_over_l,
+        &a.open_refine,
+        &a.h_over_l,
+        grading,
+        &|| bar.inc(1),
+    )?;
+    bar.finish_and_clear();
     let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
     let files = [
         ("preslip.csv", tribofe::report::edges::preslip_csv(&pre)?),
@@ -76,6 +119,15 @@ pub fn run(a: Args) -> tribofe::Result<()> {
                     ("mu_s", toml::Value::from(a.mu_s)),
                     ("mu_d", toml::Value::from(a.mu_d)),
                     ("rule", toml::Value::from(a.rule.clone())),
+                    ("end_grading", toml::Value::from(a.end_grading)),
+                    (
+                        "h_max_over_t",
+                        if grading.is_some() {
+                            toml::Value::from(tribofe::studies::edges::H_MAX_OVER_T)
+                        } else {
+                            toml::Value::from("uniform")
+                        },
+                    ),
                 ],
                 &scene,
             )?,
@@ -92,21 +144,27 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     }
     let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
     outln!("trailing end under the drive (static-kinetic mu_s = {:.4}, mu_d = {:.4}, rule {}), F in units of mu_s N:", a.mu_s, a.mu_d, a.rule);
-    outln!("   t/L  t/h    H/L      g  F1 model  F open  open/t  F1 FE  max open/t  opens first");
+    outln!("   t/L  t/h    H/L      g  F1 model  F open   open/t   F1 FE  max open/t  opens first  end h/t");
+    // One open node: the open length lies below the end element, which is all the mesh says.
+    let len = |v: f64, nodes: usize| if nodes <= 1 { "below h".to_string() } else { format!("{v:.3}") };
     for r in &open {
         outln!(
-            "{:>6} {:>4} {:>6} {:>6.3} {:>9.4} {:>7} {:>7} {:>6} {:>11.3} {:>12}",
+            "{:>6} {:>4} {:>6} {:>6.3} {:>9.4} {:>7} {:>8} {:>7} {:>11} {:>12} {:>8.4}",
             r.t_over_l,
             r.t_over_h,
             r.h_over_l,
             r.g,
             r.f1_model,
             f(r.f_open),
-            r.open_length_t.map_or("-".into(), |v| format!("{v:.2}")),
+            r.open_length_t.map_or("-".into(), |v| len(v, r.open_nodes.unwrap_or(0))),
             f(r.f1_fe),
-            r.max_open_t,
-            r.opens_first()
+            if r.max_open_nodes == 0 { "0".into() } else { len(r.max_open_t, r.max_open_nodes) },
+            r.opens_first(),
+            r.end_element_t
         );
+    }
+    if open.iter().any(|r| r.open_nodes == Some(1) || r.max_open_nodes == 1) {
+        outln!("below h: only the end node opens, the open length is below the end element (end h/t); refine with --open-refine");
     }
     outln!("wrote {}/{{preslip.csv, preslip.svg, opening.csv, run.toml}}", a.out.display());
     Ok(())

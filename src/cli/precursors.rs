@@ -10,6 +10,9 @@ use tribofe::Error;
 /// Events are iterated until |F - F_max| < this (or MAX_DEFAULT_EVENTS) unless --events is given.
 const CONVERGED: f64 = 1e-6;
 const MAX_DEFAULT_EVENTS: usize = 200;
+/// Largest --events: the iteration reaches its stick-slip limit cycle within ~200 events, and
+/// each event printed and written costs ~100 bytes (10 MB at the cap).
+const MAX_EVENTS: usize = 100_000;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -146,6 +149,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     tribofe::io::outdir::check(&args.out, args.force)?;
     let events = match args.events {
         Some(0) => return Err(Error::input("--events 0", "need at least one event")),
+        Some(n) if n > MAX_EVENTS => return Err(too_many_events(n)),
         Some(n) => precursors::simulate(&p, n),
         None => precursors::simulate_to_convergence(&p, CONVERGED, MAX_DEFAULT_EVENTS),
     };
@@ -169,6 +173,15 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     print_written(&written)
 }
 
+fn too_many_events(n: usize) -> Error {
+    Error::input(
+        "--events",
+        format!(
+            "{n}: at most {MAX_EVENTS} (the iteration settles on its stick-slip cycle within ~200 events)"
+        ),
+    )
+}
+
 fn print_table(events: &[Event]) -> tribofe::Result<()> {
     outln!("{:>4} {:>10} {:>10} {:>10} {:>10}  regime", "i", "F", "F^c", "x", "F^*");
     for e in events {
@@ -183,6 +196,17 @@ fn counter(len: usize, what: &str) -> indicatif::ProgressBar {
     let style = format!("{{bar:40}} {{pos}}/{{len}} {what}, {{elapsed}}");
     indicatif::ProgressBar::new(len as u64)
         .with_style(indicatif::ProgressStyle::with_template(&style).unwrap())
+}
+
+/// A spinner with elapsed time for a step that reports no fraction.
+fn spinner(what: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new_spinner().with_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg}, {elapsed}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    bar.set_message(what.to_string());
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    bar
 }
 
 /// Writes a study's folder whole: `write` fills a temporary sibling of `out` (given the
@@ -253,9 +277,18 @@ fn fe(args: &Args) -> tribofe::Result<()> {
     if cycles == 0 {
         return Err(Error::input("--cycles", "need at least one whole-interface slip"));
     }
+    let cap = tribofe::studies::slide::SlideOptions::default().max_events;
+    if cycles > cap {
+        return Err(Error::input(
+            "--cycles",
+            format!("{cycles}: above the event cap of {cap} (each cycle takes at least one event)"),
+        ));
+    }
     let p = Params::new(args.r, args.g)?;
     let scene = fe_scene(args)?;
+    let bar = spinner("precursors --fe: one run per event rule");
     let runs = tribofe::studies::precursors_fe::fig4(&scene, p.r(), p.g(), cycles, &tribofe::Cancel::new())?;
+    bar.finish_and_clear();
     if runs.iter().all(|r| r.is_err()) {
         return runs.into_iter().find_map(|r| r.err()).map_or(Ok(()), Err);
     }
@@ -503,12 +536,29 @@ fn dc(args: &Args) -> tribofe::Result<()> {
     let p = Params::new(args.r, args.g)?;
     let scene = fe_scene(args)?;
     let (ms, md) = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g())?;
+    // Every D_c and the cap checked before the condensation, as the runs will see them.
+    for &d in &dcs {
+        let o = tribofe::studies::slide::SlideOptions {
+            law: tribofe::interface::law::Law::slip_weakening(ms, md, d)?,
+            cycles: 1,
+            max_events: args.max_events,
+            ..Default::default()
+        };
+        tribofe::studies::slide::check_options(&scene, &o)?;
+    }
+    if args.max_events == 0 {
+        return Err(Error::input("--max-events", "0: need at least one event per run"));
+    }
     let bar = counter(dcs.len() + 1, "runs");
     let rows =
         tribofe::studies::precursors_fe::dc_series(&scene, p.r(), p.g(), &dcs, args.max_events, &|_| {
             bar.inc(1)
         })?;
     bar.finish_and_clear();
+    if rows.iter().all(|r| r.fig4.is_err()) {
+        // Nothing to tabulate or draw: the first refusal says why.
+        return rows.into_iter().find_map(|r| r.fig4.err()).map_or(Ok(()), Err);
+    }
     let b = &scene.block;
     // dc_series runs at the default normal force.
     let n_force = tribofe::studies::slide::SlideOptions::default().n_force;
@@ -665,6 +715,9 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
 fn bonded_fields(args: &Args) -> tribofe::Result<()> {
     let scene = super::check::scene(&args.scene)?;
     let n_events = args.events.unwrap_or(MAX_DEFAULT_EVENTS);
+    if n_events > MAX_EVENTS {
+        return Err(too_many_events(n_events));
+    }
     let fields = |s: &tribofe::scene::Scene| {
         tribofe::studies::check::run(s, &SolverOptions::default()).map(|r| r.0.unit)
     };

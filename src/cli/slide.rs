@@ -134,6 +134,15 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     if a.newton && a.law != "slip-weakening" {
         return Err(Error::input("newton", "--newton cannot act without --law slip-weakening"));
     }
+    if a.fields > a.max_events {
+        return Err(Error::input(
+            "--fields",
+            format!(
+                "{}: a run records at most --max-events = {} states, so at most that many can be written",
+                a.fields, a.max_events
+            ),
+        ));
+    }
     let law = law(&a, &scene)?;
     let o = SlideOptions {
         law,
@@ -144,6 +153,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         newton: a.newton,
         ..Default::default()
     };
+    tribofe::studies::slide::check_options(&scene, &o)?;
     let bar = ProgressBar::new(1000).with_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {percent}% {elapsed}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),

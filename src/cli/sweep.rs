@@ -144,7 +144,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         },
         ..Default::default()
     };
-    let total = tribofe::studies::sweep::grid(&axes).len();
+    let total = tribofe::studies::sweep::grid_size(&axes)?;
     let range = tribofe::studies::sweep::shard_range(total, shard)?;
     let bar = ProgressBar::new(range.len() as u64).with_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} points, {elapsed} ({per_sec})").unwrap(),

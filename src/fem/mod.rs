@@ -11,6 +11,7 @@ pub mod element;
 pub mod loads;
 pub mod material;
 pub mod mesh;
+pub mod mesh_check;
 pub mod mesher;
 pub mod ordering;
 pub mod problem;

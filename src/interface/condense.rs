@@ -132,6 +132,15 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
         ));
     }
     let red = sm.constraints.reduce()?;
+    // The 2n + 3 right-hand sides are held twice (built, then solved in one block), next to
+    // the factor (BYTES_PER_DOF per unknown covers it).
+    let nfree_f = red.n_free() as f64;
+    crate::scene::limits::check_bytes(
+        2.0 * 8.0 * nd as f64 * nfree_f + crate::scene::limits::BYTES_PER_DOF * nfree_f,
+        "--thickness / --h (block.thickness, mesh.h)",
+        &format!("condensing the {n}-node interface out of {:.3e} unknowns", nfree_f),
+        "make the block thinner, h larger, or the block shorter",
+    )?;
     let asm = Assembler::new(&sm.mesh, &red)?;
     let (values, _) = asm.assemble(&model, &red, &[vec![]], &[vec![0.0; nf]])?;
     let solver = Solver::analyse(&asm.pattern, opts.clone())?;

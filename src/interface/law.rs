@@ -57,12 +57,18 @@ impl Law {
         if !(mu.is_finite() && mu >= 0.0) {
             return Err(Error::input("mu", format!("{mu} must be a finite number >= 0")));
         }
+        if mu > MU_MAX {
+            return Err(too_high("mu", mu));
+        }
         Ok(Law::Coulomb { mu })
     }
 
     pub fn static_kinetic(mu_s: f64, mu_d: f64, rule: Rule) -> Result<Law> {
         if !(mu_s.is_finite() && mu_s > 0.0) {
             return Err(Error::input("mu-s", format!("{mu_s} must be a finite number > 0")));
+        }
+        if mu_s > MU_MAX {
+            return Err(too_high("mu-s", mu_s));
         }
         if !(mu_d.is_finite() && mu_d > 0.0 && mu_d < mu_s) {
             return Err(Error::input(
@@ -126,4 +132,12 @@ impl Law {
             Law::SlipWeakening { dc, .. } => format!("slip-weakening (D_c = {dc:e} m)"),
         }
     }
+}
+
+/// Largest friction coefficient accepted: measured ones stay below ~10; far above, the
+/// tangential forces dwarf N by orders of magnitude and the contact updates lose every digit.
+pub const MU_MAX: f64 = 100.0;
+
+fn too_high(what: &str, mu: f64) -> Error {
+    Error::input(what, format!("{mu:e} is above {MU_MAX}, far beyond any measured friction coefficient"))
 }

@@ -25,12 +25,12 @@ pub fn preslip_csv(rows: &[Preslip]) -> Result<String> {
 
 pub fn opening_csv(rows: &[Opening]) -> Result<String> {
     let mut s = String::from(
-        "t_over_L,t_over_h,H_over_L,g,F1_model_over_mu_s_N,F_open_over_mu_s_N,open_length_over_t,F1_fe_over_mu_s_N,max_open_length_over_t,opens_before_first_precursor\n",
+        "t_over_L,t_over_h,H_over_L,g,F1_model_over_mu_s_N,F_open_over_mu_s_N,open_length_over_t,F1_fe_over_mu_s_N,max_open_length_over_t,opens_before_first_precursor,open_nodes,max_open_nodes,end_element_over_t\n",
     );
     for r in rows {
         writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{}",
             r.t_over_l,
             r.t_over_h,
             r.h_over_l,
@@ -40,7 +40,10 @@ pub fn opening_csv(rows: &[Opening]) -> Result<String> {
             cell("open length", r.open_length_t)?,
             cell("F_1 FE", r.f1_fe)?,
             cell("open length", Some(r.max_open_t))?,
-            r.opens_first()
+            r.opens_first(),
+            r.open_nodes.map_or(String::new(), |n| n.to_string()),
+            r.max_open_nodes,
+            cell("end element", Some(r.end_element_t))?
         )
         .unwrap();
     }

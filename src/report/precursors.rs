@@ -776,6 +776,10 @@ fn series_range<'a>(
     let (lo, hi) = cmps
         .flat_map(|c| series.iter().flat_map(move |s| std::iter::once((s.1)(c).0).chain((s.1)(c).1)))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    if !(lo.is_finite() && hi.is_finite()) {
+        // No finished run: an empty range would send plotters' tick search into a loop.
+        return 0.0..1.0;
+    }
     let pad = 0.08 * (hi - lo).max(1e-3);
     (lo - pad)..(hi + pad)
 }

@@ -380,6 +380,8 @@ pub fn field_states(r: &SlideResult, k: usize) -> Vec<usize> {
 
 /// `k` state indices spread evenly over `n` states, the first and last included.
 pub fn spread(n: usize, k: usize) -> Vec<usize> {
+    // More picks than states would repeat them (and i (n - 1) could overflow).
+    let k = k.min(n);
     match (n, k) {
         (0, _) | (_, 0) => vec![],
         (_, 1) => vec![n - 1],

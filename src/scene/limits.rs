@@ -11,10 +11,10 @@ pub const BYTES_PER_DOF: f64 = 1500.0;
 /// gigabytes of fields; larger runs are deliberate (`--max-dofs`), not a slip of units.
 pub const DEFAULT_MAX_DOFS_CAP: usize = 1_500_000;
 
-/// Half the machine's memory ([`total_bytes`]) over [`BYTES_PER_DOF`], at most
+/// Half the memory this process may use ([`memory_bytes`]) over [`BYTES_PER_DOF`], at most
 /// [`DEFAULT_MAX_DOFS_CAP`].
 pub fn default_max_dofs() -> usize {
-    ((0.5 * total_bytes() / BYTES_PER_DOF) as usize).min(DEFAULT_MAX_DOFS_CAP)
+    ((0.5 * memory_bytes().0 / BYTES_PER_DOF) as usize).min(DEFAULT_MAX_DOFS_CAP)
 }
 
 /// This machine's memory, bytes (`MemTotal` of /proc/meminfo, 8 GiB where unknown).
@@ -28,12 +28,85 @@ pub fn total_bytes() -> f64 {
         .unwrap_or(8.0 * (1u64 << 30) as f64)
 }
 
+/// The memory this process may use, bytes, and where that bound comes from: the smallest of
+/// the machine's memory, the process limits RLIMIT_AS and RLIMIT_DATA (`ulimit -v`, `-d`)
+/// and the memory.max of the process's cgroup (v2; memory.limit_in_bytes on v1). A run sized
+/// by the machine alone would abort in the allocator under a tighter limit (issue 31).
+pub fn memory_bytes() -> (f64, &'static str) {
+    let mut best = (total_bytes(), "this machine's memory");
+    let mut take = |b: Option<f64>, what: &'static str| {
+        if let Some(b) = b.filter(|b| *b > 0.0 && *b < best.0) {
+            best = (b, what);
+        }
+    };
+    take(rlimit(Rlim::As), "the process limit RLIMIT_AS (ulimit -v)");
+    take(rlimit(Rlim::Data), "the process limit RLIMIT_DATA (ulimit -d)");
+    take(cgroup_max(), "the cgroup's memory limit");
+    best
+}
+
+enum Rlim {
+    As,
+    Data,
+}
+
+/// The soft limit, bytes; None when unlimited or unknown.
+fn rlimit(which: Rlim) -> Option<f64> {
+    #[cfg(unix)]
+    {
+        let res = match which {
+            Rlim::As => libc::RLIMIT_AS,
+            Rlim::Data => libc::RLIMIT_DATA,
+        };
+        let mut r = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
+        // SAFETY: getrlimit writes only into `r`, a valid rlimit.
+        let ok = unsafe { libc::getrlimit(res, &mut r) } == 0;
+        (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(r.rlim_cur as f64)
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = which;
+        None
+    }
+}
+
+/// The process's cgroup memory limit, bytes: memory.max (v2) or memory.limit_in_bytes (v1)
+/// of the cgroup named in /proc/self/cgroup; None where absent or "max".
+fn cgroup_max() -> Option<f64> {
+    let groups = std::fs::read_to_string("/proc/self/cgroup").ok()?;
+    let read = |p: String| -> Option<f64> { std::fs::read_to_string(p).ok()?.trim().parse::<f64>().ok() };
+    for line in groups.lines() {
+        let mut f = line.splitn(3, ':');
+        let (id, ctl, path) = (f.next()?, f.next()?, f.next()?);
+        let found = if id == "0" && ctl.is_empty() {
+            read(format!("/sys/fs/cgroup{path}/memory.max"))
+        } else if ctl.split(',').any(|c| c == "memory") {
+            // v1 reports "no limit" as a huge number, above the machine's memory.
+            read(format!("/sys/fs/cgroup/memory{path}/memory.limit_in_bytes"))
+        } else {
+            None
+        };
+        if found.is_some() {
+            return found;
+        }
+    }
+    None
+}
+
+/// Largest `--max-dofs` accepted.
+pub const MAX_DOFS_LIMIT: usize = 1_000_000_000_000;
+
 /// The limit to apply: `limit` if given, else [`default_max_dofs`]; 0 is refused.
 pub fn effective(limit: Option<usize>) -> Result<usize> {
     match limit {
         Some(0) => {
             Err(Error::input("--max-dofs (mesh.max_dofs)", "0: the limit must allow at least one unknown"))
         }
+        // Far above any machine, and within what run.toml (a TOML integer, i64) can record.
+        Some(n) if n > MAX_DOFS_LIMIT => Err(Error::input(
+            "--max-dofs (mesh.max_dofs)",
+            format!("{n}: at most {MAX_DOFS_LIMIT:e} unknowns (1.5 PB at {BYTES_PER_DOF} bytes each)"),
+        )),
         Some(n) => Ok(n),
         None => Ok(default_max_dofs()),
     }
@@ -61,20 +134,40 @@ pub fn check(dofs: f64, limit: Option<usize>, suggestion: impl FnOnce(f64) -> St
 pub const DENSE_COPIES: f64 = 5.0;
 
 /// Refuses a frictional interface of `n` nodes whose dense condensed system would not fit in
-/// half this machine's memory, naming the size and what to change.
+/// half the memory this process may use ([`memory_bytes`]), naming the size and what to change.
 pub fn check_interface(n: usize) -> Result<()> {
     let nd = (2 * n + 3) as f64;
     let need = DENSE_COPIES * nd * nd * 8.0;
-    let have = 0.5 * total_bytes();
+    let (mem, source) = memory_bytes();
+    let have = 0.5 * mem;
     if need > have {
         let gib = |b: f64| b / (1u64 << 30) as f64;
         return Err(Error::input(
             "mesh.h (--h)",
             format!(
-                "the frictional interface would have {n} nodes: its dense condensed system needs about {:.1} GiB ({DENSE_COPIES} matrices of (2n + 3)^2 doubles), above half this machine's memory ({:.1} GiB); make h along the interface {:.1}x larger or the block shorter",
+                "the frictional interface would have {n} nodes: its dense condensed system needs about {:.1} GiB ({DENSE_COPIES} matrices of (2n + 3)^2 doubles), above half of {source} ({:.1} GiB); make h along the interface {:.1}x larger or the block shorter",
                 gib(need),
                 gib(have),
                 (need / have).sqrt()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses a step that would hold about `need` bytes at once when that is above half the
+/// memory this process may use ([`memory_bytes`]): refused before the allocation, with the
+/// flag to change, instead of an abort in the allocator.
+pub fn check_bytes(need: f64, flag: &str, what: &str, hint: &str) -> Result<()> {
+    let (mem, source) = memory_bytes();
+    if need > 0.5 * mem {
+        let gib = |b: f64| b / (1u64 << 30) as f64;
+        return Err(Error::input(
+            flag,
+            format!(
+                "{what} needs about {:.1} GiB, above half of {source} ({:.1} GiB); {hint}",
+                gib(need),
+                gib(mem)
             ),
         ));
     }

@@ -489,6 +489,19 @@ impl Scene {
             )));
         }
         self.check_mesh_geometry(&m, path)?;
+        crate::fem::mesh_check::check_block(
+            &m,
+            &self.mesh.block,
+            &self.mesh.interface,
+            &self.mesh.top,
+            self.block.thickness,
+        )
+        .map_err(|e| match e {
+            Error::Mesh(why) => {
+                Error::Mesh(format!("{}: {why}", crate::error::quote(&path.display().to_string())))
+            }
+            other => other,
+        })?;
         let want = self.element()?;
         let kinds = m.kinds_present();
         // The kind comes from the file: plain `qua4` (the default) names no kind, only the
@@ -533,8 +546,22 @@ impl Scene {
     /// Unknowns of the structured mesh, estimated from the scene alone (no allocation; f64
     /// so that absurd sizes do not overflow).
     pub fn estimate_dofs(&self) -> Result<f64> {
+        let (t, h) = (self.block.thickness, self.mesh.h);
+        let nx = self.estimate_nx();
+        let ny = self.mesh.n_thick.map_or((t / h).round().max(1.0), |n| n as f64);
+        let rows = match self.plate.model {
+            PlateModel::Rigid => ny,
+            PlateModel::Elastic => ny + self.plate.thickness / (t / 2.0).max(h) + 1.0,
+        };
+        let p = self.element()?.kind.order() as f64;
+        Ok(2.0 * (p * nx + 1.0) * (p * rows + 1.0))
+    }
+
+    /// Elements along x of the structured mesh, uniform or graded, estimated from the scene
+    /// alone (f64 so that absurd sizes do not overflow).
+    pub fn estimate_nx(&self) -> f64 {
         let (l, t, h) = (self.block.length, self.block.thickness, self.mesh.h);
-        let nx = match self.mesh.grading {
+        match self.mesh.grading {
             Some(r) if r > 1.0 => {
                 // Elements grow from h by r up to h_max, from both ends.
                 let hm = self.mesh.h_max.unwrap_or(2.0 * t).max(h);
@@ -548,14 +575,7 @@ impl Scene {
             }
             _ => (l / h).round(),
         }
-        .max(2.0);
-        let ny = self.mesh.n_thick.map_or((t / h).round().max(1.0), |n| n as f64);
-        let rows = match self.plate.model {
-            PlateModel::Rigid => ny,
-            PlateModel::Elastic => ny + self.plate.thickness / (t / 2.0).max(h) + 1.0,
-        };
-        let p = self.element()?.kind.order() as f64;
-        Ok(2.0 * (p * nx + 1.0) * (p * rows + 1.0))
+        .max(2.0)
     }
 
     /// Refuses a scene above its size limit (`mesh.max_dofs`, [`limits::effective`]) before
@@ -734,6 +754,14 @@ pub const MAX_FN_RATIO: f64 = 10.0;
 
 /// [`Material::plane_strain`] with its refusal naming the scene key (`young` or `poisson`).
 fn material(e: f64, nu: f64, young: &str, poisson: &str) -> Result<Material> {
+    // A ratio this small is 0 to every digit the solve keeps, and its subnormal products
+    // slow the arithmetic a hundredfold (issue 31: `edges --poisson 1e-308` ran past a minute).
+    if nu != 0.0 && nu.abs() < 1e-100 {
+        return Err(Error::input(
+            poisson,
+            format!("{nu:e} is 0 to every digit kept: give 0 or |nu| >= 1e-100"),
+        ));
+    }
     Material::plane_strain(e, nu).map_err(|err| match err {
         Error::Input { what, why } => {
             Error::input(if what.starts_with("Young") { young } else { poisson }, why)

@@ -71,8 +71,108 @@ impl SlideResult {
     }
 }
 
+/// D_c below this fraction of the elastic slip scale tau t/G is refused: the drive steps X by
+/// D_c/20 of slip of the fastest slipping node, so a cycle over X ~ tau t/G (the bonded
+/// block's compliance times its peak force) can take ~20 (tau t/G)/D_c steps: 2e7 here.
+pub const DC_MIN_OVER_SLIP_SCALE: f64 = 1e-6;
+
+/// D_c whose nucleation length G D_c/((mu_s - mu_d) p) exceeds this many block lengths is
+/// refused: no patch of the block can weaken into an instability, the interface slides
+/// stably at mu_s and only a slip of order D_c would end the run.
+pub const LC_MAX_OVER_LENGTH: f64 = 100.0;
+
+/// Largest --cycles: each cycle is at least one event, and the event cap bounds the run.
+fn cycles_bound(o: &SlideOptions) -> usize {
+    o.max_events
+}
+
+/// Refuses, before any work, the options that make a frictional run degenerate or
+/// unbounded, naming the flag and the reason: a coulomb mu = 0 (the whole interface slides
+/// as soon as it is loaded: nothing to compute), D_c outside the range the mesh and the block
+/// represent ([`DC_MIN_OVER_SLIP_SCALE`], [`LC_MAX_OVER_LENGTH`]), more cycles than the
+/// event cap allows, no event cap.
+pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
+    if o.max_events == 0 {
+        return Err(Error::input("--max-events", "0: a run records at least the normal load"));
+    }
+    if o.law.weakens() && o.cycles > cycles_bound(o) {
+        return Err(Error::input(
+            "--cycles",
+            format!(
+                "{}: above --max-events = {} (each stick-slip cycle takes at least one event); lower --cycles or raise --max-events",
+                o.cycles,
+                o.max_events
+            ),
+        ));
+    }
+    if o.keep_states && scene.mesh.file.is_none() {
+        // Interface nodes of the structured mesh (the run checks again with the exact count,
+        // and for a mesh file).
+        let n = scene.estimate_nx() + 1.0;
+        // The dense condensed system first: it is the size that matters most (names --h).
+        crate::scene::limits::check_interface(n as usize)?;
+        crate::scene::limits::check_bytes(
+            o.max_events as f64 * (40.0 * n + 200.0),
+            "--max-events",
+            &format!("keeping up to {} states of about {n} interface nodes", o.max_events),
+            "lower --max-events",
+        )?;
+    }
+    if let Some(x) = o.x_max {
+        if x > scene.block.length {
+            return Err(Error::input(
+                "--x-max",
+                format!(
+                    "{x:e} m is beyond the block's length L = {} m: the interface model is one of small displacements; give X <= L",
+                    scene.block.length
+                ),
+            ));
+        }
+    }
+    if let Law::Coulomb { mu } = o.law {
+        if mu == 0.0 {
+            return Err(Error::input(
+                "--mu",
+                "0: without friction the whole interface slides as soon as it is loaded, there are no events to compute; give mu > 0",
+            ));
+        }
+    }
+    if let Law::SlipWeakening { mu_s, mu_d, dc } = o.law {
+        let b = &scene.block;
+        let g = b.young / (2.0 * (1.0 + b.poisson));
+        let p = o.n_force / b.length;
+        let slip = mu_s * p * b.thickness / g; // tau t / G at the static peak
+        let lc = |d: f64| g * d / ((mu_s - mu_d) * p);
+        let (lo, hi) = (DC_MIN_OVER_SLIP_SCALE * slip, LC_MAX_OVER_LENGTH * b.length * (mu_s - mu_d) * p / g);
+        let at = format!(
+            "the elastic slip scale tau t/G = {slip:.3e} m (tau = mu_s N/L, G = E/(2(1 + nu))), h = {:.3e} m; D_c = {dc:.3e} m gives a nucleation length G D_c/((mu_s - mu_d) N/L) of {:.3e} h",
+            scene.mesh.h,
+            lc(dc) / scene.mesh.h
+        );
+        if dc < lo {
+            return Err(Error::input(
+                "--dc",
+                format!(
+                    "{dc:e} m is below {lo:.3e} m = {DC_MIN_OVER_SLIP_SCALE:e} tau t/G: the slip-rate step control (D_c/20 of slip per step) would need up to ~{:.0e} steps per cycle; {at}; this is the static-kinetic limit: use --law static-kinetic, or D_c >= {lo:.1e} m",
+                    20.0 * slip / dc
+                ),
+            ));
+        }
+        if dc > hi {
+            return Err(Error::input(
+                "--dc",
+                format!(
+                    "{dc:e} m is above {hi:.3e} m, where the nucleation length reaches {LC_MAX_OVER_LENGTH} block lengths: no patch can weaken into an instability and the interface would slide stably at mu_s until a slip of order D_c; {at}; use D_c <= {hi:.1e} m (or --law coulomb --mu mu_s)"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Condenses and runs.
 pub fn run(scene: &Scene, o: &SlideOptions, progress: &dyn Fn(f64)) -> Result<SlideResult> {
+    check_options(scene, o)?;
     let clock = Instant::now();
     let c = condense(scene, &SolverOptions::default())?;
     let condense_s = clock.elapsed().as_secs_f64();
@@ -103,6 +203,16 @@ pub fn run_condensed(
     };
     if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
         return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
+    }
+    check_options(scene, o)?;
+    if o.keep_states {
+        // Every event keeps its state (u, p, t, state of each node, ~40 bytes a node).
+        crate::scene::limits::check_bytes(
+            o.max_events as f64 * (40.0 * c.n as f64 + 200.0),
+            "--max-events",
+            &format!("keeping up to {} states of {} interface nodes", o.max_events, c.n),
+            "lower --max-events",
+        )?;
     }
     let run = run_events(&s, c.n, &pb, progress)?;
     Ok(SlideResult {

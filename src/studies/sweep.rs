@@ -97,6 +97,9 @@ pub fn parse_values(s: &str) -> Result<Vec<f64>> {
         if n < 2 {
             return Err(bad("a range needs at least 2 points".into()));
         }
+        if n > MAX_POINTS {
+            return Err(bad(format!("{n} points: at most {MAX_POINTS} (each point is a solve)")));
+        }
         if geometric && !(a * b > 0.0) {
             return Err(bad("a geometric range needs nonzero ends of the same sign".into()));
         }
@@ -224,6 +227,25 @@ pub struct Point {
 }
 
 /// The points of the grid (first axis slowest), as override sets.
+/// Largest number of points of a sweep (all axes together, before sharding): each point is a
+/// check of several load cases, ~0.05-1 s, so the cap is days of computing and ~100 MB of
+/// points, not an allocator abort.
+pub const MAX_POINTS: usize = 100_000;
+
+/// Number of grid points of `axes`, refused above [`MAX_POINTS`] before any allocation.
+pub fn grid_size(axes: &[Axis]) -> Result<usize> {
+    axes.iter()
+        .try_fold(1usize, |acc, a| acc.checked_mul(a.values.len()).filter(|&t| t <= MAX_POINTS))
+        .ok_or_else(|| {
+            let dims: Vec<String> =
+                axes.iter().map(|a| format!("{} --{}", a.values.len(), a.param.flag())).collect();
+            Error::input(
+                format!("--{}", axes.last().map_or("", |a| a.param.flag())),
+                format!("a sweep of {} values is above {MAX_POINTS} points; sweep fewer values or shard it into several sweeps", dims.join(" x ")),
+            )
+        })
+}
+
 pub fn grid(axes: &[Axis]) -> Vec<Vec<(Param, f64)>> {
     let mut pts: Vec<Vec<(Param, f64)>> = vec![vec![]];
     for a in axes {
@@ -268,6 +290,7 @@ pub fn run(
         }
         seen.push(a.param);
     }
+    grid_size(axes)?;
     let all = grid(axes);
     let range = shard_range(all.len(), o.shard)?;
     // Validate every point first: a bad value is refused before any work.

@@ -58,3 +58,4 @@ pub fn assert_patch_test(model: &Model, what: &str) {
         }
     }
 }
+pub mod process;
