@@ -10,7 +10,8 @@
 //!
 //! Between `fem` and the studies: [`interface`] (contact and friction laws on the block's
 //! base, event-driven). Beside them: [`analytical`] (closed forms the results are judged
-//! against) and [`precursors`] (the paper's 1D friction model).
+//! against) and [`precursors`] (the paper's 1D friction model). [`dynamics`]: explicit
+//! elastodynamics of the block with friction on its base (docs/dynamics.md).
 //!
 //! # Examples
 //!
@@ -41,6 +42,7 @@
 //! ```
 
 pub mod analytical;
+pub mod dynamics;
 pub mod error;
 pub mod fem;
 pub mod interface;
