@@ -17,6 +17,7 @@ mod check;
 mod converge;
 mod edges;
 mod precursors;
+mod rupture;
 mod scene_args;
 mod slide;
 mod solve;
@@ -60,6 +61,9 @@ pub enum Command {
     /// Frictional interface (coulomb, static-kinetic, slip-weakening): N then X at height H, solved event by event.
     #[command(allow_negative_numbers = true)]
     Slide(slide::Args),
+    /// Dynamic rupture on a rigid flat with slip-weakening friction (explicit elastodynamics; the cross-check scene).
+    #[command(allow_negative_numbers = true)]
+    Rupture(rupture::Args),
     /// The block's ends on the frictional interface: pre-slip under N vs refinement, trailing-end opening vs the first precursor.
     #[command(allow_negative_numbers = true)]
     Edges(edges::Args),
@@ -129,6 +133,7 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Converge(a) => converge::run(a),
         Command::Precursors(args) => precursors::run(args),
         Command::Slide(a) => slide::run(a),
+        Command::Rupture(a) => rupture::run(a),
         Command::Edges(a) => edges::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),

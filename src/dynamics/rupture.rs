@@ -16,6 +16,8 @@
 //! the traction-at-split-node rule of Day et al. (2005, BSSA 95) against a rigid flat. With
 //! [`Contact::Unilateral`] a node whose trial normal stress (now the one that keeps u_y = 0)
 //! is tensile opens: sigma_i = 0, T_i = 0, and the node moves freely under -sigma0 w_i.
+//! [`Contact::Symmetric`] replaces the flat by the mirror half of a symmetric fault (slip
+//! 2 u_x, sigma = sigma0), the geometry Andrews' supershear threshold S ~ 1.77 is for.
 
 use super::explicit::{dot, Elastodynamic};
 use super::friction::SlipWeakening;
@@ -33,6 +35,23 @@ pub enum Contact {
     Bilateral,
     /// Opening allowed where the flat would have to pull.
     Unilateral,
+    /// Not a flat: the plane y = 0 of a symmetric fault between two identical blocks (the
+    /// control case of the dynamic-rupture literature). The mirror image moves by -u_x, so
+    /// the slip is 2 u_x and the normal stress keeps sigma0 (perturbation sigma_yy = 0 there);
+    /// u_y is free.
+    Symmetric,
+}
+
+impl std::str::FromStr for Contact {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "bilateral" => Ok(Self::Bilateral),
+            "unilateral" => Ok(Self::Unilateral),
+            "symmetric" => Ok(Self::Symmetric),
+            _ => Err(Error::input("--contact", format!("'{}': use bilateral, unilateral or symmetric", crate::error::quote(s)))),
+        }
+    }
 }
 
 /// The scene. [`Default`] is the shared spec (validation/dynamics, docs/dynamics.md).
@@ -270,6 +289,7 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
     let mut e = RuptureEnergy::default();
     let mut min_sigma = f64::INFINITY;
     let thr = spec.friction.d_c / 100.0;
+    let slip_factor = if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 };
     let every = (steps / 100).max(1);
     // The base rule at the current step: fills fbx, fby, tr from ku (= K u^n) and v^{n-1/2}.
     let base_rule = |u: &[f64], v: &[f64], ku: &[f64], d: &[f64], fbx: &mut [f64], fby: &mut [f64], tr: &mut [f64]| {
@@ -278,6 +298,9 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
             let (m, w) = (model.mass[k], width[b]);
             let (fx, fy) = (-ku[2 * k], -ku[2 * k + 1]);
             let mut sigma = spec.sigma0 - (fy + m * v[2 * k + 1] / dt) / w;
+            if spec.contact == Contact::Symmetric {
+                sigma = spec.sigma0;
+            }
             if spec.contact == Contact::Unilateral {
                 // The stress keeping u_y^{n+1} = 0; tensile means the node leaves the flat.
                 sigma -= m * u[2 * k + 1] / (dt * dt * w);
@@ -320,6 +343,7 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
             e.background_work += dt * width[b] * (vbx * tau0[b] - vby * spec.sigma0);
             e.friction += dt * vbx * tr[b] * width[b];
             e.contact += dt * vby * (fby[b] + spec.sigma0 * width[b]);
+            // (per half of a symmetric fault: the work on this block's face)
             e.friction_path += tr[b].abs() * width[b] * dt * vx.abs();
             v[2 * k] = vx;
             v[2 * k + 1] = vy;
@@ -327,7 +351,7 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
             u_prev[2 * k + 1] = u[2 * k + 1];
             u[2 * k] += dt * vx;
             u[2 * k + 1] += dt * vy;
-            let d_new = d[b] + dt * vx.abs();
+            let d_new = d[b] + slip_factor * dt * vx.abs();
             let t0 = step as f64 * dt;
             if t_arr[b].is_none() && d_new >= thr {
                 t_arr[b] = Some(t0 + dt * (thr - d[b]) / (d_new - d[b]));
@@ -397,6 +421,16 @@ impl RuptureResult {
         let stt: f64 = pts.iter().map(|p| (p.1 - mt).powi(2)).sum();
         let stx: f64 = pts.iter().map(|p| (p.1 - mt) * (p.0 - mx)).sum();
         (stt > 0.0).then(|| stx / stt)
+    }
+
+    /// The same for the front running towards -x, over -b <= x <= -a (speed positive).
+    pub fn front_speed_left(&self, a: f64, b: f64) -> Option<f64> {
+        let mirrored = RuptureResult {
+            x: self.x.iter().rev().map(|x| -x).collect(),
+            t_arrival: self.t_arrival.iter().rev().copied().collect(),
+            ..self.clone()
+        };
+        mirrored.front_speed_between(a, b)
     }
 
     /// Cohesive-zone length behind the front where node x became fully weakened (d = D_c):

@@ -1,0 +1,211 @@
+//! Explicit elastodynamics (src/dynamics): wave speeds, energy, and the frictional base.
+//! Tolerances are derived in each test from the scheme's known errors (docs/dynamics.md).
+
+use tribofe::dynamics::explicit::{Elastodynamic, Explicit};
+use tribofe::dynamics::waves::WaveSpeeds;
+use tribofe::fem::material::Material;
+use tribofe::fem::mesh::Mesh;
+use tribofe::fem::mesher::Rectangle;
+
+const E: f64 = 2e3;
+const NU: f64 = 0.4;
+const RHO: f64 = 1000.0;
+
+fn mat() -> Material {
+    Material::plane_strain(E, NU).unwrap()
+}
+
+/// Node nearest to (x, y).
+fn node_at(mesh: &Mesh, x: f64, y: f64) -> usize {
+    (0..mesh.n_nodes())
+        .min_by(|&a, &b| {
+            let d = |n: usize| (mesh.nodes[n][0] - x).powi(2) + (mesh.nodes[n][1] - y).powi(2);
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap()
+}
+
+/// sin^2 pulse of duration `t_p`, unit peak.
+fn pulse(t: f64, t_p: f64) -> f64 {
+    if t < t_p {
+        (std::f64::consts::PI * t / t_p).sin().powi(2)
+    } else {
+        0.0
+    }
+}
+
+/// Delay of trace `b` behind trace `a` (both sampled every `dt`) by cross-correlation, with
+/// a parabola through the best lag and its neighbours for the fraction of a step.
+fn delay(a: &[f64], b: &[f64], dt: f64) -> f64 {
+    let n = a.len();
+    let cc = |lag: usize| (0..n - lag).map(|i| a[i] * b[i + lag]).sum::<f64>();
+    let c: Vec<f64> = (0..n / 2).map(cc).collect();
+    let k = (1..c.len() - 1).max_by(|&i, &j| c[i].total_cmp(&c[j])).unwrap();
+    let (l, m, r) = (c[k - 1], c[k], c[k + 1]);
+    (k as f64 + 0.5 * (l - r) / (l - 2.0 * m + r)) * dt
+}
+
+/// Plane wave in a bonded column with roller sides, driven by a traction pulse on the top
+/// (component `comp`: 1 normal = P, 0 tangential = S); returns the measured speed.
+fn column_speed(comp: usize) -> (f64, f64) {
+    let (h, height) = (1e-3, 0.2);
+    let mesh = Rectangle::new(0.0, 4.0 * h, 0.0, height, 4, 200).build().unwrap();
+    let model = Elastodynamic::new(&mesh, mat(), RHO).unwrap();
+    let w = WaveSpeeds::new(&mat(), RHO);
+    let c = if comp == 1 { w.c_p } else { w.c_s };
+    let dt = 0.5 * h / w.c_p;
+    let mut fixed = vec![false; model.n_dofs()];
+    for (n, p) in mesh.nodes.iter().enumerate() {
+        if p[1] == 0.0 {
+            fixed[2 * n] = true;
+            fixed[2 * n + 1] = true;
+        }
+        // Rollers: the sides hold the component across the wave (plane wave, 1D motion).
+        if p[0] == 0.0 || (p[0] - 4.0 * h).abs() < 1e-12 {
+            fixed[2 * n + 1 - comp] = true;
+        }
+    }
+    let mut run = Explicit::new(&model, dt, 0.0, fixed).unwrap();
+    // 40 elements per pulse length: the lumped-mass central-difference group velocity
+    // c cos(kh/2) / sqrt(1 - C^2 sin^2(kh/2)) (C = c dt / h) is within 0.3 % of c at the
+    // pulse's centre wavenumber and 1 % at twice it.
+    let t_p = 40.0 * h / c;
+    let top: Vec<usize> = (0..mesh.n_nodes()).filter(|&n| (mesh.nodes[n][1] - height).abs() < 1e-12).collect();
+    let (a, b) = (node_at(&mesh, 2.0 * h, 0.15), node_at(&mesh, 2.0 * h, 0.05));
+    let t_end = (0.1 + 0.1) / c + t_p; // after the pulse passes b, before it comes back
+    let (mut va, mut vb) = (Vec::new(), Vec::new());
+    while (run.n as f64) * dt < t_end {
+        run.step(|t, f| {
+            for &n in &top {
+                f[2 * n + comp] += -1e-3 * pulse(t, t_p) * h * if n == top[0] || n == top[top.len() - 1] { 0.5 } else { 1.0 };
+            }
+        });
+        va.push(run.v[2 * a + comp]);
+        vb.push(run.v[2 * b + comp]);
+    }
+    let dy = mesh.nodes[a][1] - mesh.nodes[b][1];
+    (dy / delay(&va, &vb, dt), c)
+}
+
+#[test]
+fn p_and_s_pulses_travel_at_c_p_and_c_s() {
+    for comp in [1, 0] {
+        let (measured, c) = column_speed(comp);
+        let rel = measured / c - 1.0;
+        eprintln!("{} wave: {measured:.5} m/s vs {c:.5} m/s ({:+.3} %)", ["S", "P"][comp], 100.0 * rel);
+        assert!(rel.abs() < 0.01, "{} wave {measured} vs {c}", ["S", "P"][comp]);
+    }
+}
+
+/// Lamb's problem: a vertical line-load pulse on the free surface of a deep, wide block; the
+/// Rayleigh pulse it launches crosses two surface stations at c_R (0.942 c_s at nu = 0.4).
+#[test]
+fn rayleigh_pulse_runs_along_the_free_surface_at_c_r() {
+    let h = 2e-3;
+    let (half, depth) = (0.6, 0.4);
+    let mesh = Rectangle::new(-half, half, 0.0, depth, 600, 200).build().unwrap();
+    let model = Elastodynamic::new(&mesh, mat(), RHO).unwrap();
+    let w = WaveSpeeds::new(&mat(), RHO);
+    let dt = 0.5 * h / w.c_p;
+    let fixed: Vec<bool> = (0..model.n_dofs()).map(|i| mesh.nodes[i / 2][1] == 0.0).collect();
+    let mut run = Explicit::new(&model, dt, 0.0, fixed).unwrap();
+    let t_p = 30.0 * h / w.c_s; // 30 elements per S wavelength
+    let src = node_at(&mesh, 0.0, depth);
+    let (r1, r2) = (0.10, 0.25);
+    let (a, b) = (node_at(&mesh, r1, depth), node_at(&mesh, r2, depth));
+    // Until the Rayleigh pulse has passed r2; the first reflections (P off the sides and the
+    // bonded base) reach r2 later.
+    let t_end = r2 / w.c_r + 1.5 * t_p;
+    let (mut va, mut vb) = (Vec::new(), Vec::new());
+    while (run.n as f64) * dt < t_end {
+        run.step(|t, f| f[2 * src + 1] -= 1e-6 * pulse(t, t_p));
+        let t = run.n as f64 * dt;
+        // Each station's trace starts once its direct P pulse has passed (t > r / c_p + t_p),
+        // so only the S/Rayleigh part is correlated.
+        va.push(if t > r1 / w.c_p + t_p { run.v[2 * a + 1] } else { 0.0 });
+        vb.push(if t > r2 / w.c_p + t_p { run.v[2 * b + 1] } else { 0.0 });
+    }
+    let c = (mesh.nodes[b][0] - mesh.nodes[a][0]) / delay(&va, &vb, dt);
+    let rel = c / w.c_r - 1.0;
+    eprintln!("Rayleigh: {c:.5} m/s vs c_R = {:.5} m/s ({:+.3} %), c_s = {:.5}", w.c_r, 100.0 * rel, w.c_s);
+    // 30 elements per wavelength: the 2D lumped-mass dispersion of a surface wave is of the
+    // order of the 1D one at kh = 0.2-0.4, under 1 %; c_s is 6 % above c_R, so 2 % tells
+    // them apart.
+    assert!(rel.abs() < 0.02, "{c} vs {}", w.c_r);
+}
+
+/// A bonded block released from a smooth displaced state, no damping: the scheme's shadow
+/// energy E^{n+1/2} = 0.5 v M v + 0.5 u^n K u^{n+1} is conserved to round-off, and the
+/// physical energy (kinetic at the mean velocity + strain) differs from it by exactly
+/// (dt^2 / 8) a M a, at most (dt^2 lambda_max / 4) E.
+#[test]
+fn energy_is_conserved_without_damping() {
+    let (mesh, model, u0) = released_block();
+    let dt = 0.9 * model.critical_dt(0.0);
+    let fixed: Vec<bool> = (0..model.n_dofs()).map(|i| mesh.nodes[i / 2][1] == 0.0).collect();
+    let mut run = Explicit::new(&model, dt, 0.0, fixed).unwrap();
+    run.set_displacement(&u0);
+    let e0 = model.strain_energy(&run.u);
+    let bound = dt * dt * model.lambda_bound / 4.0;
+    let (mut worst_exact, mut worst_phys) = (0.0f64, 0.0f64);
+    for _ in 0..3000 {
+        run.step(|_, _| {});
+        let l = run.ledger;
+        worst_exact = worst_exact.max((l.kinetic + l.strain - l.correction - e0).abs() / e0);
+        worst_exact = worst_exact.max((run.shadow_balance() - e0).abs() / e0);
+        worst_phys = worst_phys.max((l.kinetic + l.strain - e0).abs() / e0);
+    }
+    eprintln!("undamped: shadow energy to {worst_exact:.1e}, physical to {worst_phys:.2e} (bound {bound:.2})");
+    assert!(worst_exact < 1e-10, "{worst_exact}");
+    assert!(worst_phys <= bound && worst_phys > 0.0, "{worst_phys} vs {bound}");
+}
+
+/// With Kelvin-Voigt damping the energy lost is the dissipation: shadow energy + damping
+/// work stays the initial energy to round-off, and the physical energies + the physical
+/// dissipation within the O(dt) of the lagged damping force.
+#[test]
+fn damping_dissipates_what_the_energy_loses() {
+    let (mesh, model, u0) = released_block();
+    // xi = 5 % at the block's fundamental frequency omega_1 ~ c_s pi / (2 H).
+    let c_s = (model.material.shear_modulus() / RHO).sqrt();
+    let eta = 2.0 * 0.05 / (c_s * std::f64::consts::PI / (2.0 * 0.05));
+    let dt = 0.9 * model.critical_dt(eta);
+    let fixed: Vec<bool> = (0..model.n_dofs()).map(|i| mesh.nodes[i / 2][1] == 0.0).collect();
+    let mut run = Explicit::new(&model, dt, eta, fixed).unwrap();
+    run.set_displacement(&u0);
+    let e0 = model.strain_energy(&run.u);
+    let mut worst_exact = 0.0f64;
+    let mut worst_phys = 0.0f64;
+    for _ in 0..6000 {
+        run.step(|_, _| {});
+        worst_exact = worst_exact.max((run.shadow_balance() - e0).abs() / e0);
+        let l = run.ledger;
+        worst_phys = worst_phys.max((l.kinetic + l.strain + l.damping - e0).abs() / e0);
+    }
+    let l = run.ledger;
+    eprintln!(
+        "damped (eta = {eta:.3e} s): dissipated {:.3} of E0, shadow balance to {worst_exact:.1e}, physical to {worst_phys:.2e}",
+        l.damping / e0
+    );
+    assert!(l.damping > 0.3 * e0, "the test must dissipate a good share: {}", l.damping / e0);
+    assert!(worst_exact < 1e-10, "{worst_exact}");
+    assert!(worst_phys < 5e-3, "{worst_phys}");
+}
+
+/// A 0.1 m x 0.05 m block (h = 2 mm) bonded at its base, displaced by a smooth shear field.
+fn released_block() -> (Mesh, Elastodynamic, Vec<f64>) {
+    let mesh = Rectangle::new(-0.05, 0.05, 0.0, 0.05, 50, 25).build().unwrap();
+    let model = Elastodynamic::new(&mesh, mat(), RHO).unwrap();
+    let u0: Vec<f64> = (0..model.n_dofs())
+        .map(|i| {
+            let [x, y] = mesh.nodes[i / 2];
+            let s = (std::f64::consts::PI * y / 0.1).sin() * (1.0 + (std::f64::consts::PI * x / 0.1).cos());
+            if i % 2 == 0 {
+                1e-4 * s
+            } else {
+                3e-5 * s * x / 0.05
+            }
+        })
+        .collect();
+    (mesh, model, u0)
+}
