@@ -309,9 +309,11 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
                 }
             }
             smin = smin.min(sigma);
+            // Not clamped at sigma < 0 (possible under bilateral contact only): the spec's
+            // rule as written, T = mu sigma sign(T*); the run reports min sigma to show it.
             let strength = spec.friction.mu(d[b]) * sigma;
             let t_star = tau0[b] + (m * v[2 * k] / dt + fx) / w;
-            let t = if t_star.abs() <= strength { t_star } else { strength.copysign(t_star) };
+            let t = if t_star.abs() <= strength { t_star } else { strength * sign(t_star) };
             tr[b] = t;
             fbx[b] = (tau0[b] - t) * w;
             fby[b] = (sigma - spec.sigma0) * w;
@@ -338,7 +340,13 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
             let (vxm, vym) = (v[2 * k], v[2 * k + 1]);
             let vx = vxm + dt * (-ku[2 * k] + fbx[b]) / m;
             let vy = vym + dt * (-ku[2 * k + 1] + fby[b]) / m;
-            let vy = if spec.contact == Contact::Bilateral { 0.0 } else { vy };
+            // In contact the flat holds u_y^{n+1} = 0 exactly (not to round-off), so a
+            // unilateral run that never opens is the bilateral run bit for bit.
+            let vy = match spec.contact {
+                Contact::Bilateral => 0.0,
+                Contact::Unilateral if fby[b] > -spec.sigma0 * width[b] => -u[2 * k + 1] / dt,
+                _ => vy,
+            };
             let (vbx, vby) = (0.5 * (vxm + vx), 0.5 * (vym + vy));
             e.background_work += dt * width[b] * (vbx * tau0[b] - vby * spec.sigma0);
             e.friction += dt * vbx * tr[b] * width[b];
@@ -350,7 +358,11 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
             u_prev[2 * k] = u[2 * k];
             u_prev[2 * k + 1] = u[2 * k + 1];
             u[2 * k] += dt * vx;
-            u[2 * k + 1] += dt * vy;
+            u[2 * k + 1] = if spec.contact == Contact::Unilateral && fby[b] > -spec.sigma0 * width[b] {
+                0.0
+            } else {
+                u[2 * k + 1] + dt * vy
+            };
             let d_new = d[b] + slip_factor * dt * vx.abs();
             let t0 = step as f64 * dt;
             if t_arr[b].is_none() && d_new >= thr {
@@ -400,6 +412,17 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
     r.front_speed = r.front_speed_between(spec.speed_window.0, spec.speed_window.1);
     progress(1.0);
     Ok(r)
+}
+
+/// sign as numpy's: 0 at 0.
+fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
 }
 
 impl RuptureResult {
