@@ -341,3 +341,38 @@ fn arrival_times_converge_under_refinement() {
     assert!(n >= 25, "{n}");
     assert!(order > 1.5 && e2 < 1e-4, "{e1} {e2}");
 }
+
+/// `tribofe rupture` writes the spec's two files with their columns, and refuses an
+/// unresolved zone and an unknown contact with exit status 2 before writing anything.
+#[test]
+fn rupture_command_writes_the_spec_files_and_refuses_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_tribofe")).arg("rupture").args(args).output().unwrap()
+    };
+    let o = run(&["--t-end", "0.02", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let arrival = std::fs::read_to_string(out.join("arrival.csv")).unwrap();
+    assert!(arrival.starts_with("x_m,t_arrival_s\n") && arrival.lines().count() > 5, "{arrival}");
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let lines: Vec<&str> = summary.lines().collect();
+    assert_eq!(lines[0], "force_drop_n_per_m,min_sigma_pa,steps,dt_s,front_speed_m_per_s");
+    let cells: Vec<&str> = lines[1].split(',').collect();
+    assert_eq!(cells[2], "83"); // round(0.02 / (0.5e-3 / c_p)) = round(82.8)
+    assert_eq!(cells[4], ""); // the front has not reached 0.03 m by 0.02 s
+    let bad = dir.path().join("bad");
+    for (args, needle) in [
+        (vec!["--h", "0.002"], "--dc"),
+        (vec!["--contact", "glued"], "--contact"),
+        (vec!["--s", "-1"], "--s"),
+    ] {
+        let mut a = args.clone();
+        a.extend(["--out", bad.to_str().unwrap()]);
+        let o = run(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!bad.exists());
+    }
+}
