@@ -70,14 +70,18 @@ fn column_speed(comp: usize) -> (f64, f64) {
     // c cos(kh/2) / sqrt(1 - C^2 sin^2(kh/2)) (C = c dt / h) is within 0.3 % of c at the
     // pulse's centre wavenumber and 1 % at twice it.
     let t_p = 40.0 * h / c;
-    let top: Vec<usize> = (0..mesh.n_nodes()).filter(|&n| (mesh.nodes[n][1] - height).abs() < 1e-12).collect();
+    let top: Vec<usize> =
+        (0..mesh.n_nodes()).filter(|&n| (mesh.nodes[n][1] - height).abs() < 1e-12).collect();
     let (a, b) = (node_at(&mesh, 2.0 * h, 0.15), node_at(&mesh, 2.0 * h, 0.05));
     let t_end = (0.1 + 0.1) / c + t_p; // after the pulse passes b, before it comes back
     let (mut va, mut vb) = (Vec::new(), Vec::new());
     while (run.n as f64) * dt < t_end {
         run.step(|t, f| {
             for &n in &top {
-                f[2 * n + comp] += -1e-3 * pulse(t, t_p) * h * if n == top[0] || n == top[top.len() - 1] { 0.5 } else { 1.0 };
+                f[2 * n + comp] += -1e-3
+                    * pulse(t, t_p)
+                    * h
+                    * if n == top[0] || n == top[top.len() - 1] { 0.5 } else { 1.0 };
             }
         });
         va.push(run.v[2 * a + comp]);
@@ -155,7 +159,9 @@ fn energy_is_conserved_without_damping() {
         worst_exact = worst_exact.max((run.shadow_balance() - e0).abs() / e0);
         worst_phys = worst_phys.max((l.kinetic + l.strain - e0).abs() / e0);
     }
-    eprintln!("undamped: shadow energy to {worst_exact:.1e}, physical to {worst_phys:.2e} (bound {bound:.2})");
+    eprintln!(
+        "undamped: shadow energy to {worst_exact:.1e}, physical to {worst_phys:.2e} (bound {bound:.2})"
+    );
     assert!(worst_exact < 1e-10, "{worst_exact}");
     assert!(worst_phys <= bound && worst_phys > 0.0, "{worst_phys} vs {bound}");
 }
@@ -238,8 +244,12 @@ fn rupture_spec_energy_balance_and_cohesive_zone() {
     assert!((r.lambda0 - 4.9843e-3).abs() < 1e-7);
     // Lambda_0 is the zone of a slow, long crack; a moving front contracts it (to zero at
     // the limiting speed). Measured 0.53-0.70 Lambda_0 over 0.03-0.08 m.
-    let zone: Vec<f64> =
-        r.cohesive_zone().into_iter().filter(|&(x, _)| (0.03..=0.08).contains(&x)).map(|(_, z)| z / r.lambda0).collect();
+    let zone: Vec<f64> = r
+        .cohesive_zone()
+        .into_iter()
+        .filter(|&(x, _)| (0.03..=0.08).contains(&x))
+        .map(|(_, z)| z / r.lambda0)
+        .collect();
     assert!(zone.len() > 40);
     for z in &zone {
         assert!(*z > 0.3 && *z < 1.0, "zone / Lambda_0 = {z}");

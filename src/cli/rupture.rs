@@ -140,7 +140,11 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     );
     let zone = r.cohesive_zone();
     if let Some(&(x, z)) = zone.last() {
-        outln!("cohesive zone at x = {x:.4} m: {z:.4e} m = {:.3} Lambda_0 = {:.2} elements", z / lambda0, z / spec.h);
+        outln!(
+            "cohesive zone at x = {x:.4} m: {z:.4e} m = {:.3} Lambda_0 = {:.2} elements",
+            z / lambda0,
+            z / spec.h
+        );
     }
     outln!(
         "{:.2} s ({:.3e} DOF-updates/s); wrote {}/{{arrival.csv, summary.csv, energy.csv, zone.csv}}",

@@ -111,7 +111,8 @@ impl Elastodynamic {
         if let Some(n) = mass.iter().position(|&m| !(m > 0.0)) {
             return Err(Error::Mesh(format!("node {} belongs to no element (zero mass)", mesh.node_tag(n))));
         }
-        let lambda_bound = kmats.iter().zip(&emass).map(|(k, m)| element_lambda_max(k, m)).fold(0.0, f64::max);
+        let lambda_bound =
+            kmats.iter().zip(&emass).map(|(k, m)| element_lambda_max(k, m)).fold(0.0, f64::max);
         Ok(Self { n_nodes: mesh.n_nodes(), conn, kmats, kidx, mass, lambda_bound, material, density })
     }
 
@@ -162,7 +163,9 @@ impl Elastodynamic {
 
     /// Kinetic energy 0.5 v^T M v, J per metre of width.
     pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
-        0.5 * (0..self.n_nodes).map(|n| self.mass[n] * (v[2 * n] * v[2 * n] + v[2 * n + 1] * v[2 * n + 1])).sum::<f64>()
+        0.5 * (0..self.n_nodes)
+            .map(|n| self.mass[n] * (v[2 * n] * v[2 * n] + v[2 * n + 1] * v[2 * n + 1]))
+            .sum::<f64>()
     }
 
     /// Estimate of the largest eigenvalue of M^-1 K (free body) by `iters` power iterations
@@ -274,7 +277,9 @@ impl<'a> Explicit<'a> {
         if !(dt > 0.0 && dt <= dt_c) {
             return Err(Error::input(
                 "time step (--courant)",
-                format!("dt = {dt:.4e} s is not in (0, {dt_c:.4e}] s, the stable step of this mesh and damping"),
+                format!(
+                    "dt = {dt:.4e} s is not in (0, {dt_c:.4e}] s, the stable step of this mesh and damping"
+                ),
             ));
         }
         let n = model.n_dofs();

@@ -59,7 +59,9 @@ mod tests {
         assert_eq!(f.mu(1.0), 0.583);
         // The spec scene: G = 714.2857 Pa, nu = 0.4, sigma0 = 2.5 Pa -> 4.984 mm.
         let l = f.cohesive_zone(2e3 / 2.8, 0.4, 2.5);
-        assert!((l - 9.0 * std::f64::consts::PI / 32.0 * (2e3 / 2.8) * 7.7e-7 / (0.6 * 0.1625)).abs() < 1e-15);
+        assert!(
+            (l - 9.0 * std::f64::consts::PI / 32.0 * (2e3 / 2.8) * 7.7e-7 / (0.6 * 0.1625)).abs() < 1e-15
+        );
         assert!((l - 4.9843e-3).abs() < 1e-7, "{l}");
         assert!(SlipWeakening::new(0.5, 0.6, 1e-6).is_err());
         assert!(SlipWeakening::new(0.6, 0.5, 0.0).is_err());

@@ -49,7 +49,10 @@ impl std::str::FromStr for Contact {
             "bilateral" => Ok(Self::Bilateral),
             "unilateral" => Ok(Self::Unilateral),
             "symmetric" => Ok(Self::Symmetric),
-            _ => Err(Error::input("--contact", format!("'{}': use bilateral, unilateral or symmetric", crate::error::quote(s)))),
+            _ => Err(Error::input(
+                "--contact",
+                format!("'{}': use bilateral, unilateral or symmetric", crate::error::quote(s)),
+            )),
         }
     }
 }
@@ -155,7 +158,10 @@ impl RuptureSpec {
         if !(self.s_ratio.is_finite() && self.s_ratio >= 0.0) {
             return Err(Error::input(
                 "strength ratio S (--s)",
-                format!("{} must be >= 0 (S < 0 puts the background shear above the static strength)", self.s_ratio),
+                format!(
+                    "{} must be >= 0 (S < 0 puts the background shear above the static strength)",
+                    self.s_ratio
+                ),
             ));
         }
         if !(self.damping.is_finite() && self.damping >= 0.0) {
@@ -272,13 +278,16 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
     let width: Vec<f64> = (0..=nx).map(|i| if i == 0 || i == nx { spec.h / 2.0 } else { spec.h }).collect();
     let (tau_out, tau_in) = (spec.tau0(), spec.overstress * spec.friction.mu_s * spec.sigma0);
     // The patch edge |x| = 0.01 m is a node: include it whatever the rounding of its coordinate.
-    let tau0: Vec<f64> =
-        x.iter().map(|&xi| if xi.abs() <= spec.patch_half_width + 1e-6 * spec.h { tau_in } else { tau_out }).collect();
+    let tau0: Vec<f64> = x
+        .iter()
+        .map(|&xi| if xi.abs() <= spec.patch_half_width + 1e-6 * spec.h { tau_in } else { tau_out })
+        .collect();
 
     let n = model.n_dofs();
     let (mut u, mut v, mut ku, mut u_prev) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let nb = base.len();
-    let (mut d, mut t_arr, mut t_wk, mut peak) = (vec![0.0; nb], vec![None; nb], vec![None; nb], vec![0.0; nb]);
+    let (mut d, mut t_arr, mut t_wk, mut peak) =
+        (vec![0.0; nb], vec![None; nb], vec![None; nb], vec![0.0; nb]);
     // Forces of the flat on the base nodes at this step (perturbation), and their traction T.
     let (mut fbx, mut fby, mut tr) = (vec![0.0; nb], vec![0.0; nb], vec![0.0; nb]);
     let mut base_dof = vec![false; n];
@@ -292,34 +301,35 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
     let slip_factor = if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 };
     let every = (steps / 100).max(1);
     // The base rule at the current step: fills fbx, fby, tr from ku (= K u^n) and v^{n-1/2}.
-    let base_rule = |u: &[f64], v: &[f64], ku: &[f64], d: &[f64], fbx: &mut [f64], fby: &mut [f64], tr: &mut [f64]| {
-        let mut smin = f64::INFINITY;
-        for (b, &k) in base.iter().enumerate() {
-            let (m, w) = (model.mass[k], width[b]);
-            let (fx, fy) = (-ku[2 * k], -ku[2 * k + 1]);
-            let mut sigma = spec.sigma0 - (fy + m * v[2 * k + 1] / dt) / w;
-            if spec.contact == Contact::Symmetric {
-                sigma = spec.sigma0;
-            }
-            if spec.contact == Contact::Unilateral {
-                // The stress keeping u_y^{n+1} = 0; tensile means the node leaves the flat.
-                sigma -= m * u[2 * k + 1] / (dt * dt * w);
-                if sigma < 0.0 {
-                    sigma = 0.0;
+    let base_rule =
+        |u: &[f64], v: &[f64], ku: &[f64], d: &[f64], fbx: &mut [f64], fby: &mut [f64], tr: &mut [f64]| {
+            let mut smin = f64::INFINITY;
+            for (b, &k) in base.iter().enumerate() {
+                let (m, w) = (model.mass[k], width[b]);
+                let (fx, fy) = (-ku[2 * k], -ku[2 * k + 1]);
+                let mut sigma = spec.sigma0 - (fy + m * v[2 * k + 1] / dt) / w;
+                if spec.contact == Contact::Symmetric {
+                    sigma = spec.sigma0;
                 }
+                if spec.contact == Contact::Unilateral {
+                    // The stress keeping u_y^{n+1} = 0; tensile means the node leaves the flat.
+                    sigma -= m * u[2 * k + 1] / (dt * dt * w);
+                    if sigma < 0.0 {
+                        sigma = 0.0;
+                    }
+                }
+                smin = smin.min(sigma);
+                // Not clamped at sigma < 0 (possible under bilateral contact only): the spec's
+                // rule as written, T = mu sigma sign(T*); the run reports min sigma to show it.
+                let strength = spec.friction.mu(d[b]) * sigma;
+                let t_star = tau0[b] + (m * v[2 * k] / dt + fx) / w;
+                let t = if t_star.abs() <= strength { t_star } else { strength * sign(t_star) };
+                tr[b] = t;
+                fbx[b] = (tau0[b] - t) * w;
+                fby[b] = (sigma - spec.sigma0) * w;
             }
-            smin = smin.min(sigma);
-            // Not clamped at sigma < 0 (possible under bilateral contact only): the spec's
-            // rule as written, T = mu sigma sign(T*); the run reports min sigma to show it.
-            let strength = spec.friction.mu(d[b]) * sigma;
-            let t_star = tau0[b] + (m * v[2 * k] / dt + fx) / w;
-            let t = if t_star.abs() <= strength { t_star } else { strength * sign(t_star) };
-            tr[b] = t;
-            fbx[b] = (tau0[b] - t) * w;
-            fby[b] = (sigma - spec.sigma0) * w;
-        }
-        smin
-    };
+            smin
+        };
     for step in 0..steps {
         model.apply_k(&u, &mut ku);
         min_sigma = min_sigma.min(base_rule(&u, &v, &ku, &d, &mut fbx, &mut fby, &mut tr));
@@ -428,14 +438,20 @@ fn sign(x: f64) -> f64 {
 impl RuptureResult {
     /// (x, t_arrival) of the nodes with x >= 0 that the front reached.
     pub fn arrivals(&self) -> Vec<(f64, f64)> {
-        self.x.iter().zip(&self.t_arrival).filter(|(&x, _)| x >= -1e-12).filter_map(|(&x, t)| t.map(|t| (x, t))).collect()
+        self.x
+            .iter()
+            .zip(&self.t_arrival)
+            .filter(|(&x, _)| x >= -1e-12)
+            .filter_map(|(&x, t)| t.map(|t| (x, t)))
+            .collect()
     }
 
     /// Least-squares slope of x against arrival time over a <= x <= b (m), m/s; None with
     /// fewer than 3 arrivals there.
     pub fn front_speed_between(&self, a: f64, b: f64) -> Option<f64> {
         let eps = 1e-9;
-        let pts: Vec<(f64, f64)> = self.arrivals().into_iter().filter(|&(x, _)| x >= a - eps && x <= b + eps).collect();
+        let pts: Vec<(f64, f64)> =
+            self.arrivals().into_iter().filter(|&(x, _)| x >= a - eps && x <= b + eps).collect();
         if pts.len() < 3 {
             return None;
         }
