@@ -52,6 +52,10 @@ pub struct Args {
     /// between two identical blocks, slip 2 u_x, the Andrews control case).
     #[arg(long, default_value = "bilateral")]
     pub contact: String,
+    /// Normal-stress regularisation time T, s: the strength follows the normal stress with
+    /// d sigma*/dt = -(sigma* - sigma) / T (default: none, as the spec).
+    #[arg(long)]
+    pub normal_lag: Option<f64>,
     /// Output directory.
     #[arg(long, default_value = "out/rupture")]
     pub out: PathBuf,
@@ -72,6 +76,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         t_end: a.t_end,
         damping: a.damping,
         contact: a.contact.parse::<Contact>()?,
+        normal_lag: a.normal_lag,
         ..Default::default()
     };
     spec.validate()?;

@@ -86,6 +86,11 @@ pub struct RuptureSpec {
     pub contact: Contact,
     /// Front speed: least-squares slope of x against arrival time over this x range, m.
     pub speed_window: (f64, f64),
+    /// Normal-stress regularisation (Prakash-Clifton with a fixed time scale, as in
+    /// SEM2DPACK; Rubin & Ampuero 2007): the strength is mu(d) sigma*, with sigma* relaxing
+    /// towards sigma as d sigma*/dt = -(sigma* - sigma) / T, implicit in each step. None
+    /// (the spec): the strength follows sigma at once.
+    pub normal_lag: Option<f64>,
 }
 
 impl Default for RuptureSpec {
@@ -107,6 +112,7 @@ impl Default for RuptureSpec {
             damping: 0.0,
             contact: Contact::Bilateral,
             speed_window: (0.03, 0.08),
+            normal_lag: None,
         }
     }
 }
@@ -163,6 +169,9 @@ impl RuptureSpec {
                     self.s_ratio
                 ),
             ));
+        }
+        if let Some(t) = self.normal_lag {
+            pos("normal-stress lag T (s, --normal-lag)", t)?;
         }
         if !(self.damping.is_finite() && self.damping >= 0.0) {
             return Err(Error::input("damping (s, --damping)", format!("{} must be >= 0", self.damping)));
@@ -290,6 +299,7 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
         (vec![0.0; nb], vec![None; nb], vec![None; nb], vec![0.0; nb]);
     // Forces of the flat on the base nodes at this step (perturbation), and their traction T.
     let (mut fbx, mut fby, mut tr) = (vec![0.0; nb], vec![0.0; nb], vec![0.0; nb]);
+    let mut seff = vec![spec.sigma0; nb];
     let mut base_dof = vec![false; n];
     for &k in &base {
         base_dof[2 * k] = true;
@@ -301,38 +311,58 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
     let slip_factor = if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 };
     let every = (steps / 100).max(1);
     // The base rule at the current step: fills fbx, fby, tr from ku (= K u^n) and v^{n-1/2}.
-    let base_rule =
-        |u: &[f64], v: &[f64], ku: &[f64], d: &[f64], fbx: &mut [f64], fby: &mut [f64], tr: &mut [f64]| {
-            let mut smin = f64::INFINITY;
-            for (b, &k) in base.iter().enumerate() {
-                let (m, w) = (model.mass[k], width[b]);
-                let (fx, fy) = (-ku[2 * k], -ku[2 * k + 1]);
-                let mut sigma = spec.sigma0 - (fy + m * v[2 * k + 1] / dt) / w;
-                if spec.contact == Contact::Symmetric {
-                    sigma = spec.sigma0;
+    // seff: the regularised normal stress sigma* (advanced here, once per call).
+    let base_rule = |u: &[f64],
+                     v: &[f64],
+                     ku: &[f64],
+                     d: &[f64],
+                     seff: &mut [f64],
+                     fbx: &mut [f64],
+                     fby: &mut [f64],
+                     tr: &mut [f64]| {
+        let mut smin = f64::INFINITY;
+        for (b, &k) in base.iter().enumerate() {
+            let (m, w) = (model.mass[k], width[b]);
+            let (fx, fy) = (-ku[2 * k], -ku[2 * k + 1]);
+            let mut sigma = spec.sigma0 - (fy + m * v[2 * k + 1] / dt) / w;
+            if spec.contact == Contact::Symmetric {
+                sigma = spec.sigma0;
+            }
+            if spec.contact == Contact::Unilateral {
+                // The stress keeping u_y^{n+1} = 0; tensile means the node leaves the flat.
+                sigma -= m * u[2 * k + 1] / (dt * dt * w);
+                if sigma < 0.0 {
+                    sigma = 0.0;
                 }
-                if spec.contact == Contact::Unilateral {
-                    // The stress keeping u_y^{n+1} = 0; tensile means the node leaves the flat.
-                    sigma -= m * u[2 * k + 1] / (dt * dt * w);
-                    if sigma < 0.0 {
-                        sigma = 0.0;
+            }
+            smin = smin.min(sigma);
+            let open = spec.contact == Contact::Unilateral && sigma == 0.0;
+            let s_eff = match spec.normal_lag {
+                Some(lag) => {
+                    let a = dt / lag;
+                    seff[b] = (seff[b] + a * sigma) / (1.0 + a);
+                    if open {
+                        0.0
+                    } else {
+                        seff[b]
                     }
                 }
-                smin = smin.min(sigma);
-                // Not clamped at sigma < 0 (possible under bilateral contact only): the spec's
-                // rule as written, T = mu sigma sign(T*); the run reports min sigma to show it.
-                let strength = spec.friction.mu(d[b]) * sigma;
-                let t_star = tau0[b] + (m * v[2 * k] / dt + fx) / w;
-                let t = if t_star.abs() <= strength { t_star } else { strength * sign(t_star) };
-                tr[b] = t;
-                fbx[b] = (tau0[b] - t) * w;
-                fby[b] = (sigma - spec.sigma0) * w;
-            }
-            smin
-        };
+                None => sigma,
+            };
+            // Not clamped at sigma < 0 (possible under bilateral contact only): the spec's
+            // rule as written, T = mu sigma sign(T*); the run reports min sigma to show it.
+            let strength = spec.friction.mu(d[b]) * s_eff;
+            let t_star = tau0[b] + (m * v[2 * k] / dt + fx) / w;
+            let t = if t_star.abs() <= strength { t_star } else { strength * sign(t_star) };
+            tr[b] = t;
+            fbx[b] = (tau0[b] - t) * w;
+            fby[b] = (sigma - spec.sigma0) * w;
+        }
+        smin
+    };
     for step in 0..steps {
         model.apply_k(&u, &mut ku);
-        min_sigma = min_sigma.min(base_rule(&u, &v, &ku, &d, &mut fbx, &mut fby, &mut tr));
+        min_sigma = min_sigma.min(base_rule(&u, &v, &ku, &d, &mut seff, &mut fbx, &mut fby, &mut tr));
         // Shadow energy E^{n-1/2}, before this step's work (see explicit::Ledger).
         e.kinetic = model.kinetic_energy(&v);
         e.strain = 0.5 * dot(&u_prev, &ku);
@@ -390,7 +420,8 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
     }
     // The friction at t_end itself (step N), as the spec's force drop asks.
     model.apply_k(&u, &mut ku);
-    min_sigma = min_sigma.min(base_rule(&u, &v, &ku, &d, &mut fbx, &mut fby, &mut tr));
+    let mut seff_end = seff.clone();
+    min_sigma = min_sigma.min(base_rule(&u, &v, &ku, &d, &mut seff_end, &mut fbx, &mut fby, &mut tr));
     e.kinetic = model.kinetic_energy(&v);
     e.strain = 0.5 * dot(&u_prev, &ku);
     e.residual = e.kinetic + e.strain + e.friction - e.background_work - e.contact;
