@@ -95,6 +95,14 @@ impl Elastodynamic {
                             mesh.describe_element(e)
                         )));
                     }
+                    // Exactly symmetric, so apply_k may read rows as columns.
+                    for i in 0..8 {
+                        for j in 0..i {
+                            let m = 0.5 * (k[8 * i + j] + k[8 * j + i]);
+                            k[8 * i + j] = m;
+                            k[8 * j + i] = m;
+                        }
+                    }
                     kmats.push(k);
                     emass.push(me);
                     let id = (kmats.len() - 1) as u32;
@@ -129,27 +137,31 @@ impl Elastodynamic {
 
     /// out = K u (out overwritten; DOF order u0, v0, u1, v1, ...).
     pub fn apply_k(&self, u: &[f64], out: &mut [f64]) {
-        out.fill(0.0);
+        // Node-wise views: one bounds check per node instead of per DOF.
+        let (u2, _) = u.as_chunks::<2>();
+        let (o2, _) = out.as_chunks_mut::<2>();
+        o2.fill([0.0; 2]);
         for (c, &id) in self.conn.iter().zip(&self.kidx) {
             let k = &self.kmats[id as usize];
-            let dofs = [
-                2 * c[0] as usize,
-                2 * c[0] as usize + 1,
-                2 * c[1] as usize,
-                2 * c[1] as usize + 1,
-                2 * c[2] as usize,
-                2 * c[2] as usize + 1,
-                2 * c[3] as usize,
-                2 * c[3] as usize + 1,
-            ];
-            let ue: [f64; 8] = std::array::from_fn(|j| u[dofs[j]]);
-            for i in 0..8 {
-                let row = &k[8 * i..8 * i + 8];
-                let mut s = 0.0;
-                for j in 0..8 {
-                    s += row[j] * ue[j];
+            let n = [c[0] as usize, c[1] as usize, c[2] as usize, c[3] as usize];
+            let mut ue = [0.0; 8];
+            for a in 0..4 {
+                let p = u2[n[a]];
+                ue[2 * a] = p[0];
+                ue[2 * a + 1] = p[1];
+            }
+            // K symmetric: column j of K is row j, so f = sum_j K[j, :] ue[j] vectorises.
+            let mut fe = [0.0; 8];
+            for j in 0..8 {
+                let row: &[f64; 8] = k[8 * j..8 * j + 8].try_into().expect("8 columns");
+                for i in 0..8 {
+                    fe[i] += row[i] * ue[j];
                 }
-                out[dofs[i]] += s;
+            }
+            for a in 0..4 {
+                let o = &mut o2[n[a]];
+                o[0] += fe[2 * a];
+                o[1] += fe[2 * a + 1];
             }
         }
     }
