@@ -419,3 +419,18 @@ fn rigid_flat_needs_the_normal_stress_lag_to_converge() {
     assert!(d2 < 0.6 * d1 && d2 < 0.02 * lag[2].0, "{lag:?}");
     assert!(lag.iter().all(|&(_, s)| s > 2.0), "{lag:?}");
 }
+
+/// `[block] density` is a scene key: default 1000 kg/m^3, a bad value refused at its line.
+#[test]
+fn density_is_a_scene_key() {
+    assert_eq!(tribofe::scene::Scene::default().block.density, 1000.0);
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("s.toml");
+    std::fs::write(&p, "[block]\nyoung = 2000.0\ndensity = 1200.0\n").unwrap();
+    assert_eq!(tribofe::scene::Scene::from_file(&p).unwrap().block.density, 1200.0);
+    std::fs::write(&p, "[block]\nyoung = 2000.0\ndensity = -5.0\n").unwrap();
+    let e = tribofe::scene::Scene::from_file(&p).unwrap_err();
+    let msg = e.to_string();
+    assert_eq!(e.exit_status(), 2);
+    assert!(msg.contains("line 3") && msg.contains("block.density"), "{msg}");
+}
