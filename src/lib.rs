@@ -11,7 +11,8 @@
 //! Between `fem` and the studies: [`interface`] (contact and friction laws on the block's
 //! base, event-driven). Beside them: [`analytical`] (closed forms the results are judged
 //! against), [`precursors`] (the paper's 1D friction model), [`numeric`] (helpers on sampled
-//! profiles) and [`cancel`] (a host's token to stop a long run).
+//! profiles) and [`cancel`] (a host's token to stop a long run). [`dynamics`]: explicit
+//! elastodynamics of the block with friction on its base (docs/dynamics.md).
 //!
 //! # Examples
 //!
@@ -43,6 +44,7 @@
 
 pub mod analytical;
 pub mod cancel;
+pub mod dynamics;
 pub mod error;
 pub mod fem;
 pub mod interface;

@@ -17,6 +17,7 @@ mod check;
 mod converge;
 mod edges;
 mod precursors;
+mod rupture;
 mod scene_args;
 mod slide;
 mod solve;
@@ -63,6 +64,9 @@ pub enum Command {
     /// Frictional interface (coulomb, static-kinetic, slip-weakening): N then X at height H, solved event by event.
     #[command(allow_negative_numbers = true)]
     Slide(slide::Args),
+    /// Dynamic rupture on a rigid flat with slip-weakening friction (explicit elastodynamics; the cross-check scene).
+    #[command(allow_negative_numbers = true)]
+    Rupture(rupture::Args),
     /// The block's ends on the frictional interface: pre-slip under N vs refinement, trailing-end opening vs the first precursor.
     ///
     /// Cost of the defaults (4 pre-slip meshes, 16 opening runs, meshes graded to the ends):
@@ -300,6 +304,7 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Precursors(args) => precursors::run(args).map_err(|e| typed_flag(e, LAW)),
         Command::Slide(a) => slide::run(a).map_err(|e| typed_flag(e, LAW)),
         Command::Edges(a) => edges::run(a).map_err(|e| typed_flag(e, LAW)),
+        Command::Rupture(a) => rupture::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Stability(a) => stability::run(a),
         Command::Sweep(a) => sweep::run(a).map_err(|e| {

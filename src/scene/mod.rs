@@ -49,6 +49,9 @@ pub struct Block {
     /// E, Pa.
     pub young: f64,
     pub poisson: f64,
+    /// kg/m^3, for the dynamic solver only (default 1000: a soft gel of this modulus is
+    /// mostly water; the paper, being quasi-static, gives none). Sets the time scale only.
+    pub density: f64,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -116,7 +119,7 @@ pub struct Scene {
 
 impl Default for Block {
     fn default() -> Self {
-        Self { length: 0.4, thickness: 0.002, young: 2e3, poisson: 0.4 }
+        Self { length: 0.4, thickness: 0.002, young: 2e3, poisson: 0.4, density: 1000.0 }
     }
 }
 impl Default for Plate {
@@ -256,6 +259,7 @@ impl Scene {
         scaled("loading.height (m, --height)", self.loading.height, "m")?;
         scaled("mesh.h (m, --h)", self.mesh.h, "m")?;
         scaled("block.young (Pa, --young)", self.block.young, "Pa")?;
+        scaled("block.density (kg/m^3)", self.block.density, "kg/m^3")?;
         scaled("plate.young (Pa, --plate-modulus)", self.plate.young, "Pa")?;
         if self.loading.height > MAX_H_OVER_L * self.block.length {
             return Err(Error::input(

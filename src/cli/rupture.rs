@@ -1,0 +1,177 @@
+//! `tribofe rupture`: the shared cross-check scene (a block on a rigid flat with slip-weakening
+//! friction, run explicitly; docs/dynamics.md), writing arrival.csv and summary.csv.
+
+use clap::Args as ClapArgs;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use tribofe::dynamics::friction::SlipWeakening;
+use tribofe::dynamics::rupture::{Contact, RuptureSpec};
+
+#[derive(ClapArgs, Debug)]
+pub struct Args {
+    /// Strength ratio S = (mu_s sigma0 - tau0) / (tau0 - mu_d sigma0) outside the nucleation patch.
+    #[arg(long, default_value_t = 2.0)]
+    pub s: f64,
+    /// Element size, m (square QUA4; length and height must be whole multiples).
+    #[arg(long, default_value_t = 1e-3)]
+    pub h: f64,
+    /// Slip-weakening distance D_c, m.
+    #[arg(long, default_value_t = 7.7e-7)]
+    pub dc: f64,
+    /// Run to this time, s (steps = round(t_end / dt)).
+    #[arg(long, default_value_t = 0.1)]
+    pub t_end: f64,
+    /// Block length (x in [-L/2, L/2]) and height, m.
+    #[arg(long, default_value_t = 0.2)]
+    pub length: f64,
+    #[arg(long, default_value_t = 0.1)]
+    pub height: f64,
+    /// Static and dynamic friction coefficients.
+    #[arg(long, default_value_t = 0.648)]
+    pub mu_s: f64,
+    #[arg(long, default_value_t = 0.583)]
+    pub mu_d: f64,
+    /// Background normal stress on the base (compressive positive), Pa.
+    #[arg(long, default_value_t = 2.5)]
+    pub sigma0: f64,
+    /// Young's modulus (Pa), Poisson's ratio and density (kg/m^3) of the block.
+    #[arg(long, default_value_t = 2000.0)]
+    pub young: f64,
+    #[arg(long, default_value_t = 0.4)]
+    pub poisson: f64,
+    #[arg(long, default_value_t = 1000.0)]
+    pub density: f64,
+    /// Time step dt = courant h / c_p (refused above the mesh's stable step).
+    #[arg(long, default_value_t = 0.5)]
+    pub courant: f64,
+    /// Kelvin-Voigt (stiffness-proportional) damping coefficient eta, s.
+    #[arg(long, default_value_t = 0.0)]
+    pub damping: f64,
+    /// Base condition: bilateral (the spec: u_y = 0 on the rigid flat), unilateral (the flat
+    /// cannot pull: nodes may open), symmetric (not a flat: the plane of a symmetric fault
+    /// between two identical blocks, slip 2 u_x, the Andrews control case).
+    #[arg(long, default_value = "bilateral")]
+    pub contact: String,
+    /// Normal-stress regularisation time T, s: the strength follows the normal stress with
+    /// d sigma*/dt = -(sigma* - sigma) / T (default: none, as the spec).
+    #[arg(long)]
+    pub normal_lag: Option<f64>,
+    /// Output directory.
+    #[arg(long, default_value = "out/rupture")]
+    pub out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    pub force: bool,
+}
+
+pub fn run(a: Args) -> tribofe::Result<()> {
+    let spec = RuptureSpec {
+        length: a.length,
+        height: a.height,
+        h: a.h,
+        young: a.young,
+        poisson: a.poisson,
+        density: a.density,
+        sigma0: a.sigma0,
+        s_ratio: a.s,
+        friction: SlipWeakening { mu_s: a.mu_s, mu_d: a.mu_d, d_c: a.dc },
+        courant: a.courant,
+        t_end: a.t_end,
+        damping: a.damping,
+        contact: a.contact.parse::<Contact>()?,
+        normal_lag: a.normal_lag,
+        ..Default::default()
+    };
+    spec.validate()?;
+    tribofe::io::outdir::check(&a.out, a.force)?;
+    let lambda0 = spec.lambda0()?;
+    outln!(
+        "rupture: S = {}, tau0 = {:.6} Pa outside |x| <= {} m, h = {} m, D_c = {:e} m; Lambda_0 = {:.4e} m = {:.2} elements",
+        spec.s_ratio,
+        spec.tau0(),
+        spec.patch_half_width,
+        spec.h,
+        spec.friction.d_c,
+        lambda0,
+        lambda0 / spec.h
+    );
+    let bar = ProgressBar::new(1000).with_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {percent}% {elapsed}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_message("rupture");
+    let t0 = std::time::Instant::now();
+    let r = tribofe::dynamics::rupture::run(&spec, &|f| bar.set_position((f * 1000.0) as u64))?;
+    let secs = t0.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
+    r.write(dir.path())?;
+    let results: toml::Table = [
+        ("dt_s", toml::Value::from(r.dt)),
+        ("steps", toml::Value::from(r.steps as i64)),
+        ("lambda0_m", toml::Value::from(lambda0)),
+        ("force_drop_N_per_m", toml::Value::from(r.force_drop)),
+        ("min_sigma_Pa", toml::Value::from(r.min_sigma)),
+        ("wall_seconds", toml::Value::from(secs)),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .chain(r.front_speed.map(|v| ("front_speed_m_per_s".to_string(), toml::Value::from(v))))
+    .collect();
+    super::write_run_file(dir.path(), None, &results)?;
+    dir.commit()?;
+    let w = &r.speeds;
+    outln!(
+        "c_p = {:.5} m/s, c_s = {:.5} m/s, c_R = {:.5} m/s; dt = {:.5e} s ({} steps; stable step {:.5e} s by the element bound)",
+        w.c_p,
+        w.c_s,
+        w.c_r,
+        r.dt,
+        r.steps,
+        r.dt_stable
+    );
+    match r.front_speed {
+        Some(v) => outln!(
+            "front speed (+x) over {} <= x <= {} m: {:.5} m/s = {:.4} c_s = {:.4} c_R{}",
+            spec.speed_window.0,
+            spec.speed_window.1,
+            v,
+            v / w.c_s,
+            v / w.c_r,
+            r.front_speed_left(spec.speed_window.0, spec.speed_window.1)
+                .map_or(String::new(), |l| format!("; (-x) {:.5} m/s = {:.4} c_s", l, l / w.c_s))
+        ),
+        None => outln!(
+            "front speed (+x): the front did not cross {} <= x <= {} m by t_end (fewer than 3 arrivals there)",
+            spec.speed_window.0,
+            spec.speed_window.1
+        ),
+    }
+    let e = &r.energy;
+    outln!(
+        "force drop {:.6e} N/m; min normal stress {:.6} Pa; energy: kinetic {:.4e} + strain {:.4e} + friction {:.4e} = background work {:.4e} (+ contact {:.1e}), residual {:.1e} J/m",
+        r.force_drop,
+        r.min_sigma,
+        e.kinetic,
+        e.strain,
+        e.friction,
+        e.background_work,
+        e.contact,
+        e.residual
+    );
+    let zone = r.cohesive_zone();
+    if let Some(&(x, z)) = zone.last() {
+        outln!(
+            "cohesive zone at x = {x:.4} m: {z:.4e} m = {:.3} Lambda_0 = {:.2} elements",
+            z / lambda0,
+            z / spec.h
+        );
+    }
+    outln!(
+        "{:.2} s ({:.3e} DOF-updates/s); wrote {}/{{arrival.csv, summary.csv, energy.csv, zone.csv}}",
+        secs,
+        (r.steps as f64) * 2.0 * ((a.length / a.h).round() + 1.0) * ((a.height / a.h).round() + 1.0) / secs,
+        a.out.display()
+    );
+    Ok(())
+}

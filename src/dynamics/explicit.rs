@@ -1,0 +1,423 @@
+//! Explicit elastodynamics: central differences (Newmark beta = 0, gamma = 1/2) with a lumped
+//! row-sum mass, on QUA4 meshes with full 2x2 integration (the static solver's element).
+//!
+//! ```text
+//! M (v^{n+1/2} - v^{n-1/2}) / dt = f_ext^n - K (u^n + eta v^{n-1/2}),   u^{n+1} = u^n + dt v^{n+1/2}
+//! ```
+//!
+//! `eta` (s) is stiffness-proportional Kelvin-Voigt damping (sigma = D (eps + eta d eps/dt)),
+//! taken at the lagging half step so the update stays explicit, as SEM2DPACK does. A mode of
+//! frequency omega is damped at the ratio xi = eta omega / 2: the highest mesh modes most.
+//!
+//! Internal forces come from element matrices applied element by element (no assembled
+//! matrix): on a regular mesh one 8x8 matrix serves every element, so the update streams the
+//! displacements and forces and keeps the matrix in cache.
+//!
+//! The stable step is bounded rigorously by the element eigenvalues (Irons: the largest
+//! eigenvalue of M^-1 K is at most the largest of the elements' Me^-1 Ke with their own lumped
+//! masses); [`Elastodynamic::power_iteration`] estimates the true one to show the margin.
+
+use crate::error::{Error, Result};
+use crate::fem::element::stiffness::{map_point, stiffness, stiffness_rule};
+use crate::fem::element::ElementKind;
+use crate::fem::material::Material;
+use crate::fem::mesh::Mesh;
+use nalgebra::SMatrix;
+use std::collections::HashMap;
+
+/// The block's mass and stiffness in the form the explicit update reads.
+#[derive(Debug, Clone)]
+pub struct Elastodynamic {
+    n_nodes: usize,
+    conn: Vec<[u32; 4]>,
+    kmats: Vec<[f64; 64]>,
+    kidx: Vec<u32>,
+    /// Lumped mass of each node, kg per metre of width (the same for both of its DOFs).
+    pub mass: Vec<f64>,
+    /// Upper bound on the largest eigenvalue of M^-1 K, 1/s^2 (element bound).
+    pub lambda_bound: f64,
+    pub material: Material,
+    /// kg/m^3.
+    pub density: f64,
+}
+
+impl Elastodynamic {
+    /// Mass and element matrices of `mesh` (QUA4 only) with `material` at `density`.
+    pub fn new(mesh: &Mesh, material: Material, density: f64) -> Result<Self> {
+        if !(density.is_finite() && density > 0.0) {
+            return Err(Error::input(
+                "block.density (kg/m^3, --density)",
+                format!("{density} must be a positive number"),
+            ));
+        }
+        if let Some(k) = mesh.kinds_present().into_iter().find(|&k| k != ElementKind::Qua4) {
+            return Err(Error::input(
+                "mesh.element (--element)",
+                format!(
+                    "the dynamic solver takes qua4 elements (full 2x2 integration) only for now; this mesh has {} \
+                     elements: use --element qua4 or a Gmsh mesh of 4-node quadrangles",
+                    k.name()
+                ),
+            ));
+        }
+        let d = material.d_matrix();
+        let rule = stiffness_rule(ElementKind::Qua4);
+        let ne = mesh.n_elements();
+        let (mut conn, mut kmats, mut kidx) = (Vec::with_capacity(ne), Vec::new(), Vec::with_capacity(ne));
+        let mut emass: Vec<[f64; 4]> = Vec::new();
+        let mut mass = vec![0.0; mesh.n_nodes()];
+        let mut seen: HashMap<[i64; 6], u32> = HashMap::new();
+        for e in 0..ne {
+            let nodes = mesh.element_nodes(e);
+            let x: Vec<[f64; 2]> = nodes.iter().map(|&n| mesh.nodes[n]).collect();
+            // Row-sum mass: m_a = rho int N_a dA (the rows of the consistent mass summed).
+            let mut me = [0.0; 4];
+            for q in rule {
+                let p = map_point(ElementKind::Qua4, &x, q.xi);
+                for a in 0..4 {
+                    me[a] += density * q.w * p.det_j * p.n[a];
+                }
+            }
+            // Elements equal up to a translation share one matrix (to 1e-12 of their size).
+            let scale = (x[2][0] - x[0][0]).abs().max((x[2][1] - x[0][1]).abs());
+            let key: [i64; 6] = std::array::from_fn(|i| {
+                let (a, c) = (1 + i / 2, i % 2);
+                ((x[a][c] - x[0][c]) / scale * 1e12).round() as i64
+            });
+            let id = match seen.get(&key) {
+                Some(&id) => id,
+                None => {
+                    let mut k = [0.0; 64];
+                    let min_det = stiffness(ElementKind::Qua4, &x, &d, &mut k);
+                    if !(min_det > 0.0) {
+                        return Err(Error::Mesh(format!(
+                            "{} has a Jacobian determinant {min_det:.3e} <= 0",
+                            mesh.describe_element(e)
+                        )));
+                    }
+                    // Exactly symmetric, so apply_k may read rows as columns.
+                    for i in 0..8 {
+                        for j in 0..i {
+                            let m = 0.5 * (k[8 * i + j] + k[8 * j + i]);
+                            k[8 * i + j] = m;
+                            k[8 * j + i] = m;
+                        }
+                    }
+                    kmats.push(k);
+                    emass.push(me);
+                    let id = (kmats.len() - 1) as u32;
+                    seen.insert(key, id);
+                    id
+                }
+            };
+            for a in 0..4 {
+                mass[nodes[a]] += me[a];
+            }
+            conn.push(std::array::from_fn(|a| nodes[a] as u32));
+            kidx.push(id);
+        }
+        if let Some(n) = mass.iter().position(|&m| !(m > 0.0)) {
+            return Err(Error::Mesh(format!("node {} belongs to no element (zero mass)", mesh.node_tag(n))));
+        }
+        let lambda_bound =
+            kmats.iter().zip(&emass).map(|(k, m)| element_lambda_max(k, m)).fold(0.0, f64::max);
+        Ok(Self { n_nodes: mesh.n_nodes(), conn, kmats, kidx, mass, lambda_bound, material, density })
+    }
+
+    pub fn n_nodes(&self) -> usize {
+        self.n_nodes
+    }
+    pub fn n_dofs(&self) -> usize {
+        2 * self.n_nodes
+    }
+    /// Distinct element matrices held (1 on a regular mesh).
+    pub fn n_element_matrices(&self) -> usize {
+        self.kmats.len()
+    }
+
+    /// out = K u (out overwritten; DOF order u0, v0, u1, v1, ...).
+    pub fn apply_k(&self, u: &[f64], out: &mut [f64]) {
+        // Node-wise views: one bounds check per node instead of per DOF.
+        let (u2, _) = u.as_chunks::<2>();
+        let (o2, _) = out.as_chunks_mut::<2>();
+        o2.fill([0.0; 2]);
+        for (c, &id) in self.conn.iter().zip(&self.kidx) {
+            let k = &self.kmats[id as usize];
+            let n = [c[0] as usize, c[1] as usize, c[2] as usize, c[3] as usize];
+            let mut ue = [0.0; 8];
+            for a in 0..4 {
+                let p = u2[n[a]];
+                ue[2 * a] = p[0];
+                ue[2 * a + 1] = p[1];
+            }
+            // K symmetric: column j of K is row j, so f = sum_j K[j, :] ue[j] vectorises.
+            let mut fe = [0.0; 8];
+            for j in 0..8 {
+                let row: &[f64; 8] = k[8 * j..8 * j + 8].try_into().expect("8 columns");
+                for i in 0..8 {
+                    fe[i] += row[i] * ue[j];
+                }
+            }
+            for a in 0..4 {
+                let o = &mut o2[n[a]];
+                o[0] += fe[2 * a];
+                o[1] += fe[2 * a + 1];
+            }
+        }
+    }
+
+    /// Strain energy 0.5 u^T K u, J per metre of width.
+    pub fn strain_energy(&self, u: &[f64]) -> f64 {
+        let mut ku = vec![0.0; u.len()];
+        self.apply_k(u, &mut ku);
+        0.5 * dot(u, &ku)
+    }
+
+    /// Kinetic energy 0.5 v^T M v, J per metre of width.
+    pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
+        0.5 * (0..self.n_nodes)
+            .map(|n| self.mass[n] * (v[2 * n] * v[2 * n] + v[2 * n + 1] * v[2 * n + 1]))
+            .sum::<f64>()
+    }
+
+    /// Estimate of the largest eigenvalue of M^-1 K (free body) by `iters` power iterations
+    /// from a fixed pseudo-random start; a lower bound that rises towards the true value.
+    pub fn power_iteration(&self, iters: usize) -> f64 {
+        let n = self.n_dofs();
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut x: Vec<f64> = (0..n)
+            .map(|_| {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+            })
+            .collect();
+        let mut kx = vec![0.0; n];
+        let mut lambda = 0.0;
+        for _ in 0..iters {
+            self.apply_k(&x, &mut kx);
+            let xmx: f64 = (0..n).map(|i| self.mass[i / 2] * x[i] * x[i]).sum();
+            lambda = dot(&x, &kx) / xmx;
+            let mut norm = 0.0;
+            for i in 0..n {
+                x[i] = kx[i] / self.mass[i / 2];
+                norm += x[i] * x[i];
+            }
+            let s = 1.0 / norm.sqrt();
+            x.iter_mut().for_each(|v| *v *= s);
+        }
+        lambda
+    }
+
+    /// Stable step of the scheme with damping `eta` (s) for the bound [`Self::lambda_bound`]:
+    /// dt_c = (2 / omega) (sqrt(1 + xi^2) - xi), omega = sqrt(lambda), xi = eta omega / 2
+    /// (from the characteristic equation of the lagged-damping recurrence; 2 / omega undamped).
+    pub fn critical_dt(&self, eta: f64) -> f64 {
+        critical_dt(self.lambda_bound, eta)
+    }
+}
+
+/// See [`Elastodynamic::critical_dt`].
+pub fn critical_dt(lambda_max: f64, eta: f64) -> f64 {
+    let omega = lambda_max.sqrt();
+    let xi = 0.5 * eta * omega;
+    2.0 / omega * ((1.0 + xi * xi).sqrt() - xi)
+}
+
+/// Largest eigenvalue of Me^-1 Ke (Me diagonal): of the symmetric Me^-1/2 Ke Me^-1/2.
+fn element_lambda_max(k: &[f64; 64], m: &[f64; 4]) -> f64 {
+    let s: [f64; 8] = std::array::from_fn(|i| 1.0 / m[i / 2].sqrt());
+    let a = SMatrix::<f64, 8, 8>::from_fn(|i, j| s[i] * k[8 * i + j] * s[j]);
+    a.symmetric_eigenvalues().max()
+}
+
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Energies of an explicit run, J per metre of width. The `*_half` fields are the scheme's
+/// exactly conserved "shadow" energy and the work/dissipation that match it; the others are
+/// the physical energies at the integer step, which differ from it by O(dt^2).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Ledger {
+    /// E^{n-1/2} = 0.5 v^{n-1/2} M v^{n-1/2} + 0.5 u^{n-1} K u^n for the last step n.
+    pub shadow_half: f64,
+    /// Work of the external forces and damping dissipation through step n - 1 (the sums of
+    /// dt vbar^k . f_ext^k and dt vbar^k . eta K v^{k-1/2}, vbar^k = (v^{k-1/2} + v^{k+1/2}) / 2):
+    /// shadow_half + damping_half - work_half is the same at every step, to round-off.
+    pub work_half: f64,
+    pub damping_half: f64,
+    /// The same sums through step n (to set against the physical energies at step n + 1/2).
+    pub work: f64,
+    pub damping: f64,
+    /// Physical energies at step n: 0.5 vbar M vbar and 0.5 u^n K u^n.
+    pub kinetic: f64,
+    pub strain: f64,
+    /// (dt^2 / 8) a^n M a^n (a the step's acceleration): undamped and unforced,
+    /// kinetic + strain - correction equals the shadow energy exactly.
+    pub correction: f64,
+}
+
+/// A running explicit integration: displacements at step n, velocities at n - 1/2.
+pub struct Explicit<'a> {
+    pub model: &'a Elastodynamic,
+    pub dt: f64,
+    /// Kelvin-Voigt coefficient, s.
+    pub eta: f64,
+    /// DOFs held at zero displacement and velocity.
+    pub fixed: Vec<bool>,
+    pub u: Vec<f64>,
+    /// v^{n-1/2}.
+    pub v: Vec<f64>,
+    /// Steps taken (the current time is `n dt`).
+    pub n: usize,
+    pub ledger: Ledger,
+    u_prev: Vec<f64>,
+    ku: Vec<f64>,
+    kv: Vec<f64>,
+    fe: Vec<f64>,
+}
+
+impl<'a> Explicit<'a> {
+    /// Starts at rest (u = 0, v^{-1/2} = 0) with step `dt`; refuses a step above the stable one.
+    pub fn new(model: &'a Elastodynamic, dt: f64, eta: f64, fixed: Vec<bool>) -> Result<Self> {
+        if !(eta.is_finite() && eta >= 0.0) {
+            return Err(Error::input("damping (s, --damping)", format!("eta = {eta} must be >= 0")));
+        }
+        let dt_c = model.critical_dt(eta);
+        if !(dt > 0.0 && dt <= dt_c) {
+            return Err(Error::input(
+                "time step (--courant)",
+                format!(
+                    "dt = {dt:.4e} s is not in (0, {dt_c:.4e}] s, the stable step of this mesh and damping"
+                ),
+            ));
+        }
+        let n = model.n_dofs();
+        assert_eq!(fixed.len(), n, "one flag per DOF");
+        Ok(Self {
+            model,
+            dt,
+            eta,
+            fixed,
+            u: vec![0.0; n],
+            v: vec![0.0; n],
+            n: 0,
+            ledger: Ledger::default(),
+            u_prev: vec![0.0; n],
+            ku: vec![0.0; n],
+            kv: vec![0.0; n],
+            fe: vec![0.0; n],
+        })
+    }
+
+    /// Sets the initial displacement (fixed DOFs must be zero) and keeps v^{-1/2}.
+    pub fn set_displacement(&mut self, u: &[f64]) {
+        self.u.copy_from_slice(u);
+        for i in 0..u.len() {
+            if self.fixed[i] {
+                self.u[i] = 0.0;
+            }
+            self.u_prev[i] = self.u[i] - self.dt * self.v[i];
+        }
+    }
+
+    /// One step; `f_ext(t, f)` adds the external nodal forces at t = n dt into `f` (zeroed).
+    pub fn step(&mut self, mut f_ext: impl FnMut(f64, &mut [f64])) {
+        let (m, dt, eta) = (self.model, self.dt, self.eta);
+        m.apply_k(&self.u, &mut self.ku);
+        if eta > 0.0 {
+            m.apply_k(&self.v, &mut self.kv);
+        }
+        self.fe.fill(0.0);
+        f_ext(self.n as f64 * dt, &mut self.fe);
+        let shadow_half = m.kinetic_energy(&self.v) + 0.5 * dot(&self.u_prev, &self.ku);
+        let (mut work, mut damp, mut kin, mut corr) = (0.0, 0.0, 0.0, 0.0);
+        for i in 0..self.u.len() {
+            let vm = self.v[i];
+            let fd = if eta > 0.0 { eta * self.kv[i] } else { 0.0 };
+            let f = self.fe[i] - self.ku[i] - fd;
+            let mi = m.mass[i / 2];
+            let vp = if self.fixed[i] { 0.0 } else { vm + dt * f / mi };
+            let vbar = 0.5 * (vm + vp);
+            work += dt * vbar * self.fe[i];
+            damp += dt * vbar * fd;
+            kin += 0.5 * mi * vbar * vbar;
+            if !self.fixed[i] {
+                corr += dt * dt / 8.0 * f * f / mi;
+            }
+            self.v[i] = vp;
+            self.u_prev[i] = self.u[i];
+            self.u[i] += dt * vp;
+        }
+        self.ledger.shadow_half = shadow_half;
+        self.ledger.strain = 0.5 * dot(&self.u_prev, &self.ku);
+        self.ledger.kinetic = kin;
+        self.ledger.correction = corr;
+        // shadow_half is E^{n-1/2}: it matches the sums through step n - 1.
+        self.ledger.work_half = self.ledger.work;
+        self.ledger.damping_half = self.ledger.damping;
+        self.ledger.work += work;
+        self.ledger.damping += damp;
+        self.n += 1;
+    }
+
+    /// E^{n-1/2} + D - W (sums through step n - 1) as of the last step: constant to round-off.
+    pub fn shadow_balance(&self) -> f64 {
+        self.ledger.shadow_half + self.ledger.damping_half - self.ledger.work_half
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::mesher::Rectangle;
+
+    #[test]
+    fn regular_mesh_shares_one_matrix_and_the_mass_is_the_body_mass() {
+        let mesh = Rectangle::new(-0.1, 0.1, 0.0, 0.05, 40, 10).build().unwrap();
+        let m = Elastodynamic::new(&mesh, Material::plane_strain(2e3, 0.4).unwrap(), 1000.0).unwrap();
+        assert_eq!(m.n_element_matrices(), 1);
+        let total: f64 = m.mass.iter().sum();
+        assert!((total - 1000.0 * 0.2 * 0.05).abs() < 1e-12 * total, "{total}");
+        // Corner node of a square element: a quarter of its mass.
+        assert!((m.mass[0] - 1000.0 * 0.005 * 0.005 / 4.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn element_bound_holds_and_is_close() {
+        let mesh = Rectangle::new(0.0, 0.04, 0.0, 0.02, 20, 10).build().unwrap();
+        let m = Elastodynamic::new(&mesh, Material::plane_strain(2e3, 0.4).unwrap(), 1000.0).unwrap();
+        let est = m.power_iteration(3000);
+        // The power estimate is a Rayleigh quotient (a lower bound on the true largest
+        // eigenvalue), and the element bound an upper one. On square nu = 0.4 elements the
+        // bound is 6.67 c_p^2 / h^2 and the estimate 4.31 c_p^2 / h^2 (0.647 of it): the
+        // element's highest mode does not fit the assembled mesh, so the bound's step
+        // 0.775 h / c_p is 0.80 of the true one.
+        assert!(est <= m.lambda_bound * (1.0 + 1e-12), "{est} > {}", m.lambda_bound);
+        assert!(est >= 0.6 * m.lambda_bound, "{est} vs {}", m.lambda_bound);
+        let cp2_h2 = (m.material.lambda() + 2.0 * m.material.shear_modulus()) / 1000.0 / 4e-6;
+        assert!((m.lambda_bound / cp2_h2 - 20.0 / 3.0).abs() < 1e-9, "{}", m.lambda_bound / cp2_h2);
+    }
+
+    #[test]
+    fn refuses_other_elements_and_bad_density() {
+        let mesh = Rectangle::new(0.0, 1.0, 0.0, 1.0, 2, 2).kind(ElementKind::Tri3).build().unwrap();
+        let mat = Material::plane_strain(1.0, 0.3).unwrap();
+        let e = Elastodynamic::new(&mesh, mat, 1.0).unwrap_err().to_string();
+        assert!(e.contains("qua4") && e.contains("tri3"), "{e}");
+        let mesh = Rectangle::new(0.0, 1.0, 0.0, 1.0, 2, 2).build().unwrap();
+        let e = Elastodynamic::new(&mesh, mat, -1.0).unwrap_err().to_string();
+        assert!(e.contains("density"), "{e}");
+    }
+
+    #[test]
+    fn damped_critical_step() {
+        assert!((critical_dt(4.0, 0.0) - 1.0).abs() < 1e-15);
+        // dt_c solves lambda dt^2 + 2 eta lambda dt = 4.
+        let (l, eta) = (9.0, 0.1);
+        let dt = critical_dt(l, eta);
+        assert!((l * dt * dt + 2.0 * eta * l * dt - 4.0).abs() < 1e-12);
+    }
+}

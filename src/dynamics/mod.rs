@@ -1,0 +1,17 @@
+//! Explicit elastodynamics of the block and its frictional base (issue 33, first part).
+//!
+//! - [`waves`]: the body-wave and Rayleigh speeds the solver is judged against;
+//! - [`explicit`]: lumped-mass central differences (Newmark beta = 0, gamma = 1/2) on QUA4
+//!   meshes, Kelvin-Voigt damping, the stable time step, energies;
+//! - [`friction`]: slip-weakening friction and the cohesive-zone estimate Lambda_0;
+//! - [`rupture`]: the base on a rigid flat with friction imposed per node per step (the
+//!   traction-at-split-node rule of Day et al. 2005) and the shared cross-check scene
+//!   "rupture" (arrival times, force drop, front speed).
+//!
+//! Units SI throughout. The formulation, tolerances and measured numbers are in
+//! docs/dynamics.md.
+
+pub mod explicit;
+pub mod friction;
+pub mod rupture;
+pub mod waves;

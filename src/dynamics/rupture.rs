@@ -1,0 +1,546 @@
+//! A block on a rigid flat with slip-weakening friction, run explicitly: the shared
+//! cross-check scene "rupture" (the spec both this code and validation/dynamics implement).
+//!
+//! Perturbation about a uniform background (as SEM2DPACK): the body starts at rest with zero
+//! displacement; the background normal stress sigma0 and shear tau0 act on the base only
+//! through the friction rule. Each base node i (tributary width w_i, lumped mass m_i) at step
+//! n, with f^n = -K u^n and v^{n-1/2} known:
+//!
+//! ```text
+//! sigma_i = sigma0 - (f_y + m_i v_y / dt) / w_i          (the traction keeping v_y^{n+1/2} = 0)
+//! T*      = tau0_i + (m_i v_x / dt + f_x) / w_i          (the traction that would stop it)
+//! T_i     = T*  if |T*| <= mu(d_i) sigma_i,  else mu(d_i) sigma_i sign(T*)
+//! v_x^{n+1/2} = v_x^{n-1/2} + dt (f_x + (tau0_i - T_i) w_i) / m_i,   d_i += dt |v_x^{n+1/2}|
+//! ```
+//!
+//! the traction-at-split-node rule of Day et al. (2005, BSSA 95) against a rigid flat. With
+//! [`Contact::Unilateral`] a node whose trial normal stress (now the one that keeps u_y = 0)
+//! is tensile opens: sigma_i = 0, T_i = 0, and the node moves freely under -sigma0 w_i.
+//! [`Contact::Symmetric`] replaces the flat by the mirror half of a symmetric fault (slip
+//! 2 u_x, sigma = sigma0), the geometry Andrews' supershear threshold S ~ 1.77 is for.
+
+use super::explicit::{dot, Elastodynamic};
+use super::friction::SlipWeakening;
+use super::waves::WaveSpeeds;
+use crate::error::{Error, Result};
+use crate::fem::material::Material;
+use crate::fem::mesher::Rectangle;
+use std::path::Path;
+
+/// How the base meets the rigid flat.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Contact {
+    /// u_y = 0 always (the spec; the minimum normal stress is reported to show it stays
+    /// compressive).
+    Bilateral,
+    /// Opening allowed where the flat would have to pull.
+    Unilateral,
+    /// Not a flat: the plane y = 0 of a symmetric fault between two identical blocks (the
+    /// control case of the dynamic-rupture literature). The mirror image moves by -u_x, so
+    /// the slip is 2 u_x and the normal stress keeps sigma0 (perturbation sigma_yy = 0 there);
+    /// u_y is free.
+    Symmetric,
+}
+
+impl std::str::FromStr for Contact {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "bilateral" => Ok(Self::Bilateral),
+            "unilateral" => Ok(Self::Unilateral),
+            "symmetric" => Ok(Self::Symmetric),
+            _ => Err(Error::input(
+                "--contact",
+                format!("'{}': use bilateral, unilateral or symmetric", crate::error::quote(s)),
+            )),
+        }
+    }
+}
+
+/// The scene. [`Default`] is the shared spec (validation/dynamics, docs/dynamics.md).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RuptureSpec {
+    /// Block x in [-length/2, length/2], y in [0, height], m.
+    pub length: f64,
+    pub height: f64,
+    /// Element size (square QUA4), m.
+    pub h: f64,
+    /// Pa, dimensionless, kg/m^3.
+    pub young: f64,
+    pub poisson: f64,
+    pub density: f64,
+    /// Background normal stress on the base (compressive positive), Pa.
+    pub sigma0: f64,
+    /// Strength ratio S = (mu_s sigma0 - tau0) / (tau0 - mu_d sigma0) outside the patch.
+    pub s_ratio: f64,
+    pub friction: SlipWeakening,
+    /// Nucleation patch |x| <= this, m, where tau0 = overstress * mu_s sigma0.
+    pub patch_half_width: f64,
+    pub overstress: f64,
+    /// dt = courant h / c_p (the spec: 0.5).
+    pub courant: f64,
+    /// Run to this time (steps = round(t_end / dt)), s.
+    pub t_end: f64,
+    /// Kelvin-Voigt coefficient, s (the spec: 0).
+    pub damping: f64,
+    pub contact: Contact,
+    /// Front speed: least-squares slope of x against arrival time over this x range, m.
+    pub speed_window: (f64, f64),
+    /// Normal-stress regularisation (Prakash-Clifton with a fixed time scale, as in
+    /// SEM2DPACK; Rubin & Ampuero 2007): the strength is mu(d) sigma*, with sigma* relaxing
+    /// towards sigma as d sigma*/dt = -(sigma* - sigma) / T, implicit in each step. None
+    /// (the spec): the strength follows sigma at once.
+    pub normal_lag: Option<f64>,
+}
+
+impl Default for RuptureSpec {
+    fn default() -> Self {
+        Self {
+            length: 0.2,
+            height: 0.1,
+            h: 1e-3,
+            young: 2000.0,
+            poisson: 0.4,
+            density: 1000.0,
+            sigma0: 2.5,
+            s_ratio: 2.0,
+            friction: SlipWeakening { mu_s: 0.648, mu_d: 0.583, d_c: 7.7e-7 },
+            patch_half_width: 0.01,
+            overstress: 1.005,
+            courant: 0.5,
+            t_end: 0.1,
+            damping: 0.0,
+            contact: Contact::Bilateral,
+            speed_window: (0.03, 0.08),
+            normal_lag: None,
+        }
+    }
+}
+
+/// Fewest elements across Lambda_0 a run accepts.
+pub const MIN_ZONE_ELEMENTS: f64 = 3.0;
+
+impl RuptureSpec {
+    pub fn material(&self) -> Result<Material> {
+        Material::plane_strain(self.young, self.poisson)
+    }
+
+    /// Background shear outside the patch, Pa: tau0 = sigma0 (mu_s + S mu_d) / (1 + S).
+    pub fn tau0(&self) -> f64 {
+        let f = &self.friction;
+        self.sigma0 * (f.mu_s + self.s_ratio * f.mu_d) / (1.0 + self.s_ratio)
+    }
+
+    /// Lambda_0 of [`SlipWeakening::cohesive_zone`] at sigma0, m.
+    pub fn lambda0(&self) -> Result<f64> {
+        let m = self.material()?;
+        Ok(self.friction.cohesive_zone(m.shear_modulus(), m.nu, self.sigma0))
+    }
+
+    /// Every value checked before any work, with the flag to change.
+    pub fn validate(&self) -> Result<()> {
+        let pos = |what: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(Error::input(what, format!("{v} must be a positive number")))
+            }
+        };
+        pos("block length (m, --length)", self.length)?;
+        pos("block height (m, --height)", self.height)?;
+        pos("element size (m, --h)", self.h)?;
+        pos("density (kg/m^3, --density)", self.density)?;
+        pos("sigma0 (Pa, --sigma0)", self.sigma0)?;
+        pos("t_end (s, --t-end)", self.t_end)?;
+        pos("courant factor (--courant)", self.courant)?;
+        self.material()?;
+        SlipWeakening::new(self.friction.mu_s, self.friction.mu_d, self.friction.d_c)?;
+        if !(self.friction.mu_s > self.friction.mu_d) {
+            return Err(Error::input(
+                "friction coefficients (--mu-s, --mu-d)",
+                "the rupture scene needs mu_s > mu_d (S is defined by the strength drop)",
+            ));
+        }
+        if !(self.s_ratio.is_finite() && self.s_ratio >= 0.0) {
+            return Err(Error::input(
+                "strength ratio S (--s)",
+                format!(
+                    "{} must be >= 0 (S < 0 puts the background shear above the static strength)",
+                    self.s_ratio
+                ),
+            ));
+        }
+        if let Some(t) = self.normal_lag {
+            pos("normal-stress lag T (s, --normal-lag)", t)?;
+        }
+        if !(self.damping.is_finite() && self.damping >= 0.0) {
+            return Err(Error::input("damping (s, --damping)", format!("{} must be >= 0", self.damping)));
+        }
+        for (what, len) in [("--length", self.length), ("--height", self.height)] {
+            let n = len / self.h;
+            if (n - n.round()).abs() > 1e-6 * n || n.round() < 2.0 {
+                return Err(Error::input(
+                    format!("element size (m, --h) against {what}"),
+                    format!("{} m / {} m = {n} must be a whole number of elements >= 2", len, self.h),
+                ));
+            }
+        }
+        let cells = (self.length / self.h).round() * (self.height / self.h).round();
+        if cells > 2e7 {
+            return Err(Error::input(
+                "element size (m, --h)",
+                format!("{cells:.3e} elements exceed the 2e7 this command runs; use a larger --h"),
+            ));
+        }
+        let lambda0 = self.lambda0()?;
+        if lambda0 < MIN_ZONE_ELEMENTS * self.h {
+            return Err(Error::input(
+                "D_c (m, --dc) or element size (m, --h)",
+                format!(
+                    "the cohesive zone Lambda_0 = {lambda0:.3e} m spans {:.2} elements of h = {} m, fewer than \
+                     {MIN_ZONE_ELEMENTS}: the front would be mesh dependent; raise --dc to at least {:.3e} m or \
+                     lower --h to at most {:.3e} m",
+                    lambda0 / self.h,
+                    self.h,
+                    self.friction.d_c * MIN_ZONE_ELEMENTS * self.h / lambda0,
+                    lambda0 / MIN_ZONE_ELEMENTS
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Energies at the end of a run, J per metre of width.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RuptureEnergy {
+    /// 0.5 v M v at the last half step and 0.5 u^{N-1} K u^N (the scheme's shadow energy).
+    pub kinetic: f64,
+    pub strain: f64,
+    /// Work of the background tractions on the base: sum dt vbar . (tau0 w, -sigma0 w).
+    pub background_work: f64,
+    /// Frictional dissipation sum dt vbar_x T w (discrete, matching the shadow energy)...
+    pub friction: f64,
+    /// ...and the physical sum T w delta d (d the slip path length).
+    pub friction_path: f64,
+    /// Work of the flat's normal reaction (zero for bilateral contact).
+    pub contact: f64,
+    /// kinetic + strain + friction - background_work - contact: zero up to round-off.
+    pub residual: f64,
+}
+
+/// What a run measured.
+#[derive(Debug, Clone)]
+pub struct RuptureResult {
+    /// Base nodes by x: position, tributary width, background shear.
+    pub x: Vec<f64>,
+    pub width: Vec<f64>,
+    pub tau0: Vec<f64>,
+    /// First time d >= D_c / 100 (linear between steps), s; None if never.
+    pub t_arrival: Vec<Option<f64>>,
+    /// First time d >= D_c (fully weakened), s.
+    pub t_weakened: Vec<Option<f64>>,
+    /// Slip path length at t_end, m.
+    pub slip: Vec<f64>,
+    /// Largest |v_x| of each base node over the run, m/s.
+    pub peak_slip_rate: Vec<f64>,
+    /// sum (tau0_i - T_i) w_i at t_end, N/m.
+    pub force_drop: f64,
+    /// Smallest total normal stress on the base over the run, Pa.
+    pub min_sigma: f64,
+    pub steps: usize,
+    pub dt: f64,
+    /// Stable step of the mesh (element bound), s.
+    pub dt_stable: f64,
+    pub front_speed: Option<f64>,
+    pub speeds: WaveSpeeds,
+    pub lambda0: f64,
+    pub energy: RuptureEnergy,
+}
+
+/// Runs the scene; `progress(fraction)` is called every ~1 % of the steps.
+pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> {
+    spec.validate()?;
+    let mat = spec.material()?;
+    let speeds = WaveSpeeds::new(&mat, spec.density);
+    let (nx, ny) = ((spec.length / spec.h).round() as usize, (spec.height / spec.h).round() as usize);
+    let mesh = Rectangle::new(-spec.length / 2.0, spec.length / 2.0, 0.0, spec.height, nx, ny).build()?;
+    let model = Elastodynamic::new(&mesh, mat, spec.density)?;
+    let dt = spec.courant * spec.h / speeds.c_p;
+    let dt_stable = model.critical_dt(spec.damping);
+    if dt > dt_stable {
+        return Err(Error::input(
+            "courant factor (--courant)",
+            format!(
+                "dt = {} h / c_p = {dt:.4e} s exceeds the stable step {dt_stable:.4e} s of this mesh{}; use --courant <= {:.3}",
+                spec.courant,
+                if spec.damping > 0.0 { " and damping" } else { "" },
+                dt_stable * speeds.c_p / spec.h
+            ),
+        ));
+    }
+    let steps = (spec.t_end / dt).round() as usize;
+    // Base nodes, by x (the mesher numbers row by row: the first nx + 1 nodes).
+    let base: Vec<usize> = (0..=nx).collect();
+    debug_assert!(base.iter().all(|&k| mesh.nodes[k][1] == 0.0));
+    let x: Vec<f64> = base.iter().map(|&k| mesh.nodes[k][0]).collect();
+    let width: Vec<f64> = (0..=nx).map(|i| if i == 0 || i == nx { spec.h / 2.0 } else { spec.h }).collect();
+    let (tau_out, tau_in) = (spec.tau0(), spec.overstress * spec.friction.mu_s * spec.sigma0);
+    // The patch edge |x| = 0.01 m is a node: include it whatever the rounding of its coordinate.
+    let tau0: Vec<f64> = x
+        .iter()
+        .map(|&xi| if xi.abs() <= spec.patch_half_width + 1e-6 * spec.h { tau_in } else { tau_out })
+        .collect();
+
+    let n = model.n_dofs();
+    let (mut u, mut v, mut ku, mut u_prev) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let nb = base.len();
+    let (mut d, mut t_arr, mut t_wk, mut peak) =
+        (vec![0.0; nb], vec![None; nb], vec![None; nb], vec![0.0; nb]);
+    // Forces of the flat on the base nodes at this step (perturbation), and their traction T.
+    let (mut fbx, mut fby, mut tr) = (vec![0.0; nb], vec![0.0; nb], vec![0.0; nb]);
+    let mut seff = vec![spec.sigma0; nb];
+    let mut base_dof = vec![false; n];
+    for &k in &base {
+        base_dof[2 * k] = true;
+        base_dof[2 * k + 1] = true;
+    }
+    let mut e = RuptureEnergy::default();
+    let mut min_sigma = f64::INFINITY;
+    let thr = spec.friction.d_c / 100.0;
+    let slip_factor = if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 };
+    let every = (steps / 100).max(1);
+    // The base rule at the current step: fills fbx, fby, tr from ku (= K u^n) and v^{n-1/2}.
+    // seff: the regularised normal stress sigma* (advanced here, once per call).
+    let base_rule = |u: &[f64],
+                     v: &[f64],
+                     ku: &[f64],
+                     d: &[f64],
+                     seff: &mut [f64],
+                     fbx: &mut [f64],
+                     fby: &mut [f64],
+                     tr: &mut [f64]| {
+        let mut smin = f64::INFINITY;
+        for (b, &k) in base.iter().enumerate() {
+            let (m, w) = (model.mass[k], width[b]);
+            let (fx, fy) = (-ku[2 * k], -ku[2 * k + 1]);
+            let mut sigma = spec.sigma0 - (fy + m * v[2 * k + 1] / dt) / w;
+            if spec.contact == Contact::Symmetric {
+                sigma = spec.sigma0;
+            }
+            if spec.contact == Contact::Unilateral {
+                // The stress keeping u_y^{n+1} = 0; tensile means the node leaves the flat.
+                sigma -= m * u[2 * k + 1] / (dt * dt * w);
+                if sigma < 0.0 {
+                    sigma = 0.0;
+                }
+            }
+            smin = smin.min(sigma);
+            let open = spec.contact == Contact::Unilateral && sigma == 0.0;
+            let s_eff = match spec.normal_lag {
+                Some(lag) => {
+                    let a = dt / lag;
+                    seff[b] = (seff[b] + a * sigma) / (1.0 + a);
+                    if open {
+                        0.0
+                    } else {
+                        seff[b]
+                    }
+                }
+                None => sigma,
+            };
+            // Not clamped at sigma < 0 (possible under bilateral contact only): the spec's
+            // rule as written, T = mu sigma sign(T*); the run reports min sigma to show it.
+            let strength = spec.friction.mu(d[b]) * s_eff;
+            let t_star = tau0[b] + (m * v[2 * k] / dt + fx) / w;
+            let t = if t_star.abs() <= strength { t_star } else { strength * sign(t_star) };
+            tr[b] = t;
+            fbx[b] = (tau0[b] - t) * w;
+            fby[b] = (sigma - spec.sigma0) * w;
+        }
+        smin
+    };
+    for step in 0..steps {
+        model.apply_k(&u, &mut ku);
+        min_sigma = min_sigma.min(base_rule(&u, &v, &ku, &d, &mut seff, &mut fbx, &mut fby, &mut tr));
+        // Shadow energy E^{n-1/2}, before this step's work (see explicit::Ledger).
+        e.kinetic = model.kinetic_energy(&v);
+        e.strain = 0.5 * dot(&u_prev, &ku);
+        e.residual = e.kinetic + e.strain + e.friction - e.background_work - e.contact;
+        for i in 0..n {
+            if !base_dof[i] {
+                let vp = v[i] - dt * ku[i] / model.mass[i / 2];
+                v[i] = vp;
+                u_prev[i] = u[i];
+                u[i] += dt * vp;
+            }
+        }
+        for (b, &k) in base.iter().enumerate() {
+            let m = model.mass[k];
+            let (vxm, vym) = (v[2 * k], v[2 * k + 1]);
+            let vx = vxm + dt * (-ku[2 * k] + fbx[b]) / m;
+            let vy = vym + dt * (-ku[2 * k + 1] + fby[b]) / m;
+            // In contact the flat holds u_y^{n+1} = 0 exactly (not to round-off), so a
+            // unilateral run that never opens is the bilateral run bit for bit.
+            let vy = match spec.contact {
+                Contact::Bilateral => 0.0,
+                Contact::Unilateral if fby[b] > -spec.sigma0 * width[b] => -u[2 * k + 1] / dt,
+                _ => vy,
+            };
+            let (vbx, vby) = (0.5 * (vxm + vx), 0.5 * (vym + vy));
+            e.background_work += dt * width[b] * (vbx * tau0[b] - vby * spec.sigma0);
+            e.friction += dt * vbx * tr[b] * width[b];
+            e.contact += dt * vby * (fby[b] + spec.sigma0 * width[b]);
+            // (per half of a symmetric fault: the work on this block's face)
+            e.friction_path += tr[b].abs() * width[b] * dt * vx.abs();
+            v[2 * k] = vx;
+            v[2 * k + 1] = vy;
+            u_prev[2 * k] = u[2 * k];
+            u_prev[2 * k + 1] = u[2 * k + 1];
+            u[2 * k] += dt * vx;
+            u[2 * k + 1] = if spec.contact == Contact::Unilateral && fby[b] > -spec.sigma0 * width[b] {
+                0.0
+            } else {
+                u[2 * k + 1] + dt * vy
+            };
+            let d_new = d[b] + slip_factor * dt * vx.abs();
+            let t0 = step as f64 * dt;
+            if t_arr[b].is_none() && d_new >= thr {
+                t_arr[b] = Some(t0 + dt * (thr - d[b]) / (d_new - d[b]));
+            }
+            if t_wk[b].is_none() && d_new >= spec.friction.d_c {
+                t_wk[b] = Some(t0 + dt * (spec.friction.d_c - d[b]) / (d_new - d[b]));
+            }
+            peak[b] = f64::max(peak[b], vx.abs());
+            d[b] = d_new;
+        }
+        if step % every == 0 {
+            progress(step as f64 / steps as f64);
+        }
+    }
+    // The friction at t_end itself (step N), as the spec's force drop asks.
+    model.apply_k(&u, &mut ku);
+    let mut seff_end = seff.clone();
+    min_sigma = min_sigma.min(base_rule(&u, &v, &ku, &d, &mut seff_end, &mut fbx, &mut fby, &mut tr));
+    e.kinetic = model.kinetic_energy(&v);
+    e.strain = 0.5 * dot(&u_prev, &ku);
+    e.residual = e.kinetic + e.strain + e.friction - e.background_work - e.contact;
+    let force_drop: f64 = (0..nb).map(|b| (tau0[b] - tr[b]) * width[b]).sum();
+    if !(force_drop.is_finite() && min_sigma.is_finite() && e.residual.is_finite()) {
+        return Err(Error::Untrustworthy {
+            detail: "the run produced non-finite values".into(),
+            hint: "lower --courant; report the command line".into(),
+        });
+    }
+    let mut r = RuptureResult {
+        x,
+        width,
+        tau0,
+        t_arrival: t_arr,
+        t_weakened: t_wk,
+        slip: d,
+        peak_slip_rate: peak,
+        force_drop,
+        min_sigma,
+        steps,
+        dt,
+        dt_stable,
+        front_speed: None,
+        speeds,
+        lambda0: spec.lambda0()?,
+        energy: e,
+    };
+    r.front_speed = r.front_speed_between(spec.speed_window.0, spec.speed_window.1);
+    progress(1.0);
+    Ok(r)
+}
+
+/// sign as numpy's: 0 at 0.
+fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+impl RuptureResult {
+    /// (x, t_arrival) of the nodes with x >= 0 that the front reached.
+    pub fn arrivals(&self) -> Vec<(f64, f64)> {
+        self.x
+            .iter()
+            .zip(&self.t_arrival)
+            .filter(|(&x, _)| x >= -1e-12)
+            .filter_map(|(&x, t)| t.map(|t| (x, t)))
+            .collect()
+    }
+
+    /// Least-squares slope of x against arrival time over a <= x <= b (m), m/s; None with
+    /// fewer than 3 arrivals there.
+    pub fn front_speed_between(&self, a: f64, b: f64) -> Option<f64> {
+        let eps = 1e-9;
+        let pts: Vec<(f64, f64)> =
+            self.arrivals().into_iter().filter(|&(x, _)| x >= a - eps && x <= b + eps).collect();
+        if pts.len() < 3 {
+            return None;
+        }
+        let nf = pts.len() as f64;
+        let (mt, mx) = (pts.iter().map(|p| p.1).sum::<f64>() / nf, pts.iter().map(|p| p.0).sum::<f64>() / nf);
+        let stt: f64 = pts.iter().map(|p| (p.1 - mt).powi(2)).sum();
+        let stx: f64 = pts.iter().map(|p| (p.1 - mt) * (p.0 - mx)).sum();
+        (stt > 0.0).then(|| stx / stt)
+    }
+
+    /// The same for the front running towards -x, over -b <= x <= -a (speed positive).
+    pub fn front_speed_left(&self, a: f64, b: f64) -> Option<f64> {
+        let mirrored = RuptureResult {
+            x: self.x.iter().rev().map(|x| -x).collect(),
+            t_arrival: self.t_arrival.iter().rev().copied().collect(),
+            ..self.clone()
+        };
+        mirrored.front_speed_between(a, b)
+    }
+
+    /// Cohesive-zone length behind the front where node x became fully weakened (d = D_c):
+    /// the front position (d = D_c / 100) at that time minus x, m. (x, zone) for x >= 0.
+    pub fn cohesive_zone(&self) -> Vec<(f64, f64)> {
+        let arr = self.arrivals();
+        let mut out = Vec::new();
+        for (i, &xi) in self.x.iter().enumerate() {
+            let Some(tw) = self.t_weakened[i] else { continue };
+            if xi < -1e-12 {
+                continue;
+            }
+            if let Some(j) = (0..arr.len().saturating_sub(1)).find(|&j| arr[j].1 <= tw && tw < arr[j + 1].1) {
+                let ((x0, t0), (x1, t1)) = (arr[j], arr[j + 1]);
+                out.push((xi, x0 + (tw - t0) / (t1 - t0) * (x1 - x0) - xi));
+            }
+        }
+        out
+    }
+
+    /// Writes arrival.csv, summary.csv (the spec's columns), energy.csv and zone.csv into `dir`.
+    pub fn write(&self, dir: &Path) -> Result<()> {
+        use crate::report::{csv, write_atomic};
+        let rows: Vec<Vec<f64>> = self.arrivals().into_iter().map(|(x, t)| vec![x, t]).collect();
+        write_atomic(&dir.join("arrival.csv"), csv("x_m,t_arrival_s", &rows)?.as_bytes())?;
+        let speed = self.front_speed.map_or(String::new(), |s| format!("{s:.12e}"));
+        let summary = format!(
+            "force_drop_n_per_m,min_sigma_pa,steps,dt_s,front_speed_m_per_s\n{:.12e},{:.12e},{},{:.12e},{speed}\n",
+            self.force_drop, self.min_sigma, self.steps, self.dt
+        );
+        write_atomic(&dir.join("summary.csv"), summary.as_bytes())?;
+        let e = &self.energy;
+        let energy = csv(
+            "kinetic_j_per_m,strain_j_per_m,background_work_j_per_m,friction_dissipation_j_per_m,friction_path_j_per_m,contact_work_j_per_m,balance_residual_j_per_m",
+            &[vec![e.kinetic, e.strain, e.background_work, e.friction, e.friction_path, e.contact, e.residual]],
+        )?;
+        write_atomic(&dir.join("energy.csv"), energy.as_bytes())?;
+        let zone: Vec<Vec<f64>> =
+            self.cohesive_zone().into_iter().map(|(x, z)| vec![x, z, z / self.lambda0]).collect();
+        write_atomic(&dir.join("zone.csv"), csv("x_m,zone_m,zone_over_lambda0", &zone)?.as_bytes())?;
+        Ok(())
+    }
+}
