@@ -765,6 +765,85 @@ fn precursors_fe_fig5<'py>(
     Ok(out)
 }
 
+/// The dynamic-rupture scene on a rigid flat (`tribofe rupture`, docs/dynamics.md): explicit
+/// elastodynamics with slip-weakening friction on the base. Arrays per base node (x >= any),
+/// NaN where the front never arrived; scalars in SI units.
+#[pyfunction]
+#[pyo3(signature = (*, s_ratio=2.0, h=1e-3, dc=7.7e-7, t_end=0.1, length=0.2, height=0.1, mu_s=0.648,
+    mu_d=0.583, sigma0=2.5, young=2000.0, poisson=0.4, density=1000.0, courant=0.5, damping=0.0,
+    contact="bilateral", normal_lag=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn rupture<'py>(
+    py: Python<'py>,
+    s_ratio: f64,
+    h: f64,
+    dc: f64,
+    t_end: f64,
+    length: f64,
+    height: f64,
+    mu_s: f64,
+    mu_d: f64,
+    sigma0: f64,
+    young: f64,
+    poisson: f64,
+    density: f64,
+    courant: f64,
+    damping: f64,
+    contact: &str,
+    normal_lag: Option<f64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::dynamics::{friction::SlipWeakening, rupture as rp};
+    let spec = rp::RuptureSpec {
+        length,
+        height,
+        h,
+        young,
+        poisson,
+        density,
+        sigma0,
+        s_ratio,
+        friction: SlipWeakening { mu_s, mu_d, d_c: dc },
+        courant,
+        t_end,
+        damping,
+        contact: contact.parse().map_err(to_py)?,
+        normal_lag,
+        ..Default::default()
+    };
+    spec.validate().map_err(to_py)?;
+    let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, &|f| poll(f)))?;
+    let opt = |v: &[Option<f64>]| v.iter().map(|t| t.unwrap_or(f64::NAN)).collect::<Vec<_>>();
+    let out = PyDict::new(py);
+    out.set_item("x_m", arr(py, &r.x))?;
+    out.set_item("width_m", arr(py, &r.width))?;
+    out.set_item("tau0_Pa", arr(py, &r.tau0))?;
+    out.set_item("t_arrival_s", arr(py, &opt(&r.t_arrival)))?;
+    out.set_item("t_weakened_s", arr(py, &opt(&r.t_weakened)))?;
+    out.set_item("slip_m", arr(py, &r.slip))?;
+    out.set_item("peak_slip_rate_m_per_s", arr(py, &r.peak_slip_rate))?;
+    out.set_item("force_drop_N_per_m", r.force_drop)?;
+    out.set_item("min_sigma_Pa", r.min_sigma)?;
+    out.set_item("steps", r.steps)?;
+    out.set_item("dt_s", r.dt)?;
+    out.set_item("dt_stable_s", r.dt_stable)?;
+    out.set_item("front_speed_m_per_s", r.front_speed)?;
+    out.set_item("c_p_m_per_s", r.speeds.c_p)?;
+    out.set_item("c_s_m_per_s", r.speeds.c_s)?;
+    out.set_item("c_R_m_per_s", r.speeds.c_r)?;
+    out.set_item("lambda0_m", r.lambda0)?;
+    let e = &r.energy;
+    let energy = PyDict::new(py);
+    energy.set_item("kinetic_J_per_m", e.kinetic)?;
+    energy.set_item("strain_J_per_m", e.strain)?;
+    energy.set_item("background_work_J_per_m", e.background_work)?;
+    energy.set_item("friction_J_per_m", e.friction)?;
+    energy.set_item("residual_J_per_m", e.residual)?;
+    out.set_item("energy", energy)?;
+    out.set_item("core_s", core_s)?;
+    Ok(out)
+}
+
 #[pymodule]
 fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
@@ -775,6 +854,7 @@ fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(converge, m)?)?;
     m.add_function(wrap_pyfunction!(precursors_fe_fig4, m)?)?;
     m.add_function(wrap_pyfunction!(precursors_fe_fig5, m)?)?;
+    m.add_function(wrap_pyfunction!(rupture, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -85,6 +85,28 @@ def test_check_fields_on_request():
     assert tribofe.check().fields is None
 
 
+def test_rupture_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "rupture"
+    r = run_cli(tribofe_bin, "rupture", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    res = tribofe.dynamics.rupture(progress=False)
+    cli = read_csv(out / "arrival.csv")
+    x = np.asarray(res["x_m"])
+    t = np.asarray(res["t_arrival_s"])
+    # arrival.csv holds the nodes with x >= 0 that the front reached (the centre node sits at
+    # ~1e-16 m from the mesher's sums, so "x >= 0" is taken with a tolerance of 1e-9 h).
+    mask = (x >= -1e-12) & np.isfinite(t)
+    np.testing.assert_allclose(x[mask], floats(cli["x_m"]), rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(t[mask], floats(cli["t_arrival_s"]), rtol=1e-11)
+    summary = read_csv(out / "summary.csv")
+    assert abs(res["force_drop_N_per_m"] - float(summary["force_drop_n_per_m"][0])) <= 1e-11 * res["force_drop_N_per_m"]
+    # The energy ledger closes to round-off (docs/dynamics.md: 5.5e-15 of the work).
+    e = res["energy"]
+    assert abs(e["residual_J_per_m"]) < 1e-10 * e["background_work_J_per_m"]
+    with pytest.raises(tribofe.InputError, match="contact"):
+        tribofe.dynamics.rupture(contact="glue", progress=False)
+
+
 def test_paper_model():
     m = tribofe.precursors.model(0.9, 0.35)
     # The paper's iteration: n = 10, F_1 = 1 - g/(r + g)... = 0.72, F_max = 1/(1 + (g/r)(1 - r)).

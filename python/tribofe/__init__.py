@@ -23,6 +23,7 @@ from ._tribofe import converge as _converge
 from ._tribofe import precursors_fe_fig4 as _fe_fig4
 from ._tribofe import precursors_fe_fig5 as _fe_fig5
 from ._tribofe import precursors_model as _precursors_model
+from ._tribofe import rupture as _rupture
 from ._tribofe import slide as _slide
 from ._tribofe import sweep as _sweep
 from .errors import InputError, Interrupted, NumericalError, OutputError, TribofeError
@@ -32,6 +33,7 @@ __all__ = [
     "check",
     "slide",
     "precursors",
+    "dynamics",
     "sweep",
     "converge",
     "CheckResult",
@@ -388,3 +390,24 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         finally:
             close()
         return _table(cols)
+
+
+class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
+    """Explicit elastodynamics with a frictional base (docs/dynamics.md)."""
+
+    @staticmethod
+    def rupture(progress: Any = True, **keys: Any) -> Dict[str, Any]:
+        """The dynamic-rupture scene on a rigid flat, as ``tribofe rupture`` (same defaults:
+        the shared cross-check spec). Keywords: ``s_ratio``, ``h`` (m), ``dc`` (m), ``t_end``
+        (s), ``length``, ``height`` (m), ``mu_s``, ``mu_d``, ``sigma0`` (Pa), ``young`` (Pa),
+        ``poisson``, ``density`` (kg/m^3), ``courant``, ``damping`` (s), ``contact``
+        (``"bilateral"``, ``"unilateral"``, ``"symmetric"``), ``normal_lag`` (s).
+
+        Returns per base node ``x_m``, ``t_arrival_s`` (NaN where the front never arrived),
+        ``slip_m``, ``peak_slip_rate_m_per_s``..., and the force drop, front speed, wave
+        speeds, cohesive-zone size ``lambda0_m`` and the energy ledger."""
+        cb, close = _progress(progress, "rupture")
+        try:
+            return _rupture(progress=cb, **keys)
+        finally:
+            close()

@@ -55,7 +55,7 @@ class Scene:
     @property
     def element(self) -> str: ...
 
-def check(scene: Optional[Scene] = None) -> Dict[str, Any]: ...
+def check(scene: Optional[Scene] = None, fields: bool = False) -> Dict[str, Any]: ...
 def slide(
     scene: Optional[Scene] = None,
     law: str = "coulomb",
@@ -101,3 +101,31 @@ def converge(
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
 def precursors_model(r: float = 0.9, g: float = 0.35, events: Optional[int] = None) -> Dict[str, Any]: ...
+def precursors_fe_fig4(
+    scene: Optional[Scene] = None, r: float = 0.9, g: float = 0.35, cycles: int = 1,
+    progress: Optional[Callable[[float], None]] = None,
+) -> List[Dict[str, Any]]: ...
+def precursors_fe_fig5(
+    scene: Optional[Scene] = None, resolution: int = 20, rules: List[str] = ..., max_events: int = 2000,
+    progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
+def rupture(
+    *,
+    s_ratio: float = 2.0,
+    h: float = 1e-3,
+    dc: float = 7.7e-7,
+    t_end: float = 0.1,
+    length: float = 0.2,
+    height: float = 0.1,
+    mu_s: float = 0.648,
+    mu_d: float = 0.583,
+    sigma0: float = 2.5,
+    young: float = 2000.0,
+    poisson: float = 0.4,
+    density: float = 1000.0,
+    courant: float = 0.5,
+    damping: float = 0.0,
+    contact: str = "bilateral",
+    normal_lag: Optional[float] = None,
+    progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...

@@ -258,8 +258,9 @@ pub struct RuptureResult {
     pub energy: RuptureEnergy,
 }
 
-/// Runs the scene; `progress(fraction)` is called every ~1 % of the steps.
-pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> {
+/// Runs the scene; `progress(fraction)` is called every ~1 % of the steps, where `cancel` is
+/// checked too.
+pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: &dyn Fn(f64)) -> Result<RuptureResult> {
     spec.validate()?;
     let mat = spec.material()?;
     let speeds = WaveSpeeds::new(&mat, spec.density);
@@ -416,6 +417,7 @@ pub fn run(spec: &RuptureSpec, progress: &dyn Fn(f64)) -> Result<RuptureResult> 
         }
         if step % every == 0 {
             progress(step as f64 / steps as f64);
+            cancel.check()?;
         }
     }
     // The friction at t_end itself (step N), as the spec's force drop asks.

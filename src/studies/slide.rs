@@ -129,11 +129,13 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
             ));
         }
     }
-    if let Law::Coulomb { mu } = o.law {
+    // Frictionless, the interface slides at once: only a run to a given X (the mu -> 0 limit
+    // of a verification) has anything to compute.
+    if let (Law::Coulomb { mu }, None) = (o.law, o.x_max) {
         if mu == 0.0 {
             return Err(Error::input(
                 "--mu",
-                "0: without friction the whole interface slides as soon as it is loaded, there are no events to compute; give mu > 0",
+                "0: without friction the whole interface slides as soon as it is loaded, there are no events to compute; give mu > 0 (or --x-max for the frictionless state)",
             ));
         }
     }
