@@ -145,7 +145,10 @@ pub fn quote_lines(s: &str) -> String {
     if !s.chars().any(|c| c.is_control() && c != '\n' && c != '\t') {
         return s.to_string();
     }
-    s.split('\n').map(|l| l.split('\t').map(quote).collect::<Vec<_>>().join("\t")).collect::<Vec<_>>().join("\n")
+    s.split('\n')
+        .map(|l| l.split('\t').map(quote).collect::<Vec<_>>().join("\t"))
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 pub type Result<T> = std::result::Result<T, Error>;

@@ -3,7 +3,6 @@
 #[macro_use]
 mod cli;
 
-
 // The studies report their own peak heap (converge's peak_heap_mib) through this allocator.
 #[cfg(feature = "count-alloc")]
 #[global_allocator]

@@ -127,13 +127,36 @@ fn every_command_writes_a_run_file_with_its_provenance() {
     let cases: &[(&[&str], &str, bool)] = &[
         (&["check", "--length", "0.05", "--no-fields", "--out", "ck"], "ck", true),
         (&["solve", "--nx", "8", "--ny", "2", "--out", "so"], "so", false),
-        (&["converge", "--length", "0.05", "--families", "uniform", "--n-thick", "1,2", "--out", "cv"], "cv", true),
-        (&["stability", "--study", "corners", "--corner-max", "4", "--length", "0.05", "--out", "st"], "st", true),
-        (&["slide", "--length", "0.05", "--h", "0.001", "--law", "coulomb", "--mu", "0.5", "--out", "sl"], "sl", true),
+        (
+            &["converge", "--length", "0.05", "--families", "uniform", "--n-thick", "1,2", "--out", "cv"],
+            "cv",
+            true,
+        ),
+        (
+            &["stability", "--study", "corners", "--corner-max", "4", "--length", "0.05", "--out", "st"],
+            "st",
+            true,
+        ),
+        (
+            &["slide", "--length", "0.05", "--h", "0.001", "--law", "coulomb", "--mu", "0.5", "--out", "sl"],
+            "sl",
+            true,
+        ),
         (
             &[
-                "edges", "--length", "0.05", "--mu", "0.3", "--refine", "2", "--t-over-l", "0.04", "--h-over-l",
-                "0.1", "--out", "ed",
+                "edges",
+                "--length",
+                "0.05",
+                "--mu",
+                "0.3",
+                "--refine",
+                "2",
+                "--t-over-l",
+                "0.04",
+                "--h-over-l",
+                "0.1",
+                "--out",
+                "ed",
             ],
             "ed",
             true,
@@ -152,8 +175,18 @@ fn every_command_writes_a_run_file_with_its_provenance() {
         (&["precursors", "--fe", "--heights", "0.1", "--length", "0.05", "--out", "ph"], "ph", true),
         (
             &[
-                "precursors", "--fe", "--dc", "1e-6", "--length", "0.05", "--thickness", "0.004", "--h", "0.002",
-                "--out", "pd",
+                "precursors",
+                "--fe",
+                "--dc",
+                "1e-6",
+                "--length",
+                "0.05",
+                "--thickness",
+                "0.004",
+                "--h",
+                "0.002",
+                "--out",
+                "pd",
             ],
             "pd",
             true,
@@ -251,9 +284,10 @@ fn control_bytes_are_quoted_in_every_message() {
     let e = refused(d, &["check", "--scene", "s.toml", "--out", "x"], &["element"]);
     assert_quoted(&e, "scene string");
     // In a physical name of a mesh.
-    let mesh = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/meshes/block_regular_v22_ascii.msh"))
-        .unwrap()
-        .replace("\"interface\"", "\"inter\u{1b}face\"");
+    let mesh =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/meshes/block_regular_v22_ascii.msh"))
+            .unwrap()
+            .replace("\"interface\"", "\"inter\u{1b}face\"");
     std::fs::write(d.join("esc.msh"), mesh).unwrap();
     let e = refused(d, &["check", "--mesh", "esc.msh", "--out", "x"], &["interface"]);
     assert_quoted(&e, "physical name");
@@ -276,7 +310,20 @@ fn negative_values_reach_the_range_checks_in_both_forms() {
     refused(d, &["sweep", "--poisson", "-2:0.3:3", "--out", "x"], &["--poisson"]);
     refused(d, &["slide", "--n-force", "-1", "--out", "x"], &["--n-force"]);
     // Accepted where it makes sense: F/N < 0 drives the block the other way.
-    let out = ok(d, &["check", "--length", "0.05", "--no-converged", "--no-fields", "--fn-ratios", "-0.41,0", "--out", "neg"]);
+    let out = ok(
+        d,
+        &[
+            "check",
+            "--length",
+            "0.05",
+            "--no-converged",
+            "--no-fields",
+            "--fn-ratios",
+            "-0.41,0",
+            "--out",
+            "neg",
+        ],
+    );
     assert!(out.contains("wrote"));
     assert!(d.join("neg/profile_FN-0.41.csv").exists());
 }
@@ -336,7 +383,20 @@ fn flags_that_cannot_act_are_refused() {
     std::fs::write(d.join("rigid.toml"), "[plate]\nmodel = \"rigid\"\nthickness = 0.01\n").unwrap();
     refused(d, &["check", "--scene", "rigid.toml", "--out", "x"], &["plate.thickness", "rigid.toml"]);
     // A scene written by --write-scene (every key, the plate's at their defaults) is accepted.
-    ok(d, &["check", "--length", "0.05", "--no-converged", "--no-fields", "--write-scene", "w.toml", "--out", "w"]);
+    ok(
+        d,
+        &[
+            "check",
+            "--length",
+            "0.05",
+            "--no-converged",
+            "--no-fields",
+            "--write-scene",
+            "w.toml",
+            "--out",
+            "w",
+        ],
+    );
     ok(d, &["check", "--scene", "w.toml", "--no-converged", "--no-fields", "--out", "w"]);
     refused(d, &["precursors", "--length", "0.1", "--out", "x"], &["--length", "--fe"]);
     refused(d, &["precursors", "--fe", "--events", "5", "--out", "x"], &["--events"]);

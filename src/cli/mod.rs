@@ -134,7 +134,8 @@ fn join_negative_values(cmd: &clap::Command, args: Vec<std::ffi::OsString>) -> V
     let mut out = Vec::with_capacity(args.len());
     let mut it = args.into_iter().peekable();
     while let Some(a) = it.next() {
-        let flag = a.to_str().and_then(|s| s.strip_prefix("--")).filter(|f| !f.contains('=') && !f.is_empty());
+        let flag =
+            a.to_str().and_then(|s| s.strip_prefix("--")).filter(|f| !f.contains('=') && !f.is_empty());
         let next_negative = it.peek().and_then(|n| n.to_str()).is_some_and(|n| {
             let mut c = n.chars();
             c.next() == Some('-') && c.next().is_some_and(|c| c.is_ascii_digit() || c == '.')
@@ -283,7 +284,10 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
     ];
     match cli.command {
         Command::Solve(a) => solve::run(a).map_err(|e| {
-            typed_flag(e, &[("Poisson's ratio", "--poisson"), ("Young's modulus", "--young"), ("mesh", "--nx/--ny")])
+            typed_flag(
+                e,
+                &[("Poisson's ratio", "--poisson"), ("Young's modulus", "--young"), ("mesh", "--nx/--ny")],
+            )
         }),
         Command::Check(a) => check::run(a),
         Command::Converge(a) => converge::run(a),

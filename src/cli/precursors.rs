@@ -101,7 +101,10 @@ pub fn run(args: Args) -> tribofe::Result<()> {
             ));
         }
         if super::given("max_events") && !args.map && args.dc.is_none() {
-            return Err(Error::input("--max-events", "cannot act here: it caps --fe --map cells and --fe --dc runs"));
+            return Err(Error::input(
+                "--max-events",
+                "cannot act here: it caps --fe --map cells and --fe --dc runs",
+            ));
         }
         if super::given("rules") && !args.map {
             return Err(Error::input("--rules", "cannot act without --map: --fe runs every rule for fig. 4"));

@@ -91,7 +91,10 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     let mut results = toml::Table::new();
     results.insert("unknowns".into(), (r.solution.stats.n_unknowns as i64).into());
     for (name, f) in SIDES.iter().zip(&r.side_reactions) {
-        results.insert(format!("reaction_{name}_n_per_m"), toml::Value::try_from(f).map_err(|e| tribofe::Error::input("run.toml", e.to_string()))?);
+        results.insert(
+            format!("reaction_{name}_n_per_m"),
+            toml::Value::try_from(f).map_err(|e| tribofe::Error::input("run.toml", e.to_string()))?,
+        );
     }
     super::write_run_file(dir.path(), None, &results)?;
     dir.commit()?;

@@ -41,7 +41,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         args.study.clone()
     };
     let runs = |names: &[&str]| studies.iter().any(|s| names.contains(&s.as_str()));
-    for (id, flag, needs) in [("n_ref", "--n-ref", &["nu", "shape"][..]), ("corner_max", "--corner-max", &["corners"])] {
+    for (id, flag, needs) in
+        [("n_ref", "--n-ref", &["nu", "shape"][..]), ("corner_max", "--corner-max", &["corners"])]
+    {
         if super::given(id) && !runs(needs) {
             return Err(tribofe::Error::input(
                 flag,

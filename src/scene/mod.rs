@@ -290,7 +290,10 @@ impl Scene {
         }
         if let Some(g) = self.mesh.grading {
             if !(g.is_finite() && g >= 1.0) {
-                return Err(Error::input("mesh.grading (--grading)", format!("{g} must be a growth ratio >= 1")));
+                return Err(Error::input(
+                    "mesh.grading (--grading)",
+                    format!("{g} must be a growth ratio >= 1"),
+                ));
             }
         }
         if let Some(m) = self.mesh.h_max {
@@ -334,7 +337,10 @@ impl Scene {
         }
         limits::effective(self.mesh.max_dofs)?;
         if self.mesh.n_thick == Some(0) {
-            return Err(Error::input("mesh.n_thick (--n-thick)", "need at least one element through the thickness"));
+            return Err(Error::input(
+                "mesh.n_thick (--n-thick)",
+                "need at least one element through the thickness",
+            ));
         }
         if self.mesh.h > self.block.thickness && self.mesh.n_thick.is_none() {
             return Err(Error::input(
