@@ -27,12 +27,6 @@ pub use super::scene_args::{scene, SceneArgs};
 
 pub fn run(args: Args) -> tribofe::Result<()> {
     let scene = scene(&args.scene)?;
-    if args.no_converged && (scene.plate.model != PlateModel::Rigid || scene.mesh.file.is_some()) {
-        return Err(tribofe::Error::input(
-            "--no-converged",
-            "cannot act: the converged run is made only with the rigid plate and the built-in mesh",
-        ));
-    }
     tribofe::io::outdir::check(&args.out, args.force)?;
     let opts = SolverOptions::default();
     let (res, sm) = tribofe::studies::check::run(&scene, &opts)?;
