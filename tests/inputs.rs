@@ -358,7 +358,7 @@ fn output_folder_is_replaced_whole_or_not_at_all() {
     assert!(full.contains(&"run.toml".to_string()) && full.contains(&"fields_FN0.6.vtu".to_string()));
     let run = std::fs::read_to_string(out.join("run.toml")).unwrap();
     assert!(
-        run.contains("tribofe_version") && run.contains("n_force_n_per_m") && run.contains("[scene.block]")
+        run.contains("\n[tribofe]\n") && run.contains("n_force_n_per_m") && run.contains("[scene.block]")
     );
     // The previous folder, marked; a rerun with other ratios replaces it whole (no stale files).
     std::fs::write(out.join("old"), "").unwrap();

@@ -404,5 +404,6 @@ fn flags_that_cannot_act_are_refused() {
     refused(d, &["stability", "--study", "nu", "--corner-max", "4", "--out", "x"], &["--corner-max"]);
     refused(d, &["slide", "--law", "coulomb", "--rule", "overdamped", "--out", "x"], &["--rule"]);
     refused(d, &["bench", "--case", "square1", "--repeat", "0", "--out", "x"], &["--repeat"]);
+    refused(d, &["precursors", "--fe", "--dc", "1e-6", "--cycles", "2", "--out", "x"], &["--cycles", "--dc"]);
     assert!(!d.join("x").exists(), "nothing written by a refused run");
 }

@@ -168,7 +168,7 @@ def test_errors_are_exceptions_not_crashes():
         tribofe.precursors.model(1.5, 0.35)
     # A run that needs more events than its cap: the command's status 2, as an exception.
     with pytest.raises(tribofe.InputError, match="more than 3 events"):
-        tribofe.slide(law="static-kinetic", max_events=3, progress=False)
+        tribofe.slide(law="static-kinetic", cycles=1, max_events=3, progress=False)
 
 
 def test_scene_toml_round_trip(tmp_path):

@@ -1,4 +1,7 @@
 //! `tribofe precursors`: the paper's event iteration for one (r, g), or the n(r, g) map.
+//! Over 600 lines: one flag set drives eight modes (model, map, FE fig. 4, FE map, thin layer,
+//! heights, D_c, bonded fields), each a short function printing its own table; they share the
+//! argument checks and the folder writing here.
 
 use std::path::{Path, PathBuf};
 use tribofe::linalg::solve::SolverOptions;
@@ -108,6 +111,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
                 "--max-events",
                 "cannot act here: it caps --fe --map cells and --fe --dc runs",
             ));
+        }
+        if args.cycles.is_some() && args.dc.is_some() {
+            return Err(Error::input("--cycles", "cannot act with --dc, whose runs stop after one cycle"));
         }
         if super::given("rules") && !args.map {
             return Err(Error::input("--rules", "cannot act without --map: --fe runs every rule for fig. 4"));
