@@ -14,7 +14,7 @@ pub struct Args {
     #[arg(long, default_value = "out/check")]
     pub out: PathBuf,
     /// Field files of the whole mesh: vtu (fields_FN*.vtu + fields.pvd, ParaView, raw binary),
-    /// msh (fields_FN*.msh, Gmsh ASCII: ~1.2x larger and several times slower), both, or none.
+    /// msh (fields_FN*.msh, Gmsh ASCII: ~1.6x larger and ~3x slower to write), both, or none.
     #[arg(long, default_value = "vtu", value_parser = ["vtu", "msh", "both", "none"])]
     pub fields: String,
     /// Same as --fields none.
