@@ -52,9 +52,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         _ => None,
     };
     if let Some(n) = args.n_force {
-        res.scale_to_normal_force(n)?;
+        tribofe::report::check::scale_to_normal_force(&mut res, n)?;
         if let Some(c) = &mut converged {
-            c.scale_to_normal_force(n)?;
+            tribofe::report::check::scale_to_normal_force(c, n)?;
         }
     }
     // A failed self-check is an error: nothing is written.
