@@ -17,7 +17,7 @@ pub struct Args {
     #[arg(long)]
     pub force: bool,
     /// Field files of the whole mesh: vtu (fields_FN*.vtu + fields.pvd, ParaView, raw binary),
-    /// msh (fields_FN*.msh, Gmsh ASCII: ~1.2x larger and several times slower), both, or none.
+    /// msh (fields_FN*.msh, Gmsh ASCII: ~1.6x larger and ~3x slower to write), both, or none.
     #[arg(long, default_value = "vtu", value_parser = ["vtu", "msh", "both", "none"])]
     pub fields: String,
     /// Same as --fields none.
@@ -55,9 +55,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         _ => None,
     };
     if let Some(n) = args.n_force {
-        res.scale_to_normal_force(n)?;
+        tribofe::report::check::scale_to_normal_force(&mut res, n)?;
         if let Some(c) = &mut converged {
-            c.scale_to_normal_force(n)?;
+            tribofe::report::check::scale_to_normal_force(c, n)?;
         }
     }
     // A failed self-check is an error: nothing is written.

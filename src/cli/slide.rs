@@ -124,6 +124,9 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     )?;
     let scene = scene_from(&a.scene)?;
     let field_format: tribofe::io::FieldFormat = a.field_format.parse()?;
+    if a.fields == 0 && field_format != tribofe::io::FieldFormat::Vtu {
+        return Err(Error::input("--field-format", "acts only with --fields N (N > 0 states to write)"));
+    }
     tribofe::io::outdir::check(&a.out, a.force)?;
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));

@@ -40,6 +40,21 @@ pub fn run_toml(res: &CheckResult, inv: &super::run_file::Invocation) -> Result<
     super::run_toml(inv, &cases, &res.scene)
 }
 
+/// Rescales every case to the normal force `n` (N/m): the problem is linear, so forces,
+/// plate motions and displacements scale by n / N; the profiles (in units of N/L) do not
+/// change. Without it N is the force of pressing the rigid plate down by 0.05 t.
+pub fn scale_to_normal_force(res: &mut CheckResult, n: f64) -> Result<()> {
+    if !(n.is_finite() && n > 0.0) {
+        return Err(Error::input("--n-force", format!("{n} N/m: give a positive normal force")));
+    }
+    for (c, u) in res.cases.iter_mut().zip(&mut res.displacements) {
+        let k = n / c.n;
+        (c.n, c.f, c.tilt, c.plate_u, c.plate_v) = (n, c.f * k, c.tilt * k, c.plate_u * k, c.plate_v * k);
+        u.iter_mut().for_each(|v| *v *= k);
+    }
+    Ok(())
+}
+
 pub fn write(res: &CheckResult, converged: Option<&CheckResult>, dir: &Path) -> Result<()> {
     if let Some(c) = converged {
         write(c, None, &dir.join("converged"))?;

@@ -197,7 +197,12 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
         let y = k as f64;
         force.push((st.f / n, y));
         if let Some((a, b)) = e.region {
-            segs.push((c.x[a] / c.l, c.x[b] / c.l, y, a == 0 && b + 1 == c.n));
+            segs.push((
+                c.x[a] / c.l,
+                c.x[b] / c.l,
+                y,
+                e.kind == crate::interface::events::EventKind::Sliding || (a == 0 && b + 1 == c.n),
+            ));
         }
         let mut i = 0;
         while i < c.n {

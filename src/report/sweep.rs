@@ -316,6 +316,16 @@ fn scale(f: f64) -> RGBColor {
     )
 }
 
+/// Decimals that tell the values of a range apart (3 at least, 10 at most).
+fn decimals(lo: f64, hi: f64) -> usize {
+    let span = hi - lo;
+    if span > 0.0 && span.is_finite() {
+        (2.0 - span.log10().floor()).clamp(3.0, 10.0) as usize
+    } else {
+        3
+    }
+}
+
 fn value_range(cells: &[(usize, usize, Option<f64>)]) -> (f64, f64) {
     cells.iter().filter_map(|c| c.2).fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)))
 }
@@ -381,7 +391,7 @@ fn heat_map(q: &Figure, ax: &Axis, ay: &Axis, cells: &[(usize, usize, Option<f64
                 let label = match v {
                     None => "-".to_string(),
                     Some(v) if q.boolean => (if v != 0.0 { "holds" } else { "fails" }).to_string(),
-                    Some(v) => format!("{v:.3}"),
+                    Some(v) => format!("{v:.*}", decimals(lo, hi)),
                 };
                 chart
                     .draw_series(std::iter::once(Text::new(
@@ -436,7 +446,7 @@ where
         .disable_mesh()
         .disable_x_axis()
         .y_labels(6)
-        .y_label_formatter(&|v: &f64| format!("{v:.3}"))
+        .y_label_formatter(&|v: &f64| format!("{v:.*}", decimals(lo, hi)))
         .draw()
         .map_err(err)?;
     let steps = 100;
@@ -479,7 +489,7 @@ fn line_plot(q: &Figure, ax: &Axis, cells: &[(usize, usize, Option<f64>)]) -> Re
             .map_err(err)?;
         let yl = |v: &f64| {
             if !q.boolean {
-                format!("{v:.3}")
+                format!("{v:.*}", decimals(lo, hi))
             } else if (v - 1.0).abs() < 1e-9 {
                 "holds".into()
             } else if v.abs() < 1e-9 {

@@ -84,21 +84,6 @@ pub struct CheckResult {
 }
 
 impl CheckResult {
-    /// Rescales every case to the normal force `n` (N/m): the problem is linear, so forces,
-    /// plate motions and displacements scale by n / N; the profiles (in units of N/L) do not
-    /// change. Without it N is the force of pressing the rigid plate down by 0.05 t.
-    pub fn scale_to_normal_force(&mut self, n: f64) -> Result<()> {
-        if !(n.is_finite() && n > 0.0) {
-            return Err(Error::input("--n-force", format!("{n} N/m: give a positive normal force")));
-        }
-        for (c, u) in self.cases.iter_mut().zip(&mut self.displacements) {
-            let k = n / c.n;
-            (c.n, c.f, c.tilt, c.plate_u, c.plate_v) = (n, c.f * k, c.tilt * k, c.plate_u * k, c.plate_v * k);
-            u.iter_mut().for_each(|v| *v *= k);
-        }
-        Ok(())
-    }
-
     /// Worst global-balance error of all load cases (relative to the load size).
     pub fn balance_error(&self) -> f64 {
         self.cases
