@@ -31,7 +31,7 @@ pub struct OutDir {
 }
 
 /// The run file every output folder holds (`run.toml`); a folder is tribofe's when it holds one
-/// that starts with [`RUN_FILE_MARKER`] and has a `[tribofe]` table.
+/// that starts with [`RUN_FILE_MARKER`].
 pub const RUN_FILE: &str = "run.toml";
 /// The first line of every run file starts with this.
 pub const RUN_FILE_MARKER: &str = "# written by tribofe";
@@ -49,13 +49,15 @@ pub fn is_tribofe_folder(dir: &Path) -> bool {
     })
 }
 
-/// Whether `path` is a run file: the marker line first and a `[tribofe]` table.
+/// Whether `path` is a run file: the marker line first.
 fn is_run_file(path: &Path) -> bool {
     use std::io::Read;
     let mut head = String::new();
     // The marker and the table come first: a bounded read, whatever the file's size.
     let read = std::fs::File::open(path).and_then(|f| f.take(64 * 1024).read_to_string(&mut head));
-    read.is_ok() && head.starts_with(RUN_FILE_MARKER) && head.lines().any(|l| l.trim() == "[tribofe]")
+    // The marker alone also recognises the run files of tribofe versions before the
+    // [tribofe] table (slide and edges wrote one).
+    read.is_ok() && head.starts_with(RUN_FILE_MARKER)
 }
 
 /// Refuses an output path that cannot become a folder (an existing file, a dangling
