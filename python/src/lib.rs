@@ -9,7 +9,7 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
-use tribofe::interface::law::{Law, Rule};
+use tribofe::interface::law::Rule;
 use tribofe::scene::{Overrides, PlateModel, Scene as RsScene};
 use tribofe::{Cancel, Error};
 
@@ -309,58 +309,6 @@ fn check<'py>(
     Ok(out)
 }
 
-#[allow(clippy::too_many_arguments)]
-fn law(
-    scene: &RsScene,
-    name: &str,
-    mu: Option<f64>,
-    mu_s: Option<f64>,
-    mu_d: Option<f64>,
-    r: Option<f64>,
-    g: Option<f64>,
-    rule: &str,
-    dc: Option<f64>,
-) -> tribofe::Result<Law> {
-    let rule: Rule = rule.parse()?;
-    let pair = |r, g| tribofe::studies::slide::coefficients_from_rg(scene, r, g);
-    match name {
-        "coulomb" => {
-            if mu_s.is_some() || mu_d.is_some() || r.is_some() || dc.is_some() {
-                return Err(Error::input("law", "coulomb takes mu (or g alone), not mu_s/mu_d/r/dc"));
-            }
-            match (mu, g) {
-                (Some(m), None) => Law::coulomb(m),
-                (None, Some(g)) => Law::coulomb(g * scene.block.length / (6.0 * scene.loading.height)),
-                (None, None) => Law::coulomb(0.5),
-                _ => Err(Error::input("mu", "give mu or g, not both")),
-            }
-        }
-        "static-kinetic" | "slip-weakening" => {
-            if mu.is_some() {
-                return Err(Error::input("mu", format!("{name} takes mu_s and mu_d (or r and g)")));
-            }
-            let (s, d) = match (mu_s, mu_d, r, g) {
-                (Some(s), Some(d), None, None) => (s, d),
-                (None, None, Some(r), Some(g)) => pair(r, g)?,
-                (None, None, None, None) => pair(0.9, 0.35)?,
-                _ => return Err(Error::input("mu_s/mu_d", "give both mu_s and mu_d, or both r and g")),
-            };
-            match (name, dc) {
-                ("slip-weakening", Some(dc)) => Law::slip_weakening(s, d, dc),
-                ("slip-weakening", None) => {
-                    Err(Error::input("dc", "slip-weakening needs dc, the weakening slip in m"))
-                }
-                (_, Some(_)) => Err(Error::input("dc", "dc belongs to law='slip-weakening'")),
-                _ => Law::static_kinetic(s, d, rule),
-            }
-        }
-        other => Err(Error::input(
-            "law",
-            format!("'{}': use coulomb, static-kinetic or slip-weakening", tribofe::error::quote(other)),
-        )),
-    }
-}
-
 /// The frictional interface under N then the drive X at height H, event by event.
 #[pyfunction]
 #[pyo3(signature = (scene=None, law="coulomb", *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
@@ -387,7 +335,17 @@ fn slide<'py>(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
-    let law = self::law(&scene, law, mu, mu_s, mu_d, r, g, rule, dc).map_err(to_py)?;
+    let choice = tribofe::studies::slide::LawChoice {
+        law: law.to_string(),
+        mu,
+        mu_s,
+        mu_d,
+        r,
+        g,
+        rule: rule.to_string(),
+        dc,
+    };
+    let law = choice.law(&scene).map_err(to_py)?;
     if newton && !law.weakens() {
         return Err(to_py(Error::input("newton", "newton cannot act without law='slip-weakening'")));
     }

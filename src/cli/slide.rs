@@ -4,8 +4,8 @@ use super::scene_args::{scene as scene_from, SceneArgs};
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use tribofe::interface::law::{Law, Rule};
-use tribofe::studies::slide::{coefficients_from_rg, SlideOptions};
+use tribofe::interface::law::Law;
+use tribofe::studies::slide::SlideOptions;
 use tribofe::Error;
 
 #[derive(ClapArgs, Debug)]
@@ -71,47 +71,17 @@ pub struct Args {
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
-    let rule: Rule = a.rule.parse()?;
-    match a.law.as_str() {
-        "coulomb" => {
-            if a.mu_s.is_some() || a.mu_d.is_some() || a.r.is_some() {
-                return Err(Error::input("law", "coulomb takes --mu (or --g alone), not --mu-s/--mu-d/--r"));
-            }
-            let mu = match (a.mu, a.g) {
-                (Some(m), None) => m,
-                (None, Some(g)) => g * scene.block.length / (6.0 * scene.loading.height),
-                (None, None) => 0.5,
-                _ => return Err(Error::input("mu", "give --mu or --g, not both")),
-            };
-            Law::coulomb(mu)
-        }
-        "static-kinetic" | "slip-weakening" => {
-            if a.mu.is_some() {
-                return Err(Error::input(
-                    "mu",
-                    format!("{} takes --mu-s and --mu-d (or --r and --g)", a.law),
-                ));
-            }
-            let (ms, md) = match (a.mu_s, a.mu_d, a.r, a.g) {
-                (Some(s), Some(d), None, None) => (s, d),
-                (None, None, Some(r), Some(g)) => coefficients_from_rg(scene, r, g)?,
-                (None, None, None, None) => coefficients_from_rg(scene, 0.9, 0.35)?,
-                _ => {
-                    return Err(Error::input("mu-s/mu-d", "give both --mu-s and --mu-d, or both --r and --g"))
-                }
-            };
-            match a.dc {
-                None if a.law == "slip-weakening" => {
-                    Err(Error::input("dc", "slip-weakening needs --dc, the weakening slip distance in m"))
-                }
-                Some(dc) => Law::slip_weakening(ms, md, dc),
-                None => Law::static_kinetic(ms, md, rule),
-            }
-        }
-        other => {
-            Err(Error::input("law", format!("'{other}': use coulomb, static-kinetic or slip-weakening")))
-        }
+    tribofe::studies::slide::LawChoice {
+        law: a.law.clone(),
+        mu: a.mu,
+        mu_s: a.mu_s,
+        mu_d: a.mu_d,
+        r: a.r,
+        g: a.g,
+        rule: a.rule.clone(),
+        dc: a.dc,
     }
+    .law(scene)
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {

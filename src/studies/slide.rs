@@ -393,3 +393,82 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
         f_max_fe: evs.iter().rfind(|e| e.ends_cycle()).map(|e| e.f / k),
     })
 }
+
+/// A friction law as a user names it (the `slide` command's flags, the Python package's
+/// keywords): the law's name and whichever coefficients were given.
+#[derive(Debug, Clone, Default)]
+pub struct LawChoice {
+    /// coulomb, static-kinetic or slip-weakening.
+    pub law: String,
+    pub mu: Option<f64>,
+    pub mu_s: Option<f64>,
+    pub mu_d: Option<f64>,
+    /// The paper's r = mu_d/mu_s and g = 6 mu_d H/L (g alone sets coulomb's mu).
+    pub r: Option<f64>,
+    pub g: Option<f64>,
+    /// Relaxation rule of static-kinetic: paper or overdamped.
+    pub rule: String,
+    /// Weakening slip, m (slip-weakening only).
+    pub dc: Option<f64>,
+}
+
+impl LawChoice {
+    /// The law on `scene` (g and r need its L and H), or the refusal naming what to give.
+    /// Defaults: coulomb mu = 0.5; the other laws the paper's (r, g) = (0.9, 0.35).
+    pub fn law(&self, scene: &Scene) -> Result<Law> {
+        let rule: crate::interface::law::Rule = self.rule.parse()?;
+        match self.law.as_str() {
+            "coulomb" => {
+                if self.mu_s.is_some() || self.mu_d.is_some() || self.r.is_some() {
+                    return Err(Error::input(
+                        "law",
+                        "coulomb takes --mu (or --g alone), not --mu-s/--mu-d/--r",
+                    ));
+                }
+                if self.dc.is_some() {
+                    return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
+                }
+                let mu = match (self.mu, self.g) {
+                    (Some(m), None) => m,
+                    (None, Some(g)) => g * scene.block.length / (6.0 * scene.loading.height),
+                    (None, None) => 0.5,
+                    _ => return Err(Error::input("mu", "give --mu or --g, not both")),
+                };
+                Law::coulomb(mu)
+            }
+            "static-kinetic" | "slip-weakening" => {
+                if self.mu.is_some() {
+                    return Err(Error::input(
+                        "mu",
+                        format!("{} takes --mu-s and --mu-d (or --r and --g)", self.law),
+                    ));
+                }
+                let (ms, md) = match (self.mu_s, self.mu_d, self.r, self.g) {
+                    (Some(s), Some(d), None, None) => (s, d),
+                    (None, None, Some(r), Some(g)) => coefficients_from_rg(scene, r, g)?,
+                    (None, None, None, None) => coefficients_from_rg(scene, 0.9, 0.35)?,
+                    _ => {
+                        return Err(Error::input(
+                            "mu-s/mu-d",
+                            "give both --mu-s and --mu-d, or both --r and --g",
+                        ))
+                    }
+                };
+                match self.dc {
+                    None if self.law == "slip-weakening" => {
+                        Err(Error::input("dc", "slip-weakening needs --dc, the weakening slip distance in m"))
+                    }
+                    Some(_) if self.law != "slip-weakening" => {
+                        Err(Error::input("dc", "--dc belongs to --law slip-weakening"))
+                    }
+                    Some(dc) => Law::slip_weakening(ms, md, dc),
+                    None => Law::static_kinetic(ms, md, rule),
+                }
+            }
+            other => Err(Error::input(
+                "law",
+                format!("'{}': use coulomb, static-kinetic or slip-weakening", crate::error::quote(other)),
+            )),
+        }
+    }
+}
