@@ -39,6 +39,20 @@ fn refused(args: &[&str], flag: &str, also: &[&str]) -> Ran {
 #[test]
 fn degenerate_frictional_inputs_are_refused_with_the_reason() {
     refused(&["slide", "--law", "coulomb", "--mu", "0"], "--mu", &["slides as soon as it is loaded"]);
+    // Given an end, the frictionless response is well posed; it ran forever drawing fig. 4
+    // with F/(mu_s N) infinite. Its shear force is zero to round-off (F/N below 1e-12).
+    let dir = out("mu0");
+    let r = run(
+        &["slide", "--law", "coulomb", "--mu", "0", "--x-max", "1e-6", "--out", dir.to_str().unwrap()],
+        LIMIT,
+    );
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let line = r.stdout.lines().find(|l| l.starts_with("final F/N = ")).unwrap();
+    let f: f64 = line["final F/N = ".len()..].split_whitespace().next().unwrap().parse().unwrap();
+    assert!(f.abs() < 1e-12, "{line}");
+    let _ = std::fs::remove_dir_all(&dir);
+    refused(&["slide", "--law", "coulomb", "--mu", "1e7"], "mu", &["above 1000000"]);
+    refused(&["slide", "--x-max", "1e308"], "--x-max", &["block's length"]);
     // The paper's block: tau t/G = mu_s (N/L) t / (E/(2(1 + nu))) with mu_s = 0.35/(0.6 x 0.9),
     // N/L = 2.5 Pa, t = 2 mm, E = 2 kPa, nu = 0.4: 4.537e-6 m; the floor is 1e-6 of it.
     let slip: f64 = 0.35 / 0.6 / 0.9 * 2.5 * 0.002 / (2e3 / 2.8);
@@ -62,14 +76,21 @@ fn count_and_size_flags_are_bounded_before_allocation() {
     refused(&["precursors", "--events", "18446744073709551615"], "--events", &["100000"]);
     refused(&["sweep", "--length", "0.1:1:1000000000"], "--length", &["at most 100000"]);
     // Two axes whose product is above the cap, each below it.
-    refused(&["sweep", "--length", "0.1:1:1000", "--thickness", "0.001:0.002:1000"], "sweep", &["100000 points"]);
+    refused(
+        &["sweep", "--length", "0.1:1:1000", "--thickness", "0.001:0.002:1000"],
+        "sweep",
+        &["100000 points"],
+    );
 }
 
 #[test]
 fn a_relaxation_capped_at_one_event_finishes() {
     // Ran past a minute before: with every run refused the D_c figure looped on an empty range.
     let dir = out("dc_cap");
-    let r = run(&["precursors", "--fe", "--dc", "1e-6", "--max-events", "1", "--out", dir.to_str().unwrap()], LIMIT);
+    let r = run(
+        &["precursors", "--fe", "--dc", "1e-6", "--max-events", "1", "--out", dir.to_str().unwrap()],
+        LIMIT,
+    );
     assert_eq!(r.code, 2, "{}", r.stderr);
     assert!(r.stderr.contains("more than 1 events") && r.stderr.contains("--max-events"), "{}", r.stderr);
     assert!(!dir.exists());
@@ -120,7 +141,12 @@ fn inconsistent_meshes_are_refused_by_every_command() {
         ("crack_partial.msh", vec!["two nodes at the same point", "(0.000000e0, 0.000000e0) m", "node 64"]),
         (
             "diagonal_interface.msh",
-            vec!["group 'interface'", "(-1.000000e-2, 0.000000e0) m", "(1.000000e-2, 0.000000e0) m", "not the side of any block element"],
+            vec![
+                "group 'interface'",
+                "(-1.000000e-2, 0.000000e0) m",
+                "(1.000000e-2, 0.000000e0) m",
+                "not the side of any block element",
+            ],
         ),
     ] {
         let path = data(file);

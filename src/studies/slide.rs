@@ -126,10 +126,12 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
         }
     }
     if let Law::Coulomb { mu } = o.law {
-        if mu == 0.0 {
+        // The default end is 5 % past the first whole-interface slip, which mu = 0 puts at
+        // X = 0: an end at zero length. A frictionless run to a given X is well posed.
+        if mu == 0.0 && o.x_max.is_none() {
             return Err(Error::input(
                 "--mu",
-                "0: without friction the whole interface slides as soon as it is loaded, there are no events to compute; give mu > 0",
+                "0: without friction the whole interface slides as soon as it is loaded, there are no events to compute and the default end (5 % past the first whole slip) is X = 0; give mu > 0, or --x-max for the frictionless response",
             ));
         }
     }
