@@ -53,6 +53,9 @@ fn degenerate_frictional_inputs_are_refused_with_the_reason() {
     let _ = std::fs::remove_dir_all(&dir);
     refused(&["slide", "--law", "coulomb", "--mu", "1e7"], "mu", &["above 1000000"]);
     refused(&["slide", "--x-max", "1e308"], "--x-max", &["block's length"]);
+    // N/L against [1e-100 N/m / L, E]: subnormal displacements, or strains of order one.
+    refused(&["slide", "--n-force", "1e-308"], "--n-force", &["2.5e-308 Pa"]);
+    refused(&["slide", "--n-force", "18446744073709551615"], "--n-force", &["E = 2e3 Pa"]);
     // The paper's block: tau t/G = mu_s (N/L) t / (E/(2(1 + nu))) with mu_s = 0.35/(0.6 x 0.9),
     // N/L = 2.5 Pa, t = 2 mm, E = 2 kPa, nu = 0.4: 4.537e-6 m; the floor is 1e-6 of it.
     let slip: f64 = 0.35 / 0.6 / 0.9 * 2.5 * 0.002 / (2e3 / 2.8);
