@@ -60,6 +60,9 @@ impl Law {
         if mu > MU_MAX {
             return Err(too_high("mu", mu));
         }
+        if mu != 0.0 && mu < MU_MIN {
+            return Err(too_low("mu", mu));
+        }
         Ok(Law::Coulomb { mu })
     }
 
@@ -75,6 +78,9 @@ impl Law {
                 "mu-d",
                 format!("{mu_d} must be > 0 and below mu_s = {mu_s} (use --law coulomb for mu_s = mu_d)"),
             ));
+        }
+        if mu_d < MU_MIN {
+            return Err(too_low("mu-d", mu_d));
         }
         Ok(Law::StaticKinetic { mu_s, mu_d, rule })
     }
@@ -142,4 +148,12 @@ pub const MU_MAX: f64 = 1e6;
 
 fn too_high(what: &str, mu: f64) -> Error {
     Error::input(what, format!("{mu:e} is above {MU_MAX}, far beyond any measured friction coefficient"))
+}
+
+/// Smallest nonzero friction coefficient accepted: below, the thresholds mu p are subnormal
+/// numbers, 0 to every digit kept and a hundred times slower to compute with.
+pub const MU_MIN: f64 = 1e-100;
+
+fn too_low(what: &str, mu: f64) -> Error {
+    Error::input(what, format!("{mu:e} is below {MU_MIN:e}, 0 to every digit kept"))
 }
