@@ -39,6 +39,23 @@ fn refused(args: &[&str], flag: &str, also: &[&str]) -> Ran {
 #[test]
 fn degenerate_frictional_inputs_are_refused_with_the_reason() {
     refused(&["slide", "--law", "coulomb", "--mu", "0"], "--mu", &["slides as soon as it is loaded"]);
+    // Given an end, the frictionless response is well posed; it ran forever drawing fig. 4
+    // with F/(mu_s N) infinite. Its shear force is zero to round-off (F/N below 1e-12).
+    let dir = out("mu0");
+    let r = run(
+        &["slide", "--law", "coulomb", "--mu", "0", "--x-max", "1e-6", "--out", dir.to_str().unwrap()],
+        LIMIT,
+    );
+    assert_eq!(r.code, 0, "{}", r.stderr);
+    let line = r.stdout.lines().find(|l| l.starts_with("final F/N = ")).unwrap();
+    let f: f64 = line["final F/N = ".len()..].split_whitespace().next().unwrap().parse().unwrap();
+    assert!(f.abs() < 1e-12, "{line}");
+    let _ = std::fs::remove_dir_all(&dir);
+    refused(&["slide", "--law", "coulomb", "--mu", "1e7"], "mu", &["above 1000000"]);
+    refused(&["slide", "--x-max", "1e308"], "--x-max", &["block's length"]);
+    // N/L against [1e-100 N/m / L, E]: subnormal displacements, or strains of order one.
+    refused(&["slide", "--n-force", "1e-308"], "--n-force", &["2.5e-308 Pa"]);
+    refused(&["slide", "--n-force", "18446744073709551615"], "--n-force", &["E = 2e3 Pa"]);
     // The paper's block: tau t/G = mu_s (N/L) t / (E/(2(1 + nu))) with mu_s = 0.35/(0.6 x 0.9),
     // N/L = 2.5 Pa, t = 2 mm, E = 2 kPa, nu = 0.4: 4.537e-6 m; the floor is 1e-6 of it.
     let slip: f64 = 0.35 / 0.6 / 0.9 * 2.5 * 0.002 / (2e3 / 2.8);

@@ -84,7 +84,7 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
         return Err(tribofe::Error::input(
             "--dgemm",
             format!(
-                "{}: three {0} x {0} matrices need {:.1} GiB, more than half this machine's memory",
+                "{}: three {0} x {0} matrices need {:.1} GiB, more than half the memory this process may use (machine, ulimit or cgroup)",
                 args.dgemm,
                 dgemm_bytes / (1u64 << 30) as f64
             ),

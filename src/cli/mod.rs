@@ -70,8 +70,8 @@ pub enum Command {
     /// The block's ends on the frictional interface: pre-slip under N vs refinement, trailing-end opening vs the first precursor.
     ///
     /// Cost of the defaults (4 pre-slip meshes, 16 opening runs, meshes graded to the ends):
-    /// about 6 s of CPU, 15 s wall on a 2-core machine under a load of 10, 0.45 GB peak
-    /// resident memory (`/usr/bin/time -v tribofe edges`). Uniform meshes (--end-grading 1)
+    /// about 6 s of CPU, 4 s wall on 2 cores (15 s under a load of 10), 0.45 GB peak resident
+    /// memory (`/usr/bin/time -v tribofe edges`). Uniform meshes (--end-grading 1)
     /// cost far more on the paper's 0.4 m block: the former defaults (uniform, the opening at
     /// t/h = 2) took 56 s and 10 GB.
     #[command(allow_negative_numbers = true)]

@@ -60,6 +60,9 @@ impl Law {
         if mu > MU_MAX {
             return Err(too_high("mu", mu));
         }
+        if mu != 0.0 && mu < MU_MIN {
+            return Err(too_low("mu", mu));
+        }
         Ok(Law::Coulomb { mu })
     }
 
@@ -75,6 +78,9 @@ impl Law {
                 "mu-d",
                 format!("{mu_d} must be > 0 and below mu_s = {mu_s} (use --law coulomb for mu_s = mu_d)"),
             ));
+        }
+        if mu_d < MU_MIN {
+            return Err(too_low("mu-d", mu_d));
         }
         Ok(Law::StaticKinetic { mu_s, mu_d, rule })
     }
@@ -134,10 +140,20 @@ impl Law {
     }
 }
 
-/// Largest friction coefficient accepted: measured ones stay below ~10; far above, the
-/// tangential forces dwarf N by orders of magnitude and the contact updates lose every digit.
-pub const MU_MAX: f64 = 100.0;
+/// Largest friction coefficient accepted: measured ones stay below ~10, and 1e6 is the
+/// bonded limit (nothing slips; tests/friction.rs); far above, the tangential thresholds
+/// dwarf N by so much that the contact updates lose every digit (mu = 2^64 cycled without
+/// settling for 8 s, issue 31).
+pub const MU_MAX: f64 = 1e6;
 
 fn too_high(what: &str, mu: f64) -> Error {
     Error::input(what, format!("{mu:e} is above {MU_MAX}, far beyond any measured friction coefficient"))
+}
+
+/// Smallest nonzero friction coefficient accepted: below, the thresholds mu p are subnormal
+/// numbers, 0 to every digit kept and a hundred times slower to compute with.
+pub const MU_MIN: f64 = 1e-100;
+
+fn too_low(what: &str, mu: f64) -> Error {
+    Error::input(what, format!("{mu:e} is below {MU_MIN:e}, 0 to every digit kept"))
 }

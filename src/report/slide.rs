@@ -127,7 +127,10 @@ pub fn fe_curve(r: &SlideResult) -> Vec<(f64, f64)> {
 }
 
 pub fn fig4_svg(r: &SlideResult) -> Result<String> {
-    let fe = fe_curve(r);
+    // mu_s = 0 (a frictionless run to a given X) has no mu_s N to scale by: F/(mu_s N) is
+    // infinite, and an infinite axis sent plotters' tick search into an endless loop.
+    let fe: Vec<(f64, f64)> =
+        fe_curve(r).into_iter().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
     let law = r.options.law;
     let (l, h) = (r.condensed.l, r.scene.loading.height);
     let (rr, g) = (law.mu_d() / law.mu_s(), 6.0 * law.mu_d() * h / l);
