@@ -56,7 +56,7 @@ pub fn preslip(scene: &Scene, mus: &[f64], t_over_h: &[usize]) -> Result<Vec<Pre
     preslip_graded(scene, mus, t_over_h, None, &|| {})
 }
 
-/// [`preslip`] on the meshes of [`meshed`] (`grading` None: uniform); `progress` is called
+/// [`preslip`] on the meshes of `meshed` (`grading` None: uniform); `progress` is called
 /// after each mesh.
 pub fn preslip_graded(
     scene: &Scene,
@@ -177,7 +177,7 @@ pub fn opening(
     opening_graded(scene, mu_s, mu_d, rule, t_over_l, t_over_h, h_over_l, None, &|| {})
 }
 
-/// [`opening`] on the meshes of [`meshed`] (`grading` None: uniform); `progress` is called
+/// [`opening`] on the meshes of `meshed` (`grading` None: uniform); `progress` is called
 /// after each run.
 #[allow(clippy::too_many_arguments)]
 pub fn opening_graded(
