@@ -17,6 +17,7 @@ use crate::interface::law::{Law, Rule};
 use faer::linalg::solvers::DenseSolveCore;
 
 mod kind;
+pub mod tolerances;
 mod weakening;
 
 pub use kind::EventKind;
@@ -426,7 +427,7 @@ impl<'a> Solver<'a> {
         f.dofs.push(d);
         f.coef.push(cd);
         f.pos[d] = m;
-        if !(sigma.abs() > 1e-10 * scale) {
+        if !(sigma.abs() > tolerances::PIVOT * scale) {
             return self.refresh();
         }
         for i in 0..m {
@@ -484,11 +485,11 @@ impl<'a> Solver<'a> {
         Ok(())
     }
 
-    /// Changes many nodes at once: incremental below 32 changes; above, from whichever of
+    /// Changes many nodes at once: incremental below [`tolerances::BATCH`] changes; above, from whichever of
     /// the current and the spare inverse is fewer bordering updates away, or by one full LU
     /// when both are far (cheaper than O(m^2) per change when a whole region flips).
     fn set_many(&mut self, changes: &[(usize, NodeState, f64)]) -> Result<()> {
-        if changes.len() < 32 {
+        if changes.len() < tolerances::BATCH {
             for &(i, st, a) in changes {
                 self.set_state(i, st, a)?;
             }
@@ -514,7 +515,7 @@ impl<'a> Solver<'a> {
         let there = self.spare.as_ref().map_or(usize::MAX, cost);
         // Bordering is O(m^2) a change against O(m^3) for the LU; past ~m/8 changes the
         // drift and the cost favour the LU.
-        let limit = (target.len() / 8).max(32);
+        let limit = (target.len() / 8).max(tolerances::BATCH);
         let spare = self.spare.get_or_insert_with(|| Free::empty(self.nd));
         if there < here.min(limit) || here > limit {
             std::mem::swap(&mut self.free, spare);
@@ -545,7 +546,7 @@ impl<'a> Solver<'a> {
     /// the spring is centred on).
     fn set_coefficients(&mut self, changes: &[(usize, f64, f64, f64)]) -> Result<()> {
         self.last = None;
-        let small = changes.len() < 32;
+        let small = changes.len() < tolerances::BATCH;
         for &(i, mu, k, u) in changes {
             if small {
                 self.remove(i);
@@ -691,7 +692,7 @@ impl<'a> Solver<'a> {
                     + k * c1[a];
                 res = res.max(q0.abs()).max(q1.abs());
             }
-            if res > 1e-10 * big && attempt == 0 {
+            if res > tolerances::RESIDUAL * big && attempt == 0 {
                 self.refresh()?;
                 continue;
             }
@@ -705,7 +706,7 @@ impl<'a> Solver<'a> {
     /// instability (static-kinetic).
     fn rate_fix(&mut self, a: &Affine, lam: f64, allow_continuous_slip: bool) -> Result<Fix> {
         let n = self.n;
-        let (tf, td) = (1e-9 * self.fscale, 1e-9 * self.dscale);
+        let (tf, td) = (tolerances::STATE * self.fscale, tolerances::STATE * self.dscale);
         let (rate_f, rate_d) = self.rate_tols(a);
         if self.stick_fastest_first {
             // The slipping node running back fastest sticks first (see the field).
@@ -777,8 +778,8 @@ impl<'a> Solver<'a> {
     /// Rate thresholds (forces, displacements) below which a rate counts as zero.
     fn rate_tols(&self, a: &Affine) -> (f64, f64) {
         let n = self.n;
-        let rf = (0..2 * n).map(|i| a.f1[i].abs()).fold(0.0, f64::max).max(1e-300) * 1e-10;
-        let rd = (0..2 * n).map(|i| a.b1[i].abs()).fold(0.0, f64::max).max(1e-300) * 1e-10;
+        let rf = (0..2 * n).map(|i| a.f1[i].abs()).fold(0.0, f64::max).max(1e-300) * tolerances::RATE;
+        let rd = (0..2 * n).map(|i| a.b1[i].abs()).fold(0.0, f64::max).max(1e-300) * tolerances::RATE;
         (rf, rd)
     }
 
@@ -975,7 +976,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
         updates: 0,
         refreshes: 0,
     };
-    let max_fix = 20 * n + 100;
+    let max_fix = tolerances::max_changes(n);
     let is_sk = pb.law.weakens();
     let mut prev_u: Vec<f64> = vec![0.0; n];
 
@@ -1319,8 +1320,8 @@ fn finish(mut out: Run, sv: &Solver) -> Result<Run> {
 /// at the end of the relaxation (whole-interface slip).
 fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usize, usize), usize, bool)> {
     let n = sv.n;
-    let tf = 1e-9 * sv.fscale;
-    let td = 1e-9 * sv.dscale;
+    let tf = tolerances::STATE * sv.fscale;
+    let td = tolerances::STATE * sv.dscale;
     let mu_d = sv.law.mu_d();
     let mu_s = sv.law.mu_s();
     let u_start: Vec<f64> = (0..n).map(|i| a.b(i, lam)).collect();
@@ -1341,7 +1342,7 @@ fn instability(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<((usi
         }
     }
     let mut in_region = vec![false; n];
-    let cap = 20 * n + 100;
+    let cap = tolerances::max_changes(n);
     match rule {
         Rule::Paper => {
             let above =

@@ -34,7 +34,7 @@ pub(super) fn drive(
     let x_end = pb.x_max.unwrap_or(f64::INFINITY);
     let mut lam = 0.0;
     let mut slipped = vec![false; n];
-    let cap = 20 * n + 100;
+    let cap = super::tolerances::max_changes(n);
     let frac = |out: &Run, lam: f64| -> f64 {
         let by_x = if x_end.is_finite() { lam / x_end } else { 0.0 };
         by_x.max(out.sliding_events as f64 / pb.cycles.max(1) as f64).min(1.0)
@@ -169,7 +169,7 @@ fn settle(
     newton: bool,
 ) -> Result<(Affine, Vec<bool>)> {
     let n = sv.n;
-    // Looser than the state tolerances (1e-9): a node set slipping at its threshold by its
+    // Looser than the state tolerances ([`super::tolerances::STATE`]): a node set slipping at its threshold by its
     // rate may settle a force tolerance's worth behind where it stood.
     let td = 1e-6 * sv.dscale;
     let mut touched = vec![false; n];
