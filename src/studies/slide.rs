@@ -11,42 +11,8 @@ use crate::linalg::solve::SolverOptions;
 use crate::scene::{Scene, SceneModel};
 use std::time::Instant;
 
-#[derive(Debug, Clone)]
-pub struct SlideOptions {
-    pub law: Law,
-    /// Normal force, N/m.
-    pub n_force: f64,
-    pub x_max: Option<f64>,
-    pub cycles: usize,
-    pub max_events: usize,
-    /// See [`Problem::keep_states`].
-    pub keep_states: bool,
-    pub creep_fraction: f64,
-    /// See [`Problem::end_at_crossing`].
-    pub end_at_crossing: bool,
-    /// See [`Problem::newton`].
-    pub newton: bool,
-    /// See [`Problem::cancel`].
-    pub cancel: crate::Cancel,
-}
-
-impl Default for SlideOptions {
-    fn default() -> Self {
-        let p = Problem::default();
-        Self {
-            law: p.law,
-            n_force: 1.0,
-            x_max: None,
-            cycles: p.cycles,
-            max_events: p.max_events,
-            keep_states: p.keep_states,
-            creep_fraction: p.creep_fraction,
-            end_at_crossing: p.end_at_crossing,
-            newton: p.newton,
-            cancel: p.cancel,
-        }
-    }
-}
+/// The options of a frictional run: the event solver's [`Problem`] itself (one options type).
+pub type SlideOptions = Problem;
 
 #[derive(Debug, Clone)]
 pub struct SlideResult {
@@ -204,18 +170,6 @@ pub fn run_condensed(
 ) -> Result<SlideResult> {
     let clock = Instant::now();
     let s = c.at_height(scene.loading.height);
-    let pb = Problem {
-        n_force: o.n_force,
-        law: o.law,
-        x_max: o.x_max,
-        cycles: o.cycles,
-        max_events: o.max_events,
-        keep_states: o.keep_states,
-        creep_fraction: o.creep_fraction,
-        end_at_crossing: o.end_at_crossing,
-        newton: o.newton,
-        cancel: o.cancel.clone(),
-    };
     if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
         return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
     }
@@ -229,7 +183,7 @@ pub fn run_condensed(
             "lower --max-events",
         )?;
     }
-    let run = run_events(&s, c.n, &pb, progress)?;
+    let run = run_events(&s, c.n, o, progress)?;
     Ok(SlideResult {
         scene: scene.clone(),
         options: o.clone(),
