@@ -107,7 +107,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     let secs = t0.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
-    r.write(dir.path())?;
+    tribofe::report::rupture::write(&r, dir.path())?;
     let results: toml::Table = [
         ("dt_s", toml::Value::from(r.dt)),
         ("steps", toml::Value::from(r.steps as i64)),

@@ -25,7 +25,6 @@ use super::waves::WaveSpeeds;
 use crate::error::{Error, Result};
 use crate::fem::material::Material;
 use crate::fem::mesher::Rectangle;
-use std::path::Path;
 
 /// How the base meets the rigid flat.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -521,28 +520,5 @@ impl RuptureResult {
             }
         }
         out
-    }
-
-    /// Writes arrival.csv, summary.csv (the spec's columns), energy.csv and zone.csv into `dir`.
-    pub fn write(&self, dir: &Path) -> Result<()> {
-        use crate::report::{csv, write_atomic};
-        let rows: Vec<Vec<f64>> = self.arrivals().into_iter().map(|(x, t)| vec![x, t]).collect();
-        write_atomic(&dir.join("arrival.csv"), csv("x_m,t_arrival_s", &rows)?.as_bytes())?;
-        let speed = self.front_speed.map_or(String::new(), |s| format!("{s:.12e}"));
-        let summary = format!(
-            "force_drop_n_per_m,min_sigma_pa,steps,dt_s,front_speed_m_per_s\n{:.12e},{:.12e},{},{:.12e},{speed}\n",
-            self.force_drop, self.min_sigma, self.steps, self.dt
-        );
-        write_atomic(&dir.join("summary.csv"), summary.as_bytes())?;
-        let e = &self.energy;
-        let energy = csv(
-            "kinetic_j_per_m,strain_j_per_m,background_work_j_per_m,friction_dissipation_j_per_m,friction_path_j_per_m,contact_work_j_per_m,balance_residual_j_per_m",
-            &[vec![e.kinetic, e.strain, e.background_work, e.friction, e.friction_path, e.contact, e.residual]],
-        )?;
-        write_atomic(&dir.join("energy.csv"), energy.as_bytes())?;
-        let zone: Vec<Vec<f64>> =
-            self.cohesive_zone().into_iter().map(|(x, z)| vec![x, z, z / self.lambda0]).collect();
-        write_atomic(&dir.join("zone.csv"), csv("x_m,zone_m,zone_over_lambda0", &zone)?.as_bytes())?;
-        Ok(())
     }
 }

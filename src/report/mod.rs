@@ -6,6 +6,7 @@ pub mod convergence;
 pub mod edges;
 pub mod precursors;
 pub mod run_file;
+pub mod rupture;
 pub mod slide;
 pub mod stability;
 pub mod sweep;
