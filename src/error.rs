@@ -120,6 +120,15 @@ impl Error {
     }
 }
 
+/// `Ok` for a finite value above zero, else the refusal naming `what` (a parameter or flag).
+pub fn positive(what: &str, v: f64) -> Result<()> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::input(what, format!("{v} must be a positive number")))
+    }
+}
+
 /// A value for a message: plain in [1e-4, 1e6), else in scientific notation.
 pub fn num(v: f64) -> String {
     if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {

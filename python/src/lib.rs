@@ -15,10 +15,11 @@ use tribofe::{Cancel, Error};
 
 /// The exception class of `tribofe.errors` for an error of the library.
 fn to_py(e: Error) -> PyErr {
+    use tribofe::error::exit;
     let class = match e.exit_status() {
-        2 => "InputError",
-        3 => "NumericalError",
-        130 => "Interrupted",
+        exit::INPUT => "InputError",
+        exit::NUMERICAL => "NumericalError",
+        exit::INTERRUPTED => "Interrupted",
         _ => "OutputError",
     };
     let msg = e.to_string();

@@ -116,9 +116,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         }
     };
     for (what, v) in [("--interior-tol", args.interior_tol), ("--edge-fraction", args.edge_fraction)] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(tribofe::Error::input(what, format!("{v} must be a positive number")));
-        }
+        tribofe::error::positive(what, v)?;
     }
     let friction = match &args.friction {
         None => None,

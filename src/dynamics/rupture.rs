@@ -138,13 +138,7 @@ impl RuptureSpec {
 
     /// Every value checked before any work, with the flag to change.
     pub fn validate(&self) -> Result<()> {
-        let pos = |what: &str, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(Error::input(what, format!("{v} must be a positive number")))
-            }
-        };
+        let pos = crate::error::positive;
         pos("block length (m, --length)", self.length)?;
         pos("block height (m, --height)", self.height)?;
         pos("element size (m, --h)", self.h)?;

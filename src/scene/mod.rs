@@ -234,13 +234,7 @@ impl Scene {
     }
 
     pub fn validate(&self) -> Result<()> {
-        let pos = |what: &str, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(Error::input(what, format!("{v} must be a positive number")))
-            }
-        };
+        let pos = crate::error::positive;
         // Lengths and moduli far outside [1e-100, 1e100] under- or overflow in the element
         // products (h^2, E h^2) before any check can see it; physical values are far inside.
         let scaled = |what: &str, v: f64, unit: &str| {
