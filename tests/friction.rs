@@ -446,22 +446,8 @@ fn slip_weakening_corner_open_close_cycles_are_broken() {
     assert!(v < 2e-6, "largest violation {v:e}");
 }
 
-/// A slip patch near its critical length makes the fixed point contract by about 1 - 1e-4 an
-/// iterate. With L perturbed by 1e-11 relative, 3 of these 10 runs on h = t = 4 mm met such a
-/// patch and ran out of iterates ("cycles without settling") before Newton took over after
-/// 10^4 fixed-point iterates; every run now finishes with admissible states.
-#[test]
-fn slip_weakening_slow_relaxations_settle() {
-    for k in 0..10 {
-        let mut sc = weakening_scene(0.004, 2);
-        sc.block.length *= 1.0 + 1e-11 * k as f64;
-        let (ms, md) = coefficients_from_rg(&sc, 0.9, 0.35).unwrap();
-        let law = Law::slip_weakening(ms, md, 3e-7).unwrap();
-        let r = run(&sc, &SlideOptions { law, cycles: 1, ..Default::default() }, &|_| {})
-            .unwrap_or_else(|e| panic!("L = 0.1 (1 + {k}e-11): {e}"));
-        let p = peak(&r);
-        assert!(p > 0.9 && p < 1.0, "L = 0.1 (1 + {k}e-11): peak {p} outside (mu_d/mu_s, 1)");
-        let v = worst_violation(&r);
-        assert!(v < 2e-6, "L = 0.1 (1 + {k}e-11): largest violation {v:e}");
-    }
-}
+// A slip patch near its critical length makes the fixed point contract by about 1 - 1e-4 an
+// iterate; Newton takes over after 10^4 fixed-point iterates. That fallback is tested at a
+// fixed cost on a hand-solvable system (interface::events::weakening's unit test
+// a_near_critical_relaxation_settles_by_newton_after_the_fixed_point_cap), not by runs of
+// this scene with L perturbed by 1e-11, whose cost and outcome were set by round-off.

@@ -14,27 +14,23 @@
 //! stops in a stable process zone resumes at the coefficient it had reached. A slipping node
 //! whose relaxation would move it backwards within a step sticks where the step started.
 
-use super::{
-    classify, finish, push, stuck_err, Affine, Event, EventKind, Fix, NodeState, Problem, Run, Solver,
-};
+use super::active::Solver;
+use super::classify::classify;
+use super::operator::Affine;
+use super::search::Fix;
+use super::simulation::{stuck_err, Recorder};
+use super::{tolerances, Event, EventKind, NodeState, Run};
 use crate::error::Result;
 
 /// Steps per D_c of slip of the fastest slipping node (step control).
 const STEPS_PER_DC: f64 = 20.0;
 
-pub(super) fn drive(
-    sv: &mut Solver,
-    mut out: Run,
-    pb: &Problem,
-    dc: f64,
-    mut prev_u: Vec<f64>,
-    progress: &dyn Fn(f64),
-) -> Result<Run> {
-    let n = sv.n;
+pub(super) fn drive(sv: &mut Solver, mut rec: Recorder, dc: f64, progress: &dyn Fn(f64)) -> Result<Run> {
+    let (n, pb) = (sv.n(), rec.pb);
     let x_end = pb.x_max.unwrap_or(f64::INFINITY);
     let mut lam = 0.0;
     let mut slipped = vec![false; n];
-    let cap = super::tolerances::max_changes(n);
+    let cap = tolerances::max_changes(n);
     let frac = |out: &Run, lam: f64| -> f64 {
         let by_x = if x_end.is_finite() { lam / x_end } else { 0.0 };
         by_x.max(out.sliding_events as f64 / pb.cycles.max(1) as f64).min(1.0)
@@ -45,8 +41,8 @@ pub(super) fn drive(
         let a0 = sv.solve()?;
         let u_pre: Vec<f64> = (0..n).map(|i| a0.b(i, lam)).collect();
         let f_pre = a0.f(sv.iu(), lam);
-        let states_pre = sv.states.clone();
-        let mu_pre = sv.mu_slip.clone();
+        let states_pre = sv.states().to_vec();
+        let mu_pre = (0..n).map(|i| sv.mu_slip(i)).collect::<Vec<_>>();
         let (a, touched) = settle(sv, lam, cap, &u_pre, dc, pb.newton)?;
         let moved: Vec<f64> = (0..n).map(|i| (a.b(i, lam) - u_pre[i]).abs()).collect();
         let (i0, jump) =
@@ -70,15 +66,13 @@ pub(super) fn drive(
                 .filter(|&i| matches!(states_pre[i], NodeState::Slip(_)))
                 .min_by(|&i, &j| mu_pre[i].total_cmp(&mu_pre[j]))
                 .unwrap_or(i0);
-            let kind = classify(&states_pre, &sv.states, (first, last), &mut slipped, pb.end_at_crossing);
+            let kind = classify(&states_pre, sv.states(), (first, last), &mut slipped, pb.end_at_crossing);
             heal(sv, &a, lam)?;
             let b = sv.solve()?;
-            let st = sv.record(&b, lam, Some(&prev_u));
-            prev_u.clone_from(&st.u);
             if kind.ends_cycle() {
-                out.sliding_events += 1;
+                rec.out.sliding_events += 1;
             }
-            let ev = Event {
+            rec.record(sv, &b, lam, |st| Event {
                 kind,
                 f: f_pre,
                 x: lam,
@@ -87,21 +81,20 @@ pub(super) fn drive(
                 f_relaxed: st.f,
                 backslip: 0,
                 all_slipping,
-            };
-            push(&mut out, pb, ev, st)?;
-            progress(frac(&out, lam));
-            if out.sliding_events >= pb.cycles {
-                return finish(out, sv);
+            })?;
+            progress(frac(&rec.out, lam));
+            if rec.out.sliding_events >= pb.cycles {
+                return Ok(rec.finish(sv));
             }
             continue;
         }
-        if sv.states != states_pre {
+        if sv.states() != states_pre {
             // A stable change: nodes starting or stopping to slip, opening or closing.
-            let i = (0..n).find(|&i| sv.states[i] != states_pre[i]).unwrap_or(0);
-            let kind = match (states_pre[i], sv.states[i]) {
+            let i = (0..n).find(|&i| sv.states()[i] != states_pre[i]).unwrap_or(0);
+            let kind = match (states_pre[i], sv.states()[i]) {
                 (NodeState::Stick, NodeState::Slip(_)) => {
                     let next_to =
-                        |k: Option<usize>| k.is_some_and(|k| matches!(sv.states[k], NodeState::Slip(_)));
+                        |k: Option<usize>| k.is_some_and(|k| matches!(sv.states()[k], NodeState::Slip(_)));
                     let neighbour = next_to(i.checked_sub(1)) || next_to((i + 1 < n).then_some(i + 1));
                     if neighbour {
                         EventKind::TipAdvance
@@ -113,23 +106,20 @@ pub(super) fn drive(
                 (_, NodeState::Open) => EventKind::Open,
                 _ => EventKind::Close,
             };
-            let st = sv.record(&a, lam, Some(&prev_u));
-            prev_u.clone_from(&st.u);
-            push(&mut out, pb, Event::simple(kind, &st, i), st)?;
+            rec.simple(sv, &a, lam, kind, i)?;
         }
         // Steady sliding: every contact node slipping at mu_d; nothing re-sticks any more.
         let steady = sv.all_contact_slipping()
-            && (0..n).all(|i| sv.states[i] == NodeState::Open || sv.mu_slip[i] <= sv.law.mu_d());
+            && (0..n).all(|i| sv.states()[i] == NodeState::Open || sv.mu_slip(i) <= sv.law().mu_d());
         if steady {
-            out.sliding_events += 1;
-            let st = sv.record(&a, lam, Some(&prev_u));
-            push(&mut out, pb, Event::simple(EventKind::Sliding, &st, 0), st)?;
+            rec.out.sliding_events += 1;
+            rec.simple(sv, &a, lam, EventKind::Sliding, 0)?;
             progress(1.0);
-            return finish(out, sv);
+            return Ok(rec.finish(sv));
         }
         // Next X: the next exact threshold, or the slip-rate step.
         let rate = (0..n)
-            .filter(|&i| matches!(sv.states[i], NodeState::Slip(_)))
+            .filter(|&i| matches!(sv.states()[i], NodeState::Slip(_)))
             .map(|i| a.b1[i].abs())
             .fold(0.0, f64::max);
         let by_slip = if rate > 0.0 { dc / STEPS_PER_DC / rate } else { f64::INFINITY };
@@ -142,10 +132,9 @@ pub(super) fn drive(
                     "the loading reaches no further event and no end was given; give --x-max",
                 ));
             }
-            let st = sv.record(&a, x_end, Some(&prev_u));
-            push(&mut out, pb, Event::simple(EventKind::End, &st, 0), st)?;
+            rec.simple(sv, &a, x_end, EventKind::End, 0)?;
             progress(1.0);
-            return finish(out, sv);
+            return Ok(rec.finish(sv));
         }
         idle = if d == 0.0 { idle + 1 } else { 0 };
         if idle > cap {
@@ -153,7 +142,7 @@ pub(super) fn drive(
         }
         // An exact threshold hit is applied by the next settle's rate problem.
         lam += d;
-        progress(frac(&out, lam));
+        progress(frac(&rec.out, lam));
     }
 }
 
@@ -168,10 +157,10 @@ fn settle(
     dc: f64,
     newton: bool,
 ) -> Result<(Affine, Vec<bool>)> {
-    let n = sv.n;
-    // Looser than the state tolerances ([`super::tolerances::STATE`]): a node set slipping at its threshold by its
+    let n = sv.n();
+    // Looser than the state tolerances ([`tolerances::STATE`]): a node set slipping at its threshold by its
     // rate may settle a force tolerance's worth behind where it stood.
-    let td = 1e-6 * sv.dscale;
+    let td = 1e-6 * sv.dscale();
     let mut touched = vec![false; n];
     // Newton from the start; after it fails (a runaway), again once fixed point has
     // contracted for 3 iterates in a row (the runaway has arrested and is settling). Without
@@ -188,13 +177,13 @@ fn settle(
             // a cycle: from now on the sticks go by speed (a stick), or the node stays open
             // until it penetrates without separating (a close).
             if what == EventKind::Stick || what == EventKind::Close {
-                let u = sv.anchor[i];
-                if stuck_at[i].is_some_and(|v: f64| (u - v).abs() <= 1e-12 * sv.dscale) {
+                let u = sv.anchor(i);
+                if stuck_at[i].is_some_and(|v: f64| (u - v).abs() <= 1e-12 * sv.dscale()) {
                     if what == EventKind::Stick {
-                        sv.stick_fastest_first = true;
+                        sv.hold(true, None);
                     } else {
                         sv.set_state(i, NodeState::Open, 0.0)?;
-                        sv.hold_open[i] = true;
+                        sv.hold(false, Some(i));
                     }
                 }
                 stuck_at[i] = Some(u);
@@ -203,7 +192,7 @@ fn settle(
         }
         let mut back = None;
         for i in 0..n {
-            if let NodeState::Slip(s) = sv.states[i] {
+            if let NodeState::Slip(s) = sv.states()[i] {
                 touched[i] = true;
                 if s * (a.b(i, lam) - u_pre[i]) < -td {
                     back = Some(i);
@@ -217,11 +206,10 @@ fn settle(
         }
         let change = coefficients(sv, &a, lam, false);
         if change.is_empty() {
-            sv.stick_fastest_first = false;
-            sv.hold_open.iter_mut().for_each(|h| *h = false);
+            sv.release();
             return Ok((a, touched));
         }
-        let step = change.iter().map(|c| (c.1 - sv.mu_slip[c.0]).abs()).fold(0.0, f64::max);
+        let step = change.iter().map(|c| (c.1 - sv.mu_slip(c.0)).abs()).fold(0.0, f64::max);
         shrinking = if step < last { shrinking + 1 } else { 0 };
         last = step;
         sv.set_coefficients(&change)?;
@@ -234,17 +222,17 @@ fn settle(
 }
 
 /// The slipping nodes' coefficients at their slips in `a` where they differ by more than
-/// 1e-12 mu_s from their rows', with Newton springs (d mu/d slip) p centred there if asked.
+/// [`tolerances::COEFFICIENT`] mu_s from their rows', with Newton springs (d mu/d slip) p centred there if asked.
 fn coefficients(sv: &Solver, a: &Affine, lam: f64, springs: bool) -> Vec<(usize, f64, f64, f64)> {
-    let tol = 1e-12 * sv.law.mu_s();
+    let tol = tolerances::COEFFICIENT * sv.law().mu_s();
     let mut change = Vec::new();
-    for i in 0..sv.n {
-        if let NodeState::Slip(s) = sv.states[i] {
+    for i in 0..sv.n() {
+        if let NodeState::Slip(s) = sv.states()[i] {
             let u = a.b(i, lam);
-            let slip = sv.slip_acc[i] + s * (u - sv.slip0[i]);
-            let mu = sv.law.kinetic(slip);
-            let k = if springs { sv.law.kinetic_slope(slip) * a.f(sv.n + i, lam) } else { 0.0 };
-            if (mu - sv.mu_slip[i]).abs() > tol || k != sv.spring[i] {
+            let slip = sv.slip_at(i, s, u);
+            let mu = sv.law().kinetic(slip);
+            let k = if springs { sv.law().kinetic_slope(slip) * a.f(sv.n() + i, lam) } else { 0.0 };
+            if (mu - sv.mu_slip(i)).abs() > tol || k != sv.spring(i) {
                 change.push((i, mu, k, u));
             }
         }
@@ -255,17 +243,16 @@ fn coefficients(sv: &Solver, a: &Affine, lam: f64, springs: bool) -> Vec<(usize,
 /// Whether the frozen system A stays stable under the weakening springs K: det(I + A^-1 K) > 0
 /// over the springs' rows (A^-1 K has real eigenvalues >= 0 for a symmetric A, and the first
 /// one past 1 is where fixed point starts to run away and the tangent A + K turns indefinite).
-fn stable(sv: &Solver, springs: &[(usize, f64)]) -> bool {
+fn stable(sv: &mut Solver, springs: &[(usize, f64)]) -> Result<bool> {
     let m = springs.len();
     if m == 0 {
-        return true;
+        return Ok(true);
     }
-    let (nd, f) = (sv.nd, &sv.free);
-    let pos: Vec<usize> = springs.iter().map(|&(i, _)| f.pos[i]).collect();
-    let mat = nalgebra::DMatrix::from_fn(m, m, |r, c| {
-        f64::from(u8::from(r == c)) + springs[r].1 * f.inv[pos[r] * nd + pos[c]]
-    });
-    mat.lu().determinant() > 0.0
+    let dofs: Vec<usize> = springs.iter().map(|&(i, _)| i).collect();
+    let inv = sv.inverse_block(&dofs)?;
+    let mat =
+        nalgebra::DMatrix::from_fn(m, m, |r, c| f64::from(u8::from(r == c)) + springs[r].1 * inv[r * m + c]);
+    Ok(mat.lu().determinant() > 0.0)
 }
 
 /// Fixed-point iterates of one relaxation after which Newton is tried even without
@@ -284,23 +271,23 @@ const NEWTON_MAX: usize = 30;
 /// unstable equilibrium: past the critical length there is no stable equilibrium nearby and
 /// the relaxation must run away by fixed point. Leaves no spring.
 fn newton_coefficients(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f64) -> Result<bool> {
-    let n = sv.n;
+    let n = sv.n();
     let start: Vec<(usize, f64, f64, f64)> = (0..n)
-        .filter(|&i| matches!(sv.states[i], NodeState::Slip(_)))
-        .map(|i| (i, sv.mu_slip[i], 0.0, 0.0))
+        .filter(|&i| matches!(sv.states()[i], NodeState::Slip(_)))
+        .map(|i| (i, sv.mu_slip(i), 0.0, 0.0))
         .collect();
     let mut a = sv.solve()?;
     let u0: Vec<f64> = (0..n).map(|i| a.b(i, lam)).collect();
     for _ in 0..NEWTON_MAX {
         let change = coefficients(sv, &a, lam, true);
-        if change.iter().all(|c| (c.1 - sv.mu_slip[c.0]).abs() <= 1e-12 * sv.law.mu_s()) {
+        if change.iter().all(|c| (c.1 - sv.mu_slip(c.0)).abs() <= tolerances::COEFFICIENT * sv.law().mu_s()) {
             // Converged: the spring-free rows at these coefficients, if the equilibrium is
             // one that fixed point would reach (stable).
             let keep: Vec<_> = change.iter().map(|&(i, mu, _, _)| (i, mu, 0.0, 0.0)).collect();
             let springs: Vec<(usize, f64)> =
                 change.iter().filter(|c| c.2 != 0.0).map(|c| (c.0, c.2)).collect();
             sv.set_coefficients(&keep)?;
-            if !stable(sv, &springs) {
+            if !stable(sv, &springs)? {
                 break;
             }
             return Ok(true);
@@ -308,7 +295,7 @@ fn newton_coefficients(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f6
         sv.set_coefficients(&change)?;
         a = sv.solve()?;
         let wild = start.iter().any(|&(i, ..)| {
-            let NodeState::Slip(s) = sv.states[i] else { return false };
+            let NodeState::Slip(s) = sv.states()[i] else { return false };
             let u = a.b(i, lam);
             (u - u0[i]).abs() > 0.5 * dc || s * (u - u_pre[i]) < -td
         });
@@ -322,11 +309,58 @@ fn newton_coefficients(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f6
 
 /// Every slipping node sticks where it is and heals to mu_s (end of an instability).
 fn heal(sv: &mut Solver, a: &Affine, lam: f64) -> Result<()> {
-    let ch: Vec<(usize, NodeState, f64)> = (0..sv.n)
-        .filter(|&i| matches!(sv.states[i], NodeState::Slip(_)))
+    let ch: Vec<(usize, NodeState, f64)> = (0..sv.n())
+        .filter(|&i| matches!(sv.states()[i], NodeState::Slip(_)))
         .map(|i| (i, NodeState::Stick, a.b(i, lam)))
         .collect();
     sv.set_many(&ch)?;
     sv.heal_memory();
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{springs, NodeState, Problem};
+    use super::*;
+    use crate::interface::law::Law;
+
+    /// A slow relaxation settles, at a cost set by the iterate caps, not by round-off. Six
+    /// nodes, drive at the interface (no tilt, P = N/6 each); node 0's shear spring k0 = 2 is
+    /// twice the others', so it slips first, at lam_0 = mu_s P/k0. Slipping u from its anchor 0
+    /// under linear weakening, its equilibrium k0 (lam - u) = (mu_s - w u/P) P, w = (mu_s -
+    /// mu_d) P/D_c, is u* = (k0 lam - mu_s P)/(k0 - w). With w = (1 - 1e-4) k0 the fixed point
+    /// contracts by w/k0 = 1 - 1e-4 an iterate (2.7e5 iterates to 1e-12): Newton must take over
+    /// after SLOW_FP of them and stop on the coefficient test 1e-12 mu_s, which bounds
+    /// |u - u*| by 1e-12 mu_s P/(k0 - w).
+    #[test]
+    fn a_near_critical_relaxation_settles_by_newton_after_the_fixed_point_cap() {
+        let n = 6;
+        let x: Vec<f64> = (0..n).map(|i| i as f64 - 2.5).collect();
+        let mut kt = vec![1.0; n];
+        kt[0] = 2.0;
+        let (k0, n_force, mu_s, mu_d) = (2.0, 1.0, 0.6, 0.3);
+        let p = n_force / n as f64;
+        let w = (1.0 - 1e-4) * k0;
+        let dc = (mu_s - mu_d) * p / w;
+        let s = springs::operator(&x, &kt, 2.0, 0.0);
+        let pb = Problem { n_force, law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(), ..Default::default() };
+        let mut sv = springs::solver(&s, n, &pb);
+        // Where u* = D_c/2.
+        let lam = (mu_s * p + 0.5 * dc * (k0 - w)) / k0;
+        let want = (k0 * lam - mu_s * p) / (k0 - w);
+        sv.set_state(0, NodeState::Slip(1.0), 0.0).unwrap();
+        let a0 = sv.solve().unwrap();
+        let u_pre: Vec<f64> = (0..n).map(|i| a0.b(i, lam)).collect();
+        let before = sv.counts().0;
+        let (a, touched) = settle(&mut sv, lam, tolerances::max_changes(n), &u_pre, dc, false).unwrap();
+        let u = a.b(0, lam);
+        let tol = 1e-12 * mu_s * p / (k0 - w);
+        assert!((u - want).abs() < tol, "u {u} vs u* {want} (D_c {dc}): off by {:e}", (u - want).abs());
+        assert!(touched[0] && !touched[1..].iter().any(|&t| t));
+        assert_eq!(sv.states()[1..], [NodeState::Stick; 5]);
+        // Each fixed-point iterate is one coefficient change (a remove and an add of the row):
+        // SLOW_FP of them, then a few for Newton.
+        let updates = sv.counts().0 - before;
+        assert!((2 * SLOW_FP..2 * SLOW_FP + 100).contains(&updates), "{updates} bordering updates");
+    }
 }
