@@ -79,10 +79,16 @@ impl Old {
                 ));
             }
             if self.cycles.is_some() && self.dc.is_some() {
-                return Err(Error::input("--cycles", "cannot act with --dc, whose runs stop after one cycle"));
+                return Err(Error::input(
+                    "--cycles",
+                    "cannot act with --dc, whose runs stop after one cycle",
+                ));
             }
             if given("rules") && !self.map {
-                return Err(Error::input("--rules", "cannot act without --map: --fe runs every rule for fig. 4"));
+                return Err(Error::input(
+                    "--rules",
+                    "cannot act without --map: --fe runs every rule for fig. 4",
+                ));
             }
         }
         let out = OutArgs { out: self.out, force: self.force };

@@ -139,7 +139,9 @@ pub fn thin_layer(args: ThinLayerArgs) -> tribofe::Result<()> {
             (None, None) => outln!("{name}: -"),
         }
     }
-    write_whole(&args.out.out, args.out.force, |dir, inv| report::write_thin_layer(dir, &p, &rows, inv, &scene))?;
+    write_whole(&args.out.out, args.out.force, |dir, inv| {
+        report::write_thin_layer(dir, &p, &rows, inv, &scene)
+    })?;
     outln!("wrote {}/{{thin_layer.csv, thin_layer.svg, run.toml}}", args.out.out.display());
     Ok(())
 }
@@ -193,7 +195,9 @@ pub fn heights(args: HeightsArgs) -> tribofe::Result<()> {
             Err(e) => outln!("{:>7.4} refused: {e}", row.value),
         }
     }
-    write_whole(&args.out.out, args.out.force, |dir, inv| report::write_heights(dir, mu, &rows, inv, &scene))?;
+    write_whole(&args.out.out, args.out.force, |dir, inv| {
+        report::write_heights(dir, mu, &rows, inv, &scene)
+    })?;
     outln!("wrote {}/{{heights.csv, heights.svg, run.toml}}", args.out.out.display());
     Ok(())
 }
