@@ -310,7 +310,8 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         ("g", "--g"),
         ("r, g", "--r, --g"),
     ];
-    match cli.command {
+    let draws = !matches!(cli.command, Command::Solve(_) | Command::Bench(_) | Command::Rupture(_));
+    let done = match cli.command {
         Command::Solve(a) => solve::run(a).map_err(|e| {
             typed_flag(
                 e,
@@ -328,7 +329,11 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Sweep(a) => sweep::run(a).map_err(|e| {
             typed_flag(e, &[("mu-s", "--friction"), ("mu-d", "--friction"), ("cycles", "--cycles")])
         }),
+    };
+    if done.is_ok() && draws && !tribofe::report::FIGURES {
+        outln!("note: no figures (SVG) drawn: this tribofe was built without the `plots` feature; the tables are complete");
     }
+    done
 }
 
 /// A refusal naming a library parameter (`what` equal to, or starting with, a name of `names`
