@@ -385,8 +385,10 @@ fn sweep_table_runs_every_geometry() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("sweep.csv");
     let (hs, ts) = ([0.05, 0.1], [0.01, 0.02, 0.05]);
-    let rows = report::sweep_table(&path, &hs, &ts, 0.9, 0.35, 200, |h, t| Ok(UnitFields::linear(201, h, t)))
-        .unwrap();
+    let rows =
+        tribofe::precursors::fe::sweep(&hs, &ts, 0.9, 0.35, 200, |h, t| Ok(UnitFields::linear(201, h, t)))
+            .unwrap();
+    report::write_sweep(&path, &rows).unwrap();
     assert_eq!(rows.len(), 6);
     assert!(rows.iter().all(|r| r.n_fe == Some(10) && r.n_linear == Some(10) && r.max_abs_d_length < EXACT));
     let csv = std::fs::read_to_string(&path).unwrap();
@@ -395,7 +397,7 @@ fn sweep_table_runs_every_geometry() {
     assert_eq!(csv.lines().count(), 7);
     // A closure returning fields for the wrong geometry is caught.
     let wrong =
-        report::sweep_table(&path, &hs, &ts, 0.9, 0.35, 200, |_, t| Ok(UnitFields::linear(201, 0.2, t)));
+        tribofe::precursors::fe::sweep(&hs, &ts, 0.9, 0.35, 200, |_, t| Ok(UnitFields::linear(201, 0.2, t)));
     assert!(wrong.is_err());
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -420,4 +422,86 @@ fn cli_reports_and_rejects() {
         assert!(err.contains("must be") || err.contains("invalid value"), "{bad:?}: {err}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Every CSV under `dir` (relative path, text with the wall-time columns emptied: their
+/// headers name seconds).
+fn csvs_without_times(dir: &std::path::Path) -> Vec<(PathBuf, String)> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "csv") {
+                let text = std::fs::read_to_string(&p).unwrap();
+                let mut lines = text.lines();
+                let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+                let timed: Vec<bool> = header.iter().map(|h| h.contains("seconds")).collect();
+                let mut kept = header.join(",");
+                for l in lines {
+                    let cells: Vec<&str> = l
+                        .split(',')
+                        .enumerate()
+                        .map(|(i, c)| if timed.get(i) == Some(&true) { "" } else { c })
+                        .collect();
+                    kept.push('\n');
+                    kept.push_str(&cells.join(","));
+                }
+                out.push((p.strip_prefix(dir).unwrap().to_path_buf(), kept));
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn old_flag_forms_write_the_same_csvs_as_the_subcommands() {
+    let exe = env!("CARGO_BIN_EXE_tribofe");
+    let scene = ["--length", "0.05"];
+    let pairs: [(Vec<&str>, Vec<&str>); 8] = [
+        (
+            vec!["--events", "7", "--r", "0.8", "--g", "0.5"],
+            vec!["model", "--events", "7", "--r", "0.8", "--g", "0.5"],
+        ),
+        (vec![], vec!["model"]),
+        (vec!["--map", "--resolution", "4"], vec!["map", "--resolution", "4"]),
+        ([&["--fe"][..], &scene].concat(), [&["fe"][..], &scene].concat()),
+        (
+            [&["--fe", "--map", "--resolution", "2"][..], &scene].concat(),
+            [&["fe-map", "--resolution", "2"][..], &scene].concat(),
+        ),
+        (
+            [&["--fe", "--thin-layer", "0.04"][..], &scene].concat(),
+            [&["thin-layer", "--t-over-l", "0.04"][..], &scene].concat(),
+        ),
+        (
+            [&["--fe", "--heights", "0.1"][..], &scene].concat(),
+            [&["heights", "--h-over-l", "0.1"][..], &scene].concat(),
+        ),
+        ([&["--bonded-fields"][..], &scene].concat(), [&["bonded"][..], &scene].concat()),
+    ];
+    let dir = tmp_dir("forms");
+    for (old, new) in pairs {
+        let run = |args: &[&str], out: &std::path::Path| {
+            let o = Command::new(exe).arg("precursors").args(args).arg("--out").arg(out).output().unwrap();
+            assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        };
+        let (a, b) = (dir.join("old"), dir.join("new"));
+        run(&old, &a);
+        run(&new, &b);
+        let (ca, cb) = (csvs_without_times(&a), csvs_without_times(&b));
+        assert!(!ca.is_empty(), "{old:?} wrote no CSV");
+        assert_eq!(ca, cb, "{old:?} and {new:?} differ");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+    // The old forms keep their refusals, and are not listed by --help.
+    let o =
+        Command::new(exe).args(["precursors", "--length", "0.1"]).arg("--out").arg(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let help = Command::new(exe).args(["precursors", "--help"]).output().unwrap();
+    let help = String::from_utf8_lossy(&help.stdout);
+    assert!(help.contains("fe-map") && !help.contains("--thin-layer <"), "{help}");
 }

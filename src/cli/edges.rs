@@ -109,6 +109,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
     let files = [
         ("preslip.csv", tribofe::report::edges::preslip_csv(&pre)?),
+        #[cfg(feature = "plots")]
         ("preslip.svg", tribofe::report::edges::preslip_svg(&pre)?),
         ("opening.csv", tribofe::report::edges::opening_csv(&open)?),
         (

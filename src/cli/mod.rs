@@ -58,7 +58,7 @@ pub enum Command {
     /// Mesh convergence of the check: errors per zone, orders, edge widths, accuracy against time.
     #[command(allow_negative_numbers = true)]
     Converge(converge::Args),
-    /// Precursors to sliding (Scheibert & Dysthe model): event table, fig. 4, or the n(r, g) map (fig. 5).
+    /// Precursors to sliding (Scheibert & Dysthe model): the paper's iteration, its n(r, g) map, and the FE studies; one subcommand each.
     #[command(allow_negative_numbers = true)]
     Precursors(precursors::Args),
     /// Frictional interface (coulomb, static-kinetic, slip-weakening): N then X at height H, solved event by event.
@@ -134,7 +134,11 @@ pub fn invocation() -> &'static tribofe::report::run_file::Invocation {
 /// and a digit or `.`, which no flag does.
 fn join_negative_values(cmd: &clap::Command, args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
     let sub = args.iter().skip(1).find_map(|a| a.to_str().and_then(|a| cmd.find_subcommand(a)));
-    let Some(sub) = sub else { return args };
+    let Some(mut sub) = sub else { return args };
+    // A subcommand's own subcommand (`precursors fe-map`) holds the flags.
+    if let Some(inner) = args.iter().skip(2).find_map(|a| a.to_str().and_then(|a| sub.find_subcommand(a))) {
+        sub = inner;
+    }
     let takes_value = |long: &str| {
         sub.get_arguments().any(|a| {
             a.get_action().takes_values()
@@ -163,22 +167,36 @@ fn join_negative_values(cmd: &clap::Command, args: Vec<std::ffi::OsString>) -> V
     out
 }
 
+/// The command-line parser: [`Cli`] with the earlier flag forms of `precursors` hidden.
+fn command() -> clap::Command {
+    use clap::CommandFactory;
+    Cli::command().mut_subcommand("precursors", precursors::hide_old_flags)
+}
+
 /// Parses the command line and records it with every option's effective value (given or
 /// default) for run.toml.
 pub fn parse() -> Result<Cli, clap::Error> {
-    use clap::{CommandFactory, FromArgMatches};
+    use clap::FromArgMatches;
     let typed: Vec<std::ffi::OsString> = std::env::args_os().collect();
-    let args = join_negative_values(&Cli::command(), typed.clone());
+    let args = join_negative_values(&command(), typed.clone());
     // Plain styles: the rendered error then holds no escape codes of clap's own, and the
     // user's bytes are kept (not stripped) for `main` to quote.
-    let cmd = Cli::command().styles(clap::builder::Styles::plain());
+    let cmd = command().styles(clap::builder::Styles::plain());
     let m = cmd.clone().try_get_matches_from(&args)?;
     let cli = Cli::from_arg_matches(&m)?;
     let mut options = toml::Table::new();
-    if let (Some((name, sub)), Some(sc)) =
+    if let (Some((name, mut sub)), Some(mut sc)) =
         (m.subcommand(), m.subcommand_name().and_then(|n| cmd.find_subcommand(n)))
     {
-        options.insert("subcommand".into(), toml::Value::String(name.into()));
+        let mut name = name.to_string();
+        // A nested subcommand (`precursors fe-map`): its options are the ones typed.
+        if let Some((inner, m2)) = sub.subcommand() {
+            if let Some(c2) = sc.find_subcommand(inner) {
+                name = format!("{name} {inner}");
+                (sub, sc) = (m2, c2);
+            }
+        }
+        options.insert("subcommand".into(), toml::Value::String(name));
         let mut given = std::collections::BTreeSet::new();
         for arg in sc.get_arguments() {
             let id = arg.get_id().as_str();
@@ -292,7 +310,8 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         ("g", "--g"),
         ("r, g", "--r, --g"),
     ];
-    match cli.command {
+    let draws = !matches!(cli.command, Command::Solve(_) | Command::Bench(_) | Command::Rupture(_));
+    let done = match cli.command {
         Command::Solve(a) => solve::run(a).map_err(|e| {
             typed_flag(
                 e,
@@ -310,7 +329,11 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Sweep(a) => sweep::run(a).map_err(|e| {
             typed_flag(e, &[("mu-s", "--friction"), ("mu-d", "--friction"), ("cycles", "--cycles")])
         }),
+    };
+    if done.is_ok() && draws && !tribofe::report::FIGURES {
+        outln!("note: no figures (SVG) drawn: this tribofe was built without the `plots` feature; the tables are complete");
     }
+    done
 }
 
 /// A refusal naming a library parameter (`what` equal to, or starting with, a name of `names`

@@ -4,7 +4,9 @@
 use super::{csv, ratio_label, write_atomic};
 use crate::error::{Error, Result};
 use crate::studies::check::CheckResult;
+#[cfg(feature = "plots")]
 use plotters::coord::types::RangedCoordf64;
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -81,7 +83,9 @@ pub fn write(res: &CheckResult, converged: Option<&CheckResult>, dir: &Path) -> 
         )?;
     }
     write_atomic(&dir.join("summary.csv"), summary_csv(res)?.as_bytes())?;
-    write_atomic(&dir.join("fig2.svg"), fig2(res)?.as_bytes())
+    #[cfg(feature = "plots")]
+    write_atomic(&dir.join("fig2.svg"), fig2(res)?.as_bytes())?;
+    Ok(())
 }
 
 fn opt(v: Option<f64>) -> String {
@@ -279,6 +283,7 @@ fn dash(v: f64, style: char) -> String {
     }
 }
 
+#[cfg(feature = "plots")]
 const COLORS: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
@@ -288,10 +293,12 @@ const COLORS: [RGBColor; 6] = [
     RGBColor(23, 190, 207),
 ];
 
+#[cfg(feature = "plots")]
 fn err(e: impl std::fmt::Display) -> Error {
     Error::plot("fig2.svg", e)
 }
 
+#[cfg(feature = "plots")]
 /// Fig. 2 of the paper redrawn: p/(N/L) open symbols, tau/(N/L) full symbols, model dashed;
 /// below, the two edge zones (10 t wide, L/4 for a short block). The stress axis spans the
 /// profiles and the models but not the nodes within t/10 of the ends, where the clamped-free
@@ -360,6 +367,7 @@ pub fn fig2(res: &CheckResult) -> Result<String> {
     Ok(svg)
 }
 
+#[cfg(feature = "plots")]
 /// One panel; at most about `markers` symbols per series (every k-th node), and values outside
 /// `yr` drawn as triangles on the frame pointing the way they leave it.
 fn panel<DB: DrawingBackend>(
@@ -488,6 +496,7 @@ pub fn write_fields(
     Ok(written)
 }
 
+#[cfg(feature = "plots")]
 /// The paper's markers: circle, square, diamond for the successive load cases; open for the
 /// pressure, full for the shear.
 fn markers<DB: DrawingBackend>(

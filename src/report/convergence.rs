@@ -6,6 +6,7 @@ use crate::error::{Error, Result};
 use crate::studies::convergence::{
     cheapest, edge_error, first_converged_width, orders, pareto_front, series, Study,
 };
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -60,7 +61,9 @@ pub fn csv(study: &Study) -> Result<String> {
 
 pub fn write(study: &Study, dir: &Path) -> Result<()> {
     write_atomic(&dir.join("convergence.csv"), csv(study)?.as_bytes())?;
+    #[cfg(feature = "plots")]
     write_atomic(&dir.join("error_vs_dofs.svg"), error_vs_dofs(study)?.as_bytes())?;
+    #[cfg(feature = "plots")]
     write_atomic(&dir.join("error_vs_time.svg"), error_vs_time(study)?.as_bytes())?;
     write_atomic(&dir.join("summary.txt"), summary(study, None).as_bytes())
 }
@@ -193,6 +196,7 @@ pub fn summary(study: &Study, tol: Option<f64>) -> String {
     s
 }
 
+#[cfg(feature = "plots")]
 const COLORS: [RGBColor; 12] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
@@ -208,10 +212,12 @@ const COLORS: [RGBColor; 12] = [
     RGBColor(128, 0, 0),
 ];
 
+#[cfg(feature = "plots")]
 fn err(e: impl std::fmt::Display) -> Error {
     Error::plot("convergence chart", e)
 }
 
+#[cfg(feature = "plots")]
 /// Error (max of p and tau) against DOFs, log-log, one panel per zone.
 pub fn error_vs_dofs(study: &Study) -> Result<String> {
     let mut svg = String::new();
@@ -279,6 +285,7 @@ pub fn error_vs_dofs(study: &Study) -> Result<String> {
     Ok(svg)
 }
 
+#[cfg(feature = "plots")]
 /// Edge-zone error against wall time per run, every series, with the Pareto front marked.
 pub fn error_vs_time(study: &Study) -> Result<String> {
     let idx: Vec<usize> = (0..study.runs.len()).filter(|&i| i != study.reference).collect();

@@ -4,8 +4,10 @@
 
 use crate::error::Result;
 use crate::report::finite;
+#[cfg(feature = "plots")]
 use crate::report::plot::render;
 use crate::studies::edges::{Opening, Preslip};
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::fmt::Write as _;
 
@@ -50,6 +52,7 @@ pub fn opening_csv(rows: &[Opening]) -> Result<String> {
     Ok(s)
 }
 
+#[cfg(feature = "plots")]
 /// Pre-slip extent (both ends) against t/h, one line per mu, log x.
 pub fn preslip_svg(rows: &[Preslip]) -> Result<String> {
     let mut mus: Vec<f64> = rows.iter().map(|r| r.mu).collect();

@@ -1,9 +1,13 @@
 //! Output files: CSV tables, SVG charts, field files. Every file is written to a temporary
 //! name in the same directory and renamed, so a failure never leaves a partial result.
 
+// Without the `plots` feature the figures' inputs and helpers go unused by design.
+#![cfg_attr(not(feature = "plots"), allow(unused))]
+
 pub mod check;
 pub mod convergence;
 pub mod edges;
+#[cfg(feature = "plots")]
 pub(crate) mod plot;
 pub mod precursors;
 pub mod run_file;
@@ -13,6 +17,10 @@ pub mod stability;
 pub mod sweep;
 
 use crate::{Error, Result};
+
+/// Whether this build draws the SVG figures (the `plots` feature); without it the writers skip
+/// them and write the tables alone.
+pub const FIGURES: bool = cfg!(feature = "plots");
 use std::io::Write;
 use std::path::{Path, PathBuf};
 

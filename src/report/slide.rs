@@ -8,13 +8,16 @@ use crate::interface::events::{NodeState, Phase};
 use crate::interface::law::Law;
 use crate::io::{vtu, Field};
 use crate::linalg::solve::SolverOptions;
+#[cfg(feature = "plots")]
 use crate::report::plot::render;
 use crate::report::{finite, write_atomic};
 use crate::studies::slide::{state_displacements, SlideResult};
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+#[cfg(feature = "plots")]
 const FONT: &str = "sans-serif";
 
 fn num(what: &str, v: f64) -> Result<String> {
@@ -126,6 +129,7 @@ pub fn fe_curve(r: &SlideResult) -> Vec<(f64, f64)> {
     pts
 }
 
+#[cfg(feature = "plots")]
 pub fn fig4_svg(r: &SlideResult) -> Result<String> {
     // mu_s = 0 (a frictionless run to a given X) has no mu_s N to scale by: F/(mu_s N) is
     // infinite, and an infinite axis sent plotters' tick search into an endless loop.
@@ -182,6 +186,7 @@ pub fn fig4_svg(r: &SlideResult) -> Result<String> {
     })
 }
 
+#[cfg(feature = "plots")]
 /// Space-time picture, one row per event of the drive phase (the row of events.csv, so rows
 /// never overlap however many precursors there are): each instability's slipped extent x/L
 /// (blue for a precursor, dark red for a slip of the whole interface) and, for continuous slip
@@ -301,13 +306,10 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
 /// Writes every output into `dir`, `states.csv` (~40 bytes per node and state, hundreds of MB
 /// for long runs) only if `states`; `header` is the run.toml text (what produced the files).
 pub fn write(r: &SlideResult, dir: &Path, header: &str, states: bool) -> Result<Vec<PathBuf>> {
-    let mut files = vec![
-        ("loading.csv", loading_csv(r)?),
-        ("events.csv", events_csv(r)?),
-        ("fig4_fe.svg", fig4_svg(r)?),
-        ("fronts.svg", fronts_svg(r)?),
-        ("run.toml", header.to_string()),
-    ];
+    let mut files = vec![("loading.csv", loading_csv(r)?), ("events.csv", events_csv(r)?)];
+    #[cfg(feature = "plots")]
+    files.extend([("fig4_fe.svg", fig4_svg(r)?), ("fronts.svg", fronts_svg(r)?)]);
+    files.push(("run.toml", header.to_string()));
     if states {
         files.push(("states.csv", states_csv(r)?));
     }

@@ -6,6 +6,7 @@ use crate::error::{Error, Result};
 use crate::studies::stability::{
     CornerStudy, NuStudy, PlateStudy, Results, ShapeCase, ShapePoint, ThinPoint,
 };
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -20,22 +21,27 @@ pub fn write(res: &Results, dir: &Path) -> Result<Vec<String>> {
     };
     if let Some(p) = &res.plate {
         put("plate.csv", plate_csv(p)?)?;
+        #[cfg(feature = "plots")]
         put("plate.svg", plate_svg(p)?)?;
     }
     if let Some(n) = &res.nu {
         put("nu.csv", nu_csv(n)?)?;
+        #[cfg(feature = "plots")]
         put("nu.svg", nu_svg(n)?)?;
     }
     if let Some(s) = &res.shape {
         put("shape.csv", shape_csv(s)?)?;
+        #[cfg(feature = "plots")]
         put("shape.svg", shape_svg(s)?)?;
     }
     if let Some(t) = &res.thin {
         put("thin.csv", thin_csv(t)?)?;
+        #[cfg(feature = "plots")]
         put("thin.svg", thin_svg(t)?)?;
     }
     if let Some(c) = &res.corners {
         put("corners.csv", corners_csv(c)?)?;
+        #[cfg(feature = "plots")]
         put("corners.svg", corners_svg(c)?)?;
     }
     put("summary.txt", summary(res))?;
@@ -362,6 +368,7 @@ pub fn summary(res: &Results) -> String {
 
 // ---------------------------------------------------------------- charts
 
+#[cfg(feature = "plots")]
 const COLORS: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
@@ -373,12 +380,15 @@ const COLORS: [RGBColor; 8] = [
     RGBColor(227, 119, 194),
 ];
 
+#[cfg(feature = "plots")]
 fn err(e: impl std::fmt::Display) -> Error {
     Error::plot("stability chart", e)
 }
 
+#[cfg(feature = "plots")]
 type Series = (String, Vec<(f64, f64)>);
 
+#[cfg(feature = "plots")]
 /// Log-log panels side by side, each with titled series (positive values only).
 fn panels(size: (u32, u32), specs: &[(&str, &str, &str, Vec<Series>)]) -> Result<String> {
     let mut svg = String::new();
@@ -431,6 +441,7 @@ fn panels(size: (u32, u32), specs: &[(&str, &str, &str, Vec<Series>)]) -> Result
     Ok(svg)
 }
 
+#[cfg(feature = "plots")]
 pub fn plate_svg(p: &PlateStudy) -> Result<String> {
     let mut left = Vec::new();
     let mut right = Vec::new();
@@ -454,6 +465,7 @@ pub fn plate_svg(p: &PlateStudy) -> Result<String> {
     )
 }
 
+#[cfg(feature = "plots")]
 pub fn nu_svg(n: &NuStudy) -> Result<String> {
     let mut els: Vec<&String> = n.points.iter().map(|q| &q.element).collect();
     els.sort();
@@ -487,6 +499,7 @@ pub fn nu_svg(n: &NuStudy) -> Result<String> {
     )
 }
 
+#[cfg(feature = "plots")]
 pub fn shape_svg(s: &[ShapePoint]) -> Result<String> {
     let mut els: Vec<&str> = s.iter().map(|q| q.element.as_str()).collect();
     els.dedup();
@@ -529,6 +542,7 @@ pub fn shape_svg(s: &[ShapePoint]) -> Result<String> {
     )
 }
 
+#[cfg(feature = "plots")]
 pub fn thin_svg(t: &[ThinPoint]) -> Result<String> {
     let line = |f: &dyn Fn(&ThinPoint) -> f64| t.iter().map(|q| (q.t_over_l, f(q))).collect::<Vec<_>>();
     panels(
@@ -559,6 +573,7 @@ pub fn thin_svg(t: &[ThinPoint]) -> Result<String> {
     )
 }
 
+#[cfg(feature = "plots")]
 pub fn corners_svg(c: &CornerStudy) -> Result<String> {
     let runs = &c.study.runs;
     let h = |r: &crate::studies::convergence::Run| 1.0 / r.n_thick as f64;

@@ -5,6 +5,7 @@ use super::check::{summary_csv, SUMMARY_HEADER};
 use super::write_atomic;
 use crate::error::{Error, Result};
 use crate::studies::sweep::{Axis, Param, Point};
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -231,6 +232,13 @@ pub fn axis_title(p: Param) -> &'static str {
     }
 }
 
+/// Without the `plots` feature: no figure, none written.
+#[cfg(not(feature = "plots"))]
+pub fn write_maps(_points: &[Point], _axes: &[Axis], _dir: &Path) -> Result<Vec<String>> {
+    Ok(vec![])
+}
+
+#[cfg(feature = "plots")]
 /// Writes one figure per quantity for the largest F/N: a map over the first two axes with
 /// more than one value (the other axes at their first value, stated in the title), or a line
 /// plot when only one axis has several values. Returns the files written (none when no axis
@@ -290,10 +298,12 @@ pub fn write_maps(points: &[Point], axes: &[Axis], dir: &Path) -> Result<Vec<Str
     Ok(written)
 }
 
+#[cfg(feature = "plots")]
 fn err(e: impl std::fmt::Display) -> Error {
     Error::input("sweep map", e.to_string())
 }
 
+#[cfg(feature = "plots")]
 /// What a figure shows: the full title, the quantity's name (colour bar, y axis), and whether
 /// it is a yes/no verdict (categorical colours, no scale).
 struct Figure<'a> {
@@ -302,10 +312,14 @@ struct Figure<'a> {
     boolean: bool,
 }
 
+#[cfg(feature = "plots")]
 const HOLDS: RGBColor = RGBColor(44, 160, 44);
+#[cfg(feature = "plots")]
 const FAILS: RGBColor = RGBColor(214, 39, 40);
+#[cfg(feature = "plots")]
 const MISSING: RGBColor = RGBColor(200, 200, 200);
 
+#[cfg(feature = "plots")]
 /// Sequential colour scale from blue (0) to red (1).
 fn scale(f: f64) -> RGBColor {
     let f = f.clamp(0.0, 1.0);
@@ -316,6 +330,7 @@ fn scale(f: f64) -> RGBColor {
     )
 }
 
+#[cfg(feature = "plots")]
 /// Decimals that tell the values of a range apart (3 at least, 10 at most).
 fn decimals(lo: f64, hi: f64) -> usize {
     let span = hi - lo;
@@ -326,10 +341,12 @@ fn decimals(lo: f64, hi: f64) -> usize {
     }
 }
 
+#[cfg(feature = "plots")]
 fn value_range(cells: &[(usize, usize, Option<f64>)]) -> (f64, f64) {
     cells.iter().filter_map(|c| c.2).fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)))
 }
 
+#[cfg(feature = "plots")]
 /// Tick label of value `i` of an axis (the grid's values, not an index).
 fn tick(vals: &[f64], i: f64) -> String {
     let k = i.round();
@@ -339,6 +356,7 @@ fn tick(vals: &[f64], i: f64) -> String {
     vals.get(k as usize).map_or(String::new(), |v| format!("{v:.3e}"))
 }
 
+#[cfg(feature = "plots")]
 fn heat_map(q: &Figure, ax: &Axis, ay: &Axis, cells: &[(usize, usize, Option<f64>)]) -> Result<String> {
     let (lo, hi) = value_range(cells);
     let (nx, ny) = (ax.values.len(), ay.values.len());
@@ -408,6 +426,7 @@ fn heat_map(q: &Figure, ax: &Axis, ay: &Axis, cells: &[(usize, usize, Option<f64
     Ok(svg)
 }
 
+#[cfg(feature = "plots")]
 /// The colour bar (continuous) or the categorical key (verdicts), with the grey of no value.
 fn side_key<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
@@ -462,6 +481,7 @@ where
     Ok(())
 }
 
+#[cfg(feature = "plots")]
 /// One swept parameter: the quantity against it (verdicts as holds / fails).
 fn line_plot(q: &Figure, ax: &Axis, cells: &[(usize, usize, Option<f64>)]) -> Result<String> {
     let mut pts: Vec<(f64, f64)> = cells.iter().filter_map(|&(i, _, v)| Some((ax.values[i], v?))).collect();

@@ -2,15 +2,18 @@
 //! interface fields next to the paper's linear fields, `fe_events.csv`, `fe_extents.svg` and
 //! the H/L, t/L sweep `fe_sweep.csv`.
 
+#[cfg(feature = "plots")]
 use super::super::plot::{render, FONT};
 use super::super::{ensure_dir, finite, opt, write_all, write_atomic};
 use crate::precursors::discrete::{CellEvent, Run};
 use crate::precursors::fe::{Comparison, SweepRow};
 use crate::Result;
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+#[cfg(feature = "plots")]
 /// Precursor extents x_i against event index: the paper's analytic iteration vs the
 /// discrete model fed with FE fields.
 pub fn fe_extents_svg(c: &Comparison) -> Result<String> {
@@ -96,7 +99,10 @@ pub fn comparison_csv(c: &Comparison) -> Result<String> {
 /// needed); returns the paths.
 pub fn write_comparison(dir: &Path, c: &Comparison) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
-    write_all(dir, &[("fe_events.csv", comparison_csv(c)?), ("fe_extents.svg", fe_extents_svg(c)?)])
+    let mut files = vec![("fe_events.csv", comparison_csv(c)?)];
+    #[cfg(feature = "plots")]
+    files.push(("fe_extents.svg", fe_extents_svg(c)?));
+    write_all(dir, &files)
 }
 
 /// The sweep of [`crate::precursors::fe::sweep`] as CSV, header

@@ -1,15 +1,20 @@
 //! The event-rule study (`precursors dc`): the `paper` rule next to slip-weakening with each
 //! D_c, `dc.csv`, `dc.svg` and each run's folder.
 
+#[cfg(feature = "plots")]
 use super::super::plot::{log_range, render, FONT};
 use super::super::{ensure_dir, write_all};
-use super::{series_csv, series_range, Series};
+use super::series_csv;
+#[cfg(feature = "plots")]
+use super::{series_range, Series};
 use crate::studies::precursors_fe::SeriesRow;
 use crate::studies::slide::PaperComparison;
 use crate::Result;
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
+#[cfg(feature = "plots")]
 /// The D_c figure: F_1 and F_max, x_1, and the front-advancing count against D_c (log),
 /// slip-weakening (points) next to the `paper` rule (dashed) and the model (solid).
 pub fn dc_svg(rows: &[SeriesRow]) -> Result<String> {
@@ -88,14 +93,12 @@ pub fn write_dc(
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
     let what: [(&str, f64); 0] = [];
-    let mut written = write_all(
-        dir,
-        &[
-            ("dc.csv", series_csv("Dc_m", rows)?),
-            ("dc.svg", dc_svg(rows)?),
-            ("run.toml", crate::report::run_toml(inv, &what, scene)?),
-        ],
-    )?;
+    let mut files = vec![]; // the figures with the `plots` feature only
+    files.push(("dc.csv", series_csv("Dc_m", rows)?));
+    #[cfg(feature = "plots")]
+    files.push(("dc.svg", dc_svg(rows)?));
+    files.push(("run.toml", crate::report::run_toml(inv, &what, scene)?));
+    let mut written = write_all(dir, &files)?;
     for row in rows {
         let Ok(f) = &row.fig4 else { continue };
         let name = if row.value == 0.0 { "paper".to_string() } else { format!("dc_{:e}", row.value) };

@@ -1,10 +1,12 @@
 //! The FE fig. 5 (`precursors fe-map`): per (r, g) cell the frictional FE's counts next to the
 //! model's, `fig5_fe.csv`, `boundary_fe.csv` and `fig5_fe.svg`.
 
+#[cfg(feature = "plots")]
 use super::super::plot::{n_colour, n_key, render, FONT};
 use super::super::{ensure_dir, finite, opt, write_all};
 use crate::studies::precursors_fe::Cell;
 use crate::Result;
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -87,6 +89,7 @@ pub fn fe_boundary_csv(cells: &[Cell]) -> Result<String> {
     Ok(s)
 }
 
+#[cfg(feature = "plots")]
 /// FE fig. 5 next to the analytic one: one panel for the model's n and one per rule run for
 /// the FE's front-advancing count, on one logarithmic colour scale; capped cells grey,
 /// refused ones black; the paper's line g = (1 - r)/2 in red, the FE's measured boundary as
@@ -175,13 +178,11 @@ pub fn write_fe_fig5(
     scene: &crate::scene::Scene,
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
-    write_all(
-        dir,
-        &[
-            ("fig5_fe.csv", fe_fig5_csv(cells)?),
-            ("boundary_fe.csv", fe_boundary_csv(cells)?),
-            ("fig5_fe.svg", fe_fig5_svg(cells, resolution)?),
-            ("run.toml", crate::report::run_toml(inv, &what, scene)?),
-        ],
-    )
+    let mut files = vec![]; // the figures with the `plots` feature only
+    files.push(("fig5_fe.csv", fe_fig5_csv(cells)?));
+    files.push(("boundary_fe.csv", fe_boundary_csv(cells)?));
+    #[cfg(feature = "plots")]
+    files.push(("fig5_fe.svg", fe_fig5_svg(cells, resolution)?));
+    files.push(("run.toml", crate::report::run_toml(inv, &what, scene)?));
+    write_all(dir, &files)
 }

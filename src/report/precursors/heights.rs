@@ -1,14 +1,19 @@
 //! The height-of-drive study (`precursors heights`): `heights.csv`, `heights.svg`.
 
+#[cfg(feature = "plots")]
 use super::super::plot::{render, FONT};
 use super::super::{ensure_dir, write_all};
-use super::{series_csv, series_range, Series};
+use super::series_csv;
+#[cfg(feature = "plots")]
+use super::{series_range, Series};
 use crate::studies::precursors_fe::SeriesRow;
 use crate::studies::slide::PaperComparison;
 use crate::Result;
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
+#[cfg(feature = "plots")]
 /// The height-of-drive figure: n, F_1 and F_max, and x_1 against g = 6 mu_d H/L, the FE
 /// (`paper` rule, points) next to the model (lines), at fixed friction coefficients.
 pub fn heights_svg(rows: &[SeriesRow]) -> Result<String> {
@@ -70,12 +75,10 @@ pub fn write_heights(
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
     let what = [("mu_s", mu.0), ("mu_d", mu.1)];
-    write_all(
-        dir,
-        &[
-            ("heights.csv", series_csv("H_over_L", rows)?),
-            ("heights.svg", heights_svg(rows)?),
-            ("run.toml", crate::report::run_toml(inv, &what, scene)?),
-        ],
-    )
+    let mut files = vec![]; // the figures with the `plots` feature only
+    files.push(("heights.csv", series_csv("H_over_L", rows)?));
+    #[cfg(feature = "plots")]
+    files.push(("heights.svg", heights_svg(rows)?));
+    files.push(("run.toml", crate::report::run_toml(inv, &what, scene)?));
+    write_all(dir, &files)
 }

@@ -1,9 +1,11 @@
 //! The model's n(r, g) over the (r, g) square (the paper's fig. 5): `n_map.csv`, `fig5.svg`.
 
+#[cfg(feature = "plots")]
 use super::super::plot::{n_colour, n_key, render, FONT};
 use super::super::{ensure_dir, finite, write_all};
 use crate::precursors::MapPoint;
 use crate::Result;
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -17,6 +19,7 @@ pub fn n_map_csv(map: &[MapPoint]) -> Result<String> {
     Ok(s)
 }
 
+#[cfg(feature = "plots")]
 /// The paper's fig. 5: n(r, g) as a colour map (logarithmic in 1 + n, since n runs from 0
 /// to thousands near (1, 1)), with a colour key and the no-precursor line g = (1-r)/2.
 pub fn fig5_svg(map: &[MapPoint], resolution: usize) -> Result<String> {
@@ -59,5 +62,8 @@ pub fn fig5_svg(map: &[MapPoint], resolution: usize) -> Result<String> {
 /// Writes `n_map.csv` and `fig5.svg` into `dir` (created if needed); returns the paths.
 pub fn write_map(dir: &Path, map: &[MapPoint], resolution: usize) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
-    write_all(dir, &[("n_map.csv", n_map_csv(map)?), ("fig5.svg", fig5_svg(map, resolution)?)])
+    let mut files = vec![("n_map.csv", n_map_csv(map)?)];
+    #[cfg(feature = "plots")]
+    files.push(("fig5.svg", fig5_svg(map, resolution)?));
+    write_all(dir, &files)
 }

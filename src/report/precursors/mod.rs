@@ -16,19 +16,26 @@ mod map;
 mod model;
 mod thin_layer;
 
-pub use bonded::{comparison_csv, fe_extents_svg, sweep_csv, write_comparison, write_sweep};
-pub use dc::{dc_svg, write_dc};
+pub use bonded::{comparison_csv, sweep_csv, write_comparison, write_sweep};
+pub use dc::write_dc;
 pub use fe::write_fe_fig4;
-pub use fe_map::{fe_boundary_csv, fe_fig5_csv, fe_fig5_svg, write_fe_fig5};
-pub use heights::{heights_svg, write_heights};
-pub use map::{fig5_svg, n_map_csv, write_map};
-pub use model::{events_csv, fig4_svg, loading_csv, write_events};
-pub use thin_layer::{thin_layer_svg, write_thin_layer};
+pub use fe_map::{fe_boundary_csv, fe_fig5_csv, write_fe_fig5};
+pub use heights::write_heights;
+pub use map::{n_map_csv, write_map};
+pub use model::{events_csv, loading_csv, write_events};
+pub use thin_layer::write_thin_layer;
+/// The figures, with the `plots` feature.
+#[cfg(feature = "plots")]
+pub use {
+    bonded::fe_extents_svg, dc::dc_svg, fe_map::fe_fig5_svg, heights::heights_svg, map::fig5_svg,
+    model::fig4_svg, thin_layer::thin_layer_svg,
+};
 
 use super::opt;
 use crate::studies::precursors_fe::{FieldChecks, SeriesRow};
 use crate::studies::slide::PaperComparison;
 use crate::Result;
+#[cfg(feature = "plots")]
 use plotters::prelude::RGBColor;
 use std::fmt::Write as _;
 
@@ -101,12 +108,15 @@ pub fn series_csv(param: &str, rows: &[SeriesRow]) -> Result<String> {
     Ok(s)
 }
 
+#[cfg(feature = "plots")]
 /// A model value and the FE's (if any) of one quantity of a [`PaperComparison`].
 type Pair = fn(&PaperComparison) -> (f64, Option<f64>);
 
+#[cfg(feature = "plots")]
 /// Named, coloured quantities drawn on one panel.
 type Series<'a> = Vec<(&'a str, Pair, RGBColor)>;
 
+#[cfg(feature = "plots")]
 /// A y range covering the model and FE values of `series` over `cmps`, padded by 8 %.
 fn series_range<'a>(
     cmps: impl Iterator<Item = &'a PaperComparison>,

@@ -1,10 +1,12 @@
 //! The paper's own iteration for one (r, g): `events.csv`, `loading.csv` and fig. 4
 //! (`fig4.svg`). Forces in units of mu_s N, positions in units of L.
 
+#[cfg(feature = "plots")]
 use super::super::plot::{render, FONT};
 use super::super::{ensure_dir, finite, write_all};
 use crate::precursors::{loading_curve, Event, Params};
 use crate::Result;
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -29,6 +31,7 @@ pub fn loading_csv(curve: &[(f64, f64)]) -> Result<String> {
     Ok(s)
 }
 
+#[cfg(feature = "plots")]
 /// The paper's fig. 4: loading curve F(F^c) (red), ideal elastic line F = F^c (black),
 /// F_max (dashed) and each precursor's extent [-1/2, x_i] at its force F_i (blue, top axis).
 pub fn fig4_svg(p: &Params, events: &[Event]) -> Result<String> {
@@ -107,10 +110,9 @@ pub fn fig4_svg(p: &Params, events: &[Event]) -> Result<String> {
 /// returns the paths written.
 pub fn write_events(dir: &Path, p: &Params, events: &[Event]) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
-    let files = [
-        ("events.csv", events_csv(events)?),
-        ("loading.csv", loading_csv(&loading_curve(events))?),
-        ("fig4.svg", fig4_svg(p, events)?),
-    ];
+    let mut files =
+        vec![("events.csv", events_csv(events)?), ("loading.csv", loading_csv(&loading_curve(events))?)];
+    #[cfg(feature = "plots")]
+    files.push(("fig4.svg", fig4_svg(p, events)?));
     write_all(dir, &files)
 }

@@ -1,5 +1,6 @@
 //! The thin-layer study (`precursors thin-layer`): `thin_layer.csv`, `thin_layer.svg`.
 
+#[cfg(feature = "plots")]
 use super::super::plot::{log_range, render, FONT};
 use super::super::{ensure_dir, write_all};
 use super::series_csv;
@@ -7,9 +8,11 @@ use crate::precursors::Params;
 use crate::studies::precursors_fe::{Fig4, SeriesRow};
 use crate::studies::slide::PaperComparison;
 use crate::Result;
+#[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
+#[cfg(feature = "plots")]
 /// The thin-layer figure: |F_1 - model|/model, |x_1 - model|/L and |F_max - model|/model
 /// against t/L (log-log), and the front-advancing count against t/L with the model's n.
 pub fn thin_layer_svg(p: &Params, rows: &[SeriesRow]) -> Result<String> {
@@ -93,12 +96,10 @@ pub fn write_thin_layer(
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
     let what = [("r", p.r()), ("g", p.g())];
-    write_all(
-        dir,
-        &[
-            ("thin_layer.csv", series_csv("t_over_L", rows)?),
-            ("thin_layer.svg", thin_layer_svg(p, rows)?),
-            ("run.toml", crate::report::run_toml(inv, &what, scene)?),
-        ],
-    )
+    let mut files = vec![]; // the figures with the `plots` feature only
+    files.push(("thin_layer.csv", series_csv("t_over_L", rows)?));
+    #[cfg(feature = "plots")]
+    files.push(("thin_layer.svg", thin_layer_svg(p, rows)?));
+    files.push(("run.toml", crate::report::run_toml(inv, &what, scene)?));
+    write_all(dir, &files)
 }

@@ -1,0 +1,200 @@
+//! `tribofe precursors`: one subcommand per study (model, map, fe, fe-map, thin-layer,
+//! heights, dc, bonded), each with its own flags; the model's iteration when none is given.
+//! The earlier flag forms (`precursors --fe --map`, ...) are hidden aliases ([`old`]),
+//! translated into the same subcommands, so both give the same files.
+
+mod bonded;
+mod fe;
+mod model;
+mod old;
+mod series;
+
+use std::path::{Path, PathBuf};
+use tribofe::report::run_file::Invocation;
+use tribofe::Error;
+
+/// Events are iterated until |F - F_max| < this (or MAX_DEFAULT_EVENTS) unless --events is given.
+const CONVERGED: f64 = 1e-6;
+const MAX_DEFAULT_EVENTS: usize = 200;
+/// Largest --events: the iteration reaches its stick-slip limit cycle within ~200 events, and
+/// each event printed and written costs ~100 bytes (10 MB at the cap).
+const MAX_EVENTS: usize = 100_000;
+
+#[derive(clap::Args, Debug)]
+#[command(
+    args_conflicts_with_subcommands = true,
+    after_help = "Without a subcommand: `precursors model`. The earlier flag forms (--map, --fe, \
+--fe --map, --fe --thin-layer LIST, --fe --heights LIST, --fe --dc LIST, --bonded-fields) still \
+work and write the same files (docs/precursors.md)."
+)]
+pub struct Args {
+    #[command(subcommand)]
+    mode: Option<Mode>,
+    /// The earlier flag forms, hidden from --help ([`hide_old_flags`]).
+    #[command(flatten)]
+    old: old::Old,
+}
+
+#[derive(clap::Subcommand, Debug)]
+enum Mode {
+    /// The paper's event iteration for one (r, g): events.csv, loading.csv, fig4.svg (the default).
+    Model(model::ModelArgs),
+    /// The model's number of precursors n over the (r, g) square (fig. 5): n_map.csv, fig5.svg.
+    Map(model::MapArgs),
+    /// The paper's fig. 4 from the frictional FE on the scene (rigid plate, QUA4), one run per
+    /// event rule (paper, overdamped) next to the model: summary.csv, model/, paper/, overdamped/.
+    #[command(allow_negative_numbers = true)]
+    Fe(fe::FeArgs),
+    /// The FE fig. 5: n over the (r, g) grid from the frictional FE for each rule asked for,
+    /// next to the model's: fig5_fe.csv, boundary_fe.csv, fig5_fe.svg.
+    #[command(allow_negative_numbers = true)]
+    FeMap(fe::FeMapArgs),
+    /// The thin-layer limit: the `paper` rule at (r, g) on blocks of decreasing t/L at the
+    /// scene's L and H/L (h = t, 2 elements through t): thin_layer.csv, thin_layer.svg.
+    #[command(allow_negative_numbers = true)]
+    ThinLayer(series::ThinLayerArgs),
+    /// The height of the drive: the `paper` rule with the coefficients of (r, g) at the
+    /// scene's H kept fixed, over H/L: heights.csv, heights.svg.
+    #[command(allow_negative_numbers = true)]
+    Heights(series::HeightsArgs),
+    /// The event rule: the `paper` rule and slip-weakening with each D_c at (r, g), one cycle:
+    /// dc.csv, dc.svg and each run's fig. 4 in its own folder.
+    #[command(allow_negative_numbers = true)]
+    Dc(series::DcArgs),
+    /// The earlier comparison: the 1D model fed with the bonded FE interface fields (ill-posed
+    /// at the singular corners, validation/precursors/README.md): fe_events.csv, fe_extents.svg.
+    #[command(allow_negative_numbers = true)]
+    Bonded(bonded::BondedArgs),
+}
+
+/// The output folder of every subcommand.
+#[derive(clap::Args, Debug)]
+struct OutArgs {
+    /// Output directory (created if needed).
+    #[arg(long, default_value = "out/precursors")]
+    out: PathBuf,
+    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    #[arg(long)]
+    force: bool,
+}
+
+/// The paper's dimensionless (r, g).
+#[derive(clap::Args, Debug)]
+struct RgArgs {
+    /// r = mu_d/mu_s, in (0, 1). Default: the paper's fig. 4 case.
+    #[arg(long, default_value_t = 0.9)]
+    r: f64,
+    /// g = 6 mu_d H/L, in (0, 1). Default: the paper's fig. 4 case.
+    #[arg(long, default_value_t = 0.35)]
+    g: f64,
+}
+
+/// Hides the flags of the earlier forms from `precursors --help` (they keep working).
+pub fn hide_old_flags(cmd: clap::Command) -> clap::Command {
+    cmd.mut_args(|a| if a.get_id() == "help" { a } else { a.hide(true) })
+}
+
+pub fn run(args: Args) -> tribofe::Result<()> {
+    let mode = match args.mode {
+        Some(m) => m,
+        None => args.old.mode()?,
+    };
+    match mode {
+        Mode::Model(a) => model::model(a),
+        Mode::Map(a) => model::map(a),
+        Mode::Fe(a) => fe::fe(a),
+        Mode::FeMap(a) => fe::fe_map(a),
+        Mode::ThinLayer(a) => series::thin_layer(a),
+        Mode::Heights(a) => series::heights(a),
+        Mode::Dc(a) => series::dc(a),
+        Mode::Bonded(a) => bonded::bonded(a),
+    }
+}
+
+fn too_many_events(n: usize) -> Error {
+    Error::input(
+        "--events",
+        format!(
+            "{n}: at most {MAX_EVENTS} (the iteration settles on its stick-slip cycle within ~200 events)"
+        ),
+    )
+}
+
+/// A progress bar over `len` items called `what`.
+fn counter(len: usize, what: &str) -> indicatif::ProgressBar {
+    let style = format!("{{bar:40}} {{pos}}/{{len}} {what}, {{elapsed}}");
+    indicatif::ProgressBar::new(len as u64)
+        .with_style(indicatif::ProgressStyle::with_template(&style).unwrap())
+}
+
+/// A spinner with elapsed time for a step that reports no fraction.
+fn spinner(what: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new_spinner().with_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg}, {elapsed}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    bar.set_message(what.to_string());
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    bar
+}
+
+/// Writes a study's folder whole: `write` fills a temporary sibling of `out` (given the
+/// invocation for its run.toml), which replaces `out` only once everything is written.
+/// Returns the files written, as paths under `out`.
+fn write_whole(
+    out: &Path,
+    force: bool,
+    write: impl FnOnce(&Path, &Invocation) -> tribofe::Result<Vec<PathBuf>>,
+) -> tribofe::Result<Vec<PathBuf>> {
+    let dir = tribofe::io::outdir::OutDir::begin(out, force)?;
+    let tmp = dir.path().to_path_buf();
+    let files = write(&tmp, super::invocation())?;
+    dir.commit()?;
+    Ok(files.into_iter().map(|p| p.strip_prefix(&tmp).map_or(p.clone(), |r| out.join(r))).collect())
+}
+
+/// Writes `dir/run.toml`; returns its path.
+fn run_file(
+    dir: &Path,
+    inv: &Invocation,
+    scene: Option<&tribofe::scene::Scene>,
+    results: &impl serde::Serialize,
+) -> tribofe::Result<PathBuf> {
+    let results = toml::Value::try_from(results).map_err(|e| Error::input("run.toml", e.to_string()))?;
+    let results = match results {
+        toml::Value::Array(a) => a
+            .into_iter()
+            .filter_map(|kv| match kv.as_array().map(|a| &a[..]) {
+                Some([toml::Value::String(k), v]) => Some((k.clone(), v.clone())),
+                _ => None,
+            })
+            .collect::<toml::Table>(),
+        toml::Value::Table(t) => t,
+        _ => toml::Table::new(),
+    };
+    tribofe::report::run_file::write(dir, inv, scene, &results)?;
+    Ok(dir.join(tribofe::io::outdir::RUN_FILE))
+}
+
+fn print_written(paths: &[impl AsRef<Path>]) -> tribofe::Result<()> {
+    for p in paths {
+        outln!("wrote {}", p.as_ref().display());
+    }
+    Ok(())
+}
+
+/// The scene of the FE subcommands, refusing the scene flags that cannot act there; checks
+/// the output folder before any work.
+fn fe_scene(scene: &super::check::SceneArgs, out: &OutArgs) -> tribofe::Result<tribofe::scene::Scene> {
+    for (flag, given) in [("--fn-ratios", scene.fn_ratios.is_some()), ("--tol", scene.tol.is_some())] {
+        if given {
+            return Err(Error::input(
+                flag,
+                "cannot act in `precursors --fe`, which loads N then X until the interface slides",
+            ));
+        }
+    }
+    let scene = super::check::scene(scene)?;
+    tribofe::io::outdir::check(&out.out, out.force)?;
+    Ok(scene)
+}
