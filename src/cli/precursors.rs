@@ -49,7 +49,8 @@ pub struct Args {
     cycles: Option<usize>,
     /// With --fe: the thin-layer study instead, the `paper` rule at (r, g) on blocks of these
     /// t/L (comma separated, e.g. 0.02,0.01,0.005,0.0025,0.00125) at the scene's L and H/L, h
-    /// = t with 2 elements through t; writes thin_layer.csv and thin_layer.svg.
+    /// = t with 2 elements through t (not the scene's mesh: at the scene's t/L the numbers
+    /// differ from plain --fe by the mesh); writes thin_layer.csv and thin_layer.svg.
     #[arg(long, value_delimiter = ',', requires = "fe", conflicts_with_all = ["map", "cycles"])]
     thin_layer: Option<Vec<f64>>,
     /// With --fe: the height-of-drive study instead, the `paper` rule with the coefficients of
@@ -346,7 +347,8 @@ fn fe(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{:>12} refused: {e}", rule.name()),
         }
     }
-    outln!("n: precursors before the first whole slip or front crossing; > 5t: longer than 5 t; advance: moving the front by > 5 t (the count least sensitive to the mesh)");
+    outln!("n: every precursor; > 5t: the long ones; n advance: the count to compare with the model's n (the least sensitive to the mesh); F_1, x_1: its first");
+    outln!("{}", tribofe::precursors::definition::DEFINITION);
     outln!("\nthe model's field assumptions measured on each run (states before the end of the first cycle; interior: > 5 t from the ends):");
     outln!(
         "{:>12} {:>11} {:>11} {:>11} {:>11} {:>11}",
@@ -373,7 +375,7 @@ fn fe(args: &Args) -> tribofe::Result<()> {
         }
     }
     outln!("1: largest |tau - F^c/L|/(F^c/L) on never-slipped nodes > 5 t ahead of the front; tip: tau/(F^c/L) - 1 just ahead of it");
-    outln!("2: largest |p - (N/L + 12 F H x/L^3)|/(N/L); 3: F/(mu_s N) when the trailing node opens or creeps, x/L where the first long precursor began");
+    outln!("2: largest |p - (N/L + 12 F H x/L^3)|/(N/L); 3: F/(mu_s N) when the trailing node opens or creeps, x/L where the first counted precursor nucleated");
     let results = [
         ("r", toml::Value::from(p.r())),
         ("g", toml::Value::from(p.g())),
@@ -456,6 +458,12 @@ fn thin_layer(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{:>9} refused: {e}", row.value),
         }
     }
+    outln!("{}", tribofe::precursors::definition::DEFINITION);
+    outln!(
+        "mesh: h = t with 2 elements through t at every t/L; the scene's own mesh (h = {:.4} t) gives other numbers at its t/L = {:.4}: `precursors --fe` runs that one",
+        scene.mesh.h / scene.block.thickness,
+        scene.block.thickness / scene.block.length
+    );
     for lim in pfe::thin_layer_limits(&rows) {
         let (name, model) = (lim.name, lim.model);
         let offset = |v: f64| {
@@ -531,6 +539,7 @@ fn heights(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{:>7.4} refused: {e}", row.value),
         }
     }
+    outln!("n: the count to compare with the model's n; {}", tribofe::precursors::definition::DEFINITION);
     write_whole(&args.out, args.force, |dir, inv| report::write_heights(dir, mu, &rows, inv, &scene))?;
     outln!("wrote {}/{{heights.csv, heights.svg, run.toml}}", args.out.display());
     Ok(())
@@ -625,6 +634,7 @@ fn dc(args: &Args) -> tribofe::Result<()> {
             Err(e) => outln!("{name:>9} {kappa:>8} {lch:>7} {appendix:>10} refused: {e}"),
         }
     }
+    outln!("{}", tribofe::precursors::definition::DEFINITION);
     outln!("kappa = G D_c/((mu_s - mu_d) p t) (stable above 1); L_c = kappa t, the nucleation length; Appendix: (E/p)(D_c/t)(mu_s - mu_d)/(2 mu_d), the excess mu(x) - mu_d below which the Appendix's Griffith argument lets a front arrest");
     write_whole(&args.out, args.force, |dir, inv| report::write_dc(dir, &rows, inv, &scene))?;
     outln!("wrote {}/{{dc.csv, dc.svg, run.toml, paper/, dc_<D_c>/}}", args.out.display());
@@ -710,8 +720,9 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
         report::write_fe_fig5(dir, &cells, resolution, &what, inv, &scene)
     })?;
     outln!(
-        "counts: front-advancing precursors (> 5 t) before the first whole slip or front crossing (the slipped nodes joining edge to edge); capped: over --max-events"
+        "counts: n, the advancing precursors before the first whole slip or front crossing (the slipped nodes joining edge to edge); capped: over --max-events, its count the event solver's precursor-kind events"
     );
+    outln!("{}", tribofe::precursors::definition::DEFINITION);
     outln!("wrote {}/{{fig5_fe.csv, boundary_fe.csv, fig5_fe.svg, run.toml}}", args.out.display());
     Ok(())
 }
