@@ -11,11 +11,15 @@
 //!   instability follows at the same X, with no drive in between: one slip in time, which an
 //!   independent contact solver sees as one (on the paper's scene the first long slip starts at
 //!   F = 0.7319 mu_s N, the first of its two relaxations).
-//! - *Where it nucleates*: the cascade's first instability whose nucleation node lies within
-//!   [`ZONE_T`] t of the trailing edge x = -L/2. The trailing corner opens over at most 0.31 t
-//!   before the first whole slip (validation/edges), and the slip then starts a few nodes
-//!   inwards (2.5 t on the paper's scene). The slipped region is that instability's region
-//!   joined with the cascade's regions that touch it.
+//! - *Where it nucleates*: at the trailing end of the stuck contact. The trailing corner
+//!   opens (at most 0.31 t on fine meshes, validation/edges) or creeps at mu_d (2 nodes at
+//!   h = t), and an instability's slipped region starts at the first node that neither
+//!   opened nor creeps; the slip nucleates a few nodes further in (1.5 t on the paper's
+//!   scene, 4 t at t/L = 1/1600). So: the cascade's first instability whose slipped region
+//!   starts within [`ZONE_T`] t of the trailing edge x = -L/2 and whose nucleation node lies
+//!   within [`ZONE_T`] t of that start. A slip nucleating deeper and spreading back to the
+//!   edge is not one (the overdamped rule's re-slips inside the slipped zone). The slipped
+//!   region is that instability's region joined with the cascade's regions that touch it.
 //! - *Long*: a slipped region longer than [`LONG_T`] t; shorter ones are edge-zone slips.
 //! - *Advancing* (the count n to compare with the paper's n): its arrest point lies more than
 //!   [`ADVANCE_T`] t beyond the last counted one's (the trailing edge for the first). The
@@ -27,7 +31,8 @@
 //!
 //! Plain data in, plain data out: the studies hand over their events as [`Slip`]s.
 
-/// Width of the trailing-edge zone where a precursor nucleates, in block thicknesses t.
+/// Width of the trailing-edge zone, in block thicknesses t: a precursor's slipped region
+/// starts within it from x = -L/2 and its nucleation node lies within it from that start.
 pub const ZONE_T: f64 = 5.0;
 /// Slipped length above which a precursor is long, in t.
 pub const LONG_T: f64 = 5.0;
@@ -35,7 +40,7 @@ pub const LONG_T: f64 = 5.0;
 pub const ADVANCE_T: f64 = 5.0;
 
 /// The definition in one line, printed under every summary that reports precursors.
-pub const DEFINITION: &str = "precursor: the instabilities at one drive X (one cascade) before the cycle ends, nucleating within 5 t of the trailing edge; long: slipped > 5 t; n (compare with the paper's n): those whose arrest lies > 5 t beyond the last counted one's; F_i: drive force at the cascade's onset; x_i: its arrest point";
+pub const DEFINITION: &str = "precursor: the instabilities at one drive X (one cascade) before the cycle ends, nucleating at the trailing edge (slip starting within 5 t of x = -L/2, nucleus within 5 t of that start); long: slipped > 5 t; n (compare with the paper's n): those whose arrest lies > 5 t beyond the last counted one's; F_i: drive force at the cascade's onset; x_i: its arrest point";
 
 /// One instability of a frictional run, as the definition reads it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -133,10 +138,13 @@ pub fn find(slips: &[Slip], x: &[f64], t: f64) -> Precursors {
 }
 
 /// The cascade as a precursor (not yet judged advancing), or None when none of its
-/// instabilities nucleates in the trailing-edge zone.
+/// instabilities nucleates at the trailing edge.
 fn precursor(cascade: &[Slip], x: &[f64], t: f64) -> Option<Precursor> {
-    let in_zone = |s: &&Slip| x.get(s.node).is_some_and(|&xn| xn - x[0] <= ZONE_T * t);
-    let seed = cascade.iter().find(in_zone)?;
+    let at_edge = |s: &&Slip| {
+        let (Some(&xa), Some(&xn)) = (x.get(s.region.0), x.get(s.node)) else { return false };
+        xa - x[0] <= ZONE_T * t && (xn - xa).abs() <= ZONE_T * t
+    };
+    let seed = cascade.iter().find(at_edge)?;
     let (mut a, mut b) = (seed.region.0.min(seed.node), seed.region.1.max(seed.node));
     // Join the regions that touch the slipped run, until none does.
     let mut grown = true;
@@ -198,9 +206,13 @@ mod tests {
         // Node 11 is 11 mm = 5.5 t from the edge; the region spreads back to node 0.
         let p = find(&[slip(0, 1.0, 0.7, 11, (0, 40))], &x, t);
         assert_eq!(p.n_all(), 0);
-        // Node 9 is 4.5 t away: inside.
+        // Node 9 is 3.5 t from its region's start: inside.
         let p = find(&[slip(0, 1.0, 0.7, 9, (2, 40))], &x, t);
         assert_eq!(p.n(), 1);
+        // Behind an open or creeping corner of 3 t: the nucleus 4 t further in is at the edge
+        // (7 t from x = -L/2); a region starting 6 t in is not.
+        assert_eq!(find(&[slip(0, 1.0, 0.7, 14, (6, 40))], &x, t).n(), 1);
+        assert_eq!(find(&[slip(0, 1.0, 0.7, 14, (12, 40))], &x, t).n_all(), 0);
     }
 
     #[test]
