@@ -177,15 +177,16 @@ fn fe_fig5_on_the_paper_mesh() {
 /// Against the model at t/L = 0.00125, tolerances from the measured offsets
 /// (validation/precursors/README.md): at (0.9, 0.35) F_1 within 0.5 %, x_1 within 0.01 L,
 /// F_max 4-7 % below; at (0.8, 0.5) F_1 within 5 %, x_1 within 0.06 L, F_max within 10 %; at
-/// (0.95, 0.2) F_1 within 10 % and F_max within 4 %, but the first long precursor arrests
-/// more than 0.25 L beyond the model's x_1. The FE always makes at least the model's n of
-/// front-advancing precursors, and at most 10 times as many (65 against 8 at (0.8, 0.5)).
+/// (0.95, 0.2) F_1 within 0.5 %, x_1 within 0.01 L and F_max within 4 % (its first precursor
+/// nucleates behind a creeping corner: before the one precursor definition it was missed and
+/// F_1 read 9 % high, x_1 0.31 L off). The FE always makes at least the model's n of
+/// front-advancing precursors, and at most 10 times as many (64 against 8 at (0.8, 0.5)).
 fn thin_layer_limit_against_the_model() {
     use tribofe::studies::precursors_fe::thin_layer;
     let cases = [
         (0.9, 0.35, 0.005, 0.01, (0.04, 0.07)),
         (0.8, 0.5, 0.05, 0.06, (0.0, 0.10)),
-        (0.95, 0.2, 0.10, f64::INFINITY, (0.0, 0.04)),
+        (0.95, 0.2, 0.005, 0.01, (0.0, 0.04)),
     ];
     for (r, g, tol_f1, tol_x1, (fmax_lo, fmax_hi)) in cases {
         let rows = thin_layer(&Scene::default(), r, g, &[0.0025, 0.00125], &|_| {}).unwrap();
@@ -197,9 +198,6 @@ fn thin_layer_limit_against_the_model() {
         let low_fmax = 1.0 - b.f_max_fe.unwrap() / b.f_max;
         assert!(dev_f1 < tol_f1, "({r},{g}) F_1 {:?} vs {}", b.f1_fe, b.f1);
         assert!(dev_x1 < tol_x1, "({r},{g}) x_1 {:?} vs {}", b.x1_fe, b.x1);
-        if tol_x1.is_infinite() {
-            assert!(dev_x1 > 0.25, "({r},{g}) x_1 {:?} vs {}", b.x1_fe, b.x1);
-        }
         assert!(low_fmax > fmax_lo && low_fmax < fmax_hi, "({r},{g}) F_max {:?} vs {}", b.f_max_fe, b.f_max);
         assert!(
             b.n_fe_advancing >= b.n && b.n_fe_advancing <= 10 * b.n,
