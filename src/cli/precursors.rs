@@ -762,13 +762,14 @@ fn bonded_fields(args: &Args) -> tribofe::Result<()> {
                 sweep_fields.push(f);
             }
         }
+        let mut it = sweep_fields.into_iter();
+        let rows = tribofe::precursors::fe::sweep(&hs, &ts, args.r, args.g, n_events, |_, _| {
+            it.next().ok_or_else(|| Error::input("--sweep", "internal: sweep fields out of order"))
+        })?;
         let written = write_whole(&args.out, args.force, |dir, inv| {
             let mut w = report::write_comparison(dir, &c)?;
             let path = dir.join("fe_sweep.csv");
-            let mut it = sweep_fields.into_iter();
-            report::sweep_table(&path, &hs, &ts, args.r, args.g, n_events, |_, _| {
-                it.next().ok_or_else(|| Error::input("--sweep", "internal: sweep fields out of order"))
-            })?;
+            report::write_sweep(&path, &rows)?;
             w.push(path);
             w.push(run_file(dir, inv, Some(&scene), &[("r", args.r), ("g", args.g)])?);
             Ok(w)

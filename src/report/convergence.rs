@@ -239,8 +239,8 @@ pub fn error_vs_dofs(study: &Study) -> Result<String> {
                 .x_label_area_size(40)
                 .y_label_area_size(60)
                 .build_cartesian_2d(
-                    super::log_range(pts.iter().map(|p| p.0)).log_scale(),
-                    super::log_range(pts.iter().map(|p| p.1)).log_scale(),
+                    super::plot::log_range(pts.iter().map(|p| p.0)).log_scale(),
+                    super::plot::log_range(pts.iter().map(|p| p.1)).log_scale(),
                 )
                 .map_err(err)?;
             chart
@@ -298,8 +298,8 @@ pub fn error_vs_time(study: &Study) -> Result<String> {
             .x_label_area_size(45)
             .y_label_area_size(65)
             .build_cartesian_2d(
-                super::log_range(pts.iter().map(|p| p.0)).log_scale(),
-                super::log_range(pts.iter().map(|p| p.1)).log_scale(),
+                super::plot::log_range(pts.iter().map(|p| p.0)).log_scale(),
+                super::plot::log_range(pts.iter().map(|p| p.1)).log_scale(),
             )
             .map_err(err)?;
         chart

@@ -4,7 +4,7 @@
 
 use crate::error::Result;
 use crate::report::finite;
-use crate::report::precursors::render;
+use crate::report::plot::render;
 use crate::studies::edges::{Opening, Preslip};
 use plotters::prelude::*;
 use std::fmt::Write as _;

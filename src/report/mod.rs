@@ -4,6 +4,7 @@
 pub mod check;
 pub mod convergence;
 pub mod edges;
+pub(crate) mod plot;
 pub mod precursors;
 pub mod run_file;
 pub mod rupture;
@@ -13,7 +14,7 @@ pub mod sweep;
 
 use crate::{Error, Result};
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Writes `bytes` to a temporary file next to `path`, then renames it over `path`, so a
 /// failure never leaves a partly written file. Creates missing parent directories; the
@@ -106,14 +107,23 @@ pub fn ratio_label(r: f64) -> String {
     format!("{r}")
 }
 
-/// An axis range for a log scale over the finite positive values, padded by 2x each way.
-pub(crate) fn log_range(v: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
-    let (lo, hi) = v
-        .filter(|x| *x > 0.0 && x.is_finite())
-        .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
-    if lo.is_finite() {
-        (lo / 2.0)..(hi * 2.0)
-    } else {
-        1e-6..1.0
-    }
+/// Creates `dir` and its parents if missing.
+pub(crate) fn ensure_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))
+}
+
+/// Writes each `(name, text)` into `dir` ([`write_atomic`]); returns the paths written.
+pub(crate) fn write_all(dir: &Path, files: &[(&str, String)]) -> Result<Vec<PathBuf>> {
+    files
+        .iter()
+        .map(|(name, body)| {
+            let path = dir.join(name);
+            write_atomic(&path, body.as_bytes()).map(|_| path)
+        })
+        .collect()
+}
+
+/// An optional CSV cell: the value, or empty.
+pub(crate) fn opt<T: std::fmt::Display>(v: Option<T>) -> String {
+    v.map_or(String::new(), |v| v.to_string())
 }

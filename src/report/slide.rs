@@ -8,7 +8,7 @@ use crate::interface::events::{NodeState, Phase};
 use crate::interface::law::Law;
 use crate::io::{vtu, Field};
 use crate::linalg::solve::SolverOptions;
-use crate::report::precursors::render;
+use crate::report::plot::render;
 use crate::report::{finite, write_atomic};
 use crate::studies::slide::{state_displacements, SlideResult};
 use plotters::prelude::*;

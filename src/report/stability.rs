@@ -396,8 +396,8 @@ fn panels(size: (u32, u32), specs: &[(&str, &str, &str, Vec<Series>)]) -> Result
                 .x_label_area_size(40)
                 .y_label_area_size(60)
                 .build_cartesian_2d(
-                    super::log_range(pts().map(|p| p.0)).log_scale(),
-                    super::log_range(pts().map(|p| p.1)).log_scale(),
+                    super::plot::log_range(pts().map(|p| p.0)).log_scale(),
+                    super::plot::log_range(pts().map(|p| p.1)).log_scale(),
                 )
                 .map_err(err)?;
             chart

@@ -1,0 +1,140 @@
+//! The earlier comparison (`precursors bonded`): the 1D model fed with the bonded FE
+//! interface fields next to the paper's linear fields, `fe_events.csv`, `fe_extents.svg` and
+//! the H/L, t/L sweep `fe_sweep.csv`.
+
+use super::super::plot::{render, FONT};
+use super::super::{ensure_dir, finite, opt, write_all, write_atomic};
+use crate::precursors::discrete::{CellEvent, Run};
+use crate::precursors::fe::{Comparison, SweepRow};
+use crate::Result;
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Precursor extents x_i against event index: the paper's analytic iteration vs the
+/// discrete model fed with FE fields.
+pub fn fe_extents_svg(c: &Comparison) -> Result<String> {
+    let analytic: Vec<(f64, f64)> =
+        c.analytic.iter().filter(|e| !e.stick_slip).map(|e| (e.i as f64, e.x)).collect();
+    let fed: Vec<(f64, f64)> = c.fe.precursors().iter().map(|e| (e.i as f64, e.x)).collect();
+    for &(_, x) in analytic.iter().chain(&fed) {
+        finite("precursor extent", x)?;
+    }
+    let i_top = analytic.len().max(fed.len()).max(1) as f64 + 0.5;
+    let n_text = |n: Option<usize>| n.map_or("not reached".to_string(), |n| n.to_string());
+    render("fe_extents.svg", (900, 600), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                format!(
+                    "Precursor extents, r = {}, g = {}, H/L = {}, t/L = {}: analytic n = {}, FE-fed n = {}",
+                    c.params.r(),
+                    c.params.g(),
+                    c.h_over_l,
+                    c.t_over_l,
+                    n_text(c.analytic.iter().position(|e| e.stick_slip)),
+                    n_text(c.fe.n_precursors())
+                ),
+                (FONT, 16),
+            )
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(65)
+            .build_cartesian_2d(0.5..i_top, -0.5..0.5)?;
+        chart
+            .configure_mesh()
+            .x_desc("precursor index i")
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_desc("arrest position x_i / L  (dimensionless; trailing edge -1/2)")
+            .draw()?;
+        chart
+            .draw_series(LineSeries::new(analytic.iter().copied(), BLUE.stroke_width(2)).point_size(4))?
+            .label("analytic (paper's iteration)")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+        chart
+            .draw_series(LineSeries::new(fed.iter().copied(), RED.stroke_width(2)))?
+            .label("discrete model on FE fields")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(2)));
+        chart.draw_series(fed.iter().map(|&(i, x)| Cross::new((i, x), 5, RED.stroke_width(2))))?;
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT, 14))
+            .draw()?;
+        Ok(())
+    })
+}
+
+fn run_csv_rows(s: &mut String, model: &str, run: &Run) -> Result<()> {
+    for e in &run.events {
+        let CellEvent { i, f, fc, x_nucleation, x, fstar, stick_slip, .. } = *e;
+        let _ = writeln!(
+            s,
+            "{model},{i},{},{},{},{},{},{}",
+            finite("F", f)?,
+            finite("Fc", fc)?,
+            finite("x_nucleation", x_nucleation)?,
+            finite("x", x)?,
+            finite("Fstar", fstar)?,
+            u8::from(stick_slip)
+        );
+    }
+    Ok(())
+}
+
+/// Both discrete runs of a comparison, long format:
+/// `model,i,F,Fc,x_nucleation,x,Fstar,stick_slip` with model `fe` or `linear`.
+pub fn comparison_csv(c: &Comparison) -> Result<String> {
+    let mut s = String::from("model,i,F,Fc,x_nucleation,x,Fstar,stick_slip\n");
+    run_csv_rows(&mut s, "fe", &c.fe)?;
+    run_csv_rows(&mut s, "linear", &c.linear)?;
+    Ok(s)
+}
+
+/// Writes `fe_events.csv` and `fe_extents.svg` for a comparison into `dir` (created if
+/// needed); returns the paths.
+pub fn write_comparison(dir: &Path, c: &Comparison) -> Result<Vec<PathBuf>> {
+    ensure_dir(dir)?;
+    write_all(dir, &[("fe_events.csv", comparison_csv(c)?), ("fe_extents.svg", fe_extents_svg(c)?)])
+}
+
+/// The sweep of [`crate::precursors::fe::sweep`] as CSV, header
+/// `H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length,outside_model`
+/// (forces in units of mu_s N, lengths in units of L; an empty n or Fmax field means the
+/// run did not reach stick-slip within its events; `outside_model` says why a geometry could
+/// not be run, its figures then left empty).
+pub fn sweep_csv(rows: &[SweepRow]) -> Result<String> {
+    let mut s = String::from("H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length,outside_model\n");
+    for w in rows {
+        if let Some(why) = &w.outside_model {
+            let _ = writeln!(
+                s,
+                "{},{},,,,,,,,\"{}\"",
+                finite("H/L", w.h_over_l)?,
+                finite("t/L", w.t_over_l)?,
+                why.replace('"', "'")
+            );
+            continue;
+        }
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{},",
+            finite("H/L", w.h_over_l)?,
+            finite("t/L", w.t_over_l)?,
+            opt(w.n_fe),
+            opt(w.n_linear),
+            finite("F1_fe", w.f1_fe)?,
+            finite("F1_linear", w.f1_linear)?,
+            opt(w.f_max_fe.map(|v| finite("Fmax_fe", v)).transpose()?),
+            opt(w.f_max_linear.map(|v| finite("Fmax_linear", v)).transpose()?),
+            finite("max_abs_d_length", w.max_abs_d_length)?
+        );
+    }
+    Ok(s)
+}
+
+/// Writes [`sweep_csv`] to `path`.
+pub fn write_sweep(path: &Path, rows: &[SweepRow]) -> Result<()> {
+    write_atomic(path, sweep_csv(rows)?.as_bytes())
+}

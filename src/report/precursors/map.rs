@@ -1,0 +1,63 @@
+//! The model's n(r, g) over the (r, g) square (the paper's fig. 5): `n_map.csv`, `fig5.svg`.
+
+use super::super::plot::{n_colour, n_key, render, FONT};
+use super::super::{ensure_dir, finite, write_all};
+use crate::precursors::MapPoint;
+use crate::Result;
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// `n_map.csv`: header `r,g,n`.
+pub fn n_map_csv(map: &[MapPoint]) -> Result<String> {
+    let mut s = String::from("r,g,n\n");
+    for m in map {
+        let _ = writeln!(s, "{},{},{}", finite("r", m.r)?, finite("g", m.g)?, m.n);
+    }
+    Ok(s)
+}
+
+/// The paper's fig. 5: n(r, g) as a colour map (logarithmic in 1 + n, since n runs from 0
+/// to thousands near (1, 1)), with a colour key and the no-precursor line g = (1-r)/2.
+pub fn fig5_svg(map: &[MapPoint], resolution: usize) -> Result<String> {
+    let n_max = map.iter().map(|m| m.n).max().unwrap_or(0);
+    let colour = |n: usize| n_colour(n, n_max);
+    let half = 0.5 / resolution as f64;
+    render("fig5.svg", (900, 720), |root| {
+        let (main, key) = root.split_horizontally(760);
+        let mut chart = ChartBuilder::on(&main)
+            .caption("Number of precursors n(r, g) (paper fig. 5)", (FONT, 20))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0..1.0, 0.0..1.0)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("r = mu_d / mu_s  (dimensionless)")
+            .y_desc("g = 6 mu_d H / L  (dimensionless)")
+            .draw()?;
+        chart.draw_series(map.iter().map(|m| {
+            Rectangle::new([(m.r - half, m.g - half), (m.r + half, m.g + half)], colour(m.n).filled())
+        }))?;
+        chart
+            .draw_series(LineSeries::new([(0.0, 0.5), (1.0, 0.0)], RED.stroke_width(3)))?
+            .label("g = (1 - r)/2: no precursor below")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(3)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font((FONT, 14))
+            .draw()?;
+        n_key(&key, n_max)?;
+        Ok(())
+    })
+}
+
+/// Writes `n_map.csv` and `fig5.svg` into `dir` (created if needed); returns the paths.
+pub fn write_map(dir: &Path, map: &[MapPoint], resolution: usize) -> Result<Vec<PathBuf>> {
+    ensure_dir(dir)?;
+    write_all(dir, &[("n_map.csv", n_map_csv(map)?), ("fig5.svg", fig5_svg(map, resolution)?)])
+}
