@@ -158,13 +158,15 @@ fn precursor(cascade: &[Slip], x: &[f64], t: f64) -> Option<Precursor> {
             }
         }
     }
+    // Regions come from the same interface as `x`; one that does not is no precursor.
+    let (&xa, &xb) = (x.get(a)?, x.get(b)?);
     Some(Precursor {
         first_event: cascade[0].event,
         last_event: cascade[cascade.len() - 1].event,
         f: cascade[0].f,
         node: seed.node,
         region: (a, b),
-        long: x[b] - x[a] > LONG_T * t,
+        long: xb - xa > LONG_T * t,
         advancing: false,
     })
 }
