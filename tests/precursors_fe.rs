@@ -60,16 +60,59 @@ fn no_long_precursor_without_torque() {
         ..Default::default()
     };
     let res = run(&sc, &o, &|_| {}).unwrap();
-    let c = &res.condensed;
+    assert!(res.run.events.iter().any(|e| e.kind == EventKind::Sliding));
+    assert_eq!(tribofe::studies::slide::precursors(&res).n_long(), 0);
+}
+
+/// n, F_1 and x_1 of the `paper` rule at (r, g) through `slide` (its command's options: no
+/// front crossing, the default cap) on `scene`.
+fn through_slide(scene: &Scene, r: f64, g: f64) -> tribofe::studies::slide::PaperComparison {
+    let (ms, md) = coefficients_from_rg(scene, r, g).unwrap();
+    let o = SlideOptions {
+        law: Law::static_kinetic(ms, md, Rule::Paper).unwrap(),
+        cycles: 2,
+        ..Default::default()
+    };
+    tribofe::studies::slide::compare_paper(&run(scene, &o, &|_| {}).unwrap()).unwrap()
+}
+
+#[test]
+/// One precursor vocabulary (issue 32): the paper's scene gives the same n, F_1 and x_1
+/// through `precursors --fe` (fig. 4) and `slide`, to the bit (the same events counted by one
+/// definition). F_1 is the force at the onset of the first long slip, the first of the two
+/// relaxations at its X (0.7319 mu_s N), not the follow-up's (0.7264): above the follow-up's
+/// by the first relaxation's drop, and equal to the largest force of the cycle so far. The
+/// thin-layer study at the paper's t/L meshes h = t (the scene: h = t/2), so it equals fig. 4
+/// and `slide` on that mesh, and differs from the scene's counts by the mesh alone.
+fn the_same_scene_gives_the_same_precursors_through_every_command() {
+    let key = |c: &tribofe::studies::slide::PaperComparison| (c.n_fe_advancing, c.f1_fe, c.x1_fe);
+    let scene = Scene::default();
+    let f4 = fig4(&scene, 0.9, 0.35, 2, &Cancel::new()).unwrap().remove(0).unwrap();
+    assert_eq!(key(&f4.cmp), key(&through_slide(&scene, 0.9, 0.35)));
+    assert_eq!(f4.x_fe.len(), f4.cmp.n_fe_advancing);
+    assert_eq!(f4.x_fe.first().copied(), f4.cmp.x1_fe);
+    // F_1 at the cascade's onset: the events at its X, the first one's force.
+    let res = &f4.run;
+    let k = res.options.law.mu_s() * res.options.n_force;
+    let pre = tribofe::studies::slide::precursors(res);
+    let q = pre.first().unwrap();
     let evs = &res.run.events;
-    let first = evs.iter().position(|e| e.kind == EventKind::Sliding).unwrap();
-    let long = evs[..first]
-        .iter()
-        .filter(|e| {
-            e.kind == EventKind::Precursor && e.region.is_some_and(|(a, b)| c.x[b] - c.x[a] > 5.0 * c.t)
-        })
-        .count();
-    assert_eq!(long, 0);
+    assert!(q.last_event > q.first_event, "the first long slip is a cascade on the paper's scene");
+    assert_eq!(f4.cmp.f1_fe, Some(evs[q.first_event].f / k));
+    let follow_up = evs[q.last_event].f / k;
+    assert!(f4.cmp.f1_fe.unwrap() - follow_up > 1e-3, "{:?} vs {follow_up}", f4.cmp.f1_fe);
+    let peak_so_far = evs[..q.first_event].iter().map(|e| e.f / k).fold(0.0, f64::max);
+    assert!(f4.cmp.f1_fe.unwrap() > peak_so_far);
+    // The thin-layer study at the scene's t/L = thin(t) through fig. 4 and slide.
+    let t = scene.block.thickness;
+    let rows =
+        tribofe::studies::precursors_fe::thin_layer(&scene, 0.9, 0.35, &[t / scene.block.length], &|_| {})
+            .unwrap();
+    let tl = rows[0].fig4.as_ref().unwrap().cmp;
+    let f4_thin = fig4(&thin(t), 0.9, 0.35, 1, &Cancel::new()).unwrap().remove(0).unwrap();
+    assert_eq!(key(&tl), key(&f4_thin.cmp));
+    assert_eq!(key(&tl), key(&through_slide(&thin(t), 0.9, 0.35)));
+    assert_ne!(tl.n_fe_advancing, f4.cmp.n_fe_advancing, "the mesh changes the count");
 }
 
 /// Static-kinetic options at (r, g) on the paper's scene: one cycle, at most `max_events`.
@@ -134,15 +177,16 @@ fn fe_fig5_on_the_paper_mesh() {
 /// Against the model at t/L = 0.00125, tolerances from the measured offsets
 /// (validation/precursors/README.md): at (0.9, 0.35) F_1 within 0.5 %, x_1 within 0.01 L,
 /// F_max 4-7 % below; at (0.8, 0.5) F_1 within 5 %, x_1 within 0.06 L, F_max within 10 %; at
-/// (0.95, 0.2) F_1 within 10 % and F_max within 4 %, but the first long precursor arrests
-/// more than 0.25 L beyond the model's x_1. The FE always makes at least the model's n of
-/// front-advancing precursors, and at most 10 times as many (65 against 8 at (0.8, 0.5)).
+/// (0.95, 0.2) F_1 within 0.5 %, x_1 within 0.01 L and F_max within 4 % (its first precursor
+/// nucleates behind a creeping corner: before the one precursor definition it was missed and
+/// F_1 read 9 % high, x_1 0.31 L off). The FE always makes at least the model's n of
+/// front-advancing precursors, and at most 10 times as many (64 against 8 at (0.8, 0.5)).
 fn thin_layer_limit_against_the_model() {
     use tribofe::studies::precursors_fe::thin_layer;
     let cases = [
         (0.9, 0.35, 0.005, 0.01, (0.04, 0.07)),
         (0.8, 0.5, 0.05, 0.06, (0.0, 0.10)),
-        (0.95, 0.2, 0.10, f64::INFINITY, (0.0, 0.04)),
+        (0.95, 0.2, 0.005, 0.01, (0.0, 0.04)),
     ];
     for (r, g, tol_f1, tol_x1, (fmax_lo, fmax_hi)) in cases {
         let rows = thin_layer(&Scene::default(), r, g, &[0.0025, 0.00125], &|_| {}).unwrap();
@@ -154,9 +198,6 @@ fn thin_layer_limit_against_the_model() {
         let low_fmax = 1.0 - b.f_max_fe.unwrap() / b.f_max;
         assert!(dev_f1 < tol_f1, "({r},{g}) F_1 {:?} vs {}", b.f1_fe, b.f1);
         assert!(dev_x1 < tol_x1, "({r},{g}) x_1 {:?} vs {}", b.x1_fe, b.x1);
-        if tol_x1.is_infinite() {
-            assert!(dev_x1 > 0.25, "({r},{g}) x_1 {:?} vs {}", b.x1_fe, b.x1);
-        }
         assert!(low_fmax > fmax_lo && low_fmax < fmax_hi, "({r},{g}) F_max {:?} vs {}", b.f_max_fe, b.f_max);
         assert!(
             b.n_fe_advancing >= b.n && b.n_fe_advancing <= 10 * b.n,

@@ -616,6 +616,7 @@ fn comparison<'py>(
     d.set_item("F_1_fe", c.f1_fe)?;
     d.set_item("x_1_fe", c.x1_fe)?;
     d.set_item("F_max_fe", c.f_max_fe)?;
+    d.set_item("definition", tribofe::precursors::definition::DEFINITION)?;
     Ok(d)
 }
 

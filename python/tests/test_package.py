@@ -117,14 +117,17 @@ def test_paper_model():
 
 
 def test_fe_precursor_studies():
-    # The FE fig. 4 on the paper's scene: README's headline n = 17 (rule paper) and 8
-    # (overdamped) front-advancing precursors, F_1 = 0.7264 and 0.7319 mu_s N.
+    # The FE fig. 4 on the paper's scene: README's headline n = 17 (rule paper) and 4
+    # (overdamped) front-advancing precursors, F_1 = 0.7319 mu_s N for both (the force at the
+    # onset of the first long slip), counted by the library's one precursor definition.
     runs = tribofe.precursors.fe_fig4(r=0.9, g=0.35)
     by_rule = {run["rule"]: run["comparison"] for run in runs}
     assert by_rule["paper"]["n_fe_advancing"] == 17
-    assert by_rule["overdamped"]["n_fe_advancing"] == 8
-    assert abs(by_rule["paper"]["F_1_fe"] - 0.7264) < 5e-5
+    assert by_rule["overdamped"]["n_fe_advancing"] == 4
+    assert abs(by_rule["paper"]["F_1_fe"] - 0.7319) < 5e-5
     assert abs(by_rule["overdamped"]["F_1_fe"] - 0.7319) < 5e-5
+    assert by_rule["paper"]["definition"].startswith("precursor: ")
+    assert len(runs[0]["x_arrest_fe_over_L"]) == 17
     cells = tribofe.precursors.fe_fig5(resolution=4, progress=False)
     assert len(cells["r"]) == 16 and set(cells["status"]) <= {"done", "capped", "refused"}
     # The model's n in each cell equals the paper's iteration.

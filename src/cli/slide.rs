@@ -197,14 +197,15 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             c.f_max
         );
         outln!(
-            "FE: {} precursors before the first whole slip ({} longer than 5 t, {} advancing the front by more than 5 t), first long one F = {}, x = {}; last peak F = {}",
+            "FE: n = {} (advancing; of {} precursors, {} longer than 5 t), F_1 = {}, x_1 = {}; last peak F = {}",
+            c.n_fe_advancing,
             c.n_fe,
             c.n_fe_long,
-            c.n_fe_advancing,
             f(c.f1_fe),
             f(c.x1_fe),
             f(c.f_max_fe)
         );
+        outln!("{}", tribofe::precursors::definition::DEFINITION);
     }
     outln!(
         "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml{}}}",

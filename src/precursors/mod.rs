@@ -10,8 +10,11 @@
 //! - this module: the paper's analytic event iteration (eqs. F1, Fic, xi, Fi*, Fi+1);
 //! - [`discrete`]: the same kinematics on a cell-discretised interface with arbitrary
 //!   pressure and shear profiles;
-//! - [`fe`]: feeding the discrete model with unit-load fields from an FE solution.
+//! - [`fe`]: feeding the discrete model with unit-load fields from an FE solution;
+//! - [`definition`]: what a precursor of the frictional FE's event runs is (the one definition
+//!   behind every FE count, F_i and x_i tribofe reports).
 
+pub mod definition;
 pub mod discrete;
 pub mod fe;
 

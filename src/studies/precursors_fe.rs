@@ -5,11 +5,9 @@
 //! ([`heights`]) and event rule against D_c ([`dc_series`]). The corners are
 //! `studies::edges`.
 //!
-//! What counts as a precursor: an event classified `precursor` (slip nucleated at the
-//! trailing edge and arrested inside the contact) before the first `sliding` event. Edge
-//! pre-slip, tip advances of an arrested front, creep, open/close are not counted;
-//! `nucleation` events mark an instability's onset and are not counted on their own.
-//! `n_long` also drops precursors no longer than 5 t (edge-zone events).
+//! What counts as a precursor, its F_i and x_i: [`crate::precursors::definition`], the one
+//! definition every count here goes through (via [`compare_paper`] and
+//! [`crate::studies::slide::precursors`]).
 
 use crate::error::Result;
 use crate::interface::condense::{condense, Condensed};
@@ -17,9 +15,11 @@ use crate::interface::events::EventKind;
 use crate::interface::events::NodeState;
 use crate::interface::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
+use crate::precursors::definition::ZONE_T;
 use crate::scene::Scene;
 use crate::studies::slide::{
-    coefficients_from_rg, compare_paper, run_condensed, PaperComparison, SlideOptions, SlideResult, ADVANCE_T,
+    coefficients_from_rg, compare_paper, precursors, run_condensed, PaperComparison, SlideOptions,
+    SlideResult,
 };
 use rayon::prelude::*;
 
@@ -32,7 +32,7 @@ pub struct Fig4 {
     /// The static-kinetic rule (`paper` for slip-weakening runs: the law is in `run`).
     pub rule: Rule,
     pub cmp: PaperComparison,
-    /// Arrest positions x_i/L of the counted precursors, in order.
+    /// Arrest positions x_i/L of the counted (advancing) precursors, i = 1..n.
     pub x_fe: Vec<f64>,
     /// Analytic x_1..x_n.
     pub x_model: Vec<f64>,
@@ -66,16 +66,11 @@ fn fig4_on(scene: &Scene, c: &Condensed, r: f64, g: f64, o: SlideOptions) -> Res
     let p = crate::precursors::Params::new(r, g)?;
     let ev = crate::precursors::simulate(&p, cmp.n.max(1));
     let evs = &res.run.events;
-    let first = evs.iter().position(|e| e.ends_cycle()).unwrap_or(evs.len());
     let cx = &res.condensed;
     Ok(Fig4 {
         rule,
         cmp,
-        x_fe: evs[..first]
-            .iter()
-            .filter(|e| e.kind == EventKind::Precursor)
-            .filter_map(|e| e.region.map(|(_, b)| cx.x[b] / cx.l))
-            .collect(),
+        x_fe: precursors(&res).counted().map(|q| cx.x[q.arrest()] / cx.l).collect(),
         x_model: ev.iter().take(cmp.n).map(|e| e.x).collect(),
         peaks: evs.iter().filter(|e| e.ends_cycle()).map(|e| e.f / (o.law.mu_s() * o.n_force)).collect(),
         worst_violation: res.run.max_violation,
@@ -100,7 +95,7 @@ pub struct FieldChecks {
     /// a block shorter than 10 t).
     pub pressure: Option<f64>,
     /// Assumption 3: F/(mu_s N) when the trailing node first opens or creeps (None: not
-    /// before the first whole slip), and x/L where the first long precursor's slip began.
+    /// before the first whole slip), and x/L where the first counted precursor nucleated.
     pub f_corner: Option<f64>,
     pub x_nucleation: Option<f64>,
 }
@@ -110,13 +105,15 @@ pub fn field_checks(res: &SlideResult) -> FieldChecks {
     let c = &res.condensed;
     let (evs, states) = (&res.run.events, &res.run.states);
     let first = evs.iter().position(|e| e.ends_cycle()).unwrap_or(evs.len()).min(states.len());
-    let (pm, h, edge) = (res.p_mean(), res.scene.loading.height, ADVANCE_T * c.t);
+    let (pm, h, edge) = (res.p_mean(), res.scene.loading.height, ZONE_T * c.t);
     let interior = |i: usize| (c.x[i] - c.x[0]).min(c.x[c.n - 1] - c.x[i]) > edge;
-    let mut out = FieldChecks::default();
+    let pre = precursors(res);
+    let mut out =
+        FieldChecks { x_nucleation: pre.first().map(|q| c.x[q.node] / c.l), ..FieldChecks::default() };
     let mut slipped = vec![false; c.n];
     let mut front = None::<usize>;
     let max_opt = |a: Option<f64>, b: f64| Some(a.map_or(b, |a| a.max(b)));
-    for (e, st) in evs[..first].iter().zip(&states[..first]) {
+    for (k, (e, st)) in evs[..first].iter().zip(&states[..first]).enumerate() {
         for i in (0..c.n).filter(|&i| interior(i) && st.states[i] != NodeState::Open) {
             let linear = pm + 12.0 * st.f * h * c.x[i] / c.l.powi(3);
             out.pressure = max_opt(out.pressure, (st.p_force[i] / c.w[i] - linear).abs() / pm);
@@ -126,21 +123,18 @@ pub fn field_checks(res: &SlideResult) -> FieldChecks {
         }
         if let Some((a, b)) = e.region {
             (a..=b).for_each(|k| slipped[k] = true);
-            if e.kind != EventKind::Precursor {
-                continue;
-            }
-            if out.x_nucleation.is_none() && c.x[b] - c.x[a] > edge {
-                out.x_nucleation = Some(c.x[a] / c.l);
-            }
-            front = Some(front.map_or(b, |f| f.max(b)));
-            let f = front.unwrap_or(b);
-            let tau_c = res.f_c(st.x) / c.l;
-            if f + 1 < c.n && tau_c > 0.0 {
-                let tau = |i: usize| -st.t_force[i] / c.w[i];
-                out.shear_tip = max_opt(out.shear_tip, tau(f + 1) / tau_c - 1.0);
-                for i in (f + 1..c.n).filter(|&i| interior(i) && !slipped[i] && c.x[i] - c.x[f] > edge) {
-                    out.shear_far = max_opt(out.shear_far, (tau(i) - tau_c).abs() / tau_c);
-                }
+        }
+        // The state after a precursor's last instability is the arrested one.
+        let Some(q) = pre.all.iter().find(|q| q.last_event == k) else { continue };
+        let b = q.arrest();
+        front = Some(front.map_or(b, |f| f.max(b)));
+        let f = front.unwrap_or(b);
+        let tau_c = res.f_c(st.x) / c.l;
+        if f + 1 < c.n && tau_c > 0.0 {
+            let tau = |i: usize| -st.t_force[i] / c.w[i];
+            out.shear_tip = max_opt(out.shear_tip, tau(f + 1) / tau_c - 1.0);
+            for i in (f + 1..c.n).filter(|&i| interior(i) && !slipped[i] && c.x[i] - c.x[f] > edge) {
+                out.shear_far = max_opt(out.shear_far, (tau(i) - tau_c).abs() / tau_c);
             }
         }
     }

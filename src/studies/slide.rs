@@ -4,10 +4,10 @@
 use crate::error::{Error, Result};
 use crate::fem::problem::{solve, LoadCase};
 use crate::interface::condense::{boundary_model, condense, Condensed};
-use crate::interface::events::EventKind;
 use crate::interface::events::{run as run_events, NodeState, Problem, Run};
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
+use crate::precursors::definition::{self, Precursors, Slip};
 use crate::scene::{Scene, SceneModel};
 use std::time::Instant;
 
@@ -303,9 +303,9 @@ pub struct PaperComparison {
     pub f1: f64,
     pub x1: f64,
     pub f_max: f64,
-    /// FE: precursors (events from the trailing edge) before the first whole-interface slip,
-    /// those longer than 5 t, those that advance the front (see [`ADVANCE_T`]), the first long
-    /// one (F, arrest x/L), and the last stick-slip peak.
+    /// FE, by [`crate::precursors::definition`]: every precursor of the first cycle, the long
+    /// ones, the advancing ones (n, the count to compare with the model's), the first advancing
+    /// one (F at its onset, arrest x/L), and the last stick-slip peak.
     pub n_fe: usize,
     pub n_fe_long: usize,
     pub n_fe_advancing: usize,
@@ -314,11 +314,27 @@ pub struct PaperComparison {
     pub f_max_fe: Option<f64>,
 }
 
-/// A precursor counts as advancing the front when its arrest point lies more than this many t
-/// beyond the farthest arrest point of the precursors before it (the first: when it is longer
-/// than this): renucleations that stop within the edge zone or a few elements of the previous
-/// front are not the paper's precursors, and their number grows with refinement.
-pub const ADVANCE_T: f64 = 5.0;
+/// The precursors of a run's first cycle ([`crate::precursors::definition`]); forces F_i in
+/// N/m.
+pub fn precursors(res: &SlideResult) -> Precursors {
+    let slips: Vec<Slip> = res
+        .run
+        .events
+        .iter()
+        .enumerate()
+        .filter_map(|(k, e)| {
+            e.region.map(|region| Slip {
+                event: k,
+                x_drive: e.x,
+                f: e.f,
+                node: e.node,
+                region,
+                ends_cycle: e.ends_cycle(),
+            })
+        })
+        .collect();
+    definition::find(&slips, &res.condensed.x, res.condensed.t)
+}
 
 pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
     if !res.options.law.weakens() {
@@ -330,21 +346,7 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
     let p = crate::precursors::Params::new(r, g).ok()?;
     let ev = crate::precursors::simulate(&p, 1);
     let k = mu_s * res.options.n_force;
-    let evs = &res.run.events;
-    let first_slide = evs.iter().position(|e| e.ends_cycle()).unwrap_or(evs.len());
-    let pre: Vec<_> = evs[..first_slide].iter().filter(|e| e.kind == EventKind::Precursor).collect();
-    let long: Vec<_> =
-        pre.iter().filter(|e| e.region.is_some_and(|(a, b)| c.x[b] - c.x[a] > ADVANCE_T * c.t)).collect();
-    let mut front = c.x[0];
-    let mut n_fe_advancing = 0;
-    for e in &pre {
-        if let Some((_, b)) = e.region {
-            if c.x[b] > front + ADVANCE_T * c.t {
-                n_fe_advancing += 1;
-                front = c.x[b];
-            }
-        }
-    }
+    let pre = precursors(res);
     Some(PaperComparison {
         r,
         g,
@@ -352,12 +354,12 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
         f1: ev[0].f,
         x1: ev[0].x,
         f_max: p.f_max(),
-        n_fe: pre.len(),
-        n_fe_long: long.len(),
-        n_fe_advancing,
-        f1_fe: long.first().map(|e| e.f / k),
-        x1_fe: long.first().and_then(|e| e.region).map(|(_, b)| c.x[b] / c.l),
-        f_max_fe: evs.iter().rfind(|e| e.ends_cycle()).map(|e| e.f / k),
+        n_fe: pre.n_all(),
+        n_fe_long: pre.n_long(),
+        n_fe_advancing: pre.n(),
+        f1_fe: pre.first().map(|q| q.f / k),
+        x1_fe: pre.first().map(|q| c.x[q.arrest()] / c.l),
+        f_max_fe: res.run.events.iter().rfind(|e| e.ends_cycle()).map(|e| e.f / k),
     })
 }
 

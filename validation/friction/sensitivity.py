@@ -30,8 +30,8 @@ CASES = [
 ]
 KS = range(8)
 SUMMARY = re.compile(
-    r"nodes, (?P<events>\d+) events.*?FE: (?P<precursors>\d+) precursors.*?"
-    r"(?P<advancing>\d+) advancing.*?first long one F = (?P<f_long>[-\d.]+), x = (?P<x_long>[-\d.]+); "
+    r"nodes, (?P<events>\d+) events.*?FE: n = (?P<advancing>\d+) \(advancing; of (?P<precursors>\d+) precursors.*?"
+    r"F_1 = (?P<f_long>[-\d.]+), x_1 = (?P<x_long>[-\d.]+); "
     r"last peak F = (?P<peak>[-\d.]+)",
     re.S,
 )

@@ -108,7 +108,8 @@ pub fn fe(args: FeArgs) -> tribofe::Result<()> {
             Err(e) => outln!("{:>12} refused: {e}", rule.name()),
         }
     }
-    outln!("n: precursors before the first whole slip or front crossing; > 5t: longer than 5 t; advance: moving the front by > 5 t (the count least sensitive to the mesh)");
+    outln!("n: every precursor; > 5t: the long ones; n advance: the count to compare with the model's n (the least sensitive to the mesh); F_1, x_1: its first");
+    outln!("{}", tribofe::precursors::definition::DEFINITION);
     outln!("\nthe model's field assumptions measured on each run (states before the end of the first cycle; interior: > 5 t from the ends):");
     outln!(
         "{:>12} {:>11} {:>11} {:>11} {:>11} {:>11}",
@@ -135,7 +136,7 @@ pub fn fe(args: FeArgs) -> tribofe::Result<()> {
         }
     }
     outln!("1: largest |tau - F^c/L|/(F^c/L) on never-slipped nodes > 5 t ahead of the front; tip: tau/(F^c/L) - 1 just ahead of it");
-    outln!("2: largest |p - (N/L + 12 F H x/L^3)|/(N/L); 3: F/(mu_s N) when the trailing node opens or creeps, x/L where the first long precursor began");
+    outln!("2: largest |p - (N/L + 12 F H x/L^3)|/(N/L); 3: F/(mu_s N) when the trailing node opens or creeps, x/L where the first counted precursor nucleated");
     let results = [
         ("r", toml::Value::from(p.r())),
         ("g", toml::Value::from(p.g())),
@@ -230,8 +231,9 @@ pub fn fe_map(args: FeMapArgs) -> tribofe::Result<()> {
         report::write_fe_fig5(dir, &cells, resolution, &what, inv, &scene)
     })?;
     outln!(
-        "counts: front-advancing precursors (> 5 t) before the first whole slip or front crossing (the slipped nodes joining edge to edge); capped: over --max-events"
+        "counts: n, the advancing precursors before the first whole slip or front crossing (the slipped nodes joining edge to edge); capped: over --max-events, its count the event solver's precursor-kind events"
     );
+    outln!("{}", tribofe::precursors::definition::DEFINITION);
     outln!("wrote {}/{{fig5_fe.csv, boundary_fe.csv, fig5_fe.svg, run.toml}}", args.out.out.display());
     Ok(())
 }

@@ -118,6 +118,12 @@ pub fn thin_layer(args: ThinLayerArgs) -> tribofe::Result<()> {
             Err(e) => outln!("{:>9} refused: {e}", row.value),
         }
     }
+    outln!("{}", tribofe::precursors::definition::DEFINITION);
+    outln!(
+        "mesh: h = t with 2 elements through t at every t/L; the scene's own mesh (h = {:.4} t) gives other numbers at its t/L = {:.4}: `precursors fe` runs that one",
+        scene.mesh.h / scene.block.thickness,
+        scene.block.thickness / scene.block.length
+    );
     for lim in pfe::thin_layer_limits(&rows) {
         let (name, model) = (lim.name, lim.model);
         let offset = |v: f64| {
@@ -195,6 +201,7 @@ pub fn heights(args: HeightsArgs) -> tribofe::Result<()> {
             Err(e) => outln!("{:>7.4} refused: {e}", row.value),
         }
     }
+    outln!("n: the count to compare with the model's n; {}", tribofe::precursors::definition::DEFINITION);
     write_whole(&args.out.out, args.out.force, |dir, inv| {
         report::write_heights(dir, mu, &rows, inv, &scene)
     })?;
@@ -291,6 +298,7 @@ pub fn dc(args: DcArgs) -> tribofe::Result<()> {
             Err(e) => outln!("{name:>9} {kappa:>8} {lch:>7} {appendix:>10} refused: {e}"),
         }
     }
+    outln!("{}", tribofe::precursors::definition::DEFINITION);
     outln!("kappa = G D_c/((mu_s - mu_d) p t) (stable above 1); L_c = kappa t, the nucleation length; Appendix: (E/p)(D_c/t)(mu_s - mu_d)/(2 mu_d), the excess mu(x) - mu_d below which the Appendix's Griffith argument lets a front arrest");
     write_whole(&args.out.out, args.out.force, |dir, inv| report::write_dc(dir, &rows, inv, &scene))?;
     outln!("wrote {}/{{dc.csv, dc.svg, run.toml, paper/, dc_<D_c>/}}", args.out.out.display());

@@ -1,0 +1,281 @@
+//! What a precursor of the frictional FE is: the one definition behind every count, F_i and
+//! x_i that tribofe reports (`precursors --fe` and its series, `--map --fe`, `slide`, `sweep`,
+//! `edges`, the Python package), so the same run gives the same numbers everywhere.
+//!
+//! The paper (Scheibert & Dysthe, EPL 2010) calls precursor an event that nucleates at the
+//! trailing edge, arrests at x_i inside the contact, and comes before the first event that
+//! reaches the leading edge; F_i is the force at which it nucleates, n the number of them. The
+//! FE event solver records more than the model has, and each choice below says why:
+//! - A *cascade* (all instabilities at one drive displacement X) is one event. The solver
+//!   relaxes one slipped region at a time; when a relaxation overloads a stuck node the next
+//!   instability follows at the same X, with no drive in between: one slip in time, which an
+//!   independent contact solver sees as one (on the paper's scene the first long slip starts at
+//!   F = 0.7319 mu_s N, the first of its two relaxations).
+//! - *Where it nucleates*: at the trailing end of the stuck contact. The trailing corner
+//!   opens (at most 0.31 t on fine meshes, validation/edges) or creeps at mu_d (2 nodes at
+//!   h = t), and an instability's slipped region starts at the first node that neither
+//!   opened nor creeps; the slip nucleates a few nodes further in (1.5 t on the paper's
+//!   scene, 4 t at t/L = 1/1600). So: the cascade's first instability whose slipped region
+//!   starts within [`ZONE_T`] t of the trailing edge x = -L/2 and whose nucleation node lies
+//!   within [`ZONE_T`] t of that start. A slip nucleating deeper and spreading back to the
+//!   edge is not one (the overdamped rule's re-slips inside the slipped zone). The slipped
+//!   region is that instability's region joined with the cascade's regions that touch it.
+//! - *Long*: a slipped region longer than [`LONG_T`] t; shorter ones are edge-zone slips.
+//! - *Advancing* (the count n to compare with the paper's n): its arrest point lies more than
+//!   [`ADVANCE_T`] t beyond the last counted one's (the trailing edge for the first). The
+//!   model's precursors each move the front on; the FE adds renucleations that arrest within
+//!   a few elements of the previous front, whose number grows with refinement.
+//! - F_i is the drive force at the cascade's onset (the state before its first relaxation),
+//!   x_i the arrest point: the last node of the slipped region. F_1, x_1 are those of the
+//!   first advancing precursor.
+//!
+//! Plain data in, plain data out: the studies hand over their events as [`Slip`]s.
+
+/// Width of the trailing-edge zone, in block thicknesses t: a precursor's slipped region
+/// starts within it from x = -L/2 and its nucleation node lies within it from that start.
+pub const ZONE_T: f64 = 5.0;
+/// Slipped length above which a precursor is long, in t.
+pub const LONG_T: f64 = 5.0;
+/// Front advance above which a precursor counts in n, in t.
+pub const ADVANCE_T: f64 = 5.0;
+
+/// The definition in one line, printed under every summary that reports precursors.
+pub const DEFINITION: &str = "precursor: the instabilities at one drive X (one cascade) before the cycle ends, nucleating at the trailing edge (slip starting within 5 t of x = -L/2, nucleus within 5 t of that start); long: slipped > 5 t; n (compare with the paper's n): those whose arrest lies > 5 t beyond the last counted one's; F_i: drive force at the cascade's onset; x_i: its arrest point";
+
+/// One instability of a frictional run, as the definition reads it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Slip {
+    /// Index of the event in the run's event list (carried through to [`Precursor`]).
+    pub event: usize,
+    /// Drive displacement X, m: instabilities at the same X form one cascade.
+    pub x_drive: f64,
+    /// Drive force before its relaxation (any unit: F_i comes out in it).
+    pub f: f64,
+    /// Nucleation node and slipped region (first, last node): indices into the node positions.
+    pub node: usize,
+    pub region: (usize, usize),
+    /// It ends the stick-slip cycle (a whole slip or a front crossing).
+    pub ends_cycle: bool,
+}
+
+/// One precursor (a cascade).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Precursor {
+    /// Events of the cascade's first and last instability (the state after `last_event` is the
+    /// arrested one).
+    pub first_event: usize,
+    pub last_event: usize,
+    /// F_i: the drive force at the cascade's onset, in the unit of [`Slip::f`].
+    pub f: f64,
+    /// Nucleation node (within the trailing-edge zone) and slipped region (first, last node).
+    pub node: usize,
+    pub region: (usize, usize),
+    /// Slipped region longer than [`LONG_T`] t.
+    pub long: bool,
+    /// Counted in n: arrest more than [`ADVANCE_T`] t beyond the last counted precursor's.
+    pub advancing: bool,
+}
+
+impl Precursor {
+    /// x_i: the arrest node (the region's last).
+    pub fn arrest(&self) -> usize {
+        self.region.1
+    }
+}
+
+/// The precursors of a run's first cycle, in order.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Precursors {
+    pub all: Vec<Precursor>,
+}
+
+impl Precursors {
+    /// n: the advancing precursors (the count to compare with the paper's n).
+    pub fn n(&self) -> usize {
+        self.counted().count()
+    }
+    /// Those with a slipped region longer than [`LONG_T`] t.
+    pub fn n_long(&self) -> usize {
+        self.all.iter().filter(|p| p.long).count()
+    }
+    /// Every precursor, advancing or not.
+    pub fn n_all(&self) -> usize {
+        self.all.len()
+    }
+    /// The advancing precursors, i = 1..n.
+    pub fn counted(&self) -> impl Iterator<Item = &Precursor> {
+        self.all.iter().filter(|p| p.advancing)
+    }
+    /// The first advancing precursor (F_1, x_1).
+    pub fn first(&self) -> Option<&Precursor> {
+        self.counted().next()
+    }
+}
+
+/// The precursors among `slips` (a run's instabilities in order) on an interface whose nodes
+/// lie at `x` (m, ascending from the trailing edge x[0]) under a block of thickness `t` (m),
+/// up to the first cascade that ends the cycle.
+pub fn find(slips: &[Slip], x: &[f64], t: f64) -> Precursors {
+    let mut all = Vec::new();
+    let mut front = x.first().copied().unwrap_or(0.0);
+    let mut k = 0;
+    while k < slips.len() {
+        let end = k + slips[k..].iter().take_while(|s| s.x_drive == slips[k].x_drive).count();
+        let cascade = &slips[k..end];
+        k = end;
+        if cascade.iter().any(|s| s.ends_cycle) {
+            break;
+        }
+        if let Some(p) = precursor(cascade, x, t) {
+            let advancing = x[p.region.1] > front + ADVANCE_T * t;
+            if advancing {
+                front = x[p.region.1];
+            }
+            all.push(Precursor { advancing, ..p });
+        }
+    }
+    Precursors { all }
+}
+
+/// The cascade as a precursor (not yet judged advancing), or None when none of its
+/// instabilities nucleates at the trailing edge.
+fn precursor(cascade: &[Slip], x: &[f64], t: f64) -> Option<Precursor> {
+    let at_edge = |s: &&Slip| {
+        let (Some(&xa), Some(&xn)) = (x.get(s.region.0), x.get(s.node)) else { return false };
+        xa - x[0] <= ZONE_T * t && (xn - xa).abs() <= ZONE_T * t
+    };
+    let seed = cascade.iter().find(at_edge)?;
+    let (mut a, mut b) = (seed.region.0.min(seed.node), seed.region.1.max(seed.node));
+    // Join the regions that touch the slipped run, until none does.
+    let mut grown = true;
+    while grown {
+        grown = false;
+        for s in cascade {
+            let (c, d) = s.region;
+            if c <= b + 1 && d + 1 >= a && (c < a || d > b) {
+                (a, b) = (a.min(c), b.max(d));
+                grown = true;
+            }
+        }
+    }
+    // Regions come from the same interface as `x`; one that does not is no precursor.
+    let (&xa, &xb) = (x.get(a)?, x.get(b)?);
+    Some(Precursor {
+        first_event: cascade[0].event,
+        last_event: cascade[cascade.len() - 1].event,
+        f: cascade[0].f,
+        node: seed.node,
+        region: (a, b),
+        long: xb - xa > LONG_T * t,
+        advancing: false,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 101 nodes 1 mm apart under t = 2 mm: the zone, long and advance lengths are 10 mm
+    /// (10 node spacings).
+    fn nodes() -> (Vec<f64>, f64) {
+        ((0..101).map(|i| i as f64 * 1e-3).collect(), 2e-3)
+    }
+
+    fn slip(event: usize, x_drive: f64, f: f64, node: usize, region: (usize, usize)) -> Slip {
+        Slip { event, x_drive, f, node, region, ends_cycle: false }
+    }
+
+    #[test]
+    fn a_short_slip_at_the_trailing_edge_is_not_long_nor_counted() {
+        let (x, t) = nodes();
+        let p = find(&[slip(0, 1.0, 0.5, 0, (0, 3))], &x, t);
+        assert_eq!((p.n_all(), p.n_long(), p.n()), (1, 0, 0));
+        assert!(p.first().is_none());
+    }
+
+    #[test]
+    fn a_long_slip_from_the_trailing_edge_is_a_precursor_with_its_arrest() {
+        let (x, t) = nodes();
+        let p = find(&[slip(3, 1.0, 0.7, 1, (1, 40))], &x, t);
+        assert_eq!((p.n_all(), p.n_long(), p.n()), (1, 1, 1));
+        let first = p.first().unwrap();
+        assert_eq!((first.f, first.arrest(), first.first_event), (0.7, 40, 3));
+    }
+
+    #[test]
+    fn nucleation_outside_the_trailing_zone_is_no_precursor_even_if_the_slip_reaches_the_edge() {
+        let (x, t) = nodes();
+        // Node 11 is 11 mm = 5.5 t from the edge; the region spreads back to node 0.
+        let p = find(&[slip(0, 1.0, 0.7, 11, (0, 40))], &x, t);
+        assert_eq!(p.n_all(), 0);
+        // Node 9 is 3.5 t from its region's start: inside.
+        let p = find(&[slip(0, 1.0, 0.7, 9, (2, 40))], &x, t);
+        assert_eq!(p.n(), 1);
+        // Behind an open or creeping corner of 3 t: the nucleus 4 t further in is at the edge
+        // (7 t from x = -L/2); a region starting 6 t in is not.
+        assert_eq!(find(&[slip(0, 1.0, 0.7, 14, (6, 40))], &x, t).n(), 1);
+        assert_eq!(find(&[slip(0, 1.0, 0.7, 14, (12, 40))], &x, t).n_all(), 0);
+    }
+
+    #[test]
+    fn one_that_does_not_advance_the_front_is_not_counted_in_n() {
+        let (x, t) = nodes();
+        let slips = [
+            slip(0, 1.0, 0.70, 0, (0, 40)),
+            // Arrests 5 t short of the front: long, not advancing.
+            slip(1, 2.0, 0.72, 0, (0, 30)),
+            // 4 mm = 2 t beyond the front: not advancing.
+            slip(2, 3.0, 0.74, 0, (0, 44)),
+            // 11 mm beyond the last counted arrest (node 40): advancing.
+            slip(3, 4.0, 0.76, 0, (0, 51)),
+        ];
+        let p = find(&slips, &x, t);
+        assert_eq!((p.n_all(), p.n_long(), p.n()), (4, 4, 2));
+        let counted: Vec<usize> = p.counted().map(|q| q.arrest()).collect();
+        assert_eq!(counted, [40, 51]);
+    }
+
+    #[test]
+    fn f_i_is_the_force_at_the_onset_of_a_cascade_not_of_its_follow_up() {
+        let (x, t) = nodes();
+        // The paper's scene, events 5 and 6: nucleation 5 nodes in, then at the same X the
+        // follow-up from the first contact node starts at the first one's relaxed force.
+        let slips = [
+            slip(5, 3.39e-6, 0.7319, 5, (2, 60)),
+            slip(6, 3.39e-6, 0.7264, 1, (1, 60)),
+            // A leading-edge slip in the same cascade, apart from the run: not joined.
+            slip(7, 3.39e-6, 0.7262, 99, (97, 100)),
+        ];
+        let p = find(&slips, &x, t);
+        assert_eq!(p.n_all(), 1);
+        let q = p.first().unwrap();
+        assert_eq!((q.f, q.region, q.node, q.first_event, q.last_event), (0.7319, (1, 60), 5, 5, 7));
+    }
+
+    #[test]
+    fn a_cascade_that_starts_away_from_the_edge_is_a_precursor_when_one_of_its_slips_nucleates_there() {
+        let (x, t) = nodes();
+        let slips = [slip(0, 1.0, 0.80, 99, (98, 100)), slip(1, 1.0, 0.79, 0, (0, 30))];
+        let q = *find(&slips, &x, t).first().unwrap();
+        // The drive force when the cascade began, and only the run grown from the edge.
+        assert_eq!((q.f, q.region), (0.80, (0, 30)));
+    }
+
+    #[test]
+    fn touching_regions_join_and_the_cycle_end_stops_the_count() {
+        let (x, t) = nodes();
+        let slips = [
+            slip(0, 1.0, 0.7, 0, (0, 20)),
+            slip(1, 1.0, 0.69, 30, (21, 35)),
+            slip(2, 2.0, 0.8, 0, (0, 60)),
+            Slip { ends_cycle: true, ..slip(3, 3.0, 0.9, 0, (0, 100)) },
+            slip(4, 4.0, 0.7, 0, (0, 90)),
+        ];
+        let p = find(&slips, &x, t);
+        assert_eq!(p.all.iter().map(|q| q.region).collect::<Vec<_>>(), [(0, 35), (0, 60)]);
+        // A precursor cascading into a whole slip at the same X is the stick-slip event.
+        let mut s = slips;
+        s[3].x_drive = 2.0;
+        assert_eq!(find(&s, &x, t).n_all(), 1);
+    }
+}
