@@ -25,6 +25,9 @@ use crate::fem::mesh::Mesh;
 use nalgebra::SMatrix;
 use std::collections::HashMap;
 
+mod stencil;
+use stencil::Grid;
+
 /// The block's mass and stiffness in the form the explicit update reads.
 #[derive(Debug, Clone)]
 pub struct Elastodynamic {
@@ -39,6 +42,10 @@ pub struct Elastodynamic {
     pub material: Material,
     /// kg/m^3.
     pub density: f64,
+    /// Set when the mesh is a regular grid (see [`Grid`]): K u then reads no connectivity.
+    grid: Option<Grid>,
+    /// Threads K u may use (bands of node rows; the result does not depend on it).
+    threads: usize,
 }
 
 impl Elastodynamic {
@@ -121,7 +128,20 @@ impl Elastodynamic {
         }
         let lambda_bound =
             kmats.iter().zip(&emass).map(|(k, m)| element_lambda_max(k, m)).fold(0.0, f64::max);
-        Ok(Self { n_nodes: mesh.n_nodes(), conn, kmats, kidx, mass, lambda_bound, material, density })
+        let grid = Grid::detect(&conn, mesh.n_nodes(), &kmats);
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        Ok(Self {
+            n_nodes: mesh.n_nodes(),
+            conn,
+            kmats,
+            kidx,
+            mass,
+            lambda_bound,
+            material,
+            density,
+            grid,
+            threads,
+        })
     }
 
     pub fn n_nodes(&self) -> usize {
@@ -135,8 +155,36 @@ impl Elastodynamic {
         self.kmats.len()
     }
 
+    /// Whether K u runs as a stencil on a regular grid (no connectivity read) rather than
+    /// element by element.
+    pub fn is_grid(&self) -> bool {
+        self.grid.is_some()
+    }
+
+    /// Threads K u may use (default: the machine's; the results are the same bits for any).
+    pub fn threads(&self) -> usize {
+        self.threads
+    }
+
+    /// Sets the threads K u may use (at least 1). Only the grid path uses more than one, and
+    /// only on meshes big enough to pay for them; every node's sum is the same expression for
+    /// any count, so results do not depend on it.
+    pub fn set_threads(&mut self, threads: usize) {
+        self.threads = threads.max(1);
+    }
+
     /// out = K u (out overwritten; DOF order u0, v0, u1, v1, ...).
     pub fn apply_k(&self, u: &[f64], out: &mut [f64]) {
+        assert!(u.len() == self.n_dofs() && out.len() == self.n_dofs(), "one value per DOF");
+        match &self.grid {
+            Some(g) => g.apply(u, out, self.threads),
+            None => self.apply_k_by_elements(u, out),
+        }
+    }
+
+    /// out = K u element by element (gather, 8x8 product, scatter), whatever the mesh: the
+    /// general path, and the reference the grid stencil is tested against.
+    pub fn apply_k_by_elements(&self, u: &[f64], out: &mut [f64]) {
         // Node-wise views: one bounds check per node instead of per DOF.
         let (u2, _) = u.as_chunks::<2>();
         let (o2, _) = out.as_chunks_mut::<2>();
@@ -399,6 +447,73 @@ mod tests {
         assert!(est >= 0.6 * m.lambda_bound, "{est} vs {}", m.lambda_bound);
         let cp2_h2 = (m.material.lambda() + 2.0 * m.material.shear_modulus()) / 1000.0 / 4e-6;
         assert!((m.lambda_bound / cp2_h2 - 20.0 / 3.0).abs() < 1e-9, "{}", m.lambda_bound / cp2_h2);
+    }
+
+    /// Deterministic pseudo-random values in (-0.5, 0.5).
+    fn noise(n: usize, mut seed: u64) -> Vec<f64> {
+        (0..n)
+            .map(|_| {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+            })
+            .collect()
+    }
+
+    #[test]
+    fn grid_stencil_is_the_element_product_and_the_same_bits_on_any_thread_count() {
+        // Elements 2:1 (non-square) so every tap of the stencil differs from its mirror.
+        let mesh = Rectangle::new(-0.26, 0.26, 0.0, 0.13, 260, 130).build().unwrap();
+        let mut m = Elastodynamic::new(&mesh, Material::plane_strain(2e3, 0.4).unwrap(), 1000.0).unwrap();
+        assert!(m.is_grid());
+        let u = noise(m.n_dofs(), 7);
+        let (mut by_el, mut one, mut two, mut three) =
+            (vec![0.0; m.n_dofs()], vec![1.0; m.n_dofs()], vec![2.0; m.n_dofs()], vec![3.0; m.n_dofs()]);
+        m.apply_k_by_elements(&u, &mut by_el);
+        m.set_threads(1);
+        m.apply_k(&u, &mut one);
+        m.set_threads(2);
+        m.apply_k(&u, &mut two);
+        m.set_threads(3);
+        m.apply_k(&u, &mut three);
+        // 34 191 nodes: above two bands' threshold, so two threads really ran.
+        assert!(mesh.n_nodes() >= 2 * stencil::MIN_NODES_PER_THREAD);
+        assert!(one.iter().zip(&two).all(|(a, b)| a.to_bits() == b.to_bits()), "1 vs 2 threads");
+        assert!(one.iter().zip(&three).all(|(a, b)| a.to_bits() == b.to_bits()), "1 vs 3 threads");
+        // Both sum at most 4 x 8 products of |K_ij| |u_j| per DOF, the stencil in another
+        // order: they differ by a few ulps of that sum (32 eps of it, generously).
+        let kmax = m.kmats[0].iter().fold(0.0f64, |a, &k| a.max(k.abs()));
+        let scale = 32.0 * kmax * 0.5;
+        let worst = one.iter().zip(&by_el).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        assert!(worst <= 32.0 * f64::EPSILON * scale, "{worst:e} vs {scale:e}");
+        assert!(worst > 0.0 || one == by_el);
+        // A rigid translation has no force (to round-off) on the edges and corners too.
+        let t: Vec<f64> = (0..m.n_dofs()).map(|i| [1.0, -2.0][i % 2]).collect();
+        m.apply_k(&t, &mut one);
+        assert!(one.iter().all(|f| f.abs() <= 64.0 * f64::EPSILON * kmax * 2.0), "translation");
+    }
+
+    #[test]
+    fn only_regular_grids_take_the_stencil() {
+        let mat = Material::plane_strain(2e3, 0.4).unwrap();
+        let mut mesh = Rectangle::new(0.0, 0.04, 0.0, 0.02, 20, 10).build().unwrap();
+        assert!(Elastodynamic::new(&mesh, mat, 1000.0).unwrap().is_grid());
+        mesh.distort(0.2 * 2e-3, 3).unwrap(); // 0.2 h
+        let m = Elastodynamic::new(&mesh, mat, 1000.0).unwrap();
+        assert!(!m.is_grid() && m.n_element_matrices() > 1);
+        // One element in a row and one row of elements: every node is an edge node.
+        for (nx, ny) in [(1, 5), (5, 1), (1, 1)] {
+            let mesh = Rectangle::new(0.0, 0.01 * nx as f64, 0.0, 0.01 * ny as f64, nx, ny).build().unwrap();
+            let m = Elastodynamic::new(&mesh, mat, 1000.0).unwrap();
+            assert!(m.is_grid());
+            let u = noise(m.n_dofs(), 11);
+            let (mut a, mut b) = (vec![0.0; m.n_dofs()], vec![0.0; m.n_dofs()]);
+            m.apply_k(&u, &mut a);
+            m.apply_k_by_elements(&u, &mut b);
+            let worst = a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+            assert!(worst < 1e-12 * 2e3, "{nx} x {ny}: {worst:e}");
+        }
     }
 
     #[test]
