@@ -62,15 +62,26 @@ impl Grid {
         Some(Grid { nx, ny, taps })
     }
 
+    /// DOFs in a node row.
+    pub(super) fn row_len(&self) -> usize {
+        2 * (self.nx + 1)
+    }
+
+    /// Node rows per band for up to `threads` threads (all rows when one band).
+    fn rows_per_band(&self, threads: usize) -> usize {
+        let rows = self.ny + 1;
+        let bands = threads.min(rows * (self.nx + 1) / MIN_NODES_PER_THREAD).clamp(1, rows);
+        rows.div_ceil(bands)
+    }
+
     /// out = K u on up to `threads` threads, each a band of node rows.
     pub(super) fn apply(&self, u: &[f64], out: &mut [f64], threads: usize) {
         let (rows, row_len) = (self.ny + 1, 2 * (self.nx + 1));
-        let bands = threads.min(rows * (self.nx + 1) / MIN_NODES_PER_THREAD).clamp(1, rows);
-        if bands == 1 {
+        let per = self.rows_per_band(threads);
+        if per == rows {
             self.rows(u, out, 0);
             return;
         }
-        let per = rows.div_ceil(bands);
         std::thread::scope(|s| {
             let mut chunks = out.chunks_mut(per * row_len).enumerate();
             let (_, first) = chunks.next().expect("one band at least");
@@ -79,6 +90,55 @@ impl Grid {
             }
             self.rows(u, first, 0);
         });
+    }
+
+    /// One pass over the node rows for a fused explicit step: for each row j, K u of the row
+    /// (and K v if `v` is given) into row buffers, then `row(j, ku, kv, outs_j)` with row j's
+    /// slices of `outs`; returns its results in row order. u and v are only read (the update
+    /// writes elsewhere), so bands of rows run on up to `threads` threads with the same bits.
+    pub(super) fn sweep<const N: usize, A: Send>(
+        &self,
+        u: &[f64],
+        v: Option<&[f64]>,
+        outs: [&mut [f64]; N],
+        threads: usize,
+        row: impl Fn(usize, &[f64], &[f64], [&mut [f64]; N]) -> A + Sync,
+    ) -> Vec<A> {
+        let (rows, row_len) = (self.ny + 1, self.row_len());
+        let band = |j0: usize, mut outs: [&mut [f64]; N]| -> Vec<A> {
+            let (mut ku, mut kv) = (vec![0.0; row_len], vec![0.0; if v.is_some() { row_len } else { 0 }]);
+            let n_rows = outs.first().map_or(0, |o| o.len() / row_len);
+            (0..n_rows)
+                .map(|dj| {
+                    let j = j0 + dj;
+                    self.row(u, j, &mut ku);
+                    if let Some(v) = v {
+                        self.row(v, j, &mut kv);
+                    }
+                    let mut it = outs.iter_mut().map(|o| &mut o[dj * row_len..(dj + 1) * row_len]);
+                    row(j, &ku, &kv, std::array::from_fn(|_| it.next().expect("N arrays")))
+                })
+                .collect()
+        };
+        let per = self.rows_per_band(threads);
+        if per == rows {
+            return band(0, outs);
+        }
+        let mut chunks = outs.map(|o| o.chunks_mut(per * row_len));
+        let bands: Vec<[&mut [f64]; N]> = (0..rows.div_ceil(per))
+            .map(|_| std::array::from_fn(|k| chunks[k].next().expect("one chunk per band")))
+            .collect();
+        let band = &band;
+        std::thread::scope(|s| {
+            let mut bands = bands.into_iter().enumerate();
+            let (_, first) = bands.next().expect("one band at least");
+            let others: Vec<_> = bands.map(|(b, c)| s.spawn(move || band(b * per, c))).collect();
+            let mut all = band(0, first);
+            for h in others {
+                all.extend(h.join().expect("a stencil band panicked"));
+            }
+            all
+        })
     }
 
     /// The forces of the node rows j0.. that `out` covers.
