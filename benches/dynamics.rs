@@ -20,8 +20,18 @@ use tribofe::dynamics::explicit::{Elastodynamic, Explicit};
 use tribofe::fem::material::Material;
 use tribofe::fem::mesher::Rectangle;
 
-/// Median seconds per call of `f`, over at least 0.5 s of calls in 9 batches.
-fn time(mut f: impl FnMut()) -> f64 {
+/// Process CPU seconds (all threads).
+fn cpu_seconds() -> f64 {
+    let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: clock_gettime writes the timespec it is given.
+    unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
+    ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64
+}
+
+/// Seconds per call of `f`: (wall, CPU of all threads), medians of 9 batches of at least
+/// 50 ms each after a warm-up. On a shared machine the wall time includes waiting for a core;
+/// CPU time / threads is what the call would take with its cores to itself.
+fn time(mut f: impl FnMut()) -> (f64, f64) {
     f();
     let t0 = Instant::now();
     let mut calls = 0usize;
@@ -29,24 +39,27 @@ fn time(mut f: impl FnMut()) -> f64 {
         f();
         calls += 1;
     }
-    let per_batch = (calls * 10 / 9).max(1);
-    let mut batches: Vec<f64> = (0..9)
-        .map(|_| {
-            let t = Instant::now();
-            for _ in 0..per_batch {
-                f();
-            }
-            t.elapsed().as_secs_f64() / per_batch as f64
-        })
-        .collect();
-    batches.sort_by(f64::total_cmp);
-    batches[4]
+    let per_batch = calls.max(1);
+    let mut wall = Vec::new();
+    let mut cpu = Vec::new();
+    for _ in 0..9 {
+        let (t, c) = (Instant::now(), cpu_seconds());
+        for _ in 0..per_batch {
+            f();
+        }
+        wall.push(t.elapsed().as_secs_f64() / per_batch as f64);
+        cpu.push((cpu_seconds() - c) / per_batch as f64);
+    }
+    wall.sort_by(f64::total_cmp);
+    cpu.sort_by(f64::total_cmp);
+    (wall[4], cpu[4])
 }
 
-/// a = b + 0.5 c on `threads` threads (contiguous halves), seconds per sweep.
-fn triad(n: usize, threads: usize) -> f64 {
+/// a = b + 0.5 c over n doubles on `threads` threads (contiguous shares): bytes/s (STREAM's
+/// count, 24 B per element), wall and CPU.
+fn triad(n: usize, threads: usize) -> (f64, f64) {
     let (mut a, b, c) = (vec![0.0f64; n], vec![1.0f64; n], vec![2.0f64; n]);
-    time(|| {
+    let (w, cpu) = time(|| {
         let per = n.div_ceil(threads);
         std::thread::scope(|s| {
             for ((a, b), c) in a.chunks_mut(per).zip(b.chunks(per)).zip(c.chunks(per)) {
@@ -58,7 +71,8 @@ fn triad(n: usize, threads: usize) -> f64 {
             }
         });
         black_box(&mut a);
-    })
+    });
+    (24.0 * n as f64 / w, 24.0 * n as f64 / (cpu / threads as f64))
 }
 
 /// Minimum bytes per DOF-update of each kernel (see the module comment):
@@ -66,40 +80,68 @@ fn triad(n: usize, threads: usize) -> f64 {
 ///   matrix index 2 B per node (2 DOFs) ~ 5; the update reads and writes u, v 32, reads f 8
 ///   and the mass 4 (one per node): 77;
 /// - stencil: K u reads u 8, writes f 8; the update as above 44: 60;
+/// - K u alone (the stencil): u read 8, f written 8: 16;
 /// - step: see `STEP_BYTES`.
 const ELEMENT_BYTES: f64 = 77.0;
 const STENCIL_BYTES: f64 = 60.0;
-/// `Explicit::step` in separate passes: K u (u 8, f 8), f_ext zeroed 8, kinetic energy (v 8,
-/// m 4), u_prev . K u twice (16 + 16), the update (u, v read and written 32, u_prev written 8,
-/// f_ext and K u 16, m 4, fixed 1): 129.
-const STEP_BYTES: f64 = 129.0;
+/// `Explicit::step`, fused on a grid: u read 8, u_prev read and written (u^{n+1} replaces
+/// u^{n-1}) 16, v read and written 16, f_ext read and zeroed 16, mass 4, fixed flag 1: 61
+/// (with damping v^{n+1/2} goes to another array: the same count). Before the fusion the
+/// step made separate passes (K u, zeroing f_ext, the kinetic energy, u_prev . K u twice, the
+/// update): 129.
+const STEP_BYTES: f64 = 61.0;
 
 fn main() {
     let mat = Material::plane_strain(2e3, 0.4).unwrap();
-    println!("explicit step throughput, DOF-updates/s (median), this machine, {} hardware threads", {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
-    });
+    let hw = std::thread::available_parallelism().map_or(1, |n| n.get());
+    println!("explicit step throughput (cargo bench --bench dynamics), {hw} hardware threads");
+    let big = 20_000_000;
+    for threads in [1, 2] {
+        let (w, c) = triad(big, threads);
+        println!(
+            "triad over 3 x {big} doubles ({} MB, out of cache), {threads} thread(s): {:.2} GB/s wall, {:.2} GB/s CPU",
+            24 * big / 1_000_000,
+            w / 1e9,
+            c / 1e9
+        );
+    }
+    println!("rate = DOFs / step time; 'cpu' columns use CPU time / threads (the machine is shared);");
     println!(
-        "{:>9} {:>8} {:>3} {:>9} {:>10} {:>6} {:>9} {:>9} {:>6}",
-        "kernel", "DOFs", "thr", "step s", "DOF-upd/s", "B/DOF", "triad GB/s", "limit", "frac"
+        "limit = triad bandwidth over as many doubles as DOFs / bytes per DOF-update; frac = rate / limit"
+    );
+    println!(
+        "{:>13} {:>8} {:>3} {:>10} {:>10} {:>10} {:>5} {:>8} {:>8} {:>10} {:>5} {:>5}",
+        "kernel",
+        "DOFs",
+        "thr",
+        "step s",
+        "rate",
+        "rate cpu",
+        "B/DOF",
+        "triad",
+        "GB/s cpu",
+        "limit cpu",
+        "frac",
+        "f cpu"
     );
     for side in [70usize, 223, 706] {
-        let (nx, ny) = (side, side);
-        let mesh = Rectangle::new(0.0, 0.1, 0.0, 0.1, nx, ny).build().unwrap();
+        let mesh = Rectangle::new(0.0, 0.1, 0.0, 0.1, side, side).build().unwrap();
         let mut model = Elastodynamic::new(&mesh, mat, 1000.0).unwrap();
         assert!(model.is_grid());
         let n = model.n_dofs();
         let dt = 0.5 * model.critical_dt(0.0);
         for threads in [1usize, 2] {
             model.set_threads(threads);
-            let bw = 24.0 * n as f64 / triad(n, threads);
-            let report = |name: &str, bytes: f64, secs: f64| {
-                let rate = n as f64 / secs;
-                let limit = bw / bytes;
+            let (bw, bw_cpu) = triad(n, threads);
+            let report = |name: &str, bytes: f64, (wall, cpu): (f64, f64)| {
+                let (rate, rate_cpu) = (n as f64 / wall, n as f64 / (cpu / threads as f64));
                 println!(
-                    "{name:>9} {n:>8} {threads:>3} {secs:>9.3e} {rate:>10.3e} {bytes:>6.0} {:>9.2} {limit:>9.3e} {:>6.2}",
+                    "{name:>13} {n:>8} {threads:>3} {wall:>10.3e} {rate:>10.3e} {rate_cpu:>10.3e} {bytes:>5.0} {:>8.2} {:>8.2} {:>10.3e} {:>5.2} {:>5.2}",
                     bw / 1e9,
-                    rate / limit
+                    bw_cpu / 1e9,
+                    bw_cpu / bytes,
+                    rate / (bw / bytes),
+                    rate_cpu / (bw_cpu / bytes)
                 );
             };
             let (mut u, mut v, mut f) = (vec![1e-9; n], vec![0.0; n], vec![0.0; n]);
@@ -111,8 +153,9 @@ fn main() {
                         u[i] += dt * v[i];
                     }
                 });
-                report("elements", ELEMENT_BYTES, s);
+                report("elements+upd", ELEMENT_BYTES, s);
             }
+            report("K u alone", 16.0, time(|| model.apply_k(black_box(&u), &mut f)));
             let s = time(|| {
                 model.apply_k(black_box(&u), &mut f);
                 for i in 0..n {
@@ -120,12 +163,14 @@ fn main() {
                     u[i] += dt * v[i];
                 }
             });
-            report("stencil", STENCIL_BYTES, s);
-            let fixed: Vec<bool> = (0..n).map(|i| mesh.nodes[i / 2][1] == 0.0).collect();
-            let mut run = Explicit::new(&model, dt, 0.0, fixed).unwrap();
-            run.set_displacement(&vec![1e-9; n]);
-            let s = time(|| run.step(|_, _| {}));
-            report("step", STEP_BYTES, s);
+            report("stencil+upd", STENCIL_BYTES, s);
+            for (name, eta) in [("step", 0.0), ("step damped", 0.2 / model.lambda_bound.sqrt())] {
+                let fixed: Vec<bool> = (0..n).map(|i| mesh.nodes[i / 2][1] == 0.0).collect();
+                let dt = 0.5 * model.critical_dt(eta);
+                let mut run = Explicit::new(&model, dt, eta, fixed).unwrap();
+                run.set_displacement(&vec![1e-9; n]);
+                report(name, STEP_BYTES, time(|| run.step(|_, _| {})));
+            }
         }
     }
 }
