@@ -1,14 +1,18 @@
 //! Explicit elastodynamics throughput (`cargo bench --bench dynamics`; a plain timing harness
 //! that prints one table, not criterion, so the fractions of the bandwidth limit come out).
 //!
-//! For regular QUA4 meshes of about 1e4, 1e5 and 1e6 DOFs and 1 and 2 threads it times:
-//! - `elements`: K u element by element (gather, 8x8 product, scatter) then the update
+//! For square regular QUA4 meshes of about 1e4, 1e5 and 1e6 DOFs, on 1 and 2 threads, it
+//! times:
+//! - `elements+upd`: K u element by element (gather, 8x8 product, scatter), then the update
 //!   v -= dt K u / m, u += dt v in a second pass: the kernel before the grid stencil;
-//! - `stencil`: the same with K u as the grid's 9-point stencil (`Elastodynamic::apply_k`);
-//! - `step`: a whole `Explicit::step` (fixed base, external-force hook, energy ledger);
-//! and a STREAM-like triad a = b + s c over as many doubles as the mesh has DOFs (on 1 and 2
-//! threads, each its half) to set the memory-bandwidth limit against. Each time is the
-//! median of repeated runs after a warm-up.
+//! - `K u alone`: the grid's 9-point stencil (`Elastodynamic::apply_k`);
+//! - `stencil+upd`: the stencil, then the same update;
+//! - `step`, `step damped`: a whole `Explicit::step` (fixed base, external-force hook,
+//!   energy ledger), fused into one pass on a grid.
+//!
+//! The reference is a STREAM-like triad a = b + s c over as many doubles as the mesh has DOFs,
+//! on as many threads (contiguous shares), plus one out of cache. Each time is the median of
+//! 9 batches after a warm-up, as wall time and as CPU time / threads (the machine is shared).
 //!
 //! Bytes per DOF-update are counted at their minimum, each array streamed once, stores
 //! counted once (as STREAM counts: the triad moves 24 B per element); the limit is the

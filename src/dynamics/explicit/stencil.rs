@@ -31,7 +31,7 @@ impl Grid {
     pub(super) fn detect(conn: &[[u32; 4]], n_nodes: usize, kmats: &[[f64; 64]]) -> Option<Grid> {
         let ([k], Some(first)) = (kmats, conn.first()) else { return None };
         let gx = first[3] as usize;
-        if gx < 2 || conn.len() % (gx - 1) != 0 {
+        if gx < 2 || !conn.len().is_multiple_of(gx - 1) {
             return None;
         }
         let (nx, ny) = (gx - 1, conn.len() / (gx - 1));
