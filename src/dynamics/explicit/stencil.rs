@@ -82,14 +82,8 @@ impl Grid {
             self.rows(u, out, 0);
             return;
         }
-        std::thread::scope(|s| {
-            let mut chunks = out.chunks_mut(per * row_len).enumerate();
-            let (_, first) = chunks.next().expect("one band at least");
-            for (b, chunk) in chunks {
-                s.spawn(move || self.rows(u, chunk, b * per));
-            }
-            self.rows(u, first, 0);
-        });
+        let bands: Vec<&mut [f64]> = out.chunks_mut(per * row_len).collect();
+        run_bands(bands, &|b, chunk: &mut [f64]| self.rows(u, chunk, b * per));
     }
 
     /// One pass over the node rows for a fused explicit step: for each row j, K u of the row
@@ -128,17 +122,7 @@ impl Grid {
         let bands: Vec<[&mut [f64]; N]> = (0..rows.div_ceil(per))
             .map(|_| std::array::from_fn(|k| chunks[k].next().expect("one chunk per band")))
             .collect();
-        let band = &band;
-        std::thread::scope(|s| {
-            let mut bands = bands.into_iter().enumerate();
-            let (_, first) = bands.next().expect("one band at least");
-            let others: Vec<_> = bands.map(|(b, c)| s.spawn(move || band(b * per, c))).collect();
-            let mut all = band(0, first);
-            for h in others {
-                all.extend(h.join().expect("a stencil band panicked"));
-            }
-            all
-        })
+        run_bands(bands, &|b, c| band(b * per, c)).into_iter().flatten().collect()
     }
 
     /// The forces of the node rows j0.. that `out` covers.
@@ -188,6 +172,36 @@ impl Grid {
             out[2 * i..2 * i + 2].copy_from_slice(&f);
         }
     }
+}
+
+/// `work(b, item)` for every item b: the first on this thread, the others on scoped threads
+/// (an item whose thread cannot be spawned runs here afterwards, rather than a panic);
+/// results in item order.
+fn run_bands<T: Send, R: Send>(items: Vec<T>, work: &(impl Fn(usize, T) -> R + Sync)) -> Vec<R> {
+    let mut slots: Vec<Option<T>> = items.into_iter().map(Some).collect();
+    let mut out: Vec<Option<R>> = (0..slots.len()).map(|_| None).collect();
+    std::thread::scope(|s| {
+        let mut it = slots.iter_mut().enumerate();
+        let first = it.next();
+        let spawned: Vec<_> = it
+            .filter_map(|(b, slot)| {
+                let h = std::thread::Builder::new().spawn_scoped(s, move || slot.take().map(|t| work(b, t)));
+                h.ok().map(|h| (b, h))
+            })
+            .collect();
+        if let Some((_, slot)) = first {
+            out[0] = slot.take().map(|t| work(0, t));
+        }
+        for (b, h) in spawned {
+            out[b] = h.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+        }
+    });
+    for (b, slot) in slots.iter_mut().enumerate() {
+        if let Some(t) = slot.take() {
+            out[b] = Some(work(b, t));
+        }
+    }
+    out.into_iter().map(|r| r.expect("every band ran")).collect()
 }
 
 /// Nodes 1..nx of a row: every neighbour exists, so the loop has no branch and vectorises
