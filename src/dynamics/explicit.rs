@@ -9,9 +9,11 @@
 //! taken at the lagging half step so the update stays explicit, as SEM2DPACK does. A mode of
 //! frequency omega is damped at the ratio xi = eta omega / 2: the highest mesh modes most.
 //!
-//! Internal forces come from element matrices applied element by element (no assembled
-//! matrix): on a regular mesh one 8x8 matrix serves every element, so the update streams the
-//! displacements and forces and keeps the matrix in cache.
+//! Internal forces come from element matrices (no assembled matrix); elements equal up to a
+//! translation share one. On a regular grid (one matrix, row-by-row numbering: every mesh
+//! `Rectangle` builds) K u is a node-wise stencil (`stencil`), optionally on several threads
+//! with the same bits, and `Explicit::step` makes one fused pass over the node rows; other
+//! meshes go element by element. Throughput and where the time goes: docs/dynamics.md.
 //!
 //! The stable step is bounded rigorously by the element eigenvalues (Irons: the largest
 //! eigenvalue of M^-1 K is at most the largest of the elements' Me^-1 Ke with their own lumped
@@ -24,6 +26,9 @@ use crate::fem::material::Material;
 use crate::fem::mesh::Mesh;
 use nalgebra::SMatrix;
 use std::collections::HashMap;
+
+mod stencil;
+use stencil::Grid;
 
 /// The block's mass and stiffness in the form the explicit update reads.
 #[derive(Debug, Clone)]
@@ -39,6 +44,10 @@ pub struct Elastodynamic {
     pub material: Material,
     /// kg/m^3.
     pub density: f64,
+    /// Set when the mesh is a regular grid (see [`Grid`]): K u then reads no connectivity.
+    grid: Option<Grid>,
+    /// Threads K u may use (bands of node rows; the result does not depend on it).
+    threads: usize,
 }
 
 impl Elastodynamic {
@@ -121,7 +130,20 @@ impl Elastodynamic {
         }
         let lambda_bound =
             kmats.iter().zip(&emass).map(|(k, m)| element_lambda_max(k, m)).fold(0.0, f64::max);
-        Ok(Self { n_nodes: mesh.n_nodes(), conn, kmats, kidx, mass, lambda_bound, material, density })
+        let grid = Grid::detect(&conn, mesh.n_nodes(), &kmats);
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        Ok(Self {
+            n_nodes: mesh.n_nodes(),
+            conn,
+            kmats,
+            kidx,
+            mass,
+            lambda_bound,
+            material,
+            density,
+            grid,
+            threads,
+        })
     }
 
     pub fn n_nodes(&self) -> usize {
@@ -135,8 +157,36 @@ impl Elastodynamic {
         self.kmats.len()
     }
 
+    /// Whether K u runs as a stencil on a regular grid (no connectivity read) rather than
+    /// element by element.
+    pub fn is_grid(&self) -> bool {
+        self.grid.is_some()
+    }
+
+    /// Threads K u may use (default: the machine's; the results are the same bits for any).
+    pub fn threads(&self) -> usize {
+        self.threads
+    }
+
+    /// Sets the threads K u may use (at least 1). Only the grid path uses more than one, and
+    /// only on meshes big enough to pay for them; every node's sum is the same expression for
+    /// any count, so results do not depend on it.
+    pub fn set_threads(&mut self, threads: usize) {
+        self.threads = threads.max(1);
+    }
+
     /// out = K u (out overwritten; DOF order u0, v0, u1, v1, ...).
     pub fn apply_k(&self, u: &[f64], out: &mut [f64]) {
+        assert!(u.len() == self.n_dofs() && out.len() == self.n_dofs(), "one value per DOF");
+        match &self.grid {
+            Some(g) => g.apply(u, out, self.threads),
+            None => self.apply_k_by_elements(u, out),
+        }
+    }
+
+    /// out = K u element by element (gather, 8x8 product, scatter), whatever the mesh: the
+    /// general path, and the reference the grid stencil is tested against.
+    pub fn apply_k_by_elements(&self, u: &[f64], out: &mut [f64]) {
         // Node-wise views: one bounds check per node instead of per DOF.
         let (u2, _) = u.as_chunks::<2>();
         let (o2, _) = out.as_chunks_mut::<2>();
@@ -259,6 +309,85 @@ pub struct Ledger {
     pub correction: f64,
 }
 
+/// What the fused update of a node row reads besides its row slices.
+struct RowCtx<'a> {
+    row_len: usize,
+    dt: f64,
+    eta: f64,
+    fixed: &'a [bool],
+    mass: &'a [f64],
+    u: &'a [f64],
+}
+
+/// The update of node row j (see [`Explicit::step_grid`]): un holds u^{n-1} and receives
+/// u^{n+1}, vout receives v^{n+1/2} (and holds v^{n-1/2} unless DAMPED, when that is read
+/// from `vin`), fe is read and zeroed. Per DOF the arithmetic of the general path; the sums
+/// run in two lanes (x and y DOFs) added at the row's end, so no sum waits on the one before.
+#[inline(always)]
+fn update_row<const DAMPED: bool>(
+    c: &RowCtx,
+    j: usize,
+    ku: &[f64],
+    kv: &[f64],
+    vin: &[f64],
+    [un, fe, vout]: [&mut [f64]; 3],
+) -> RowSums {
+    let (dt, eta, i0) = (c.dt, c.eta, j * c.row_len);
+    let mut l = [[0.0f64; 2]; 7];
+    for node in 0..c.row_len / 2 {
+        let mi = c.mass[i0 / 2 + node];
+        // One division per node, not two per DOF (divisions were most of the update's time).
+        let inv = 1.0 / mi;
+        for a in 0..2 {
+            let (k, i) = (2 * node + a, i0 + 2 * node + a);
+            let vm = if DAMPED { vin[i] } else { vout[k] };
+            let fd = if DAMPED { eta * kv[k] } else { 0.0 };
+            let f = fe[k] - ku[k] - fd;
+            let fixed = c.fixed[i];
+            let vp = if fixed { 0.0 } else { vm + dt * f * inv };
+            let vbar = 0.5 * (vm + vp);
+            l[0][a] += mi * vm * vm;
+            l[1][a] += un[k] * ku[k];
+            l[2][a] += c.u[i] * ku[k];
+            l[3][a] += dt * vbar * fe[k];
+            l[4][a] += dt * vbar * fd;
+            l[5][a] += 0.5 * mi * vbar * vbar;
+            l[6][a] += if fixed { 0.0 } else { dt * dt / 8.0 * f * f * inv };
+            vout[k] = vp;
+            un[k] = c.u[i] + dt * vp;
+            fe[k] = 0.0;
+        }
+    }
+    let s = l.map(|p| p[0] + p[1]);
+    RowSums { kin_old: s[0], shadow: s[1], strain: s[2], work: s[3], damp: s[4], kin: s[5], corr: s[6] }
+}
+
+/// One node row's share of the ledger sums of a grid step.
+#[derive(Debug, Clone, Copy, Default)]
+struct RowSums {
+    kin_old: f64,
+    shadow: f64,
+    strain: f64,
+    work: f64,
+    damp: f64,
+    kin: f64,
+    corr: f64,
+}
+
+impl RowSums {
+    fn add(self, o: &RowSums) -> RowSums {
+        RowSums {
+            kin_old: self.kin_old + o.kin_old,
+            shadow: self.shadow + o.shadow,
+            strain: self.strain + o.strain,
+            work: self.work + o.work,
+            damp: self.damp + o.damp,
+            kin: self.kin + o.kin,
+            corr: self.corr + o.corr,
+        }
+    }
+}
+
 /// A running explicit integration: displacements at step n, velocities at n - 1/2.
 pub struct Explicit<'a> {
     pub model: &'a Elastodynamic,
@@ -326,6 +455,11 @@ impl<'a> Explicit<'a> {
     /// One step; `f_ext(t, f)` adds the external nodal forces at t = n dt into `f` (zeroed).
     pub fn step(&mut self, mut f_ext: impl FnMut(f64, &mut [f64])) {
         let (m, dt, eta) = (self.model, self.dt, self.eta);
+        if let Some(g) = &m.grid {
+            // fe is zero here: new() makes it so and every grid step leaves it so.
+            f_ext(self.n as f64 * dt, &mut self.fe);
+            return self.step_grid(g);
+        }
         m.apply_k(&self.u, &mut self.ku);
         if eta > 0.0 {
             m.apply_k(&self.v, &mut self.kv);
@@ -339,13 +473,15 @@ impl<'a> Explicit<'a> {
             let fd = if eta > 0.0 { eta * self.kv[i] } else { 0.0 };
             let f = self.fe[i] - self.ku[i] - fd;
             let mi = m.mass[i / 2];
-            let vp = if self.fixed[i] { 0.0 } else { vm + dt * f / mi };
+            // As the grid path: the inverse mass, then products (the same bits).
+            let inv = 1.0 / mi;
+            let vp = if self.fixed[i] { 0.0 } else { vm + dt * f * inv };
             let vbar = 0.5 * (vm + vp);
             work += dt * vbar * self.fe[i];
             damp += dt * vbar * fd;
             kin += 0.5 * mi * vbar * vbar;
             if !self.fixed[i] {
-                corr += dt * dt / 8.0 * f * f / mi;
+                corr += dt * dt / 8.0 * f * f * inv;
             }
             self.v[i] = vp;
             self.u_prev[i] = self.u[i];
@@ -363,6 +499,43 @@ impl<'a> Explicit<'a> {
         self.n += 1;
     }
 
+    /// The step on a regular grid in one pass over the node rows (see [`Grid::sweep`]): each
+    /// row's K u (and K v) is computed into a row buffer and used at once, u^{n+1} is written
+    /// into u_prev's array after u^{n-1} is read from it (then the two swap), v^{n+1/2} in
+    /// place (into kv's array when damped, as K v reads v^{n-1/2} of the next row), f_ext
+    /// zeroed as it is read. Same arithmetic per DOF as the general path; the energy sums are
+    /// per row, added in row order, so the result is the same for any thread count.
+    fn step_grid(&mut self, g: &Grid) {
+        let (m, dt, eta) = (self.model, self.dt, self.eta);
+        let row_len = g.row_len();
+        let (fixed, mass, u) = (&self.fixed, &m.mass, &self.u);
+        let ctx = RowCtx { row_len, dt, eta, fixed, mass, u };
+        let rows = if eta > 0.0 {
+            let v = &self.v;
+            g.sweep(u, Some(v), [&mut self.u_prev, &mut self.fe, &mut self.kv], m.threads, |j, ku, kv, o| {
+                update_row::<true>(&ctx, j, ku, kv, v, o)
+            })
+        } else {
+            g.sweep(u, None, [&mut self.u_prev, &mut self.fe, &mut self.v], m.threads, |j, ku, kv, o| {
+                update_row::<false>(&ctx, j, ku, kv, &[], o)
+            })
+        };
+        let s = rows.iter().fold(RowSums::default(), |a, b| a.add(b));
+        std::mem::swap(&mut self.u, &mut self.u_prev);
+        if eta > 0.0 {
+            std::mem::swap(&mut self.v, &mut self.kv);
+        }
+        self.ledger.shadow_half = 0.5 * s.kin_old + 0.5 * s.shadow;
+        self.ledger.strain = 0.5 * s.strain;
+        self.ledger.kinetic = s.kin;
+        self.ledger.correction = s.corr;
+        self.ledger.work_half = self.ledger.work;
+        self.ledger.damping_half = self.ledger.damping;
+        self.ledger.work += s.work;
+        self.ledger.damping += s.damp;
+        self.n += 1;
+    }
+
     /// E^{n-1/2} + D - W (sums through step n - 1) as of the last step: constant to round-off.
     pub fn shadow_balance(&self) -> f64 {
         self.ledger.shadow_half + self.ledger.damping_half - self.ledger.work_half
@@ -370,54 +543,4 @@ impl<'a> Explicit<'a> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::fem::mesher::Rectangle;
-
-    #[test]
-    fn regular_mesh_shares_one_matrix_and_the_mass_is_the_body_mass() {
-        let mesh = Rectangle::new(-0.1, 0.1, 0.0, 0.05, 40, 10).build().unwrap();
-        let m = Elastodynamic::new(&mesh, Material::plane_strain(2e3, 0.4).unwrap(), 1000.0).unwrap();
-        assert_eq!(m.n_element_matrices(), 1);
-        let total: f64 = m.mass.iter().sum();
-        assert!((total - 1000.0 * 0.2 * 0.05).abs() < 1e-12 * total, "{total}");
-        // Corner node of a square element: a quarter of its mass.
-        assert!((m.mass[0] - 1000.0 * 0.005 * 0.005 / 4.0).abs() < 1e-15);
-    }
-
-    #[test]
-    fn element_bound_holds_and_is_close() {
-        let mesh = Rectangle::new(0.0, 0.04, 0.0, 0.02, 20, 10).build().unwrap();
-        let m = Elastodynamic::new(&mesh, Material::plane_strain(2e3, 0.4).unwrap(), 1000.0).unwrap();
-        let est = m.power_iteration(3000);
-        // The power estimate is a Rayleigh quotient (a lower bound on the true largest
-        // eigenvalue), and the element bound an upper one. On square nu = 0.4 elements the
-        // bound is 6.67 c_p^2 / h^2 and the estimate 4.31 c_p^2 / h^2 (0.647 of it): the
-        // element's highest mode does not fit the assembled mesh, so the bound's step
-        // 0.775 h / c_p is 0.80 of the true one.
-        assert!(est <= m.lambda_bound * (1.0 + 1e-12), "{est} > {}", m.lambda_bound);
-        assert!(est >= 0.6 * m.lambda_bound, "{est} vs {}", m.lambda_bound);
-        let cp2_h2 = (m.material.lambda() + 2.0 * m.material.shear_modulus()) / 1000.0 / 4e-6;
-        assert!((m.lambda_bound / cp2_h2 - 20.0 / 3.0).abs() < 1e-9, "{}", m.lambda_bound / cp2_h2);
-    }
-
-    #[test]
-    fn refuses_other_elements_and_bad_density() {
-        let mesh = Rectangle::new(0.0, 1.0, 0.0, 1.0, 2, 2).kind(ElementKind::Tri3).build().unwrap();
-        let mat = Material::plane_strain(1.0, 0.3).unwrap();
-        let e = Elastodynamic::new(&mesh, mat, 1.0).unwrap_err().to_string();
-        assert!(e.contains("qua4") && e.contains("tri3"), "{e}");
-        let mesh = Rectangle::new(0.0, 1.0, 0.0, 1.0, 2, 2).build().unwrap();
-        let e = Elastodynamic::new(&mesh, mat, -1.0).unwrap_err().to_string();
-        assert!(e.contains("density"), "{e}");
-    }
-
-    #[test]
-    fn damped_critical_step() {
-        assert!((critical_dt(4.0, 0.0) - 1.0).abs() < 1e-15);
-        // dt_c solves lambda dt^2 + 2 eta lambda dt = 4.
-        let (l, eta) = (9.0, 0.1);
-        let dt = critical_dt(l, eta);
-        assert!((l * dt * dt + 2.0 * eta * l * dt - 4.0).abs() < 1e-12);
-    }
-}
+mod tests;
