@@ -37,6 +37,9 @@ pub struct BandedOperator {
     pv: Vec<usize>,
     /// Scale of identity rows (mean interface diagonal): keeps pivoting and residuals sane.
     scale: f64,
+    /// Interface node positions along x (sorted), m, and tributary widths, m.
+    pub x: Vec<f64>,
+    pub w: Vec<f64>,
     /// Largest |K_ij - K_ji| / max |K| and largest |K r| / (max |K| |r|) over the three rigid
     /// motions (the checks the dense condensation reports for S).
     pub asymmetry: f64,
@@ -260,7 +263,9 @@ impl BandedOperator {
                 hint: "check the mesh and the material values".into(),
             });
         }
-        Ok(BandedOperator { n, m, kl, ku, ptr, col, val, pu, pv, scale, asymmetry, rigid_residual })
+        let x = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
+        let w = sm.tributary_widths();
+        Ok(BandedOperator { n, m, kl, ku, ptr, col, val, pu, pv, scale, x, w, asymmetry, rigid_residual })
     }
 
     /// A workspace for [`Self::solve`] (the band's storage, reused between solves).
@@ -297,7 +302,7 @@ impl BandedOperator {
         lu.clear();
         // Right-hand sides: the 3 border columns, then lambda^0, lambda^1 (m each).
         let mut rhs = vec![0.0; 5 * m];
-        let mut put = |lu: &mut Banded, rhs: &mut [f64], r: usize, cols: &[usize], vals: &[f64], w: f64| {
+        let put = |lu: &mut Banded, rhs: &mut [f64], r: usize, cols: &[usize], vals: &[f64], w: f64| {
             for (&c, &v) in cols.iter().zip(vals) {
                 if c < m {
                     lu.add(r, c, w * v);

@@ -3,9 +3,10 @@
 
 use crate::error::{Error, Result};
 use crate::fem::problem::{solve, LoadCase};
+use crate::interface::banded::BandedOperator;
 use crate::interface::condense::{boundary_model, condense, Condensed};
 use crate::interface::events::EventKind;
-use crate::interface::events::{run as run_events, NodeState, Problem, Run};
+use crate::interface::events::{run as run_events, run_with, NodeState, Operator, OperatorRef, Problem, Run};
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
 use crate::scene::{Scene, SceneModel};
@@ -151,10 +152,48 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
     Ok(())
 }
 
-/// Condenses and runs.
+/// Condenses and runs (with [`Operator::Banded`]: builds the banded operator instead of the
+/// condensation; the result's `condensed` then has an empty `s` and reports the block
+/// stiffness' symmetry and rigid-motion checks).
 pub fn run(scene: &Scene, o: &SlideOptions, progress: &dyn Fn(f64)) -> Result<SlideResult> {
     check_options(scene, o)?;
     let clock = Instant::now();
+    if o.operator == Operator::Banded {
+        let op = BandedOperator::new(scene, scene.loading.height)?;
+        let c = Condensed {
+            n: op.n,
+            x: op.x.clone(),
+            w: op.w.clone(),
+            l: scene.block.length,
+            t: scene.block.thickness,
+            e_star: scene.block.young / (1.0 - scene.block.poisson.powi(2)),
+            s: vec![],
+            asymmetry: op.asymmetry,
+            rigid_residual: op.rigid_residual,
+        };
+        let condense_s = clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        if o.keep_states {
+            crate::scene::limits::check_bytes(
+                o.max_events as f64 * (40.0 * c.n as f64 + 200.0),
+                "--max-events",
+                &format!("keeping up to {} states of {} interface nodes", o.max_events, c.n),
+                "lower --max-events",
+            )?;
+        }
+        if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
+            return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
+        }
+        let run = run_with(OperatorRef::Banded(&op), c.n, o, progress)?;
+        return Ok(SlideResult {
+            scene: scene.clone(),
+            options: o.clone(),
+            condensed: c,
+            run,
+            condense_s,
+            events_s: clock.elapsed().as_secs_f64(),
+        });
+    }
     let c = condense(scene, &SolverOptions::default())?;
     let condense_s = clock.elapsed().as_secs_f64();
     run_condensed(scene, c, condense_s, o, progress)
@@ -169,6 +208,12 @@ pub fn run_condensed(
     progress: &dyn Fn(f64),
 ) -> Result<SlideResult> {
     let clock = Instant::now();
+    if c.s.len() != c.dim() * c.dim() {
+        return Err(Error::input(
+            "condensed system",
+            "holds no dense S (built for the banded operator): run it through studies::slide::run",
+        ));
+    }
     let s = c.at_height(scene.loading.height);
     if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
         return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));

@@ -13,7 +13,9 @@
 //! rebuilt by a full LU only when the residual check of a solve says so.
 
 use crate::error::{Error, Result};
+use crate::interface::banded::{BandedOperator, Rows};
 use crate::interface::law::{Law, Rule};
+use crate::linalg::banded::Banded;
 use faer::linalg::solvers::DenseSolveCore;
 
 mod kind;
@@ -45,6 +47,33 @@ impl NodeState {
 pub enum Phase {
     Normal,
     Drive,
+}
+
+/// How each state set's system is solved: the dense condensed S with a bordered inverse
+/// (the reference), or the block's sparse stiffness in x order, factored per solve
+/// ([`crate::interface::banded`]); the two agree to round-off (tests/operator.rs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Operator {
+    #[default]
+    Dense,
+    Banded,
+}
+
+impl Operator {
+    pub fn name(&self) -> &'static str {
+        match self {
+            Operator::Dense => "dense",
+            Operator::Banded => "banded",
+        }
+    }
+}
+
+/// The operator a run works on (see [`Operator`]).
+#[derive(Clone, Copy)]
+pub enum OperatorRef<'a> {
+    /// Dense S at the drive height, (2n + 3)^2 row-major.
+    Dense(&'a [f64]),
+    Banded(&'a BandedOperator),
 }
 
 /// What the run is asked to do.
@@ -80,6 +109,8 @@ pub struct Problem {
     pub newton: bool,
     /// Checked at every event: once cancelled, the run returns [`Error::Interrupted`].
     pub cancel: crate::Cancel,
+    /// Which operator solves each state set (results equal to round-off).
+    pub operator: Operator,
 }
 
 impl Default for Problem {
@@ -95,6 +126,7 @@ impl Default for Problem {
             end_at_crossing: false,
             newton: false,
             cancel: crate::Cancel::new(),
+            operator: Operator::Dense,
         }
     }
 }
@@ -212,6 +244,8 @@ impl Free {
 
 struct Solver<'a> {
     s: &'a [f64],
+    /// The banded operator and its workspace: then `s` is empty and the free inverse unused.
+    banded: Option<(&'a BandedOperator, Banded)>,
     n: usize,
     nd: usize,
     law: Law,
@@ -331,6 +365,9 @@ impl<'a> Solver<'a> {
 
     /// Full LU of the free system.
     fn refresh(&mut self) -> Result<()> {
+        if self.banded.is_some() {
+            return Ok(());
+        }
         let nd = self.nd;
         let dofs: Vec<usize> = (0..nd).filter(|&d| self.is_free(d)).collect();
         let m = dofs.len();
@@ -370,6 +407,9 @@ impl<'a> Solver<'a> {
 
     /// Removes DOF d from the free set (O(m^2)).
     fn remove(&mut self, d: usize) {
+        if self.banded.is_some() {
+            return;
+        }
         let nd = self.nd;
         let f = &mut self.free;
         let k = f.pos[d];
@@ -405,6 +445,9 @@ impl<'a> Solver<'a> {
 
     /// Adds DOF d to the free set (its row uses the current state; O(m^2)).
     fn add(&mut self, d: usize) -> Result<()> {
+        if self.banded.is_some() {
+            return Ok(());
+        }
         let nd = self.nd;
         let m = self.free.dofs.len();
         let c: Vec<f64> = self.free.dofs.iter().map(|&a| self.a_entry(a, d)).collect();
@@ -504,6 +547,9 @@ impl<'a> Solver<'a> {
 
     /// Brings the free inverse to the current states after bulk changes.
     fn rebase(&mut self) -> Result<()> {
+        if self.banded.is_some() {
+            return Ok(());
+        }
         let target: Vec<usize> = (0..self.nd).filter(|&d| self.is_free(d)).collect();
         let cost = |f: &Free| {
             let stale =
@@ -601,7 +647,44 @@ impl<'a> Solver<'a> {
         Ok(a)
     }
 
+    /// The banded operator's solve of the current state set (one banded LU).
+    fn solve_banded(&mut self) -> Result<Affine> {
+        let (n, nd) = (self.n, self.nd);
+        let free: Vec<bool> = (0..nd).map(|d| self.is_free(d)).collect();
+        let mut b0 = vec![0.0; nd];
+        let mut b1 = vec![0.0; nd];
+        for i in 0..n {
+            if matches!(self.states[i], NodeState::Stick) {
+                b0[i] = self.anchor[i];
+            }
+        }
+        let fk = match self.phase {
+            Phase::Normal => (0.0, -self.n_force),
+            Phase::Drive => {
+                b1[self.iu()] = 1.0;
+                (-self.n_force, 0.0)
+            }
+        };
+        let coef: Vec<f64> = (0..n).map(|i| self.slip_coef(i)).collect();
+        let rows = Rows {
+            free: &free,
+            b0: &b0,
+            b1: &b1,
+            coef: &coef,
+            spring: &self.spring,
+            spring_u: &self.spring_u,
+            fk,
+        };
+        let (op, ws) = self.banded.as_mut().expect("banded operator");
+        let x = op.solve(&rows, ws)?;
+        self.refreshes += 1;
+        Ok(Affine { b0: x.b0, b1: x.b1, f0: x.f0, f1: x.f1 })
+    }
+
     fn solve_now(&mut self) -> Result<Affine> {
+        if self.banded.is_some() {
+            return self.solve_banded();
+        }
         let nd = self.nd;
         let (iu, iv) = (self.iu(), self.iv());
         let mut b0 = vec![0.0; nd];
@@ -908,8 +991,21 @@ enum Hit {
 /// Runs the loading history on the condensed S (at the drive height, see
 /// [`crate::interface::condense::Condensed::at_height`]); `progress` gets a fraction in [0, 1].
 pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<Run> {
+    run_with(OperatorRef::Dense(s), n, pb, progress)
+}
+
+/// [`run`] on either operator ([`Problem::operator`] is the caller's choice of which to build).
+pub fn run_with(op: OperatorRef, n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<Run> {
     let nd = 2 * n + 3;
-    if s.len() != nd * nd {
+    let (s, banded): (&[f64], _) = match op {
+        OperatorRef::Dense(s) => (s, None),
+        OperatorRef::Banded(b) => (&[], Some((b, b.workspace()))),
+    };
+    let sizes_ok = match op {
+        OperatorRef::Dense(s) => s.len() == nd * nd,
+        OperatorRef::Banded(b) => b.n == n,
+    };
+    if !sizes_ok {
         return Err(Error::input("condensed system", "sizes do not match the interface"));
     }
     if !(pb.n_force.is_finite() && pb.n_force > 0.0) {
@@ -925,6 +1021,7 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     }
     let mut sv = Solver {
         s,
+        banded,
         n,
         nd,
         law: pb.law,
