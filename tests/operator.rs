@@ -7,7 +7,7 @@ use tribofe::interface::events::Operator;
 use tribofe::interface::law::{Law, Rule};
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::Scene;
-use tribofe::studies::slide::{coefficients_from_rg, run, SlideOptions};
+use tribofe::studies::slide::{coefficients_from_rg, run, run_condensed, SlideOptions};
 
 /// Deterministic uniform numbers in [0, 1).
 struct Lcg(u64);
@@ -204,8 +204,21 @@ fn same_events_paper_scene() {
     let e = same_history(&s, Law::coulomb(0.5).unwrap(), 1);
     assert!(e > 100, "coulomb: {e} events");
     let (ms, md) = coefficients_from_rg(&s, 0.9, 0.35).unwrap();
-    let e = same_history(&s, Law::static_kinetic(ms, md, Rule::Paper).unwrap(), 1);
+    let law = Law::static_kinetic(ms, md, Rule::Paper).unwrap();
+    let e = same_history(&s, law, 1);
     assert!(e > 5, "paper rule: {e} events");
+    // run_condensed (the studies' entry, S condensed once) honours the operator too.
+    let o =
+        SlideOptions { law, cycles: 1, operator: Operator::Banded, keep_states: false, ..Default::default() };
+    let c = condense(&s, &SolverOptions::default()).unwrap();
+    let a = run_condensed(&s, c, 0.0, &o, &|_| {}).unwrap();
+    let b = run(&s, &o, &|_| {}).unwrap();
+    assert_eq!(a.run.refreshes, b.run.refreshes, "banded solves");
+    assert_eq!(a.run.updates, 0, "no bordering updates on the banded operator");
+    let fx = |r: &tribofe::studies::slide::SlideResult| {
+        r.run.events.iter().map(|e| (e.x, e.f)).collect::<Vec<_>>()
+    };
+    assert_eq!(fx(&a), fx(&b), "same operator, same arithmetic");
 }
 
 /// A thin block (t/L = 1/200, h = t/2) with the paper rule, and slip weakening (its
