@@ -4,10 +4,11 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use tribofe::interface::condense::condense;
+use tribofe::interface::events::Operator;
 use tribofe::interface::law::{Law, Rule};
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::Scene;
-use tribofe::studies::slide::{coefficients_from_rg, run_condensed, SlideOptions};
+use tribofe::studies::slide::{coefficients_from_rg, run, run_condensed, SlideOptions};
 
 fn friction(c: &mut Criterion) {
     let mut g = c.benchmark_group("friction");
@@ -55,5 +56,44 @@ fn friction(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, friction);
+/// Issue 32's speed targets through `studies::slide::run` (operator built or S condensed, then
+/// the events; no output files): coulomb at h = 0.5 mm (801 nodes) on both operators, and
+/// the thin block t/L = 1/1600 (3,201 nodes, rule paper, first cycle) on the banded one (the
+/// dense one takes ~50 s a run there; `tribofe slide --operator dense` times it once).
+fn operators(c: &mut Criterion) {
+    let mut g = c.benchmark_group("operators");
+    g.sample_size(10);
+    let mut fine = Scene::default();
+    fine.mesh.h = 0.0005;
+    for op in [Operator::Dense, Operator::Banded] {
+        let o = SlideOptions {
+            law: Law::coulomb(0.5).unwrap(),
+            n_force: 40.0,
+            operator: op,
+            keep_states: false,
+            ..Default::default()
+        };
+        g.bench_function(format!("coulomb h = 0.5 mm (801 nodes), {}", op.name()), |b| {
+            b.iter(|| run(&fine, &o, &|_| {}).unwrap())
+        });
+    }
+    let mut thin = Scene::default();
+    thin.block.thickness = 0.00025;
+    thin.mesh.h = 0.000125;
+    thin.mesh.n_thick = Some(2);
+    let (ms, md) = coefficients_from_rg(&thin, 0.9, 0.35).unwrap();
+    let o = SlideOptions {
+        law: Law::static_kinetic(ms, md, Rule::Paper).unwrap(),
+        cycles: 1,
+        operator: Operator::Banded,
+        keep_states: false,
+        ..Default::default()
+    };
+    g.bench_function("thin block t/L = 1/1600 (3201 nodes), paper rule, 1 cycle, banded", |b| {
+        b.iter(|| run(&thin, &o, &|_| {}).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, friction, operators);
 criterion_main!(benches);

@@ -53,6 +53,11 @@ pub struct Args {
     /// point, the reference (Newton only where a relaxation is unsettled after 10^4 iterates).
     #[arg(long)]
     pub newton: bool,
+    /// How each state set is solved: `dense` (the condensed S with a bordered inverse, the
+    /// reference) or `banded` (the block's sparse stiffness in x order, one banded LU per solve:
+    /// cost per event grows like n, not n^2; equal results to round-off)
+    #[arg(long, default_value = "dense", value_parser = ["dense", "banded"])]
+    pub operator: String,
     /// Write the whole block's fields for this many states spread evenly over the drive X, one
     /// per X (the settled state), first and last included (0: none); fields.pvd is indexed by
     /// X in m, each file holds its `event` (docs/outputs.md).
@@ -124,6 +129,11 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         cycles: a.cycles,
         max_events: a.max_events,
         newton: a.newton,
+        operator: if a.operator == "banded" {
+            tribofe::interface::events::Operator::Banded
+        } else {
+            tribofe::interface::events::Operator::Dense
+        },
         ..Default::default()
     };
     tribofe::studies::slide::check_options(&scene, &o)?;
@@ -170,15 +180,26 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         last.x,
         worst
     );
-    outln!(
-        "condensation {:.3} s (S symmetric to {:.1e}, rigid motions to {:.1e}); events {:.3} s ({} bordering updates, {} full LU)",
-        res.condense_s,
-        res.condensed.asymmetry,
-        res.condensed.rigid_residual,
-        res.events_s,
-        res.run.updates,
-        res.run.refreshes
-    );
+    if res.options.operator == tribofe::interface::events::Operator::Banded {
+        outln!(
+            "banded operator {:.3} s (K symmetric to {:.1e}, rigid motions to {:.1e}); events {:.3} s ({} banded LU solves)",
+            res.condense_s,
+            res.condensed.asymmetry,
+            res.condensed.rigid_residual,
+            res.events_s,
+            res.run.refreshes
+        );
+    } else {
+        outln!(
+            "condensation {:.3} s (S symmetric to {:.1e}, rigid motions to {:.1e}); events {:.3} s ({} bordering updates, {} full LU)",
+            res.condense_s,
+            res.condensed.asymmetry,
+            res.condensed.rigid_residual,
+            res.events_s,
+            res.run.updates,
+            res.run.refreshes
+        );
+    }
     if let Some(o) = tribofe::studies::slide::front_offset(&res) {
         outln!(
             "slip front vs thin-layer closed form (|x_s| < 0.3 L, {} states): offset {:.3} t (range {:.3} .. {:.3} t)",

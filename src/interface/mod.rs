@@ -4,6 +4,7 @@
 //! solver ([`events`]) then work on that small dense system. This layer knows nothing of
 //! the CLI, reports or files.
 
+pub mod banded;
 pub mod condense;
 pub mod events;
 pub mod law;

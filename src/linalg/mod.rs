@@ -1,8 +1,10 @@
 //! Sparse symmetric positive definite solvers: faer's Cholesky behind one interface
 //! ([`solve`]), our multifrontal numeric factorisation on faer's symbolic structure
-//! ([`multifrontal`]) and the two-domain solver that puts both cores on it ([`substructure`]).
+//! ([`multifrontal`]) and the two-domain solver that puts both cores on it ([`substructure`]);
+//! a banded LU with partial pivoting for the event solver's unsymmetric systems ([`banded`]).
 //! Knows matrices and orderings ([`pattern`]), not meshes: nothing here imports another layer.
 
+pub mod banded;
 pub mod multifrontal;
 pub mod pattern;
 pub mod solve;

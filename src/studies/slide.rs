@@ -3,8 +3,9 @@
 
 use crate::error::{Error, Result};
 use crate::fem::problem::{solve, LoadCase};
+use crate::interface::banded::BandedOperator;
 use crate::interface::condense::{boundary_model, condense, Condensed};
-use crate::interface::events::{run as run_events, NodeState, Problem, Run};
+use crate::interface::events::{run as run_events, run_with, NodeState, Operator, OperatorRef, Problem, Run};
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
 use crate::precursors::definition::{self, Precursors, Slip};
@@ -151,10 +152,27 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
     Ok(())
 }
 
-/// Condenses and runs.
+/// Condenses and runs (with [`Operator::Banded`]: builds the banded operator instead of the
+/// condensation; the result's `condensed` then has an empty `s` and reports the block
+/// stiffness' symmetry and rigid-motion checks).
 pub fn run(scene: &Scene, o: &SlideOptions, progress: &dyn Fn(f64)) -> Result<SlideResult> {
     check_options(scene, o)?;
     let clock = Instant::now();
+    if o.operator == Operator::Banded {
+        let op = BandedOperator::new(scene, scene.loading.height)?;
+        let c = Condensed {
+            n: op.n,
+            x: op.x.clone(),
+            w: op.w.clone(),
+            l: scene.block.length,
+            t: scene.block.thickness,
+            e_star: scene.block.young / (1.0 - scene.block.poisson.powi(2)),
+            s: vec![],
+            asymmetry: op.asymmetry,
+            rigid_residual: op.rigid_residual,
+        };
+        return run_banded(scene, &op, c, clock.elapsed().as_secs_f64(), o, progress);
+    }
     let c = condense(scene, &SolverOptions::default())?;
     let condense_s = clock.elapsed().as_secs_f64();
     run_condensed(scene, c, condense_s, o, progress)
@@ -168,7 +186,20 @@ pub fn run_condensed(
     o: &SlideOptions,
     progress: &dyn Fn(f64),
 ) -> Result<SlideResult> {
+    if o.operator == Operator::Banded {
+        // The condensation's S is not used: the banded operator is built from the scene.
+        let clock = Instant::now();
+        let op = BandedOperator::new(scene, scene.loading.height)?;
+        let built = condense_s + clock.elapsed().as_secs_f64();
+        return run_banded(scene, &op, c, built, o, progress);
+    }
     let clock = Instant::now();
+    if c.s.len() != c.dim() * c.dim() {
+        return Err(Error::input(
+            "condensed system",
+            "holds no dense S (built for the banded operator): run it through studies::slide::run",
+        ));
+    }
     let s = c.at_height(scene.loading.height);
     if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
         return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
@@ -184,6 +215,43 @@ pub fn run_condensed(
         )?;
     }
     let run = run_events(&s, c.n, o, progress)?;
+    Ok(SlideResult {
+        scene: scene.clone(),
+        options: o.clone(),
+        condensed: c,
+        run,
+        condense_s,
+        events_s: clock.elapsed().as_secs_f64(),
+    })
+}
+
+/// The run on the banded operator; `c` carries the interface's positions and widths (its S,
+/// if any, is not used).
+fn run_banded(
+    scene: &Scene,
+    op: &BandedOperator,
+    c: Condensed,
+    condense_s: f64,
+    o: &SlideOptions,
+    progress: &dyn Fn(f64),
+) -> Result<SlideResult> {
+    let clock = Instant::now();
+    if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
+        return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
+    }
+    check_options(scene, o)?;
+    if op.n != c.n {
+        return Err(Error::input("scene", "the condensed interface does not match the scene's mesh"));
+    }
+    if o.keep_states {
+        crate::scene::limits::check_bytes(
+            o.max_events as f64 * (40.0 * c.n as f64 + 200.0),
+            "--max-events",
+            &format!("keeping up to {} states of {} interface nodes", o.max_events, c.n),
+            "lower --max-events",
+        )?;
+    }
+    let run = run_with(OperatorRef::Banded(op), c.n, o, progress)?;
     Ok(SlideResult {
         scene: scene.clone(),
         options: o.clone(),

@@ -42,10 +42,7 @@ pub mod tolerances;
 mod weakening;
 
 pub use kind::EventKind;
-// The entry for another representation of S (interface::banded).
-pub use simulation::run;
-#[allow(unused_imports)]
-pub(crate) use simulation::run_with;
+pub use simulation::{run, run_with};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum NodeState {
@@ -70,6 +67,35 @@ impl NodeState {
 pub enum Phase {
     Normal,
     Drive,
+}
+
+/// How each state set's system is solved: the dense condensed S with a bordered inverse (the
+/// reference; O(n^2) per state change), or the block's sparse stiffness in x order factored
+/// per solve ([`crate::interface::banded`]; O(n) per solve, no condensation). The two agree
+/// to round-off (tests/operator.rs); banded pays off when many nodes change per event (thin
+/// layers), dense when one does (coulomb).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Operator {
+    #[default]
+    Dense,
+    Banded,
+}
+
+impl Operator {
+    pub fn name(&self) -> &'static str {
+        match self {
+            Operator::Dense => "dense",
+            Operator::Banded => "banded",
+        }
+    }
+}
+
+/// The operator a run works on (see [`Operator`]).
+#[derive(Clone, Copy)]
+pub enum OperatorRef<'a> {
+    /// Dense S at the drive height, (2n + 3)^2 row-major.
+    Dense(&'a [f64]),
+    Banded(&'a crate::interface::banded::BandedOperator),
 }
 
 /// What the run is asked to do.
@@ -105,6 +131,8 @@ pub struct Problem {
     pub newton: bool,
     /// Checked at every event: once cancelled, the run returns [`Error::Interrupted`].
     pub cancel: crate::Cancel,
+    /// Which operator solves each state set (results equal to round-off).
+    pub operator: Operator,
 }
 
 impl Default for Problem {
@@ -120,6 +148,7 @@ impl Default for Problem {
             end_at_crossing: false,
             newton: false,
             cancel: crate::Cancel::new(),
+            operator: Operator::Dense,
         }
     }
 }

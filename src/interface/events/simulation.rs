@@ -6,7 +6,7 @@ use super::classify::classify;
 use super::operator::{Affine, Dense, Operator};
 use super::relax::instability;
 use super::search::{Fix, Hit};
-use super::{tolerances, weakening, Event, EventKind, NodeState, Phase, Problem, Run, State};
+use super::{tolerances, weakening, Event, EventKind, NodeState, OperatorRef, Phase, Problem, Run, State};
 use crate::error::{Error, Result};
 use crate::interface::law::Law;
 
@@ -17,11 +17,24 @@ pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<
     if s.len() != nd * nd {
         return Err(Error::input("condensed system", "sizes do not match the interface"));
     }
-    run_with(Box::new(Dense::new(s, nd)), n, pb, progress)
+    run_on(Box::new(Dense::new(s, nd)), n, pb, progress)
+}
+
+/// [`run`] on either operator ([`Problem::operator`] is the caller's choice of which to build).
+pub fn run_with(op: OperatorRef, n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<Run> {
+    match op {
+        OperatorRef::Dense(s) => run(s, n, pb, progress),
+        OperatorRef::Banded(b) => {
+            if b.n != n {
+                return Err(Error::input("banded operator", "sizes do not match the interface"));
+            }
+            run_on(Box::new(crate::interface::banded::Solving::new(b)), n, pb, progress)
+        }
+    }
 }
 
 /// [`run`] on any representation of the condensed operator (n interface nodes).
-pub(crate) fn run_with(
+pub(crate) fn run_on(
     op: Box<dyn Operator + '_>,
     n: usize,
     pb: &Problem,
