@@ -96,10 +96,11 @@ pub fn write_thin_layer(
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
     let what = [("r", p.r()), ("g", p.g())];
-    let mut files = vec![]; // the figures with the `plots` feature only
-    files.push(("thin_layer.csv", series_csv("t_over_L", rows)?));
-    #[cfg(feature = "plots")]
-    files.push(("thin_layer.svg", thin_layer_svg(p, rows)?));
-    files.push(("run.toml", crate::report::run_toml(inv, &what, scene)?));
+    let files = [
+        ("thin_layer.csv", series_csv("t_over_L", rows)?),
+        #[cfg(feature = "plots")]
+        ("thin_layer.svg", thin_layer_svg(p, rows)?),
+        ("run.toml", crate::report::run_toml(inv, &what, scene)?),
+    ];
     write_all(dir, &files)
 }
