@@ -2,7 +2,7 @@
 //! D_c, `dc.csv`, `dc.svg` and each run's folder.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{log_range, render, FONT};
+use super::super::plot::{log_range, render, BLUE, FONT, RED};
 use super::super::{ensure_dir, write_all};
 use super::series_csv;
 #[cfg(feature = "plots")]

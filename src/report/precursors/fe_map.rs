@@ -2,7 +2,7 @@
 //! model's, `fig5_fe.csv`, `boundary_fe.csv` and `fig5_fe.svg`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{n_colour, n_key, render, FONT};
+use super::super::plot::{n_colour, n_key, render, FONT, RED};
 use super::super::{ensure_dir, finite, opt, write_all};
 use crate::studies::precursors_fe::Cell;
 use crate::Result;

@@ -1,7 +1,7 @@
 //! The height-of-drive study (`precursors heights`): `heights.csv`, `heights.svg`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{render, FONT};
+use super::super::plot::{render, BLUE, FONT, RED};
 use super::super::{ensure_dir, write_all};
 use super::series_csv;
 #[cfg(feature = "plots")]

@@ -1,7 +1,7 @@
 //! The thin-layer study (`precursors thin-layer`): `thin_layer.csv`, `thin_layer.svg`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{log_range, render, FONT};
+use super::super::plot::{log_range, render, BLUE, FONT, GREEN, RED};
 use super::super::{ensure_dir, write_all};
 use super::series_csv;
 use crate::precursors::Params;
