@@ -283,15 +283,9 @@ fn dash(v: f64, style: char) -> String {
     }
 }
 
+/// The report layer's series colours ([`super::plot::PALETTE`]).
 #[cfg(feature = "plots")]
-const COLORS: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(23, 190, 207),
-];
+use super::plot::PALETTE as COLORS;
 
 #[cfg(feature = "plots")]
 fn err(e: impl std::fmt::Display) -> Error {

@@ -5,7 +5,7 @@
 use crate::error::Result;
 use crate::report::finite;
 #[cfg(feature = "plots")]
-use crate::report::plot::render;
+use crate::report::plot::{render, PALETTE};
 use crate::studies::edges::{Opening, Preslip};
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
@@ -73,7 +73,7 @@ pub fn preslip_svg(rows: &[Preslip]) -> Result<String> {
             .y_desc("pre-slip extent / t")
             .draw()?;
         for (i, &mu) in mus.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
+            let color = PALETTE[i % PALETTE.len()];
             let pts = |end: usize| -> Vec<(f64, f64)> {
                 rows.iter().filter(|r| r.mu == mu).map(|r| (r.t_over_h, r.extent_t[end])).collect()
             };

@@ -8,6 +8,26 @@ use plotters::prelude::*;
 /// The typeface of every figure.
 pub(crate) const FONT: &str = "sans-serif";
 
+/// The series colours of every figure, in order: Tableau 10's first eight (told apart by
+/// most readers, colour-blind ones included, unlike pure red and green), then navy and maroon.
+pub(crate) const PALETTE: [RGBColor; 10] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(0, 0, 128),
+    RGBColor(128, 0, 0),
+];
+/// The palette's blue, red and green, named: they replace plotters' pure colours of the same
+/// names wherever a figure imports them.
+pub(crate) const BLUE: RGBColor = PALETTE[0];
+pub(crate) const RED: RGBColor = PALETTE[1];
+pub(crate) const GREEN: RGBColor = PALETTE[2];
+
 /// The drawing area handed to a figure's closure.
 pub(crate) type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
 

@@ -9,7 +9,7 @@ use crate::interface::law::Law;
 use crate::io::{vtu, Field};
 use crate::linalg::solve::SolverOptions;
 #[cfg(feature = "plots")]
-use crate::report::plot::render;
+use crate::report::plot::{render, BLUE, RED};
 use crate::report::{finite, write_atomic};
 use crate::studies::slide::{state_displacements, SlideResult};
 #[cfg(feature = "plots")]

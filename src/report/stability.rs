@@ -368,17 +368,9 @@ pub fn summary(res: &Results) -> String {
 
 // ---------------------------------------------------------------- charts
 
+/// The report layer's series colours ([`super::plot::PALETTE`]).
 #[cfg(feature = "plots")]
-const COLORS: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(23, 190, 207),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-];
+use super::plot::PALETTE as COLORS;
 
 #[cfg(feature = "plots")]
 fn err(e: impl std::fmt::Display) -> Error {

@@ -32,7 +32,7 @@ pub struct Args {
     mode: Option<Mode>,
     /// The earlier flag forms, hidden from --help ([`hide_old_flags`]).
     #[command(flatten)]
-    old: old::Old,
+    old: Box<old::Old>,
 }
 
 #[derive(clap::Subcommand, Debug)]
@@ -97,7 +97,7 @@ pub fn hide_old_flags(cmd: clap::Command) -> clap::Command {
 pub fn run(args: Args) -> tribofe::Result<()> {
     let mode = match args.mode {
         Some(m) => m,
-        None => args.old.mode()?,
+        None => (*args.old).mode()?,
     };
     match mode {
         Mode::Model(a) => model::model(a),

@@ -3,7 +3,7 @@
 //! the H/L, t/L sweep `fe_sweep.csv`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{render, FONT};
+use super::super::plot::{render, BLUE, FONT, RED};
 use super::super::{ensure_dir, finite, opt, write_all, write_atomic};
 use crate::precursors::discrete::{CellEvent, Run};
 use crate::precursors::fe::{Comparison, SweepRow};

@@ -2,7 +2,7 @@
 //! D_c, `dc.csv`, `dc.svg` and each run's folder.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{log_range, render, FONT};
+use super::super::plot::{log_range, render, BLUE, FONT, RED};
 use super::super::{ensure_dir, write_all};
 use super::series_csv;
 #[cfg(feature = "plots")]
@@ -93,11 +93,12 @@ pub fn write_dc(
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
     let what: [(&str, f64); 0] = [];
-    let mut files = vec![]; // the figures with the `plots` feature only
-    files.push(("dc.csv", series_csv("Dc_m", rows)?));
-    #[cfg(feature = "plots")]
-    files.push(("dc.svg", dc_svg(rows)?));
-    files.push(("run.toml", crate::report::run_toml(inv, &what, scene)?));
+    let files = [
+        ("dc.csv", series_csv("Dc_m", rows)?),
+        #[cfg(feature = "plots")]
+        ("dc.svg", dc_svg(rows)?),
+        ("run.toml", crate::report::run_toml(inv, &what, scene)?),
+    ];
     let mut written = write_all(dir, &files)?;
     for row in rows {
         let Ok(f) = &row.fig4 else { continue };

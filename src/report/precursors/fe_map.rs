@@ -2,7 +2,7 @@
 //! model's, `fig5_fe.csv`, `boundary_fe.csv` and `fig5_fe.svg`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{n_colour, n_key, render, FONT};
+use super::super::plot::{n_colour, n_key, render, FONT, RED};
 use super::super::{ensure_dir, finite, opt, write_all};
 use crate::studies::precursors_fe::Cell;
 use crate::Result;
@@ -178,11 +178,12 @@ pub fn write_fe_fig5(
     scene: &crate::scene::Scene,
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
-    let mut files = vec![]; // the figures with the `plots` feature only
-    files.push(("fig5_fe.csv", fe_fig5_csv(cells)?));
-    files.push(("boundary_fe.csv", fe_boundary_csv(cells)?));
-    #[cfg(feature = "plots")]
-    files.push(("fig5_fe.svg", fe_fig5_svg(cells, resolution)?));
-    files.push(("run.toml", crate::report::run_toml(inv, &what, scene)?));
+    let files = [
+        ("fig5_fe.csv", fe_fig5_csv(cells)?),
+        ("boundary_fe.csv", fe_boundary_csv(cells)?),
+        #[cfg(feature = "plots")]
+        ("fig5_fe.svg", fe_fig5_svg(cells, resolution)?),
+        ("run.toml", crate::report::run_toml(inv, &what, scene)?),
+    ];
     write_all(dir, &files)
 }

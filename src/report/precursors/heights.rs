@@ -1,7 +1,7 @@
 //! The height-of-drive study (`precursors heights`): `heights.csv`, `heights.svg`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{render, FONT};
+use super::super::plot::{render, BLUE, FONT, RED};
 use super::super::{ensure_dir, write_all};
 use super::series_csv;
 #[cfg(feature = "plots")]
@@ -75,10 +75,11 @@ pub fn write_heights(
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
     let what = [("mu_s", mu.0), ("mu_d", mu.1)];
-    let mut files = vec![]; // the figures with the `plots` feature only
-    files.push(("heights.csv", series_csv("H_over_L", rows)?));
-    #[cfg(feature = "plots")]
-    files.push(("heights.svg", heights_svg(rows)?));
-    files.push(("run.toml", crate::report::run_toml(inv, &what, scene)?));
+    let files = [
+        ("heights.csv", series_csv("H_over_L", rows)?),
+        #[cfg(feature = "plots")]
+        ("heights.svg", heights_svg(rows)?),
+        ("run.toml", crate::report::run_toml(inv, &what, scene)?),
+    ];
     write_all(dir, &files)
 }

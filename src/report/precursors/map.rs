@@ -1,7 +1,7 @@
 //! The model's n(r, g) over the (r, g) square (the paper's fig. 5): `n_map.csv`, `fig5.svg`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{n_colour, n_key, render, FONT};
+use super::super::plot::{n_colour, n_key, render, FONT, RED};
 use super::super::{ensure_dir, finite, write_all};
 use crate::precursors::MapPoint;
 use crate::Result;

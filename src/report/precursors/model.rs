@@ -2,7 +2,7 @@
 //! (`fig4.svg`). Forces in units of mu_s N, positions in units of L.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{render, FONT};
+use super::super::plot::{render, BLUE, FONT, RED};
 use super::super::{ensure_dir, finite, write_all};
 use crate::precursors::{loading_curve, Event, Params};
 use crate::Result;

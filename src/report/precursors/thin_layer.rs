@@ -1,7 +1,7 @@
 //! The thin-layer study (`precursors thin-layer`): `thin_layer.csv`, `thin_layer.svg`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{log_range, render, FONT};
+use super::super::plot::{log_range, render, BLUE, FONT, GREEN, RED};
 use super::super::{ensure_dir, write_all};
 use super::series_csv;
 use crate::precursors::Params;
@@ -96,10 +96,11 @@ pub fn write_thin_layer(
 ) -> Result<Vec<PathBuf>> {
     ensure_dir(dir)?;
     let what = [("r", p.r()), ("g", p.g())];
-    let mut files = vec![]; // the figures with the `plots` feature only
-    files.push(("thin_layer.csv", series_csv("t_over_L", rows)?));
-    #[cfg(feature = "plots")]
-    files.push(("thin_layer.svg", thin_layer_svg(p, rows)?));
-    files.push(("run.toml", crate::report::run_toml(inv, &what, scene)?));
+    let files = [
+        ("thin_layer.csv", series_csv("t_over_L", rows)?),
+        #[cfg(feature = "plots")]
+        ("thin_layer.svg", thin_layer_svg(p, rows)?),
+        ("run.toml", crate::report::run_toml(inv, &what, scene)?),
+    ];
     write_all(dir, &files)
 }
