@@ -7,6 +7,7 @@ pub mod edges;
 pub mod precursors;
 pub mod run_file;
 pub mod rupture;
+pub mod dynamic_slide;
 pub mod slide;
 pub mod stability;
 pub mod sweep;

@@ -7,6 +7,7 @@ pub mod check;
 pub mod convergence;
 pub mod edges;
 pub mod precursors_fe;
+pub mod dynamic_slide;
 pub mod slide;
 pub mod stability;
 pub mod sweep;
