@@ -196,15 +196,15 @@ impl Statics {
     }
 
     /// The first lambda in (lam, lam_end] at which a state must change along `p`, with the
-    /// node and its new state; `weaken`: (D_c / 20, the slip each node has made since its
-    /// coefficient was frozen) for slip weakening: a slipping node reaching that much slip
+    /// node and its new state; `weaken`: for slip weakening, the slip each node may still make
+    /// before its frozen coefficient must be brought to its slip: a slipping node reaching it
     /// stops the segment (node state unchanged). None: the path reaches lam_end.
     pub fn next_change(
         &self,
         p: &Path,
         lam: f64,
         lam_end: f64,
-        weaken: Option<(f64, &[f64])>,
+        weaken: Option<&[f64]>,
     ) -> Option<(f64, usize, Node)> {
         let n = self.n;
         let mut best: Option<(f64, usize, Node)> = None;
@@ -241,10 +241,10 @@ impl Statics {
                     if let Some(l) = cross(p0, p1) {
                         cand(l, i, Node::Open);
                     }
-                    if let Some((step, done)) = weaken {
+                    if let Some(left) = weaken {
                         let rate = (s * p.b1[i]).abs();
-                        if rate > 0.0 {
-                            cand(lam + (step - done[i]).max(0.0) / rate, i, self.nodes[i]);
+                        if rate > 0.0 && left[i].is_finite() {
+                            cand(lam + left[i].max(0.0) / rate, i, self.nodes[i]);
                         }
                     }
                 }

@@ -416,7 +416,24 @@ pub fn run(
             let s = to_state(&st, &p, lam, Phase::Drive);
             push(&mut run, simple(EventKind::Sliding, &s, 0), s)?;
         }
-        let weaken = weakens.then_some((dc / STEPS_PER_DC, done.as_slice()));
+        // Slip left before each coefficient must be updated (none once fully weakened).
+        let left: Vec<f64> = (0..n)
+            .map(|k| if slip[k] < dc { dc / STEPS_PER_DC - done[k] } else { f64::INFINITY })
+            .collect();
+        if weakens && x_end.is_infinite() {
+            let contact: Vec<usize> = (0..n).filter(|&k| st.nodes[k] != Node::Open).collect();
+            if contact.iter().all(|&k| matches!(st.nodes[k], Node::Slip { .. }) && slip[k] >= dc) {
+                // Steady sliding at mu_d, reached stably: nothing sticks again with the drive
+                // advancing; the run ends here.
+                run.sliding_events += 1;
+                let s = to_state(&st, &p, lam, Phase::Drive);
+                push(&mut run, simple(EventKind::Sliding, &s, 0), s)?;
+                log(&format!("steady sliding at mu_d reached stably at X = {lam:.6e} m (no instability): the run ends"));
+                break 'drive;
+            }
+        }
+        let weaken = weakens.then_some(left.as_slice());
+        let debug = std::env::var_os("TRIBOFE_DEBUG").is_some();
         let Some((l, i, to)) = st.next_change(&p, lam, x_stop, weaken) else {
             // To the end X: coulomb's default end is 5 % past the first whole slip.
             if !x_stop.is_finite() {
@@ -433,6 +450,10 @@ pub fn run(
         };
         add_slip_done(&st, &p, lam, l, &mut slip, &mut done);
         lam = l;
+        if debug {
+            let ns = st.nodes.iter().filter(|s| matches!(s, Node::Slip { .. })).count();
+            eprintln!("X {lam:.6e} node {i} {:?} -> {to:?}; {ns} slipping, F {:.6}", st.nodes[i], p.f(2 * n, lam));
+        }
         if to != st.nodes[i] {
             let from = st.nodes[i];
             st.nodes[i] = if let Node::Stick { .. } = to { Node::Stick { anchor: p.b(i, l) } } else { to };
@@ -464,6 +485,9 @@ pub fn run(
                 }
             }
             p_cur = p_new;
+            if debug {
+                eprintln!("  refreeze jump {:.3e} D_c", jump / dc);
+            }
             if jump < 1e-3 * dc {
                 stable = true;
                 break;
@@ -490,6 +514,9 @@ pub fn run(
             time: 0.0,
         };
         let rec = driven.run_event(&mut ds, &lim, dc / 100.0, &o.cancel)?;
+        if debug {
+            eprintln!("  dynamic: {} steps, weakened {}, settled {}, max slip {:.3e}", rec.steps, rec.weakened, rec.settled, rec.slip.iter().cloned().fold(0.0, f64::max));
+        }
         steps += rec.steps;
         if !rec.settled {
             return Err(Error::Untrustworthy {
