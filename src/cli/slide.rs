@@ -104,7 +104,11 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     }
     tribofe::io::outdir::check(&a.out, a.force)?;
     if !a.dynamics {
-        for (flag, on) in [("--density", a.density.is_some()), ("--damping", a.damping.is_some()), ("--courant", super::given("courant"))] {
+        for (flag, on) in [
+            ("--density", a.density.is_some()),
+            ("--damping", a.damping.is_some()),
+            ("--courant", super::given("courant")),
+        ] {
             if on {
                 return Err(Error::input(flag, "acts only with --dynamics"));
             }
@@ -115,7 +119,10 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         let mut b = a;
         let probe = LawChoice { dc: Some(1.0), ..law_choice(&b) }.law(&scene)?;
         let dc = tribofe::studies::dynamic_slide::default_dc(&scene, probe.mu_s(), probe.mu_d(), b.n_force)?;
-        eprintln!("--dc not given: D_c = {dc:.4e} m, the smallest whose cohesive zone spans 3 elements of h = {} m", scene.mesh.h);
+        eprintln!(
+            "--dc not given: D_c = {dc:.4e} m, the smallest whose cohesive zone spans 3 elements of h = {} m",
+            scene.mesh.h
+        );
         b.dc = Some(dc);
         return run_checked(b, scene, field_format);
     }
@@ -341,7 +348,12 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
         outln!(
             "paper's iteration (r = {:.4}, g = {:.4}): n = {}, F_1 = {:.4}, x_1 = {:.4}, F_max = {:.4}",
-            c.r, c.g, c.n, c.f1, c.x1, c.f_max
+            c.r,
+            c.g,
+            c.n,
+            c.f1,
+            c.x1,
+            c.f_max
         );
         outln!(
             "dynamics: {} precursors before the first whole slip ({} longer than 5 t, {} advancing), first long one F = {}, x = {}; last peak F = {}",

@@ -43,7 +43,14 @@ pub struct Layout {
 }
 
 impl Layout {
-    pub fn new(model: &Elastodynamic, base: Vec<usize>, x: Vec<f64>, top: Vec<usize>, top_x: Vec<f64>, arm: f64) -> Self {
+    pub fn new(
+        model: &Elastodynamic,
+        base: Vec<usize>,
+        x: Vec<f64>,
+        top: Vec<usize>,
+        top_x: Vec<f64>,
+        arm: f64,
+    ) -> Self {
         let mut role = vec![0u8; model.n_nodes()];
         base.iter().for_each(|&k| role[k] = 1);
         top.iter().for_each(|&k| role[k] = 2);
@@ -106,6 +113,8 @@ pub struct EventEnergy {
     pub residual: f64,
     /// Strain energy at the start.
     pub strain_start: f64,
+    /// Kinetic energy after the last step (what the end criterion reads).
+    pub kinetic_end: f64,
 }
 
 /// What one event did.
@@ -273,7 +282,8 @@ impl Driven<'_> {
                 let (ix, iy) = (2 * k, 2 * k + 1);
                 let (vx, vy) = (st.drive_velocity + lay.arm * st.qdot[1], st.qdot[0] + xk * st.qdot[1]);
                 if eta > 0.0 {
-                    damp += dt * (0.5 * (st.v[ix] + vx) * eta * kv[ix] + 0.5 * (st.v[iy] + vy) * eta * kv[iy]);
+                    damp +=
+                        dt * (0.5 * (st.v[ix] + vx) * eta * kv[ix] + 0.5 * (st.v[iy] + vy) * eta * kv[iy]);
                 }
                 st.v[ix] = vx;
                 st.v[iy] = vy;
@@ -290,7 +300,10 @@ impl Driven<'_> {
                 if rec.nucleation.is_none() && rec.slip[b] > slip_threshold {
                     rec.nucleation = Some(b);
                 }
-                if st.d[b] >= self.friction.d_c && d0[b] < self.friction.d_c && self.friction.mu_s > self.friction.mu_d {
+                if st.d[b] >= self.friction.d_c
+                    && d0[b] < self.friction.d_c
+                    && self.friction.mu_s > self.friction.mu_d
+                {
                     rec.weakened = true;
                 }
             }
@@ -324,6 +337,7 @@ impl Driven<'_> {
                 hint: "lower the time step (--courant) or check the scene".into(),
             });
         }
+        e.kinetic_end = m.kinetic_energy(&st.v);
         rec.energy = e;
         rec.t.push(rec.duration);
         rec.force.push(f_drive);

@@ -18,9 +18,13 @@ use nalgebra::{DMatrix, DVector};
 /// State of one interface node in the static phase.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Node {
-    Stick { anchor: f64 },
+    Stick {
+        anchor: f64,
+    },
     /// Slip direction s = +1 or -1.
-    Slip { s: f64 },
+    Slip {
+        s: f64,
+    },
     Open,
 }
 

@@ -26,9 +26,20 @@ pub fn fronts_csv(r: &DynamicResult) -> Result<String> {
         let k: Vec<usize> = (0..rec.t.len()).filter(|&k| rec.tip[k].is_finite()).collect();
         for (j, &i) in k.iter().enumerate() {
             let (a, b) = (k[j.saturating_sub(1)], k[(j + 1).min(k.len() - 1)]);
-            let speed = if rec.t[b] > rec.t[a] { (rec.tip[b] - rec.tip[a]).abs() / (rec.t[b] - rec.t[a]) } else { 0.0 };
-            writeln!(s, "{},{},{},{}", e.event, num("t", rec.t[i])?, num("tip", rec.tip[i] / l)?, num("speed", speed)?)
-                .unwrap();
+            let speed = if rec.t[b] > rec.t[a] {
+                (rec.tip[b] - rec.tip[a]).abs() / (rec.t[b] - rec.t[a])
+            } else {
+                0.0
+            };
+            writeln!(
+                s,
+                "{},{},{},{}",
+                e.event,
+                num("t", rec.t[i])?,
+                num("tip", rec.tip[i] / l)?,
+                num("speed", speed)?
+            )
+            .unwrap();
         }
     }
     Ok(s)
@@ -123,7 +134,10 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
             );
         }
     }
-    let _ = writeln!(s, "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>");
+    let _ = writeln!(
+        s,
+        "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
+    );
     for k in 0..=4 {
         let f = k as f64 / 4.0;
         let x = c.x[0] + f * (c.x[nx - 1] - c.x[0]);
@@ -191,7 +205,8 @@ fn colour(v: f32) -> String {
 /// instability into `dir`.
 pub fn write(r: &DynamicResult, dir: &Path, header: &str, states: bool) -> Result<Vec<PathBuf>> {
     let mut out = super::slide::write(&r.slide, dir, header, states)?;
-    let mut files = vec![("fronts_t.csv".to_string(), fronts_csv(r)?), ("dyn_events.csv".to_string(), events_csv(r)?)];
+    let mut files =
+        vec![("fronts_t.csv".to_string(), fronts_csv(r)?), ("dyn_events.csv".to_string(), events_csv(r)?)];
     for e in r.events.iter().filter(|e| e.record.weakened) {
         files.push((format!("spacetime_{:06}.svg", e.event), spacetime_svg(r, e)));
     }

@@ -3,11 +3,11 @@
 
 pub mod check;
 pub mod convergence;
+pub mod dynamic_slide;
 pub mod edges;
 pub mod precursors;
 pub mod run_file;
 pub mod rupture;
-pub mod dynamic_slide;
 pub mod slide;
 pub mod stability;
 pub mod sweep;

@@ -18,7 +18,7 @@
 //! Coulomb friction never becomes unstable, so a Coulomb run is the static loading alone:
 //! the cross-check against the event solver (tests/dynamics.rs).
 
-use crate::dynamics::driven::{DynState, Driven, EventLimits, EventRecord, Layout};
+use crate::dynamics::driven::{Driven, DynState, EventLimits, EventRecord, Layout};
 use crate::dynamics::explicit::Elastodynamic;
 use crate::dynamics::friction::SlipWeakening;
 use crate::dynamics::statics::{Load, Node, Path, Statics};
@@ -136,7 +136,10 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<()> 
         }
     }
     if !(d.courant > 0.0 && d.courant <= 1.0) {
-        return Err(Error::input("--courant", format!("{}: give a fraction of the stable step in (0, 1]", d.courant)));
+        return Err(Error::input(
+            "--courant",
+            format!("{}: give a fraction of the stable step in (0, 1]", d.courant),
+        ));
     }
     if let Law::SlipWeakening { mu_s, mu_d, dc } = o.law {
         let b = &scene.block;
@@ -206,7 +209,14 @@ fn settle(st: &mut Statics, load: Load, lam: f64, ftol: f64, gtol: f64, cap: usi
             None => return Ok(p),
             Some((i, to)) => {
                 if it + 5 >= cap && std::env::var_os("TRIBOFE_DEBUG").is_some() {
-                    eprintln!("settle: node {i} {:?} -> {to:?} at {lam:e}: T {:e} P {:e} mu {} rate {:e}", st.nodes[i], p.f(i, lam), p.f(st.n + i, lam), st.mu[i], p.b1[i]);
+                    eprintln!(
+                        "settle: node {i} {:?} -> {to:?} at {lam:e}: T {:e} P {:e} mu {} rate {:e}",
+                        st.nodes[i],
+                        p.f(i, lam),
+                        p.f(st.n + i, lam),
+                        st.mu[i],
+                        p.b1[i]
+                    );
                 }
                 st.nodes[i] = match to {
                     Node::Stick { .. } => Node::Stick { anchor: p.b(i, lam) },
@@ -254,7 +264,8 @@ pub fn run(
     // Full fields: the block with every boundary DOF prescribed, factorised once.
     let (sm, bdofs) = boundary_model(scene)?;
     let nf = sm.constraints.n_fixed();
-    let slots: Vec<usize> = bdofs.iter().map(|&k| sm.constraints.fixed_slot(k).expect("boundary DOF fixed")).collect();
+    let slots: Vec<usize> =
+        bdofs.iter().map(|&k| sm.constraints.fixed_slot(k).expect("boundary DOF fixed")).collect();
     let red = sm.constraints.reduce()?;
     let asm = Assembler::new(&sm.mesh, &red)?;
     let (values, _) = asm.assemble(&sm.model(), &red, &[vec![]], &[vec![0.0; nf]])?;
@@ -375,7 +386,8 @@ pub fn run(
                 add_slip(&st, &p, lam, l, &mut slip);
                 lam = l;
                 let from = st.nodes[i];
-                st.nodes[i] = if let Node::Stick { .. } = to { Node::Stick { anchor: p.b(i, l) } } else { to };
+                st.nodes[i] =
+                    if let Node::Stick { .. } = to { Node::Stick { anchor: p.b(i, l) } } else { to };
                 let p = settle(&mut st, Load::Normal, lam, ftol, gtol, cap)?;
                 let s = to_state(&st, &p, lam, Phase::Normal);
                 push(&mut run, simple(change_kind(from, to), &s, i), s)?;
@@ -409,7 +421,11 @@ pub fn run(
         let p = settle(&mut st, Load::Drive, lam, ftol, gtol, cap)?;
         let frac = if x_end.is_finite() { lam / x_end } else { 0.0 };
         progress(frac.max(run.sliding_events as f64 / o.cycles.max(1) as f64).min(1.0));
-        if !weakens && !x_stop.is_finite() && lam > 0.0 && st.nodes.iter().all(|s| !matches!(s, Node::Stick { .. })) {
+        if !weakens
+            && !x_stop.is_finite()
+            && lam > 0.0
+            && st.nodes.iter().all(|s| !matches!(s, Node::Stick { .. }))
+        {
             // Coulomb's default end: 5 % past the first whole-interface slip, as `slide`.
             x_stop = 1.05 * lam;
             run.sliding_events += 1;
@@ -417,9 +433,8 @@ pub fn run(
             push(&mut run, simple(EventKind::Sliding, &s, 0), s)?;
         }
         // Slip left before each coefficient must be updated (none once fully weakened).
-        let left: Vec<f64> = (0..n)
-            .map(|k| if slip[k] < dc { dc / STEPS_PER_DC - done[k] } else { f64::INFINITY })
-            .collect();
+        let left: Vec<f64> =
+            (0..n).map(|k| if slip[k] < dc { dc / STEPS_PER_DC - done[k] } else { f64::INFINITY }).collect();
         if weakens && x_end.is_infinite() {
             let contact: Vec<usize> = (0..n).filter(|&k| st.nodes[k] != Node::Open).collect();
             if contact.iter().all(|&k| matches!(st.nodes[k], Node::Slip { .. }) && slip[k] >= dc) {
@@ -428,7 +443,9 @@ pub fn run(
                 run.sliding_events += 1;
                 let s = to_state(&st, &p, lam, Phase::Drive);
                 push(&mut run, simple(EventKind::Sliding, &s, 0), s)?;
-                log(&format!("steady sliding at mu_d reached stably at X = {lam:.6e} m (no instability): the run ends"));
+                log(&format!(
+                    "steady sliding at mu_d reached stably at X = {lam:.6e} m (no instability): the run ends"
+                ));
                 break 'drive;
             }
         }
@@ -452,7 +469,11 @@ pub fn run(
         lam = l;
         if debug {
             let ns = st.nodes.iter().filter(|s| matches!(s, Node::Slip { .. })).count();
-            eprintln!("X {lam:.6e} node {i} {:?} -> {to:?}; {ns} slipping, F {:.6}", st.nodes[i], p.f(2 * n, lam));
+            eprintln!(
+                "X {lam:.6e} node {i} {:?} -> {to:?}; {ns} slipping, F {:.6}",
+                st.nodes[i],
+                p.f(2 * n, lam)
+            );
         }
         if to != st.nodes[i] {
             let from = st.nodes[i];
@@ -515,7 +536,13 @@ pub fn run(
         };
         let rec = driven.run_event(&mut ds, &lim, dc / 100.0, &o.cancel)?;
         if debug {
-            eprintln!("  dynamic: {} steps, weakened {}, settled {}, max slip {:.3e}", rec.steps, rec.weakened, rec.settled, rec.slip.iter().cloned().fold(0.0, f64::max));
+            eprintln!(
+                "  dynamic: {} steps, weakened {}, settled {}, max slip {:.3e}",
+                rec.steps,
+                rec.weakened,
+                rec.settled,
+                rec.slip.iter().cloned().fold(0.0, f64::max)
+            );
         }
         steps += rec.steps;
         if !rec.settled {
@@ -541,7 +568,8 @@ pub fn run(
         }
         let p_after = settle(&mut st, Load::Drive, lam, ftol, gtol, cap)?;
         let after = to_state(&st, &p_after, lam, Phase::Drive);
-        let u_static = full_field(&p_after.b0.iter().zip(&p_after.b1).map(|(a, b)| a + lam * b).collect::<Vec<_>>());
+        let u_static =
+            full_field(&p_after.b0.iter().zip(&p_after.b1).map(|(a, b)| a + lam * b).collect::<Vec<_>>());
         let max_slip = rec.slip.iter().cloned().fold(0.0, f64::max).max(f64::MIN_POSITIVE);
         let u_gap = ds.u.iter().zip(&u_static).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / max_slip;
         let f_gap = (rec.force.last().copied().unwrap_or(after.f) - after.f).abs() / (mu_s * o.n_force);
@@ -581,8 +609,8 @@ pub fn run(
             all_slipping: kind == EventKind::Sliding,
         };
         push(&mut run, ev, after)?;
-        let (t_arrest, drop_while_moving) =
-            arrest(&rec, before.f, run.states.last().expect("state").f).map_or((None, None), |(t, f)| (Some(t), f));
+        let (t_arrest, drop_while_moving) = arrest(&rec, before.f, run.states.last().expect("state").f)
+            .map_or((None, None), |(t, f)| (Some(t), f));
         dyn_events.push(DynEvent {
             event: run.events.len() - 1,
             x: lam,

@@ -5,9 +5,9 @@
 pub mod bench;
 pub mod check;
 pub mod convergence;
+pub mod dynamic_slide;
 pub mod edges;
 pub mod precursors_fe;
-pub mod dynamic_slide;
 pub mod slide;
 pub mod stability;
 pub mod sweep;
