@@ -15,6 +15,9 @@
 use crate::error::{Error, Result};
 use nalgebra::{DMatrix, DVector};
 
+/// One equation: coefficients over rows of S, its target at lambda = 0, the target's slope.
+type Equation = (Vec<(usize, f64)>, f64, f64);
+
 /// State of one interface node in the static phase.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Node {
@@ -91,7 +94,7 @@ impl Statics {
         let (mut k0, mut k1) = (vec![0.0; nd], vec![0.0; nd]);
         let mut unknown = Vec::new();
         // Equations as (coefficients over rows of S, target at lambda 0, target slope).
-        let mut eqs: Vec<(Vec<(usize, f64)>, f64, f64)> = Vec::new();
+        let mut eqs: Vec<Equation> = Vec::new();
         for i in 0..n {
             match self.nodes[i] {
                 Node::Stick { anchor } => k0[i] = anchor,
@@ -122,7 +125,7 @@ impl Statics {
             eqs[e].0.iter().map(|&(row, c)| c * self.s[row * nd + unknown[k]]).sum::<f64>()
         });
         let (sk0, sk1) = (self.s_times(&k0), self.s_times(&k1));
-        let rhs = |sk: &[f64], t: &dyn Fn(&(Vec<(usize, f64)>, f64, f64)) -> f64| {
+        let rhs = |sk: &[f64], t: &dyn Fn(&Equation) -> f64| {
             DVector::from_fn(m, |e, _| t(&eqs[e]) - eqs[e].0.iter().map(|&(row, c)| c * sk[row]).sum::<f64>())
         };
         let (r0, r1) = (rhs(&sk0, &|e| e.1), rhs(&sk1, &|e| e.2));

@@ -2,7 +2,7 @@
 //! between events, each instability run dynamically with the drive held (issue 33, part 3).
 //!
 //! 1. Loading ([`crate::dynamics::statics`]): N at U_H = 0, then U_H, on the condensed block
-//!    + plate; nodes stick, slip (Coulomb at a frozen coefficient) or open, and every change
+//!    and plate; nodes stick, slip (Coulomb at a frozen coefficient) or open, and every change
 //!    is found exactly. Under slip weakening a slipping node's coefficient is brought to its
 //!    slip every D_c/20 (a fixed point at fixed U_H, as the quasi-static solver does); when
 //!    that fixed point diverges (a change above D_c/2 in one iterate, or 30 iterates
@@ -203,21 +203,11 @@ fn to_state(st: &Statics, p: &Path, lam: f64, phase: Phase) -> State {
 
 /// Solves and repairs the states at lam until they are consistent; applies changes to `st`.
 fn settle(st: &mut Statics, load: Load, lam: f64, ftol: f64, gtol: f64, cap: usize) -> Result<Path> {
-    for it in 0..cap {
+    for _ in 0..cap {
         let p = st.solve(load)?;
         match st.violation(&p, lam, ftol, gtol) {
             None => return Ok(p),
             Some((i, to)) => {
-                if it + 5 >= cap && std::env::var_os("TRIBOFE_DEBUG").is_some() {
-                    eprintln!(
-                        "settle: node {i} {:?} -> {to:?} at {lam:e}: T {:e} P {:e} mu {} rate {:e}",
-                        st.nodes[i],
-                        p.f(i, lam),
-                        p.f(st.n + i, lam),
-                        st.mu[i],
-                        p.b1[i]
-                    );
-                }
                 st.nodes[i] = match to {
                     Node::Stick { .. } => Node::Stick { anchor: p.b(i, lam) },
                     o => o,
@@ -450,7 +440,6 @@ pub fn run(
             }
         }
         let weaken = weakens.then_some(left.as_slice());
-        let debug = std::env::var_os("TRIBOFE_DEBUG").is_some();
         let Some((l, i, to)) = st.next_change(&p, lam, x_stop, weaken) else {
             // To the end X: coulomb's default end is 5 % past the first whole slip.
             if !x_stop.is_finite() {
@@ -467,14 +456,6 @@ pub fn run(
         };
         add_slip_done(&st, &p, lam, l, &mut slip, &mut done);
         lam = l;
-        if debug {
-            let ns = st.nodes.iter().filter(|s| matches!(s, Node::Slip { .. })).count();
-            eprintln!(
-                "X {lam:.6e} node {i} {:?} -> {to:?}; {ns} slipping, F {:.6}",
-                st.nodes[i],
-                p.f(2 * n, lam)
-            );
-        }
         if to != st.nodes[i] {
             let from = st.nodes[i];
             st.nodes[i] = if let Node::Stick { .. } = to { Node::Stick { anchor: p.b(i, l) } } else { to };
@@ -506,9 +487,6 @@ pub fn run(
                 }
             }
             p_cur = p_new;
-            if debug {
-                eprintln!("  refreeze jump {:.3e} D_c", jump / dc);
-            }
             if jump < 1e-3 * dc {
                 stable = true;
                 break;
@@ -535,15 +513,6 @@ pub fn run(
             time: 0.0,
         };
         let rec = driven.run_event(&mut ds, &lim, dc / 100.0, &o.cancel)?;
-        if debug {
-            eprintln!(
-                "  dynamic: {} steps, weakened {}, settled {}, max slip {:.3e}",
-                rec.steps,
-                rec.weakened,
-                rec.settled,
-                rec.slip.iter().cloned().fold(0.0, f64::max)
-            );
-        }
         steps += rec.steps;
         if !rec.settled {
             return Err(Error::Untrustworthy {
