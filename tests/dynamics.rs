@@ -434,3 +434,124 @@ fn density_is_a_scene_key() {
     assert_eq!(e.exit_status(), 2);
     assert!(msg.contains("line 3") && msg.contains("block.density"), "{msg}");
 }
+
+// ---- slide --dynamics (issue 33, part 3): the plate-driven block ----
+
+use tribofe::interface::events::{EventKind, NodeState, Phase};
+use tribofe::interface::law::Law;
+use tribofe::scene::Scene;
+use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};
+use tribofe::studies::slide::{self, SlideOptions};
+
+/// The paper's block (t = 2 mm, H = 4 cm) with `l` and `h` changed.
+fn block(l: f64, h: f64, n_thick: Option<usize>) -> Scene {
+    let mut s = Scene::default();
+    s.block.length = l;
+    s.mesh.h = h;
+    s.mesh.n_thick = n_thick;
+    s
+}
+
+#[test]
+fn dynamic_slide_coulomb_is_the_event_solver() {
+    // Coulomb friction never becomes unstable, so --dynamics is its exact static loading
+    // alone: the same events at the same X and F as `slide` (an independent dense solver of
+    // the same condensed system: agreement to round-off, 1e-9 of the scale), and the same
+    // slip extent in every state (within one node, the issue's tolerance; here exact).
+    let scene = block(0.4, 0.004, Some(2));
+    let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), ..Default::default() };
+    let qs = slide::run(&scene, &o, &|_| {}).unwrap();
+    let dy = ds::run(&scene, &o, &DynamicOptions::default(), &|_| {}, &|_| {}).unwrap();
+    let drive = |r: &slide::SlideResult| -> Vec<(f64, f64, usize, EventKind)> {
+        r.run
+            .events
+            .iter()
+            .zip(&r.run.states)
+            .filter(|(e, s)| s.phase == Phase::Drive && e.kind != EventKind::End)
+            .map(|(e, s)| {
+                (e.x, e.f, s.states.iter().filter(|n| matches!(n, NodeState::Slip(_))).count(), e.kind)
+            })
+            .collect()
+    };
+    let (a, b) = (drive(&qs), drive(&dy.slide));
+    assert_eq!(a.len(), b.len(), "drive events: slide {} vs dynamics {}", a.len(), b.len());
+    assert!(a.len() > 90, "{}", a.len());
+    let (x_scale, f_scale) = (a.last().unwrap().0, 0.5);
+    for (p, q) in a.iter().zip(&b) {
+        assert!((p.0 - q.0).abs() < 1e-9 * x_scale, "X {} vs {}", p.0, q.0);
+        assert!((p.1 - q.1).abs() < 1e-9 * f_scale, "F {} vs {}", p.1, q.1);
+        assert!(p.2.abs_diff(q.2) <= 1, "slipping nodes {} vs {} at X = {}", p.2, q.2, p.0);
+    }
+    assert_eq!(b.last().unwrap().3, EventKind::Sliding);
+    assert!(dy.events.is_empty(), "coulomb ran {} dynamic events", dy.events.len());
+}
+
+#[test]
+fn dynamic_events_balance_energy_and_end_at_rest() {
+    // A short block with slip weakening (D_c the smallest the mesh resolves, Lambda_0 = 3 h)
+    // to X = 6e-6 m: the first instabilities. Over each event the scheme's exact ledger
+    // (shadow kinetic + strain + friction + damping = work of N + contact work; the drive
+    // is held) closes to round-off: a strain energy of order F X accumulated over ~1e3 steps
+    // at 1e-16, against a dissipation ~1e-3 of it, gives ~1e-10; tolerance 1e-8 of the
+    // dissipation. Each event ends with the kinetic energy below 1e-6 of its dissipation, so
+    // the static equilibrium that follows differs from the dynamic state by a force of that
+    // order: |F_dyn - F_static| < 1e-3 mu_s N.
+    let scene = block(0.1, 0.0005, None);
+    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
+    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
+    let o = SlideOptions {
+        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
+        x_max: Some(6.0e-6),
+        ..Default::default()
+    };
+    let r = ds::run(&scene, &o, &DynamicOptions::default(), &|_| {}, &|_| {}).unwrap();
+    let inst = r.events.iter().filter(|e| e.record.weakened).count();
+    assert!(inst >= 2, "{inst} instabilities");
+    for e in &r.events {
+        let en = &e.record.energy;
+        let diss = en.friction + en.damping;
+        assert!(diss > 0.0 && en.friction >= 0.0 && en.damping >= 0.0, "event {}: {en:?}", e.event);
+        assert!(
+            en.residual.abs() <= 1e-8 * diss,
+            "event {}: residual {:e} of {diss:e}",
+            e.event,
+            en.residual
+        );
+        assert!(
+            en.kinetic_end <= 1e-6 * diss * (1.0 + 1e-9),
+            "event {}: kinetic {:e}",
+            e.event,
+            en.kinetic_end
+        );
+        assert!(e.f_gap < 1e-3, "event {}: F gap {:e} mu_s N", e.event, e.f_gap);
+        assert!(e.record.settled);
+    }
+    // The drop of an instability is released friction: F falls.
+    for e in r.events.iter().filter(|e| e.record.weakened) {
+        assert!(e.f_after < e.f_onset, "event {}: F {} -> {}", e.event, e.f_onset, e.f_after);
+    }
+}
+
+#[test]
+fn dynamic_slide_refuses_what_it_cannot_run() {
+    let scene = block(0.1, 0.0005, None);
+    let d = DynamicOptions::default();
+    let sk = SlideOptions {
+        law: Law::static_kinetic(0.648, 0.583, tribofe::interface::law::Rule::Paper).unwrap(),
+        ..Default::default()
+    };
+    let e = ds::check(&scene, &sk, &d).unwrap_err().to_string();
+    assert!(e.contains("slip-weakening") && e.contains("mesh"), "{e}");
+    // D_c below the resolved one (Lambda_0 < 3 h) names --dc and the value to use.
+    let dc = ds::default_dc(&scene, 0.648, 0.583, 1.0).unwrap();
+    let sw = SlideOptions { law: Law::slip_weakening(0.648, 0.583, 0.5 * dc).unwrap(), ..Default::default() };
+    let e = ds::check(&scene, &sw, &d).unwrap_err().to_string();
+    assert!(e.contains("--dc") && e.contains("fewer than 3"), "{e}");
+    let mut sri = scene.clone();
+    sri.mesh.element = "qua4-sri".into();
+    let ok = SlideOptions { law: Law::coulomb(0.5).unwrap(), ..Default::default() };
+    let e = ds::check(&sri, &ok, &d).unwrap_err().to_string();
+    assert!(e.contains("--element qua4"), "{e}");
+    let e = ds::check(&scene, &ok, &DynamicOptions { damping: Some(0.0), ..d }).unwrap_err().to_string();
+    assert!(e.contains("--damping"), "{e}");
+}

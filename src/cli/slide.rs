@@ -5,7 +5,7 @@ use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use tribofe::interface::law::Law;
-use tribofe::studies::slide::SlideOptions;
+use tribofe::studies::slide::{LawChoice, SlideOptions};
 use tribofe::Error;
 
 #[derive(ClapArgs, Debug)]
@@ -73,20 +73,25 @@ pub struct Args {
     /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
     #[arg(long)]
     pub force: bool,
+    /// Run each instability elastodynamically (explicit, drive held; docs/dynamics.md): the
+    /// loading between events stays quasi-static and exact. Takes --law coulomb or
+    /// slip-weakening (--dc default: the smallest D_c whose cohesive zone spans 3 elements).
+    #[arg(long)]
+    pub dynamics: bool,
+    /// Block density, kg/m^3 (--dynamics; default the scene's [block] density, 1000).
+    #[arg(long)]
+    pub density: Option<f64>,
+    /// Kelvin-Voigt damping eta, s (--dynamics; default 10 % of critical at the block's
+    /// thickness-shear mode omega = pi c_s / (2 t)).
+    #[arg(long)]
+    pub damping: Option<f64>,
+    /// Time step as a fraction of the stable step of the mesh and damping (--dynamics).
+    #[arg(long, default_value_t = 0.9)]
+    pub courant: f64,
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
-    tribofe::studies::slide::LawChoice {
-        law: a.law.clone(),
-        mu: a.mu,
-        mu_s: a.mu_s,
-        mu_d: a.mu_d,
-        r: a.r,
-        g: a.g,
-        rule: a.rule.clone(),
-        dc: a.dc,
-    }
-    .law(scene)
+    law_choice(a).law(scene)
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
@@ -103,6 +108,54 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         return Err(Error::input("--field-format", "acts only with --fields N (N > 0 states to write)"));
     }
     tribofe::io::outdir::check(&a.out, a.force)?;
+    if !a.dynamics {
+        for (flag, on) in [
+            ("--density", a.density.is_some()),
+            ("--damping", a.damping.is_some()),
+            ("--courant", super::given("courant")),
+        ] {
+            if on {
+                return Err(Error::input(flag, "acts only with --dynamics"));
+            }
+        }
+    }
+    if a.dynamics && a.law == "slip-weakening" && a.dc.is_none() {
+        // --dc defaults to the smallest D_c the mesh resolves (Lambda_0 = 3 h).
+        let mut b = a;
+        let probe = LawChoice { dc: Some(1.0), ..law_choice(&b) }.law(&scene)?;
+        let dc = tribofe::studies::dynamic_slide::default_dc(&scene, probe.mu_s(), probe.mu_d(), b.n_force)?;
+        eprintln!(
+            "--dc not given: D_c = {dc:.4e} m, the smallest whose cohesive zone spans 3 elements of h = {} m",
+            scene.mesh.h
+        );
+        b.dc = Some(dc);
+        return run_checked(b, scene, field_format);
+    }
+    run_checked(a, scene, field_format)
+}
+
+fn law_choice(a: &Args) -> LawChoice {
+    LawChoice {
+        law: a.law.clone(),
+        mu: a.mu,
+        mu_s: a.mu_s,
+        mu_d: a.mu_d,
+        r: a.r,
+        g: a.g,
+        rule: a.rule.clone(),
+        dc: a.dc,
+    }
+}
+
+fn run_checked(
+    a: Args,
+    mut scene: tribofe::scene::Scene,
+    field_format: tribofe::io::FieldFormat,
+) -> tribofe::Result<()> {
+    if let Some(rho) = a.density {
+        scene.block.density = rho;
+        scene.validate()?;
+    }
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
     }
@@ -137,6 +190,9 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         ..Default::default()
     };
     tribofe::studies::slide::check_options(&scene, &o)?;
+    if a.dynamics {
+        return run_dynamic(&a, &scene, o);
+    }
     let bar = ProgressBar::new(1000).with_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {percent}% {elapsed}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
@@ -237,6 +293,112 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             (_, tribofe::io::FieldFormat::Both) => ", fields_*.vtu/.msh, fields.pvd",
             _ => ", fields_*.vtu, fields.pvd",
         }
+    );
+    Ok(())
+}
+
+/// `slide --dynamics`: the library's dynamic run, its files and a summary.
+fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> tribofe::Result<()> {
+    use tribofe::studies::dynamic_slide as ds;
+    if a.fields > 0 {
+        return Err(Error::input("--fields", "not written by --dynamics yet"));
+    }
+    let d = ds::DynamicOptions { damping: a.damping, courant: a.courant, ..Default::default() };
+    let clock = std::time::Instant::now();
+    let shown = std::cell::Cell::new(-1i64);
+    let res = ds::run(
+        scene,
+        &o,
+        &d,
+        &|f| {
+            let pm = (1000.0 * f) as i64;
+            if pm != shown.get() {
+                shown.set(pm);
+                eprint!("\rslide --dynamics {:5.1} %", 0.1 * pm as f64);
+            }
+        },
+        &|m| eprintln!("\r{m}"),
+    )?;
+    eprintln!();
+    let law = o.law;
+    let results = [
+        ("law", toml::Value::from(law.name())),
+        ("mu_s", toml::Value::from(law.mu_s())),
+        ("mu_d", toml::Value::from(law.mu_d())),
+        ("n_force_N_per_m", toml::Value::from(a.n_force)),
+        ("interface_nodes", toml::Value::from(res.slide.condensed.n as i64)),
+        ("k_bonded_N_per_m_per_m", toml::Value::from(res.slide.run.k_bonded)),
+        ("dynamics", toml::Value::from(true)),
+        ("density_kg_per_m3", toml::Value::from(scene.block.density)),
+        ("damping_eta_s", toml::Value::from(res.eta)),
+        ("damping_ratio_thickness_mode", toml::Value::from(res.xi_thickness)),
+        ("dt_s", toml::Value::from(res.dt)),
+        ("dt_stable_s", toml::Value::from(res.dt_stable)),
+        ("dynamic_steps", toml::Value::from(res.steps as i64)),
+    ];
+    let header = tribofe::report::run_toml(super::invocation(), &results, scene)?;
+    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
+    tribofe::report::dynamic_slide::write(&res, dir.path(), &header, true)?;
+    dir.commit()?;
+    let run = &res.slide.run;
+    let inst = res.events.iter().filter(|e| e.record.weakened).count();
+    outln!(
+        "{} --dynamics: {} interface nodes, {} events ({}), {} dynamic ({} instabilities), {} whole-interface slips",
+        law.name(),
+        res.slide.condensed.n,
+        run.events.len(),
+        tribofe::report::slide::kind_counts(&res.slide)
+            .iter()
+            .map(|(k, c)| format!("{c} {k}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        res.events.len(),
+        inst,
+        run.sliding_events
+    );
+    outln!(
+        "dt = {:.4e} s ({:.2} of the stable {:.4e} s), eta = {:.4e} s ({:.3} of critical at the thickness mode), {} DOFs, {} explicit steps",
+        res.dt,
+        a.courant,
+        res.dt_stable,
+        res.eta,
+        res.xi_thickness,
+        res.dofs,
+        res.steps
+    );
+    if let Some(c) = tribofe::studies::slide::compare_paper(&res.slide) {
+        let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+        outln!(
+            "paper's iteration (r = {:.4}, g = {:.4}): n = {}, F_1 = {:.4}, x_1 = {:.4}, F_max = {:.4}",
+            c.r,
+            c.g,
+            c.n,
+            c.f1,
+            c.x1,
+            c.f_max
+        );
+        outln!(
+            "dynamics: {} precursors before the first whole slip ({} longer than 5 t, {} advancing), first long one F = {}, x = {}; last peak F = {}",
+            c.n_fe,
+            c.n_fe_long,
+            c.n_fe_advancing,
+            f(c.f1_fe),
+            f(c.x1_fe),
+            f(c.f_max_fe)
+        );
+    }
+    let worst_gap = res.events.iter().map(|e| e.f_gap).fold(0.0, f64::max);
+    outln!(
+        "largest |F_dynamic - F_static| at an event's end {:.2e} mu_s N; wall time {:.2} s (setup {:.2} s, static loading {:.2} s, dynamic events {:.2} s)",
+        worst_gap,
+        clock.elapsed().as_secs_f64(),
+        res.setup_s,
+        res.static_s,
+        res.dynamic_s
+    );
+    outln!(
+        "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
+        a.out.display()
     );
     Ok(())
 }

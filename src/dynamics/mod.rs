@@ -11,7 +11,9 @@
 //! Units SI throughout. The formulation, tolerances and measured numbers are in
 //! docs/dynamics.md.
 
+pub mod driven;
 pub mod explicit;
 pub mod friction;
 pub mod rupture;
+pub mod statics;
 pub mod waves;

@@ -6,6 +6,7 @@
 
 pub mod check;
 pub mod convergence;
+pub mod dynamic_slide;
 pub mod edges;
 #[cfg(feature = "plots")]
 pub(crate) mod plot;

@@ -5,6 +5,7 @@
 pub mod bench;
 pub mod check;
 pub mod convergence;
+pub mod dynamic_slide;
 pub mod edges;
 pub mod precursors_fe;
 pub mod slide;
