@@ -36,7 +36,7 @@
 //! use tribofe::{interface::law::Law, scene::Scene, studies::slide};
 //!
 //! let opts = slide::SlideOptions { law: Law::coulomb(0.5)?, ..Default::default() };
-//! let r = slide::run(&Scene::default(), &opts, &|_| {})?;
+//! let r = slide::run(&Scene::default(), &opts, tribofe::Progress::none())?;
 //! let f_max = r.run.states.iter().map(|s| s.f).fold(0.0, f64::max);
 //! assert!((f_max - 0.5).abs() < 1e-9);
 //! # Ok::<(), tribofe::Error>(())
@@ -53,9 +53,11 @@ pub mod linalg;
 pub mod memory;
 pub mod numeric;
 pub mod precursors;
+pub mod progress;
 pub mod report;
 pub mod scene;
 pub mod studies;
 
 pub use cancel::Cancel;
 pub use error::{Error, Result};
+pub use progress::{Progress, Tick};

@@ -19,16 +19,17 @@ fn a_slide_cancelled_from_its_progress_stops_at_the_next_event() {
         ..Default::default()
     };
     let calls = AtomicUsize::new(0);
-    let r = slide::run(&Scene::default(), &o, &|_| {
+    let tick = |_: &tribofe::Tick| {
         if calls.fetch_add(1, Ordering::Relaxed) + 1 == 5 {
             cancel.cancel();
         }
-    });
+    };
+    let r = slide::run(&Scene::default(), &o, tribofe::Progress::new(&tick));
     assert!(matches!(r, Err(Error::Interrupted)), "{r:?}");
     assert_eq!(calls.load(Ordering::Relaxed), 5, "no progress point after the cancel");
     // The same options without a cancel run to the end.
     let o = SlideOptions { cancel: Cancel::new(), ..o };
-    assert!(slide::run(&Scene::default(), &o, &|_| {}).is_ok());
+    assert!(slide::run(&Scene::default(), &o, tribofe::Progress::none()).is_ok());
 }
 
 #[test]
@@ -38,7 +39,8 @@ fn a_sweep_cancelled_from_another_thread_stops() {
     cancel.cancel();
     let o = SweepOptions { cancel: cancel.clone(), converged: false, ..Default::default() };
     let axes = [Axis { param: Param::Thickness, values: vec![0.002, 0.004] }];
-    let r =
-        std::thread::scope(|s| s.spawn(|| sweep::run(&Scene::default(), &axes, &o, &|_| {})).join().unwrap());
+    let r = std::thread::scope(|s| {
+        s.spawn(|| sweep::run(&Scene::default(), &axes, &o, tribofe::Progress::none())).join().unwrap()
+    });
     assert!(matches!(r, Err(Error::Interrupted)));
 }

@@ -5,13 +5,12 @@ use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::{PlateModel, Scene};
 use tribofe::studies::check::run;
 use tribofe::studies::stability::{self, Options, References, ShapeCase};
-
-fn quiet(_: &str) {}
+use tribofe::Progress;
 
 #[test]
 fn stiff_plate_error_falls_then_round_off_takes_over_and_is_refused() {
     let o = Options { plate_ratios: vec![1e6, 1e9, 1e12], plate_n_thick: vec![2], ..Default::default() };
-    let st = stability::plate(&Scene::default(), &o, &quiet).unwrap();
+    let st = stability::plate(&Scene::default(), &o, Progress::none()).unwrap();
     let raw = |k: usize| st.points[k].raw.as_ref().unwrap();
     let (e6, e9, e12) = (raw(0).err(), raw(1).err(), raw(2).err());
     eprintln!(
@@ -77,7 +76,7 @@ fn qua4_locks_at_nu_04999_while_quadratic_elements_stay_accurate() {
     };
     let base = Scene::default();
     let mut refs = References::new(&base, o.n_ref);
-    let st = stability::nu(&base, &o, &mut refs, &quiet).unwrap();
+    let st = stability::nu(&base, &o, &mut refs, Progress::none()).unwrap();
     let get = |nu: f64, el: &str| st.points.iter().find(|p| p.nu == nu && p.element == el).unwrap();
     // Measured (h = t/2 against qua9 t/4): qua4 interior p error 2.0e-3 at nu = 0.4, 0.215 at
     // 0.4999; qua4-sri p 6.0e-2 but tau 0.40 (checkerboard, edge oscillation 2.9); qua9 9.3e-3.
@@ -114,7 +113,7 @@ fn elongated_and_distorted_elements() {
     };
     let base = Scene::default();
     let mut refs = References::new(&base, o.n_ref);
-    let st = stability::shape(&base, &o, &mut refs, &quiet).unwrap();
+    let st = stability::shape(&base, &o, &mut refs, Progress::none()).unwrap();
     let get = |c: ShapeCase, el: &str, v: f64| {
         st.iter().find(|p| p.case == c && p.element == el && p.param == v).unwrap().err
     };
@@ -135,7 +134,7 @@ fn elongated_and_distorted_elements() {
 #[test]
 fn thin_layers_keep_the_model_slope_and_edge_widths_in_units_of_t() {
     let o = Options { thin_ratios: vec![1e-2, 1e-3], ..Default::default() };
-    let st = stability::thin(&Scene::default(), &o, &quiet).unwrap();
+    let st = stability::thin(&Scene::default(), &o, Progress::none()).unwrap();
     let (a, b) = (&st[0], &st[1]);
     // Interior slope within 3.4e-2 of 12 (F/N)(H/L) at t/L = 1e-2 and 3.3e-3 at 1e-3: the
     // model error falls like t/L.
@@ -155,7 +154,7 @@ fn thin_layers_keep_the_model_slope_and_edge_widths_in_units_of_t() {
 #[test]
 fn end_nodes_diverge_at_the_williams_rate_while_integrated_quantities_converge() {
     let o = Options { corner_n_thick: vec![1, 2, 4, 8, 16], ..Default::default() };
-    let c = stability::corners(&Scene::default(), &o, &quiet).unwrap();
+    let c = stability::corners(&Scene::default(), &o, Progress::none()).unwrap();
     // Increments of p(+L/2) grow by 1.227, 1.219 per halving (lambda = 0.71); Williams'
     // clamped-free corner at nu = 0.4 gives lambda = 0.650, 2^(1 - lambda) = 1.275.
     assert!(c.factor > 1.15 && c.factor < 1.30, "{}", c.factor);

@@ -11,7 +11,7 @@ use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
 use tribofe::interface::law::Rule;
 use tribofe::scene::{Overrides, PlateModel, Scene as RsScene};
-use tribofe::{Cancel, Error};
+use tribofe::{Cancel, Error, Progress, Tick};
 
 /// The exception class of `tribofe.errors` for an error of the library.
 fn to_py(e: Error) -> PyErr {
@@ -41,15 +41,16 @@ fn to_py(e: Error) -> PyErr {
 fn run_detached<T: Send>(
     py: Python<'_>,
     progress: Option<Py<PyAny>>,
-    work: impl FnOnce(&Cancel, &(dyn Fn(f64) + Sync)) -> tribofe::Result<T> + Send,
+    work: impl FnOnce(&Cancel, Progress) -> tribofe::Result<T> + Send,
 ) -> PyResult<(T, f64)> {
     let cancel = Cancel::new();
     let pending: std::sync::Mutex<Option<PyErr>> = std::sync::Mutex::new(None);
-    let poll = |frac: f64| {
+    let poll = |t: &Tick| {
         Python::attach(|py| {
-            let outcome = py.check_signals().and_then(|_| match &progress {
-                Some(cb) => cb.call1(py, (frac,)).map(|_| ()),
-                None => Ok(()),
+            // The callback gets the fraction done; a tick without one only checks signals.
+            let outcome = py.check_signals().and_then(|_| match (&progress, t.fraction) {
+                (Some(cb), Some(frac)) => cb.call1(py, (frac,)).map(|_| ()),
+                _ => Ok(()),
             });
             if let Err(err) = outcome {
                 pending.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert(err);
@@ -59,7 +60,7 @@ fn run_detached<T: Send>(
     };
     let result = py.detach(|| {
         let clock = std::time::Instant::now();
-        work(&cancel, &poll).map(|r| (r, clock.elapsed().as_secs_f64()))
+        work(&cancel, Progress::new(&poll)).map(|r| (r, clock.elapsed().as_secs_f64()))
     });
     if let Some(err) = pending.lock().unwrap_or_else(|e| e.into_inner()).take() {
         return Err(err); // KeyboardInterrupt, or the progress callback's own exception
@@ -362,7 +363,7 @@ fn slide<'py>(
             cancel: cancel.clone(),
             ..Default::default()
         };
-        tribofe::studies::slide::run(&scene, &o, &|f| poll(f))
+        tribofe::studies::slide::run(&scene, &o, poll)
     })?;
     let out = slide_result(py, &res)?;
     out.set_item("core_s", core_s)?;
@@ -538,7 +539,6 @@ fn sweep<'py>(
             axes.push(Axis { param, values: axis_values(param.flag(), &v)? });
         }
     }
-    let total: usize = axes.iter().map(|a| a.values.len()).product();
     let friction = match friction {
         Some((mu_s, mu_d)) => {
             Some(sw::FrictionSweep { mu_s, mu_d, rule: rule.parse().map_err(to_py)?, cycles })
@@ -547,11 +547,8 @@ fn sweep<'py>(
     };
     let (points, _) = run_detached(py, progress, |cancel, poll| {
         let o = sw::SweepOptions { converged, friction, cancel: cancel.clone(), ..Default::default() };
-        let done = std::sync::atomic::AtomicUsize::new(0);
-        sw::run(&scene, &axes, &o, &|_| {
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            poll(k as f64 / total.max(1) as f64)
-        })
+        let forward = poll.forward::<sw::Point>();
+        sw::run(&scene, &axes, &o, Progress::new(&forward))
     })?;
     columns(py, &tribofe::report::sweep::csv(&points, true).map_err(to_py)?)
 }
@@ -577,7 +574,6 @@ fn converge<'py>(
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let families =
         families.iter().map(|f| f.parse()).collect::<tribofe::Result<Vec<cv::Family>>>().map_err(to_py)?;
-    let total = elements.len() * families.len() * n_thick.len();
     let (study, _) = run_detached(py, progress, |cancel, poll| {
         let o = cv::StudyOptions {
             elements,
@@ -588,11 +584,8 @@ fn converge<'py>(
             cancel: cancel.clone(),
             ..Default::default()
         };
-        let done = std::sync::atomic::AtomicUsize::new(0);
-        cv::study(&scene, &o, &|_| {
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            poll(k as f64 / total.max(1) as f64)
-        })
+        let forward = poll.forward::<cv::Run>();
+        cv::study(&scene, &o, Progress::new(&forward))
     })?;
     let out = columns(py, &tribofe::report::convergence::csv(&study).map_err(to_py)?)?;
     out.set_item("summary", tribofe::report::convergence::summary(&study, target))?;
@@ -634,9 +627,7 @@ fn precursors_fe_fig4<'py>(
 ) -> PyResult<Bound<'py, PyList>> {
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let (runs, _) = run_detached(py, progress, |cancel, poll| {
-        let runs = tribofe::studies::precursors_fe::fig4(&scene, r, g, cycles, cancel)?;
-        poll(1.0);
-        Ok(runs)
+        tribofe::studies::precursors_fe::fig4(&scene, r, g, cycles, cancel, poll)
     })?;
     let out = PyList::empty(py);
     for run in runs {
@@ -669,13 +660,8 @@ fn precursors_fe_fig5<'py>(
     use tribofe::studies::precursors_fe::{self as pfe, CellRun};
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let rules = rules.iter().map(|r| r.parse()).collect::<tribofe::Result<Vec<Rule>>>().map_err(to_py)?;
-    let total = resolution * resolution;
     let (cells, _) = run_detached(py, progress, |cancel, poll| {
-        let done = std::sync::atomic::AtomicUsize::new(0);
-        pfe::fig5(&scene, resolution, &rules, max_events, cancel, &|| {
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            poll(k as f64 / total.max(1) as f64)
-        })
+        pfe::fig5(&scene, resolution, &rules, max_events, cancel, poll)
     })?;
     let (mut r, mut g, mut n_model, mut f_max_model, mut rule, mut status) =
         (vec![], vec![], vec![], vec![], vec![], vec![]);
@@ -771,7 +757,7 @@ fn rupture<'py>(
         ..Default::default()
     };
     spec.validate().map_err(to_py)?;
-    let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, &|f| poll(f)))?;
+    let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, poll))?;
     let opt = |v: &[Option<f64>]| v.iter().map(|t| t.unwrap_or(f64::NAN)).collect::<Vec<_>>();
     let out = PyDict::new(py);
     out.set_item("x_m", arr(py, &r.x))?;

@@ -293,7 +293,15 @@ fn fe(args: &Args) -> tribofe::Result<()> {
     let p = Params::new(args.r, args.g)?;
     let scene = fe_scene(args)?;
     let bar = spinner("precursors --fe: one run per event rule");
-    let runs = tribofe::studies::precursors_fe::fig4(&scene, p.r(), p.g(), cycles, &tribofe::Cancel::new())?;
+    let cancel = tribofe::Cancel::new();
+    let runs = tribofe::studies::precursors_fe::fig4(
+        &scene,
+        p.r(),
+        p.g(),
+        cycles,
+        &cancel,
+        tribofe::Progress::none(),
+    )?;
     bar.finish_and_clear();
     if runs.iter().all(|r| r.is_err()) {
         return runs.into_iter().find_map(|r| r.err()).map_or(Ok(()), Err);
@@ -408,7 +416,9 @@ fn thin_layer(args: &Args) -> tribofe::Result<()> {
     let p = Params::new(args.r, args.g)?;
     let scene = fe_scene(args)?;
     let bar = counter(ts.len(), "thicknesses");
-    let rows = pfe::thin_layer(&scene, p.r(), p.g(), &ts, &|_| bar.inc(1))?;
+    let tick = |_: &tribofe::Tick| bar.inc(1);
+    let rows =
+        pfe::thin_layer(&scene, p.r(), p.g(), &ts, &tribofe::Cancel::new(), tribofe::Progress::new(&tick))?;
     bar.finish_and_clear();
     let n = precursors::n_precursors(&p)?;
     outln!(
@@ -489,7 +499,15 @@ fn heights(args: &Args) -> tribofe::Result<()> {
     let scene = fe_scene(args)?;
     let mu = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g())?;
     let bar = counter(hs.len(), "heights");
-    let rows = tribofe::studies::precursors_fe::heights(&scene, p.r(), p.g(), &hs, &|_| bar.inc(1))?;
+    let tick = |_: &tribofe::Tick| bar.inc(1);
+    let rows = tribofe::studies::precursors_fe::heights(
+        &scene,
+        p.r(),
+        p.g(),
+        &hs,
+        &tribofe::Cancel::new(),
+        tribofe::Progress::new(&tick),
+    )?;
     bar.finish_and_clear();
     outln!(
         "height of the drive, rule paper, mu_s = {:.4}, mu_d = {:.4} (r = {}), t/L = {:.4}; F in units of mu_s N, x in units of L",
@@ -556,10 +574,16 @@ fn dc(args: &Args) -> tribofe::Result<()> {
         return Err(Error::input("--max-events", "0: need at least one event per run"));
     }
     let bar = counter(dcs.len() + 1, "runs");
-    let rows =
-        tribofe::studies::precursors_fe::dc_series(&scene, p.r(), p.g(), &dcs, args.max_events, &|_| {
-            bar.inc(1)
-        })?;
+    let tick = |_: &tribofe::Tick| bar.inc(1);
+    let rows = tribofe::studies::precursors_fe::dc_series(
+        &scene,
+        p.r(),
+        p.g(),
+        &dcs,
+        args.max_events,
+        &tribofe::Cancel::new(),
+        tribofe::Progress::new(&tick),
+    )?;
     bar.finish_and_clear();
     if rows.iter().all(|r| r.fig4.is_err()) {
         // Nothing to tabulate or draw: the first refusal says why.
@@ -645,8 +669,10 @@ fn fe_map(args: &Args) -> tribofe::Result<()> {
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cells, {elapsed} (eta {eta})").unwrap(),
     );
     let clock = std::time::Instant::now();
+    let tick = |_: &tribofe::Tick| bar.inc(1);
+    let cancel = tribofe::Cancel::new();
     let cells =
-        pfe::fig5(&scene, resolution, &rules, args.max_events, &tribofe::Cancel::new(), &|| bar.inc(1))?;
+        pfe::fig5(&scene, resolution, &rules, args.max_events, &cancel, tribofe::Progress::new(&tick))?;
     bar.finish_and_clear();
     let wall = clock.elapsed().as_secs_f64();
     outln!(

@@ -132,7 +132,8 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     bar.set_message(format!("slide {}", law.name()));
-    let res = tribofe::studies::slide::run(&scene, &o, &|f| bar.set_position((f * 1000.0) as u64))?;
+    let tick = |t: &tribofe::Tick| bar.set_position((t.fraction.unwrap_or(0.0) * 1000.0) as u64);
+    let res = tribofe::studies::slide::run(&scene, &o, tribofe::Progress::new(&tick))?;
     bar.finish_and_clear();
     let results = [
         ("law", toml::Value::from(law.name())),

@@ -148,7 +148,8 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} points, {elapsed} ({per_sec})").unwrap(),
     );
     let clock = std::time::Instant::now();
-    let points = tribofe::studies::sweep::run(&base, &axes, &o, &|_| bar.inc(1))?;
+    let tick = |_: &tribofe::Tick<'_, tribofe::studies::sweep::Point>| bar.inc(1);
+    let points = tribofe::studies::sweep::run(&base, &axes, &o, tribofe::Progress::new(&tick))?;
     bar.finish_and_clear();
     let wall = clock.elapsed().as_secs_f64();
     let name = match shard {

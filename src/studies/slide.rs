@@ -8,6 +8,7 @@ use crate::interface::events::EventKind;
 use crate::interface::events::{run as run_events, NodeState, Problem, Run};
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
+use crate::progress::Progress;
 use crate::scene::{Scene, SceneModel};
 use std::time::Instant;
 
@@ -151,8 +152,8 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
     Ok(())
 }
 
-/// Condenses and runs.
-pub fn run(scene: &Scene, o: &SlideOptions, progress: &dyn Fn(f64)) -> Result<SlideResult> {
+/// Condenses and runs; `progress` gets the fraction of the drive done at each event.
+pub fn run(scene: &Scene, o: &SlideOptions, progress: Progress) -> Result<SlideResult> {
     check_options(scene, o)?;
     let clock = Instant::now();
     let c = condense(scene, &SolverOptions::default())?;
@@ -166,7 +167,7 @@ pub fn run_condensed(
     c: Condensed,
     condense_s: f64,
     o: &SlideOptions,
-    progress: &dyn Fn(f64),
+    progress: Progress,
 ) -> Result<SlideResult> {
     let clock = Instant::now();
     let s = c.at_height(scene.loading.height);
@@ -183,7 +184,7 @@ pub fn run_condensed(
             "lower --max-events",
         )?;
     }
-    let run = run_events(&s, c.n, o, progress)?;
+    let run = run_events(&s, c.n, o, &|x| progress.fraction(x))?;
     Ok(SlideResult {
         scene: scene.clone(),
         options: o.clone(),
