@@ -79,7 +79,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     };
     let st = study(&scene, &o, tribofe::Progress::new(&each))?;
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
+    let dir = super::begin_out(&args.out, args.force)?;
     tribofe::report::convergence::write(&st, dir.path())?;
     super::write_run_file(dir.path(), Some(&scene), &tribofe::report::run_file::NoResults {})?;
     dir.commit()?;

@@ -107,7 +107,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         tribofe::Progress::new(&tick),
     )?;
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
+    let dir = super::begin_out(&a.out, a.force)?;
     let files = [
         ("preslip.csv", tribofe::report::edges::preslip_csv(&pre)?),
         ("preslip.svg", tribofe::report::edges::preslip_svg(&pre)?),

@@ -105,7 +105,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     let r = tribofe::dynamics::rupture::run(&spec, &tribofe::Cancel::new(), tribofe::Progress::new(&tick))?;
     let secs = t0.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
+    let dir = super::begin_out(&a.out, a.force)?;
     tribofe::report::rupture::write(&r, dir.path())?;
     let results: toml::Table = [
         ("dt_s", toml::Value::from(r.dt)),

@@ -144,7 +144,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         ("k_bonded_N_per_m_per_m", toml::Value::from(res.run.k_bonded)),
     ];
     let header = tribofe::report::run_toml(super::invocation(), &results, &scene)?;
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
+    let dir = super::begin_out(&a.out, a.force)?;
     tribofe::report::slide::write(&res, dir.path(), &header, true)?;
     if a.fields > 0 {
         let picks = tribofe::report::slide::field_states(&res, a.fields);

@@ -64,7 +64,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     };
     let res = run_studies(&scene, &studies, &o, tribofe::Progress::new(&tick))?;
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
+    let dir = super::begin_out(&args.out, args.force)?;
     let mut files = tribofe::report::stability::write(&res, dir.path())?;
     super::write_run_file(dir.path(), Some(&scene), &tribofe::report::run_file::NoResults {})?;
     files.push("run.toml".into());

@@ -175,7 +175,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         tribofe::report::write_atomic(&args.out.join(&name), table.as_bytes())?;
         vec![]
     } else {
-        let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
+        let dir = super::begin_out(&args.out, args.force)?;
         tribofe::report::write_atomic(&dir.path().join(&name), table.as_bytes())?;
         super::write_run_file(dir.path(), Some(&base), &results)?;
         let maps = tribofe::report::sweep::write_maps(&points, &axes, dir.path())?;
