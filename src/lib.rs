@@ -5,14 +5,17 @@
 //! - [`fem`]: mesh, elements, assembly, constraints, the linear pipeline, recovery;
 //! - [`io`]: Gmsh reader, VTU and Gmsh field writers;
 //! - [`scene`]: the paper's block and plate, and a general rectangle;
+//! - [`interface`]: contact and friction laws on the block's base, event-driven (condensed
+//!   from the scene's block and plate);
+//! - [`dynamics`]: explicit elastodynamics of the block with friction on its base
+//!   (docs/dynamics.md);
 //! - [`studies`]: the paper's check, convergence, stability, benchmarks;
 //! - [`report`]: CSV and SVG output of the studies.
 //!
-//! Between `fem` and the studies: [`interface`] (contact and friction laws on the block's
-//! base, event-driven). Beside them: [`analytical`] (closed forms the results are judged
-//! against), [`precursors`] (the paper's 1D friction model), [`numeric`] (helpers on sampled
-//! profiles) and [`cancel`] (a host's token to stop a long run). [`dynamics`]: explicit
-//! elastodynamics of the block with friction on its base (docs/dynamics.md).
+//! Beside them: [`analytical`] (closed forms the results are judged against), [`precursors`]
+//! (the paper's 1D friction model), [`numeric`] (helpers on sampled profiles), [`cancel`] (a
+//! host's token to stop a long run) and [`progress`] (the one progress callback of every long
+//! run). `tests/layering.rs` checks that no module imports a layer above its own.
 //!
 //! # Examples
 //!

@@ -334,14 +334,16 @@ mod tests {
             OutDir::begin(&d.path().join("b"), false).unwrap(),
         );
         let (fa, fb) = (a.path().join("x.csv"), b.path().join("x.csv"));
-        crate::report::write_atomic(&fa, b"1\n").unwrap();
+        std::fs::write(&fa, b"1\n").unwrap();
         let stop = a.cleanup();
         assert!(stop.remove() && !a.path().exists());
         // The removed folder's writes and commit are refused; the other folder goes on.
-        assert!(matches!(crate::report::write_atomic(&fa, b"2\n"), Err(Error::Interrupted)));
+        assert!(matches!(write_guard(&fa), Err(Error::Interrupted)));
         assert!(!a.path().exists(), "a refused write recreated the folder");
         assert!(matches!(a.commit(), Err(Error::Interrupted)));
-        crate::report::write_atomic(&fb, b"3\n").unwrap();
+        let g = write_guard(&fb).unwrap();
+        std::fs::write(&fb, b"3\n").unwrap();
+        drop(g);
         let c = b.cleanup();
         b.commit().unwrap();
         assert!(!c.remove(), "a committed folder is kept");
