@@ -4,7 +4,7 @@
 //! exit status of the command), releases the GIL during the work and turns the interrupt key
 //! into a cancellation of the run ([`tribofe::Cancel`]).
 
-use numpy::{PyArray1, PyArray2};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -385,8 +385,25 @@ fn slide_result<'py>(
     loading.set_item("Fc_N_per_m", arr(py, &col(&|s| res.f_c(s.x))))?;
     loading.set_item("tilt_rad", arr(py, &col(&|s| s.tilt)))?;
     loading.set_item("V_m", arr(py, &col(&|s| s.v)))?;
-    // The events table as the command writes it (its derived columns live in the report layer).
-    let events = columns(py, &tribofe::report::slide::events_csv(res).map_err(to_py)?)?;
+    // The events as columns, from the library (the numbers of the command's events.csv).
+    let ev = res.event_columns();
+    let events = PyDict::new(py);
+    let ints = |v: &[usize]| PyArray1::from_vec(py, v.iter().map(|&k| k as i64).collect::<Vec<i64>>());
+    events.set_item("event", ints(&(0..ev.kind.len()).collect::<Vec<_>>()))?;
+    events.set_item("kind", ev.kind.clone())?;
+    events.set_item("X_m", arr(py, &ev.x_m))?;
+    events.set_item("F_N_per_m", arr(py, &ev.f_n_per_m))?;
+    events.set_item("F_over_mu_s_N", arr(py, &ev.f_over_mu_s_n))?;
+    events.set_item("Fc_over_mu_s_N", arr(py, &ev.fc_over_mu_s_n))?;
+    events.set_item("x_nucleation_over_L", arr(py, &ev.x_nucleation_over_l))?;
+    events.set_item("x_arrest_over_L", arr(py, &ev.x_arrest_over_l))?;
+    events.set_item("region_first_over_L", arr(py, &ev.region_first_over_l))?;
+    events.set_item("region_last_over_L", arr(py, &ev.region_last_over_l))?;
+    events.set_item("slipped_length_over_L", arr(py, &ev.slipped_length_over_l))?;
+    events.set_item("F_relaxed_over_mu_s_N", arr(py, &ev.f_relaxed_over_mu_s_n))?;
+    events.set_item("backslip_nodes", ints(&ev.backslip_nodes))?;
+    events.set_item("max_violation", arr(py, &ev.max_violation))?;
+    events.set_item("overload", arr(py, &ev.overload))?;
     let out = PyDict::new(py);
     out.set_item("law", res.options.law.name())?;
     out.set_item("mu_s", res.options.law.mu_s())?;
@@ -404,30 +421,19 @@ fn slide_result<'py>(
     out.set_item("max_violation", run.max_violation)?;
     out.set_item("condense_s", res.condense_s)?;
     out.set_item("events_s", res.events_s)?;
-    // Interface states as (states x nodes) arrays: forces per node in N/m, slip and gap in m,
-    // state codes 0 stick, 1 slip, 2 open.
-    let n = c.n;
-    let grid = |f: &dyn Fn(&tribofe::interface::events::State, usize) -> f64| -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let rows: Vec<Vec<f64>> = run.states.iter().map(|s| (0..n).map(|i| f(s, i)).collect()).collect();
-        if rows.is_empty() {
-            return Ok(PyArray2::zeros(py, [0, n], false));
-        }
-        PyArray2::from_vec2(py, &rows).map_err(|e| PyTypeError::new_err(e.to_string()))
+    // Interface states as (states x nodes) arrays from the library's struct-of-arrays
+    // accessor: forces per node in N/m, slip and gap in m, state codes 0 stick, 1 slip, 2 open.
+    use tribofe::studies::slide::StateField;
+    let grid = |f: StateField| -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (v, shape) = res.field(f);
+        numpy::PyArray1::from_vec(py, v).reshape(shape)
     };
-    use tribofe::interface::events::NodeState;
     let states = PyDict::new(py);
-    states.set_item("p_force_N_per_m", grid(&|s, i| s.p_force[i])?)?;
-    states.set_item("t_force_N_per_m", grid(&|s, i| s.t_force[i])?)?;
-    states.set_item("slip_m", grid(&|s, i| s.u[i])?)?;
-    states.set_item("gap_m", grid(&|s, i| s.gap[i])?)?;
-    states.set_item(
-        "state_code",
-        grid(&|s, i| match s.states[i] {
-            NodeState::Stick => 0.0,
-            NodeState::Slip(_) => 1.0,
-            NodeState::Open => 2.0,
-        })?,
-    )?;
+    states.set_item("p_force_N_per_m", grid(StateField::NormalForce)?)?;
+    states.set_item("t_force_N_per_m", grid(StateField::TangentialForce)?)?;
+    states.set_item("slip_m", grid(StateField::Slip)?)?;
+    states.set_item("gap_m", grid(StateField::Gap)?)?;
+    states.set_item("state_code", grid(StateField::Code)?)?;
     out.set_item("states", states)?;
     Ok(out)
 }

@@ -8,5 +8,6 @@ pub mod convergence;
 pub mod edges;
 pub mod precursors_fe;
 pub mod slide;
+mod slide_arrays;
 pub mod stability;
 pub mod sweep;
