@@ -1,5 +1,9 @@
 //! tribofe: a 2D plane-strain finite-element verifier for frictional interfaces.
 //!
+//! **Embedding tribofe? Start with [`api`]**: the curated items (scene, check, slide, sweep,
+//! converge, the precursor studies, the rupture scene, cancel, progress, errors, output
+//! folders), each documented with its units. The layers below stay public.
+//!
 //! The layers, each depending only on those before it:
 //! - [`linalg`]: sparse Cholesky (faer, our multifrontal factorisation, two domains);
 //! - [`fem`]: mesh, elements, assembly, constraints, the linear pipeline, recovery;
@@ -46,6 +50,7 @@
 //! ```
 
 pub mod analytical;
+pub mod api;
 pub mod cancel;
 pub mod dynamics;
 pub mod error;

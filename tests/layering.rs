@@ -25,6 +25,7 @@ const RANKS: &[(&str, u32)] = &[
     ("dynamics", 8),
     ("studies", 9),
     ("report", 10),
+    ("api", 11),
 ];
 
 fn rank(m: &str) -> Option<u32> {
@@ -89,7 +90,9 @@ fn code_of(text: &str) -> Vec<(usize, String)> {
     let mut joined: Vec<(usize, String)> = Vec::new();
     for (n, l) in lines {
         match joined.last_mut() {
-            Some((_, prev)) if prev.starts_with("use ") && !prev.trim_end().ends_with(';') => prev.push_str(&l),
+            Some((_, prev)) if prev.starts_with("use ") && !prev.trim_end().ends_with(';') => {
+                prev.push_str(&l)
+            }
             _ => joined.push((n, l)),
         }
     }
@@ -114,12 +117,20 @@ fn upward(src: &Path) -> Vec<String> {
     let mut bad = Vec::new();
     for f in files {
         let rel = f.strip_prefix(src).unwrap();
-        let top = rel.components().next().unwrap().as_os_str().to_string_lossy().trim_end_matches(".rs").to_string();
+        let top = rel
+            .components()
+            .next()
+            .unwrap()
+            .as_os_str()
+            .to_string_lossy()
+            .trim_end_matches(".rs")
+            .to_string();
         // The binary (cli/, main.rs) sits on top and lib.rs lists everything.
         if matches!(top.as_str(), "cli" | "main" | "lib") {
             continue;
         }
-        let own = rank(&top).unwrap_or_else(|| panic!("{}: a top-level module missing from RANKS", rel.display()));
+        let own =
+            rank(&top).unwrap_or_else(|| panic!("{}: a top-level module missing from RANKS", rel.display()));
         for (n, code) in code_of(&std::fs::read_to_string(&f).unwrap()) {
             for m in uses(&code) {
                 match rank(&m) {
@@ -147,7 +158,9 @@ fn the_checker_sees_plain_and_listed_imports() {
     assert_eq!(uses("use crate::scene::Scene;"), vec!["scene"]);
     assert_eq!(uses("use crate::{fem::{a, b}, report, Error};"), vec!["fem", "report", "Error"]);
     assert_eq!(uses("let x = crate::studies::check::run(s)?;"), vec!["studies"]);
-    let code = code_of("// crate::report\nuse crate::{\n    io,\n    report::x,\n};\n#[cfg(test)]\nuse crate::studies;\n");
+    let code = code_of(
+        "// crate::report\nuse crate::{\n    io,\n    report::x,\n};\n#[cfg(test)]\nuse crate::studies;\n",
+    );
     assert_eq!(code.len(), 1);
     assert_eq!(uses(&code[0].1), vec!["io", "report"]);
 }
