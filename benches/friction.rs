@@ -22,7 +22,7 @@ fn friction(c: &mut Criterion) {
     let (p, cd) = (&paper, &cond);
     let history = |law: Law, cycles: usize| {
         let o = SlideOptions { law, cycles, ..Default::default() };
-        move || run_condensed(p, cd.clone(), 0.0, &o, &|_| {}).unwrap()
+        move || run_condensed(p, cd.clone(), 0.0, &o, tribofe::Progress::none()).unwrap()
     };
     let run = history(Law::coulomb(0.5).unwrap(), 1);
     g.bench_function("coulomb to 5 % past sliding, paper mesh (404 events)", |b| b.iter(&run));
@@ -37,9 +37,10 @@ fn friction(c: &mut Criterion) {
     });
     let cf = condense(&fine, &SolverOptions::default()).unwrap();
     let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), ..Default::default() };
-    let events = run_condensed(&fine, cf.clone(), 0.0, &o, &|_| {}).unwrap().run.events.len();
+    let events =
+        run_condensed(&fine, cf.clone(), 0.0, &o, tribofe::Progress::none()).unwrap().run.events.len();
     g.bench_function(format!("coulomb, 1001 nodes ({events} events)"), |b| {
-        b.iter(|| run_condensed(&fine, cf.clone(), 0.0, &o, &|_| {}).unwrap())
+        b.iter(|| run_condensed(&fine, cf.clone(), 0.0, &o, tribofe::Progress::none()).unwrap())
     });
     // Slip weakening, D_c = 0.3 um on L = 10 cm, t = 4 mm, h = 2 mm (validation sw_nt4).
     let mut sw = Scene::default();
@@ -51,7 +52,7 @@ fn friction(c: &mut Criterion) {
     let cs = condense(&sw, &SolverOptions::default()).unwrap();
     let o = SlideOptions { law: Law::slip_weakening(ms, md, 3e-7).unwrap(), cycles: 1, ..Default::default() };
     g.bench_function("slip-weakening to the first whole slip, 51 nodes", |b| {
-        b.iter(|| run_condensed(&sw, cs.clone(), 0.0, &o, &|_| {}).unwrap())
+        b.iter(|| run_condensed(&sw, cs.clone(), 0.0, &o, tribofe::Progress::none()).unwrap())
     });
     g.finish();
 }
@@ -74,7 +75,7 @@ fn operators(c: &mut Criterion) {
             ..Default::default()
         };
         g.bench_function(format!("coulomb h = 0.5 mm (801 nodes), {}", op.name()), |b| {
-            b.iter(|| run(&fine, &o, &|_| {}).unwrap())
+            b.iter(|| run(&fine, &o, tribofe::Progress::none()).unwrap())
         });
     }
     let mut thin = Scene::default();
@@ -90,7 +91,7 @@ fn operators(c: &mut Criterion) {
         ..Default::default()
     };
     g.bench_function("thin block t/L = 1/1600 (3201 nodes), paper rule, 1 cycle, banded", |b| {
-        b.iter(|| run(&thin, &o, &|_| {}).unwrap())
+        b.iter(|| run(&thin, &o, tribofe::Progress::none()).unwrap())
     });
     g.finish();
 }

@@ -24,12 +24,12 @@ fn sweeps(c: &mut Criterion) {
     let heights = parse_values("0.01:0.16:16g").unwrap();
     let all = axes(heights.clone());
     g.bench_function("t_H, 256 points x 3 F/N (shared factorisation across H)", |b| {
-        b.iter(|| sweep::run(&base, &all, &o, &|_| {}).unwrap())
+        b.iter(|| sweep::run(&base, &all, &o, tribofe::Progress::none()).unwrap())
     });
     g.bench_function("t_H, 256 points x 3 F/N (one factorisation per point)", |b| {
         b.iter(|| {
             for &h in &heights {
-                sweep::run(&base, &axes(vec![h]), &o, &|_| {}).unwrap();
+                sweep::run(&base, &axes(vec![h]), &o, tribofe::Progress::none()).unwrap();
             }
         })
     });

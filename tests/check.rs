@@ -10,7 +10,7 @@ use tribofe::fem::problem::{solve, LoadCase};
 use tribofe::fem::recovery::elements_touching;
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::{PlateModel, Scene};
-use tribofe::studies::check::{run, CheckResult};
+use tribofe::studies::check::{converged_scene, run, CheckResult};
 
 fn paper() -> CheckResult {
     run(&Scene::default(), &SolverOptions::default()).unwrap().0
@@ -21,14 +21,19 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
 }
 
 #[test]
-fn global_balances_hold_to_1e_9() {
+fn global_balances_hold_to_round_off() {
     let r = paper();
     assert_eq!(r.cases.len(), 3);
     for c in &r.cases {
         let m = &c.metrics;
+        // Each balance sums the n interface reactions (relative to N + |F|): recursive
+        // summation errs by at most (n - 1) eps sum|r_i| (Higham, ch. 4), sum|r_i| is a few
+        // (N + |F|) here, and each reaction K u adds a few eps: 16 n eps bounds it (1.4e-12
+        // at n = 401; about 6e-15 is achieved).
+        let tol = 16.0 * c.p.len() as f64 * f64::EPSILON;
         assert!(
-            m.balance_n < 1e-9 && m.balance_f < 1e-9 && m.balance_moment < 1e-9,
-            "F/N = {}: {m:?}",
+            m.balance_n < tol && m.balance_f < tol && m.balance_moment < tol,
+            "F/N = {}: {m:?} (tol {tol:e})",
             c.fn_ratio
         );
         // The requested ratio is hit exactly and N is the same for every case.
@@ -61,13 +66,21 @@ fn model_is_close_in_the_interior_and_deviates_at_the_ends() {
     // ~t (pressure) and ~3 t (shear) at the ends. Bounds here are what the 1 mm mesh gives, with
     // a margin: interior slope within 3 % of 12 (F/N)(H/L), tau(0) within 0.5 %.
     let r = paper();
-    for c in &r.cases[1..] {
+    // Edge-zone widths against the converged mesh's (tests/convergence.rs checks that one
+    // against a 4x finer mesh to 0.02 t): the width is a crossing located by linear
+    // interpolation between nodes, so the paper's mesh places it to within one element,
+    // h/t = 0.5, of the converged value.
+    let scene = Scene::default();
+    let reference = run(&converged_scene(&scene), &SolverOptions::default()).unwrap().0;
+    let h_over_t = scene.mesh.h / scene.block.thickness;
+    for (c, cr) in r.cases[1..].iter().zip(&reference.cases[1..]) {
         let m = &c.metrics;
         assert!((m.slope_interior / m.slope_model - 1.0).abs() < 0.03, "{m:?}");
         assert!((m.tau_center / c.fn_ratio - 1.0).abs() < 0.005, "{m:?}");
-        for w in m.edge_p_t.iter().chain(&m.edge_tau_t) {
-            let w = w.unwrap();
-            assert!(w > 0.0 && w < 5.0, "edge zone {w} t");
+        let mr = &cr.metrics;
+        for (w, wr) in m.edge_p_t.iter().zip(&mr.edge_p_t).chain(m.edge_tau_t.iter().zip(&mr.edge_tau_t)) {
+            let (w, wr) = (w.unwrap(), wr.unwrap());
+            assert!(wr > 0.0 && (w - wr).abs() <= h_over_t, "edge zone {w} t vs converged {wr} t");
         }
     }
 }

@@ -20,7 +20,7 @@ fn runs(elements: &[&str], family: Family, n: &[usize]) -> Vec<Run> {
         n_thick: n.to_vec(),
         ..Default::default()
     };
-    study(&Scene::default(), &o, &|_| {}).unwrap().runs
+    study(&Scene::default(), &o, tribofe::Progress::none()).unwrap().runs
 }
 
 #[test]
@@ -53,7 +53,7 @@ fn interior_converges_at_the_pollution_rate_two_lambda() {
         n_thick: vec![4, 8, 16],
         ..Default::default()
     };
-    let st = study(&Scene::default(), &o, &|_| {}).unwrap();
+    let st = study(&Scene::default(), &o, tribofe::Progress::none()).unwrap();
     for s in tribofe::studies::convergence::series(&st) {
         let ord = tribofe::studies::convergence::orders(&st, &s).unwrap();
         for k in 0..2 {
@@ -107,7 +107,7 @@ fn graded_meshes_reach_the_uniform_accuracy_with_far_fewer_dofs() {
         n_thick: vec![4, 8],
         ..Default::default()
     };
-    let st = study(&Scene::default(), &o, &|_| {}).unwrap();
+    let st = study(&Scene::default(), &o, tribofe::Progress::none()).unwrap();
     let find = |f: Family, n: usize| st.runs.iter().find(|r| r.family == f && r.n_thick == n).unwrap();
     let (u, g) = (find(Family::Uniform, 4), find(Family::Graded, 4));
     assert!(g.dofs * 5 < u.dofs, "graded {} vs uniform {} DOFs", g.dofs, u.dofs);

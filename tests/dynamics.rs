@@ -219,7 +219,7 @@ fn released_block() -> (Mesh, Elastodynamic, Vec<f64>) {
 use tribofe::dynamics::rupture::{self, Contact, RuptureResult, RuptureSpec};
 
 fn rupture_run(spec: &RuptureSpec) -> RuptureResult {
-    rupture::run(spec, &tribofe::Cancel::new(), &|_| {}).unwrap()
+    rupture::run(spec, &tribofe::Cancel::new(), tribofe::Progress::none()).unwrap()
 }
 
 /// The cross-check scene as specified: its counts, the exact discrete energy balance
@@ -277,7 +277,7 @@ fn unilateral_contact_opens_instead_of_pulling() {
 #[test]
 fn unresolved_cohesive_zone_is_refused() {
     let spec = RuptureSpec { h: 2e-3, ..Default::default() };
-    let e = rupture::run(&spec, &tribofe::Cancel::new(), &|_| {}).unwrap_err();
+    let e = rupture::run(&spec, &tribofe::Cancel::new(), tribofe::Progress::none()).unwrap_err();
     assert_eq!(e.exit_status(), 2);
     let msg = e.to_string();
     assert!(msg.contains("--dc") && msg.contains("2.49 elements"), "{msg}");
@@ -460,7 +460,7 @@ fn dynamic_slide_coulomb_is_the_event_solver() {
     // slip extent in every state (within one node, the tolerance; here exact).
     let scene = block(0.4, 0.004, Some(2));
     let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), ..Default::default() };
-    let qs = slide::run(&scene, &o, &|_| {}).unwrap();
+    let qs = slide::run(&scene, &o, tribofe::Progress::none()).unwrap();
     let dy = ds::run(&scene, &o, &DynamicOptions::default(), &|_| {}, &|_| {}).unwrap();
     let drive = |r: &slide::SlideResult| -> Vec<(f64, f64, usize, EventKind)> {
         r.run

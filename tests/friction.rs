@@ -31,7 +31,7 @@ fn thin(t: f64) -> Scene {
 
 fn slide(scene: &Scene, law: Law, x_max: Option<f64>) -> SlideResult {
     let o = SlideOptions { law, x_max, ..Default::default() };
-    run(scene, &o, &|_| {}).unwrap()
+    run(scene, &o, tribofe::Progress::none()).unwrap()
 }
 
 fn worst_violation(r: &SlideResult) -> f64 {
@@ -160,7 +160,7 @@ fn static_kinetic_slides_at_mu_d_n_and_cycles() {
     for rule in [Rule::Paper, Rule::Overdamped] {
         let o =
             SlideOptions { law: Law::static_kinetic(ms, md, rule).unwrap(), cycles: 3, ..Default::default() };
-        let r = run(&sc, &o, &|_| {}).unwrap();
+        let r = run(&sc, &o, tribofe::Progress::none()).unwrap();
         assert_eq!(r.run.sliding_events, 3);
         for e in r.run.events.iter().filter(|e| e.kind == EventKind::Sliding) {
             // Paper rule: the whole interface relaxes to mu_d p, so F* = mu_d N to round-off.
@@ -192,7 +192,7 @@ fn paper_rule_peak_force_near_the_analytic_f_max() {
     let sc = thin(0.004);
     let (ms, md) = coefficients_from_rg(&sc, 0.9, 0.35).unwrap();
     let o = SlideOptions { law: Law::static_kinetic(ms, md, Rule::Paper).unwrap(), ..Default::default() };
-    let r = run(&sc, &o, &|_| {}).unwrap();
+    let r = run(&sc, &o, tribofe::Progress::none()).unwrap();
     assert_eq!(r.run.sliding_events, 10);
     let f_max = tribofe::precursors::Params::new(0.9, 0.35).unwrap().f_max();
     let peak = r.run.events.iter().rfind(|e| e.kind == EventKind::Sliding).unwrap().f / ms;
@@ -213,7 +213,7 @@ fn one_and_two_threads_give_the_same_events() {
             .num_threads(k)
             .build()
             .unwrap()
-            .install(|| run(&sc, &o, &|_| {}).unwrap())
+            .install(|| run(&sc, &o, tribofe::Progress::none()).unwrap())
     };
     let (a, b) = (go(1), go(2));
     assert_eq!(a.run.events.len(), b.run.events.len());
@@ -227,15 +227,18 @@ fn one_and_two_threads_give_the_same_events() {
 fn bad_inputs_are_refused_with_the_parameter_named() {
     let mut sc = coarse();
     sc.mesh.element = "qua8".into();
-    let e = run(&sc, &SlideOptions::default(), &|_| {}).unwrap_err().to_string();
+    let e = run(&sc, &SlideOptions::default(), tribofe::Progress::none()).unwrap_err().to_string();
     assert!(e.contains("mesh.element") && e.contains("linear elements"), "{e}");
     assert!(Law::coulomb(-0.1).unwrap_err().to_string().contains("mu"));
     assert!(Law::static_kinetic(0.5, 0.6, Rule::Paper).unwrap_err().to_string().contains("mu-d"));
     let o = SlideOptions { n_force: -1.0, ..Default::default() };
-    assert!(run(&coarse(), &o, &|_| {}).unwrap_err().to_string().contains("N"));
+    assert!(run(&coarse(), &o, tribofe::Progress::none()).unwrap_err().to_string().contains("N"));
     let mut el = coarse();
     el.plate.model = tribofe::scene::PlateModel::Elastic;
-    assert!(run(&el, &SlideOptions::default(), &|_| {}).unwrap_err().to_string().contains("rigid"));
+    assert!(run(&el, &SlideOptions::default(), tribofe::Progress::none())
+        .unwrap_err()
+        .to_string()
+        .contains("rigid"));
 }
 
 #[test]
@@ -289,7 +292,7 @@ fn results_per_unit_n_do_not_depend_on_n() {
     let sc = coarse();
     let go = |n_force: f64| {
         let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), n_force, ..Default::default() };
-        run(&sc, &o, &|_| {}).unwrap()
+        run(&sc, &o, tribofe::Progress::none()).unwrap()
     };
     let (a, b) = (go(1.0), go(7.5));
     assert_eq!(a.run.events.len(), b.run.events.len());
@@ -320,7 +323,7 @@ fn weakening_with(
 ) -> SlideResult {
     let sc = weakening_scene(h, n_thick);
     let (ms, md) = coefficients_from_rg(&sc, r, g).unwrap();
-    run(&sc, &o(Law::slip_weakening(ms, md, dc).unwrap()), &|_| {}).unwrap()
+    run(&sc, &o(Law::slip_weakening(ms, md, dc).unwrap()), tribofe::Progress::none()).unwrap()
 }
 
 /// The slip-weakening scene's block and mesh: L = 10 cm, t = 4 mm, element size h.
@@ -377,7 +380,7 @@ fn slip_weakening_tends_to_the_abrupt_drop() {
         cycles: 1,
         ..Default::default()
     };
-    let s = run(&sc, &o, &|_| {}).unwrap();
+    let s = run(&sc, &o, tribofe::Progress::none()).unwrap();
     let (pw, ps) = (peak(&r), peak(&s));
     assert!((pw / ps - 1.0).abs() < 0.015, "peaks {pw} (D_c -> 0), {ps} (overdamped)");
     assert!(worst_violation(&r) < 1e-9);

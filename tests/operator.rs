@@ -174,8 +174,9 @@ fn same_history(scene: &Scene, law: Law, cycles: usize) -> usize {
 /// [`same_history`] over the first `prefix` events (all: None) to `tol` of the largest X, F.
 fn same_prefix(scene: &Scene, law: Law, cycles: usize, prefix: Option<usize>, tol: f64) -> usize {
     let o = SlideOptions { law, cycles, keep_states: false, ..Default::default() };
-    let dense = run(scene, &o, &|_| {}).unwrap();
-    let banded = run(scene, &SlideOptions { operator: Operator::Banded, ..o }, &|_| {}).unwrap();
+    let dense = run(scene, &o, tribofe::Progress::none()).unwrap();
+    let banded =
+        run(scene, &SlideOptions { operator: Operator::Banded, ..o }, tribofe::Progress::none()).unwrap();
     let (a, b) = (&dense.run.events, &banded.run.events);
     if prefix.is_none() {
         assert_eq!(a.len(), b.len(), "event counts");
@@ -219,8 +220,8 @@ fn same_events_paper_scene() {
     let o =
         SlideOptions { law, cycles: 1, operator: Operator::Banded, keep_states: false, ..Default::default() };
     let c = condense(&s, &SolverOptions::default()).unwrap();
-    let a = run_condensed(&s, c, 0.0, &o, &|_| {}).unwrap();
-    let b = run(&s, &o, &|_| {}).unwrap();
+    let a = run_condensed(&s, c, 0.0, &o, tribofe::Progress::none()).unwrap();
+    let b = run(&s, &o, tribofe::Progress::none()).unwrap();
     assert_eq!(a.run.refreshes, b.run.refreshes, "banded solves");
     assert_eq!(a.run.updates, 0, "no bordering updates on the banded operator");
     let fx = |r: &tribofe::studies::slide::SlideResult| {

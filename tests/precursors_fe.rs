@@ -27,7 +27,7 @@ fn paper_rule_first_precursor_and_peak_near_the_analytic_iteration() {
     let sc = thin(0.004);
     let t_over_l = 0.004 / sc.block.length;
     for (r, g) in [(0.9, 0.35), (0.8, 0.5)] {
-        let f = fig4(&sc, r, g, 2, &Cancel::new()).unwrap().remove(0).unwrap();
+        let f = fig4(&sc, r, g, 2, &Cancel::new(), tribofe::Progress::none()).unwrap().remove(0).unwrap();
         assert_eq!(f.rule, Rule::Paper);
         let c = f.cmp;
         let (f1, x1) = (c.f1_fe.unwrap(), c.x1_fe.unwrap());
@@ -39,13 +39,19 @@ fn paper_rule_first_precursor_and_peak_near_the_analytic_iteration() {
 
 #[test]
 fn paper_rule_states_are_admissible() {
-    let f = fig4(&thin(0.004), 0.9, 0.35, 2, &Cancel::new()).unwrap().remove(0).unwrap();
+    let f = fig4(&thin(0.004), 0.9, 0.35, 2, &Cancel::new(), tribofe::Progress::none())
+        .unwrap()
+        .remove(0)
+        .unwrap();
     assert!(f.worst_violation < 1e-8, "violation {}", f.worst_violation);
     assert!((f.cmp.f_max_fe.unwrap() / f.cmp.f_max - 1.0).abs() < 0.07);
     // An open trailing node that the relaxation closes lands where it is: it once was stuck
     // back at its position from before the event, cycled open/closed, and a state was
     // recorded penetrating the flat by 0.31 of the gap scale.
-    let f = fig4(&thin(0.004), 0.5, 0.6, 2, &Cancel::new()).unwrap().remove(0).unwrap();
+    let f = fig4(&thin(0.004), 0.5, 0.6, 2, &Cancel::new(), tribofe::Progress::none())
+        .unwrap()
+        .remove(0)
+        .unwrap();
     assert!(f.worst_violation < 1e-8, "violation {}", f.worst_violation);
 }
 
@@ -59,7 +65,7 @@ fn no_long_precursor_without_torque() {
         cycles: 1,
         ..Default::default()
     };
-    let res = run(&sc, &o, &|_| {}).unwrap();
+    let res = run(&sc, &o, tribofe::Progress::none()).unwrap();
     assert!(res.run.events.iter().any(|e| e.kind == EventKind::Sliding));
     assert_eq!(tribofe::studies::slide::precursors(&res).n_long(), 0);
 }
@@ -73,7 +79,7 @@ fn through_slide(scene: &Scene, r: f64, g: f64) -> tribofe::studies::slide::Pape
         cycles: 2,
         ..Default::default()
     };
-    tribofe::studies::slide::compare_paper(&run(scene, &o, &|_| {}).unwrap()).unwrap()
+    tribofe::studies::slide::compare_paper(&run(scene, &o, tribofe::Progress::none()).unwrap()).unwrap()
 }
 
 #[test]
@@ -87,7 +93,8 @@ fn through_slide(scene: &Scene, r: f64, g: f64) -> tribofe::studies::slide::Pape
 fn the_same_scene_gives_the_same_precursors_through_every_command() {
     let key = |c: &tribofe::studies::slide::PaperComparison| (c.n_fe_advancing, c.f1_fe, c.x1_fe);
     let scene = Scene::default();
-    let f4 = fig4(&scene, 0.9, 0.35, 2, &Cancel::new()).unwrap().remove(0).unwrap();
+    let f4 =
+        fig4(&scene, 0.9, 0.35, 2, &Cancel::new(), tribofe::Progress::none()).unwrap().remove(0).unwrap();
     assert_eq!(key(&f4.cmp), key(&through_slide(&scene, 0.9, 0.35)));
     assert_eq!(f4.x_fe.len(), f4.cmp.n_fe_advancing);
     assert_eq!(f4.x_fe.first().copied(), f4.cmp.x1_fe);
@@ -105,11 +112,18 @@ fn the_same_scene_gives_the_same_precursors_through_every_command() {
     assert!(f4.cmp.f1_fe.unwrap() > peak_so_far);
     // The thin-layer study at the scene's t/L = thin(t) through fig. 4 and slide.
     let t = scene.block.thickness;
-    let rows =
-        tribofe::studies::precursors_fe::thin_layer(&scene, 0.9, 0.35, &[t / scene.block.length], &|_| {})
-            .unwrap();
+    let rows = tribofe::studies::precursors_fe::thin_layer(
+        &scene,
+        0.9,
+        0.35,
+        &[t / scene.block.length],
+        &Cancel::new(),
+        tribofe::Progress::none(),
+    )
+    .unwrap();
     let tl = rows[0].fig4.as_ref().unwrap().cmp;
-    let f4_thin = fig4(&thin(t), 0.9, 0.35, 1, &Cancel::new()).unwrap().remove(0).unwrap();
+    let f4_thin =
+        fig4(&thin(t), 0.9, 0.35, 1, &Cancel::new(), tribofe::Progress::none()).unwrap().remove(0).unwrap();
     assert_eq!(key(&tl), key(&f4_thin.cmp));
     assert_eq!(key(&tl), key(&through_slide(&thin(t), 0.9, 0.35)));
     assert_ne!(tl.n_fe_advancing, f4.cmp.n_fe_advancing, "the mesh changes the count");
@@ -129,7 +143,7 @@ fn paper_scene_options(r: f64, g: f64, rule: Rule, max_events: usize) -> SlideOp
 /// A static-kinetic run on the paper's scene up to the first whole slip (or `x_max`).
 fn paper_scene_run(r: f64, g: f64, x_max: Option<f64>) -> tribofe::studies::slide::SlideResult {
     let o = SlideOptions { x_max, ..paper_scene_options(r, g, Rule::Paper, 5000) };
-    run(&Scene::default(), &o, &|_| {}).unwrap()
+    run(&Scene::default(), &o, tribofe::Progress::none()).unwrap()
 }
 
 #[test]
@@ -152,7 +166,8 @@ fn whole_slip_past_an_open_corner_and_admissible_creep() {
 /// 0.12 below the paper's line g = (1 - r)/2 (the measured 20 x 20 boundary lies at most
 /// 0.09 below it), and at least one more than 0.1 above it.
 fn fe_fig5_on_the_paper_mesh() {
-    let cells = fig5(&Scene::default(), 5, &[Rule::Paper], 2000, &Cancel::new(), &|| {}).unwrap();
+    let cells =
+        fig5(&Scene::default(), 5, &[Rule::Paper], 2000, &Cancel::new(), tribofe::Progress::none()).unwrap();
     assert_eq!(cells.len(), 25);
     for c in &cells {
         let run = c.runs[0].unwrap();
@@ -189,7 +204,15 @@ fn thin_layer_limit_against_the_model() {
         (0.95, 0.2, 0.005, 0.01, (0.0, 0.04)),
     ];
     for (r, g, tol_f1, tol_x1, (fmax_lo, fmax_hi)) in cases {
-        let rows = thin_layer(&Scene::default(), r, g, &[0.0025, 0.00125], &|_| {}).unwrap();
+        let rows = thin_layer(
+            &Scene::default(),
+            r,
+            g,
+            &[0.0025, 0.00125],
+            &Cancel::new(),
+            tribofe::Progress::none(),
+        )
+        .unwrap();
         let c: Vec<_> = rows.iter().map(|row| row.fig4.as_ref().unwrap().cmp).collect();
         let (a, b) = (c[0], c[1]);
         assert!((a.f1_fe.unwrap() / b.f1_fe.unwrap() - 1.0).abs() < 0.005, "({r},{g}) not converged");
@@ -215,7 +238,15 @@ fn thin_layer_limit_against_the_model() {
 /// within 7 % below the model's F_max.
 fn height_of_the_drive_controls_the_first_precursor() {
     let hs = [0.05, 0.1, 0.15, 0.2, 0.25, 0.275];
-    let rows = tribofe::studies::precursors_fe::heights(&Scene::default(), 0.9, 0.35, &hs, &|_| {}).unwrap();
+    let rows = tribofe::studies::precursors_fe::heights(
+        &Scene::default(),
+        0.9,
+        0.35,
+        &hs,
+        &tribofe::Cancel::new(),
+        tribofe::Progress::none(),
+    )
+    .unwrap();
     let mut last = 0;
     for row in &rows {
         let c = row.fig4.as_ref().unwrap().cmp;
@@ -259,13 +290,16 @@ fn richardson_order_and_limit() {
 /// t/L = 0.01 (1.6 % measured, validation/precursors), and is undefined, not 0, on a block
 /// with no node farther than 5 t from both ends (L = 5 cm, t = 2 cm).
 fn interior_pressure_check_defined_only_with_an_interior() {
-    let f = fig4(&thin(0.004), 0.9, 0.35, 1, &Cancel::new()).unwrap().remove(0).unwrap();
+    let f = fig4(&thin(0.004), 0.9, 0.35, 1, &Cancel::new(), tribofe::Progress::none())
+        .unwrap()
+        .remove(0)
+        .unwrap();
     let p = f.fields.pressure.unwrap();
     assert!(p > 0.0 && p < 0.05, "{p}");
     let mut sc = Scene::default();
     sc.block.length = 0.05;
     sc.block.thickness = 0.02;
-    let f = fig4(&sc, 0.9, 0.35, 1, &Cancel::new()).unwrap().remove(0).unwrap();
+    let f = fig4(&sc, 0.9, 0.35, 1, &Cancel::new(), tribofe::Progress::none()).unwrap().remove(0).unwrap();
     assert!(f.fields.pressure.is_none(), "{:?}", f.fields.pressure);
 }
 
@@ -277,13 +311,13 @@ fn event_cap_reports_precursors_and_peak_so_far() {
     let sc = Scene::default();
     let o = paper_scene_options(0.9, 0.35, Rule::Overdamped, 50_000);
     let ms = o.law.mu_s();
-    let full = run(&sc, &o, &|_| {}).unwrap();
+    let full = run(&sc, &o, tribofe::Progress::none()).unwrap();
     let cap = 2000;
     assert!(full.run.events.len() > cap + 100, "{} events", full.run.events.len());
     let head = &full.run.events[..cap];
     let want = head.iter().filter(|e| e.kind == EventKind::Precursor).count();
     let peak = head.iter().map(|e| e.f).fold(0.0, f64::max);
-    match run(&sc, &SlideOptions { max_events: cap, ..o }, &|_| {}) {
+    match run(&sc, &SlideOptions { max_events: cap, ..o }, tribofe::Progress::none()) {
         Err(tribofe::Error::EventCap { cap: c, precursors, f_peak_over_n, .. }) => {
             assert_eq!(c, cap);
             assert_eq!(precursors, want);
@@ -307,7 +341,7 @@ fn front_crossing_ends_the_cycle_only_when_the_regions_join() {
         end_at_crossing,
         ..paper_scene_options(r, g, rule, 5000)
     };
-    let res = run(&sc, &opts(0.5, 0.5, Rule::Overdamped, true), &|_| {}).unwrap();
+    let res = run(&sc, &opts(0.5, 0.5, Rule::Overdamped, true), tribofe::Progress::none()).unwrap();
     let evs = &res.run.events;
     let last = evs.last().unwrap();
     assert_eq!(last.kind, EventKind::Crossing);
@@ -326,8 +360,8 @@ fn front_crossing_ends_the_cycle_only_when_the_regions_join() {
         let all = contact[..contact.len() - 1].iter().all(|&i| covered[i]);
         assert_eq!(all, k + 1 == evs.len(), "coverage complete at event {k} of {}", evs.len());
     }
-    let plain = run(&sc, &opts(0.9, 0.35, Rule::Paper, false), &|_| {}).unwrap();
-    let with = run(&sc, &opts(0.9, 0.35, Rule::Paper, true), &|_| {}).unwrap();
+    let plain = run(&sc, &opts(0.9, 0.35, Rule::Paper, false), tribofe::Progress::none()).unwrap();
+    let with = run(&sc, &opts(0.9, 0.35, Rule::Paper, true), tribofe::Progress::none()).unwrap();
     assert_eq!(plain.run.events.len(), with.run.events.len());
     assert_eq!(with.run.events.last().unwrap().kind, EventKind::Sliding);
 }
@@ -339,7 +373,7 @@ fn front_crossing_ends_the_cycle_only_when_the_regions_join() {
 /// is now measured from where the node last started slipping; the run ends admissible.
 fn overdamped_relaxation_settles_after_a_corner_closes() {
     let o = paper_scene_options(0.475, 0.175, Rule::Overdamped, 2000);
-    let res = run(&Scene::default(), &o, &|_| {}).unwrap();
+    let res = run(&Scene::default(), &o, tribofe::Progress::none()).unwrap();
     assert_eq!(res.run.sliding_events, 1);
     assert!(res.run.max_violation < 1e-8, "violation {}", res.run.max_violation);
 }

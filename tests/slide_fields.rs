@@ -15,7 +15,7 @@ fn full_field_reactions_are_the_condensed_interface_forces() {
     s.mesh.h = 0.002;
     s.mesh.n_thick = Some(2);
     let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), ..Default::default() };
-    let r = run(&s, &o, &|_| {}).unwrap();
+    let r = run(&s, &o, tribofe::Progress::none()).unwrap();
     let last = r.run.states.len() - 1;
     let picks = [0, last / 2, last];
     let (sm, us) = state_displacements(&r, &picks, &SolverOptions::default()).unwrap();
@@ -51,7 +51,7 @@ fn field_series_is_indexed_by_x() {
         law: Law::static_kinetic(0.5, 0.45, "paper".parse().unwrap()).unwrap(),
         ..Default::default()
     };
-    let r = run(&s, &o, &|_| {}).unwrap();
+    let r = run(&s, &o, tribofe::Progress::none()).unwrap();
     let picks = tribofe::report::slide::field_states(&r, 6);
     assert_eq!(picks.len(), 6);
     assert_eq!(*picks.last().unwrap(), r.run.states.len() - 1);

@@ -72,7 +72,7 @@ fn sweep_rows_equal_single_checks_shards_and_thread_counts() {
         ..Default::default()
     };
     let o = SweepOptions::default();
-    let full = sweep::run(&base, &axes(), &o, &|_| {}).unwrap();
+    let full = sweep::run(&base, &axes(), &o, tribofe::Progress::none()).unwrap();
     assert_eq!(full.len(), 6);
     let table = csv(&full, true).unwrap();
     assert_eq!(table.lines().count(), 1 + 12);
@@ -107,7 +107,7 @@ fn sweep_rows_equal_single_checks_shards_and_thread_counts() {
     let mut parts = Vec::new();
     for i in 1..=4 {
         let so = SweepOptions { shard: Some((i, 4)), ..Default::default() };
-        let part = csv(&sweep::run(&base, &axes(), &so, &|_| {}).unwrap(), true).unwrap();
+        let part = csv(&sweep::run(&base, &axes(), &so, tribofe::Progress::none()).unwrap(), true).unwrap();
         assert_eq!(part.lines().next(), table.lines().next(), "shard {i} has the header");
         parts.push((format!("sweep_{i}of4.csv"), part));
     }
@@ -134,9 +134,11 @@ fn sweep_rows_equal_single_checks_shards_and_thread_counts() {
     assert!(merge(&[("notes.csv".into(), String::new())]).is_err());
     // One thread or two: the same table.
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-    let t1 = one.install(|| csv(&sweep::run(&base, &axes(), &o, &|_| {}).unwrap(), true).unwrap());
+    let t1 = one
+        .install(|| csv(&sweep::run(&base, &axes(), &o, tribofe::Progress::none()).unwrap(), true).unwrap());
     let two = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
-    let t2 = two.install(|| csv(&sweep::run(&base, &axes(), &o, &|_| {}).unwrap(), true).unwrap());
+    let t2 = two
+        .install(|| csv(&sweep::run(&base, &axes(), &o, tribofe::Progress::none()).unwrap(), true).unwrap());
     assert_eq!(strip_time(&t1), strip_time(&table));
     assert_eq!(strip_time(&t2), strip_time(&table));
 }
@@ -191,7 +193,13 @@ fn merge_cli_joins_shard_files_and_keeps_foreign_files() {
 #[test]
 fn bad_points_are_refused_before_any_work() {
     let bad = vec![Axis { param: Param::Poisson, values: vec![0.3, 0.5] }];
-    let e = sweep::run(&Scene::default(), &bad, &SweepOptions::default(), &|_| panic!("solved")).unwrap_err();
+    let e = sweep::run(
+        &Scene::default(),
+        &bad,
+        &SweepOptions::default(),
+        tribofe::Progress::new(&|_| panic!("solved")),
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("sweep point 2"), "{e}");
     let e = sweep::shard_range(10, Some((5, 4))).unwrap_err();
     assert!(e.to_string().contains("--shard"), "{e}");
@@ -224,7 +232,7 @@ fn friction_columns_equal_single_slide_runs() {
     base.loading.fn_ratios = vec![0.41];
     let f = sweep::FrictionSweep { mu_s, mu_d, rule: Rule::Paper, cycles: 2 };
     let o = SweepOptions { friction: Some(f), ..Default::default() };
-    let points = sweep::run(&base, &axes, &o, &|_| {}).unwrap();
+    let points = sweep::run(&base, &axes, &o, tribofe::Progress::none()).unwrap();
     for p in &points {
         let got = p.friction.expect("friction columns");
         let so = SlideOptions {
@@ -234,7 +242,9 @@ fn friction_columns_equal_single_slide_runs() {
         };
         let mut s = base.clone();
         s.loading.height = p.scene.loading.height;
-        let want = compare_paper(&slide(&sweep::FrictionSweep::scene(&s), &so, &|_| {}).unwrap()).unwrap();
+        let want =
+            compare_paper(&slide(&sweep::FrictionSweep::scene(&s), &so, tribofe::Progress::none()).unwrap())
+                .unwrap();
         assert_eq!(format!("{got:?}"), format!("{want:?}"));
         let g = 6.0 * mu_d * s.loading.height / s.block.length;
         assert!((got.g / g - 1.0).abs() < 1e-12, "g {} vs {g}", got.g);

@@ -4,14 +4,14 @@
 //! exit status of the command), releases the GIL during the work and turns the interrupt key
 //! into a cancellation of the run ([`tribofe::Cancel`]).
 
-use numpy::{PyArray1, PyArray2};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
 use tribofe::interface::law::Rule;
 use tribofe::scene::{Overrides, PlateModel, Scene as RsScene};
-use tribofe::{Cancel, Error};
+use tribofe::{Cancel, Error, Progress, Tick};
 
 /// The exception class of `tribofe.errors` for an error of the library.
 fn to_py(e: Error) -> PyErr {
@@ -41,15 +41,16 @@ fn to_py(e: Error) -> PyErr {
 fn run_detached<T: Send>(
     py: Python<'_>,
     progress: Option<Py<PyAny>>,
-    work: impl FnOnce(&Cancel, &(dyn Fn(f64) + Sync)) -> tribofe::Result<T> + Send,
+    work: impl FnOnce(&Cancel, Progress) -> tribofe::Result<T> + Send,
 ) -> PyResult<(T, f64)> {
     let cancel = Cancel::new();
     let pending: std::sync::Mutex<Option<PyErr>> = std::sync::Mutex::new(None);
-    let poll = |frac: f64| {
+    let poll = |t: &Tick| {
         Python::attach(|py| {
-            let outcome = py.check_signals().and_then(|_| match &progress {
-                Some(cb) => cb.call1(py, (frac,)).map(|_| ()),
-                None => Ok(()),
+            // The callback gets the fraction done; a tick without one only checks signals.
+            let outcome = py.check_signals().and_then(|_| match (&progress, t.fraction) {
+                (Some(cb), Some(frac)) => cb.call1(py, (frac,)).map(|_| ()),
+                _ => Ok(()),
             });
             if let Err(err) = outcome {
                 pending.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert(err);
@@ -59,7 +60,7 @@ fn run_detached<T: Send>(
     };
     let result = py.detach(|| {
         let clock = std::time::Instant::now();
-        work(&cancel, &poll).map(|r| (r, clock.elapsed().as_secs_f64()))
+        work(&cancel, Progress::new(&poll)).map(|r| (r, clock.elapsed().as_secs_f64()))
     });
     if let Some(err) = pending.lock().unwrap_or_else(|e| e.into_inner()).take() {
         return Err(err); // KeyboardInterrupt, or the progress callback's own exception
@@ -362,7 +363,7 @@ fn slide<'py>(
             cancel: cancel.clone(),
             ..Default::default()
         };
-        tribofe::studies::slide::run(&scene, &o, &|f| poll(f))
+        tribofe::studies::slide::run(&scene, &o, poll)
     })?;
     let out = slide_result(py, &res)?;
     out.set_item("core_s", core_s)?;
@@ -384,8 +385,25 @@ fn slide_result<'py>(
     loading.set_item("Fc_N_per_m", arr(py, &col(&|s| res.f_c(s.x))))?;
     loading.set_item("tilt_rad", arr(py, &col(&|s| s.tilt)))?;
     loading.set_item("V_m", arr(py, &col(&|s| s.v)))?;
-    // The events table as the command writes it (its derived columns live in the report layer).
-    let events = columns(py, &tribofe::report::slide::events_csv(res).map_err(to_py)?)?;
+    // The events as columns, from the library (the numbers of the command's events.csv).
+    let ev = res.event_columns();
+    let events = PyDict::new(py);
+    let ints = |v: &[usize]| PyArray1::from_vec(py, v.iter().map(|&k| k as i64).collect::<Vec<i64>>());
+    events.set_item("event", ints(&(0..ev.kind.len()).collect::<Vec<_>>()))?;
+    events.set_item("kind", ev.kind.clone())?;
+    events.set_item("X_m", arr(py, &ev.x_m))?;
+    events.set_item("F_N_per_m", arr(py, &ev.f_n_per_m))?;
+    events.set_item("F_over_mu_s_N", arr(py, &ev.f_over_mu_s_n))?;
+    events.set_item("Fc_over_mu_s_N", arr(py, &ev.fc_over_mu_s_n))?;
+    events.set_item("x_nucleation_over_L", arr(py, &ev.x_nucleation_over_l))?;
+    events.set_item("x_arrest_over_L", arr(py, &ev.x_arrest_over_l))?;
+    events.set_item("region_first_over_L", arr(py, &ev.region_first_over_l))?;
+    events.set_item("region_last_over_L", arr(py, &ev.region_last_over_l))?;
+    events.set_item("slipped_length_over_L", arr(py, &ev.slipped_length_over_l))?;
+    events.set_item("F_relaxed_over_mu_s_N", arr(py, &ev.f_relaxed_over_mu_s_n))?;
+    events.set_item("backslip_nodes", ints(&ev.backslip_nodes))?;
+    events.set_item("max_violation", arr(py, &ev.max_violation))?;
+    events.set_item("overload", arr(py, &ev.overload))?;
     let out = PyDict::new(py);
     out.set_item("law", res.options.law.name())?;
     out.set_item("mu_s", res.options.law.mu_s())?;
@@ -403,30 +421,19 @@ fn slide_result<'py>(
     out.set_item("max_violation", run.max_violation)?;
     out.set_item("condense_s", res.condense_s)?;
     out.set_item("events_s", res.events_s)?;
-    // Interface states as (states x nodes) arrays: forces per node in N/m, slip and gap in m,
-    // state codes 0 stick, 1 slip, 2 open.
-    let n = c.n;
-    let grid = |f: &dyn Fn(&tribofe::interface::events::State, usize) -> f64| -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let rows: Vec<Vec<f64>> = run.states.iter().map(|s| (0..n).map(|i| f(s, i)).collect()).collect();
-        if rows.is_empty() {
-            return Ok(PyArray2::zeros(py, [0, n], false));
-        }
-        PyArray2::from_vec2(py, &rows).map_err(|e| PyTypeError::new_err(e.to_string()))
+    // Interface states as (states x nodes) arrays from the library's struct-of-arrays
+    // accessor: forces per node in N/m, slip and gap in m, state codes 0 stick, 1 slip, 2 open.
+    use tribofe::studies::slide::StateField;
+    let grid = |f: StateField| -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (v, shape) = res.field(f);
+        numpy::PyArray1::from_vec(py, v).reshape(shape)
     };
-    use tribofe::interface::events::NodeState;
     let states = PyDict::new(py);
-    states.set_item("p_force_N_per_m", grid(&|s, i| s.p_force[i])?)?;
-    states.set_item("t_force_N_per_m", grid(&|s, i| s.t_force[i])?)?;
-    states.set_item("slip_m", grid(&|s, i| s.u[i])?)?;
-    states.set_item("gap_m", grid(&|s, i| s.gap[i])?)?;
-    states.set_item(
-        "state_code",
-        grid(&|s, i| match s.states[i] {
-            NodeState::Stick => 0.0,
-            NodeState::Slip(_) => 1.0,
-            NodeState::Open => 2.0,
-        })?,
-    )?;
+    states.set_item("p_force_N_per_m", grid(StateField::NormalForce)?)?;
+    states.set_item("t_force_N_per_m", grid(StateField::TangentialForce)?)?;
+    states.set_item("slip_m", grid(StateField::Slip)?)?;
+    states.set_item("gap_m", grid(StateField::Gap)?)?;
+    states.set_item("state_code", grid(StateField::Code)?)?;
     out.set_item("states", states)?;
     Ok(out)
 }
@@ -538,7 +545,6 @@ fn sweep<'py>(
             axes.push(Axis { param, values: axis_values(param.flag(), &v)? });
         }
     }
-    let total: usize = axes.iter().map(|a| a.values.len()).product();
     let friction = match friction {
         Some((mu_s, mu_d)) => {
             Some(sw::FrictionSweep { mu_s, mu_d, rule: rule.parse().map_err(to_py)?, cycles })
@@ -547,11 +553,8 @@ fn sweep<'py>(
     };
     let (points, _) = run_detached(py, progress, |cancel, poll| {
         let o = sw::SweepOptions { converged, friction, cancel: cancel.clone(), ..Default::default() };
-        let done = std::sync::atomic::AtomicUsize::new(0);
-        sw::run(&scene, &axes, &o, &|_| {
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            poll(k as f64 / total.max(1) as f64)
-        })
+        let forward = poll.forward::<sw::Point>();
+        sw::run(&scene, &axes, &o, Progress::new(&forward))
     })?;
     columns(py, &tribofe::report::sweep::csv(&points, true).map_err(to_py)?)
 }
@@ -577,7 +580,6 @@ fn converge<'py>(
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let families =
         families.iter().map(|f| f.parse()).collect::<tribofe::Result<Vec<cv::Family>>>().map_err(to_py)?;
-    let total = elements.len() * families.len() * n_thick.len();
     let (study, _) = run_detached(py, progress, |cancel, poll| {
         let o = cv::StudyOptions {
             elements,
@@ -588,11 +590,8 @@ fn converge<'py>(
             cancel: cancel.clone(),
             ..Default::default()
         };
-        let done = std::sync::atomic::AtomicUsize::new(0);
-        cv::study(&scene, &o, &|_| {
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            poll(k as f64 / total.max(1) as f64)
-        })
+        let forward = poll.forward::<cv::Run>();
+        cv::study(&scene, &o, Progress::new(&forward))
     })?;
     let out = columns(py, &tribofe::report::convergence::csv(&study).map_err(to_py)?)?;
     out.set_item("summary", tribofe::report::convergence::summary(&study, target))?;
@@ -635,9 +634,7 @@ fn precursors_fe_fig4<'py>(
 ) -> PyResult<Bound<'py, PyList>> {
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let (runs, _) = run_detached(py, progress, |cancel, poll| {
-        let runs = tribofe::studies::precursors_fe::fig4(&scene, r, g, cycles, cancel)?;
-        poll(1.0);
-        Ok(runs)
+        tribofe::studies::precursors_fe::fig4(&scene, r, g, cycles, cancel, poll)
     })?;
     let out = PyList::empty(py);
     for run in runs {
@@ -670,13 +667,8 @@ fn precursors_fe_fig5<'py>(
     use tribofe::studies::precursors_fe::{self as pfe, CellRun};
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let rules = rules.iter().map(|r| r.parse()).collect::<tribofe::Result<Vec<Rule>>>().map_err(to_py)?;
-    let total = resolution * resolution;
     let (cells, _) = run_detached(py, progress, |cancel, poll| {
-        let done = std::sync::atomic::AtomicUsize::new(0);
-        pfe::fig5(&scene, resolution, &rules, max_events, cancel, &|| {
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            poll(k as f64 / total.max(1) as f64)
-        })
+        pfe::fig5(&scene, resolution, &rules, max_events, cancel, poll)
     })?;
     let (mut r, mut g, mut n_model, mut f_max_model, mut rule, mut status) =
         (vec![], vec![], vec![], vec![], vec![], vec![]);
@@ -772,7 +764,7 @@ fn rupture<'py>(
         ..Default::default()
     };
     spec.validate().map_err(to_py)?;
-    let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, &|f| poll(f)))?;
+    let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, poll))?;
     let opt = |v: &[Option<f64>]| v.iter().map(|t| t.unwrap_or(f64::NAN)).collect::<Vec<_>>();
     let out = PyDict::new(py);
     out.set_item("x_m", arr(py, &r.x))?;

@@ -2,7 +2,7 @@
 //! each run in a fresh process so that its peak memory is its own.
 
 use clap::Args as ClapArgs;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use tribofe::linalg::solve::Ordering;
 use tribofe::studies::bench::{self, Case, Config, Row};
 
@@ -99,7 +99,7 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
         }
     }
     if args.row {
-        let row = bench::run_case(args.case[0], &configs[0])?;
+        let row = bench::run_case(args.case[0], &configs[0], Some(&time_outputs))?;
         outln!("{}", row.to_csv());
         return Ok(());
     }
@@ -116,9 +116,9 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
             let runs = (0..args.repeat.max(1))
                 .map(|_| {
                     if args.in_process {
-                        bench::run_case(case, cfg)
+                        bench::run_case(case, cfg, Some(&time_outputs))
                     } else {
-                        bench::run_isolated(&exe, case, cfg)
+                        run_isolated(&exe, case, cfg)
                     }
                 })
                 .collect::<tribofe::Result<Vec<_>>>()?;
@@ -134,11 +134,70 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     }
     out!("{}", bench::table(&rows, &dgemm));
     if let Some(dir) = &args.out {
-        let d = tribofe::io::outdir::OutDir::begin(dir, args.force)?;
-        bench::write_csv(&rows, &dgemm, d.path())?;
+        let d = super::begin_out(dir, args.force)?;
+        write_csv(&rows, &dgemm, d.path())?;
         super::write_run_file(d.path(), None, &tribofe::report::run_file::NoResults {})?;
         d.commit()?;
         outln!("wrote {}/{{bench.csv, dgemm.csv, run.toml}}", dir.display());
     }
     Ok(())
+}
+
+/// Times a strip case's outputs (CSVs and figure, then the VTU field files) written to a
+/// private temporary folder, removed afterwards: (outputs, fields), s.
+fn time_outputs(
+    res: &tribofe::studies::check::CheckResult,
+    sm: &tribofe::scene::SceneModel,
+) -> tribofe::Result<(f64, f64)> {
+    use std::time::Instant;
+    let dir = std::env::temp_dir().join(format!("tribofe-bench-{}", std::process::id()));
+    let clock = Instant::now();
+    let written = tribofe::report::check::write(res, None, &dir);
+    let output = clock.elapsed().as_secs_f64();
+    let clock = Instant::now();
+    let fields = written
+        .and_then(|_| tribofe::report::check::write_fields(res, sm, &dir, tribofe::io::FieldFormat::Vtu));
+    let fields_s = clock.elapsed().as_secs_f64();
+    let _ = std::fs::remove_dir_all(&dir);
+    fields.map(|_| (output, fields_s))
+}
+
+/// Runs `exe bench --row` for one case in a fresh process (so its peak memory is its own)
+/// and parses the row it prints.
+fn run_isolated(exe: &Path, case: Case, cfg: &Config) -> tribofe::Result<Row> {
+    let factor = cfg.supernodal.map_or("auto", |s| if s { "supernodal" } else { "simplicial" });
+    let out = std::process::Command::new(exe)
+        .args([
+            "bench",
+            "--row",
+            "--case",
+            &case.name(),
+            "--threads",
+            &cfg.threads.to_string(),
+            "--factor",
+            factor,
+            "--ordering",
+            bench::ordering_name(&cfg.ordering),
+        ])
+        .stderr(std::process::Stdio::inherit())
+        .output()
+        .map_err(|e| tribofe::Error::io(exe, e))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    if !out.status.success() {
+        return Err(tribofe::Error::input(
+            format!("bench case {}", case.name()),
+            format!("child process failed ({}): {}", out.status, text.trim()),
+        ));
+    }
+    Row::from_csv(text.lines().last().unwrap_or(""))
+}
+
+/// Writes `bench.csv` (one line per run) and `dgemm.csv` into `dir`.
+fn write_csv(rows: &[Row], dgemm: &[(usize, f64)], dir: &Path) -> tribofe::Result<()> {
+    let mut s = format!("{}\n", Row::CSV_HEADER);
+    rows.iter().for_each(|r| s.push_str(&(r.to_csv() + "\n")));
+    tribofe::report::write_atomic(&dir.join("bench.csv"), s.as_bytes())?;
+    let mut d = String::from("threads,gflops\n");
+    dgemm.iter().for_each(|(t, g)| d.push_str(&format!("{t},{g:.2}\n")));
+    tribofe::report::write_atomic(&dir.join("dgemm.csv"), d.as_bytes())
 }

@@ -65,7 +65,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     if let Some(c) = &converged {
         c.self_check()?;
     }
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
+    let dir = super::begin_out(&args.out, args.force)?;
     tribofe::report::check::write(&res, converged.as_ref(), dir.path())?;
     let clock = std::time::Instant::now();
     tribofe::report::check::write_fields(&res, &sm, dir.path(), fields)?;

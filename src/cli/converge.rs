@@ -71,12 +71,15 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    let st = study(&scene, &o, &|r| {
-        bar.set_message(format!("last: {} {} t/{}", r.family.name(), r.element, r.n_thick));
+    let each = |t: &tribofe::Tick<'_, tribofe::studies::convergence::Run>| {
+        if let Some(r) = t.item {
+            bar.set_message(format!("last: {} {} t/{}", r.family.name(), r.element, r.n_thick));
+        }
         bar.inc(1);
-    })?;
+    };
+    let st = study(&scene, &o, tribofe::Progress::new(&each))?;
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
+    let dir = super::begin_out(&args.out, args.force)?;
     tribofe::report::convergence::write(&st, dir.path())?;
     super::write_run_file(dir.path(), Some(&scene), &tribofe::report::run_file::NoResults {})?;
     dir.commit()?;

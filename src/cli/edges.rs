@@ -93,7 +93,8 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} meshes and runs, {elapsed}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    let pre = preslip_graded(&scene, &a.mu, &a.refine, grading, &|| bar.inc(1))?;
+    let tick = |_: &tribofe::Tick| bar.inc(1);
+    let pre = preslip_graded(&scene, &a.mu, &a.refine, grading, tribofe::Progress::new(&tick))?;
     let open = opening_graded(
         &scene,
         a.mu_s,
@@ -103,10 +104,10 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         &a.open_refine,
         &a.h_over_l,
         grading,
-        &|| bar.inc(1),
+        tribofe::Progress::new(&tick),
     )?;
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
+    let dir = super::begin_out(&a.out, a.force)?;
     let files = [
         ("preslip.csv", tribofe::report::edges::preslip_csv(&pre)?),
         #[cfg(feature = "plots")]

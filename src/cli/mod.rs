@@ -252,6 +252,20 @@ pub fn write_run_file_named(
     tribofe::report::write_atomic(&dir.join(name), text.as_bytes())
 }
 
+/// The output folders this process has under way, for the interrupt handler: the binary's own
+/// state (the library has no process-wide switch; each folder has its own [`Cleanup`]).
+static UNDER_WAY: std::sync::Mutex<Vec<tribofe::io::outdir::Cleanup>> = std::sync::Mutex::new(Vec::new());
+
+/// [`tribofe::io::outdir::OutDir::begin`], the folder registered for removal on SIGINT/SIGTERM.
+pub fn begin_out(out: &std::path::Path, force: bool) -> tribofe::Result<tribofe::io::outdir::OutDir> {
+    // Locked first: once the handler holds the list, no new temporary folder is made.
+    let mut list = UNDER_WAY.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = tribofe::io::outdir::OutDir::begin(out, force)?;
+    list.retain(|c| c.is_open());
+    list.push(dir.cleanup());
+    Ok(dir)
+}
+
 /// SIGINT and SIGTERM are taken by one thread (blocked in all others, so this runs before any
 /// thread starts): it removes the temporary output folders and exits with status 130, leaving
 /// every `--out` as it was. Not for `bench`, whose child processes would inherit the mask.
@@ -272,7 +286,11 @@ fn catch_interrupts() {
         let mut sig = 0;
         // SAFETY: `set` is an initialised signal set; sigwait only writes `sig`.
         if unsafe { libc::sigwait(&set, &mut sig) } == 0 {
-            tribofe::io::outdir::remove_temporaries();
+            // Held until exit: no folder is registered after the cleanup.
+            let list = UNDER_WAY.lock().unwrap_or_else(|e| e.into_inner());
+            for c in list.iter() {
+                c.remove();
+            }
             use std::io::Write;
             let _ = writeln!(std::io::stderr(), "error: {}", tribofe::Error::Interrupted);
             std::process::exit(tribofe::error::exit::INTERRUPTED);

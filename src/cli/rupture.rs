@@ -101,12 +101,11 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     );
     bar.set_message("rupture");
     let t0 = std::time::Instant::now();
-    let r = tribofe::dynamics::rupture::run(&spec, &tribofe::Cancel::new(), &|f| {
-        bar.set_position((f * 1000.0) as u64)
-    })?;
+    let tick = |t: &tribofe::Tick| bar.set_position((t.fraction.unwrap_or(0.0) * 1000.0) as u64);
+    let r = tribofe::dynamics::rupture::run(&spec, &tribofe::Cancel::new(), tribofe::Progress::new(&tick))?;
     let secs = t0.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
+    let dir = super::begin_out(&a.out, a.force)?;
     tribofe::report::rupture::write(&r, dir.path())?;
     let results: toml::Table = [
         ("dt_s", toml::Value::from(r.dt)),

@@ -198,7 +198,8 @@ fn run_checked(
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     bar.set_message(format!("slide {}", law.name()));
-    let res = tribofe::studies::slide::run(&scene, &o, &|f| bar.set_position((f * 1000.0) as u64))?;
+    let tick = |t: &tribofe::Tick| bar.set_position((t.fraction.unwrap_or(0.0) * 1000.0) as u64);
+    let res = tribofe::studies::slide::run(&scene, &o, tribofe::Progress::new(&tick))?;
     bar.finish_and_clear();
     let results = [
         ("law", toml::Value::from(law.name())),
@@ -209,7 +210,7 @@ fn run_checked(
         ("k_bonded_N_per_m_per_m", toml::Value::from(res.run.k_bonded)),
     ];
     let header = tribofe::report::run_toml(super::invocation(), &results, &scene)?;
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
+    let dir = super::begin_out(&a.out, a.force)?;
     tribofe::report::slide::write(&res, dir.path(), &header, true)?;
     if a.fields > 0 {
         let picks = tribofe::report::slide::field_states(&res, a.fields);
@@ -337,7 +338,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         ("dynamic_steps", toml::Value::from(res.steps as i64)),
     ];
     let header = tribofe::report::run_toml(super::invocation(), &results, scene)?;
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
+    let dir = super::begin_out(&a.out, a.force)?;
     tribofe::report::dynamic_slide::write(&res, dir.path(), &header, true)?;
     dir.commit()?;
     let run = &res.slide.run;

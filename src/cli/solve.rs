@@ -85,7 +85,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         bal[1]
     );
     let fields = Field::solution_fields(&model, u);
-    let dir = tribofe::io::outdir::OutDir::begin(&a.out, a.force)?;
+    let dir = super::begin_out(&a.out, a.force)?;
     write_vtu(&dir.path().join("fields.vtu"), &r.mesh, &fields, &[])?;
     write_msh(&dir.path().join("fields.msh"), &r.mesh, &fields, &[])?;
     let mut results = toml::Table::new();

@@ -58,12 +58,13 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         ProgressStyle::with_template("{spinner} {pos} runs, {elapsed} {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    let res = run_studies(&scene, &studies, &o, &|m| {
-        bar.set_message(format!("last: {m}"));
+    let tick = |t: &tribofe::Tick| {
+        bar.set_message(format!("last: {}", t.message));
         bar.inc(1);
-    })?;
+    };
+    let res = run_studies(&scene, &studies, &o, tribofe::Progress::new(&tick))?;
     bar.finish_and_clear();
-    let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
+    let dir = super::begin_out(&args.out, args.force)?;
     let mut files = tribofe::report::stability::write(&res, dir.path())?;
     super::write_run_file(dir.path(), Some(&scene), &tribofe::report::run_file::NoResults {})?;
     files.push("run.toml".into());

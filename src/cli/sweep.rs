@@ -148,7 +148,8 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} points, {elapsed} ({per_sec})").unwrap(),
     );
     let clock = std::time::Instant::now();
-    let points = tribofe::studies::sweep::run(&base, &axes, &o, &|_| bar.inc(1))?;
+    let tick = |_: &tribofe::Tick<'_, tribofe::studies::sweep::Point>| bar.inc(1);
+    let points = tribofe::studies::sweep::run(&base, &axes, &o, tribofe::Progress::new(&tick))?;
     bar.finish_and_clear();
     let wall = clock.elapsed().as_secs_f64();
     let name = match shard {
@@ -174,7 +175,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         tribofe::report::write_atomic(&args.out.join(&name), table.as_bytes())?;
         vec![]
     } else {
-        let dir = tribofe::io::outdir::OutDir::begin(&args.out, args.force)?;
+        let dir = super::begin_out(&args.out, args.force)?;
         tribofe::report::write_atomic(&dir.path().join(&name), table.as_bytes())?;
         super::write_run_file(dir.path(), Some(&base), &results)?;
         let maps = tribofe::report::sweep::write_maps(&points, &axes, dir.path())?;

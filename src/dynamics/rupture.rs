@@ -251,9 +251,9 @@ pub struct RuptureResult {
     pub energy: RuptureEnergy,
 }
 
-/// Runs the scene; `progress(fraction)` is called every ~1 % of the steps, where `cancel` is
-/// checked too.
-pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: &dyn Fn(f64)) -> Result<RuptureResult> {
+/// Runs the scene; `progress` gets the fraction of the steps done every ~1 % of them, where
+/// `cancel` is checked too.
+pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress) -> Result<RuptureResult> {
     spec.validate()?;
     let mat = spec.material()?;
     let speeds = WaveSpeeds::new(&mat, spec.density);
@@ -409,7 +409,7 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: &dyn Fn(f64)) -
             d[b] = d_new;
         }
         if step % every == 0 {
-            progress(step as f64 / steps as f64);
+            progress.fraction(step as f64 / steps as f64);
             cancel.check()?;
         }
     }
@@ -446,7 +446,7 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: &dyn Fn(f64)) -
         energy: e,
     };
     r.front_speed = r.front_speed_between(spec.speed_window.0, spec.speed_window.1);
-    progress(1.0);
+    progress.fraction(1.0);
     Ok(r)
 }
 

@@ -187,7 +187,7 @@ fn check_mesh(mesh: &Mesh) -> Result<()> {
 /// Writes `path` through a temporary file in the same directory, renamed into place only
 /// once `body` succeeded and the data reached the disk.
 fn write_atomic(path: &Path, body: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
-    let _writing = crate::io::outdir::write_guard();
+    let _writing = crate::io::outdir::write_guard(path)?;
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),

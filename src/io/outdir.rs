@@ -1,24 +1,76 @@
 //! The output folder as a unit: a run writes into a fresh hidden sibling folder and renames it
 //! into place at the end (an atomic exchange with the previous folder where Linux allows), so
 //! `--out` holds either the previous complete result or the new one, never a mix; on an error
-//! the temporary folder is removed ([`Drop`]), on SIGINT/SIGTERM by [`remove_temporaries`],
+//! the temporary folder is removed ([`Drop`]), on a host's interrupt by the folder's own
+//! [`Cleanup`] handle (the binary keeps one per folder and calls them on SIGINT/SIGTERM),
 //! after a SIGKILL by the next run on that folder ([`remove_orphans`]). An existing folder is
 //! replaced only when tribofe wrote it (its `run.toml`) or the caller forces it ([`check`]).
+//!
+//! No switch acts on the whole process: each folder has its own gate, closed by its own
+//! [`Cleanup`]; writes into other folders (another run of the same host) go on.
 
 use crate::{Error, Result};
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, RwLock, RwLockReadGuard};
+use std::sync::{Arc, Condvar, Mutex};
 
-/// Temporary folders of the runs under way, for [`remove_temporaries`].
-static ACTIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// Where a folder under way stands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Stage {
+    Writing,
+    Committed,
+    Removed,
+}
 
-/// Held (shared) by every write of an output file; taken for good by [`remove_temporaries`],
-/// so nothing is written (nor a removed folder recreated) once an interrupt cleans up.
-static WRITES: RwLock<()> = RwLock::new(());
+/// One folder's gate: its stage and the writes into it in progress.
+#[derive(Debug)]
+struct Gate {
+    root: PathBuf,
+    state: Mutex<(Stage, usize)>,
+    idle: Condvar,
+}
 
-/// The guard every output write holds while it writes.
-pub fn write_guard() -> RwLockReadGuard<'static, ()> {
-    WRITES.read().unwrap_or_else(|e| e.into_inner())
+impl Gate {
+    /// Waits for the writes in progress to end, then runs `f` on the stage, the gate held.
+    fn exclusive<R>(&self, f: impl FnOnce(&mut Stage) -> R) -> R {
+        let mut st = self.state.lock().unwrap_or_else(|e| e.into_inner());
+        while st.1 > 0 {
+            st = self.idle.wait(st).unwrap_or_else(|e| e.into_inner());
+        }
+        f(&mut st.0)
+    }
+}
+
+/// The temporary folders being written in this process, so that a write finds its folder's
+/// gate. Private: only an [`OutDir`] adds to it, only its drop removes from it.
+static GATES: Mutex<Vec<Arc<Gate>>> = Mutex::new(Vec::new());
+
+/// Held by every write of an output file while it writes: a write into a folder whose
+/// [`Cleanup`] ran is refused ([`Error::Interrupted`]) instead of recreating the folder.
+#[derive(Debug)]
+pub struct WriteGuard(Option<Arc<Gate>>);
+
+impl Drop for WriteGuard {
+    fn drop(&mut self) {
+        if let Some(g) = &self.0 {
+            g.state.lock().unwrap_or_else(|e| e.into_inner()).1 -= 1;
+            g.idle.notify_all();
+        }
+    }
+}
+
+/// The guard a writer of `path` holds while it writes (none needed outside the folders under
+/// way; refused once the folder holding `path` was removed by its [`Cleanup`]).
+pub fn write_guard(path: &Path) -> Result<WriteGuard> {
+    let gate =
+        GATES.lock().unwrap_or_else(|e| e.into_inner()).iter().find(|g| path.starts_with(&g.root)).cloned();
+    let Some(gate) = gate else { return Ok(WriteGuard(None)) };
+    let mut st = gate.state.lock().unwrap_or_else(|e| e.into_inner());
+    if st.0 == Stage::Removed {
+        return Err(Error::Interrupted);
+    }
+    st.1 += 1;
+    drop(st);
+    Ok(WriteGuard(Some(gate)))
 }
 
 /// An output folder being written: files go to [`OutDir::path`], [`OutDir::commit`] puts
@@ -27,7 +79,35 @@ pub fn write_guard() -> RwLockReadGuard<'static, ()> {
 pub struct OutDir {
     out: PathBuf,
     tmp: PathBuf,
-    committed: bool,
+    gate: Arc<Gate>,
+}
+
+/// Removes one output folder under way from any thread (a host's interrupt handler): waits for
+/// the writes in progress into it, removes its temporary folder and refuses every later write
+/// into it and its commit ([`Error::Interrupted`]). Does nothing once the folder was
+/// committed or dropped. Cheap to clone; `Send + Sync`.
+#[derive(Debug, Clone)]
+pub struct Cleanup(Arc<Gate>);
+
+impl Cleanup {
+    /// Removes the temporary folder unless committed; returns whether it removed it.
+    pub fn remove(&self) -> bool {
+        self.0.exclusive(|stage| {
+            let was = *stage == Stage::Writing;
+            if was {
+                let _ = std::fs::remove_dir_all(&self.0.root);
+            }
+            if *stage != Stage::Committed {
+                *stage = Stage::Removed;
+            }
+            was
+        })
+    }
+
+    /// Whether the folder is still being written (neither committed nor removed).
+    pub fn is_open(&self) -> bool {
+        self.0.state.lock().unwrap_or_else(|e| e.into_inner()).0 == Stage::Writing
+    }
 }
 
 /// The run file every output folder holds (`run.toml`); a folder is tribofe's when it holds one
@@ -152,15 +232,24 @@ impl OutDir {
     /// `.<name>.tmp-<pid>` (and the parent folders).
     pub fn begin(out: &Path, force: bool) -> Result<OutDir> {
         check(out, force)?;
-        let _writing = write_guard();
         let name = out.file_name().unwrap_or_default().to_string_lossy();
         let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
         std::fs::create_dir_all(parent).map_err(|e| Error::io(parent, e))?;
         let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&tmp); // a leftover of a killed run with this pid
         std::fs::create_dir(&tmp).map_err(|e| Error::io(&tmp, e))?;
-        ACTIVE.lock().unwrap_or_else(|e| e.into_inner()).push(tmp.clone());
-        Ok(OutDir { out: out.to_path_buf(), tmp, committed: false })
+        let gate = Arc::new(Gate {
+            root: tmp.clone(),
+            state: Mutex::new((Stage::Writing, 0)),
+            idle: Condvar::new(),
+        });
+        GATES.lock().unwrap_or_else(|e| e.into_inner()).push(gate.clone());
+        Ok(OutDir { out: out.to_path_buf(), tmp, gate })
+    }
+
+    /// The handle that removes this folder from another thread ([`Cleanup`]).
+    pub fn cleanup(&self) -> Cleanup {
+        Cleanup(self.gate.clone())
     }
 
     /// Where the files go until [`OutDir::commit`].
@@ -169,8 +258,15 @@ impl OutDir {
     }
 
     /// Puts the new folder in place of `out`; the previous folder, if any, is removed.
-    pub fn commit(mut self) -> Result<()> {
-        let _writing = write_guard();
+    pub fn commit(self) -> Result<()> {
+        let gate = self.gate.clone();
+        gate.exclusive(|stage| self.swap_in(stage))
+    }
+
+    fn swap_in(&self, stage: &mut Stage) -> Result<()> {
+        if *stage != Stage::Writing {
+            return Err(Error::Interrupted);
+        }
         let err = |e| Error::io(&self.out, e);
         if self.out.is_dir() {
             if exchange(&self.tmp, &self.out).is_err() {
@@ -180,37 +276,27 @@ impl OutDir {
                 std::fs::rename(&self.tmp, &self.out).map_err(err)?;
                 std::fs::rename(&old, &self.tmp).map_err(err)?;
             }
-            // tmp now holds the previous folder: removed by drop.
         } else {
             std::fs::rename(&self.tmp, &self.out).map_err(err)?;
         }
-        self.committed = true;
+        *stage = Stage::Committed;
+        // tmp holds the previous folder, if any.
         let _ = std::fs::remove_dir_all(&self.tmp);
-        forget(&self.tmp);
         Ok(())
     }
 }
 
 impl Drop for OutDir {
     fn drop(&mut self) {
-        if !self.committed {
-            let _ = std::fs::remove_dir_all(&self.tmp);
-            forget(&self.tmp);
-        }
-    }
-}
-
-fn forget(tmp: &Path) {
-    ACTIVE.lock().unwrap_or_else(|e| e.into_inner()).retain(|p| p != tmp);
-}
-
-/// Removes the temporary folders of the runs under way, after the writes in progress end, and
-/// blocks every later write: call it only just before exiting (on SIGINT/SIGTERM).
-pub fn remove_temporaries() {
-    std::mem::forget(WRITES.write().unwrap_or_else(|e| e.into_inner()));
-    let active = std::mem::take(&mut *ACTIVE.lock().unwrap_or_else(|e| e.into_inner()));
-    for p in active {
-        let _ = std::fs::remove_dir_all(p);
+        // Uncommitted (an error, a panic): the temporary goes, and a late write into it is
+        // refused rather than recreating it.
+        self.gate.exclusive(|stage| {
+            if *stage == Stage::Writing {
+                let _ = std::fs::remove_dir_all(&self.tmp);
+                *stage = Stage::Removed;
+            }
+        });
+        GATES.lock().unwrap_or_else(|e| e.into_inner()).retain(|g| !Arc::ptr_eq(g, &self.gate));
     }
 }
 
@@ -234,4 +320,34 @@ fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
 #[cfg(not(target_os = "linux"))]
 fn exchange(_: &Path, _: &Path) -> std::io::Result<()> {
     Err(std::io::Error::other("no atomic exchange"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_cleanup_removes_its_folder_only_and_refuses_later_writes() {
+        let d = tempfile::tempdir().unwrap();
+        let (a, b) = (
+            OutDir::begin(&d.path().join("a"), false).unwrap(),
+            OutDir::begin(&d.path().join("b"), false).unwrap(),
+        );
+        let (fa, fb) = (a.path().join("x.csv"), b.path().join("x.csv"));
+        std::fs::write(&fa, b"1\n").unwrap();
+        let stop = a.cleanup();
+        assert!(stop.remove() && !a.path().exists());
+        // The removed folder's writes and commit are refused; the other folder goes on.
+        assert!(matches!(write_guard(&fa), Err(Error::Interrupted)));
+        assert!(!a.path().exists(), "a refused write recreated the folder");
+        assert!(matches!(a.commit(), Err(Error::Interrupted)));
+        let g = write_guard(&fb).unwrap();
+        std::fs::write(&fb, b"3\n").unwrap();
+        drop(g);
+        let c = b.cleanup();
+        b.commit().unwrap();
+        assert!(!c.remove(), "a committed folder is kept");
+        assert_eq!(std::fs::read_to_string(d.path().join("b/x.csv")).unwrap(), "3\n");
+        assert!(!d.path().join("a").exists());
+    }
 }

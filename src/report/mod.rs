@@ -32,7 +32,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     if path.extension().is_some_and(|e| e == "csv") {
         refuse_non_finite_cells(path, bytes)?;
     }
-    let _writing = crate::io::outdir::write_guard();
+    let _writing = crate::io::outdir::write_guard(path)?;
     let name = path
         .file_name()
         .ok_or_else(|| Error::input(format!("output path {}", path.display()), "has no file name"))?;

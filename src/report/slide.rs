@@ -48,17 +48,6 @@ pub fn loading_csv(r: &SlideResult) -> Result<String> {
     Ok(s)
 }
 
-/// x/L of the region end farther from the nucleation node.
-fn arrest(r: &SlideResult, node: usize, region: Option<(usize, usize)>) -> f64 {
-    let x = &r.condensed.x;
-    let l = r.condensed.l;
-    match region {
-        Some((a, b)) if node.abs_diff(a) > node.abs_diff(b) => x[a] / l,
-        Some((_, b)) => x[b] / l,
-        None => x[node] / l,
-    }
-}
-
 pub fn events_csv(r: &SlideResult) -> Result<String> {
     let mu_s = r.options.law.mu_s().max(f64::MIN_POSITIVE);
     let n = r.options.n_force;
@@ -78,7 +67,7 @@ pub fn events_csv(r: &SlideResult) -> Result<String> {
             num("F", e.f / (mu_s * n))?,
             num("Fc", r.f_c(e.x) / (mu_s * n))?,
             num("x", c.x[e.node] / c.l)?,
-            num("x", arrest(r, e.node, e.region))?,
+            num("x", r.arrest_over_l(e.node, e.region))?,
             num("x", first)?,
             num("x", last)?,
             num("length", len)?,

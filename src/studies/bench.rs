@@ -1,8 +1,8 @@
 //! Benchmarks of the whole pipeline on two ~1e6-DOF problems: the paper's thin strip (aspect
 //! 200, rigid plate, `check::run`) and a square (`problem::solve`), with the phase breakdown,
 //! sizes, the factorisation's flop rate against the dense DGEMM rate of the machine, and the
-//! peak memory. Peak memory is per process, so callers run each case in a fresh process
-//! ([`run_isolated`]).
+//! peak memory. Peak memory is per process, so callers run each case in a fresh process (the
+//! binary's `bench` spawns itself; this module spawns nothing and writes nothing).
 
 use crate::error::{Error, Result};
 use crate::fem::constraints::{dof, Constraints};
@@ -13,7 +13,6 @@ use crate::linalg::solve::{Ordering, SolverOptions};
 use crate::scene::Scene;
 use crate::studies::check;
 use std::fmt::Write;
-use std::path::Path;
 use std::time::Instant;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -164,8 +163,14 @@ pub fn ordering_name(o: &Ordering) -> &'static str {
     }
 }
 
-/// Runs one case in this process, with a rayon pool of `cfg.threads` threads.
-pub fn run_case(case: Case, cfg: &Config) -> Result<Row> {
+/// Writes a strip case's outputs (the CSVs and figure, then the field files) and returns
+/// their two wall times, s: given by the caller, so that this study imports no report code.
+pub type Outputs<'a> =
+    &'a (dyn Fn(&check::CheckResult, &crate::scene::SceneModel) -> Result<(f64, f64)> + Sync);
+
+/// Runs one case in this process, with a rayon pool of `cfg.threads` threads; a strip case's
+/// outputs are timed by `outputs` (None: not timed).
+pub fn run_case(case: Case, cfg: &Config, outputs: Option<Outputs>) -> Result<Row> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cfg.threads)
         .build()
@@ -185,7 +190,7 @@ pub fn run_case(case: Case, cfg: &Config) -> Result<Row> {
     );
     let clock = Instant::now();
     let mut row = pool.install(|| match case {
-        Case::Strip(ny) => strip(ny, &opts),
+        Case::Strip(ny) => strip(ny, &opts, outputs),
         Case::Square(n) => square(n, &opts),
     })?;
     row.ordering = ordering_name(&cfg.ordering).into();
@@ -193,7 +198,7 @@ pub fn run_case(case: Case, cfg: &Config) -> Result<Row> {
     Ok(row)
 }
 
-fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
+fn strip(ny: usize, opts: &SolverOptions, outputs: Option<Outputs>) -> Result<Row> {
     let mut scene = Scene::default();
     scene.mesh.h = scene.block.thickness / ny as f64;
     scene.mesh.n_thick = Some(ny);
@@ -203,17 +208,10 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
     let numeric_warm = refactorisation_time(|| {
         Ok(check::run_model(&scene, scene.build()?, 0.0, opts, Some(&prepared))?.0.stats.timings.numeric)
     })?;
-    // Outputs go to a private temporary directory, removed afterwards.
-    let dir = std::env::temp_dir().join(format!("tribofe-bench-{}", std::process::id()));
-    let clock = Instant::now();
-    let written = crate::report::check::write(&res, None, &dir);
-    let output = clock.elapsed().as_secs_f64();
-    let clock = Instant::now();
-    let fields = written
-        .and_then(|_| crate::report::check::write_fields(&res, &sm, &dir, crate::io::FieldFormat::Vtu));
-    let fields_s = clock.elapsed().as_secs_f64();
-    let _ = std::fs::remove_dir_all(&dir);
-    fields?;
+    let (output, fields_s) = match outputs {
+        Some(f) => f(&res, &sm).map(|(o, f)| (Some(o), Some(f)))?,
+        None => (None, None),
+    };
     Ok(Row {
         case: Case::Strip(ny).name(),
         threads: opts.threads,
@@ -224,8 +222,8 @@ fn strip(ny: usize, opts: &SolverOptions) -> Result<Row> {
         nnz_l: res.stats.factor_nnz,
         flops: res.stats.factor_flops,
         t: res.stats.timings,
-        output: Some(output),
-        fields: Some(fields_s),
+        output,
+        fields: fields_s,
         peak_mib,
         dense_s: res.stats.dense_seconds,
         numeric_warm,
@@ -308,36 +306,6 @@ pub fn peak_memory_mib() -> Option<f64> {
     Some(kb / 1024.0)
 }
 
-/// Runs `exe bench --row` for one case in a fresh process (so its peak memory is its own)
-/// and parses the row it prints.
-pub fn run_isolated(exe: &Path, case: Case, cfg: &Config) -> Result<Row> {
-    let factor = cfg.supernodal.map_or("auto", |s| if s { "supernodal" } else { "simplicial" });
-    let out = std::process::Command::new(exe)
-        .args([
-            "bench",
-            "--row",
-            "--case",
-            &case.name(),
-            "--threads",
-            &cfg.threads.to_string(),
-            "--factor",
-            factor,
-            "--ordering",
-            ordering_name(&cfg.ordering),
-        ])
-        .stderr(std::process::Stdio::inherit())
-        .output()
-        .map_err(|e| Error::io(exe, e))?;
-    let text = String::from_utf8_lossy(&out.stdout);
-    if !out.status.success() {
-        return Err(Error::input(
-            format!("bench case {}", case.name()),
-            format!("child process failed ({}): {}", out.status, text.trim()),
-        ));
-    }
-    Row::from_csv(text.lines().last().unwrap_or(""))
-}
-
 /// Dense matrix product rate of faer on n x n f64 matrices, GFLOP/s (best of 3).
 pub fn dgemm_gflops(n: usize, threads: usize) -> f64 {
     let a = faer::Mat::<f64>::from_fn(n, n, |i, j| ((i * 7 + j * 13) % 17) as f64 - 8.0);
@@ -387,16 +355,6 @@ pub fn table(rows: &[Row], dgemm: &[(usize, f64)]) -> String {
         let _ = writeln!(s, "dense DGEMM (faer matmul): {th} thread(s) {g:.1} GFLOP/s");
     }
     s
-}
-
-/// Writes `bench.csv` (one line per run) and `dgemm.csv` into `dir`.
-pub fn write_csv(rows: &[Row], dgemm: &[(usize, f64)], dir: &Path) -> Result<()> {
-    let mut s = format!("{}\n", Row::CSV_HEADER);
-    rows.iter().for_each(|r| s.push_str(&(r.to_csv() + "\n")));
-    crate::report::write_atomic(&dir.join("bench.csv"), s.as_bytes())?;
-    let mut d = String::from("threads,gflops\n");
-    dgemm.iter().for_each(|(t, g)| d.push_str(&format!("{t},{g:.2}\n")));
-    crate::report::write_atomic(&dir.join("dgemm.csv"), d.as_bytes())
 }
 
 #[cfg(test)]

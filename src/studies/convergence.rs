@@ -7,9 +7,11 @@ use crate::error::{Error, Result};
 use crate::fem::problem::Timings;
 use crate::linalg::solve::SolverOptions;
 use crate::numeric::{interpolate, line_fit};
+use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::check::{self, CheckResult};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 /// How a family spaces its elements along x (through the thickness both are uniform).
@@ -171,8 +173,9 @@ pub fn run_scene(base: &Scene, o: &StudyOptions, family: Family, element: &str, 
     s
 }
 
-/// Runs the study; `progress` is called after each run (from any thread).
-pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -> Result<Study> {
+/// Runs the study; `progress` gets each finished run and the fraction of the runs done (from
+/// any thread).
+pub fn study(base: &Scene, o: &StudyOptions, progress: Progress<Run>) -> Result<Study> {
     if o.elements.is_empty() || o.families.is_empty() || o.n_thick.is_empty() {
         return Err(Error::input("convergence study", "need at least one element, family and mesh"));
     }
@@ -217,6 +220,7 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
         (b.3.estimate_dofs().unwrap_or(0.0) + b.2 as f64)
             .total_cmp(&(a.3.estimate_dofs().unwrap_or(0.0) + a.2 as f64))
     });
+    let (done, total) = (AtomicUsize::new(0), specs.len());
     let one = |(f, e, n, s): &(Family, String, usize, Scene)| -> Result<Run> {
         o.cancel.check()?;
         let base = crate::memory::in_use_bytes().unwrap_or(0);
@@ -230,7 +234,8 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: &(dyn Fn(&Run) + Sync)) -
             run.peak_mib =
                 crate::memory::peak_bytes().map(|p| p.saturating_sub(base) as f64 / (1u64 << 20) as f64);
         }
-        progress(&run);
+        let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+        progress.item(&run, k as f64 / total as f64);
         Ok(run)
     };
     let mut runs: Vec<Run> = if o.parallel {

@@ -8,9 +8,11 @@ use crate::interface::events::EventKind;
 use crate::interface::events::{NodeState, Phase};
 use crate::interface::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
+use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{compare_paper, run_condensed, SlideOptions, SlideResult};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Pre-slip under N alone, on one mesh.
 #[derive(Debug, Clone)]
@@ -53,21 +55,21 @@ fn meshed(scene: &Scene, k: usize, grading: Option<f64>) -> Scene {
 /// Pre-slip extents at both ends for each coulomb `mu` and each refinement t/h (the scene's
 /// other values kept; the mesh uniform with h = t / (t/h)).
 pub fn preslip(scene: &Scene, mus: &[f64], t_over_h: &[usize]) -> Result<Vec<Preslip>> {
-    preslip_graded(scene, mus, t_over_h, None, &|| {})
+    preslip_graded(scene, mus, t_over_h, None, Progress::none())
 }
 
-/// [`preslip`] on the meshes of `meshed` (`grading` None: uniform); `progress` is called
-/// after each mesh.
+/// [`preslip`] on the meshes of `meshed` (`grading` None: uniform); `progress` gets the
+/// fraction of the meshes done after each.
 pub fn preslip_graded(
     scene: &Scene,
     mus: &[f64],
     t_over_h: &[usize],
     grading: Option<f64>,
-    progress: &(dyn Fn() + Sync),
+    progress: Progress,
 ) -> Result<Vec<Preslip>> {
     let t = scene.block.thickness;
     let mut rows = Vec::new();
-    for &k in t_over_h {
+    for (i, &k) in t_over_h.iter().enumerate() {
         let sc = meshed(scene, k, grading);
         sc.validate()?;
         sc.check_size()?;
@@ -77,7 +79,7 @@ pub fn preslip_graded(
             .map(|&mu| {
                 // Any X ends the normal phase; the state after N alone is the last normal one.
                 let o = SlideOptions { law: Law::coulomb(mu)?, x_max: Some(1e-9 * t), ..Default::default() };
-                let r = run_condensed(&sc, c.clone(), 0.0, &o, &|_| {})?;
+                let r = run_condensed(&sc, c.clone(), 0.0, &o, Progress::none())?;
                 let st = r
                     .run
                     .states
@@ -104,7 +106,7 @@ pub fn preslip_graded(
             })
             .collect::<Result<_>>()?;
         rows.extend(found);
-        progress();
+        progress.fraction((i + 1) as f64 / t_over_h.len() as f64);
     }
     Ok(rows)
 }
@@ -174,11 +176,11 @@ pub fn opening(
     t_over_h: &[usize],
     h_over_l: &[f64],
 ) -> Result<Vec<Opening>> {
-    opening_graded(scene, mu_s, mu_d, rule, t_over_l, t_over_h, h_over_l, None, &|| {})
+    opening_graded(scene, mu_s, mu_d, rule, t_over_l, t_over_h, h_over_l, None, Progress::none())
 }
 
-/// [`opening`] on the meshes of `meshed` (`grading` None: uniform); `progress` is called
-/// after each run.
+/// [`opening`] on the meshes of `meshed` (`grading` None: uniform); `progress` gets the
+/// fraction of the runs done after each (from any thread).
 #[allow(clippy::too_many_arguments)]
 pub fn opening_graded(
     scene: &Scene,
@@ -189,11 +191,12 @@ pub fn opening_graded(
     t_over_h: &[usize],
     h_over_l: &[f64],
     grading: Option<f64>,
-    progress: &(dyn Fn() + Sync),
+    progress: Progress,
 ) -> Result<Vec<Opening>> {
     let law = Law::static_kinetic(mu_s, mu_d, rule)?;
     let l = scene.block.length;
     let mut rows = Vec::new();
+    let (done, total) = (AtomicUsize::new(0), t_over_l.len() * t_over_h.len() * h_over_l.len());
     for (&tl, &k) in t_over_l.iter().flat_map(|tl| t_over_h.iter().map(move |k| (tl, k))) {
         let mut sc = scene.clone();
         sc.block.thickness = tl * l;
@@ -208,7 +211,7 @@ pub fn opening_graded(
                 s.loading.height = hl * l;
                 s.validate()?;
                 let o = SlideOptions { law, cycles: 1, ..Default::default() };
-                let r = run_condensed(&s, c.clone(), 0.0, &o, &|_| {})?;
+                let r = run_condensed(&s, c.clone(), 0.0, &o, Progress::none())?;
                 let cmp = compare_paper(&r).ok_or_else(|| Error::input("edges", "no paper comparison"))?;
                 let first_slide = r
                     .run
@@ -231,7 +234,8 @@ pub fn opening_graded(
                     open_nodes: k_open.map(|k| open_nodes(&r, k)),
                     max_open_nodes: (0..first_slide).map(|k| open_nodes(&r, k)).max().unwrap_or(0),
                 });
-                progress();
+                let i = done.fetch_add(1, Ordering::Relaxed) + 1;
+                progress.fraction(i as f64 / total as f64);
                 row
             })
             .collect::<Result<_>>()?;

@@ -9,5 +9,6 @@ pub mod dynamic_slide;
 pub mod edges;
 pub mod precursors_fe;
 pub mod slide;
+mod slide_arrays;
 pub mod stability;
 pub mod sweep;

@@ -16,6 +16,7 @@ use crate::interface::events::NodeState;
 use crate::interface::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
 use crate::precursors::definition::ZONE_T;
+use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{
     coefficients_from_rg, compare_paper, precursors, run_condensed, PaperComparison, SlideOptions,
@@ -53,14 +54,21 @@ fn sk(scene: &Scene, r: f64, g: f64, rule: Rule) -> Result<Law> {
 }
 
 /// One run with the options `o` on the condensed interface, next to the iteration at (r, g).
-fn fig4_on(scene: &Scene, c: &Condensed, r: f64, g: f64, o: SlideOptions) -> Result<Fig4> {
+fn fig4_on(
+    scene: &Scene,
+    c: &Condensed,
+    r: f64,
+    g: f64,
+    o: SlideOptions,
+    progress: Progress,
+) -> Result<Fig4> {
     let rule = match o.law {
         Law::StaticKinetic { rule, .. } => rule,
         Law::Coulomb { .. } | Law::SlipWeakening { .. } => Rule::Paper,
     };
     // Cycles end as the model's do, when the slip has crossed the interface.
     let o = SlideOptions { end_at_crossing: true, ..o };
-    let res = run_condensed(scene, c.clone(), 0.0, &o, &|_| {})?;
+    let res = run_condensed(scene, c.clone(), 0.0, &o, progress)?;
     let cmp = compare_paper(&res)
         .ok_or_else(|| crate::Error::input("r, g", "outside the accessible square 0 < r, g < 1"))?;
     let p = crate::precursors::Params::new(r, g)?;
@@ -142,32 +150,28 @@ pub fn field_checks(res: &SlideResult) -> FieldChecks {
 }
 
 /// FE fig. 4 for (r, g) on `scene`, one condensation for both rules; each rule's run may
-/// be refused on its own (the overdamped relaxation can cycle without settling).
+/// be refused on its own (the overdamped relaxation can cycle without settling), but a
+/// cancel ends the whole call; `progress` gets the fraction of the two runs done.
 pub fn fig4(
     scene: &Scene,
     r: f64,
     g: f64,
     cycles: usize,
     cancel: &crate::Cancel,
+    progress: Progress,
 ) -> Result<Vec<Result<Fig4>>> {
     let c = condense(scene, &SolverOptions::default())?;
-    Ok(RULES
-        .iter()
-        .map(|&rule| {
-            fig4_on(
-                scene,
-                &c,
-                r,
-                g,
-                SlideOptions {
-                    law: sk(scene, r, g, rule)?,
-                    cycles,
-                    cancel: cancel.clone(),
-                    ..Default::default()
-                },
-            )
-        })
-        .collect())
+    let mut out = Vec::with_capacity(RULES.len());
+    for (k, &rule) in RULES.iter().enumerate() {
+        let part = |x: f64| progress.fraction((k as f64 + x) / RULES.len() as f64);
+        let run = sk(scene, r, g, rule).and_then(|law| {
+            let o = SlideOptions { law, cycles, cancel: cancel.clone(), ..Default::default() };
+            fig4_on(scene, &c, r, g, o, Progress::new(&|t| part(t.fraction.unwrap_or(0.0))))
+        });
+        interrupted(&run)?;
+        out.push(run);
+    }
+    Ok(out)
 }
 
 /// One rule's run in one cell of FE fig. 5.
@@ -233,17 +237,19 @@ pub struct Cell {
 /// n(r, g) at the centres of a `resolution` x `resolution` grid over (0,1)^2 (as
 /// [`crate::precursors::n_map`], g fastest), FE for the `rules` given, cells in parallel, the
 /// interface condensed once; each run stops at the first whole-interface slip or after
-/// `max_events` events (then [`CellRun::Capped`]); `progress` is called after each cell.
+/// `max_events` events (then [`CellRun::Capped`]); `progress` gets the fraction of the cells
+/// done after each (from any thread).
 pub fn fig5(
     scene: &Scene,
     resolution: usize,
     rules: &[Rule],
     max_events: usize,
     cancel: &crate::Cancel,
-    progress: &(dyn Fn() + Sync),
+    progress: Progress,
 ) -> Result<Vec<Cell>> {
     let model = crate::precursors::n_map(resolution)?;
     let c = condense(scene, &SolverOptions::default())?;
+    let done = std::sync::atomic::AtomicUsize::new(0);
     model
         .par_iter()
         .map(|m| {
@@ -260,7 +266,7 @@ pub fn fig5(
                     ..Default::default()
                 };
                 let clock = std::time::Instant::now();
-                let res = run_condensed(scene, c.clone(), 0.0, &o, &|_| {});
+                let res = run_condensed(scene, c.clone(), 0.0, &o, Progress::none());
                 let seconds = clock.elapsed().as_secs_f64();
                 cell.runs[k] = Some(match res {
                     Ok(res) => {
@@ -291,7 +297,8 @@ pub fn fig5(
                     Err(_) => CellRun::Refused { seconds },
                 });
             }
-            progress();
+            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            progress.fraction(k as f64 / model.len() as f64);
             Ok(cell)
         })
         .collect()
@@ -335,16 +342,27 @@ pub struct SeriesRow {
     pub seconds: f64,
 }
 
+/// A row's run refused by the host's cancel ends the whole series (other refusals are the
+/// row's result).
+fn interrupted(fig4: &Result<Fig4>) -> Result<()> {
+    match fig4 {
+        Err(crate::Error::Interrupted) => Err(crate::Error::Interrupted),
+        _ => Ok(()),
+    }
+}
+
 /// The thin-layer limit (issue 18): the `paper` rule at (r, g) on blocks of thickness
 /// t = (t/L) L at the scene's L and H/L, a regular mesh with h = t and 2 elements through t
 /// (the meshes of validation/friction; a scene's mesh file is refused), one cycle each,
-/// thickest first; `progress` after each.
+/// thickest first; `progress` gets the fraction done after each; `cancel` stops it at the next
+/// event.
 pub fn thin_layer(
     scene: &Scene,
     r: f64,
     g: f64,
     t_over_l: &[f64],
-    progress: &(dyn Fn(f64) + Sync),
+    cancel: &crate::Cancel,
+    progress: Progress,
 ) -> Result<Vec<SeriesRow>> {
     if let Some(file) = &scene.mesh.file {
         return Err(crate::Error::input(
@@ -369,6 +387,7 @@ pub fn thin_layer(
         scenes.push(s);
     }
     let mut rows = Vec::with_capacity(ts.len());
+    let total = ts.len();
     for (tl, s) in ts.into_iter().zip(&scenes) {
         let clock = std::time::Instant::now();
         let c = condense(s, &SolverOptions::default())?;
@@ -377,23 +396,32 @@ pub fn thin_layer(
             &c,
             r,
             g,
-            SlideOptions { law: sk(s, r, g, Rule::Paper)?, cycles: 1, ..Default::default() },
+            SlideOptions {
+                law: sk(s, r, g, Rule::Paper)?,
+                cycles: 1,
+                cancel: cancel.clone(),
+                ..Default::default()
+            },
+            Progress::none(),
         );
+        interrupted(&fig4)?;
         rows.push(SeriesRow { value: tl, fig4, seconds: clock.elapsed().as_secs_f64() });
-        progress(tl);
+        progress.fraction(rows.len() as f64 / total as f64);
     }
     Ok(rows)
 }
 
 /// The height of the drive (issue 18): the `paper` rule with the coefficients of (r, g) at
 /// the scene's H kept fixed while H/L takes the given values (so g = 6 mu_d H/L moves with
-/// it; each must stay in (0, 1)); one condensation, one cycle per height.
+/// it; each must stay in (0, 1)); one condensation, one cycle per height; `progress` and
+/// `cancel` as in [`thin_layer`].
 pub fn heights(
     scene: &Scene,
     r: f64,
     g: f64,
     h_over_l: &[f64],
-    progress: &(dyn Fn(f64) + Sync),
+    cancel: &crate::Cancel,
+    progress: Progress,
 ) -> Result<Vec<SeriesRow>> {
     let (_, mu_d) = coefficients_from_rg(scene, r, g)?;
     let l = scene.block.length;
@@ -417,7 +445,7 @@ pub fn heights(
         scenes.push(s);
     }
     let c = condense(scene, &SolverOptions::default())?;
-    let mut rows = Vec::with_capacity(hs.len());
+    let (mut rows, total) = (Vec::with_capacity(hs.len()), hs.len());
     for (hl, s) in hs.into_iter().zip(scenes) {
         let clock = std::time::Instant::now();
         let gh = 6.0 * mu_d * hl;
@@ -426,10 +454,17 @@ pub fn heights(
             &c,
             r,
             gh,
-            SlideOptions { law: sk(&s, r, gh, Rule::Paper)?, cycles: 1, ..Default::default() },
+            SlideOptions {
+                law: sk(&s, r, gh, Rule::Paper)?,
+                cycles: 1,
+                cancel: cancel.clone(),
+                ..Default::default()
+            },
+            Progress::none(),
         );
+        interrupted(&fig4)?;
         rows.push(SeriesRow { value: hl, fig4, seconds: clock.elapsed().as_secs_f64() });
-        progress(hl);
+        progress.fraction(rows.len() as f64 / total as f64);
     }
     Ok(rows)
 }
@@ -536,14 +571,17 @@ pub fn fig5_stats(cells: &[Cell], k: usize, resolution: usize) -> Fig5Stats {
 
 /// Event rule and D_c (issue 18, assumption 4): at (r, g) on `scene`, the `paper` rule (row
 /// value 0) and then slip-weakening with each D_c (m, largest first), one condensation, one
-/// cycle each; a run over `max_events` is refused on its own row.
+/// cycle each; a run over `max_events` is refused on its own row; `progress` and `cancel` as
+/// in [`thin_layer`].
+#[allow(clippy::too_many_arguments)]
 pub fn dc_series(
     scene: &Scene,
     r: f64,
     g: f64,
     dcs: &[f64],
     max_events: usize,
-    progress: &(dyn Fn(f64) + Sync),
+    cancel: &crate::Cancel,
+    progress: Progress,
 ) -> Result<Vec<SeriesRow>> {
     let (ms, md) = coefficients_from_rg(scene, r, g)?;
     let mut ds = dcs.to_vec();
@@ -552,13 +590,14 @@ pub fn dc_series(
         .chain(ds.iter().map(|&d| Law::slip_weakening(ms, md, d).map(|l| (d, l))))
         .collect::<Result<Vec<_>>>()?;
     let c = condense(scene, &SolverOptions::default())?;
-    let mut rows = Vec::with_capacity(laws.len());
+    let (mut rows, total) = (Vec::with_capacity(laws.len()), laws.len());
     for (d, law) in laws {
         let clock = std::time::Instant::now();
-        let fig4 =
-            fig4_on(scene, &c, r, g, SlideOptions { law, cycles: 1, max_events, ..Default::default() });
+        let o = SlideOptions { law, cycles: 1, max_events, cancel: cancel.clone(), ..Default::default() };
+        let fig4 = fig4_on(scene, &c, r, g, o, Progress::none());
+        interrupted(&fig4)?;
         rows.push(SeriesRow { value: d, fig4, seconds: clock.elapsed().as_secs_f64() });
-        progress(d);
+        progress.fraction(rows.len() as f64 / total as f64);
     }
     Ok(rows)
 }

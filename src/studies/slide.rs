@@ -9,8 +9,11 @@ use crate::interface::events::{run as run_events, run_with, NodeState, Operator,
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
 use crate::precursors::definition::{self, Precursors, Slip};
+use crate::progress::Progress;
 use crate::scene::{Scene, SceneModel};
 use std::time::Instant;
+
+pub use super::slide_arrays::{EventColumns, StateField};
 
 /// The options of a frictional run: the event solver's [`Problem`] itself (one options type).
 pub type SlideOptions = Problem;
@@ -152,10 +155,11 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
     Ok(())
 }
 
-/// Condenses and runs (with [`Operator::Banded`]: builds the banded operator instead of the
-/// condensation; the result's `condensed` then has an empty `s` and reports the block
-/// stiffness' symmetry and rigid-motion checks).
-pub fn run(scene: &Scene, o: &SlideOptions, progress: &dyn Fn(f64)) -> Result<SlideResult> {
+/// Condenses and runs; `progress` gets the fraction of the drive done at each event. With
+/// [`Operator::Banded`] it builds the banded operator instead of the condensation; the
+/// result's `condensed` then has an empty `s` and reports the block stiffness' symmetry and
+/// rigid-motion checks.
+pub fn run(scene: &Scene, o: &SlideOptions, progress: Progress) -> Result<SlideResult> {
     check_options(scene, o)?;
     let clock = Instant::now();
     if o.operator == Operator::Banded {
@@ -184,7 +188,7 @@ pub fn run_condensed(
     c: Condensed,
     condense_s: f64,
     o: &SlideOptions,
-    progress: &dyn Fn(f64),
+    progress: Progress,
 ) -> Result<SlideResult> {
     if o.operator == Operator::Banded {
         // The condensation's S is not used: the banded operator is built from the scene.
@@ -214,7 +218,7 @@ pub fn run_condensed(
             "lower --max-events",
         )?;
     }
-    let run = run_events(&s, c.n, o, progress)?;
+    let run = run_events(&s, c.n, o, &|x| progress.fraction(x))?;
     Ok(SlideResult {
         scene: scene.clone(),
         options: o.clone(),
@@ -233,7 +237,7 @@ fn run_banded(
     c: Condensed,
     condense_s: f64,
     o: &SlideOptions,
-    progress: &dyn Fn(f64),
+    progress: Progress,
 ) -> Result<SlideResult> {
     let clock = Instant::now();
     if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
@@ -251,7 +255,7 @@ fn run_banded(
             "lower --max-events",
         )?;
     }
-    let run = run_with(OperatorRef::Banded(op), c.n, o, progress)?;
+    let run = run_with(OperatorRef::Banded(op), c.n, o, &|x| progress.fraction(x))?;
     Ok(SlideResult {
         scene: scene.clone(),
         options: o.clone(),

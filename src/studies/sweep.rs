@@ -7,8 +7,10 @@ use super::check::{converged_scene, CheckResult};
 use crate::error::{Error, Result};
 use crate::fem::problem::Prepared;
 use crate::linalg::solve::SolverOptions;
+use crate::progress::Progress;
 use crate::scene::{Overrides, Scene};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 /// A sweepable scene parameter; its CSV column is named after its flag with its unit.
@@ -273,13 +275,9 @@ pub fn shard_range(total: usize, shard: Option<(usize, usize)>) -> Result<std::o
 }
 
 /// Runs the sweep (or its shard) on `base` with every point's scene validated before any
-/// solve; `progress` is called once per finished point (from any thread).
-pub fn run(
-    base: &Scene,
-    axes: &[Axis],
-    o: &SweepOptions,
-    progress: &(dyn Fn(&Point) + Sync),
-) -> Result<Vec<Point>> {
+/// solve; `progress` gets each finished point and the fraction of the points done (from any
+/// thread).
+pub fn run(base: &Scene, axes: &[Axis], o: &SweepOptions, progress: Progress<Point>) -> Result<Vec<Point>> {
     let mut seen = Vec::new();
     for a in axes {
         if seen.contains(&a.param) {
@@ -329,6 +327,7 @@ pub fn run(
     };
     // The corrected model's inputs, its root search once per Poisson ratio.
     let mut decays: Vec<(f64, f64)> = Vec::new();
+    let (done, total) = (AtomicUsize::new(0), scenes.len().max(1));
     for (_, s) in &scenes {
         let nu = s.block.poisson;
         let k = match decays.iter().find(|d| d.0 == nu) {
@@ -438,14 +437,15 @@ pub fn run(
                                 cancel: o.cancel.clone(),
                                 ..Default::default()
                             };
-                            let r = super::slide::run(&FrictionSweep::scene(&scene), &so, &|_| {})?;
+                            let r = super::slide::run(&FrictionSweep::scene(&scene), &so, Progress::none())?;
                             super::slide::compare_paper(&r)
                         }
                         _ => None,
                     };
                     let wall = shared + clock.elapsed().as_secs_f64();
                     let p = Point { index, scene, result, verdicts, friction, wall };
-                    progress(&p);
+                    let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    progress.item(&p, k as f64 / total as f64);
                     Ok(p)
                 })
                 .collect::<Result<Vec<Point>>>()

@@ -55,7 +55,15 @@ pub fn fe(args: FeArgs) -> tribofe::Result<()> {
     let p = Params::new(args.rg.r, args.rg.g)?;
     let scene = fe_scene(&args.scene, &args.out)?;
     let bar = spinner("precursors --fe: one run per event rule");
-    let runs = tribofe::studies::precursors_fe::fig4(&scene, p.r(), p.g(), cycles, &tribofe::Cancel::new())?;
+    let cancel = tribofe::Cancel::new();
+    let runs = tribofe::studies::precursors_fe::fig4(
+        &scene,
+        p.r(),
+        p.g(),
+        cycles,
+        &cancel,
+        tribofe::Progress::none(),
+    )?;
     bar.finish_and_clear();
     if runs.iter().all(|r| r.is_err()) {
         return runs.into_iter().find_map(|r| r.err()).map_or(Ok(()), Err);
@@ -165,9 +173,16 @@ pub fn fe_map(args: FeMapArgs) -> tribofe::Result<()> {
     let bar = indicatif::ProgressBar::new((resolution * resolution) as u64).with_style(
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cells, {elapsed} (eta {eta})").unwrap(),
     );
+    let tick = |_: &tribofe::Tick| bar.inc(1);
     let clock = std::time::Instant::now();
-    let cells =
-        pfe::fig5(&scene, resolution, &rules, args.max_events, &tribofe::Cancel::new(), &|| bar.inc(1))?;
+    let cells = pfe::fig5(
+        &scene,
+        resolution,
+        &rules,
+        args.max_events,
+        &tribofe::Cancel::new(),
+        tribofe::Progress::new(&tick),
+    )?;
     bar.finish_and_clear();
     let wall = clock.elapsed().as_secs_f64();
     outln!(

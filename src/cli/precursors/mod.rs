@@ -146,7 +146,7 @@ fn write_whole(
     force: bool,
     write: impl FnOnce(&Path, &Invocation) -> tribofe::Result<Vec<PathBuf>>,
 ) -> tribofe::Result<Vec<PathBuf>> {
-    let dir = tribofe::io::outdir::OutDir::begin(out, force)?;
+    let dir = super::begin_out(out, force)?;
     let tmp = dir.path().to_path_buf();
     let files = write(&tmp, super::invocation())?;
     dir.commit()?;

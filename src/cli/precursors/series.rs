@@ -70,7 +70,9 @@ pub fn thin_layer(args: ThinLayerArgs) -> tribofe::Result<()> {
     let p = Params::new(args.rg.r, args.rg.g)?;
     let scene = fe_scene(&args.scene, &args.out)?;
     let bar = counter(ts.len(), "thicknesses");
-    let rows = pfe::thin_layer(&scene, p.r(), p.g(), &ts, &|_| bar.inc(1))?;
+    let tick = |_: &tribofe::Tick| bar.inc(1);
+    let rows =
+        pfe::thin_layer(&scene, p.r(), p.g(), &ts, &tribofe::Cancel::new(), tribofe::Progress::new(&tick))?;
     bar.finish_and_clear();
     let n = precursors::n_precursors(&p)?;
     outln!(
@@ -159,7 +161,15 @@ pub fn heights(args: HeightsArgs) -> tribofe::Result<()> {
     let scene = fe_scene(&args.scene, &args.out)?;
     let mu = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g())?;
     let bar = counter(hs.len(), "heights");
-    let rows = tribofe::studies::precursors_fe::heights(&scene, p.r(), p.g(), &hs, &|_| bar.inc(1))?;
+    let tick = |_: &tribofe::Tick| bar.inc(1);
+    let rows = tribofe::studies::precursors_fe::heights(
+        &scene,
+        p.r(),
+        p.g(),
+        &hs,
+        &tribofe::Cancel::new(),
+        tribofe::Progress::new(&tick),
+    )?;
     bar.finish_and_clear();
     outln!(
         "height of the drive, rule paper, mu_s = {:.4}, mu_d = {:.4} (r = {}), t/L = {:.4}; F in units of mu_s N, x in units of L",
@@ -229,10 +239,16 @@ pub fn dc(args: DcArgs) -> tribofe::Result<()> {
         return Err(Error::input("--max-events", "0: need at least one event per run"));
     }
     let bar = counter(dcs.len() + 1, "runs");
-    let rows =
-        tribofe::studies::precursors_fe::dc_series(&scene, p.r(), p.g(), &dcs, args.max_events, &|_| {
-            bar.inc(1)
-        })?;
+    let tick = |_: &tribofe::Tick| bar.inc(1);
+    let rows = tribofe::studies::precursors_fe::dc_series(
+        &scene,
+        p.r(),
+        p.g(),
+        &dcs,
+        args.max_events,
+        &tribofe::Cancel::new(),
+        tribofe::Progress::new(&tick),
+    )?;
     bar.finish_and_clear();
     if rows.iter().all(|r| r.fig4.is_err()) {
         // Nothing to tabulate or draw: the first refusal says why.

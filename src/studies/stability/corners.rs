@@ -26,7 +26,12 @@ pub fn corners(base: &Scene, o: &Options, progress: Progress) -> Result<CornerSt
         parallel: false,
         ..Default::default()
     };
-    let study = convergence::study(base, &so, &|r| progress(&format!("corners qua4 t/{}", r.n_thick)))?;
+    let each = |t: &crate::Tick<'_, convergence::Run>| {
+        if let Some(r) = t.item {
+            progress.message(&format!("corners qua4 t/{}", r.n_thick))
+        }
+    };
+    let study = convergence::study(base, &so, Progress::new(&each))?;
     // Two successive increments make one ratio: at least three meshes.
     if study.runs.len() < 3 {
         return Err(Error::input(

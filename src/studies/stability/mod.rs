@@ -16,8 +16,8 @@ use std::time::Instant;
 
 pub const STUDIES: [&str; 5] = ["plate", "nu", "shape", "thin", "corners"];
 
-/// Progress callback: called once per solved run with a short description.
-pub type Progress<'a> = &'a (dyn Fn(&str) + Sync);
+/// The studies' progress: a message (a short description) once per solved run.
+pub use crate::progress::Progress;
 
 #[derive(Debug, Clone)]
 pub struct Options {
@@ -135,7 +135,7 @@ impl References {
             s.mesh.n_thick = None;
             s.loading.fn_ratios = vec![0.0, fn_ratio];
             let (r, _) = check::run(&s, &SolverOptions::default())?;
-            progress(&format!("reference qua9 t/{} nu {nu}", self.n_ref));
+            progress.message(&format!("reference qua9 t/{} nu {nu}", self.n_ref));
             self.cache.insert(nu.to_bits(), r);
         }
         Ok(&self.cache[&nu.to_bits()])

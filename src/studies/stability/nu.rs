@@ -79,7 +79,7 @@ pub fn nu(base: &Scene, o: &Options, refs: &mut References, progress: Progress) 
             let (r, _) = check::run(&s, &SolverOptions::default())?;
             let errors = errors_against(&r, &rf);
             let (p0_closed, modulus_ratio) = closed_form(&r)?;
-            progress(&format!("nu {nu} {e}"));
+            progress.message(&format!("nu {nu} {e}"));
             points.push(NuPoint {
                 nu,
                 element: e.clone(),

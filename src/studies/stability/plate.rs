@@ -77,7 +77,7 @@ pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy
         s.mesh.n_thick = Some(n);
         s.plate.model = PlateModel::Rigid;
         let (rigid, _) = check::run(&s, &SolverOptions::default())?;
-        progress(&format!("plate rigid t/{n}"));
+        progress.message(&format!("plate rigid t/{n}"));
         // Only the plate modulus changes along the sweep: one pattern and symbolic analysis.
         let mut e0 = s.clone();
         e0.plate.model = PlateModel::Elastic;
@@ -101,7 +101,7 @@ pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy
                 None
             };
             let refused = run(&e, &SolverOptions::default()).err().map(|e| e.to_string());
-            progress(&format!("plate t/{n} ratio {ratio:.0e}"));
+            progress.message(&format!("plate t/{n} ratio {ratio:.0e}"));
             points.push(PlatePoint { n_thick: n, ratio, raw, failure, refined, refused });
         }
     }

@@ -72,7 +72,7 @@ pub fn shape(
                 }
                 let (r, _) = check::run(&v, &SolverOptions::default())?;
                 let errors = errors_against(&r, &rf);
-                progress(&format!("shape {} {e} 1:{a}", case.name()));
+                progress.message(&format!("shape {} {e} 1:{a}", case.name()));
                 out.push(ShapePoint {
                     case,
                     element: e.clone(),
@@ -92,7 +92,7 @@ pub fn shape(
             let j1 = (0..sm.mesh.n_elements()).map(|k| sm.mesh.min_jacobian(k)).fold(f64::INFINITY, f64::min);
             let (r, _) = check::run_model(&s, sm, 0.0, &SolverOptions::default(), None)?;
             let errors = errors_against(&r, &rf);
-            progress(&format!("shape distorted {e} {amp}"));
+            progress.message(&format!("shape distorted {e} {amp}"));
             out.push(ShapePoint {
                 case: ShapeCase::Distorted,
                 element: e.clone(),
@@ -113,7 +113,7 @@ pub fn shape(
                 (0..sm.mesh.n_elements()).map(|k| sm.mesh.jacobian_quality(k)).fold(f64::INFINITY, f64::min);
             let (r, _) = check::run_model(&v, sm, 0.0, &SolverOptions::default(), None)?;
             let errors = errors_against(&r, &rf);
-            progress(&format!("shape unstructured {e}"));
+            progress.message(&format!("shape unstructured {e}"));
             out.push(ShapePoint {
                 case: ShapeCase::Unstructured,
                 element: e.clone(),

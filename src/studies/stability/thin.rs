@@ -48,7 +48,7 @@ pub fn thin(base: &Scene, o: &Options, progress: Progress) -> Result<Vec<ThinPoi
             crate::numeric::line_fit(mid.iter().map(|&i| (c.x_over_l[i], c.p[i]))).map_or(f64::NAN, |l| l.1);
         let model = c.metrics.slope_model;
         let mt = &c.metrics;
-        progress(&format!("thin t/L {tl:.0e}"));
+        progress.message(&format!("thin t/L {tl:.0e}"));
         out.push(ThinPoint {
             t_over_l: tl,
             nx: c.x_over_l.len() - 1,
