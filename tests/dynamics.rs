@@ -461,7 +461,7 @@ fn dynamic_slide_coulomb_is_the_event_solver() {
     let scene = block(0.4, 0.004, Some(2));
     let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), ..Default::default() };
     let qs = slide::run(&scene, &o, tribofe::Progress::none()).unwrap();
-    let dy = ds::run(&scene, &o, &DynamicOptions::default(), &|_| {}, &|_| {}).unwrap();
+    let dy = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
     let drive = |r: &slide::SlideResult| -> Vec<(f64, f64, usize, EventKind)> {
         r.run
             .events
@@ -504,7 +504,7 @@ fn dynamic_events_balance_energy_and_end_at_rest() {
         x_max: Some(6.0e-6),
         ..Default::default()
     };
-    let r = ds::run(&scene, &o, &DynamicOptions::default(), &|_| {}, &|_| {}).unwrap();
+    let r = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
     let inst = r.events.iter().filter(|e| e.record.weakened).count();
     assert!(inst >= 2, "{inst} instabilities");
     for e in &r.events {

@@ -306,20 +306,17 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     }
     let d = ds::DynamicOptions { damping: a.damping, courant: a.courant, ..Default::default() };
     let clock = std::time::Instant::now();
-    let shown = std::cell::Cell::new(-1i64);
-    let res = ds::run(
-        scene,
-        &o,
-        &d,
-        &|f| {
+    let shown = std::sync::atomic::AtomicI64::new(-1);
+    let tick = |t: &tribofe::Tick| match t.fraction {
+        Some(f) => {
             let pm = (1000.0 * f) as i64;
-            if pm != shown.get() {
-                shown.set(pm);
+            if shown.swap(pm, std::sync::atomic::Ordering::Relaxed) != pm {
                 eprint!("\rslide --dynamics {:5.1} %", 0.1 * pm as f64);
             }
-        },
-        &|m| eprintln!("\r{m}"),
-    )?;
+        }
+        None => eprintln!("\r{}", t.message),
+    };
+    let res = ds::run(scene, &o, &d, tribofe::Progress::new(&tick))?;
     eprintln!();
     let law = o.law;
     let results = [

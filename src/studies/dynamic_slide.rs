@@ -29,6 +29,7 @@ use crate::interface::condense::{boundary_model, condense};
 use crate::interface::events::{Event, EventKind, NodeState, Phase, Run, State, Violations};
 use crate::interface::law::Law;
 use crate::linalg::solve::{Solver, SolverOptions};
+use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{SlideOptions, SlideResult};
 use std::time::Instant;
@@ -231,13 +232,7 @@ fn change_kind(from: Node, to: Node) -> EventKind {
 }
 
 /// The run: quasi-static loading, dynamic instabilities.
-pub fn run(
-    scene: &Scene,
-    o: &SlideOptions,
-    d: &DynamicOptions,
-    progress: &dyn Fn(f64),
-    log: &dyn Fn(&str),
-) -> Result<DynamicResult> {
+pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progress) -> Result<DynamicResult> {
     check(scene, o, d)?;
     let clock = Instant::now();
     let c = condense(scene, &SolverOptions::default())?;
@@ -310,7 +305,7 @@ pub fn run(
     } else {
         f64::INFINITY
     };
-    log(&format!(
+    progress.message(&format!(
         "dynamics: {} DOFs, dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), eta = {eta:.4e} s = {:.3} of critical at the thickness mode omega = {omega_t:.4e} rad/s; c_s = {:.4} m/s; Lambda_0 = {:.3e} m = {:.2} h{}",
         model.n_dofs(),
         d.courant,
@@ -410,7 +405,7 @@ pub fn run(
         o.cancel.check()?;
         let p = settle(&mut st, Load::Drive, lam, ftol, gtol, cap)?;
         let frac = if x_end.is_finite() { lam / x_end } else { 0.0 };
-        progress(frac.max(run.sliding_events as f64 / o.cycles.max(1) as f64).min(1.0));
+        progress.fraction(frac.max(run.sliding_events as f64 / o.cycles.max(1) as f64).min(1.0));
         if !weakens
             && !x_stop.is_finite()
             && lam > 0.0
@@ -433,7 +428,7 @@ pub fn run(
                 run.sliding_events += 1;
                 let s = to_state(&st, &p, lam, Phase::Drive);
                 push(&mut run, simple(EventKind::Sliding, &s, 0), s)?;
-                log(&format!(
+                progress.message(&format!(
                     "steady sliding at mu_d reached stably at X = {lam:.6e} m (no instability): the run ends"
                 ));
                 break 'drive;
@@ -593,7 +588,7 @@ pub fn run(
         });
         let e = dyn_events.last().expect("event");
         if e.record.weakened {
-            log(&format!(
+            progress.message(&format!(
                 "event {} ({kind}) at X = {lam:.5e} m: F/(mu_s N) {:.5} -> {:.5}, slipped {:.4}..{:.4} L, {} steps ({:.3} s), peak slip rate {:.3e} m/s",
                 e.event,
                 e.f_onset / (mu_s * o.n_force),
