@@ -113,7 +113,7 @@ impl Precursors {
 }
 
 /// The precursors among `slips` (a run's instabilities in order) on an interface whose nodes
-/// lie at `x` (m, ascending from the trailing edge x[0]) under a block of thickness `t` (m),
+/// lie at `x` (m, ascending from the trailing edge, `x[0]`) under a block of thickness `t` (m),
 /// up to the first cascade that ends the cycle.
 pub fn find(slips: &[Slip], x: &[f64], t: f64) -> Precursors {
     let mut all = Vec::new();

@@ -1,6 +1,6 @@
 //! Output of `tribofe slide --dynamics`: the files of `slide` (written by [`super::slide`])
 //! plus fronts_t.csv, dyn_events.csv and a space-time diagram of the slip rate along the
-//! interface for each instability (spacetime_<event>.svg, x against time).
+//! interface for each instability (`spacetime_<event>.svg`, x against time).
 
 use super::{finite, write_atomic};
 use crate::error::Result;
@@ -201,7 +201,7 @@ fn colour(v: f32) -> String {
     format!("#{:02x}{:02x}{:02x}", r as u8, g as u8, b as u8)
 }
 
-/// Writes slide's files, fronts_t.csv, dyn_events.csv and one spacetime_<event>.svg per
+/// Writes slide's files, fronts_t.csv, dyn_events.csv and one `spacetime_<event>.svg` per
 /// instability into `dir`.
 pub fn write(r: &DynamicResult, dir: &Path, header: &str, states: bool) -> Result<Vec<PathBuf>> {
     let mut out = super::slide::write(&r.slide, dir, header, states)?;

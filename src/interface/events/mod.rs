@@ -15,7 +15,7 @@
 //! Files, in the order of Siconos' event-driven simulation (law, problem, events manager,
 //! simulation) and deal.II step-41's loop (assemble, update the active set, solve):
 //! - this file: the problem and the run's records (what goes in, what comes out);
-//! - [`kind`]: the vocabulary of events; [`tolerances`]: every tolerance with its reason;
+//! - `kind`: the vocabulary of events; [`tolerances`]: every tolerance with its reason;
 //! - `operator`: the condensed operator S behind a trait (the seam for another
 //!   representation), its dense reference, and the affine solution; `inverse`: the bordered
 //!   dense inverse of the free block that the reference keeps;
@@ -108,7 +108,7 @@ pub struct Problem {
     /// first; for coulomb, None = 5 % past the first whole-interface slip.
     pub x_max: Option<f64>,
     pub cycles: usize,
-    /// Cap on recorded events (a run that needs more stops with [`Error::EventCap`]).
+    /// Cap on recorded events (a run that needs more stops with [`crate::Error::EventCap`]).
     pub max_events: usize,
     /// Keep every event's state (false: only the last, for studies that need the events
     /// alone; a state is ~40 bytes per node).
@@ -129,7 +129,7 @@ pub struct Problem {
     /// differences after ~100 events, so the two give different event counts for long runs
     /// (validation/friction/README.md).
     pub newton: bool,
-    /// Checked at every event: once cancelled, the run returns [`Error::Interrupted`].
+    /// Checked at every event: once cancelled, the run returns [`crate::Error::Interrupted`].
     pub cancel: crate::Cancel,
     /// Which operator solves each state set (results equal to round-off).
     pub operator: Operator,
