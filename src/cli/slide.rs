@@ -263,28 +263,7 @@ fn run_checked(
             o.samples, o.mean_t, o.min_t, o.max_t
         );
     }
-    if let Some(c) = tribofe::studies::slide::compare_paper(&res) {
-        let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
-        outln!(
-            "paper's iteration (r = {:.4}, g = {:.4}): n = {}, F_1 = {:.4}, x_1 = {:.4}, F_max = {:.4}",
-            c.r,
-            c.g,
-            c.n,
-            c.f1,
-            c.x1,
-            c.f_max
-        );
-        outln!(
-            "FE: n = {} (advancing; of {} precursors, {} longer than 5 t), F_1 = {}, x_1 = {}; last peak F = {}",
-            c.n_fe_advancing,
-            c.n_fe,
-            c.n_fe_long,
-            f(c.f1_fe),
-            f(c.x1_fe),
-            f(c.f_max_fe)
-        );
-        outln!("{}", tribofe::precursors::definition::DEFINITION);
-    }
+    print_paper_comparison("FE", &res)?;
     outln!(
         "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml{}}}",
         a.out.display(),
@@ -364,27 +343,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         res.dofs,
         res.steps
     );
-    if let Some(c) = tribofe::studies::slide::compare_paper(&res.slide) {
-        let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
-        outln!(
-            "paper's iteration (r = {:.4}, g = {:.4}): n = {}, F_1 = {:.4}, x_1 = {:.4}, F_max = {:.4}",
-            c.r,
-            c.g,
-            c.n,
-            c.f1,
-            c.x1,
-            c.f_max
-        );
-        outln!(
-            "dynamics: {} precursors before the first whole slip ({} longer than 5 t, {} advancing), first long one F = {}, x = {}; last peak F = {}",
-            c.n_fe,
-            c.n_fe_long,
-            c.n_fe_advancing,
-            f(c.f1_fe),
-            f(c.x1_fe),
-            f(c.f_max_fe)
-        );
-    }
+    print_paper_comparison("dynamics", &res.slide)?;
     let worst_gap = res.events.iter().map(|e| e.f_gap).fold(0.0, f64::max);
     outln!(
         "largest |F_dynamic - F_static| at an event's end {:.2e} mu_s N; wall time {:.2} s (setup {:.2} s, static loading {:.2} s, dynamic events {:.2} s)",
@@ -398,5 +357,31 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
         a.out.display()
     );
+    Ok(())
+}
+
+/// The run's precursors (one definition, printed with them) beside the paper's iteration.
+fn print_paper_comparison(label: &str, res: &tribofe::studies::slide::SlideResult) -> tribofe::Result<()> {
+    let Some(c) = tribofe::studies::slide::compare_paper(res) else { return Ok(()) };
+    let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+    outln!(
+        "paper's iteration (r = {:.4}, g = {:.4}): n = {}, F_1 = {:.4}, x_1 = {:.4}, F_max = {:.4}",
+        c.r,
+        c.g,
+        c.n,
+        c.f1,
+        c.x1,
+        c.f_max
+    );
+    outln!(
+        "{label}: n = {} (advancing; of {} precursors, {} longer than 5 t), F_1 = {}, x_1 = {}; last peak F = {}",
+        c.n_fe_advancing,
+        c.n_fe,
+        c.n_fe_long,
+        f(c.f1_fe),
+        f(c.x1_fe),
+        f(c.f_max_fe)
+    );
+    outln!("{}", tribofe::precursors::definition::DEFINITION);
     Ok(())
 }

@@ -5,7 +5,7 @@ use crate::error::{Error, Result};
 use crate::fem::problem::{solve, LoadCase};
 use crate::interface::banded::BandedOperator;
 use crate::interface::condense::{boundary_model, condense, Condensed};
-use crate::interface::events::{run as run_events, run_with, NodeState, Operator, OperatorRef, Problem, Run};
+use crate::interface::events::{run_with, NodeState, Operator, OperatorRef, Problem, Run};
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
 use crate::precursors::definition::{self, Precursors, Slip};
@@ -197,7 +197,6 @@ pub fn run_condensed(
         let built = condense_s + clock.elapsed().as_secs_f64();
         return run_banded(scene, &op, c, built, o, progress);
     }
-    let clock = Instant::now();
     if c.s.len() != c.dim() * c.dim() {
         return Err(Error::input(
             "condensed system",
@@ -205,6 +204,35 @@ pub fn run_condensed(
         ));
     }
     let s = c.at_height(scene.loading.height);
+    run_on(scene, OperatorRef::Dense(&s), c, condense_s, o, progress)
+}
+
+/// The run on the banded operator; `c` carries the interface's positions and widths (its S,
+/// if any, is not used).
+fn run_banded(
+    scene: &Scene,
+    op: &BandedOperator,
+    c: Condensed,
+    condense_s: f64,
+    o: &SlideOptions,
+    progress: Progress,
+) -> Result<SlideResult> {
+    if op.n != c.n {
+        return Err(Error::input("scene", "the condensed interface does not match the scene's mesh"));
+    }
+    run_on(scene, OperatorRef::Banded(op), c, condense_s, o, progress)
+}
+
+/// The checks every run makes before its first event, then the event solver on `op`.
+fn run_on(
+    scene: &Scene,
+    op: OperatorRef,
+    c: Condensed,
+    condense_s: f64,
+    o: &SlideOptions,
+    progress: Progress,
+) -> Result<SlideResult> {
+    let clock = Instant::now();
     if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
         return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
     }
@@ -218,44 +246,7 @@ pub fn run_condensed(
             "lower --max-events",
         )?;
     }
-    let run = run_events(&s, c.n, o, &|x| progress.fraction(x))?;
-    Ok(SlideResult {
-        scene: scene.clone(),
-        options: o.clone(),
-        condensed: c,
-        run,
-        condense_s,
-        events_s: clock.elapsed().as_secs_f64(),
-    })
-}
-
-/// The run on the banded operator; `c` carries the interface's positions and widths (its S,
-/// if any, is not used).
-fn run_banded(
-    scene: &Scene,
-    op: &BandedOperator,
-    c: Condensed,
-    condense_s: f64,
-    o: &SlideOptions,
-    progress: Progress,
-) -> Result<SlideResult> {
-    let clock = Instant::now();
-    if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
-        return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
-    }
-    check_options(scene, o)?;
-    if op.n != c.n {
-        return Err(Error::input("scene", "the condensed interface does not match the scene's mesh"));
-    }
-    if o.keep_states {
-        crate::scene::limits::check_bytes(
-            o.max_events as f64 * (40.0 * c.n as f64 + 200.0),
-            "--max-events",
-            &format!("keeping up to {} states of {} interface nodes", o.max_events, c.n),
-            "lower --max-events",
-        )?;
-    }
-    let run = run_with(OperatorRef::Banded(op), c.n, o, &|x| progress.fraction(x))?;
+    let run = run_with(op, c.n, o, &|x| progress.fraction(x))?;
     Ok(SlideResult {
         scene: scene.clone(),
         options: o.clone(),
