@@ -1,6 +1,8 @@
-//! The one chart style of the report layer: every SVG figure is drawn through [`render`]
-//! with these fonts, colours and legend, and uses the axis guards here (an empty or infinite
-//! range sends plotters' tick search into an endless loop, so every range is built here).
+//! The report layer's shared chart pieces: the typeface, the palette, [`render`] (the
+//! precursor, slide and edges figures are drawn through it) and the axis guards (an empty or
+//! infinite range sends plotters' tick search into an endless loop). The check, convergence,
+//! stability and sweep figures use the palette and typeface but still draw inline, with
+//! their own caption sizes and legend boxes.
 
 use crate::{Error, Result};
 use plotters::prelude::*;
