@@ -32,6 +32,15 @@ pub struct Args {
     /// Event rule of static-kinetic: paper or overdamped.
     #[arg(long, default_value = "paper")]
     pub rule: String,
+    /// Rule paper: where the slipped region's residual shear mu_d p is taken, `relaxed` (p of
+    /// the relaxed equilibrium) or `pre-event` (p before the event, the paper's mu_d p(x, F_i));
+    /// docs/precursors.md.
+    #[arg(long, default_value = "relaxed", value_parser = ["relaxed", "pre-event"])]
+    pub residual: String,
+    /// Rule paper: `allowed` (a region node may end its relaxation behind where it started,
+    /// counted in events.csv's backslip) or `forbidden` (such a node sticks where it started).
+    #[arg(long, default_value = "allowed", value_parser = ["allowed", "forbidden"])]
+    pub backslip: String,
     /// Slip-weakening distance D_c, m (slip-weakening; the coefficients as for static-kinetic).
     #[arg(long)]
     pub dc: Option<f64>,
@@ -91,7 +100,12 @@ pub struct Args {
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
-    law_choice(a).law(scene)
+    law_choice(a).law(scene)?.with_paper_options(paper_options(a)?)
+}
+
+/// The `paper` rule's conventions as flagged (the defaults unless --residual/--backslip given).
+fn paper_options(a: &Args) -> tribofe::Result<tribofe::interface::law::PaperOptions> {
+    Ok(tribofe::interface::law::PaperOptions { residual: a.residual.parse()?, backslip: a.backslip == "allowed" })
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
@@ -161,6 +175,14 @@ fn run_checked(
     }
     if super::given("rule") && a.law != "static-kinetic" {
         return Err(Error::input("--rule", "the event rule belongs to --law static-kinetic"));
+    }
+    for flag in ["residual", "backslip"] {
+        if super::given(flag) && (a.law != "static-kinetic" || a.rule != "paper") {
+            return Err(Error::input(
+                format!("--{flag}"),
+                "a convention of the paper rule: belongs to --law static-kinetic --rule paper",
+            ));
+        }
     }
     if a.newton && a.law != "slip-weakening" {
         return Err(Error::input("newton", "--newton cannot act without --law slip-weakening"));

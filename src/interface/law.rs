@@ -29,6 +29,56 @@ impl Rule {
     }
 }
 
+/// Where the `paper` rule takes the slipped region's residual shear mu_d p (docs/precursors.md,
+/// "What the `paper` rule does relative to the paper's equations").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Residual {
+    /// mu_d P with P of the relaxed equilibrium (each slipping node's row T = -s mu_d P).
+    #[default]
+    Relaxed,
+    /// mu_d P with P of the state before the event: the paper's mu_d p(x, F_i) (fixed point on
+    /// the slipping rows' coefficients, mu_i = mu_d P_i(before) / P_i).
+    PreEvent,
+}
+
+impl Residual {
+    /// The name `FromStr` reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            Residual::Relaxed => "relaxed",
+            Residual::PreEvent => "pre-event",
+        }
+    }
+}
+
+impl std::str::FromStr for Residual {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "relaxed" => Ok(Residual::Relaxed),
+            "pre-event" => Ok(Residual::PreEvent),
+            _ => Err(Error::input("residual", format!("'{s}': use relaxed or pre-event"))),
+        }
+    }
+}
+
+/// The `paper` rule's conventions where the paper's equations and a 2D relaxation part ways.
+/// The default is the rule as it has always run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PaperOptions {
+    pub residual: Residual,
+    /// Whether a region node may end the relaxation behind where it started (counted in
+    /// `Event::backslip`); false: such a node sticks where it started, the worst first, and
+    /// the rest relax again (as slip weakening and the overdamped rule do).
+    pub backslip: bool,
+}
+
+impl Default for PaperOptions {
+    fn default() -> Self {
+        Self { residual: Residual::Relaxed, backslip: true }
+    }
+}
+
 impl std::str::FromStr for Rule {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {
@@ -45,7 +95,9 @@ pub enum Law {
     /// mu_s = mu_d = mu.
     Coulomb { mu: f64 },
     /// Amontons with mu_s > mu_d and an explicit event rule.
-    StaticKinetic { mu_s: f64, mu_d: f64, rule: Rule },
+    /// `paper`: the rule's conventions (ignored by `overdamped`; [`Law::with_paper_options`]
+    /// refuses them there).
+    StaticKinetic { mu_s: f64, mu_d: f64, rule: Rule, paper: PaperOptions },
     /// Linear slip weakening: a slipping node's coefficient falls from mu_s to mu_d over the
     /// slip distance dc (m) accumulated since it last stuck; a node heals to mu_s when it
     /// sticks again.
@@ -82,7 +134,30 @@ impl Law {
         if mu_d < MU_MIN {
             return Err(too_low("mu-d", mu_d));
         }
-        Ok(Law::StaticKinetic { mu_s, mu_d, rule })
+        Ok(Law::StaticKinetic { mu_s, mu_d, rule, paper: PaperOptions::default() })
+    }
+
+    /// The same law with the `paper` rule's conventions `o`; refused (naming the flag) for any
+    /// other law or rule unless `o` is the default.
+    pub fn with_paper_options(self, o: PaperOptions) -> Result<Law> {
+        match self {
+            Law::StaticKinetic { mu_s, mu_d, rule: Rule::Paper, .. } => {
+                Ok(Law::StaticKinetic { mu_s, mu_d, rule: Rule::Paper, paper: o })
+            }
+            _ if o == PaperOptions::default() => Ok(self),
+            _ => Err(Error::input(
+                if o.residual != Residual::Relaxed { "--residual" } else { "--backslip" },
+                "belongs to --law static-kinetic --rule paper (the overdamped rule already re-sticks a node that would slip backwards, at the current pressure)",
+            )),
+        }
+    }
+
+    /// The `paper` rule's conventions (the default for every other law).
+    pub fn paper_options(&self) -> PaperOptions {
+        match *self {
+            Law::StaticKinetic { paper, .. } => paper,
+            _ => PaperOptions::default(),
+        }
     }
 
     pub fn slip_weakening(mu_s: f64, mu_d: f64, dc: f64) -> Result<Law> {
@@ -133,7 +208,16 @@ impl Law {
     pub fn name(&self) -> String {
         match self {
             Law::Coulomb { .. } => "coulomb".into(),
-            Law::StaticKinetic { rule: Rule::Paper, .. } => "static-kinetic (rule paper)".into(),
+            Law::StaticKinetic { rule: Rule::Paper, paper, .. } => {
+                let mut what = String::from("static-kinetic (rule paper");
+                if paper.residual != Residual::Relaxed {
+                    what += &format!(", residual {}", paper.residual.name());
+                }
+                if !paper.backslip {
+                    what += ", back-slip forbidden";
+                }
+                what + ")"
+            }
             Law::StaticKinetic { rule: Rule::Overdamped, .. } => "static-kinetic (rule overdamped)".into(),
             Law::SlipWeakening { dc, .. } => format!("slip-weakening (D_c = {dc:e} m)"),
         }

@@ -14,6 +14,13 @@ pub struct FeArgs {
     /// whole slip, or a front crossing over several events).
     #[arg(long, default_value_t = 2)]
     pub cycles: usize,
+    /// The paper rule's residual shear mu_d p at the `relaxed` equilibrium or `pre-event`
+    /// (the paper's mu_d p(x, F_i)); as `slide --residual`.
+    #[arg(long, default_value = "relaxed")]
+    pub residual: tribofe::interface::law::Residual,
+    /// The paper rule's back-slip: `allowed` or `forbidden`; as `slide --backslip`.
+    #[arg(long, default_value = "allowed", value_parser = ["allowed", "forbidden"])]
+    pub backslip: String,
     #[command(flatten)]
     pub scene: super::super::check::SceneArgs,
     #[command(flatten)]
@@ -56,11 +63,14 @@ pub fn fe(args: FeArgs) -> tribofe::Result<()> {
     let scene = fe_scene(&args.scene, &args.out)?;
     let bar = spinner("precursors --fe: one run per event rule");
     let cancel = tribofe::Cancel::new();
-    let runs = tribofe::studies::precursors_fe::fig4(
+    let paper =
+        tribofe::interface::law::PaperOptions { residual: args.residual, backslip: args.backslip == "allowed" };
+    let runs = tribofe::studies::precursors_fe::fig4_with(
         &scene,
         p.r(),
         p.g(),
         cycles,
+        paper,
         &cancel,
         tribofe::Progress::none(),
     )?;

@@ -107,7 +107,14 @@ impl Old {
                 (Some(t_over_l), _, _) => Mode::ThinLayer(ThinLayerArgs { t_over_l, rg, scene, out }),
                 (_, Some(h_over_l), _) => Mode::Heights(HeightsArgs { h_over_l, rg, scene, out }),
                 (_, _, Some(dc)) => Mode::Dc(DcArgs { dc, rg, max_events: self.max_events, scene, out }),
-                _ => Mode::Fe(FeArgs { rg, cycles: self.cycles.unwrap_or(2), scene, out }),
+                _ => Mode::Fe(FeArgs {
+                    rg,
+                    cycles: self.cycles.unwrap_or(2),
+                    residual: Default::default(),
+                    backslip: "allowed".into(),
+                    scene,
+                    out,
+                }),
             },
             (false, false) if self.bonded_fields => Mode::Bonded(BondedArgs {
                 rg,

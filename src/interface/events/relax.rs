@@ -7,7 +7,7 @@ use super::operator::Affine;
 use super::simulation::stuck_err;
 use super::{tolerances, NodeState};
 use crate::error::Result;
-use crate::interface::law::{Law, Rule};
+use crate::interface::law::{Law, Residual, Rule};
 
 /// Static-kinetic instability nucleated at i0 at fixed X = lam: applies the rule, relaxes,
 /// re-sticks everything in contact. Returns the slipped region (first, last node), the
@@ -34,7 +34,7 @@ pub(super) fn instability(
         Law::Coulomb { .. } | Law::SlipWeakening { .. } => Rule::Paper,
     };
     let in_region = match rule {
-        Rule::Paper => paper(sv, a, lam, i0)?,
+        Rule::Paper => paper(sv, a, lam, i0, &u_start)?,
         Rule::Overdamped => overdamped(sv, a, lam, i0, &u_start)?,
     };
     // Every node still slipping sticks where it stopped.
@@ -68,8 +68,12 @@ fn dir(t: f64) -> f64 {
 }
 
 /// The paper's rule: the connected region around i0 where the pre-event |T| >= mu_d P slips at
-/// once, then contact is made consistent. Returns the region's nodes.
-fn paper(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<Vec<bool>> {
+/// once, then contact is made consistent. With [`crate::interface::law::PaperOptions`] off
+/// their defaults, by turns after contact: a region node that would end behind where it
+/// started sticks there (the worst first), and the slipping rows' coefficients are moved
+/// to mu_d P(before)/P so that T = -s mu_d P(before) (the paper's mu_d p(x, F_i)). Returns the
+/// region's nodes.
+fn paper(sv: &mut Solver, a: &Affine, lam: f64, i0: usize, u_start: &[f64]) -> Result<Vec<bool>> {
     let n = sv.n();
     let tf = tolerances::STATE * sv.fscale;
     let mu_d = sv.law().mu_d();
@@ -86,14 +90,58 @@ fn paper(sv: &mut Solver, a: &Affine, lam: f64, i0: usize) -> Result<Vec<bool>> 
     let ch: Vec<(usize, NodeState, f64)> =
         (lo..=hi).map(|i| (i, NodeState::Slip(dir(t_start[i])), 0.0)).collect();
     sv.set_many(&ch)?;
-    // Contact consistency of the relaxed state.
+    let opts = sv.law().paper_options();
+    let td = tolerances::STATE * sv.dscale;
+    let p_start: Vec<f64> = (0..n).map(|i| a.f(n + i, lam)).collect();
+    // Contact consistency of the relaxed state; the coefficients' fixed point contracts
+    // geometrically (P moves with F through the tilt, by a fraction of the relaxation).
     for _ in 0..tolerances::max_changes(n) {
         let b = sv.solve()?;
-        if contact(sv, &b, lam)?.is_none() {
-            return Ok((0..n).map(|i| (lo..=hi).contains(&i)).collect());
+        if contact(sv, &b, lam)?.is_some() {
+            continue;
         }
+        if !opts.backslip {
+            let worst = (0..n)
+                .filter_map(|i| match sv.set.states[i] {
+                    NodeState::Slip(s) => Some((i, s * (b.b(i, lam) - u_start[i]))),
+                    _ => None,
+                })
+                .filter(|&(_, d)| d < -td)
+                .min_by(|x, y| x.1.total_cmp(&y.1));
+            if let Some((i, _)) = worst {
+                sv.set_state(i, NodeState::Stick, u_start[i])?;
+                continue;
+            }
+        }
+        if opts.residual == Residual::PreEvent {
+            let change = pre_event_coefficients(sv, &b, lam, &p_start);
+            if !change.is_empty() {
+                sv.set_coefficients(&change)?;
+                continue;
+            }
+        }
+        return Ok((0..n).map(|i| (lo..=hi).contains(&i)).collect());
     }
     Err(stuck_err("paper-rule relaxation (contact)", lam))
+}
+
+/// The slipping rows' coefficients that give T = -s mu_d P(before) at the pressures of `b`,
+/// where they differ from the rows' by more than [`tolerances::COEFFICIENT`] mu_s. A node
+/// whose pressure is within the state tolerance of 0 keeps its row (mu_d P(before)/P has no
+/// finite value there; the contact check opens it if it pulls).
+fn pre_event_coefficients(sv: &Solver, b: &Affine, lam: f64, p_start: &[f64]) -> Vec<(usize, f64, f64, f64)> {
+    let n = sv.n();
+    let tf = tolerances::STATE * sv.fscale;
+    let mu_d = sv.law().mu_d();
+    let tol = tolerances::COEFFICIENT * sv.law().mu_s();
+    (0..n)
+        .filter(|&i| matches!(sv.set.states[i], NodeState::Slip(_)))
+        .filter_map(|i| {
+            let p = b.f(n + i, lam);
+            let mu = mu_d * p_start[i] / p;
+            (p > tf && (mu - sv.mu_slip(i)).abs() > tol).then_some((i, mu, 0.0, 0.0))
+        })
+        .collect()
 }
 
 /// The overdamped cascade: i0 slips, then by turns contact is made consistent, the node

@@ -164,11 +164,26 @@ pub fn fig4(
     cancel: &crate::Cancel,
     progress: Progress,
 ) -> Result<Vec<Result<Fig4>>> {
+    fig4_with(scene, r, g, cycles, crate::interface::law::PaperOptions::default(), cancel, progress)
+}
+
+/// [`fig4`] with the `paper` rule's conventions `paper` (the overdamped run is unchanged).
+pub fn fig4_with(
+    scene: &Scene,
+    r: f64,
+    g: f64,
+    cycles: usize,
+    paper: crate::interface::law::PaperOptions,
+    cancel: &crate::Cancel,
+    progress: Progress,
+) -> Result<Vec<Result<Fig4>>> {
     let c = condense(scene, &SolverOptions::default())?;
     let mut out = Vec::with_capacity(RULES.len());
     for (k, &rule) in RULES.iter().enumerate() {
         let part = |x: f64| progress.fraction((k as f64 + x) / RULES.len() as f64);
-        let run = sk(scene, r, g, rule).and_then(|law| {
+        let run = sk(scene, r, g, rule)
+            .and_then(|law| if rule == Rule::Paper { law.with_paper_options(paper) } else { Ok(law) })
+            .and_then(|law| {
             let o = SlideOptions { law, cycles, cancel: cancel.clone(), ..Default::default() };
             fig4_on(scene, &c, r, g, o, Progress::new(&|t| part(t.fraction.unwrap_or(0.0))))
         });
