@@ -32,6 +32,7 @@ for txt in sorted(glob.glob(os.path.join(D, "runs", "*.txt"))):
     r, g, t, res, back = m.groups()
     text = open(txt).read()
     mm = MODEL.search(text)
+    assert abs(float(mm.group(4)) - 1.0 / (1.0 + float(g) / float(r) * (1.0 - float(r)))) <= 5e-5, txt
     fe = next(FE.match(line) for line in text.splitlines() if FE.match(line))
     wall = float(re.search(r"wall_s = ([0-9.]+)", text).group(1))
     with open(txt[:-4] + ".events.csv") as f:
@@ -50,7 +51,8 @@ for txt in sorted(glob.glob(os.path.join(D, "runs", "*.txt"))):
             "F1_fe": num(fe.group(2)),
             "x1_model": float(mm.group(3)),
             "x1_fe": num(fe.group(3)),
-            "Fmax_model": float(mm.group(4)),
+            # The closed form F_max = 1/(1 + (g/r)(1 - r)) to full precision (slide prints 4 digits).
+            "Fmax_model": 1.0 / (1.0 + float(g) / float(r) * (1.0 - float(r))),
             "peak_first_fe": peaks[0] if peaks else None,
             "peak_last_fe": peaks[-1] if peaks else None,
             "backslip_nodes": sum(int(e["backslip_nodes"]) for e in ev),
