@@ -49,7 +49,12 @@ fn onset_pressure(res: &SlideResult, k: usize, o: PaperOptions) -> Vec<f64> {
     }
     let stop = slide(&res.scene, o, Some(e.x * (1.0 - 1e-12)), 10);
     let last = stop.run.states.last().unwrap();
-    assert!((last.x - e.x * (1.0 - 1e-12)).abs() <= 1e-15 * e.x, "stopped at X {} not before {}", last.x, e.x);
+    assert!(
+        (last.x - e.x * (1.0 - 1e-12)).abs() <= 1e-15 * e.x,
+        "stopped at X {} not before {}",
+        last.x,
+        e.x
+    );
     last.p_force.clone()
 }
 
@@ -71,9 +76,7 @@ fn residual_errors(res: &SlideResult, k: usize, o: PaperOptions) -> (f64, f64, u
 
 /// Instabilities (events with a slipped region) whose region spans at least 3 nodes.
 fn instabilities(res: &SlideResult) -> Vec<usize> {
-    (1..res.run.events.len())
-        .filter(|&k| res.run.events[k].region.is_some_and(|(a, b)| b >= a + 2))
-        .collect()
+    (1..res.run.events.len()).filter(|&k| res.run.events[k].region.is_some_and(|(a, b)| b >= a + 2)).collect()
 }
 
 /// Pre-event residual: right after each of the first instabilities every region node in
@@ -92,14 +95,19 @@ fn pre_event_residual_is_mu_d_p_at_the_onset() {
     for &k in ks.iter().take(4) {
         let (e_pre, e_after, m) = residual_errors(&res, k, pre);
         let (a, b) = res.run.events[k].region.unwrap();
-        assert!(m + 2 >= b - a + 1, "event {k}: only {m} of {} region nodes in contact", b - a + 1);
+        let len = b - a + 1;
+        assert!(m + 2 >= len, "event {k}: only {m} of {len} region nodes in contact");
         assert!(e_pre <= tol(&res), "event {k}: |T| - mu_d P(onset) off by {e_pre:e} N/m");
         gap = gap.max(e_after);
     }
     assert!(gap > 1e3 * tol(&res), "the relaxed form is as close ({gap:e} N/m): the check cannot fail");
     let nd = res.options.law.mu_d() * res.options.n_force;
     for e in res.run.events.iter().filter(|e| e.all_slipping) {
-        assert!((e.f_relaxed - nd).abs() <= 1e3 * tol(&res), "whole slip relaxed to {} not mu_d N = {nd}", e.f_relaxed);
+        assert!(
+            (e.f_relaxed - nd).abs() <= 1e3 * tol(&res),
+            "whole slip relaxed to {} not mu_d N = {nd}",
+            e.f_relaxed
+        );
     }
     // The default: the relaxed closed form holds and the pre-event one does not.
     let def = slide(&sc, PaperOptions::default(), None, 2);
@@ -158,12 +166,18 @@ fn options_belong_to_the_paper_rule() {
     let no_back = PaperOptions { residual: Residual::Relaxed, backslip: false };
     let e = Law::coulomb(0.5).unwrap().with_paper_options(no_back).unwrap_err();
     assert!(e.to_string().contains("--backslip"), "{e}");
-    assert_eq!(Law::coulomb(0.5).unwrap().with_paper_options(PaperOptions::default()).unwrap(), Law::coulomb(0.5).unwrap());
+    assert_eq!(
+        Law::coulomb(0.5).unwrap().with_paper_options(PaperOptions::default()).unwrap(),
+        Law::coulomb(0.5).unwrap()
+    );
     let paper = Law::static_kinetic(ms, md, Rule::Paper).unwrap();
     assert_eq!(paper.paper_options(), PaperOptions::default());
     assert_eq!(paper.name(), "static-kinetic (rule paper)");
     assert_eq!(
-        paper.with_paper_options(PaperOptions { residual: Residual::PreEvent, backslip: false }).unwrap().name(),
+        paper
+            .with_paper_options(PaperOptions { residual: Residual::PreEvent, backslip: false })
+            .unwrap()
+            .name(),
         "static-kinetic (rule paper, residual pre-event, back-slip forbidden)"
     );
     assert!("post-event".parse::<Residual>().is_err());
@@ -171,7 +185,17 @@ fn options_belong_to_the_paper_rule() {
     let out = out.to_str().unwrap();
     for args in [
         &["slide", "--law", "coulomb", "--residual", "pre-event", "--out", out][..],
-        &["slide", "--law", "static-kinetic", "--rule", "overdamped", "--backslip", "forbidden", "--out", out][..],
+        &[
+            "slide",
+            "--law",
+            "static-kinetic",
+            "--rule",
+            "overdamped",
+            "--backslip",
+            "forbidden",
+            "--out",
+            out,
+        ][..],
     ] {
         let ran = common::process::run_with(args, std::time::Duration::from_secs(60), |_| {});
         assert!(!std::path::Path::new(out).exists(), "{args:?}: wrote {out}");
@@ -191,11 +215,8 @@ fn pre_event_settles_where_the_plain_iterate_diverges() {
     let (ms, md) = coefficients_from_rg(&sc, 0.8, 0.5).unwrap();
     let pre = PaperOptions { residual: Residual::PreEvent, backslip: true };
     let law = Law::static_kinetic(ms, md, Rule::Paper).unwrap().with_paper_options(pre).unwrap();
-    let o = SlideOptions {
-        law,
-        operator: tribofe::interface::events::Operator::Banded,
-        ..Default::default()
-    };
+    let o =
+        SlideOptions { law, operator: tribofe::interface::events::Operator::Banded, ..Default::default() };
     let res = run(&sc, &o, tribofe::Progress::none()).unwrap();
     assert_eq!(res.run.sliding_events, 10);
     let nd = md * o.n_force;

@@ -105,7 +105,10 @@ fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
 
 /// The `paper` rule's conventions as flagged (the defaults unless --residual/--backslip given).
 fn paper_options(a: &Args) -> tribofe::Result<tribofe::interface::law::PaperOptions> {
-    Ok(tribofe::interface::law::PaperOptions { residual: a.residual.parse()?, backslip: a.backslip == "allowed" })
+    Ok(tribofe::interface::law::PaperOptions {
+        residual: a.residual.parse()?,
+        backslip: a.backslip == "allowed",
+    })
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {

@@ -123,8 +123,11 @@ fn paper(sv: &mut Solver, a: &Affine, lam: f64, i0: usize, u_start: &[f64]) -> R
             let tol = tolerances::COEFFICIENT * sv.law().mu_s();
             if r.iter().any(|v| v.abs() > tol) {
                 let w = aitken.factor(&nodes, &r);
-                let change: Vec<(usize, f64, f64, f64)> =
-                    nodes.iter().zip(&r).map(|(&i, &ri)| (i, (sv.mu_slip(i) + w * ri).max(0.0), 0.0, 0.0)).collect();
+                let change: Vec<(usize, f64, f64, f64)> = nodes
+                    .iter()
+                    .zip(&r)
+                    .map(|(&i, &ri)| (i, (sv.mu_slip(i) + w * ri).max(0.0), 0.0, 0.0))
+                    .collect();
                 sv.set_coefficients(&change)?;
                 continue;
             }

@@ -184,9 +184,9 @@ pub fn fig4_with(
         let run = sk(scene, r, g, rule)
             .and_then(|law| if rule == Rule::Paper { law.with_paper_options(paper) } else { Ok(law) })
             .and_then(|law| {
-            let o = SlideOptions { law, cycles, cancel: cancel.clone(), ..Default::default() };
-            fig4_on(scene, &c, r, g, o, Progress::new(&|t| part(t.fraction.unwrap_or(0.0))))
-        });
+                let o = SlideOptions { law, cycles, cancel: cancel.clone(), ..Default::default() };
+                fig4_on(scene, &c, r, g, o, Progress::new(&|t| part(t.fraction.unwrap_or(0.0))))
+            });
         interrupted(&run)?;
         out.push(run);
     }
