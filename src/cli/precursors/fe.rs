@@ -128,6 +128,13 @@ pub fn fe(args: FeArgs) -> tribofe::Result<()> {
             Err(e) => outln!("{:>12} refused: {e}", rule.name()),
         }
     }
+    if paper != tribofe::interface::law::PaperOptions::default() {
+        outln!(
+            "rule paper with residual {} and back-slip {} (docs/precursors.md)",
+            paper.residual.name(),
+            if paper.backslip { "allowed" } else { "forbidden" }
+        );
+    }
     outln!("n: every precursor; > 5t: the long ones; n advance: the count to compare with the model's n (the least sensitive to the mesh); F_1, x_1: its first");
     outln!("{}", tribofe::precursors::definition::DEFINITION);
     outln!("\nthe model's field assumptions measured on each run (states before the end of the first cycle; interior: > 5 t from the ends):");
