@@ -8,7 +8,8 @@ pub enum Rule {
     /// Scheibert & Dysthe's rule: the front runs over the connected region around the
     /// nucleation node where the pre-event |tau| >= mu_d p (fields frozen at the event's
     /// force); that region then relaxes to mu_d p with equilibrium restored (the plate held at
-    /// X), and everything sticks again.
+    /// X), and everything sticks again. Which p, and whether a node may end behind where it
+    /// started: [`PaperOptions`].
     Paper,
     /// Quasi-static cascade at fixed X: slipping nodes carry mu_d p (p of the current
     /// iterate), the body re-equilibrates, any stuck node above its threshold joins. A node
