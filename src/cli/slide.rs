@@ -88,6 +88,18 @@ pub struct Args {
     /// Time step as a fraction of the stable step of the mesh and damping (--dynamics).
     #[arg(long, default_value_t = 0.9)]
     pub courant: f64,
+    /// Drive the plate at this constant velocity, m/s, through the whole drive phase
+    /// (--dynamics; needs --x-max; events read off the slip rates). Default: the drive held
+    /// during each event, the loading quasi-static.
+    #[arg(long)]
+    pub drive_velocity: Option<f64>,
+    /// The rigid plate's own mass, kg/m (--dynamics; default 0, the massless plate).
+    #[arg(long)]
+    pub plate_mass: Option<f64>,
+    /// The plate's rotational inertia about its centre of mass at the block top's mid-point,
+    /// kg m^2/m (--dynamics; default 0).
+    #[arg(long)]
+    pub plate_inertia: Option<f64>,
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
@@ -113,6 +125,9 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             ("--density", a.density.is_some()),
             ("--damping", a.damping.is_some()),
             ("--courant", super::given("courant")),
+            ("--drive-velocity", a.drive_velocity.is_some()),
+            ("--plate-mass", a.plate_mass.is_some()),
+            ("--plate-inertia", a.plate_inertia.is_some()),
         ] {
             if on {
                 return Err(Error::input(flag, "acts only with --dynamics"));
@@ -283,7 +298,14 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     if a.fields > 0 {
         return Err(Error::input("--fields", "not written by --dynamics yet"));
     }
-    let d = ds::DynamicOptions { damping: a.damping, courant: a.courant, ..Default::default() };
+    let d = ds::DynamicOptions {
+        damping: a.damping,
+        courant: a.courant,
+        drive_velocity: a.drive_velocity,
+        plate_mass: a.plate_mass.unwrap_or(0.0),
+        plate_inertia: a.plate_inertia.unwrap_or(0.0),
+        ..Default::default()
+    };
     let clock = std::time::Instant::now();
     let shown = std::sync::atomic::AtomicI64::new(-1);
     let tick = |t: &tribofe::Tick| match t.fraction {
@@ -312,6 +334,9 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         ("dt_s", toml::Value::from(res.dt)),
         ("dt_stable_s", toml::Value::from(res.dt_stable)),
         ("dynamic_steps", toml::Value::from(res.steps as i64)),
+        ("drive_velocity_m_per_s", toml::Value::from(a.drive_velocity.unwrap_or(0.0))),
+        ("plate_mass_kg_per_m", toml::Value::from(d.plate_mass)),
+        ("plate_inertia_kg_m2_per_m", toml::Value::from(d.plate_inertia)),
     ];
     let header = tribofe::report::run_toml(super::invocation(), &results, scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
