@@ -2,7 +2,7 @@
 //! quasi-static loading and the held-drive mode, its refusals, and the rigid plate's mass and
 //! rotational inertia (issue 33). Small scenes: a few seconds in release mode.
 
-use tribofe::dynamics::driven::{Contact, DynState, Driven, EventEnergy, Layout};
+use tribofe::dynamics::driven::{Contact, Driven, DynState, EventEnergy, Layout};
 use tribofe::dynamics::explicit::Elastodynamic;
 use tribofe::dynamics::friction::SlipWeakening;
 use tribofe::fem::material::Material;
@@ -58,7 +58,7 @@ fn coulomb_slow_drive_reproduces_the_event_solver() {
     // settles on the static path shifted by the Kelvin-Voigt lag: F - F_qs = eta V k with k
     // at most the bonded stiffness k_bonded (slipping nodes only soften it). So the error is
     // bounded by eta V k_bonded / (mu N) and falls like V (measured: ratios 2.15, 1.90 per
-    // halving, 0.61-0.49 of the bound). Slip extents: within one node of the event solver's
+    // halving, 0.57-0.61 of the bound). Slip extents: within one node of the event solver's
     // state at every sample of the drive (the issue's tolerance; measured: exactly within one).
     let scene = block(0.1, 0.001);
     let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), x_max: Some(3.4e-5), ..Default::default() };
@@ -87,9 +87,12 @@ fn slip_weakening_first_instability_approaches_the_held_drive() {
     // first instability is at X = 4.8064e-6 m, F = 0.77146 mu_s N. A slow drive crosses the
     // static stability limit late by the time the unstable patch takes to grow (a slow
     // passage through a saddle-node: delay ~ V^(2/3) in the normal form) and F rises by
-    // k_bonded V during it; measured |dF| = 4.3e-3, 2.7e-3, 1.9e-3 mu_s N at V = 4, 2,
-    // 1 um/s (order 0.6). Asserted: the error falls at each halving, by at least 1.25, and is
-    // below 2.5e-3 mu_s N at 1 um/s; the onset X within 2.5 % of the held X.
+    // k_bonded V during it; measured |dF| = 4.3e-3, 2.7e-3, 1.9e-3 (1.4e-3 at 0.5 um/s) mu_s N
+    // at V = 4, 2, 1 um/s: a + b V with a = 1.0e-3 mu_s N, the gap between the slow-drive
+    // limit and the held mode's onset (validation/dynamics/velocity). Asserted: the error
+    // falls at each halving, by at least 1.25, and is below 2.5e-3 mu_s N at 1 um/s; the
+    // onset X within 2.5 % of the held X (measured 0.37 %, 0.10 %, 0.04 %); the slipped
+    // region is the held one's (-0.45 .. -0.34 L) at 1 um/s to one node.
     let scene = block(0.1, 0.0005);
     let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
     let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
@@ -99,17 +102,20 @@ fn slip_weakening_first_instability_approaches_the_held_drive() {
         ..Default::default()
     };
     let held = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
-    let first = |r: &ds::DynamicResult| -> (f64, f64) {
+    let first = |r: &ds::DynamicResult| -> (f64, f64, (usize, usize)) {
         let e = r.events.iter().find(|e| e.record.weakened).expect("an instability");
-        (e.x, e.f_onset / mu_s)
+        (e.x, e.f_onset / mu_s, r.slide.run.events[e.event].region.expect("region"))
     };
-    let (x_h, f_h) = first(&held);
+    let (x_h, f_h, reg_h) = first(&held);
     let mut errs = vec![];
     for v in [4e-6, 2e-6, 1e-6] {
         let r = ds::run(&scene, &o, &at_velocity(v), tribofe::Progress::none()).unwrap();
-        let (x, f) = first(&r);
-        eprintln!("V = {v:e}: first instability X = {x:.6e} (held {x_h:.6e}), F = {f:.5} (held {f_h:.5}) mu_s N");
+        let (x, f, reg) = first(&r);
+        eprintln!("V = {v:e}: first instability X = {x:.6e} (held {x_h:.6e}), F = {f:.5} (held {f_h:.5}) mu_s N, nodes {reg:?} (held {reg_h:?})");
         assert!((x - x_h).abs() < 0.025 * x_h, "V = {v}: onset X {x:e} vs {x_h:e}");
+        if v == 1e-6 {
+            assert!(reg.0.abs_diff(reg_h.0) <= 1 && reg.1.abs_diff(reg_h.1) <= 1, "{reg:?} vs {reg_h:?}");
+        }
         errs.push((f - f_h).abs());
     }
     for w in errs.windows(2) {
@@ -189,12 +195,12 @@ fn heavy_plate_rings_at_the_rigid_body_frequencies() {
         })
         .sum();
     let (mp, ic) = (1000.0 * m_block, 1000.0 * i_block);
-    let layout =
-        Layout::new(&model, sm.interface.clone(), c.x.clone(), top.clone(), top_x.clone(), arm)
-            .with_plate(mp, ic)
-            .unwrap();
+    let layout = Layout::new(&model, sm.interface.clone(), c.x.clone(), top.clone(), top_x.clone(), arm)
+        .with_plate(mp, ic)
+        .unwrap();
     assert!((layout.x_c).abs() < 1e-12 * scene.block.length, "x_c {}", layout.x_c);
-    let omega_t = std::f64::consts::PI * tribofe::dynamics::waves::WaveSpeeds::new(&mat, 1000.0).c_s / (2.0 * t);
+    let omega_t =
+        std::f64::consts::PI * tribofe::dynamics::waves::WaveSpeeds::new(&mat, 1000.0).c_s / (2.0 * t);
     let eta = 0.2 / omega_t;
     let dt = 0.9 * model.critical_dt(eta);
     let n_force = 1.0;
@@ -241,22 +247,15 @@ fn heavy_plate_rings_at_the_rigid_body_frequencies() {
             v[2 * k] = arm * qdot[1];
             v[2 * k + 1] = qdot[0] + x * qdot[1];
         }
-        let mut st = DynState {
-            u,
-            v,
-            u_h: 0.0,
-            drive_velocity: 0.0,
-            q: qs,
-            qdot,
-            d: vec![0.0; c.n],
-            time: 0.0,
-        };
+        let mut st =
+            DynState { u, v, u_h: 0.0, drive_velocity: 0.0, q: qs, qdot, d: vec![0.0; c.n], time: 0.0 };
         let mut wk = driven.work(&st);
         let mut e = EventEnergy::default();
         let mut contact = vec![Contact::default(); c.n];
         let proj = |q: [f64; 2]| {
             let dq = [q[0] - qs[0], q[1] - qs[1]];
-            phi[0] * (mpm[0][0] * dq[0] + mpm[0][1] * dq[1]) + phi[1] * (mpm[1][0] * dq[0] + mpm[1][1] * dq[1])
+            phi[0] * (mpm[0][0] * dq[0] + mpm[0][1] * dq[1])
+                + phi[1] * (mpm[1][0] * dq[0] + mpm[1][1] * dq[1])
         };
         let steps = (3.2 * 2.0 * std::f64::consts::PI / w / dt).ceil() as usize;
         let (mut prev, mut crossings) = (proj(st.q), Vec::new());
@@ -303,13 +302,22 @@ fn ledger_closes_with_a_heavy_plate_and_a_moving_drive() {
         ..Default::default()
     };
     let m_block = 1000.0 * 0.1 * scene.block.thickness;
-    let d = DynamicOptions { plate_mass: 10.0 * m_block, plate_inertia: 10.0 * m_block * 0.04 * 0.04, ..at_velocity(4e-6) };
+    let d = DynamicOptions {
+        plate_mass: 10.0 * m_block,
+        plate_inertia: 10.0 * m_block * 0.04 * 0.04,
+        ..at_velocity(4e-6)
+    };
     let r = ds::run(&scene, &o, &d, tribofe::Progress::none()).unwrap();
     assert!(!r.events.is_empty());
     for e in &r.events {
         let en = &e.record.energy;
         let diss = en.friction + en.damping;
         assert!(en.drive != 0.0 && diss > 0.0, "event {}: {en:?}", e.event);
-        assert!(en.residual.abs() <= 1e-8 * diss, "event {}: residual {:e} of {diss:e}", e.event, en.residual);
+        assert!(
+            en.residual.abs() <= 1e-8 * diss,
+            "event {}: residual {:e} of {diss:e}",
+            e.event,
+            en.residual
+        );
     }
 }

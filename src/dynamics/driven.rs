@@ -78,7 +78,8 @@ impl Layout {
             b += m * xk;
             c += m * (xk * xk + arm * arm);
         }
-        let (lo, hi) = top_x.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
+        let (lo, hi) =
+            top_x.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
         let mut lay = Self {
             base,
             x,
@@ -115,10 +116,7 @@ impl Layout {
     pub fn plate_matrix(&self) -> [[f64; 2]; 2] {
         let [a, b, c] = self.top_moments;
         let (mp, xc) = (self.plate_mass, self.x_c);
-        [
-            [a + mp, b + mp * xc],
-            [b + mp * xc, c + mp * (xc * xc + self.arm * self.arm) + self.plate_inertia],
-        ]
+        [[a + mp, b + mp * xc], [b + mp * xc, c + mp * (xc * xc + self.arm * self.arm) + self.plate_inertia]]
     }
 
     /// The plate's own kinetic energy (without the top nodes'), J/m, at rates (V', theta')
@@ -133,7 +131,10 @@ impl Layout {
 pub fn check_plate(mass: f64, inertia: f64) -> Result<()> {
     for (flag, v, unit) in [("--plate-mass", mass, "kg/m"), ("--plate-inertia", inertia, "kg m^2/m")] {
         if !(v.is_finite() && v >= 0.0) {
-            return Err(Error::input(flag, format!("{v}: give a finite value >= 0 {unit} (0: the massless plate)")));
+            return Err(Error::input(
+                flag,
+                format!("{v}: give a finite value >= 0 {unit} (0: the massless plate)"),
+            ));
         }
     }
     Ok(())
@@ -268,7 +269,13 @@ impl Driven<'_> {
     /// One explicit step of the block, its base and the plate; the energies of `e` (kinetic
     /// and strain at its start, the work and dissipation sums) are updated, the base nodes'
     /// forces written to `contact`.
-    pub fn step(&self, st: &mut DynState, w: &mut Work, e: &mut EventEnergy, contact: &mut [Contact]) -> StepOut {
+    pub fn step(
+        &self,
+        st: &mut DynState,
+        w: &mut Work,
+        e: &mut EventEnergy,
+        contact: &mut [Contact],
+    ) -> StepOut {
         let (m, lay, dt, eta) = (self.model, self.layout, self.dt, self.eta);
         let Work { ku, kv, u_prev } = w;
         m.apply_k(&st.u, ku);
@@ -350,10 +357,8 @@ impl Driven<'_> {
             qt += fx * lay.arm + fy * xk;
             fx_sum += fx;
         }
-        let acc = [
-            lay.mp_inv[0][0] * qv + lay.mp_inv[0][1] * qt,
-            lay.mp_inv[1][0] * qv + lay.mp_inv[1][1] * qt,
-        ];
+        let acc =
+            [lay.mp_inv[0][0] * qv + lay.mp_inv[0][1] * qt, lay.mp_inv[1][0] * qv + lay.mp_inv[1][1] * qt];
         let qd_old = st.qdot;
         for j in 0..2 {
             st.qdot[j] += dt * acc[j];
@@ -367,8 +372,7 @@ impl Driven<'_> {
             let (ix, iy) = (2 * k, 2 * k + 1);
             let (vx, vy) = (st.drive_velocity + lay.arm * st.qdot[1], st.qdot[0] + xk * st.qdot[1]);
             if eta > 0.0 {
-                damp +=
-                    dt * (0.5 * (st.v[ix] + vx) * eta * kv[ix] + 0.5 * (st.v[iy] + vy) * eta * kv[iy]);
+                damp += dt * (0.5 * (st.v[ix] + vx) * eta * kv[ix] + 0.5 * (st.v[iy] + vy) * eta * kv[iy]);
             }
             st.v[ix] = vx;
             st.v[iy] = vy;

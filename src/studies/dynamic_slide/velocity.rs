@@ -24,7 +24,7 @@
 
 use super::steps::{add_slip, arrest, change_kind, settle, to_state};
 use super::{check as check_held, DynEvent, DynamicOptions, DynamicResult, DEFAULT_DAMPING_RATIO};
-use crate::dynamics::driven::{Contact, DynState, Driven, EventEnergy, EventRecord, Layout};
+use crate::dynamics::driven::{Contact, Driven, DynState, EventEnergy, EventRecord, Layout};
 use crate::dynamics::explicit::Elastodynamic;
 use crate::dynamics::friction::SlipWeakening;
 use crate::dynamics::statics::{Load, Node, Statics};
@@ -526,8 +526,7 @@ fn close(
         },
         s,
     )?;
-    let (t_arrest, drop_while_moving) =
-        arrest(&rec, f0, f_after).map_or((None, None), |(t, f)| (Some(t), f));
+    let (t_arrest, drop_while_moving) = arrest(&rec, f0, f_after).map_or((None, None), |(t, f)| (Some(t), f));
     dyn_events.push(DynEvent {
         event: run.events.len() - 1,
         x: x0,
