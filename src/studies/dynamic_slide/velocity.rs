@@ -417,15 +417,15 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                 break;
             }
         }
-        if steps as u64 % row_every == 0 && !at_end {
+        if (steps as u64).is_multiple_of(row_every) && !at_end {
             let s = sample_state(&ds, &contact, &window, out.f_drive);
             push(&mut run, simple(EventKind::Sample, &s, 0), s)?;
             window.iter_mut().for_each(|v| *v = false);
         }
-        if steps % 256 == 0 {
+        if steps.is_multiple_of(256) {
             o.cancel.check()?;
         }
-        if steps % 4096 == 0 {
+        if steps.is_multiple_of(4096) {
             progress.fraction((ds.u_h / x_max).min(1.0));
         }
     }
