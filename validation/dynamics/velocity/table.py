@@ -33,7 +33,7 @@ for name in ["held", "4e-6", "2e-6", "1e-6", "5e-7"]:
             cells += ["-", "-"]
         if k == 0:
             cells.append(f"{float(ev[0]['F_onset_over_mu_s_N']) - f_h:+.2e}" if ev else "-")
-    label = "held (quasi-static + dynamic events)" if name == "held" else f"V = {name} m/s"
+    label = "held (quasi-static + dynamic events, coefficients every D_c/20)" if name == "held" else f"V = {name} m/s"
     print(f"| {label} | {len(ev)} | " + " | ".join(cells) + " |")
 
 print()
