@@ -6,7 +6,16 @@
 //! The plate: U_H (the drive point at height H) held, or moved at a constant velocity; its
 //! other two DOFs q = (V, theta) are free under -N and no moment. The top nodes follow it,
 //! u = U_H + theta (H - t), v = V + theta x, so its mass matrix is G^T M_top G from their
-//! lumped masses (the massless-plate limit: the plate itself adds no mass).
+//! lumped masses plus the plate's own: a rigid body of mass m_p (kg/m) and rotational
+//! inertia I_c (kg m^2/m) about its centre of mass, taken at the block top's mid-point
+//! (x_c, t), whose velocity is (U_H' + (H - t) theta', V' + x_c theta'):
+//!
+//! ```text
+//! M_q = G^T M_top G + [[m_p, m_p x_c], [m_p x_c, m_p (x_c^2 + (H - t)^2) + I_c]]
+//! F   = (sum m_top + m_p) (H - t) theta'' - sum_top f_x        (the drive's reaction)
+//! ```
+//!
+//! Default m_p = I_c = 0, the massless-plate limit (see [`Layout::with_plate`]).
 //!
 //! Each base node i at step n, with f = -K (u^n + eta v^{n-1/2}) and v = v^{n-1/2}:
 //!
@@ -35,14 +44,22 @@ pub struct Layout {
     pub top_x: Vec<f64>,
     /// H - t, m: the arm from the block top to the drive point.
     pub arm: f64,
+    /// The plate's own mass (kg/m) and rotational inertia about its centre of mass
+    /// (kg m^2/m), and the centre's x (the block top's mid-point), m.
+    pub plate_mass: f64,
+    pub plate_inertia: f64,
+    pub x_c: f64,
     /// 0 interior, 1 base, 2 top, per node.
     role: Vec<u8>,
-    /// Inverse of the plate's 2x2 mass matrix over (V, theta), and sum m, sum m x over the top.
+    /// sum m, sum m x, sum m (x^2 + arm^2) over the top nodes.
+    top_moments: [f64; 3],
+    /// Inverse of the plate's 2x2 mass matrix over (V, theta).
     mp_inv: [[f64; 2]; 2],
     m_top: f64,
 }
 
 impl Layout {
+    /// The massless plate (m_p = I_c = 0): its inertia is the top nodes' lumped masses.
     pub fn new(
         model: &Elastodynamic,
         base: Vec<usize>,
@@ -61,10 +78,71 @@ impl Layout {
             b += m * xk;
             c += m * (xk * xk + arm * arm);
         }
-        let det = a * c - b * b;
-        let mp_inv = [[c / det, -b / det], [-b / det, a / det]];
-        Self { base, x, top, top_x, arm, role, mp_inv, m_top: a }
+        let (lo, hi) =
+            top_x.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
+        let mut lay = Self {
+            base,
+            x,
+            top,
+            top_x,
+            arm,
+            plate_mass: 0.0,
+            plate_inertia: 0.0,
+            x_c: 0.5 * (lo + hi),
+            role,
+            top_moments: [a, b, c],
+            mp_inv: [[0.0; 2]; 2],
+            m_top: a,
+        };
+        lay.mp_inv = inverse(lay.plate_matrix());
+        lay
     }
+
+    /// The plate as a rigid body of mass `mass` (kg/m) and rotational inertia `inertia`
+    /// (kg m^2/m) about its centre of mass at the block top's mid-point. Both 0 is the
+    /// massless limit: the paper's plate is loaded quasi-statically and has no stated mass,
+    /// and with the drive held or slow the plate only moves with the block, so its mass is
+    /// a free input of the dynamic events (the top nodes' lumped masses, rho h^2 / 2 each,
+    /// already give the plate DOFs a non-singular mass).
+    pub fn with_plate(mut self, mass: f64, inertia: f64) -> Result<Self> {
+        check_plate(mass, inertia)?;
+        self.plate_mass = mass;
+        self.plate_inertia = inertia;
+        self.mp_inv = inverse(self.plate_matrix());
+        Ok(self)
+    }
+
+    /// The plate's 2x2 mass matrix over (V, theta): the top nodes' and the plate's own.
+    pub fn plate_matrix(&self) -> [[f64; 2]; 2] {
+        let [a, b, c] = self.top_moments;
+        let (mp, xc) = (self.plate_mass, self.x_c);
+        [[a + mp, b + mp * xc], [b + mp * xc, c + mp * (xc * xc + self.arm * self.arm) + self.plate_inertia]]
+    }
+
+    /// The plate's own kinetic energy (without the top nodes'), J/m, at rates (V', theta')
+    /// with the drive point moving at `u_h_dot`.
+    pub fn plate_kinetic(&self, u_h_dot: f64, qdot: [f64; 2]) -> f64 {
+        let (vx, vy) = (u_h_dot + self.arm * qdot[1], qdot[0] + self.x_c * qdot[1]);
+        0.5 * self.plate_mass * (vx * vx + vy * vy) + 0.5 * self.plate_inertia * qdot[1] * qdot[1]
+    }
+}
+
+/// Refuses a plate mass or inertia that is negative or not finite.
+pub fn check_plate(mass: f64, inertia: f64) -> Result<()> {
+    for (flag, v, unit) in [("--plate-mass", mass, "kg/m"), ("--plate-inertia", inertia, "kg m^2/m")] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(Error::input(
+                flag,
+                format!("{v}: give a finite value >= 0 {unit} (0: the massless plate)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn inverse(m: [[f64; 2]; 2]) -> [[f64; 2]; 2] {
+    let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    [[m[1][1] / det, -m[0][1] / det], [-m[1][0] / det, m[0][0] / det]]
 }
 
 /// The moving state: displacements at step n, velocities at n - 1/2, the plate, the slips.
@@ -153,7 +231,161 @@ pub struct Driven<'a> {
     pub eta: f64,
 }
 
+/// Scratch of the step: K u, K v and u^{n-1}.
+#[derive(Debug, Clone)]
+pub struct Work {
+    ku: Vec<f64>,
+    kv: Vec<f64>,
+    u_prev: Vec<f64>,
+}
+
+/// A base node after a step: the flat's forces on it (T along x, P along y, N/m), whether
+/// it slipped (friction at its strength) and whether it is open.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Contact {
+    pub t: f64,
+    pub p: f64,
+    pub slipping: bool,
+    pub open: bool,
+}
+
+/// What one step reports: the drive's reaction F (N/m) after it, whether some base node
+/// slipped, and the ledger's balance before it (J/m; constant to round-off).
+#[derive(Debug, Clone, Copy)]
+pub struct StepOut {
+    pub f_drive: f64,
+    pub any_slip: bool,
+    pub balance: f64,
+}
+
 impl Driven<'_> {
+    /// Scratch for [`Self::step`] from the state's u and v (u^{n-1} = u^n - dt v^{n-1/2}).
+    pub fn work(&self, st: &DynState) -> Work {
+        let nd = self.model.n_dofs();
+        let u_prev = (0..nd).map(|i| st.u[i] - self.dt * st.v[i]).collect();
+        Work { ku: vec![0.0; nd], kv: vec![0.0; nd], u_prev }
+    }
+
+    /// One explicit step of the block, its base and the plate; the energies of `e` (kinetic
+    /// and strain at its start, the work and dissipation sums) are updated, the base nodes'
+    /// forces written to `contact`.
+    pub fn step(
+        &self,
+        st: &mut DynState,
+        w: &mut Work,
+        e: &mut EventEnergy,
+        contact: &mut [Contact],
+    ) -> StepOut {
+        let (m, lay, dt, eta) = (self.model, self.layout, self.dt, self.eta);
+        let Work { ku, kv, u_prev } = w;
+        m.apply_k(&st.u, ku);
+        if eta > 0.0 {
+            m.apply_k(&st.v, kv);
+        }
+        let kinetic = m.kinetic_energy(&st.v) + lay.plate_kinetic(st.drive_velocity, st.qdot);
+        let shadow = kinetic + 0.5 * dot(u_prev, ku);
+        let balance = shadow + e.friction + e.damping - e.work_n - e.contact - e.drive;
+        e.kinetic = kinetic;
+        e.strain = 0.5 * dot(u_prev, ku);
+        let force = |i: usize| -ku[i] - if eta > 0.0 { eta * kv[i] } else { 0.0 };
+        // Damping dissipation of this step over every DOF: sum dt vbar eta K v (vbar after
+        // the update, accumulated below per node).
+        let mut damp = 0.0;
+        // Interior nodes.
+        for k in 0..m.n_nodes() {
+            if lay.role[k] != 0 {
+                continue;
+            }
+            let mk = m.mass[k];
+            for c in 0..2 {
+                let i = 2 * k + c;
+                let vm = st.v[i];
+                let vp = vm + dt * force(i) / mk;
+                if eta > 0.0 {
+                    damp += dt * 0.5 * (vm + vp) * eta * kv[i];
+                }
+                st.v[i] = vp;
+                u_prev[i] = st.u[i];
+                st.u[i] += dt * vp;
+            }
+        }
+        // Base nodes: contact and friction.
+        let mut any_slip = false;
+        for (b, &k) in lay.base.iter().enumerate() {
+            let mk = m.mass[k];
+            let (ix, iy) = (2 * k, 2 * k + 1);
+            let (fx, fy) = (force(ix), force(iy));
+            let (vxm, vym) = (st.v[ix], st.v[iy]);
+            let p_star = -fy - mk * vym / dt - mk * st.u[iy] / (dt * dt);
+            let mut slipping = false;
+            let (t, p) = if p_star > 0.0 {
+                let strength = self.friction.mu(st.d[b]) * p_star;
+                let t_star = -fx - mk * vxm / dt;
+                if t_star.abs() <= strength {
+                    (t_star, p_star)
+                } else {
+                    slipping = true;
+                    (strength * t_star.signum(), p_star)
+                }
+            } else {
+                (0.0, 0.0)
+            };
+            any_slip |= slipping;
+            contact[b] = Contact { t, p, slipping, open: p_star <= 0.0 };
+            let vx = vxm + dt * (fx + t) / mk;
+            let vy = if p_star > 0.0 { -st.u[iy] / dt } else { vym + dt * (fy + p) / mk };
+            let (vbx, vby) = (0.5 * (vxm + vx), 0.5 * (vym + vy));
+            e.friction -= dt * vbx * t;
+            e.contact += dt * vby * p;
+            if eta > 0.0 {
+                damp += dt * (vbx * eta * kv[ix] + vby * eta * kv[iy]);
+            }
+            st.v[ix] = vx;
+            st.v[iy] = vy;
+            u_prev[ix] = st.u[ix];
+            u_prev[iy] = st.u[iy];
+            st.u[ix] += dt * vx;
+            st.u[iy] = if p_star > 0.0 { 0.0 } else { st.u[iy] + dt * vy };
+            st.d[b] += dt * vx.abs();
+        }
+        // The plate: generalized forces on (V, theta) from the top nodes, and the drive's
+        // reaction F = (sum m + m_p) arm theta'' - sum f_x (U_H has no acceleration).
+        let (mut qv, mut qt, mut fx_sum) = (-self.n_force, 0.0, 0.0);
+        for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
+            let (fx, fy) = (force(2 * k), force(2 * k + 1));
+            qv += fy;
+            qt += fx * lay.arm + fy * xk;
+            fx_sum += fx;
+        }
+        let acc =
+            [lay.mp_inv[0][0] * qv + lay.mp_inv[0][1] * qt, lay.mp_inv[1][0] * qv + lay.mp_inv[1][1] * qt];
+        let qd_old = st.qdot;
+        for j in 0..2 {
+            st.qdot[j] += dt * acc[j];
+            st.q[j] += dt * st.qdot[j];
+        }
+        let f_drive = (lay.m_top + lay.plate_mass) * lay.arm * acc[1] - fx_sum;
+        e.work_n -= dt * 0.5 * (qd_old[0] + st.qdot[0]) * self.n_force;
+        e.drive += dt * st.drive_velocity * f_drive;
+        st.u_h += dt * st.drive_velocity;
+        for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
+            let (ix, iy) = (2 * k, 2 * k + 1);
+            let (vx, vy) = (st.drive_velocity + lay.arm * st.qdot[1], st.qdot[0] + xk * st.qdot[1]);
+            if eta > 0.0 {
+                damp += dt * (0.5 * (st.v[ix] + vx) * eta * kv[ix] + 0.5 * (st.v[iy] + vy) * eta * kv[iy]);
+            }
+            st.v[ix] = vx;
+            st.v[iy] = vy;
+            u_prev[ix] = st.u[ix];
+            u_prev[iy] = st.u[iy];
+            st.u[ix] = st.u_h + lay.arm * st.q[1];
+            st.u[iy] = st.q[0] + xk * st.q[1];
+        }
+        e.damping += damp;
+        st.time += dt;
+        StepOut { f_drive, any_slip, balance }
+    }
+
     /// Runs until the event settles (or the step cap); `slip_threshold` (m) marks a node as
     /// slipped for the tip and the nucleation node.
     pub fn run_event(
@@ -163,13 +395,10 @@ impl Driven<'_> {
         slip_threshold: f64,
         cancel: &crate::Cancel,
     ) -> Result<EventRecord> {
-        let (m, lay, dt, eta) = (self.model, self.layout, self.dt, self.eta);
-        let nd = m.n_dofs();
+        let (m, lay, dt) = (self.model, self.layout, self.dt);
         let nb = lay.base.len();
-        let (mut ku, mut kv, mut u_prev) = (vec![0.0; nd], vec![0.0; nd], st.u.clone());
-        for i in 0..nd {
-            u_prev[i] = st.u[i] - dt * st.v[i];
-        }
+        let mut w = self.work(st);
+        let mut contact = vec![Contact::default(); nb];
         let d0 = st.d.clone();
         let mut rec = EventRecord {
             slip: vec![0.0; nb],
@@ -183,117 +412,17 @@ impl Driven<'_> {
         let mut quiet = 0usize;
         let mut f_drive = 0.0;
         for step in 0..lim.max_steps {
-            m.apply_k(&st.u, &mut ku);
-            if eta > 0.0 {
-                m.apply_k(&st.v, &mut kv);
-            }
-            let shadow = m.kinetic_energy(&st.v) + 0.5 * dot(&u_prev, &ku);
-            let balance = shadow + e.friction + e.damping - e.work_n - e.contact - e.drive;
-            let b0 = *start_balance.get_or_insert(balance);
-            e.kinetic = m.kinetic_energy(&st.v);
-            e.strain = 0.5 * dot(&u_prev, &ku);
-            e.residual = balance - b0;
+            let out = self.step(st, &mut w, &mut e, &mut contact);
+            let b0 = *start_balance.get_or_insert(out.balance);
+            e.residual = out.balance - b0;
             if step == 0 {
                 e.strain_start = e.strain;
             }
-            let force = |i: usize| -ku[i] - if eta > 0.0 { eta * kv[i] } else { 0.0 };
-            // Damping dissipation of this step over every DOF: sum dt vbar eta K v (vbar after
-            // the update, accumulated below per node).
-            let mut damp = 0.0;
-            // Interior nodes.
-            for k in 0..m.n_nodes() {
-                if lay.role[k] != 0 {
-                    continue;
-                }
-                let mk = m.mass[k];
-                for c in 0..2 {
-                    let i = 2 * k + c;
-                    let vm = st.v[i];
-                    let vp = vm + dt * force(i) / mk;
-                    if eta > 0.0 {
-                        damp += dt * 0.5 * (vm + vp) * eta * kv[i];
-                    }
-                    st.v[i] = vp;
-                    u_prev[i] = st.u[i];
-                    st.u[i] += dt * vp;
-                }
-            }
-            // Base nodes: contact and friction.
-            let mut any_slip = false;
+            f_drive = out.f_drive;
             for (b, &k) in lay.base.iter().enumerate() {
-                let mk = m.mass[k];
-                let (ix, iy) = (2 * k, 2 * k + 1);
-                let (fx, fy) = (force(ix), force(iy));
-                let (vxm, vym) = (st.v[ix], st.v[iy]);
-                let p_star = -fy - mk * vym / dt - mk * st.u[iy] / (dt * dt);
-                let (t, p) = if p_star > 0.0 {
-                    let strength = self.friction.mu(st.d[b]) * p_star;
-                    let t_star = -fx - mk * vxm / dt;
-                    if t_star.abs() <= strength {
-                        (t_star, p_star)
-                    } else {
-                        any_slip = true;
-                        (strength * t_star.signum(), p_star)
-                    }
-                } else {
-                    (0.0, 0.0)
-                };
-                rec.open[b] = p_star <= 0.0;
-                let vx = vxm + dt * (fx + t) / mk;
-                let vy = if p_star > 0.0 { -st.u[iy] / dt } else { vym + dt * (fy + p) / mk };
-                let (vbx, vby) = (0.5 * (vxm + vx), 0.5 * (vym + vy));
-                e.friction -= dt * vbx * t;
-                e.contact += dt * vby * p;
-                if eta > 0.0 {
-                    damp += dt * (vbx * eta * kv[ix] + vby * eta * kv[iy]);
-                }
-                st.v[ix] = vx;
-                st.v[iy] = vy;
-                u_prev[ix] = st.u[ix];
-                u_prev[iy] = st.u[iy];
-                st.u[ix] += dt * vx;
-                st.u[iy] = if p_star > 0.0 { 0.0 } else { st.u[iy] + dt * vy };
-                st.d[b] += dt * vx.abs();
-                rec.peak_rate[b] = rec.peak_rate[b].max(vx.abs());
+                rec.open[b] = contact[b].open;
+                rec.peak_rate[b] = rec.peak_rate[b].max(st.v[2 * k].abs());
             }
-            // The plate: generalized forces on (V, theta) from the top nodes, and the drive's
-            // reaction F = sum m arm theta'' - sum f_x (U_H has no acceleration).
-            let (mut qv, mut qt, mut fx_sum) = (-self.n_force, 0.0, 0.0);
-            for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
-                let (fx, fy) = (force(2 * k), force(2 * k + 1));
-                qv += fy;
-                qt += fx * lay.arm + fy * xk;
-                fx_sum += fx;
-            }
-            let acc = [
-                lay.mp_inv[0][0] * qv + lay.mp_inv[0][1] * qt,
-                lay.mp_inv[1][0] * qv + lay.mp_inv[1][1] * qt,
-            ];
-            let qd_old = st.qdot;
-            for j in 0..2 {
-                st.qdot[j] += dt * acc[j];
-                st.q[j] += dt * st.qdot[j];
-            }
-            f_drive = lay.m_top * lay.arm * acc[1] - fx_sum;
-            e.work_n -= dt * 0.5 * (qd_old[0] + st.qdot[0]) * self.n_force;
-            e.drive += dt * st.drive_velocity * f_drive;
-            st.u_h += dt * st.drive_velocity;
-            for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
-                let (ix, iy) = (2 * k, 2 * k + 1);
-                let (vx, vy) = (st.drive_velocity + lay.arm * st.qdot[1], st.qdot[0] + xk * st.qdot[1]);
-                if eta > 0.0 {
-                    damp +=
-                        dt * (0.5 * (st.v[ix] + vx) * eta * kv[ix] + 0.5 * (st.v[iy] + vy) * eta * kv[iy]);
-                }
-                st.v[ix] = vx;
-                st.v[iy] = vy;
-                u_prev[ix] = st.u[ix];
-                u_prev[iy] = st.u[iy];
-                st.u[ix] = st.u_h + lay.arm * st.q[1];
-                st.u[iy] = st.q[0] + xk * st.q[1];
-            }
-            e.damping += damp;
-            st.time += dt;
             // The event's slip, the nucleation node, the tip.
             for b in 0..nb {
                 rec.slip[b] = st.d[b] - d0[b];
@@ -314,8 +443,8 @@ impl Driven<'_> {
                 rec.tip.push(tip(&rec, &lay.x));
                 rec.rates.push(lay.base.iter().map(|&k| st.v[2 * k].abs() as f32).collect());
             }
-            quiet = if any_slip { 0 } else { quiet + 1 };
-            let ke = m.kinetic_energy(&st.v);
+            quiet = if out.any_slip { 0 } else { quiet + 1 };
+            let ke = m.kinetic_energy(&st.v) + lay.plate_kinetic(st.drive_velocity, st.qdot);
             let dissipated = e.friction + e.damping;
             if quiet >= lim.quiet_steps && ke <= lim.ke_fraction * dissipated.max(f64::MIN_POSITIVE) {
                 rec.settled = true;
@@ -337,7 +466,7 @@ impl Driven<'_> {
                 hint: "lower the time step (--courant) or check the scene".into(),
             });
         }
-        e.kinetic_end = m.kinetic_energy(&st.v);
+        e.kinetic_end = m.kinetic_energy(&st.v) + lay.plate_kinetic(st.drive_velocity, st.qdot);
         rec.energy = e;
         rec.t.push(rec.duration);
         rec.force.push(f_drive);

@@ -32,10 +32,13 @@ pub enum EventKind {
     Creep,
     /// The end of the run (X reached x-max).
     End,
+    /// A state sampled along a constant-velocity drive (`slide --dynamics --drive-velocity`):
+    /// a row of the loading curve, not an event.
+    Sample,
 }
 
 impl EventKind {
-    pub const ALL: [EventKind; 13] = [
+    pub const ALL: [EventKind; 14] = [
         EventKind::NormalLoad,
         EventKind::EdgePreslip,
         EventKind::Precursor,
@@ -49,6 +52,7 @@ impl EventKind {
         EventKind::Close,
         EventKind::Creep,
         EventKind::End,
+        EventKind::Sample,
     ];
 
     /// The name written in `events.csv`.
@@ -67,6 +71,7 @@ impl EventKind {
             EventKind::Close => "close",
             EventKind::Creep => "creep",
             EventKind::End => "end",
+            EventKind::Sample => "sample",
         }
     }
 

@@ -35,6 +35,7 @@ use crate::studies::slide::{SlideOptions, SlideResult};
 use std::time::Instant;
 
 mod steps;
+pub mod velocity;
 use steps::{add_slip, add_slip_done, arrest, change_kind, settle, to_state};
 
 /// The dynamic options beside the slide options.
@@ -48,11 +49,30 @@ pub struct DynamicOptions {
     pub ke_fraction: f64,
     /// Cap on the steps of one event, in thickness-mode periods.
     pub max_periods: f64,
+    /// Constant drive velocity dU_H/dt, m/s (None: the drive held during each event and the
+    /// loading quasi-static; see [`velocity`]).
+    pub drive_velocity: Option<f64>,
+    /// Cap on the explicit steps of a constant-velocity run (X_max / V / dt).
+    pub max_velocity_steps: u64,
+    /// The rigid plate's own mass (kg/m) and rotational inertia about its centre of mass at
+    /// the block top's mid-point (kg m^2/m); 0: the massless limit
+    /// ([`crate::dynamics::driven::Layout::with_plate`]).
+    pub plate_mass: f64,
+    pub plate_inertia: f64,
 }
 
 impl Default for DynamicOptions {
     fn default() -> Self {
-        Self { damping: None, courant: 0.9, ke_fraction: 1e-6, max_periods: 20_000.0 }
+        Self {
+            damping: None,
+            courant: 0.9,
+            ke_fraction: 1e-6,
+            max_periods: 20_000.0,
+            drive_velocity: None,
+            max_velocity_steps: velocity::MAX_STEPS,
+            plate_mass: 0.0,
+            plate_inertia: 0.0,
+        }
     }
 }
 
@@ -166,6 +186,9 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<()> 
 
 /// The run: quasi-static loading, dynamic instabilities.
 pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progress) -> Result<DynamicResult> {
+    if d.drive_velocity.is_some() {
+        return velocity::run(scene, o, d, progress);
+    }
     check(scene, o, d)?;
     let clock = Instant::now();
     let c = condense(scene, &SolverOptions::default())?;
@@ -231,7 +254,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     };
     let top: Vec<usize> = sm.mesh.set_nodes(&sm.top_set)?;
     let top_x: Vec<f64> = top.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
-    let layout = Layout::new(&model, sm.interface.clone(), c.x.clone(), top, top_x, arm);
+    let layout = Layout::new(&model, sm.interface.clone(), c.x.clone(), top, top_x, arm)
+        .with_plate(d.plate_mass, d.plate_inertia)?;
     let driven = Driven { model: &model, layout: &layout, friction, n_force: o.n_force, dt, eta };
     let lambda0 = if weakens {
         friction.cohesive_zone(mat.shear_modulus(), mat.nu, o.n_force / c.l)

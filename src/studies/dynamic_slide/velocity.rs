@@ -1,0 +1,560 @@
+//! `slide --dynamics --drive-velocity V`: the drive phase run explicitly at a constant drive
+//! velocity, U_H = V t, for comparison with the held-drive mode (issue 33).
+//!
+//! 1. The normal phase is the held mode's: N ramped quasi-statically and exactly at U_H = 0
+//!    ([`crate::dynamics::statics`]); slipping nodes stick where they are as the drive starts.
+//! 2. From that equilibrium the whole drive phase is one explicit run
+//!    ([`crate::dynamics::driven::Driven::step`]) to --x-max, started on the quasi-static
+//!    path (u from the static field, v = V du/dU_H of the static path with the states of the
+//!    start), so the start launches no wave of order rho c V.
+//! 3. Events are read off the slip rates: one starts when some base node's |v_x| exceeds
+//!    [`RATE_FACTOR`] V and ends when every node has stayed below it for one period of the
+//!    block's thickness-shear mode. A quasi-static slip runs at most at about V (a node
+//!    cannot slip faster than the plate drags it, the tilt aside), an instability at
+//!    (tau / G) c_s >> V for a slow drive. Onset X and F are those of the last step before
+//!    the threshold was crossed; the slipped region is the run of nodes that crossed it
+//!    around the first one; the relaxed F is the one at the event's end. After an event in
+//!    which some node weakened fully (slip >= D_c) every node heals to mu_s (slip memory 0),
+//!    as in the held mode and the quasi-static solver.
+//!
+//! Outputs are the held mode's: loading.csv is a sample of the drive every
+//! X_max / [`LOADING_ROWS`] (kind `sample` in events.csv) plus the events; dyn_events.csv's
+//! f_gap and u_gap (distance to a static equilibrium after an event) are 0 here: no static
+//! equilibrium is solved.
+
+use super::steps::{add_slip, arrest, change_kind, settle, to_state};
+use super::{check as check_held, DynEvent, DynamicOptions, DynamicResult, DEFAULT_DAMPING_RATIO};
+use crate::dynamics::driven::{Contact, Driven, DynState, EventEnergy, EventRecord, Layout};
+use crate::dynamics::explicit::Elastodynamic;
+use crate::dynamics::friction::SlipWeakening;
+use crate::dynamics::statics::{Load, Node, Statics};
+use crate::dynamics::waves::WaveSpeeds;
+use crate::error::{Error, Result};
+use crate::fem::assembly::Assembler;
+use crate::interface::condense::{boundary_model, condense};
+use crate::interface::events::{Event, EventKind, NodeState, Phase, Run, State, Violations};
+use crate::interface::law::Law;
+use crate::linalg::solve::{Solver, SolverOptions};
+use crate::progress::Progress;
+use crate::scene::Scene;
+use crate::studies::slide::{SlideOptions, SlideResult};
+use std::time::Instant;
+
+/// A base node is in an event while its slip rate exceeds this multiple of V.
+pub const RATE_FACTOR: f64 = 10.0;
+/// The drive phase is sampled into about this many rows of loading.csv.
+pub const LOADING_ROWS: u64 = 2000;
+/// Default cap on the explicit steps of one run (X_max / V / dt): 1e7 steps of the paper's
+/// block (2.4e3 DOFs at h = 1 mm) are about 2.4e10 DOF-updates, minutes on this machine.
+pub const MAX_STEPS: u64 = 10_000_000;
+/// Samples of one event's slip rates kept at most (the stride doubles beyond).
+const EVENT_SAMPLES: usize = 4096;
+
+/// Refusals of the constant-velocity mode that need no mesh: V > 0, --x-max given.
+pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<f64> {
+    check_held(scene, o, d)?;
+    crate::dynamics::driven::check_plate(d.plate_mass, d.plate_inertia)?;
+    let v = d.drive_velocity.unwrap_or(f64::NAN);
+    if !(v.is_finite() && v > 0.0) {
+        return Err(Error::input(
+            "--drive-velocity",
+            format!("{v}: give the drive velocity dU_H/dt in m/s, > 0 (without the flag the drive is held during each event)"),
+        ));
+    }
+    if o.x_max.is_none() {
+        return Err(Error::input(
+            "--x-max",
+            "required with --drive-velocity: the run is X_max / V / dt explicit steps, bounded before it starts",
+        ));
+    }
+    Ok(v)
+}
+
+/// Explicit steps the run takes to X_max at V with step dt.
+pub fn steps_needed(x_max: f64, v: f64, dt: f64) -> f64 {
+    (x_max / (v * dt)).ceil()
+}
+
+/// An event while it runs.
+struct Open {
+    x0: f64,
+    f0: f64,
+    d0: Vec<f64>,
+    went: Vec<bool>,
+    e0: EventEnergy,
+    balance0: f64,
+    quiet: usize,
+    stride: usize,
+    rec: EventRecord,
+}
+
+/// The run: quasi-static normal load, then the drive at V, explicitly, to X_max.
+pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progress) -> Result<DynamicResult> {
+    let vel = check(scene, o, d)?;
+    let x_max = o.x_max.expect("checked");
+    let clock = Instant::now();
+    // The step first (cheap), so a run over the step cap is refused before the condensation.
+    let (sm, bdofs) = boundary_model(scene)?;
+    let mat = crate::fem::material::Material::plane_strain(scene.block.young, scene.block.poisson)?;
+    let model = Elastodynamic::new(&sm.mesh, mat, scene.block.density)?;
+    let (t, hgt) = (scene.block.thickness, scene.loading.height);
+    let arm = hgt - t;
+    let speeds = WaveSpeeds::new(&mat, scene.block.density);
+    let omega_t = std::f64::consts::PI * speeds.c_s / (2.0 * t);
+    let eta = d.damping.unwrap_or(2.0 * DEFAULT_DAMPING_RATIO / omega_t);
+    let dt_stable = model.critical_dt(eta);
+    let dt = d.courant * dt_stable;
+    let n_total = steps_needed(x_max, vel, dt);
+    if n_total > d.max_velocity_steps as f64 {
+        let v_min = x_max / (d.max_velocity_steps as f64 * dt);
+        return Err(Error::input(
+            "--drive-velocity",
+            format!(
+                "{vel:e} m/s needs {n_total:.3e} explicit steps of dt = {dt:.4e} s to --x-max {x_max:e} m, above the cap of {:.1e} steps: use --drive-velocity >= {v_min:.3e} m/s or a smaller --x-max",
+                d.max_velocity_steps as f64
+            ),
+        ));
+    }
+    let c = condense(scene, &SolverOptions::default())?;
+    let top: Vec<usize> = sm.mesh.set_nodes(&sm.top_set)?;
+    let top_x: Vec<f64> = top.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
+    let layout = Layout::new(&model, sm.interface.clone(), c.x.clone(), top, top_x, arm)
+        .with_plate(d.plate_mass, d.plate_inertia)?;
+    let n = c.n;
+    let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
+    let friction = match o.law {
+        Law::SlipWeakening { dc, .. } => SlipWeakening::new(mu_s, mu_d, dc)?,
+        _ => SlipWeakening::coulomb(mu_s)?,
+    };
+    let weakens = o.law.weakens();
+    let mut st = Statics::new(c.at_height(hgt), n, mu_s);
+    st.n_force = o.n_force;
+    // Full fields from boundary values (as the held mode): the block with its boundary held.
+    let nf = sm.constraints.n_fixed();
+    let slots: Vec<usize> =
+        bdofs.iter().map(|&k| sm.constraints.fixed_slot(k).expect("boundary DOF fixed")).collect();
+    let red = sm.constraints.reduce()?;
+    let asm = Assembler::new(&sm.mesh, &red)?;
+    let (values, _) = asm.assemble(&sm.model(), &red, &[vec![]], &[vec![0.0; nf]])?;
+    let solver = Solver::analyse(&asm.pattern, SolverOptions::default())?;
+    let factor = solver.factorize(&asm.pattern, &values).map_err(|e| Error::Singular {
+        detail: format!("the block with its boundary held is not positive definite ({e})"),
+        node: None,
+        component: None,
+    })?;
+    let nn = sm.mesh.n_nodes();
+    let full_field = |b: &[f64]| -> Vec<f64> {
+        let mut g = vec![0.0; nf];
+        for (j, &slot) in slots.iter().enumerate() {
+            g[slot] = if j == 2 * n { b[j] + arm * b[2 * n + 2] } else { b[j] };
+        }
+        let up = red.expand(&vec![0.0; red.n_free()], &g);
+        let mut ku = vec![0.0; 2 * nn];
+        model.apply_k(&up[..2 * nn], &mut ku);
+        let mut f = vec![0.0; red.n_full];
+        for i in 0..2 * nn {
+            f[i] = -ku[i];
+        }
+        let mut r = vec![0.0; red.n_free()];
+        red.project_add(&f, &mut r);
+        factor.solve_in_place(&mut r, 1);
+        red.expand(&r, &g)[..2 * nn].to_vec()
+    };
+    let driven = Driven { model: &model, layout: &layout, friction, n_force: o.n_force, dt, eta };
+    let lambda0 = if weakens {
+        friction.cohesive_zone(mat.shear_modulus(), mat.nu, o.n_force / c.l)
+    } else {
+        f64::INFINITY
+    };
+    let period = 2.0 * std::f64::consts::PI / omega_t;
+    let quiet_steps = ((period / dt).ceil() as usize).max(10);
+    let sample_every = ((period / dt / 16.0).floor() as usize).max(1);
+    let thr = RATE_FACTOR * vel;
+    progress.message(&format!(
+        "dynamics, drive at V = {vel:e} m/s to X = {x_max:e} m: {n_total:.0} steps of dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), {} DOFs, eta = {eta:.4e} s = {:.3} of critical at the thickness mode; event threshold |v_x| > {RATE_FACTOR} V = {thr:.3e} m/s; plate mass {} kg/m, inertia {} kg m^2/m; Lambda_0 = {:.3e} m = {:.2} h",
+        d.courant,
+        model.n_dofs(),
+        0.5 * eta * omega_t,
+        d.plate_mass,
+        d.plate_inertia,
+        lambda0,
+        lambda0 / scene.mesh.h,
+    ));
+    let setup_s = clock.elapsed().as_secs_f64();
+
+    let scale_f = o.n_force / n as f64;
+    let ftol = 1e-9 * scale_f;
+    let gtol = 1e-12 * o.n_force * t / (c.e_star * c.l);
+    let cap = crate::interface::events::tolerances::max_changes(n);
+    let mut run = Run {
+        events: vec![],
+        states: vec![],
+        max_violation: 0.0,
+        k_bonded: st.k_bonded()?,
+        sliding_events: 0,
+        updates: 0,
+        refreshes: 0,
+    };
+    let push = |run: &mut Run, ev: Event, s: State| -> Result<()> {
+        run.max_violation = run.max_violation.max(s.violations.max());
+        run.events.push(ev);
+        run.states.push(s);
+        if run.events.len() > o.max_events {
+            let last = run.states.last().expect("state");
+            return Err(Error::EventCap {
+                cap: o.max_events,
+                x: last.x,
+                f_over_n: last.f / o.n_force,
+                precursors: run.events.iter().filter(|e| e.kind == EventKind::Precursor).count(),
+                f_peak_over_n: run.states.iter().map(|s| s.f).fold(0.0, f64::max) / o.n_force,
+            });
+        }
+        Ok(())
+    };
+    let simple = |kind: EventKind, s: &State, i: usize| Event {
+        kind,
+        f: s.f,
+        x: s.x,
+        node: i,
+        region: None,
+        f_relaxed: s.f,
+        backslip: 0,
+        all_slipping: false,
+    };
+
+    // Normal phase, quasi-static and exact (the held mode's).
+    let mut slip = vec![0.0f64; n];
+    let mut lam = 0.0;
+    loop {
+        o.cancel.check()?;
+        let p = settle(&mut st, Load::Normal, lam, ftol, gtol, cap)?;
+        match st.next_change(&p, lam, o.n_force, None) {
+            Some((l, i, to)) => {
+                add_slip(&st, &p, lam, l, &mut slip);
+                lam = l;
+                let from = st.nodes[i];
+                st.nodes[i] =
+                    if let Node::Stick { .. } = to { Node::Stick { anchor: p.b(i, l) } } else { to };
+                let p = settle(&mut st, Load::Normal, lam, ftol, gtol, cap)?;
+                let s = to_state(&st, &p, lam, Phase::Normal);
+                push(&mut run, simple(change_kind(from, to), &s, i), s)?;
+            }
+            None => {
+                add_slip(&st, &p, lam, o.n_force, &mut slip);
+                let s = to_state(&st, &p, o.n_force, Phase::Normal);
+                let kind = if st.nodes.iter().any(|s| matches!(s, Node::Slip { .. })) {
+                    EventKind::EdgePreslip
+                } else {
+                    EventKind::NormalLoad
+                };
+                push(&mut run, simple(kind, &s, 0), s)?;
+                break;
+            }
+        }
+    }
+    for i in 0..n {
+        if let Node::Slip { .. } = st.nodes[i] {
+            st.nodes[i] = Node::Stick { anchor: run.states.last().expect("state").u[i] };
+        }
+    }
+    // The start on the quasi-static path: u of the static field at U_H = 0, v = V du/dU_H.
+    let p = settle(&mut st, Load::Drive, 0.0, ftol, gtol, cap)?;
+    let start = to_state(&st, &p, 0.0, Phase::Drive);
+    let u0 = full_field(&p.b0);
+    let du = full_field(&p.b1);
+    let mut ds = DynState {
+        u: u0,
+        v: du.iter().map(|g| vel * g).collect(),
+        u_h: 0.0,
+        drive_velocity: vel,
+        q: [start.v, start.tilt],
+        qdot: [vel * p.b1[2 * n + 1], vel * p.b1[2 * n + 2]],
+        d: slip,
+        time: 0.0,
+    };
+
+    // The drive phase.
+    let dclock = Instant::now();
+    let row_every = (n_total as u64 / LOADING_ROWS).max(1);
+    let mut w = driven.work(&ds);
+    let mut contact = vec![Contact::default(); n];
+    let mut window = vec![false; n]; // slipped at some step since the last row
+    let mut e = EventEnergy::default();
+    let mut balance_first = None;
+    let mut f_prev = start.f;
+    let mut steps = 0usize;
+    let mut open: Option<Open> = None;
+    let mut dyn_events: Vec<DynEvent> = Vec::new();
+    let dc = friction.d_c;
+    let sample_state = |ds: &DynState, contact: &[Contact], slipped: &[bool], f: f64| -> State {
+        let base = &layout.base;
+        State {
+            phase: Phase::Drive,
+            x: ds.u_h,
+            n_force: o.n_force,
+            f,
+            tilt: ds.q[1],
+            v: ds.q[0],
+            t_force: contact.iter().map(|c| c.t).collect(),
+            p_force: contact.iter().map(|c| c.p).collect(),
+            u: base.iter().map(|&k| ds.u[2 * k]).collect(),
+            gap: base.iter().map(|&k| ds.u[2 * k + 1]).collect(),
+            states: (0..n)
+                .map(|b| {
+                    if contact[b].open {
+                        NodeState::Open
+                    } else if slipped[b] {
+                        NodeState::Slip(if ds.v[2 * base[b]] < 0.0 { -1.0 } else { 1.0 })
+                    } else {
+                        NodeState::Stick
+                    }
+                })
+                .collect(),
+            violations: Violations::default(),
+        }
+    };
+    loop {
+        if ds.u_h >= x_max - 0.5 * vel * dt {
+            break;
+        }
+        let out = driven.step(&mut ds, &mut w, &mut e, &mut contact);
+        steps += 1;
+        let b0 = *balance_first.get_or_insert(out.balance);
+        if !(out.f_drive.is_finite() && (out.balance - b0).is_finite()) {
+            return Err(Error::Untrustworthy {
+                detail: format!("the constant-velocity run produced non-finite values at X = {:e} m", ds.u_h),
+                hint: "lower the time step (--courant) or check the scene".into(),
+            });
+        }
+        let mut max_rate = 0.0f64;
+        let mut fastest = 0;
+        for (b, &k) in layout.base.iter().enumerate() {
+            window[b] |= contact[b].slipping;
+            let r = ds.v[2 * k].abs();
+            if r > max_rate {
+                max_rate = r;
+                fastest = b;
+            }
+        }
+        if open.is_none() && max_rate > thr {
+            open = Some(Open {
+                x0: ds.u_h - vel * dt,
+                f0: f_prev,
+                d0: ds.d.clone(),
+                went: vec![false; n],
+                e0: e,
+                balance0: out.balance,
+                quiet: 0,
+                stride: sample_every,
+                rec: EventRecord {
+                    slip: vec![0.0; n],
+                    peak_rate: vec![0.0; n],
+                    nucleation: Some(fastest),
+                    open: vec![false; n],
+                    ..Default::default()
+                },
+            });
+        }
+        f_prev = out.f_drive;
+        let mut closed = false;
+        if let Some(ev) = open.as_mut() {
+            let rec = &mut ev.rec;
+            rec.steps += 1;
+            for (b, &k) in layout.base.iter().enumerate() {
+                let r = ds.v[2 * k].abs();
+                rec.peak_rate[b] = rec.peak_rate[b].max(r);
+                ev.went[b] |= r > thr;
+                rec.slip[b] = ds.d[b] - ev.d0[b];
+                rec.open[b] = contact[b].open;
+                if ds.d[b] >= dc && ev.d0[b] < dc && friction.mu_s > friction.mu_d {
+                    rec.weakened = true;
+                }
+            }
+            if (rec.steps - 1) % ev.stride == 0 {
+                if rec.t.len() >= EVENT_SAMPLES {
+                    // Keep every other sample and double the stride: the memory stays bounded.
+                    for v in [&mut rec.t, &mut rec.force, &mut rec.tip] {
+                        *v = v.iter().step_by(2).copied().collect();
+                    }
+                    rec.rates = rec.rates.iter().step_by(2).cloned().collect();
+                    ev.stride *= 2;
+                }
+                rec.t.push(rec.steps as f64 * dt);
+                rec.force.push(out.f_drive);
+                rec.tip.push(tip(rec.nucleation, &ev.went, &layout.x));
+                rec.rates.push(layout.base.iter().map(|&k| ds.v[2 * k].abs() as f32).collect());
+            }
+            ev.quiet = if max_rate > thr { 0 } else { ev.quiet + 1 };
+            closed = ev.quiet >= quiet_steps;
+        }
+        let at_end = ds.u_h >= x_max - 0.5 * vel * dt;
+        if closed || (at_end && open.is_some()) {
+            let ev = open.take().expect("open event");
+            let s = sample_state(&ds, &contact, &window, out.f_drive);
+            let weakened = ev.rec.weakened;
+            let kind = close(&mut run, ev, s, out, &e, closed, dt, &layout.x, &mut dyn_events, &push)?;
+            if weakened && closed {
+                // An instability: every node heals to mu_s (slip memory 0), as the held mode.
+                ds.d.iter_mut().for_each(|d| *d = 0.0);
+            }
+            if kind.ends_cycle() {
+                run.sliding_events += 1;
+            }
+            let last = dyn_events.last().expect("event");
+            if last.record.weakened {
+                progress.message(&format!(
+                    "event {} ({kind}) at X = {:.5e} m: F/(mu_s N) {:.5} -> {:.5}, {} steps ({:.3} s), peak slip rate {:.3e} m/s",
+                    last.event,
+                    last.x,
+                    last.f_onset / (mu_s * o.n_force),
+                    last.f_after / (mu_s * o.n_force),
+                    last.record.steps,
+                    last.record.duration,
+                    last.record.peak_rate.iter().cloned().fold(0.0, f64::max)
+                ));
+            }
+            if weakens && run.sliding_events >= o.cycles {
+                break;
+            }
+        }
+        if (steps as u64).is_multiple_of(row_every) && !at_end {
+            let s = sample_state(&ds, &contact, &window, out.f_drive);
+            push(&mut run, simple(EventKind::Sample, &s, 0), s)?;
+            window.iter_mut().for_each(|v| *v = false);
+        }
+        if steps.is_multiple_of(256) {
+            o.cancel.check()?;
+        }
+        if steps.is_multiple_of(4096) {
+            progress.fraction((ds.u_h / x_max).min(1.0));
+        }
+    }
+    let s = sample_state(&ds, &contact, &window, f_prev);
+    push(&mut run, simple(EventKind::End, &s, 0), s)?;
+    let dynamic_s = dclock.elapsed().as_secs_f64();
+    let total = clock.elapsed().as_secs_f64();
+    Ok(DynamicResult {
+        slide: SlideResult {
+            scene: scene.clone(),
+            options: o.clone(),
+            condensed: c,
+            run,
+            condense_s: setup_s,
+            events_s: total - setup_s,
+        },
+        events: dyn_events,
+        dt,
+        dt_stable,
+        eta,
+        xi_thickness: 0.5 * eta * omega_t,
+        omega_thickness: omega_t,
+        speeds,
+        lambda0,
+        steps,
+        dofs: model.n_dofs(),
+        setup_s,
+        static_s: total - setup_s - dynamic_s,
+        dynamic_s,
+    })
+}
+
+/// Ends an event: its kind, its row of events.csv (onset X and F, region, relaxed F) and its
+/// record.
+#[allow(clippy::too_many_arguments)]
+fn close(
+    run: &mut Run,
+    ev: Open,
+    s: State,
+    out: crate::dynamics::driven::StepOut,
+    e: &EventEnergy,
+    settled: bool,
+    dt: f64,
+    x: &[f64],
+    dyn_events: &mut Vec<DynEvent>,
+    push: &dyn Fn(&mut Run, Event, State) -> Result<()>,
+) -> Result<EventKind> {
+    let Open { x0, f0, went, e0, balance0, mut rec, .. } = ev;
+    let n = went.len();
+    let node = rec.nucleation.unwrap_or(0);
+    let (mut a, mut b) = (node, node);
+    while a > 0 && went[a - 1] {
+        a -= 1;
+    }
+    while b + 1 < n && went[b + 1] {
+        b += 1;
+    }
+    let first_contact = (0..n).find(|&k| !rec.open[k] || went[k]).unwrap_or(0);
+    let last_contact = (0..n).rev().find(|&k| !rec.open[k] || went[k]).unwrap_or(n - 1);
+    let kind = if !rec.weakened {
+        EventKind::Slip
+    } else if a <= first_contact && b >= last_contact {
+        EventKind::Sliding
+    } else if a <= first_contact {
+        EventKind::Precursor
+    } else {
+        EventKind::Nucleation
+    };
+    rec.duration = rec.steps as f64 * dt;
+    rec.settled = settled;
+    rec.energy = EventEnergy {
+        kinetic: e.kinetic,
+        strain: e.strain,
+        friction: e.friction - e0.friction,
+        damping: e.damping - e0.damping,
+        work_n: e.work_n - e0.work_n,
+        contact: e.contact - e0.contact,
+        drive: e.drive - e0.drive,
+        residual: out.balance - balance0,
+        strain_start: e0.strain,
+        kinetic_end: e.kinetic,
+    };
+    rec.t.push(rec.duration);
+    rec.force.push(out.f_drive);
+    rec.tip.push(tip(rec.nucleation, &went, x));
+    let f_after = s.f;
+    push(
+        run,
+        Event {
+            kind,
+            f: f0,
+            x: x0,
+            node,
+            region: Some((a, b)),
+            f_relaxed: f_after,
+            backslip: 0,
+            all_slipping: kind == EventKind::Sliding,
+        },
+        s,
+    )?;
+    let (t_arrest, drop_while_moving) = arrest(&rec, f0, f_after).map_or((None, None), |(t, f)| (Some(t), f));
+    dyn_events.push(DynEvent {
+        event: run.events.len() - 1,
+        x: x0,
+        f_onset: f0,
+        f_after,
+        record: rec,
+        t_arrest,
+        drop_while_moving,
+        f_gap: 0.0,
+        u_gap: 0.0,
+    });
+    Ok(kind)
+}
+
+/// x of the end of the run of nodes that went over the threshold around the nucleation node,
+/// farther from it; NaN before one.
+fn tip(nucleation: Option<usize>, went: &[bool], x: &[f64]) -> f64 {
+    let Some(c) = nucleation else { return f64::NAN };
+    let (mut a, mut b) = (c, c);
+    while a > 0 && went[a - 1] {
+        a -= 1;
+    }
+    while b + 1 < x.len() && went[b + 1] {
+        b += 1;
+    }
+    if (x[b] - x[c]).abs() >= (x[c] - x[a]).abs() {
+        x[b]
+    } else {
+        x[a]
+    }
+}

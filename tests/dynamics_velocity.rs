@@ -1,0 +1,325 @@
+//! `slide --dynamics --drive-velocity`: the constant-velocity drive against the exact
+//! quasi-static loading and the held-drive mode, its refusals, and the rigid plate's mass and
+//! rotational inertia (issue 33). Small scenes: a few seconds in release mode.
+
+use tribofe::dynamics::driven::{Contact, Driven, DynState, EventEnergy, Layout};
+use tribofe::dynamics::explicit::Elastodynamic;
+use tribofe::dynamics::friction::SlipWeakening;
+use tribofe::fem::material::Material;
+use tribofe::interface::condense::{boundary_model, condense};
+use tribofe::interface::events::{EventKind, NodeState, Phase};
+use tribofe::interface::law::Law;
+use tribofe::linalg::solve::SolverOptions;
+use tribofe::scene::Scene;
+use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};
+use tribofe::studies::slide::{self, SlideOptions, SlideResult};
+
+/// The paper's block (t = 2 mm, H = 4 cm) with `l` and `h` changed.
+fn block(l: f64, h: f64) -> Scene {
+    let mut s = Scene::default();
+    s.block.length = l;
+    s.mesh.h = h;
+    s
+}
+
+fn at_velocity(v: f64) -> DynamicOptions {
+    DynamicOptions { drive_velocity: Some(v), ..Default::default() }
+}
+
+fn slipping(s: &tribofe::interface::events::State) -> usize {
+    s.states.iter().filter(|n| matches!(n, NodeState::Slip(_))).count()
+}
+
+/// Largest |F_V(X) - F_qs(X)| / (mu N) over the drive samples of `dy`, with F_qs linear
+/// between the event solver's states (exact: between two events the static path is affine
+/// in X), and the largest difference of slipping-node counts against the static state that
+/// holds at the sample's X.
+fn against_static(qs: &SlideResult, dy: &SlideResult, mu_n: f64) -> (f64, usize, usize) {
+    let drive: Vec<_> = qs.run.states.iter().filter(|s| s.phase == Phase::Drive).collect();
+    let (mut err, mut worst_nodes, mut samples) = (0.0f64, 0usize, 0usize);
+    for (e, s) in dy.run.events.iter().zip(&dy.run.states) {
+        if e.kind != EventKind::Sample || s.x <= drive[0].x || s.x >= drive.last().unwrap().x {
+            continue;
+        }
+        let k = drive.partition_point(|q| q.x <= s.x) - 1;
+        let (a, b) = (drive[k], drive[k + 1]);
+        let f = if b.x > a.x { a.f + (b.f - a.f) * (s.x - a.x) / (b.x - a.x) } else { a.f };
+        err = err.max((s.f - f).abs() / mu_n);
+        worst_nodes = worst_nodes.max(slipping(s).abs_diff(slipping(a)));
+        samples += 1;
+    }
+    (err, worst_nodes, samples)
+}
+
+#[test]
+fn coulomb_slow_drive_reproduces_the_event_solver() {
+    // Coulomb friction, mu = 0.5, L = 0.1 m, h = 1 mm, to X = 3.4e-5 m (whole slip at
+    // 3.26e-5 m). With stiffness-proportional damping a linear system driven at constant V
+    // settles on the static path shifted by the Kelvin-Voigt lag: F - F_qs = eta V k with k
+    // at most the bonded stiffness k_bonded (slipping nodes only soften it). So the error is
+    // bounded by eta V k_bonded / (mu N) and falls like V (measured: ratios 2.15, 1.90 per
+    // halving, 0.57-0.61 of the bound). Slip extents: within one node of the event solver's
+    // state at every sample of the drive (the issue's tolerance; measured: exactly within one).
+    let scene = block(0.1, 0.001);
+    let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), x_max: Some(3.4e-5), ..Default::default() };
+    let qs = slide::run(&scene, &o, tribofe::Progress::none()).unwrap();
+    let mut errs = vec![];
+    for v in [1e-5, 5e-6, 2.5e-6] {
+        let dy = ds::run(&scene, &o, &at_velocity(v), tribofe::Progress::none()).unwrap();
+        let (err, nodes, samples) = against_static(&qs, &dy.slide, 0.5);
+        let bound = dy.eta * v * qs.run.k_bonded / 0.5;
+        eprintln!("V = {v:e}: max |dF| = {err:.3e} mu N (lag bound {bound:.3e}), slip count within {nodes} node(s) over {samples} samples");
+        assert!(samples > 1000, "{samples} samples");
+        assert!(err <= bound, "V = {v}: |dF| {err:e} above the Kelvin-Voigt lag {bound:e}");
+        assert!(nodes <= 1, "V = {v}: slipping nodes differ by {nodes}");
+        assert!(dy.events.is_empty(), "V = {v}: {} events in a Coulomb run", dy.events.len());
+        errs.push(err);
+    }
+    for w in errs.windows(2) {
+        let ratio = w[0] / w[1];
+        assert!((1.5..3.0).contains(&ratio), "error ratio per halving {ratio} (order 1 expected)");
+    }
+}
+
+#[test]
+fn slip_weakening_first_instability_approaches_the_held_drive() {
+    // L = 0.1 m, h = 0.5 mm, (r, g) = (0.9, 0.35), D_c the smallest resolved: the held mode's
+    // first instability is at X = 4.8064e-6 m, F = 0.77146 mu_s N. A slow drive crosses the
+    // static stability limit late by the time the unstable patch takes to grow (a slow
+    // passage through a saddle-node: delay ~ V^(2/3) in the normal form) and F rises by
+    // k_bonded V during it; measured |dF| = 4.3e-3, 2.7e-3, 1.9e-3 (1.4e-3 at 0.5 um/s) mu_s N
+    // at V = 4, 2, 1 um/s: a + b V with a = 1.0e-3 mu_s N, the held mode's own error from
+    // its coefficient update every D_c/20 of slip (at D_c/320 its onset is 0.772365, and the
+    // drive's gaps to that are 3.4e-3, 1.8e-3, 9.6e-4, 5.2e-4: validation/dynamics/velocity;
+    // below ~0.5 um/s this test's ratio would stall on that offset). Asserted: the error
+    // falls at each halving, by at least 1.25, and is below 2.5e-3 mu_s N at 1 um/s; the
+    // onset X within 2.5 % of the held X (measured 0.37 %, 0.10 %, 0.04 %); the slipped
+    // region is the held one's (-0.45 .. -0.34 L) at 1 um/s to one node.
+    let scene = block(0.1, 0.0005);
+    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
+    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
+    let o = SlideOptions {
+        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
+        x_max: Some(4.9e-6),
+        ..Default::default()
+    };
+    let held = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
+    let first = |r: &ds::DynamicResult| -> (f64, f64, (usize, usize)) {
+        let e = r.events.iter().find(|e| e.record.weakened).expect("an instability");
+        (e.x, e.f_onset / mu_s, r.slide.run.events[e.event].region.expect("region"))
+    };
+    let (x_h, f_h, reg_h) = first(&held);
+    let mut errs = vec![];
+    for v in [4e-6, 2e-6, 1e-6] {
+        let r = ds::run(&scene, &o, &at_velocity(v), tribofe::Progress::none()).unwrap();
+        let (x, f, reg) = first(&r);
+        eprintln!("V = {v:e}: first instability X = {x:.6e} (held {x_h:.6e}), F = {f:.5} (held {f_h:.5}) mu_s N, nodes {reg:?} (held {reg_h:?})");
+        assert!((x - x_h).abs() < 0.025 * x_h, "V = {v}: onset X {x:e} vs {x_h:e}");
+        if v == 1e-6 {
+            assert!(reg.0.abs_diff(reg_h.0) <= 1 && reg.1.abs_diff(reg_h.1) <= 1, "{reg:?} vs {reg_h:?}");
+        }
+        errs.push((f - f_h).abs());
+    }
+    for w in errs.windows(2) {
+        assert!(w[0] >= 1.25 * w[1], "onset F errors {errs:?} do not fall as V halves");
+    }
+    assert!(errs[2] < 2.5e-3, "onset F error {} mu_s N at V = 1e-6 m/s", errs[2]);
+}
+
+#[test]
+fn constant_velocity_refuses_what_it_cannot_bound() {
+    let scene = block(0.1, 0.001);
+    let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), x_max: Some(3.4e-5), ..Default::default() };
+    for v in [0.0, -1e-5, f64::NAN, f64::INFINITY] {
+        let e = ds::run(&scene, &o, &at_velocity(v), tribofe::Progress::none()).unwrap_err();
+        assert!(e.to_string().contains("--drive-velocity") && e.exit_status() == 2, "{v}: {e}");
+    }
+    let no_x = SlideOptions { x_max: None, ..o.clone() };
+    let e = ds::run(&scene, &no_x, &at_velocity(1e-5), tribofe::Progress::none()).unwrap_err();
+    assert!(e.to_string().contains("--x-max") && e.exit_status() == 2, "{e}");
+    // 3.4e-5 m at 1e-12 m/s is 2e11 steps: refused with the smallest V the cap allows.
+    let e = ds::run(&scene, &o, &at_velocity(1e-12), tribofe::Progress::none()).unwrap_err();
+    let m = e.to_string();
+    assert!(m.contains("cap") && m.contains("--drive-velocity >=") && e.exit_status() == 2, "{m}");
+    let neg = DynamicOptions { plate_mass: -1.0, ..at_velocity(1e-5) };
+    let e = ds::run(&scene, &o, &neg, tribofe::Progress::none()).unwrap_err();
+    assert!(e.to_string().contains("--plate-mass"), "{e}");
+    let nan = DynamicOptions { plate_inertia: f64::NAN, ..Default::default() };
+    let e = ds::run(&scene, &o, &nan, tribofe::Progress::none()).unwrap_err();
+    assert!(e.to_string().contains("--plate-inertia"), "{e}");
+}
+
+/// Symmetric 2x2 generalized eigenproblem K phi = w^2 M phi: (w^2, phi) ascending.
+fn eig2(k: [[f64; 2]; 2], m: [[f64; 2]; 2]) -> [(f64, [f64; 2]); 2] {
+    // det(K - l M) = 0: a l^2 + b l + c = 0.
+    let a = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    let b = -(k[0][0] * m[1][1] + k[1][1] * m[0][0] - k[0][1] * m[1][0] - k[1][0] * m[0][1]);
+    let c = k[0][0] * k[1][1] - k[0][1] * k[1][0];
+    let d = (b * b - 4.0 * a * c).sqrt();
+    let ls = [(-b - d) / (2.0 * a), (-b + d) / (2.0 * a)];
+    ls.map(|l| {
+        // (K - l M) phi = 0 from its better-conditioned row.
+        let r0 = [k[0][0] - l * m[0][0], k[0][1] - l * m[0][1]];
+        let r1 = [k[1][0] - l * m[1][0], k[1][1] - l * m[1][1]];
+        let r = if r0[0].hypot(r0[1]) >= r1[0].hypot(r1[1]) { r0 } else { r1 };
+        let phi = [-r[1], r[0]];
+        let s = phi[0].hypot(phi[1]);
+        (l, [phi[0] / s, phi[1] / s])
+    })
+}
+
+#[test]
+fn heavy_plate_rings_at_the_rigid_body_frequencies() {
+    // The plate (m_p, I_c 1000 times the block's mass and its inertia about the drive
+    // point) on the block, base stuck (mu = 100, pressed by N), drive held: its two modes
+    // (V, theta) are those of the 2x2 problem K_p phi = w^2 M_p phi, K_p the block's static
+    // stiffness on the plate DOFs (the condensed S with the base held), M_p the plate's mass
+    // matrix (own + top nodes). Each mode is started alone (plate at its static position
+    // under N, a velocity along phi) and its frequency read from the zero crossings of the
+    // M_p-projection on phi over three periods. The block's remaining mass adds at most its
+    // rigid-body inertia r M in the mode (r = that / phi^T M_p phi), so w falls by at most
+    // r/2; central differences raise it by (w dt)^2/24; the crossings are interpolated
+    // linearly (1e-4). Tolerance: r/2 + (w dt)^2/24 + 1e-4.
+    let scene = block(0.1, 0.001);
+    let (sm, _) = boundary_model(&scene).unwrap();
+    let mat = Material::plane_strain(scene.block.young, scene.block.poisson).unwrap();
+    let model = Elastodynamic::new(&sm.mesh, mat, scene.block.density).unwrap();
+    let c = condense(&scene, &SolverOptions::default()).unwrap();
+    let (t, hgt) = (scene.block.thickness, scene.loading.height);
+    let arm = hgt - t;
+    let top = sm.mesh.set_nodes(&sm.top_set).unwrap();
+    let top_x: Vec<f64> = top.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
+    let m_block: f64 = model.mass.iter().sum();
+    let i_block: f64 = (0..model.n_nodes())
+        .map(|k| {
+            let [x, y] = sm.mesh.nodes[k];
+            model.mass[k] * (x * x + (hgt - y) * (hgt - y))
+        })
+        .sum();
+    let (mp, ic) = (1000.0 * m_block, 1000.0 * i_block);
+    let layout = Layout::new(&model, sm.interface.clone(), c.x.clone(), top.clone(), top_x.clone(), arm)
+        .with_plate(mp, ic)
+        .unwrap();
+    assert!((layout.x_c).abs() < 1e-12 * scene.block.length, "x_c {}", layout.x_c);
+    let omega_t =
+        std::f64::consts::PI * tribofe::dynamics::waves::WaveSpeeds::new(&mat, 1000.0).c_s / (2.0 * t);
+    let eta = 0.2 / omega_t;
+    let dt = 0.9 * model.critical_dt(eta);
+    let n_force = 1.0;
+    let driven = Driven {
+        model: &model,
+        layout: &layout,
+        friction: SlipWeakening::coulomb(100.0).unwrap(),
+        n_force,
+        dt,
+        eta,
+    };
+    // K_p: S at height H on (V, theta) with the interface held.
+    let s = c.at_height(hgt);
+    let nd = c.dim();
+    let (iv, it) = (2 * c.n + 1, 2 * c.n + 2);
+    let kp = [[s[iv * nd + iv], s[iv * nd + it]], [s[it * nd + iv], s[it * nd + it]]];
+    let mpm = layout.plate_matrix();
+    // Static position under N: K_p q = (-N, 0).
+    let det = kp[0][0] * kp[1][1] - kp[0][1] * kp[1][0];
+    let qs = [-n_force * kp[1][1] / det, n_force * kp[1][0] / det];
+    let modes = eig2(kp, mpm);
+    for (l, phi) in modes {
+        let w = l.sqrt();
+        let modal_mass = phi[0] * (mpm[0][0] * phi[0] + mpm[0][1] * phi[1])
+            + phi[1] * (mpm[1][0] * phi[0] + mpm[1][1] * phi[1]);
+        // Rigid-body inertia of the non-top nodes in the mode (an upper bound of what they add).
+        let extra: f64 = (0..model.n_nodes())
+            .filter(|k| !top.contains(k))
+            .map(|k| {
+                let [x, y] = sm.mesh.nodes[k];
+                let (ux, uy) = ((hgt - y) * phi[1], phi[0] + x * phi[1]);
+                model.mass[k] * (ux * ux + uy * uy)
+            })
+            .sum();
+        let r = extra / modal_mass;
+        // Amplitude 20 % of the static compression: contact stays closed.
+        let amp = 0.2 * qs[0].abs() / (phi[0].abs() + 0.5 * scene.block.length * phi[1].abs());
+        let qdot = [amp * w * phi[0], amp * w * phi[1]];
+        let mut u = vec![0.0; model.n_dofs()];
+        let mut v = vec![0.0; model.n_dofs()];
+        for (&k, &x) in top.iter().zip(&top_x) {
+            u[2 * k] = arm * qs[1];
+            u[2 * k + 1] = qs[0] + x * qs[1];
+            v[2 * k] = arm * qdot[1];
+            v[2 * k + 1] = qdot[0] + x * qdot[1];
+        }
+        let mut st =
+            DynState { u, v, u_h: 0.0, drive_velocity: 0.0, q: qs, qdot, d: vec![0.0; c.n], time: 0.0 };
+        let mut wk = driven.work(&st);
+        let mut e = EventEnergy::default();
+        let mut contact = vec![Contact::default(); c.n];
+        let proj = |q: [f64; 2]| {
+            let dq = [q[0] - qs[0], q[1] - qs[1]];
+            phi[0] * (mpm[0][0] * dq[0] + mpm[0][1] * dq[1])
+                + phi[1] * (mpm[1][0] * dq[0] + mpm[1][1] * dq[1])
+        };
+        let steps = (3.2 * 2.0 * std::f64::consts::PI / w / dt).ceil() as usize;
+        let (mut prev, mut crossings) = (proj(st.q), Vec::new());
+        let mut opened = 0usize;
+        for _ in 0..steps {
+            driven.step(&mut st, &mut wk, &mut e, &mut contact);
+            opened += contact.iter().filter(|c| c.open).count();
+            let now = proj(st.q);
+            if prev != 0.0 && (prev < 0.0) != (now < 0.0) {
+                crossings.push(st.time - dt * now / (now - prev));
+            }
+            prev = now;
+        }
+        let n = crossings.len();
+        assert!(n >= 6, "{n} crossings");
+        let w_meas = std::f64::consts::PI * (n - 1) as f64 / (crossings[n - 1] - crossings[0]);
+        let tol = 0.5 * r + (w * dt).powi(2) / 24.0 + 1e-4;
+        eprintln!(
+            "mode phi = ({:.4}, {:.4}): w = {w:.6} rad/s, measured {w_meas:.6} ({:+.2e}), tolerance {tol:.2e} (r = {r:.2e}); open node-steps {opened}",
+            phi[0],
+            phi[1],
+            w_meas / w - 1.0
+        );
+        assert!((w_meas / w - 1.0).abs() <= tol, "w {w_meas} vs {w}");
+        assert!(w_meas <= w * (1.0 + (w * dt).powi(2) / 24.0 + 1e-4), "w {w_meas} above {w}");
+    }
+    // The plate's own mass matters: the vertical mode of the massless plate is ~30x faster.
+    let light = Layout::new(&model, sm.interface.clone(), c.x.clone(), top, top_x, arm).plate_matrix();
+    assert!(light[0][0] < 1e-2 * mpm[0][0]);
+}
+
+#[test]
+fn ledger_closes_with_a_heavy_plate_and_a_moving_drive() {
+    // Slip weakening at V = 4e-6 m/s with a plate of 10x the block's mass and inertia: over
+    // each dynamic event, shadow kinetic (block + plate) + strain + friction + damping =
+    // work of N + contact work + drive work, to round-off (tolerance 1e-8 of the event's
+    // dissipation, as for the held drive).
+    let scene = block(0.1, 0.0005);
+    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
+    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
+    let o = SlideOptions {
+        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
+        x_max: Some(5.2e-6),
+        ..Default::default()
+    };
+    let m_block = 1000.0 * 0.1 * scene.block.thickness;
+    let d = DynamicOptions {
+        plate_mass: 10.0 * m_block,
+        plate_inertia: 10.0 * m_block * 0.04 * 0.04,
+        ..at_velocity(4e-6)
+    };
+    let r = ds::run(&scene, &o, &d, tribofe::Progress::none()).unwrap();
+    assert!(!r.events.is_empty());
+    for e in &r.events {
+        let en = &e.record.energy;
+        let diss = en.friction + en.damping;
+        assert!(en.drive != 0.0 && diss > 0.0, "event {}: {en:?}", e.event);
+        assert!(
+            en.residual.abs() <= 1e-8 * diss,
+            "event {}: residual {:e} of {diss:e}",
+            e.event,
+            en.residual
+        );
+    }
+}

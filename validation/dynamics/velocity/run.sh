@@ -1,0 +1,17 @@
+#!/bin/sh
+# Constant drive velocity against the held drive (issue 33). Writes out/ here, then table.py
+# prints the tables of README.md. Usage: sh validation/dynamics/velocity/run.sh [tribofe]
+set -e
+B=${1:-target/release/tribofe}
+D=$(dirname "$0")/out
+SW="--law slip-weakening --length 0.1 --h 0.0005 --x-max 5.2e-6"
+$B slide --dynamics $SW --out $D/sw_held --force
+for V in 4e-6 2e-6 1e-6 5e-7; do
+  $B slide --dynamics --drive-velocity $V $SW --out $D/sw_$V --force
+done
+C="--law coulomb --mu 0.5 --length 0.1 --h 0.001 --x-max 3.4e-5"
+$B slide $C --out $D/c_qs --force
+for V in 2e-5 1e-5 5e-6 2.5e-6 1.25e-6; do
+  $B slide --dynamics --drive-velocity $V $C --out $D/c_$V --force
+done
+python3 "$(dirname "$0")/table.py" "$D"
