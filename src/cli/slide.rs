@@ -88,6 +88,10 @@ pub struct Args {
     /// Time step as a fraction of the stable step of the mesh and damping (--dynamics).
     #[arg(long, default_value_t = 0.9)]
     pub courant: f64,
+    /// After an instability (--dynamics): `all` nodes heal to mu_s (the model's rule), or only
+    /// the `slipped` ones (event slip above D_c/100; the others keep their slip).
+    #[arg(long, default_value = "all", value_parser = ["all", "slipped"])]
+    pub heal: String,
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
@@ -113,6 +117,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             ("--density", a.density.is_some()),
             ("--damping", a.damping.is_some()),
             ("--courant", super::given("courant")),
+            ("--heal", super::given("heal")),
         ] {
             if on {
                 return Err(Error::input(flag, "acts only with --dynamics"));
@@ -283,7 +288,12 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     if a.fields > 0 {
         return Err(Error::input("--fields", "not written by --dynamics yet"));
     }
-    let d = ds::DynamicOptions { damping: a.damping, courant: a.courant, ..Default::default() };
+    let d = ds::DynamicOptions {
+        damping: a.damping,
+        courant: a.courant,
+        heal_slipped_only: a.heal == "slipped",
+        ..Default::default()
+    };
     let clock = std::time::Instant::now();
     let shown = std::sync::atomic::AtomicI64::new(-1);
     let tick = |t: &tribofe::Tick| match t.fraction {

@@ -309,7 +309,13 @@ fn settle_drive(
 }
 
 /// Rate-consistency changes at lam until none is needed (continuous slip allowed).
-pub(crate) fn settle_continuous(sv: &mut Solver, lam: f64, cont: bool, cap: usize, what: &str) -> Result<Affine> {
+pub(crate) fn settle_continuous(
+    sv: &mut Solver,
+    lam: f64,
+    cont: bool,
+    cap: usize,
+    what: &str,
+) -> Result<Affine> {
     for _ in 0..cap {
         let a = sv.solve()?;
         match sv.rate_fix(&a, lam, cont)? {

@@ -29,15 +29,15 @@ use crate::fem::assembly::Assembler;
 use crate::interface::banded::{BandedOperator, Solving};
 use crate::interface::condense::{boundary_model, condense, Condensed};
 use crate::interface::events::{self, tolerances, Event, EventKind, NodeState, Operator, Phase, Run};
-use events::active::Solver as ActiveSolver;
-use events::operator::Affine;
-use events::search::Hit;
-use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, stuck_err, Recorder};
 use crate::interface::law::Law;
 use crate::linalg::solve::{Solver, SolverOptions};
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{SlideOptions, SlideResult};
+use events::active::Solver as ActiveSolver;
+use events::operator::Affine;
+use events::search::Hit;
+use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, stuck_err, Recorder};
 use std::time::Instant;
 
 mod steps;
@@ -55,11 +55,20 @@ pub struct DynamicOptions {
     /// Cap on the steps of one event, in thickness-mode periods (events at the default damping
     /// last 2 to 40; an event at rest but with a node exactly at its strength runs to it).
     pub max_periods: f64,
+    /// After an instability heal only the nodes that slipped in it (event slip above
+    /// D_c/100), the others keeping their slip; false: every node heals (the model's rule).
+    pub heal_slipped_only: bool,
 }
 
 impl Default for DynamicOptions {
     fn default() -> Self {
-        Self { damping: None, courant: 0.9, ke_fraction: 1e-6, max_periods: 2_000.0 }
+        Self {
+            damping: None,
+            courant: 0.9,
+            ke_fraction: 1e-6,
+            max_periods: 2_000.0,
+            heal_slipped_only: false,
+        }
     }
 }
 
@@ -292,7 +301,10 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let k_bonded = a.f1[sv.iu()];
     sv.dscale = a.b0[2 * n + 1].abs();
     if !(k_bonded > 0.0 && sv.dscale > 0.0) {
-        return Err(Error::input("condensed system", "the bonded block has no tangential or normal stiffness"));
+        return Err(Error::input(
+            "condensed system",
+            "the bonded block has no tangential or normal stiffness",
+        ));
     }
     let setup_s = clock.elapsed().as_secs_f64();
     let mut dynamic_s = 0.0;
@@ -343,7 +355,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             }
         }
         if weakens && x_end.is_infinite() && sv.all_contact_slipping() {
-            let weak = (0..n).all(|k| sv.states()[k] == NodeState::Open || sv.slip_memory(k, a.b(k, lam)) >= dc);
+            let weak =
+                (0..n).all(|k| sv.states()[k] == NodeState::Open || sv.slip_memory(k, a.b(k, lam)) >= dc);
             if weak {
                 // Steady sliding at mu_d, reached stably: nothing sticks again with the drive
                 // advancing; the run ends here.
@@ -356,11 +369,15 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             }
         }
         // Next X: the next threshold, or a slipping node's next D_c / 20 of slip.
-        let mut next: Option<(f64, Option<(usize, Hit)>)> = sv.next_event(&a, lam).map(|(dl, i, h)| (dl, Some((i, h))));
+        let mut next: Option<(f64, Option<(usize, Hit)>)> =
+            sv.next_event(&a, lam).map(|(dl, i, h)| (dl, Some((i, h))));
         if weakens {
             for k in 0..n {
                 let rate = a.b1[k].abs();
-                if matches!(sv.states()[k], NodeState::Slip(_)) && rate > 0.0 && sv.slip_memory(k, a.b(k, lam)) < dc {
+                if matches!(sv.states()[k], NodeState::Slip(_))
+                    && rate > 0.0
+                    && sv.slip_memory(k, a.b(k, lam)) < dc
+                {
                     let dl = (dc / STEPS_PER_DC - done[k]).max(0.0) / rate;
                     if next.is_none_or(|b| dl < b.0) {
                         next = Some((dl, None));
@@ -444,7 +461,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             });
         }
         // Back to statics: every contact node anchored where the event left it.
-        let a_after = anchor_after(&mut sv, &layout.base, &ds, &ev, lam, cap, &mut done)?;
+        let a_after =
+            anchor_after(&mut sv, &layout.base, &ds, &ev, d.heal_slipped_only, lam, cap, &mut done)?;
         let u_static = full_field(&a_after, lam);
         let max_slip = ev.slip.iter().cloned().fold(0.0, f64::max).max(f64::MIN_POSITIVE);
         let u_gap = ds.u.iter().zip(&u_static).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / max_slip;

@@ -58,12 +58,15 @@ pub(super) fn relax(
 
 /// The static state after a dynamic event at U_H = lam: every base node anchored where the
 /// event left it (or open), its slip memory the event's (healed to 0 when some node weakened
-/// fully: an instability), the states made consistent.
+/// fully, an instability: every node, or with `slipped_only` those whose event slip passed
+/// the event's threshold), the states made consistent.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn anchor_after(
     sv: &mut Solver,
     base: &[usize],
     ds: &DynState,
     ev: &EventRecord,
+    slipped_only: bool,
     lam: f64,
     cap: usize,
     done: &mut [f64],
@@ -71,11 +74,17 @@ pub(super) fn anchor_after(
     let change: Vec<(usize, NodeState, f64)> = base
         .iter()
         .enumerate()
-        .map(|(b, &k)| if ev.open[b] { (b, NodeState::Open, 0.0) } else { (b, NodeState::Stick, ds.u[2 * k]) })
+        .map(
+            |(b, &k)| if ev.open[b] { (b, NodeState::Open, 0.0) } else { (b, NodeState::Stick, ds.u[2 * k]) },
+        )
         .collect();
     sv.set_many(&change)?;
-    if ev.weakened {
+    if ev.weakened && !slipped_only {
         sv.heal_memory();
+    } else if ev.weakened {
+        for (b, &d) in ds.d.iter().enumerate() {
+            sv.set_slip_memory(b, if ev.slip[b] > ev.threshold { 0.0 } else { d });
+        }
     } else {
         for (b, &d) in ds.d.iter().enumerate() {
             sv.set_slip_memory(b, d);
