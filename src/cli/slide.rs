@@ -325,8 +325,10 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     ];
     let header = tribofe::report::run_toml(super::invocation(), &results, scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
+    let writing = std::time::Instant::now();
     tribofe::report::dynamic_slide::write(&res, dir.path(), &header, true)?;
     dir.commit()?;
+    let written_s = writing.elapsed().as_secs_f64();
     let run = &res.slide.run;
     let inst = res.events.iter().filter(|e| e.record.weakened).count();
     outln!(
@@ -356,12 +358,18 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     print_paper_comparison("dynamics", &res.slide)?;
     let worst_gap = res.events.iter().map(|e| e.f_gap).fold(0.0, f64::max);
     outln!(
-        "largest |F_dynamic - F_static| at an event's end {:.2e} mu_s N; wall time {:.2} s (setup {:.2} s, static loading {:.2} s, dynamic events {:.2} s)",
+        "largest |F_dynamic - F_static| at an event's end {:.2e} mu_s N; wall time {:.2} s (setup {:.2} s, static loading {:.2} s on the {} operator: {}, dynamic events {:.2} s, writing {:.2} s)",
         worst_gap,
         clock.elapsed().as_secs_f64(),
         res.setup_s,
         res.static_s,
-        res.dynamic_s
+        o.operator.name(),
+        match o.operator {
+            tribofe::interface::events::Operator::Banded => format!("{} banded LU solves", run.refreshes),
+            _ => format!("{} bordering updates, {} full LU", run.updates, run.refreshes),
+        },
+        res.dynamic_s,
+        written_s
     );
     outln!(
         "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
