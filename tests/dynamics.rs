@@ -522,6 +522,37 @@ fn dynamic_slide_is_the_same_on_the_dense_and_the_banded_operator() {
 }
 
 #[test]
+fn healing_only_the_slipped_nodes_acts_after_the_first_instability() {
+    // `--heal slipped` changes only what happens after an instability: the runs are the same
+    // computation, bit for bit, up to and including the first one, and part after it (the
+    // nodes outside its slipped region keep their slip, so the loading that follows differs).
+    let scene = block(0.1, 0.0005, None);
+    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
+    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
+    let o = SlideOptions {
+        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
+        x_max: Some(6.0e-6),
+        ..Default::default()
+    };
+    let run = |slipped| {
+        let d = DynamicOptions { heal_slipped_only: slipped, ..Default::default() };
+        ds::run(&scene, &o, &d, tribofe::Progress::none()).unwrap()
+    };
+    let (all, some) = (run(false), run(true));
+    let first = all.events.iter().find(|e| e.record.weakened).expect("an instability").event;
+    let (ea, eb) = (&all.slide.run.events, &some.slide.run.events);
+    for k in 0..=first {
+        assert_eq!(
+            (ea[k].kind, ea[k].node, ea[k].x, ea[k].f),
+            (eb[k].kind, eb[k].node, eb[k].x, eb[k].f),
+            "event {k}"
+        );
+    }
+    let differs = ea.len() != eb.len() || ea.iter().zip(eb).any(|(p, q)| p.x != q.x || p.f != q.f);
+    assert!(differs, "the heal rule changed nothing after event {first}");
+}
+
+#[test]
 fn dynamic_events_balance_energy_and_end_at_rest() {
     // A short block with slip weakening (D_c the smallest the mesh resolves, Lambda_0 = 3 h)
     // to X = 6e-6 m: the first instabilities. Over each event the scheme's exact ledger
