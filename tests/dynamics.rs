@@ -437,7 +437,7 @@ fn density_is_a_scene_key() {
 
 // ---- slide --dynamics (issue 33, part 3): the plate-driven block ----
 
-use tribofe::interface::events::{EventKind, NodeState, Phase};
+use tribofe::interface::events::{EventKind, NodeState, Operator, Phase};
 use tribofe::interface::law::Law;
 use tribofe::scene::Scene;
 use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};
@@ -455,9 +455,9 @@ fn block(l: f64, h: f64, n_thick: Option<usize>) -> Scene {
 #[test]
 fn dynamic_slide_coulomb_is_the_event_solver() {
     // Coulomb friction never becomes unstable, so --dynamics is its exact static loading
-    // alone: the same events at the same X and F as `slide` (an independent dense solver of
-    // the same condensed system: agreement to round-off, 1e-9 of the scale), and the same
-    // slip extent in every state (within one node, the issue's tolerance; here exact).
+    // alone: the same events at the same X and F as `slide` (the same active-set solver, but
+    // driven by the dynamic mode's own loop: agreement to round-off, 1e-9 of the scale), and
+    // the same slip extent in every state (within one node, the issue's tolerance; here exact).
     let scene = block(0.4, 0.004, Some(2));
     let o = SlideOptions { law: Law::coulomb(0.5).unwrap(), ..Default::default() };
     let qs = slide::run(&scene, &o, tribofe::Progress::none()).unwrap();
@@ -484,6 +484,72 @@ fn dynamic_slide_coulomb_is_the_event_solver() {
     }
     assert_eq!(b.last().unwrap().3, EventKind::Sliding);
     assert!(dy.events.is_empty(), "coulomb ran {} dynamic events", dy.events.len());
+}
+
+#[test]
+fn dynamic_slide_is_the_same_on_the_dense_and_the_banded_operator() {
+    // The static phase runs on either operator of the event solver; each solve agrees to
+    // round-off (~1e-12 of the scale, tests/operator.rs), and the slip-weakening fixed point
+    // near a patch's critical length amplifies a difference by up to 1/(1 - its contraction),
+    // ~1e3 here: the same events (kind, node, dynamic or not), X and F within 1e-7 of their
+    // scales (X at the end, mu_s N).
+    let scene = block(0.1, 0.0005, None);
+    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
+    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
+    let run = |op| {
+        let o = SlideOptions {
+            law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
+            x_max: Some(6.0e-6),
+            operator: op,
+            ..Default::default()
+        };
+        ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap()
+    };
+    let (a, b) = (run(Operator::Dense), run(Operator::Banded));
+    let (ea, eb) = (&a.slide.run.events, &b.slide.run.events);
+    assert_eq!(ea.len(), eb.len(), "events: dense {} vs banded {}", ea.len(), eb.len());
+    assert!(a.events.len() >= 3, "{} dynamic events", a.events.len());
+    assert_eq!(
+        a.events.iter().map(|e| e.event).collect::<Vec<_>>(),
+        b.events.iter().map(|e| e.event).collect::<Vec<_>>()
+    );
+    let x_end = ea.last().unwrap().x;
+    for (p, q) in ea.iter().zip(eb) {
+        assert_eq!((p.kind, p.node), (q.kind, q.node), "at X = {}", p.x);
+        assert!((p.x - q.x).abs() < 1e-7 * x_end, "X {} vs {}", p.x, q.x);
+        assert!((p.f - q.f).abs() < 1e-7 * mu_s, "F {} vs {}", p.f, q.f);
+    }
+}
+
+#[test]
+fn healing_only_the_slipped_nodes_acts_after_the_first_instability() {
+    // `--heal slipped` changes only what happens after an instability: the runs are the same
+    // computation, bit for bit, up to and including the first one, and part after it (the
+    // nodes outside its slipped region keep their slip, so the loading that follows differs).
+    let scene = block(0.1, 0.0005, None);
+    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
+    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
+    let o = SlideOptions {
+        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
+        x_max: Some(6.0e-6),
+        ..Default::default()
+    };
+    let run = |slipped| {
+        let d = DynamicOptions { heal_slipped_only: slipped, ..Default::default() };
+        ds::run(&scene, &o, &d, tribofe::Progress::none()).unwrap()
+    };
+    let (all, some) = (run(false), run(true));
+    let first = all.events.iter().find(|e| e.record.weakened).expect("an instability").event;
+    let (ea, eb) = (&all.slide.run.events, &some.slide.run.events);
+    for k in 0..=first {
+        assert_eq!(
+            (ea[k].kind, ea[k].node, ea[k].x, ea[k].f),
+            (eb[k].kind, eb[k].node, eb[k].x, eb[k].f),
+            "event {k}"
+        );
+    }
+    let differs = ea.len() != eb.len() || ea.iter().zip(eb).any(|(p, q)| p.x != q.x || p.f != q.f);
+    assert!(differs, "the heal rule changed nothing after event {first}");
 }
 
 #[test]

@@ -109,6 +109,10 @@ pub struct Args {
     /// kg m^2/m (--dynamics; default 0).
     #[arg(long)]
     pub plate_inertia: Option<f64>,
+    /// After an instability (--dynamics): `all` nodes heal to mu_s (the model's rule), or only
+    /// the `slipped` ones (event slip above D_c/100; the others keep their slip).
+    #[arg(long, default_value = "all", value_parser = ["all", "slipped"])]
+    pub heal: String,
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
@@ -145,6 +149,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             ("--drive-velocity", a.drive_velocity.is_some()),
             ("--plate-mass", a.plate_mass.is_some()),
             ("--plate-inertia", a.plate_inertia.is_some()),
+            ("--heal", super::given("heal")),
         ] {
             if on {
                 return Err(Error::input(flag, "acts only with --dynamics"));
@@ -329,6 +334,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         drive_velocity: a.drive_velocity,
         plate_mass: a.plate_mass.unwrap_or(0.0),
         plate_inertia: a.plate_inertia.unwrap_or(0.0),
+        heal_slipped_only: a.heal == "slipped",
         ..Default::default()
     };
     let clock = std::time::Instant::now();
@@ -365,10 +371,12 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     ];
     let header = tribofe::report::run_toml(super::invocation(), &results, scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
+    let writing = std::time::Instant::now();
     // A constant-velocity run samples ~2000 states: states.csv (one row per node and state)
     // would be ~2000 n rows, so it is left out there.
     tribofe::report::dynamic_slide::write(&res, dir.path(), &header, a.drive_velocity.is_none())?;
     dir.commit()?;
+    let written_s = writing.elapsed().as_secs_f64();
     let run = &res.slide.run;
     let inst = res.events.iter().filter(|e| e.record.weakened).count();
     outln!(
@@ -414,12 +422,18 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     }
     let worst_gap = res.events.iter().map(|e| e.f_gap).fold(0.0, f64::max);
     outln!(
-        "largest |F_dynamic - F_static| at an event's end {:.2e} mu_s N; wall time {:.2} s (setup {:.2} s, static loading {:.2} s, dynamic events {:.2} s)",
+        "largest |F_dynamic - F_static| at an event's end {:.2e} mu_s N; wall time {:.2} s (setup {:.2} s, static loading {:.2} s on the {} operator: {}, dynamic events {:.2} s, writing {:.2} s)",
         worst_gap,
         clock.elapsed().as_secs_f64(),
         res.setup_s,
         res.static_s,
-        res.dynamic_s
+        o.operator.name(),
+        match o.operator {
+            tribofe::interface::events::Operator::Banded => format!("{} banded LU solves", run.refreshes),
+            _ => format!("{} bordering updates, {} full LU", run.updates, run.refreshes),
+        },
+        res.dynamic_s,
+        written_s
     );
     outln!(
         "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",

@@ -15,5 +15,4 @@ pub mod driven;
 pub mod explicit;
 pub mod friction;
 pub mod rupture;
-pub mod statics;
 pub mod waves;

@@ -7,7 +7,7 @@ use super::{tolerances, NodeState, Phase, Problem};
 use crate::error::Result;
 use crate::interface::law::Law;
 
-pub(super) struct Solver<'a> {
+pub(crate) struct Solver<'a> {
     law: Law,
     /// States, anchors, slip coefficients and springs, phase: what the operator solves for.
     pub(super) set: ActiveSet,
@@ -29,7 +29,7 @@ pub(super) struct Solver<'a> {
     pub(super) hold_open: Vec<bool>,
     /// Force and displacement scales of the state tolerances: N/n and |V| under N bonded.
     pub(super) fscale: f64,
-    pub(super) dscale: f64,
+    pub(crate) dscale: f64,
     pub(super) creep: f64,
     /// The last solve's result, until the states, anchors, coefficients or phase change.
     last: Option<Affine>,
@@ -37,7 +37,7 @@ pub(super) struct Solver<'a> {
 
 impl<'a> Solver<'a> {
     /// Every node stuck at 0 in the drive phase, the operator's free system formed.
-    pub(super) fn new(op: Box<dyn Operator + 'a>, n: usize, pb: &Problem) -> Result<Solver<'a>> {
+    pub(crate) fn new(op: Box<dyn Operator + 'a>, n: usize, pb: &Problem) -> Result<Solver<'a>> {
         let set = ActiveSet {
             n,
             states: vec![NodeState::Stick; n],
@@ -66,32 +66,32 @@ impl<'a> Solver<'a> {
         Ok(sv)
     }
 
-    pub(super) fn n(&self) -> usize {
+    pub(crate) fn n(&self) -> usize {
         self.set.n
     }
-    pub(super) fn states(&self) -> &[NodeState] {
+    pub(crate) fn states(&self) -> &[NodeState] {
         &self.set.states
     }
-    pub(super) fn iu(&self) -> usize {
+    pub(crate) fn iu(&self) -> usize {
         self.set.iu()
     }
 
     /// Displacement scale of the state tolerances, m.
-    pub(super) fn dscale(&self) -> f64 {
+    pub(crate) fn dscale(&self) -> f64 {
         self.dscale
     }
-    pub(super) fn law(&self) -> Law {
+    pub(crate) fn law(&self) -> Law {
         self.law
     }
     /// Node i's slip coefficient (its magnitude, when slipping) and Newton spring.
-    pub(super) fn mu_slip(&self, i: usize) -> f64 {
+    pub(crate) fn mu_slip(&self, i: usize) -> f64 {
         self.set.mu_slip[i]
     }
     pub(super) fn spring(&self, i: usize) -> f64 {
         self.set.spring[i]
     }
     /// Where a stuck node is held, m.
-    pub(super) fn anchor(&self, i: usize) -> f64 {
+    pub(crate) fn anchor(&self, i: usize) -> f64 {
         self.set.anchor[i]
     }
 
@@ -115,18 +115,18 @@ impl<'a> Solver<'a> {
     }
 
     /// Node i's slip since the last heal if it is at u now (slipping in direction s).
-    pub(super) fn slip_at(&self, i: usize, s: f64, u: f64) -> f64 {
+    pub(crate) fn slip_at(&self, i: usize, s: f64, u: f64) -> f64 {
         self.slip_acc[i] + s * (u - self.slip0[i])
     }
 
     /// Every node in contact slipping, and at least one in contact (a whole slip).
-    pub(super) fn all_contact_slipping(&self) -> bool {
+    pub(crate) fn all_contact_slipping(&self) -> bool {
         let st = &self.set.states;
         st.iter().all(|s| *s != NodeState::Stick) && st.iter().any(|s| matches!(s, NodeState::Slip(_)))
     }
 
     /// Switches the loading phase (the prescribed values change).
-    pub(super) fn set_phase(&mut self, phase: Phase) {
+    pub(crate) fn set_phase(&mut self, phase: Phase) {
         self.set.phase = phase;
         self.op.pins_moved();
         self.last = None;
@@ -140,7 +140,7 @@ impl<'a> Solver<'a> {
     }
 
     /// Changes node i's state, updating the operator.
-    pub(super) fn set_state(&mut self, i: usize, new: NodeState, anchor: f64) -> Result<()> {
+    pub(crate) fn set_state(&mut self, i: usize, new: NodeState, anchor: f64) -> Result<()> {
         let (old, old_anchor) = (self.set.states[i], self.set.anchor[i]);
         self.enter(i, new, anchor);
         self.op.change(&self.set, i, old, old_anchor)
@@ -148,7 +148,7 @@ impl<'a> Solver<'a> {
 
     /// Changes many nodes at once: one by one below [`tolerances::BATCH`] changes; above, as
     /// one bulk change (cheaper than O(m^2) per change when a whole region flips).
-    pub(super) fn set_many(&mut self, changes: &[(usize, NodeState, f64)]) -> Result<()> {
+    pub(crate) fn set_many(&mut self, changes: &[(usize, NodeState, f64)]) -> Result<()> {
         if changes.len() < tolerances::BATCH {
             for &(i, st, a) in changes {
                 self.set_state(i, st, a)?;
@@ -163,7 +163,7 @@ impl<'a> Solver<'a> {
 
     /// New coefficients of slipping nodes' rows (slip weakening): (node, mu, spring, the slip
     /// the spring is centred on).
-    pub(super) fn set_coefficients(&mut self, changes: &[(usize, f64, f64, f64)]) -> Result<()> {
+    pub(crate) fn set_coefficients(&mut self, changes: &[(usize, f64, f64, f64)]) -> Result<()> {
         self.last = None;
         let small = changes.len() < tolerances::BATCH;
         for &(i, mu, k, u) in changes {
@@ -179,8 +179,25 @@ impl<'a> Solver<'a> {
         }
     }
 
+    /// Node i's slip since the last heal, at u if it is slipping (slip weakening's memory).
+    pub(crate) fn slip_memory(&self, i: usize, u: f64) -> f64 {
+        match self.set.states[i] {
+            NodeState::Slip(s) => self.slip_at(i, s, u),
+            _ => self.slip_acc[i],
+        }
+    }
+
+    /// Sets a node's slip memory (not slipping: its stuck threshold follows), for a caller
+    /// that moved the nodes itself (`slide --dynamics` after an elastodynamic event).
+    pub(crate) fn set_slip_memory(&mut self, i: usize, slip: f64) {
+        self.slip_acc[i] = slip;
+        if !matches!(self.set.states[i], NodeState::Slip(_)) {
+            self.mu_stick[i] = self.law.kinetic(slip);
+        }
+    }
+
     /// Every node forgets its slip: thresholds back to mu_s (slip weakening's healing).
-    pub(super) fn heal_memory(&mut self) {
+    pub(crate) fn heal_memory(&mut self) {
         self.slip_acc.iter_mut().for_each(|v| *v = 0.0);
         let mu_s = self.law.mu_s();
         self.mu_stick.iter_mut().for_each(|v| *v = mu_s);
@@ -210,7 +227,7 @@ impl<'a> Solver<'a> {
     }
 
     /// The affine solution of the current state set.
-    pub(super) fn solve(&mut self) -> Result<Affine> {
+    pub(crate) fn solve(&mut self) -> Result<Affine> {
         if let Some(a) = &self.last {
             return Ok(a.clone());
         }
@@ -225,7 +242,7 @@ impl<'a> Solver<'a> {
     }
 
     /// Incremental updates and full factorisations of the operator so far.
-    pub(super) fn counts(&self) -> (usize, usize) {
+    pub(crate) fn counts(&self) -> (usize, usize) {
         self.op.counts()
     }
 }

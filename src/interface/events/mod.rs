@@ -28,14 +28,14 @@
 
 use crate::interface::law::Law;
 
-mod active;
+pub(crate) mod active;
 mod classify;
 mod inverse;
 mod kind;
 pub(crate) mod operator;
 mod relax;
-mod search;
-mod simulation;
+pub(crate) mod search;
+pub(crate) mod simulation;
 #[cfg(test)]
 mod springs;
 pub mod tolerances;

@@ -10,7 +10,7 @@ use crate::error::Result;
 
 /// What one rate-consistency check did.
 #[derive(Debug, Clone, Copy)]
-pub(super) enum Fix {
+pub(crate) enum Fix {
     None,
     Changed(usize, EventKind),
     /// A stuck node must start an instability (static-kinetic).
@@ -19,7 +19,7 @@ pub(super) enum Fix {
 
 /// Which inequality an event reaches.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Hit {
+pub(crate) enum Hit {
     Open,
     Close,
     /// Slip direction s that the threshold implies.
@@ -31,7 +31,7 @@ impl Solver<'_> {
     /// contact before friction); returns what it did. [`Fix::Instability`] names a stuck node
     /// past its threshold when continuous slip is not allowed (static-kinetic): it is returned
     /// only once no other change is needed.
-    pub(super) fn rate_fix(&mut self, a: &Affine, lam: f64, allow_continuous_slip: bool) -> Result<Fix> {
+    pub(crate) fn rate_fix(&mut self, a: &Affine, lam: f64, allow_continuous_slip: bool) -> Result<Fix> {
         let n = self.set.n;
         let (tf, td) = (tolerances::STATE * self.fscale, tolerances::STATE * self.dscale);
         let (rate_f, rate_d) = self.rate_tols(a);
@@ -160,7 +160,7 @@ impl Solver<'_> {
         v
     }
 
-    pub(super) fn record(&self, a: &Affine, lam: f64, prev_u: Option<&[f64]>) -> State {
+    pub(crate) fn record(&self, a: &Affine, lam: f64, prev_u: Option<&[f64]>) -> State {
         let n = self.set.n;
         let x = if self.set.phase == Phase::Drive { lam } else { 0.0 };
         let nf = if self.set.phase == Phase::Normal { self.set.n_force * lam } else { self.set.n_force };
@@ -182,7 +182,7 @@ impl Solver<'_> {
 
     /// Smallest lam increment at which an inequality of the current states reaches equality:
     /// (increment, node, what).
-    pub(super) fn next_event(&self, a: &Affine, lam: f64) -> Option<(f64, usize, Hit)> {
+    pub(crate) fn next_event(&self, a: &Affine, lam: f64) -> Option<(f64, usize, Hit)> {
         let n = self.set.n;
         let (rf, rd) = self.rate_tols(a);
         let mut best: Option<(f64, usize, Hit)> = None;

@@ -101,7 +101,7 @@ fn check(pb: &Problem) -> Result<()> {
 /// N from 0 to its value (lambda = N reached / N); proportional loading, so the rate problem
 /// at 0 decides and nodes slip continuously. Ends with the `normal-load` (or `edge-preslip`)
 /// event.
-fn normal_phase(sv: &mut Solver, rec: &mut Recorder) -> Result<()> {
+pub(crate) fn normal_phase(sv: &mut Solver, rec: &mut Recorder) -> Result<()> {
     let max_fix = tolerances::max_changes(sv.n());
     let mut lam = 0.0;
     let mut pending: Option<(EventKind, usize)> = None;
@@ -309,7 +309,13 @@ fn settle_drive(
 }
 
 /// Rate-consistency changes at lam until none is needed (continuous slip allowed).
-fn settle_continuous(sv: &mut Solver, lam: f64, cont: bool, cap: usize, what: &str) -> Result<Affine> {
+pub(crate) fn settle_continuous(
+    sv: &mut Solver,
+    lam: f64,
+    cont: bool,
+    cap: usize,
+    what: &str,
+) -> Result<Affine> {
     for _ in 0..cap {
         let a = sv.solve()?;
         match sv.rate_fix(&a, lam, cont)? {
@@ -321,7 +327,7 @@ fn settle_continuous(sv: &mut Solver, lam: f64, cont: bool, cap: usize, what: &s
     Err(stuck_err(what, lam))
 }
 
-fn hit_kind(h: Hit) -> EventKind {
+pub(crate) fn hit_kind(h: Hit) -> EventKind {
     match h {
         Hit::Open => EventKind::Open,
         Hit::Close => EventKind::Close,
@@ -329,7 +335,7 @@ fn hit_kind(h: Hit) -> EventKind {
     }
 }
 
-pub(super) fn stuck_err(phase: &str, lam: f64) -> Error {
+pub(crate) fn stuck_err(phase: &str, lam: f64) -> Error {
     Error::Untrustworthy {
         detail: format!("the state update at {phase} parameter {lam:.6e} cycles without settling"),
         hint: "report this case; try another mesh or friction coefficient".into(),
@@ -337,7 +343,7 @@ pub(super) fn stuck_err(phase: &str, lam: f64) -> Error {
 }
 
 /// Applies the transition that reached equality at lam.
-fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<()> {
+pub(crate) fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<()> {
     let u = a.b(i, lam);
     match h {
         Hit::Open => sv.set_state(i, NodeState::Open, 0.0),
@@ -348,15 +354,15 @@ fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<
 
 /// The run being written: its events and states so far, and u at the last recorded state
 /// (the slip-direction check of the next one).
-pub(super) struct Recorder<'p> {
-    pub(super) out: Run,
-    pub(super) prev_u: Vec<f64>,
-    pub(super) pb: &'p Problem,
+pub(crate) struct Recorder<'p> {
+    pub(crate) out: Run,
+    pub(crate) prev_u: Vec<f64>,
+    pub(crate) pb: &'p Problem,
 }
 
 impl Recorder<'_> {
     /// Records the state of `a` at lam and the event `ev` builds from it.
-    pub(super) fn record(
+    pub(crate) fn record(
         &mut self,
         sv: &Solver,
         a: &Affine,
@@ -370,7 +376,7 @@ impl Recorder<'_> {
     }
 
     /// Records a continuous event (no relaxation) of `kind` at `node`.
-    pub(super) fn simple(
+    pub(crate) fn simple(
         &mut self,
         sv: &Solver,
         a: &Affine,
@@ -404,7 +410,7 @@ impl Recorder<'_> {
     }
 
     /// The finished run with the operator's counts.
-    pub(super) fn finish(mut self, sv: &Solver) -> Run {
+    pub(crate) fn finish(mut self, sv: &Solver) -> Run {
         (self.out.updates, self.out.refreshes) = sv.counts();
         self.out
     }

@@ -1,106 +1,126 @@
-//! The run's steps that read the static state: a recorded [`State`] from the static path,
-//! settling the node states at a load, the kind of a state change, slip bookkeeping and a
-//! dynamic event's arrest.
+//! The run's steps on the event solver's active set: the slip-weakening relaxation at a fixed
+//! drive (stable, or the onset of a dynamic event), the static state after an event, what an
+//! event was, and its arrest.
 
-use crate::dynamics::driven::EventRecord;
-use crate::dynamics::statics::{Load, Node, Path, Statics};
-use crate::error::{Error, Result};
-use crate::interface::events::{EventKind, NodeState, Phase, State, Violations};
+use crate::dynamics::driven::{DynState, EventRecord};
+use crate::error::Result;
+use crate::interface::events::active::Solver;
+use crate::interface::events::operator::Affine;
+use crate::interface::events::simulation::settle_continuous;
+use crate::interface::events::{EventKind, NodeState};
 
-pub(super) fn to_state(st: &Statics, p: &Path, lam: f64, phase: Phase) -> State {
-    let n = st.n;
-    let n_force = if phase == Phase::Normal { lam } else { st.n_force };
-    let x = if phase == Phase::Normal { 0.0 } else { lam };
-    let states: Vec<NodeState> = st
-        .nodes
-        .iter()
-        .map(|s| match *s {
-            Node::Stick { .. } => NodeState::Stick,
-            Node::Slip { s } => NodeState::Slip(s),
-            Node::Open => NodeState::Open,
-        })
-        .collect();
-    let t_force: Vec<f64> = (0..n).map(|i| p.f(i, lam)).collect();
-    let p_force: Vec<f64> = (0..n).map(|i| p.f(n + i, lam)).collect();
-    // Friction and pressure violations relative to N/n.
-    let scale = (n_force / n as f64).max(f64::MIN_POSITIVE);
-    let mut v = Violations::default();
-    for i in 0..n {
-        if st.nodes[i] != Node::Open {
-            v.pressure = v.pressure.max(-p_force[i] / scale);
-            v.friction = v.friction.max((t_force[i].abs() - st.mu[i] * p_force[i]) / scale);
-        }
-    }
-    v.equilibrium = (p.f(2 * n + 1, lam) + n_force).abs() / scale;
-    State {
-        phase,
-        x,
-        n_force,
-        f: p.f(2 * n, lam),
-        tilt: p.b(2 * n + 2, lam),
-        v: p.b(2 * n + 1, lam),
-        t_force,
-        p_force,
-        u: (0..n).map(|i| p.b(i, lam)).collect(),
-        gap: (0..n).map(|i| p.b(n + i, lam)).collect(),
-        states,
-        violations: v,
-    }
-}
+/// Fixed-point iterates of one relaxation before it counts as unstable.
+const FIXED_POINT_ITERATES: usize = 30;
 
-/// Solves and repairs the states at lam until they are consistent; applies changes to `st`.
-pub(super) fn settle(
-    st: &mut Statics,
-    load: Load,
+/// Brings the slipping coefficients to their slips at fixed U_H = lam by fixed point (each
+/// iterate one solve with the coefficients frozen, the states made consistent after it).
+/// None: it settled (an iterate moved no slipping node by 1e-3 D_c); Some(the last iterate):
+/// it diverged (an iterate moved a node by more than D_c/2, or 30 iterates did not settle),
+/// so the patch is unstable and the event runs dynamically from there. `done`: slip since
+/// each coefficient was last brought to its slip (reset for the slipping nodes).
+pub(super) fn relax(
+    sv: &mut Solver,
+    a: &Affine,
     lam: f64,
-    ftol: f64,
-    gtol: f64,
+    dc: f64,
     cap: usize,
-) -> Result<Path> {
-    for _ in 0..cap {
-        let p = st.solve(load)?;
-        match st.violation(&p, lam, ftol, gtol) {
-            None => return Ok(p),
-            Some((i, to)) => {
-                st.nodes[i] = match to {
-                    Node::Stick { .. } => Node::Stick { anchor: p.b(i, lam) },
-                    o => o,
-                };
+    done: &mut [f64],
+) -> Result<Option<Affine>> {
+    let (n, law) = (sv.n(), sv.law());
+    let mut a_cur = a.clone();
+    for _ in 0..FIXED_POINT_ITERATES {
+        let mut change = Vec::new();
+        for k in 0..n {
+            if let NodeState::Slip(_) = sv.states()[k] {
+                done[k] = 0.0;
+                let mu = law.kinetic(sv.slip_memory(k, a_cur.b(k, lam)));
+                if mu != sv.mu_slip(k) {
+                    change.push((k, mu, 0.0, 0.0));
+                }
             }
         }
-    }
-    Err(Error::Untrustworthy {
-        detail: format!("the static interface states did not settle in {cap} changes"),
-        hint: "report the command line".into(),
-    })
-}
-
-pub(super) fn change_kind(from: Node, to: Node) -> EventKind {
-    match (from, to) {
-        (_, Node::Open) => EventKind::Open,
-        (Node::Open, _) => EventKind::Close,
-        (_, Node::Slip { .. }) => EventKind::Slip,
-        _ => EventKind::Stick,
-    }
-}
-
-/// Slip path of the slipping nodes from lam to l along p.
-pub(super) fn add_slip(st: &Statics, p: &Path, lam: f64, l: f64, slip: &mut [f64]) {
-    for i in 0..st.n {
-        if let Node::Slip { .. } = st.nodes[i] {
-            slip[i] += (p.b1[i] * (l - lam)).abs();
+        sv.set_coefficients(&change)?;
+        let a_new = settle_continuous(sv, lam, true, cap, "slip-weakening relaxation")?;
+        let jump = (0..n)
+            .filter(|&k| matches!(sv.states()[k], NodeState::Slip(_)))
+            .map(|k| (a_new.b(k, lam) - a_cur.b(k, lam)).abs())
+            .fold(0.0, f64::max);
+        a_cur = a_new;
+        if jump < 1e-3 * dc {
+            return Ok(None);
+        }
+        if jump > 0.5 * dc {
+            break;
         }
     }
+    Ok(Some(a_cur))
 }
 
-pub(super) fn add_slip_done(st: &Statics, p: &Path, lam: f64, l: f64, slip: &mut [f64], done: &mut [f64]) {
-    for i in 0..st.n {
-        if let Node::Slip { .. } = st.nodes[i] {
-            let ds = (p.b1[i] * (l - lam)).abs();
-            slip[i] += ds;
-            done[i] += ds;
+/// The static state after a dynamic event at U_H = lam: every base node anchored where the
+/// event left it (or open), its slip memory the event's (healed to 0 when some node weakened
+/// fully, an instability: every node, or with `slipped_only` those whose event slip passed
+/// the event's threshold), the states made consistent.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn anchor_after(
+    sv: &mut Solver,
+    base: &[usize],
+    ds: &DynState,
+    ev: &EventRecord,
+    slipped_only: bool,
+    lam: f64,
+    cap: usize,
+    done: &mut [f64],
+) -> Result<Affine> {
+    let change: Vec<(usize, NodeState, f64)> = base
+        .iter()
+        .enumerate()
+        .map(
+            |(b, &k)| if ev.open[b] { (b, NodeState::Open, 0.0) } else { (b, NodeState::Stick, ds.u[2 * k]) },
+        )
+        .collect();
+    sv.set_many(&change)?;
+    if ev.weakened && !slipped_only {
+        sv.heal_memory();
+    } else if ev.weakened {
+        for (b, &d) in ds.d.iter().enumerate() {
+            sv.set_slip_memory(b, if ev.slip[b] > ev.threshold { 0.0 } else { d });
+        }
+    } else {
+        for (b, &d) in ds.d.iter().enumerate() {
+            sv.set_slip_memory(b, d);
         }
     }
+    done.iter_mut().for_each(|v| *v = 0.0);
+    settle_continuous(sv, lam, true, cap, "drive after a dynamic event")
+}
+
+/// What a dynamic event was, its nucleation node and slipped run (nodes whose event slip
+/// passed D_c/100, around the nucleation node): `precursor` (the run starts at the first
+/// contact node), `nucleation` (elsewhere), `sliding` (every contact node), `slip` (no node
+/// weakened fully: not an instability).
+pub(super) fn classify_event(ev: &EventRecord, dc: f64, n: usize) -> (EventKind, usize, (usize, usize)) {
+    let thr = dc / 100.0;
+    let went: Vec<bool> = ev.slip.iter().map(|&s| s > thr).collect();
+    let node = ev.nucleation.unwrap_or(0);
+    let (mut a, mut b) = (node, node);
+    while a > 0 && went[a - 1] {
+        a -= 1;
+    }
+    while b + 1 < n && went[b + 1] {
+        b += 1;
+    }
+    let first_contact = (0..n).find(|&k| !ev.open[k] || went[k]).unwrap_or(0);
+    let last_contact = (0..n).rev().find(|&k| !ev.open[k] || went[k]).unwrap_or(n - 1);
+    let kind = if !ev.weakened || ev.nucleation.is_none() {
+        EventKind::Slip
+    } else if a <= first_contact && b >= last_contact {
+        EventKind::Sliding
+    } else if a <= first_contact {
+        EventKind::Precursor
+    } else {
+        EventKind::Nucleation
+    };
+    (kind, node, (a, b))
 }
 
 /// The front's arrest (the first sample at which the tip is at its final position) and the

@@ -22,17 +22,18 @@
 //! f_gap and u_gap (distance to a static equilibrium after an event) are 0 here: no static
 //! equilibrium is solved.
 
-use super::steps::{add_slip, arrest, change_kind, settle, to_state};
+use super::steps::arrest;
 use super::{check as check_held, DynEvent, DynamicOptions, DynamicResult, DEFAULT_DAMPING_RATIO};
 use crate::dynamics::driven::{Contact, Driven, DynState, EventEnergy, EventRecord, Layout};
 use crate::dynamics::explicit::Elastodynamic;
 use crate::dynamics::friction::SlipWeakening;
-use crate::dynamics::statics::{Load, Node, Statics};
 use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
 use crate::fem::assembly::Assembler;
 use crate::interface::condense::{boundary_model, condense};
-use crate::interface::events::{Event, EventKind, NodeState, Phase, Run, State, Violations};
+use crate::interface::events::active::Solver as ActiveSolver;
+use crate::interface::events::simulation::{normal_phase, settle_continuous, Recorder};
+use crate::interface::events::{operator, tolerances, Event, EventKind, NodeState, Phase, Run, State, Violations};
 use crate::interface::law::Law;
 use crate::linalg::solve::{Solver, SolverOptions};
 use crate::progress::Progress;
@@ -127,8 +128,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         _ => SlipWeakening::coulomb(mu_s)?,
     };
     let weakens = o.law.weakens();
-    let mut st = Statics::new(c.at_height(hgt), n, mu_s);
-    st.n_force = o.n_force;
+    let s_h = c.at_height(hgt);
     // Full fields from boundary values (as the held mode): the block with its boundary held.
     let nf = sm.constraints.n_fixed();
     let slots: Vec<usize> =
@@ -182,19 +182,39 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     ));
     let setup_s = clock.elapsed().as_secs_f64();
 
-    let scale_f = o.n_force / n as f64;
-    let ftol = 1e-9 * scale_f;
-    let gtol = 1e-12 * o.n_force * t / (c.e_star * c.l);
-    let cap = crate::interface::events::tolerances::max_changes(n);
-    let mut run = Run {
+    // Normal phase, quasi-static and exact: the event solver's (as the held mode).
+    let mut sv = ActiveSolver::new(Box::new(operator::Dense::new(&s_h, 2 * n + 3)), n, o)?;
+    let a0 = sv.solve()?;
+    let k_bonded = a0.f1[sv.iu()];
+    sv.dscale = a0.b0[2 * n + 1].abs();
+    if !(k_bonded > 0.0 && sv.dscale > 0.0) {
+        return Err(Error::input("condensed system", "the bonded block has no tangential or normal stiffness"));
+    }
+    sv.set_phase(Phase::Normal);
+    let out = Run {
         events: vec![],
         states: vec![],
         max_violation: 0.0,
-        k_bonded: st.k_bonded()?,
+        k_bonded,
         sliding_events: 0,
         updates: 0,
         refreshes: 0,
     };
+    let mut rec = Recorder { out, prev_u: vec![0.0; n], pb: o };
+    normal_phase(&mut sv, &mut rec)?;
+    // Every pre-slipped node sticks where it is as the drive starts, keeping its slip.
+    sv.set_phase(Phase::Drive);
+    for i in 0..n {
+        if let NodeState::Slip(_) = sv.states()[i] {
+            sv.set_state(i, NodeState::Stick, rec.prev_u[i])?;
+        }
+    }
+    let cap = tolerances::max_changes(n);
+    // The start on the quasi-static path: u of the static field at U_H = 0, v = V du/dU_H.
+    let p = settle_continuous(&mut sv, 0.0, true, cap, "drive")?;
+    let start = sv.record(&p, 0.0, None);
+    let slip: Vec<f64> = (0..n).map(|k| sv.slip_memory(k, p.b(k, 0.0))).collect();
+    let mut run = rec.out;
     let push = |run: &mut Run, ev: Event, s: State| -> Result<()> {
         run.max_violation = run.max_violation.max(s.violations.max());
         run.events.push(ev);
@@ -221,45 +241,6 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         backslip: 0,
         all_slipping: false,
     };
-
-    // Normal phase, quasi-static and exact (the held mode's).
-    let mut slip = vec![0.0f64; n];
-    let mut lam = 0.0;
-    loop {
-        o.cancel.check()?;
-        let p = settle(&mut st, Load::Normal, lam, ftol, gtol, cap)?;
-        match st.next_change(&p, lam, o.n_force, None) {
-            Some((l, i, to)) => {
-                add_slip(&st, &p, lam, l, &mut slip);
-                lam = l;
-                let from = st.nodes[i];
-                st.nodes[i] =
-                    if let Node::Stick { .. } = to { Node::Stick { anchor: p.b(i, l) } } else { to };
-                let p = settle(&mut st, Load::Normal, lam, ftol, gtol, cap)?;
-                let s = to_state(&st, &p, lam, Phase::Normal);
-                push(&mut run, simple(change_kind(from, to), &s, i), s)?;
-            }
-            None => {
-                add_slip(&st, &p, lam, o.n_force, &mut slip);
-                let s = to_state(&st, &p, o.n_force, Phase::Normal);
-                let kind = if st.nodes.iter().any(|s| matches!(s, Node::Slip { .. })) {
-                    EventKind::EdgePreslip
-                } else {
-                    EventKind::NormalLoad
-                };
-                push(&mut run, simple(kind, &s, 0), s)?;
-                break;
-            }
-        }
-    }
-    for i in 0..n {
-        if let Node::Slip { .. } = st.nodes[i] {
-            st.nodes[i] = Node::Stick { anchor: run.states.last().expect("state").u[i] };
-        }
-    }
-    // The start on the quasi-static path: u of the static field at U_H = 0, v = V du/dU_H.
-    let p = settle(&mut st, Load::Drive, 0.0, ftol, gtol, cap)?;
-    let start = to_state(&st, &p, 0.0, Phase::Drive);
     let u0 = full_field(&p.b0);
     let du = full_field(&p.b1);
     let mut ds = DynState {
