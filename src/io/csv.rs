@@ -119,30 +119,36 @@ fn fast(out: &mut Vec<u8>, v: f64) -> bool {
 /// no letter but one e/E followed by an optional sign and at most two digits (so at most
 /// 10^200 10^99 < f64::MAX). Anything else is for the parse to judge.
 pub fn surely_finite(cell: &[u8]) -> bool {
-    if cell.len() >= 200 || cell.iter().any(|b| !b.is_ascii() || b.is_ascii_whitespace()) {
+    if cell.len() >= 200 {
         return false;
     }
-    let body = match cell {
-        [b'+' | b'-', tail @ ..] => tail,
-        _ => cell,
-    };
-    if [&b"inf"[..], b"infinity", b"nan"].iter().any(|w| body.eq_ignore_ascii_case(w)) {
-        return false;
-    }
-    if cell.iter().any(|b| !matches!(b, b'0'..=b'9' | b'.' | b'+' | b'-' | b'e' | b'E')) {
-        // Letters other than e/E: only the three words above parse, and this is none of them.
-        return true;
-    }
-    match cell.iter().position(|b| matches!(b, b'e' | b'E')) {
-        None => true,
-        Some(k) => {
-            let mut rest = &cell[k + 1..];
-            if let [b'+' | b'-', tail @ ..] = rest {
-                rest = tail;
-            }
-            rest.len() <= 2 && rest.iter().all(u8::is_ascii_digit)
+    // One pass: the first e/E, whether another letter occurs; whitespace, control and
+    // non-ASCII bytes are for the parse.
+    let (mut e_at, mut word) = (usize::MAX, false);
+    for (k, &b) in cell.iter().enumerate() {
+        match b {
+            b'0'..=b'9' | b'.' | b'+' | b'-' => {}
+            b'e' | b'E' => e_at = e_at.min(k),
+            0x21..=0x7e => word = true,
+            _ => return false,
         }
     }
+    if word {
+        // Only the three words parse (as non-finite values); any other word does not parse.
+        let body = match cell {
+            [b'+' | b'-', tail @ ..] => tail,
+            _ => cell,
+        };
+        return ![&b"inf"[..], b"infinity", b"nan"].iter().any(|w| body.eq_ignore_ascii_case(w));
+    }
+    if e_at == usize::MAX {
+        return true;
+    }
+    let mut rest = &cell[e_at + 1..];
+    if let [b'+' | b'-', tail @ ..] = rest {
+        rest = tail;
+    }
+    rest.len() <= 2 && rest.iter().all(u8::is_ascii_digit)
 }
 
 #[cfg(test)]
