@@ -557,3 +557,4 @@ fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
 
 mod reuse;
 pub(crate) use reuse::Solving;
+pub use reuse::{RANK_CAP, REFINE};
