@@ -173,7 +173,13 @@ fn same_history(scene: &Scene, law: Law, cycles: usize) -> (usize, usize, usize)
 }
 
 /// [`same_history`] over the first `prefix` events (all: None) to `tol` of the largest X, F.
-fn same_prefix(scene: &Scene, law: Law, cycles: usize, prefix: Option<usize>, tol: f64) -> (usize, usize, usize) {
+fn same_prefix(
+    scene: &Scene,
+    law: Law,
+    cycles: usize,
+    prefix: Option<usize>,
+    tol: f64,
+) -> (usize, usize, usize) {
     let o = SlideOptions { law, cycles, keep_states: false, ..Default::default() };
     let dense = run(scene, &o, tribofe::Progress::none()).unwrap();
     let banded =

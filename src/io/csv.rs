@@ -38,7 +38,7 @@ fn fast(out: &mut Vec<u8>, v: f64) -> bool {
         return true;
     }
     let a = v.abs();
-    if !(a >= 1e-10 && a < 1e12) {
+    if !(1e-10..1e12).contains(&a) {
         return false;
     }
     let mut e10 = a.log10().floor() as i32;
@@ -62,7 +62,7 @@ fn fast(out: &mut Vec<u8>, v: f64) -> bool {
         y = z;
     }
     let (hi, lo) = y;
-    if !(hi >= 1e12 && hi <= 1e13) {
+    if !(1e12..=1e13).contains(&hi) {
         return false;
     }
     let fl = hi.floor();
@@ -186,7 +186,7 @@ mod tests {
             let m = (r() >> 11) as f64 / (1u64 << 53) as f64 + 0.5;
             let e = (r() % 50) as i32 - 36;
             let v = m * 2f64.powi(e);
-            check(if r() % 2 == 0 { v } else { -v });
+            check(if r().is_multiple_of(2) { v } else { -v });
         }
     }
 
@@ -209,7 +209,14 @@ mod tests {
         ];
         for k in -30..=30 {
             let p = 10f64.powi(k);
-            for v in [p, p.next_up(), p.next_down(), 9.9999999999995 * p, 9.99999999999949 * p, 1.0000000000005 * p] {
+            for v in [
+                p,
+                p.next_up(),
+                p.next_down(),
+                9.9999999999995 * p,
+                9.99999999999949 * p,
+                1.0000000000005 * p,
+            ] {
                 vals.extend([v, v.next_up(), v.next_down(), -v]);
             }
         }
@@ -230,9 +237,21 @@ mod tests {
 
     #[test]
     fn finite_cells_are_recognised_and_the_rest_left_to_the_parse() {
-        for c in
-            ["1.5", "-2.000000000000e-7", "0", "12", "1e99", "1E+05", "", "event", "-", "stick", "-+inf", "infx", "1e5e5"]
-        {
+        for c in [
+            "1.5",
+            "-2.000000000000e-7",
+            "0",
+            "12",
+            "1e99",
+            "1E+05",
+            "",
+            "event",
+            "-",
+            "stick",
+            "-+inf",
+            "infx",
+            "1e5e5",
+        ] {
             let b = c.as_bytes();
             // Whatever the guard skips parses as finite or not at all.
             if surely_finite(b) {
@@ -247,5 +266,23 @@ mod tests {
         assert!(surely_finite(b"tip-advance"));
         let long = "9".repeat(250);
         assert!(!surely_finite(long.as_bytes()));
+    }
+
+    /// The CSV guard with its fast screen still refuses every non-finite cell, names its line
+    /// and column, and passes words and numbers.
+    #[test]
+    fn the_output_guard_still_refuses_non_finite_cells() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("t.csv");
+        crate::report::write_atomic(&p, b"event,x,state\n0,1.5e-7,stick\n1,-2.0e3,tip-advance\n").unwrap();
+        for (text, line, col) in [
+            (&b"a,b\n1,NaN\n"[..], 2, 2),
+            (b"a,b\n1,2\r\n-inf,3\n", 3, 1),
+            (b"a\n1e999\n", 2, 1),
+            (b"a,b\n0, infinity\n", 2, 2),
+        ] {
+            let e = crate::report::write_atomic(&p, text).unwrap_err().to_string();
+            assert!(e.contains(&format!("line {line} column {col}")), "{e}");
+        }
     }
 }

@@ -120,7 +120,9 @@ pub fn states_csv(r: &SlideResult) -> Result<String> {
         .enumerate()
         .map(|(j, s)| chunk(j * STATES_PER_CHUNK, s))
         .collect();
-    let mut out = Vec::with_capacity(header.len() + parts.iter().map(|p| p.as_ref().map_or(0, Vec::len)).sum::<usize>());
+    let mut out = Vec::with_capacity(
+        header.len() + parts.iter().map(|p| p.as_ref().map_or(0, Vec::len)).sum::<usize>(),
+    );
     out.extend_from_slice(header.as_bytes());
     // The first error in row order, as a sequential writer would report it.
     for p in parts {

@@ -29,6 +29,9 @@ pub const RANK_CAP: usize = 24;
 /// ~18 terms, so each equation holds to round-off whatever the scale of its forces.
 pub const REFINE: f64 = 32.0 * f64::EPSILON;
 
+/// A solution's residual b - M x and its equations' sizes (sum |M_rj x_j| + |b_r|).
+type Checked = (Vec<f64>, Vec<f64>);
+
 /// What a boundary row depends on besides K: free, slip coefficient, spring.
 type Key = (bool, f64, f64);
 
@@ -209,8 +212,10 @@ impl<'a> Solving<'a> {
     /// trust, which the caller answers with a refactorisation).
     fn capacitance(&self) -> Option<Lu> {
         let k = self.z.len();
-        let a: Vec<f64> =
-            (0..k).flat_map(|i| (0..k).map(move |j| (i, j))).map(|(i, j)| self.wz[i][j] + f64::from(i == j)).collect();
+        let a: Vec<f64> = (0..k)
+            .flat_map(|i| (0..k).map(move |j| (i, j)))
+            .map(|(i, j)| self.wz[i][j] + f64::from(i == j))
+            .collect();
         Lu::new(a, k)
     }
 
@@ -300,7 +305,7 @@ impl<'a> Solving<'a> {
 
     /// rho = b - M x over the m + 3 equations for each (x, b) pair (one pass over K), and
     /// each equation's size: sum |M_rj x_j| + |b_r|.
-    fn residuals(&self, rows: &Rows, x: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<(Vec<f64>, Vec<f64>)> {
+    fn residuals(&self, rows: &Rows, x: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<Checked> {
         let nu = self.op.m + 3;
         let k = x.len();
         let mut kx = vec![vec![0.0; nu]; k];
@@ -321,7 +326,8 @@ impl<'a> Solving<'a> {
         (0..k)
             .map(|j| {
                 let rho = (0..nu).map(|r| b[j][r] - self.lhs_with(rows, r, &x[j], |q| kx[j][q])).collect();
-                let den = (0..nu).map(|r| self.size_at(rows, r, &x[j], |q| ka[j][q]) + b[j][r].abs()).collect();
+                let den =
+                    (0..nu).map(|r| self.size_at(rows, r, &x[j], |q| ka[j][q]) + b[j][r].abs()).collect();
                 (rho, den)
             })
             .collect()
@@ -365,7 +371,14 @@ impl<'a> Solving<'a> {
     /// guesses (x, rho, size) if given: the low-rank step when a guess's residual lies on R,
     /// then refinement by Woodbury until every equation meets [`REFINE`]. Returns the
     /// solutions, their residuals and sizes, and whether they met it.
-    fn solve_many(&self, rows: &Rows, b: &[Vec<f64>], vals: &[&[f64]], guess: Option<&[Guess]>, cap: Option<&Lu>) -> Result<(Vec<Vec<f64>>, Vec<(Vec<f64>, Vec<f64>)>, bool)> {
+    fn solve_many(
+        &self,
+        rows: &Rows,
+        b: &[Vec<f64>],
+        vals: &[&[f64]],
+        guess: Option<&[Guess]>,
+        cap: Option<&Lu>,
+    ) -> Result<(Vec<Vec<f64>>, Vec<Checked>, bool)> {
         let m = self.op.m;
         let mut xs = Vec::with_capacity(b.len());
         for (k, bk) in b.iter().enumerate() {
@@ -373,7 +386,9 @@ impl<'a> Solving<'a> {
                 _ if bk.iter().all(|&v| v == 0.0) => vec![0.0; m + 3],
                 Some(g) => {
                     let (mut x, rho, den) = (g[k].x.clone(), &g[k].res, &g[k].den);
-                    let off_r = |r: usize| !(r < m && self.bnd[r] != usize::MAX && self.in_r[self.bnd[r]] != usize::MAX);
+                    let off_r = |r: usize| {
+                        !(r < m && self.bnd[r] != usize::MAX && self.in_r[self.bnd[r]] != usize::MAX)
+                    };
                     if Self::backward_error(rho, den, off_r) <= REFINE {
                         if let Some(lu) = cap {
                             let rr: Vec<f64> = self.r_dofs.iter().map(|&d| rho[self.op.pos(d)]).collect();
@@ -394,8 +409,9 @@ impl<'a> Solving<'a> {
         let mut res = vec![];
         for step in 0..4 {
             res = self.residuals(rows, &xs, b);
-            let bad: Vec<usize> =
-                (0..b.len()).filter(|&k| !(Self::backward_error(&res[k].0, &res[k].1, |_| true) <= REFINE)).collect();
+            let bad: Vec<usize> = (0..b.len())
+                .filter(|&k| !(Self::backward_error(&res[k].0, &res[k].1, |_| true) <= REFINE))
+                .collect();
             ok = bad.is_empty();
             if ok || step == 3 || xs.iter().flatten().any(|v| !v.is_finite()) {
                 break;
@@ -418,7 +434,7 @@ impl<'a> Solving<'a> {
         b: &[Vec<f64>],
         vals: &[&[f64]],
         guess: Option<&[Guess]>,
-    ) -> Result<(Vec<Vec<f64>>, Vec<(Vec<f64>, Vec<f64>)>)> {
+    ) -> Result<(Vec<Vec<f64>>, Vec<Checked>)> {
         self.update(rows)?;
         for attempt in 0..2 {
             let cap = self.capacitance();
@@ -601,7 +617,8 @@ impl Operator for Solving<'_> {
         let mut full: [Vec<f64>; 2] = x.try_into().map_err(|_| super::singular())?;
         let sol = self.op.finish(&rows, &mut full);
         let [x0, x1] = full;
-        let [(r0, d0), (r1, d1)]: [(Vec<f64>, Vec<f64>); 2] = res.try_into().map_err(|_| super::singular())?;
+        let [(r0, d0), (r1, d1)]: [(Vec<f64>, Vec<f64>); 2] =
+            res.try_into().map_err(|_| super::singular())?;
         let g = [Guess { x: x0, res: r0, den: d0 }, Guess { x: x1, res: r1, den: d1 }];
         self.last = Some(Last { g, b, keys });
         Ok(Affine { b0: sol.b0, b1: sol.b1, f0: sol.f0, f1: sol.f1 })
