@@ -19,8 +19,10 @@ use crate::interface::events::{NodeState, Phase};
 use crate::linalg::banded::Banded;
 
 /// Rows replaced since the factorisation past which the band is refactored: a solve costs
-/// O(|R| m) in Z C^{-1}, a factorisation O(m kl (kl + ku)) plus |R| band solves to rebuild Z;
-/// 24 was the fastest of 8, 16, 24, 32, 64 on the coulomb run at 801 nodes (docs/speed.md).
+/// O(|R| m) in Z C^{-1}, a factorisation O(m kl (kl + ku)) plus a band solve per row of Z
+/// rebuilt; their balance at m = 6,411, kl = ku = 11 (coulomb at 801 nodes, ~1.2 rows an
+/// event) is near |R| ~ 20. Caps of 8 to 48 timed the same within the noise of the loaded
+/// machine (docs/speed.md).
 pub const RANK_CAP: usize = 24;
 
 /// Componentwise backward error accepted for a solution: every equation's residual within
