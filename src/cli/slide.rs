@@ -284,12 +284,13 @@ fn run_checked(
     );
     if res.options.operator == tribofe::interface::events::Operator::Banded {
         outln!(
-            "banded operator {:.3} s (K symmetric to {:.1e}, rigid motions to {:.1e}); events {:.3} s ({} banded LU solves)",
+            "banded operator {:.3} s (K symmetric to {:.1e}, rigid motions to {:.1e}); events {:.3} s ({} banded factorisations, {} low-rank row updates)",
             res.condense_s,
             res.condensed.asymmetry,
             res.condensed.rigid_residual,
             res.events_s,
-            res.run.refreshes
+            res.run.refreshes,
+            res.run.updates
         );
     } else {
         outln!(

@@ -15,8 +15,6 @@
 use crate::error::{Error, Result};
 use crate::fem::constraints::Target;
 use crate::interface::condense::boundary_model;
-use crate::interface::events::operator::{ActiveSet, Affine, Operator};
-use crate::interface::events::{NodeState, Phase};
 use crate::linalg::banded::Banded;
 use crate::scene::Scene;
 
@@ -293,17 +291,32 @@ impl BandedOperator {
         (&self.col[self.ptr[r]..self.ptr[r + 1]], &self.val[self.ptr[r]..self.ptr[r + 1]])
     }
 
-    /// The affine solution of one state set.
-    pub fn solve(&self, rows: &Rows, lu: &mut Banded) -> Result<Solution> {
-        let (n, m, nb) = (self.n, self.m, self.dim());
+    /// Band row -> boundary DOF (usize::MAX: an interior row).
+    fn bnd(&self) -> Vec<usize> {
+        let mut bnd = vec![usize::MAX; self.m];
+        for d in 0..2 * self.n {
+            bnd[self.pos(d)] = d;
+        }
+        bnd
+    }
+
+    fn check_sizes(&self, rows: &Rows) -> Result<()> {
+        let (n, nb) = (self.n, self.dim());
         if rows.free.len() != nb || rows.b0.len() != nb || rows.b1.len() != nb || rows.coef.len() != n {
             return Err(Error::input("banded operator", "state sizes do not match the interface"));
         }
-        // Row kind of each band row: None = interior (plain stiffness row), Some(d) = boundary d.
-        let mut bnd = vec![usize::MAX; m];
-        for d in 0..2 * n {
-            bnd[self.pos(d)] = d;
+        Ok(())
+    }
+
+    /// Assembles the free system of `rows` into `lu` (band) and the border, factors it, and
+    /// returns the factor with the right-hand sides: band (lambda^0, lambda^1; m each) and border.
+    pub(crate) fn factor(&self, rows: &Rows, mut lu: Banded) -> Result<(Factored, Vec<f64>, [[f64; 3]; 2])> {
+        self.check_sizes(rows)?;
+        let (n, m) = (self.n, self.m);
+        if (lu.m, lu.kl, lu.ku) != (m, self.kl, self.ku) {
+            lu = self.workspace();
         }
+        let bnd = self.bnd();
         lu.clear();
         // Right-hand sides: the 3 border columns, then lambda^0, lambda^1 (m each).
         let mut rhs = vec![0.0; 5 * m];
@@ -320,7 +333,7 @@ impl BandedOperator {
             let d = bnd[r];
             if d == usize::MAX {
                 let (c, v) = self.row(r);
-                put(lu, &mut rhs, r, c, v, 1.0);
+                put(&mut lu, &mut rhs, r, c, v, 1.0);
                 continue;
             }
             if !rows.free[d] {
@@ -330,7 +343,7 @@ impl BandedOperator {
                 continue;
             }
             let (c, v) = self.row(r);
-            put(lu, &mut rhs, r, c, v, 1.0);
+            put(&mut lu, &mut rhs, r, c, v, 1.0);
             if let Some(&e) = rows.load.get(d) {
                 rhs[3 * m + r] += e;
             }
@@ -338,7 +351,7 @@ impl BandedOperator {
                 let cf = rows.coef[d];
                 if cf != 0.0 {
                     let (c, v) = self.row(self.pv[d]);
-                    put(lu, &mut rhs, r, c, v, cf);
+                    put(&mut lu, &mut rhs, r, c, v, cf);
                 }
                 if rows.spring[d] != 0.0 {
                     lu.add(r, r, rows.spring[d]);
@@ -349,13 +362,11 @@ impl BandedOperator {
         // Border rows (C | D) and their right-hand sides.
         let mut crow = vec![0.0; 3 * m];
         let mut dmat = [[0.0f64; 3]; 3];
-        let mut srhs = [[0.0f64; 3]; 2];
+        let srhs = self.border_rhs(rows);
         for p in 0..3 {
             let d = 2 * n + p;
             if !rows.free[d] {
                 dmat[p][p] = self.scale;
-                srhs[0][p] = self.scale * rows.b0[d];
-                srhs[1][p] = self.scale * rows.b1[d];
                 continue;
             }
             let (c, v) = self.row(m + p);
@@ -366,6 +377,32 @@ impl BandedOperator {
                     dmat[p][c - m] += v;
                 }
             }
+        }
+        lu.factor()?;
+        // A^{-1} B (the border columns) and the Schur complement S = D - C A^{-1} B.
+        rhs.truncate(5 * m);
+        let rband = rhs.split_off(3 * m);
+        let mut ab = rhs;
+        lu.solve_in_place(&mut ab, 3);
+        let mut s = dmat;
+        for (p, sp) in s.iter_mut().enumerate() {
+            for (q, v) in sp.iter_mut().enumerate() {
+                *v -= dot(&crow[p * m..(p + 1) * m], &ab[q * m..(q + 1) * m]);
+            }
+        }
+        Ok((Factored { lu, ab, crow, s }, rband, srhs))
+    }
+
+    /// Right-hand sides of the three border rows (lambda^0, lambda^1).
+    fn border_rhs(&self, rows: &Rows) -> [[f64; 3]; 2] {
+        let mut srhs = [[0.0f64; 3]; 2];
+        for p in 0..3 {
+            let d = 2 * self.n + p;
+            if !rows.free[d] {
+                srhs[0][p] = self.scale * rows.b0[d];
+                srhs[1][p] = self.scale * rows.b1[d];
+                continue;
+            }
             if p == 1 {
                 srhs[0][p] = rows.fk.0;
                 srhs[1][p] = rows.fk.1;
@@ -374,53 +411,36 @@ impl BandedOperator {
                 srhs[0][p] += e;
             }
         }
-        lu.factor()?;
-        // A^{-1} B (the border columns) and the Schur complement S = D - C A^{-1} B.
-        let (ab, rband) = rhs.split_at_mut(3 * m);
-        lu.solve_in_place(ab, 3);
-        let ab: &[f64] = ab;
-        let dot =
-            |p: usize, z: &[f64]| -> f64 { crow[p * m..(p + 1) * m].iter().zip(z).map(|(a, b)| a * b).sum() };
-        let mut s = dmat;
-        for (p, sp) in s.iter_mut().enumerate() {
-            for (q, v) in sp.iter_mut().enumerate() {
-                *v -= dot(p, &ab[q * m..(q + 1) * m]);
-            }
-        }
-        let singular = || Error::Singular {
-            detail: "the interface leaves the block free to move (every node open, or N <= 0)".into(),
-            node: None,
-            component: None,
-        };
-        // The bordered system's solution for a band right-hand side z (solved in place) and a
-        // border one t: y = S^{-1} (t - C A^{-1} z), x = A^{-1} z - A^{-1} B y.
-        let apply = |z: &mut [f64], t: [f64; 3], full: &mut [f64]| -> Result<()> {
-            lu.solve_in_place(z, 1);
-            let tt = [t[0] - dot(0, z), t[1] - dot(1, z), t[2] - dot(2, z)];
-            let y = solve3(s, tt).ok_or_else(singular)?;
-            for r in 0..m {
-                full[r] += z[r] - (0..3).map(|q| ab[q * m + r] * y[q]).sum::<f64>();
-            }
-            for q in 0..3 {
-                full[m + q] += y[q];
-            }
-            Ok(())
-        };
+        srhs
+    }
+
+    /// The affine solution of one state set (factored afresh in the workspace `lu`).
+    pub fn solve(&self, rows: &Rows, lu: &mut Banded) -> Result<Solution> {
+        let m = self.m;
+        let (f, rband, srhs) = self.factor(rows, std::mem::replace(lu, Banded::zeros(0, 0, 0)))?;
+        let bnd = self.bnd();
         let mut full = [vec![0.0; m + 3], vec![0.0; m + 3]];
         for k in 0..2 {
             let mut z = rband[k * m..(k + 1) * m].to_vec();
-            apply(&mut z, srhs[k], &mut full[k])?;
+            f.apply(&mut z, srhs[k], &mut full[k])?;
             // One step of iterative refinement: residuals of the band rows and the border rows
             // (the dense path's equilibrium to ~1e-12 of N/n at 3,201 nodes needs it).
             let mut res: Vec<f64> =
                 (0..m).map(|r| rband[k * m + r] - self.lhs(r, &bnd, rows, &full[k])).collect();
             let t = [0, 1, 2].map(|p| srhs[k][p] - self.lhs(m + p, &bnd, rows, &full[k]));
-            apply(&mut res, t, &mut full[k])?;
+            f.apply(&mut res, t, &mut full[k])?;
             if full[k].iter().any(|v| !v.is_finite()) {
                 return Err(singular());
             }
         }
-        // Constrained values exactly as given (the identity rows return them to round-off).
+        *lu = f.lu;
+        Ok(self.finish(rows, &mut full))
+    }
+
+    /// Sets the constrained values exactly as given (the identity rows return them to
+    /// round-off) and reads b and f = S b at the boundary DOFs off the full solutions.
+    fn finish(&self, rows: &Rows, full: &mut [Vec<f64>; 2]) -> Solution {
+        let nb = self.dim();
         for d in (0..nb).filter(|&d| !rows.free[d]) {
             let p = self.pos(d);
             full[0][p] = rows.b0[d];
@@ -435,7 +455,53 @@ impl BandedOperator {
             out.f0[d] = c.iter().zip(v).map(|(&c, &v)| v * full[0][c]).sum();
             out.f1[d] = c.iter().zip(v).map(|(&c, &v)| v * full[1][c]).sum();
         }
-        Ok(out)
+        out
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(a, b)| a * b).sum()
+}
+
+fn singular() -> Error {
+    Error::Singular {
+        detail: "the interface leaves the block free to move (every node open, or N <= 0)".into(),
+        node: None,
+        component: None,
+    }
+}
+
+/// The factored bordered system [A B; C D] of one state set: A's banded LU, A^{-1} B, C and
+/// the border's Schur complement S = D - C A^{-1} B.
+pub(crate) struct Factored {
+    lu: Banded,
+    ab: Vec<f64>,
+    crow: Vec<f64>,
+    s: [[f64; 3]; 3],
+}
+
+impl Factored {
+    /// The band's storage, for the next factorisation.
+    pub(crate) fn into_band(self) -> Banded {
+        self.lu
+    }
+
+    /// Adds to `full` (m + 3) the solution for a band right-hand side z (solved in place) and a
+    /// border one t: y = S^{-1} (t - C A^{-1} z), x = A^{-1} z - A^{-1} B y.
+    pub(crate) fn apply(&self, z: &mut [f64], t: [f64; 3], full: &mut [f64]) -> Result<()> {
+        let m = self.lu.m;
+        self.lu.solve_in_place(z, 1);
+        let c = &self.crow;
+        let tt = [0, 1, 2].map(|p| t[p] - dot(&c[p * m..(p + 1) * m], z));
+        let y = solve3(self.s, tt).ok_or_else(singular)?;
+        let ab = &self.ab;
+        for r in 0..m {
+            full[r] += z[r] - (0..3).map(|q| ab[q * m + r] * y[q]).sum::<f64>();
+        }
+        for q in 0..3 {
+            full[m + q] += y[q];
+        }
+        Ok(())
     }
 }
 
@@ -489,92 +555,6 @@ fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
     Some(x)
 }
 
-/// The banded operator behind the event solver's seam: every change only marks the set dirty
-/// (the next solve refactorises), so an event costs one O(n b^2) solve however many nodes
-/// changed.
-pub(crate) struct Solving<'a> {
-    op: &'a BandedOperator,
-    lu: Banded,
-    solves: usize,
-}
-
-impl<'a> Solving<'a> {
-    pub fn new(op: &'a BandedOperator) -> Solving<'a> {
-        Solving { op, lu: op.workspace(), solves: 0 }
-    }
-
-    fn solve_rows(&mut self, set: &ActiveSet, load: &[f64], pins: bool) -> Result<Solution> {
-        let (n, nd) = (set.n, set.nd());
-        let free: Vec<bool> = (0..nd).map(|d| set.is_free(d)).collect();
-        let mut b0 = vec![0.0; nd];
-        let mut b1 = vec![0.0; nd];
-        let mut fk = (0.0, 0.0);
-        if pins {
-            for i in 0..n {
-                if set.states[i] == NodeState::Stick {
-                    b0[i] = set.anchor[i];
-                }
-            }
-            if set.phase == Phase::Drive {
-                b1[set.iu()] = 1.0;
-            }
-            fk = set.v_force();
-        }
-        let coef: Vec<f64> = (0..n).map(|i| set.slip_coef(i)).collect();
-        let zero = vec![0.0; n];
-        let rows = Rows {
-            free: &free,
-            b0: &b0,
-            b1: &b1,
-            coef: &coef,
-            spring: &set.spring,
-            spring_u: if pins { &set.spring_u } else { &zero },
-            fk,
-            load,
-        };
-        self.solves += 1;
-        self.op.solve(&rows, &mut self.lu)
-    }
-}
-
-impl Operator for Solving<'_> {
-    fn refresh(&mut self, _: &ActiveSet) -> Result<()> {
-        Ok(())
-    }
-    fn change(&mut self, _: &ActiveSet, _: usize, _: NodeState, _: f64) -> Result<()> {
-        Ok(())
-    }
-    fn bulk(&mut self, _: &ActiveSet) -> Result<()> {
-        Ok(())
-    }
-    fn coefficient(&mut self, _: &ActiveSet, _: usize) -> Result<()> {
-        Ok(())
-    }
-    fn pins_moved(&mut self) {}
-
-    fn solve(&mut self, set: &ActiveSet) -> Result<Affine> {
-        let x = self.solve_rows(set, &[], true)?;
-        Ok(Affine { b0: x.b0, b1: x.b1, f0: x.f0, f1: x.f1 })
-    }
-
-    /// Column j of the inverse is the response to a unit load on free equation j with every
-    /// prescribed value zero: one solve per column.
-    fn inverse_block(&mut self, set: &ActiveSet, dofs: &[usize]) -> Result<Vec<f64>> {
-        let k = dofs.len();
-        let mut out = vec![0.0; k * k];
-        let mut load = vec![0.0; set.nd()];
-        for (j, &dj) in dofs.iter().enumerate() {
-            load[dj] = 1.0;
-            let x = self.solve_rows(set, &load, false)?;
-            load[dj] = 0.0;
-            for (i, &di) in dofs.iter().enumerate() {
-                out[i * k + j] = x.b0[di];
-            }
-        }
-        Ok(out)
-    }
-
-    fn counts(&self) -> (usize, usize) {
-        (0, self.solves)
-    }
-}
+mod reuse;
+pub(crate) use reuse::Solving;
+pub use reuse::{RANK_CAP, REFINE};

@@ -3,12 +3,14 @@
 //! - [`gmsh`] reads Gmsh `.msh` meshes (MSH 4.1 and 2.2, ASCII and binary).
 //! - [`vtu`] writes VTK XML `.vtu` files and `.pvd` collections (ParaView).
 //! - [`gmsh_post`] writes the mesh and `$NodeData`/`$ElementData` views as MSH 4.1 (Gmsh).
+//! - [`csv`] formats CSV numbers (`{:.12e}`, fast) and screens cells for the output guard.
 //! - [`outdir`] makes an output folder a unit (written aside, renamed into place).
 //!
 //! Writers take [`Field`]s, plain named arrays, so they do not depend on the solver, and
 //! write atomically: a temporary file in the target directory renamed into place, so a
 //! failed write never leaves a partial file.
 
+pub mod csv;
 pub mod gmsh;
 pub mod gmsh_post;
 pub mod outdir;

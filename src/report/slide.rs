@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 const FONT: &str = "sans-serif";
 
 fn num(what: &str, v: f64) -> Result<String> {
-    Ok(format!("{:.12e}", finite(what, v)?))
+    Ok(crate::io::csv::e12(finite(what, v)?))
 }
 
 pub fn loading_csv(r: &SlideResult) -> Result<String> {
@@ -81,26 +81,55 @@ pub fn events_csv(r: &SlideResult) -> Result<String> {
     Ok(s)
 }
 
+/// One row per state and interface node. The bytes are those `{:.12e}` gives
+/// ([`crate::io::csv::push_e12`]), formatted in chunks of states on the rayon pool and
+/// joined in order (804 states x 801 nodes: 3.2e6 numbers, 61 MB).
 pub fn states_csv(r: &SlideResult) -> Result<String> {
+    use rayon::prelude::*;
     let c = &r.condensed;
     let pm = r.p_mean();
-    let mut s = String::from("event,x_over_L,p_over_pmean,tau_over_pmean,slip_m,gap_m,state\n");
-    for (k, st) in r.run.states.iter().enumerate() {
-        for i in 0..c.n {
-            writeln!(
-                s,
-                "{k},{},{},{},{},{},{}",
-                num("x", c.x[i] / c.l)?,
-                num("p", st.p_force[i] / c.w[i] / pm)?,
-                num("tau", -st.t_force[i] / c.w[i] / pm)?,
-                num("slip", st.u[i])?,
-                num("gap", st.gap[i])?,
-                st.states[i].name()
-            )
-            .unwrap();
+    let header = "event,x_over_L,p_over_pmean,tau_over_pmean,slip_m,gap_m,state\n";
+    let x: Vec<f64> = (0..c.n).map(|i| c.x[i] / c.l).collect();
+    let chunk = |k0: usize, states: &[crate::interface::events::State]| -> Result<Vec<u8>> {
+        let mut b = Vec::with_capacity(states.len() * c.n * 96);
+        let put = |b: &mut Vec<u8>, what: &str, v: f64| -> Result<()> {
+            crate::io::csv::push_e12(b, finite(what, v)?);
+            b.push(b',');
+            Ok(())
+        };
+        for (k, st) in (k0..).zip(states) {
+            let tag = format!("{k},");
+            for i in 0..c.n {
+                b.extend_from_slice(tag.as_bytes());
+                put(&mut b, "x", x[i])?;
+                put(&mut b, "p", st.p_force[i] / c.w[i] / pm)?;
+                put(&mut b, "tau", -st.t_force[i] / c.w[i] / pm)?;
+                put(&mut b, "slip", st.u[i])?;
+                put(&mut b, "gap", st.gap[i])?;
+                b.extend_from_slice(st.states[i].name().as_bytes());
+                b.push(b'\n');
+            }
         }
+        Ok(b)
+    };
+    const STATES_PER_CHUNK: usize = 32;
+    let parts: Vec<Result<Vec<u8>>> = r
+        .run
+        .states
+        .par_chunks(STATES_PER_CHUNK)
+        .enumerate()
+        .map(|(j, s)| chunk(j * STATES_PER_CHUNK, s))
+        .collect();
+    let mut out = Vec::with_capacity(
+        header.len() + parts.iter().map(|p| p.as_ref().map_or(0, Vec::len)).sum::<usize>(),
+    );
+    out.extend_from_slice(header.as_bytes());
+    // The first error in row order, as a sequential writer would report it.
+    for p in parts {
+        out.extend_from_slice(&p?);
     }
-    Ok(s)
+    // Only ASCII was written.
+    String::from_utf8(out).map_err(|e| crate::error::Error::input("states.csv", e.to_string()))
 }
 
 /// The FE loading curve (F^c, F)/(mu_s N) of the drive phase: each instability is a vertical
