@@ -129,7 +129,7 @@ pub(crate) fn cell(v: Option<f64>, digits: usize) -> String {
     v.map_or(String::new(), |v| format!("{v:.digits$e}"))
 }
 
-/// Summary table, one row per load case ([`summary_row`]).
+/// Summary table, one row per load case (the figures of `summary_row`).
 pub fn summary_csv(res: &CheckResult) -> Result<String> {
     let mut s = String::from(SUMMARY_HEADER);
     s.push('\n');
