@@ -512,7 +512,8 @@ fn axis_values(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
 }
 
 /// The bonded check over the product of the given parameter values; returns the columns of
-/// the command's `sweep.csv`.
+/// the command's `sweep.csv` as arrays from the library ([`tribofe::report::sweep::columns`]),
+/// not parsed back from its text.
 #[pyfunction]
 #[pyo3(signature = (scene=None, *, length=None, thickness=None, height=None, young=None, poisson=None,
     converged=true, friction=None, rule="paper", cycles=1, progress=None))]
@@ -556,7 +557,16 @@ fn sweep<'py>(
         let forward = poll.forward::<sw::Point>();
         sw::run(&scene, &axes, &o, Progress::new(&forward))
     })?;
-    columns(py, &tribofe::report::sweep::csv(&points, true).map_err(to_py)?)
+    let out = PyDict::new(py);
+    for (name, column) in tribofe::report::sweep::columns(&points).map_err(to_py)? {
+        use tribofe::report::sweep::Column;
+        match column {
+            Column::Int(v) => out.set_item(name, PyArray1::from_vec(py, v))?,
+            Column::Float(v) => out.set_item(name, arr(py, &v))?,
+            Column::Text(v) => out.set_item(name, v)?,
+        }
+    }
+    Ok(out)
 }
 
 /// Mesh and element convergence of the check; returns the columns of `convergence.csv` and

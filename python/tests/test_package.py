@@ -143,6 +143,38 @@ def test_sweep_and_converge_tables():
     assert "reference" in summary
 
 
+def test_sweep_columns_are_the_commands_table(tribofe_bin, tmp_path):
+    # The arrays come from the library, not parsed back from text: the same columns, types
+    # and values as the command's sweep.csv, to the digits the CSV prints (13 significant,
+    # 7 for the edge widths: relative 5e-7), empty cells NaN. The wall-time column differs.
+    kw = dict(thickness=[0.002, 0.004], length=0.05, converged=False)
+    df = tribofe.sweep(**kw, progress=False)
+    cols = df if isinstance(df, dict) else {k: df[k].to_numpy() for k in df.columns}
+    r = run_cli(tribofe_bin, "sweep", "--length", "0.05", "--thickness", "0.002,0.004",
+                "--as-meshed", "--out", str(tmp_path / "sw"))
+    assert r.returncode == 0, r.stderr
+    with open(tmp_path / "sw" / "sweep.csv") as f:
+        rows = list(csv.reader(f))
+    assert list(cols) == rows[0]
+    for j, name in enumerate(rows[0]):
+        cells = [row[j] for row in rows[1:]]
+        got = np.asarray(cols[name])
+        assert len(got) == len(cells), name
+        if name == "element":
+            assert list(got) == cells
+        elif name == "point_wall_s":
+            assert np.all(got > 0)
+        elif all(c.lstrip("-").isdigit() for c in cells):
+            assert got.dtype.kind == "i", name
+            assert list(got) == [int(c) for c in cells], name
+        else:
+            want = np.array([float(c) if c else np.nan for c in cells])
+            assert got.dtype.kind == "f", name
+            assert np.array_equal(np.isnan(got), np.isnan(want)), name
+            ok = ~np.isnan(want)
+            assert np.allclose(got[ok], want[ok], rtol=5e-7, atol=0), name
+
+
 @pytest.mark.parametrize(
     "kwargs, flags",
     [

@@ -3,7 +3,7 @@
 
 use super::{csv, ratio_label, write_atomic};
 use crate::error::{Error, Result};
-use crate::studies::check::CheckResult;
+use crate::studies::check::{CaseResult, CheckResult};
 #[cfg(feature = "plots")]
 use plotters::coord::types::RangedCoordf64;
 #[cfg(feature = "plots")]
@@ -88,43 +88,53 @@ pub fn write(res: &CheckResult, converged: Option<&CheckResult>, dir: &Path) -> 
     Ok(())
 }
 
-fn opt(v: Option<f64>) -> String {
-    v.map_or(String::new(), |w| format!("{w:.6e}"))
+/// One summary row (a load case) in the order of [`SUMMARY_HEADER`]: each figure with the
+/// digits after the point it is printed with, None where the cell is left empty (an edge
+/// width the model cannot define, an interior figure of an interior with too few nodes).
+/// Refuses a non-finite figure.
+pub(crate) fn summary_row(c: &CaseResult) -> Result<Vec<(Option<f64>, usize)>> {
+    let m = &c.metrics;
+    let nums = [c.fn_ratio, c.n, c.f, m.slope_model, m.tau_center];
+    let tail = [
+        m.p_ends[0],
+        m.p_ends[1],
+        m.tau_ends[0],
+        m.tau_ends[1],
+        c.tilt,
+        m.balance_n,
+        m.balance_f,
+        m.balance_moment,
+    ];
+    if let Some(v) = nums.iter().chain(&tail).find(|v| !v.is_finite()) {
+        return Err(Error::input(
+            "summary",
+            format!("F/N = {}: a figure is {v}; refusing to write it", c.fn_ratio),
+        ));
+    }
+    let num = |v: &f64| (Some(*v), 12);
+    // Interior figures are undefined (empty) when the interior holds too few nodes.
+    let interior = |v: f64| (if v.is_nan() { None } else { Some(v) }, 12);
+    let width = |v: Option<f64>| (v, 6);
+    let mut cells = vec![num(&nums[0]), num(&nums[1]), num(&nums[2]), interior(m.slope_interior)];
+    cells.extend(nums[3..].iter().map(num));
+    cells.extend([m.edge_p_t[0], m.edge_p_t[1], m.edge_tau_t[0], m.edge_tau_t[1]].map(width));
+    cells.extend([m.interior_dev_p, m.interior_dev_tau].map(interior));
+    cells.extend(tail.iter().map(num));
+    cells.extend([m.slope_corrected, m.interior_dev_p_corrected].map(interior));
+    Ok(cells)
 }
 
-/// Summary table; an edge width the model cannot define (zero model shear) and an interior
-/// figure of an interior with too few nodes are left empty.
+/// A number with `digits` after the point in exponent form; empty for None.
+pub(crate) fn cell(v: Option<f64>, digits: usize) -> String {
+    v.map_or(String::new(), |v| format!("{v:.digits$e}"))
+}
+
+/// Summary table, one row per load case (the figures of `summary_row`).
 pub fn summary_csv(res: &CheckResult) -> Result<String> {
     let mut s = String::from(SUMMARY_HEADER);
     s.push('\n');
     for c in &res.cases {
-        let m = &c.metrics;
-        let nums = [c.fn_ratio, c.n, c.f, m.slope_model, m.tau_center];
-        let tail = [
-            m.p_ends[0],
-            m.p_ends[1],
-            m.tau_ends[0],
-            m.tau_ends[1],
-            c.tilt,
-            m.balance_n,
-            m.balance_f,
-            m.balance_moment,
-        ];
-        if let Some(v) = nums.iter().chain(&tail).find(|v| !v.is_finite()) {
-            return Err(Error::input(
-                "summary",
-                format!("F/N = {}: a figure is {v}; refusing to write it", c.fn_ratio),
-            ));
-        }
-        let num = |v: &f64| format!("{v:.12e}");
-        // Interior figures are undefined (empty) when the interior holds too few nodes.
-        let interior = |v: f64| if v.is_nan() { String::new() } else { num(&v) };
-        let mut cells = vec![num(&nums[0]), num(&nums[1]), num(&nums[2]), interior(m.slope_interior)];
-        cells.extend(nums[3..].iter().map(num));
-        cells.extend([m.edge_p_t[0], m.edge_p_t[1], m.edge_tau_t[0], m.edge_tau_t[1]].map(opt));
-        cells.extend([m.interior_dev_p, m.interior_dev_tau].map(interior));
-        cells.extend(tail.iter().map(num));
-        cells.extend([m.slope_corrected, m.interior_dev_p_corrected].map(interior));
+        let cells: Vec<String> = summary_row(c)?.into_iter().map(|(v, d)| cell(v, d)).collect();
         s.push_str(&cells.join(","));
         s.push('\n');
     }
@@ -285,12 +295,7 @@ fn dash(v: f64, style: char) -> String {
 
 /// The report layer's series colours ([`super::plot::PALETTE`]).
 #[cfg(feature = "plots")]
-use super::plot::PALETTE as COLORS;
-
-#[cfg(feature = "plots")]
-fn err(e: impl std::fmt::Display) -> Error {
-    Error::plot("fig2.svg", e)
-}
+use super::plot::{render, Area, Drawn, Legend, FONT, PALETTE as COLORS};
 
 #[cfg(feature = "plots")]
 /// Fig. 2 of the paper redrawn: p/(N/L) open symbols, tau/(N/L) full symbols, model dashed;
@@ -332,11 +337,8 @@ pub fn fig2(res: &CheckResult) -> Result<String> {
             notes.push(format!("F/N = {}: {}", c.fn_ratio, off.join(", ")));
         }
     }
-    let mut svg = String::new();
-    {
-        let height = 830 + 16 * (notes.len() as u32 + 1);
-        let root = SVGBackend::with_string(&mut svg, (1000, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
+    let height = 830 + 16 * (notes.len() as u32 + 1);
+    render("fig2.svg", (1000, height), |root| {
         let (top, rest) = root.split_vertically(470);
         let (bottom, foot) = rest.split_vertically(350);
         let halves = bottom.split_evenly((1, 2));
@@ -345,50 +347,43 @@ pub fn fig2(res: &CheckResult) -> Result<String> {
         panel(&halves[0], res, (-0.5 - 0.05 * zone)..(-0.5 + zone), yr.clone(), "Trailing edge zone", 80)?;
         panel(&halves[1], res, (0.5 - zone)..(0.5 + 0.05 * zone), yr, "Leading edge zone", 80)?;
         if !notes.is_empty() {
-            let font = ("sans-serif", 13);
+            let font = (FONT, 13);
             foot.draw(&Text::new(
                 "Off scale (triangles on the frame): end-node values, in units of N/L; singular corners, not converged:".to_string(),
                 (15, 2),
                 font,
-            ))
-            .map_err(err)?;
+            ))?;
             for (k, n) in notes.iter().enumerate() {
-                foot.draw(&Text::new(n.clone(), (30, 18 + 16 * k as i32), font)).map_err(err)?;
+                foot.draw(&Text::new(n.clone(), (30, 18 + 16 * k as i32), font))?;
             }
         }
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
+        Ok(())
+    })
 }
 
 #[cfg(feature = "plots")]
 /// One panel; at most about `markers` symbols per series (every k-th node), and values outside
 /// `yr` drawn as triangles on the frame pointing the way they leave it.
-fn panel<DB: DrawingBackend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
+fn panel(
+    area: &Area,
     res: &CheckResult,
     xr: std::ops::Range<f64>,
     yr: std::ops::Range<f64>,
     title: &str,
     markers_per_series: usize,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Drawn {
     let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 15))
+        .caption(title, (FONT, 15))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(55)
-        .build_cartesian_2d(xr.clone(), yr.clone())
-        .map_err(err)?;
+        .build_cartesian_2d(xr.clone(), yr.clone())?;
     chart
         .configure_mesh()
         .x_desc("x/L (dimensionless)")
         .y_desc("stress / (N/L) (dimensionless)")
         .light_line_style(WHITE.mix(0.0))
-        .draw()
-        .map_err(err)?;
+        .draw()?;
     for (k, c) in res.cases.iter().enumerate() {
         let col = COLORS[k % COLORS.len()];
         let pts: Vec<usize> =
@@ -404,8 +399,8 @@ where
             .collect();
         let model_p: Vec<(f64, f64)> = pts.iter().map(|&i| (c.x_over_l[i], c.p_model[i])).collect();
         let model_t: Vec<(f64, f64)> = pts.iter().map(|&i| (c.x_over_l[i], c.tau_model[i])).collect();
-        chart.draw_series(DashedLineSeries::new(model_p, 6, 4, col.stroke_width(1))).map_err(err)?;
-        chart.draw_series(DashedLineSeries::new(model_t, 6, 4, col.stroke_width(1))).map_err(err)?;
+        chart.draw_series(DashedLineSeries::new(model_p, 6, 4, col.stroke_width(1)))?;
+        chart.draw_series(DashedLineSeries::new(model_t, 6, 4, col.stroke_width(1)))?;
         let label = format!("F/N = {}", c.fn_ratio);
         for (v, filled) in [(&c.p, false), (&c.tau, true)] {
             let inside =
@@ -414,31 +409,20 @@ where
             // Off scale: every such node (not only every k-th), on the frame.
             let off = pts.iter().filter(|&&i| v[i].is_finite() && !yr.contains(&v[i]));
             let style = if filled { col.filled() } else { col.stroke_width(1) };
-            chart
-                .draw_series(off.map(|&i| {
-                    let up = v[i] > yr.end;
-                    let y = if up { yr.end } else { yr.start };
-                    let tip = if up { -7 } else { 7 };
-                    EmptyElement::at((c.x_over_l[i], y))
-                        + Polygon::new(vec![(-5, 0), (5, 0), (0, tip)], style)
-                }))
-                .map_err(err)?;
+            chart.draw_series(off.map(|&i| {
+                let up = v[i] > yr.end;
+                let y = if up { yr.end } else { yr.start };
+                let tip = if up { -7 } else { 7 };
+                EmptyElement::at((c.x_over_l[i], y)) + Polygon::new(vec![(-5, 0), (5, 0), (0, tip)], style)
+            }))?;
         }
         // Legend entry: the case's colour (the marker shape follows the case order).
         chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
-            .map_err(err)?
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
             .label(label)
             .legend(move |(x, y)| Circle::new((x, y), 4, col.filled()));
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperMiddle)
-        .draw()
-        .map_err(err)?;
-    Ok(())
+    chart.legend_box(SeriesLabelPosition::UpperMiddle)
 }
 
 /// Field files of every load case for ParaView (`fields_FN<ratio>.vtu` and `fields.pvd`, whose
@@ -493,16 +477,13 @@ pub fn write_fields(
 #[cfg(feature = "plots")]
 /// The paper's markers: circle, square, diamond for the successive load cases; open for the
 /// pressure, full for the shear.
-fn markers<DB: DrawingBackend>(
-    chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+fn markers(
+    chart: &mut ChartContext<'_, SVGBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     pts: Vec<(f64, f64)>,
     k: usize,
     col: RGBColor,
     filled: bool,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
+) -> Drawn {
     let style = if filled { col.filled() } else { col.stroke_width(1) };
     let diamond = [(0, -4), (4, 0), (0, 4), (-4, 0)];
     match (k % 3, filled) {
@@ -520,6 +501,6 @@ where
                 EmptyElement::at(p) + PathElement::new([&diamond[..], &diamond[..1]].concat(), style)
             }))
             .map(|_| ()),
-    }
-    .map_err(err)
+    }?;
+    Ok(())
 }

@@ -2,7 +2,7 @@
 //! the error-versus-time chart with the Pareto front, and a readable summary.
 
 use super::write_atomic;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::studies::convergence::{
     cheapest, edge_error, first_converged_width, orders, pareto_front, series, Study,
 };
@@ -213,17 +213,12 @@ const COLORS: [RGBColor; 12] = [
 ];
 
 #[cfg(feature = "plots")]
-fn err(e: impl std::fmt::Display) -> Error {
-    Error::plot("convergence chart", e)
-}
+use super::plot::{render, Legend, FONT};
 
 #[cfg(feature = "plots")]
 /// Error (max of p and tau) against DOFs, log-log, one panel per zone.
 pub fn error_vs_dofs(study: &Study) -> Result<String> {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (1200, 420)).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
+    render("error_vs_dofs.svg", (1200, 420), |root| {
         let panels = root.split_evenly((1, 3));
         type Zone = (&'static str, fn(&crate::studies::convergence::ZoneErrors) -> f64);
         let zones: [Zone; 3] = [
@@ -240,23 +235,21 @@ pub fn error_vs_dofs(study: &Study) -> Result<String> {
                 .map(|(_, r)| (r.dofs as f64, f(&r.errors)))
                 .collect();
             let mut chart = ChartBuilder::on(panel)
-                .caption(title, ("sans-serif", 14))
+                .caption(title, (FONT, 14))
                 .margin(10)
                 .x_label_area_size(40)
                 .y_label_area_size(60)
                 .build_cartesian_2d(
                     super::plot::log_range(pts.iter().map(|p| p.0)).log_scale(),
                     super::plot::log_range(pts.iter().map(|p| p.1)).log_scale(),
-                )
-                .map_err(err)?;
+                )?;
             chart
                 .configure_mesh()
                 .x_desc("DOFs")
                 .y_desc("max |error| / (N/L)")
                 .x_label_formatter(&|v| format!("{v:.0e}"))
                 .y_label_formatter(&|v| format!("{v:.0e}"))
-                .draw()
-                .map_err(err)?;
+                .draw()?;
             for (k, sr) in series(study).iter().enumerate() {
                 let col = COLORS[k % COLORS.len()];
                 let r0 = &study.runs[sr[0]];
@@ -267,22 +260,15 @@ pub fn error_vs_dofs(study: &Study) -> Result<String> {
                     .filter(|p| p.1 > 0.0)
                     .collect();
                 chart
-                    .draw_series(LineSeries::new(line.clone(), col.stroke_width(2)))
-                    .map_err(err)?
+                    .draw_series(LineSeries::new(line.clone(), col.stroke_width(2)))?
                     .label(format!("{} {}", r0.element, r0.family.name()))
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], col.stroke_width(2)));
-                chart.draw_series(line.iter().map(|&p| Circle::new(p, 3, col.filled()))).map_err(err)?;
+                chart.draw_series(line.iter().map(|&p| Circle::new(p, 3, col.filled())))?;
             }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .draw()
-                .map_err(err)?;
+            chart.legend_box(SeriesLabelPosition::MiddleRight)?;
         }
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
+        Ok(())
+    })
 }
 
 #[cfg(feature = "plots")]
@@ -292,14 +278,11 @@ pub fn error_vs_time(study: &Study) -> Result<String> {
     let pts: Vec<(f64, f64)> =
         idx.iter().map(|&i| (study.runs[i].wall, edge_error(&study.runs[i]))).collect();
     let front: Vec<(f64, f64)> = pareto_front(&pts).into_iter().map(|k| pts[k]).collect();
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(&root)
+    render("error_vs_time.svg", (900, 600), |root| {
+        let mut chart = ChartBuilder::on(root)
             .caption(
                 "Accuracy against time: edge-zone error vs wall time per run (black line: Pareto front)",
-                ("sans-serif", 15),
+                (FONT, 15),
             )
             .margin(12)
             .x_label_area_size(45)
@@ -307,19 +290,16 @@ pub fn error_vs_time(study: &Study) -> Result<String> {
             .build_cartesian_2d(
                 super::plot::log_range(pts.iter().map(|p| p.0)).log_scale(),
                 super::plot::log_range(pts.iter().map(|p| p.1)).log_scale(),
-            )
-            .map_err(err)?;
+            )?;
         chart
             .configure_mesh()
             .x_desc("wall time of the run, s")
             .y_desc("edge-zone max |error| / (N/L)")
             .x_label_formatter(&|v| format!("{v:.0e}"))
             .y_label_formatter(&|v| format!("{v:.0e}"))
-            .draw()
-            .map_err(err)?;
+            .draw()?;
         chart
-            .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2)))
-            .map_err(err)?
+            .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2)))?
             .label("Pareto front")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(2)));
         for (k, sr) in series(study).iter().enumerate() {
@@ -332,21 +312,13 @@ pub fn error_vs_time(study: &Study) -> Result<String> {
                 .filter(|p| p.1 > 0.0)
                 .collect();
             chart
-                .draw_series(p.iter().map(|&q| Circle::new(q, 4, col.filled())))
-                .map_err(err)?
+                .draw_series(p.iter().map(|&q| Circle::new(q, 4, col.filled())))?
                 .label(format!("{} {}", r0.element, r0.family.name()))
                 .legend(move |(x, y)| Circle::new((x + 8, y), 4, col.filled()));
-            chart.draw_series(LineSeries::new(p, col.mix(0.5))).map_err(err)?;
+            chart.draw_series(LineSeries::new(p, col.mix(0.5)))?;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(err)?;
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
+        chart.legend_box(SeriesLabelPosition::MiddleRight)
+    })
 }
 
 /// The study next to the theory: Williams' corner exponent against the growth of the end

@@ -5,7 +5,7 @@
 use crate::error::Result;
 use crate::report::finite;
 #[cfg(feature = "plots")]
-use crate::report::plot::{render, PALETTE};
+use crate::report::plot::{render, Legend, PALETTE};
 use crate::studies::edges::{Opening, Preslip};
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
@@ -84,7 +84,7 @@ pub fn preslip_svg(rows: &[Preslip]) -> Result<String> {
             chart.draw_series(pts(0).into_iter().map(|p| Circle::new(p, 4, color.filled())))?;
             chart.draw_series(DashedLineSeries::new(pts(1), 6, 4, color.stroke_width(1)))?;
         }
-        chart.configure_series_labels().background_style(WHITE.mix(0.9)).border_style(BLACK).draw()?;
+        chart.legend_box(SeriesLabelPosition::MiddleRight)?;
         Ok(())
     })
 }

@@ -5,12 +5,13 @@
 
 use crate::error::Result;
 use crate::interface::events::{NodeState, Phase};
-use crate::interface::law::Law;
 use crate::io::{vtu, Field};
 use crate::linalg::solve::SolverOptions;
 #[cfg(feature = "plots")]
-use crate::report::plot::{render, BLUE, RED};
+use crate::report::plot::{render, Legend, BLUE, RED};
 use crate::report::{finite, write_atomic};
+#[cfg(feature = "plots")]
+use crate::studies::slide::{model_curve, ModelCurve};
 use crate::studies::slide::{state_displacements, SlideResult};
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
@@ -148,21 +149,15 @@ pub fn fe_curve(r: &SlideResult) -> Vec<(f64, f64)> {
 }
 
 #[cfg(feature = "plots")]
-pub fn fig4_svg(r: &SlideResult) -> Result<String> {
+/// The FE loading curve ([`fe_curve`]) against the paper's iteration for the same (r, g)
+/// ([`crate::studies::slide::model_curve`], computed by the study layer).
+pub fn fig4_svg(r: &SlideResult, model: &ModelCurve) -> Result<String> {
     // mu_s = 0 (a frictionless run to a given X) has no mu_s N to scale by: F/(mu_s N) is
     // infinite, and an infinite axis sent plotters' tick search into an endless loop.
     let fe: Vec<(f64, f64)> =
         fe_curve(r).into_iter().filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
     let law = r.options.law;
-    let (l, h) = (r.condensed.l, r.scene.loading.height);
-    let (rr, g) = (law.mu_d() / law.mu_s(), 6.0 * law.mu_d() * h / l);
-    let analytic = match (law, crate::precursors::Params::new(rr, g)) {
-        (Law::StaticKinetic { .. } | Law::SlipWeakening { .. }, Ok(p)) => {
-            let n = r.run.sliding_events.max(1) + crate::precursors::n_precursors(&p).unwrap_or(0);
-            Some(crate::precursors::loading_curve(&crate::precursors::simulate(&p, n)))
-        }
-        _ => None,
-    };
+    let (rr, g, analytic) = (model.r, model.g, &model.points);
     let all = fe.iter().chain(analytic.iter().flatten());
     let fc_top = all.clone().fold(0.1f64, |m, p| m.max(p.0)) * 1.05;
     let f_top = all.fold(0.1f64, |m, p| m.max(p.1)) * 1.1;
@@ -187,19 +182,13 @@ pub fn fig4_svg(r: &SlideResult) -> Result<String> {
             .draw_series(LineSeries::new(fe.iter().copied(), RED.stroke_width(2)))?
             .label("FE event by event")
             .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(2)));
-        if let Some(a) = &analytic {
+        if let Some(a) = analytic {
             chart
                 .draw_series(LineSeries::new(a.iter().copied(), BLUE.stroke_width(1)))?
                 .label("paper's analytic iteration")
                 .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font((FONT, 14))
-            .draw()?;
+        chart.legend_box(SeriesLabelPosition::LowerRight)?;
         Ok(())
     })
 }
@@ -297,13 +286,7 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
             )?
             .label("slip of the whole interface")
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], dark.stroke_width(3)));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font((FONT, 13))
-            .draw()?;
+        chart.legend_box(SeriesLabelPosition::UpperLeft)?;
         let mut f_chart = ChartBuilder::on(&right)
             .margin(12)
             .x_label_area_size(45)
@@ -326,7 +309,7 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
 pub fn write(r: &SlideResult, dir: &Path, header: &str, states: bool) -> Result<Vec<PathBuf>> {
     let mut files = vec![("loading.csv", loading_csv(r)?), ("events.csv", events_csv(r)?)];
     #[cfg(feature = "plots")]
-    files.extend([("fig4_fe.svg", fig4_svg(r)?), ("fronts.svg", fronts_svg(r)?)]);
+    files.extend([("fig4_fe.svg", fig4_svg(r, &model_curve(r))?), ("fronts.svg", fronts_svg(r)?)]);
     files.push(("run.toml", header.to_string()));
     if states {
         files.push(("states.csv", states_csv(r)?));

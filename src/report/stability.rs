@@ -2,7 +2,7 @@
 //! summary (`summary.txt`) with each study's findings.
 
 use super::{finite, write_atomic};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::studies::stability::{
     CornerStudy, NuStudy, PlateStudy, Results, ShapeCase, ShapePoint, ThinPoint,
 };
@@ -370,67 +370,50 @@ pub fn summary(res: &Results) -> String {
 
 /// The report layer's series colours ([`super::plot::PALETTE`]).
 #[cfg(feature = "plots")]
-use super::plot::PALETTE as COLORS;
-
-#[cfg(feature = "plots")]
-fn err(e: impl std::fmt::Display) -> Error {
-    Error::plot("stability chart", e)
-}
+use super::plot::{render, Legend, FONT, PALETTE as COLORS};
 
 #[cfg(feature = "plots")]
 type Series = (String, Vec<(f64, f64)>);
 
 #[cfg(feature = "plots")]
 /// Log-log panels side by side, each with titled series (positive values only).
-fn panels(size: (u32, u32), specs: &[(&str, &str, &str, Vec<Series>)]) -> Result<String> {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
+fn panels(figure: &str, size: (u32, u32), specs: &[(&str, &str, &str, Vec<Series>)]) -> Result<String> {
+    render(figure, size, |root| {
         let areas = root.split_evenly((1, specs.len()));
         for (area, (title, xd, yd, series)) in areas.iter().zip(specs) {
             let pts = || {
                 series.iter().flat_map(|s| s.1.iter()).filter(|p| p.0 > 0.0 && p.1 > 0.0 && p.1.is_finite())
             };
             let mut chart = ChartBuilder::on(area)
-                .caption(*title, ("sans-serif", 14))
+                .caption(*title, (FONT, 14))
                 .margin(10)
                 .x_label_area_size(40)
                 .y_label_area_size(60)
                 .build_cartesian_2d(
                     super::plot::log_range(pts().map(|p| p.0)).log_scale(),
                     super::plot::log_range(pts().map(|p| p.1)).log_scale(),
-                )
-                .map_err(err)?;
+                )?;
             chart
                 .configure_mesh()
                 .x_desc(*xd)
                 .y_desc(*yd)
                 .x_label_formatter(&|v| format!("{v:.0e}"))
                 .y_label_formatter(&|v| format!("{v:.0e}"))
-                .draw()
-                .map_err(err)?;
+                .draw()?;
             for (k, (name, line)) in series.iter().enumerate() {
                 let col = COLORS[k % COLORS.len()];
                 let line: Vec<(f64, f64)> =
                     line.iter().cloned().filter(|p| p.0 > 0.0 && p.1 > 0.0 && p.1.is_finite()).collect();
                 chart
-                    .draw_series(LineSeries::new(line.clone(), col.stroke_width(2)))
-                    .map_err(err)?
+                    .draw_series(LineSeries::new(line.clone(), col.stroke_width(2)))?
                     .label(name.clone())
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], col.stroke_width(2)));
-                chart.draw_series(line.iter().map(|&p| Circle::new(p, 3, col.filled()))).map_err(err)?;
+                chart.draw_series(line.iter().map(|&p| Circle::new(p, 3, col.filled())))?;
             }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .draw()
-                .map_err(err)?;
+            chart.legend_box(SeriesLabelPosition::MiddleRight)?;
         }
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
+        Ok(())
+    })
 }
 
 #[cfg(feature = "plots")]
@@ -449,6 +432,7 @@ pub fn plate_svg(p: &PlateStudy) -> Result<String> {
             .push((format!("backward error x 1e16, h = t/{}", f.n_thick), get(&|r| r.backward_error * 1e16)));
     }
     panels(
+        "plate.svg",
         (1300, 480),
         &[
             ("Elastic plate vs exact rigid plate", "E_plate / E_block", "max |error| / (N/L)", left),
@@ -473,6 +457,7 @@ pub fn nu_svg(n: &NuStudy) -> Result<String> {
             .collect()
     };
     panels(
+        "nu.svg",
         (1300, 480),
         &[
             (
@@ -510,6 +495,7 @@ pub fn shape_svg(s: &[ShapePoint]) -> Result<String> {
             .collect()
     };
     panels(
+        "shape.svg",
         (1500, 480),
         &[
             (
@@ -538,6 +524,7 @@ pub fn shape_svg(s: &[ShapePoint]) -> Result<String> {
 pub fn thin_svg(t: &[ThinPoint]) -> Result<String> {
     let line = |f: &dyn Fn(&ThinPoint) -> f64| t.iter().map(|q| (q.t_over_l, f(q))).collect::<Vec<_>>();
     panels(
+        "thin.svg",
         (1300, 480),
         &[
             (
@@ -576,6 +563,7 @@ pub fn corners_svg(c: &CornerStudy) -> Result<String> {
         runs[..runs.len() - 1].iter().map(|r| (h(r), (f(r) - f(fin)).abs())).collect::<Vec<_>>()
     };
     panels(
+        "corners.svg",
         (1300, 480),
         &[
             (

@@ -1,7 +1,7 @@
 //! Outputs of `tribofe sweep`: one tidy CSV (one row per point and load case) and SVG maps of
 //! the model's error and validity against the two first swept parameters.
 
-use super::check::{summary_csv, SUMMARY_HEADER};
+use super::check::{cell, summary_row, SUMMARY_HEADER};
 use super::write_atomic;
 use crate::error::{Error, Result};
 use crate::studies::sweep::{Axis, Param, Point};
@@ -22,66 +22,137 @@ pub fn header(friction: bool) -> String {
     )
 }
 
-fn e(v: f64) -> String {
-    format!("{v:.12e}")
+/// One cell of the table: a whole number, a number printed with the given digits after the
+/// point (None: an empty cell), or text.
+enum Cell {
+    Int(i64),
+    Num(Option<f64>, usize),
+    Text(String),
 }
-fn opt(v: Option<f64>) -> String {
-    v.map_or(String::new(), e)
+
+impl Cell {
+    fn num(v: f64) -> Cell {
+        Cell::Num(Some(v), 12)
+    }
+    fn opt(v: Option<f64>) -> Cell {
+        Cell::Num(v, 12)
+    }
+    fn count(n: usize) -> Cell {
+        Cell::Int(n as i64)
+    }
+    fn text(&self) -> String {
+        match self {
+            Cell::Int(i) => i.to_string(),
+            Cell::Num(v, digits) => cell(*v, *digits),
+            Cell::Text(t) => t.clone(),
+        }
+    }
+}
+
+/// A column of the table as an array: whole numbers, numbers (NaN where the CSV cell is
+/// empty) or text.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Column {
+    Int(Vec<i64>),
+    Float(Vec<f64>),
+    Text(Vec<String>),
+}
+
+/// The rows of the table (the cells of [`header`]'s columns), one per point and load case.
+fn rows(points: &[Point]) -> Result<Vec<Vec<Cell>>> {
+    let friction = points.iter().any(|p| p.friction.is_some());
+    let mut rows = Vec::new();
+    for p in points {
+        for (c, v) in p.result.cases.iter().zip(&p.verdicts) {
+            let m = &c.metrics;
+            let ratio = |a: f64, b: f64| if c.fn_ratio != 0.0 && b != 0.0 { Some(a / b) } else { None };
+            let mut cells = vec![Cell::count(p.index + 1)];
+            cells.extend(Param::ALL.iter().map(|q| Cell::num(q.get(&p.scene))));
+            cells.push(Cell::Text(p.scene.mesh.element.clone()));
+            cells.extend(summary_row(c)?.into_iter().map(|(v, d)| Cell::Num(v, d)));
+            cells.push(Cell::opt(ratio(m.slope_interior, m.slope_model)));
+            cells.push(Cell::opt(ratio(m.slope_interior, m.slope_corrected)));
+            cells.push(Cell::opt(ratio(m.tau_center, c.fn_ratio)));
+            cells.push(Cell::num(v.edge_zone_fraction));
+            cells.push(Cell::opt(v.tension_onset_fn));
+            cells.push(Cell::num(v.tension_onset_fn_model));
+            for b in [v.locking_prone, v.interior_ok, v.edges_ok, v.tension_ok, v.holds()] {
+                cells.push(Cell::Int(i64::from(b)));
+            }
+            cells.push(Cell::count(p.result.stats.n_unknowns));
+            if friction {
+                match &p.friction {
+                    Some(f) => cells.extend([
+                        Cell::num(f.r),
+                        Cell::num(f.g),
+                        Cell::count(f.n_fe),
+                        Cell::count(f.n_fe_long),
+                        Cell::count(f.n_fe_advancing),
+                        Cell::opt(f.f1_fe),
+                        Cell::opt(f.x1_fe),
+                        Cell::opt(f.f_max_fe),
+                        Cell::count(f.n),
+                        Cell::num(f.f1),
+                        Cell::num(f.x1),
+                        Cell::num(f.f_max),
+                    ]),
+                    // A point without a frictional comparison (r, g outside the model's
+                    // square): every friction column empty.
+                    None => cells.extend(FRICTION_HEADER.split(',').map(|_| Cell::opt(None))),
+                }
+            }
+            cells.push(Cell::num(p.wall));
+            rows.push(cells);
+        }
+    }
+    Ok(rows)
 }
 
 /// The table, with its header line if `with_header` (every file `sweep` writes has it, shards
 /// included, so each reads alone; [`merge`] joins shards).
 pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
     let mut s = String::new();
-    let friction = points.iter().any(|p| p.friction.is_some());
     if with_header {
-        s.push_str(&header(friction));
+        s.push_str(&header(points.iter().any(|p| p.friction.is_some())));
         s.push('\n');
     }
-    for p in points {
-        let summary = summary_csv(&p.result)?;
-        for ((c, line), v) in p.result.cases.iter().zip(summary.lines().skip(1)).zip(&p.verdicts) {
-            let m = &c.metrics;
-            let ratio = |a: f64, b: f64| if c.fn_ratio != 0.0 && b != 0.0 { Some(a / b) } else { None };
-            let mut cells = vec![(p.index + 1).to_string()];
-            cells.extend(Param::ALL.iter().map(|q| e(q.get(&p.scene))));
-            cells.push(p.scene.mesh.element.clone());
-            cells.push(line.to_string());
-            cells.push(opt(ratio(m.slope_interior, m.slope_model)));
-            cells.push(opt(ratio(m.slope_interior, m.slope_corrected)));
-            cells.push(opt(ratio(m.tau_center, c.fn_ratio)));
-            cells.push(e(v.edge_zone_fraction));
-            cells.push(opt(v.tension_onset_fn));
-            cells.push(e(v.tension_onset_fn_model));
-            for b in [v.locking_prone, v.interior_ok, v.edges_ok, v.tension_ok, v.holds()] {
-                cells.push(u8::from(b).to_string());
-            }
-            cells.push(p.result.stats.n_unknowns.to_string());
-            if friction {
-                match &p.friction {
-                    Some(f) => cells.extend([
-                        e(f.r),
-                        e(f.g),
-                        f.n_fe.to_string(),
-                        f.n_fe_long.to_string(),
-                        f.n_fe_advancing.to_string(),
-                        opt(f.f1_fe),
-                        opt(f.x1_fe),
-                        opt(f.f_max_fe),
-                        f.n.to_string(),
-                        e(f.f1),
-                        e(f.x1),
-                        e(f.f_max),
-                    ]),
-                    None => cells.extend(std::iter::repeat_n(String::new(), 11)),
-                }
-            }
-            cells.push(e(p.wall));
-            s.push_str(&cells.join(","));
-            s.push('\n');
-        }
+    for row in rows(points)? {
+        let cells: Vec<String> = row.iter().map(Cell::text).collect();
+        s.push_str(&cells.join(","));
+        s.push('\n');
     }
     Ok(s)
+}
+
+/// The table of [`csv`] as named columns (the header's names), for hosts that hand it to
+/// numpy or a data frame: the same numbers, not parsed back from text (the CSV prints edge
+/// widths to 7 significant digits, the others to 13). A column whose cells are all whole
+/// numbers is [`Column::Int`]; one mixing numbers and empty cells is [`Column::Float`].
+pub fn columns(points: &[Point]) -> Result<Vec<(String, Column)>> {
+    let names = header(points.iter().any(|p| p.friction.is_some()));
+    let rows = rows(points)?;
+    let mut out = Vec::new();
+    for (j, name) in names.split(',').enumerate() {
+        let cells: Vec<&Cell> = rows.iter().filter_map(|r| r.get(j)).collect();
+        let column = if !cells.is_empty() && cells.iter().all(|c| matches!(c, Cell::Int(_))) {
+            Column::Int(cells.iter().map(|c| if let Cell::Int(i) = c { *i } else { 0 }).collect())
+        } else if cells.iter().all(|c| !matches!(c, Cell::Text(_))) {
+            Column::Float(
+                cells
+                    .iter()
+                    .map(|c| match c {
+                        Cell::Int(i) => *i as f64,
+                        Cell::Num(v, _) => v.unwrap_or(f64::NAN),
+                        Cell::Text(_) => f64::NAN,
+                    })
+                    .collect(),
+            )
+        } else {
+            Column::Text(cells.iter().map(|c| c.text()).collect())
+        };
+        out.push((name.to_string(), column));
+    }
+    Ok(out)
 }
 
 /// Shard `(i, n)` of a shard file name `sweep_<i>of<n>.csv`.
@@ -287,7 +358,7 @@ pub fn write_maps(points: &[Point], axes: &[Axis], dir: &Path) -> Result<Vec<Str
         if !slice.is_empty() {
             heading.push_str(&format!("; slice at {}", slice.join(", ")));
         }
-        let q = Figure { title: &heading, short: title, boolean };
+        let q = Figure { file, title: &heading, short: title, boolean };
         let svg = match shown {
             [x, y] => heat_map(&q, &axes[*x], &axes[*y], &cells)?,
             _ => line_plot(&q, &axes[shown[0]], &cells)?,
@@ -299,14 +370,13 @@ pub fn write_maps(points: &[Point], axes: &[Axis], dir: &Path) -> Result<Vec<Str
 }
 
 #[cfg(feature = "plots")]
-fn err(e: impl std::fmt::Display) -> Error {
-    Error::input("sweep map", e.to_string())
-}
+use super::plot::{render, Area, Drawn, Legend, FONT};
 
 #[cfg(feature = "plots")]
-/// What a figure shows: the full title, the quantity's name (colour bar, y axis), and whether
-/// it is a yes/no verdict (categorical colours, no scale).
+/// What a figure shows: its file name, the full title, the quantity's name (colour bar, y
+/// axis), and whether it is a yes/no verdict (categorical colours, no scale).
 struct Figure<'a> {
+    file: &'a str,
     title: &'a str,
     short: &'a str,
     boolean: bool,
@@ -360,11 +430,8 @@ fn tick(vals: &[f64], i: f64) -> String {
 fn heat_map(q: &Figure, ax: &Axis, ay: &Axis, cells: &[(usize, usize, Option<f64>)]) -> Result<String> {
     let (lo, hi) = value_range(cells);
     let (nx, ny) = (ax.values.len(), ay.values.len());
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (1000, 660)).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
-        let root = root.titled(q.title, ("sans-serif", 17)).map_err(err)?;
+    render(q.file, (1000, 660), |root| {
+        let root = root.titled(q.title, (FONT, 17))?;
         let (main, side) = root.split_horizontally(820);
         let xl = |i: &f64| tick(&ax.values, *i);
         let yl = |i: &f64| tick(&ay.values, *i);
@@ -372,8 +439,7 @@ fn heat_map(q: &Figure, ax: &Axis, ay: &Axis, cells: &[(usize, usize, Option<f64
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(90)
-            .build_cartesian_2d(-0.5f64..nx as f64 - 0.5, -0.5f64..ny as f64 - 0.5)
-            .map_err(err)?;
+            .build_cartesian_2d(-0.5f64..nx as f64 - 0.5, -0.5f64..ny as f64 - 0.5)?;
         chart
             .configure_mesh()
             .disable_mesh()
@@ -383,9 +449,8 @@ fn heat_map(q: &Figure, ax: &Axis, ay: &Axis, cells: &[(usize, usize, Option<f64
             .y_label_formatter(&yl)
             .x_desc(axis_title(ax.param))
             .y_desc(axis_title(ay.param))
-            .axis_desc_style(("sans-serif", 15))
-            .draw()
-            .map_err(err)?;
+            .axis_desc_style((FONT, 15))
+            .draw()?;
         let colour = |v: Option<f64>| match v {
             Some(v) if q.boolean => {
                 if v != 0.0 {
@@ -399,49 +464,32 @@ fn heat_map(q: &Figure, ax: &Axis, ay: &Axis, cells: &[(usize, usize, Option<f64
         };
         for &(ix, iy, v) in cells {
             let (x0, y0) = (ix as f64 - 0.5, iy as f64 - 0.5);
-            chart
-                .draw_series(std::iter::once(Rectangle::new(
-                    [(x0, y0), (x0 + 1.0, y0 + 1.0)],
-                    colour(v).filled(),
-                )))
-                .map_err(err)?;
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(x0, y0), (x0 + 1.0, y0 + 1.0)],
+                colour(v).filled(),
+            )))?;
             if nx * ny <= 400 {
                 let label = match v {
                     None => "-".to_string(),
                     Some(v) if q.boolean => (if v != 0.0 { "holds" } else { "fails" }).to_string(),
                     Some(v) => format!("{v:.*}", decimals(lo, hi)),
                 };
-                chart
-                    .draw_series(std::iter::once(Text::new(
-                        label,
-                        (x0 + 0.08, y0 + 0.55),
-                        ("sans-serif", 11),
-                    )))
-                    .map_err(err)?;
+                chart.draw_series(std::iter::once(Text::new(label, (x0 + 0.08, y0 + 0.55), (FONT, 11))))?;
             }
         }
-        side_key(&side, q, lo, hi)?;
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
+        side_key(&side, q, lo, hi)
+    })
 }
 
 #[cfg(feature = "plots")]
 /// The colour bar (continuous) or the categorical key (verdicts), with the grey of no value.
-fn side_key<DB: DrawingBackend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
-    q: &Figure,
-    lo: f64,
-    hi: f64,
-) -> Result<()>
-where
-    DB::ErrorType: 'static,
-{
-    let font = ("sans-serif", 13);
-    let swatch = |y: i32, c: RGBColor, label: &str| -> Result<()> {
-        area.draw(&Rectangle::new([(10, y), (32, y + 18)], c.filled())).map_err(err)?;
-        area.draw(&Rectangle::new([(10, y), (32, y + 18)], BLACK.stroke_width(1))).map_err(err)?;
-        area.draw(&Text::new(label.to_string(), (38, y + 3), font)).map_err(err)
+fn side_key(area: &Area, q: &Figure, lo: f64, hi: f64) -> Drawn {
+    let font = (FONT, 13);
+    let swatch = |y: i32, c: RGBColor, label: &str| -> Drawn {
+        area.draw(&Rectangle::new([(10, y), (32, y + 18)], c.filled()))?;
+        area.draw(&Rectangle::new([(10, y), (32, y + 18)], BLACK.stroke_width(1)))?;
+        area.draw(&Text::new(label.to_string(), (38, y + 3), font))?;
+        Ok(())
     };
     if q.boolean || !(hi >= lo) {
         let mut y = 40;
@@ -459,25 +507,22 @@ where
         .margin_right(5)
         .y_label_area_size(0)
         .right_y_label_area_size(70)
-        .build_cartesian_2d(0.0f64..1.0, lo..hi)
-        .map_err(err)?;
+        .build_cartesian_2d(0.0f64..1.0, lo..hi)?;
     bar.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
         .y_labels(6)
         .y_label_formatter(&|v: &f64| format!("{v:.*}", decimals(lo, hi)))
-        .draw()
-        .map_err(err)?;
+        .draw()?;
     let steps = 100;
     bar.draw_series((0..steps).map(|k| {
         let (a, b) =
             (lo + (hi - lo) * k as f64 / steps as f64, lo + (hi - lo) * (k + 1) as f64 / steps as f64);
         Rectangle::new([(0.0, a), (1.0, b)], scale((k as f64 + 0.5) / steps as f64).filled())
-    }))
-    .map_err(err)?;
+    }))?;
     let (_, h) = area.dim_in_pixel();
     swatch(h as i32 - 95, MISSING, "no value")?;
-    area.draw(&Text::new("colour scale:".to_string(), (8, 8), font)).map_err(err)?;
+    area.draw(&Text::new("colour scale:".to_string(), (8, 8), font))?;
     Ok(())
 }
 
@@ -496,17 +541,13 @@ fn line_plot(q: &Figure, ax: &Axis, cells: &[(usize, usize, Option<f64>)]) -> Re
     };
     let (lo, hi) = if q.boolean { (-0.3, 1.3) } else { (lo, hi) };
     let missing: Vec<f64> = cells.iter().filter(|c| c.2.is_none()).map(|c| ax.values[c.0]).collect();
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(q.title, ("sans-serif", 17))
+    render(q.file, (900, 560), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(q.title, (FONT, 17))
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(90)
-            .build_cartesian_2d((xlo - pad)..(xhi + pad), lo..hi)
-            .map_err(err)?;
+            .build_cartesian_2d((xlo - pad)..(xhi + pad), lo..hi)?;
         let yl = |v: &f64| {
             if !q.boolean {
                 format!("{v:.*}", decimals(lo, hi))
@@ -521,43 +562,34 @@ fn line_plot(q: &Figure, ax: &Axis, cells: &[(usize, usize, Option<f64>)]) -> Re
         let mut mesh = chart.configure_mesh();
         mesh.x_desc(axis_title(ax.param))
             .y_desc(if q.boolean { "verdict" } else { q.short })
-            .axis_desc_style(("sans-serif", 15))
+            .axis_desc_style((FONT, 15))
             .x_label_formatter(&|v: &f64| format!("{v:.3e}"))
             .y_label_formatter(&yl);
         if q.boolean {
             mesh.y_labels(14);
         }
-        mesh.draw().map_err(err)?;
+        mesh.draw()?;
         if !q.boolean {
-            chart.draw_series(LineSeries::new(pts.clone(), BLUE.stroke_width(2))).map_err(err)?;
+            chart.draw_series(LineSeries::new(pts.clone(), BLUE.stroke_width(2)))?;
         }
-        chart
-            .draw_series(pts.iter().map(|&(x, y)| {
-                let c = if !q.boolean {
-                    BLUE
-                } else if y != 0.0 {
-                    HOLDS
-                } else {
-                    FAILS
-                };
-                Circle::new((x, y), 5, c.filled())
-            }))
-            .map_err(err)?;
+        chart.draw_series(pts.iter().map(|&(x, y)| {
+            let c = if !q.boolean {
+                BLUE
+            } else if y != 0.0 {
+                HOLDS
+            } else {
+                FAILS
+            };
+            Circle::new((x, y), 5, c.filled())
+        }))?;
         if !missing.is_empty() {
             let y = lo + 0.04 * (hi - lo);
             chart
-                .draw_series(missing.iter().map(|&x| Cross::new((x, y), 5, MISSING.stroke_width(2))))
-                .map_err(err)?
+                .draw_series(missing.iter().map(|&x| Cross::new((x, y), 5, MISSING.stroke_width(2))))?
                 .label("no value at this point")
                 .legend(|(x, y)| Cross::new((x, y), 5, MISSING.stroke_width(2)));
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.9))
-                .border_style(BLACK)
-                .draw()
-                .map_err(err)?;
+            chart.legend_box(SeriesLabelPosition::MiddleRight)?;
         }
-        root.present().map_err(err)?;
-    }
-    Ok(svg)
+        Ok(())
+    })
 }

@@ -426,6 +426,32 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
     })
 }
 
+/// The paper's analytic loading curve for a run (fig. 4): its (r, g) = (mu_d/mu_s,
+/// 6 mu_d H/L) and the iteration's (F^c, F)/(mu_s N) through the run's whole slips plus the
+/// model's precursors. `points` is None for a law that does not weaken (coulomb) and for
+/// (r, g) outside the model's square 0 < r, g < 1.
+#[derive(Debug, Clone)]
+pub struct ModelCurve {
+    pub r: f64,
+    pub g: f64,
+    pub points: Option<Vec<(f64, f64)>>,
+}
+
+/// The paper's iteration for the (r, g) of `res` ([`ModelCurve`]), drawn by `fig4_fe.svg`
+/// next to the FE curve.
+pub fn model_curve(res: &SlideResult) -> ModelCurve {
+    let law = res.options.law;
+    let (r, g) = (law.mu_d() / law.mu_s(), 6.0 * law.mu_d() * res.scene.loading.height / res.condensed.l);
+    let points = match crate::precursors::Params::new(r, g) {
+        Ok(p) if law.weakens() => {
+            let n = res.run.sliding_events.max(1) + crate::precursors::n_precursors(&p).unwrap_or(0);
+            Some(crate::precursors::loading_curve(&crate::precursors::simulate(&p, n)))
+        }
+        _ => None,
+    };
+    ModelCurve { r, g, points }
+}
+
 /// A friction law as a user names it (the `slide` command's flags, the Python package's
 /// keywords): the law's name and whichever coefficients were given.
 #[derive(Debug, Clone, Default)]

@@ -58,4 +58,5 @@ pub fn assert_patch_test(model: &Model, what: &str) {
         }
     }
 }
+pub mod commands;
 pub mod process;

@@ -3,7 +3,7 @@
 //! the H/L, t/L sweep `fe_sweep.csv`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{render, BLUE, FONT, RED};
+use super::super::plot::{render, Legend, BLUE, FONT, RED};
 use super::super::{ensure_dir, finite, opt, write_all, write_atomic};
 use crate::precursors::discrete::{CellEvent, Run};
 use crate::precursors::fe::{Comparison, SweepRow};
@@ -58,13 +58,7 @@ pub fn fe_extents_svg(c: &Comparison) -> Result<String> {
             .label("discrete model on FE fields")
             .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(2)));
         chart.draw_series(fed.iter().map(|&(i, x)| Cross::new((i, x), 5, RED.stroke_width(2))))?;
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font((FONT, 14))
-            .draw()?;
+        chart.legend_box(SeriesLabelPosition::LowerRight)?;
         Ok(())
     })
 }

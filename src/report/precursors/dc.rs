@@ -2,7 +2,7 @@
 //! D_c, `dc.csv`, `dc.svg` and each run's folder.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{log_range, render, BLUE, FONT, RED};
+use super::super::plot::{log_range, render, Legend, BLUE, FONT, RED};
 use super::super::{ensure_dir, write_all};
 use super::series_csv;
 #[cfg(feature = "plots")]
@@ -76,7 +76,7 @@ pub fn dc_svg(rows: &[SeriesRow]) -> Result<String> {
                         });
                 }
             }
-            chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
+            chart.legend_box(SeriesLabelPosition::MiddleRight)?;
         }
         Ok(())
     })

@@ -1,7 +1,7 @@
 //! The height-of-drive study (`precursors heights`): `heights.csv`, `heights.svg`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{render, BLUE, FONT, RED};
+use super::super::plot::{render, Legend, BLUE, FONT, RED};
 use super::super::{ensure_dir, write_all};
 use super::series_csv;
 #[cfg(feature = "plots")]
@@ -54,12 +54,7 @@ pub fn heights_svg(rows: &[SeriesRow]) -> Result<String> {
                     .label(format!("{name}, FE"))
                     .legend(move |(x, y)| Circle::new((x + 9, y), 4, col.filled()));
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperLeft)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .draw()?;
+            chart.legend_box(SeriesLabelPosition::UpperLeft)?;
         }
         Ok(())
     })

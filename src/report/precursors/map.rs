@@ -1,7 +1,7 @@
 //! The model's n(r, g) over the (r, g) square (the paper's fig. 5): `n_map.csv`, `fig5.svg`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{n_colour, n_key, render, FONT, RED};
+use super::super::plot::{n_colour, n_key, render, Legend, FONT, RED};
 use super::super::{ensure_dir, finite, write_all};
 use crate::precursors::MapPoint;
 use crate::Result;
@@ -47,13 +47,7 @@ pub fn fig5_svg(map: &[MapPoint], resolution: usize) -> Result<String> {
             .draw_series(LineSeries::new([(0.0, 0.5), (1.0, 0.0)], RED.stroke_width(3)))?
             .label("g = (1 - r)/2: no precursor below")
             .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED.stroke_width(3)));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font((FONT, 14))
-            .draw()?;
+        chart.legend_box(SeriesLabelPosition::UpperRight)?;
         n_key(&key, n_max)?;
         Ok(())
     })

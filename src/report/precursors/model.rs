@@ -2,7 +2,7 @@
 //! (`fig4.svg`). Forces in units of mu_s N, positions in units of L.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{render, BLUE, FONT, RED};
+use super::super::plot::{render, Legend, BLUE, FONT, RED};
 use super::super::{ensure_dir, finite, write_all};
 use crate::precursors::{loading_curve, Event, Params};
 use crate::Result;
@@ -95,13 +95,7 @@ pub fn fig4_svg(p: &Params, events: &[Event]) -> Result<String> {
         chart.draw_secondary_series(
             events.iter().filter(|e| !e.stick_slip).map(|e| Circle::new((e.x, e.f), 3, BLUE.filled())),
         )?;
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .label_font((FONT, 14))
-            .draw()?;
+        chart.legend_box(SeriesLabelPosition::LowerRight)?;
         Ok(())
     })
 }

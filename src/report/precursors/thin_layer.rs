@@ -1,7 +1,7 @@
 //! The thin-layer study (`precursors thin-layer`): `thin_layer.csv`, `thin_layer.svg`.
 
 #[cfg(feature = "plots")]
-use super::super::plot::{log_range, render, BLUE, FONT, GREEN, RED};
+use super::super::plot::{log_range, render, Legend, BLUE, FONT, GREEN, RED};
 use super::super::{ensure_dir, write_all};
 use super::series_csv;
 use crate::precursors::Params;
@@ -53,7 +53,7 @@ pub fn thin_layer_svg(p: &Params, rows: &[SeriesRow]) -> Result<String> {
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], col.stroke_width(2)));
             chart.draw_series(line.into_iter().map(|q| Circle::new(q, 3, col.filled())))?;
         }
-        chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
+        chart.legend_box(SeriesLabelPosition::MiddleRight)?;
         let counts: Vec<(f64, f64)> = ok.iter().map(|(tl, f)| (*tl, f.cmp.n_fe_advancing as f64)).collect();
         let ymax = counts.iter().map(|q| q.1).fold(n as f64, f64::max) * 1.2 + 1.0;
         let mut chart = ChartBuilder::on(&right)
@@ -81,7 +81,7 @@ pub fn thin_layer_svg(p: &Params, rows: &[SeriesRow]) -> Result<String> {
             .draw_series(LineSeries::new([(x0, n as f64), (x1, n as f64)], BLACK.stroke_width(2)))?
             .label(format!("model: n = {n}"))
             .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLACK.stroke_width(2)));
-        chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
+        chart.legend_box(SeriesLabelPosition::MiddleRight)?;
         Ok(())
     })
 }

@@ -15,7 +15,7 @@ use tribofe::fem::problem::{solve, LoadCase};
 use tribofe::fem::recovery::{elements_touching, error_norms, nodal_stresses};
 use tribofe::linalg::solve::SolverOptions;
 
-mod common;
+use crate::common;
 use common::boundary;
 
 fn mat() -> Material {

@@ -3,6 +3,9 @@
 //! is a non-zero exit with the results on disk, control bytes are quoted, negative values
 //! reach the range checks, no `inf` in a results file, flags that cannot act are refused.
 
+use crate::common;
+
+use common::commands::EDGES_QUICK;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -142,25 +145,7 @@ fn every_command_writes_a_run_file_with_its_provenance() {
             "sl",
             true,
         ),
-        (
-            &[
-                "edges",
-                "--length",
-                "0.05",
-                "--mu",
-                "0.3",
-                "--refine",
-                "2",
-                "--t-over-l",
-                "0.04",
-                "--h-over-l",
-                "0.1",
-                "--out",
-                "ed",
-            ],
-            "ed",
-            true,
-        ),
+        (EDGES_QUICK, "ed", true),
         (&["sweep", "--length", "0.05", "--thickness", "0.002,0.004", "--out", "sw"], "sw", true),
         (&["bench", "--case", "square1", "--dgemm", "0", "--out", "be"], "be", false),
         (&["precursors", "--out", "pr"], "pr", false),

@@ -4,8 +4,7 @@
 //! (a crack, an interface given as one line) refused naming the group and the place, and the
 //! `edges` opening study printing no length its mesh cannot resolve.
 
-#[allow(dead_code)] // the shared patch-test helpers are not used here
-mod common;
+use crate::common;
 
 use common::process::{run, run_with, Ran};
 use std::path::{Path, PathBuf};

@@ -19,7 +19,7 @@ use tribofe::fem::problem::{solve, LoadCase};
 use tribofe::fem::recovery::error_norms;
 use tribofe::linalg::solve::SolverOptions;
 
-mod common;
+use crate::common;
 use common::boundary;
 
 fn all_choices() -> Vec<ElementChoice> {

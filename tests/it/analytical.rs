@@ -1,5 +1,5 @@
 //! Public-API check of the closed-form theory at the paper's scene (ν = 0.4) and at ν = 0.3;
-//! `cargo test --release --test analytical -- --nocapture` prints the table quoted in reports.
+//! `cargo test --release --test it analytical:: -- --nocapture` prints the table quoted in reports.
 
 use std::f64::consts::FRAC_PI_2;
 use tribofe::analytical::strip::{decay_distance_over_t, slowest_decay, Family};

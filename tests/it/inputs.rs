@@ -386,7 +386,11 @@ fn output_folder_is_replaced_whole_or_not_at_all() {
         let status = child.wait().unwrap();
         let after = tree(&out);
         assert!(after == before || after == new, "killed at {ms} ms ({status:?}): {after:?}");
-        assert!(status.success() || status.code() == Some(130), "{status:?}");
+        // Exit 130 from the handler; or, killed within the first milliseconds of start-up
+        // before the handler is installed (a loaded machine, or other tests of this binary
+        // running alongside), ended by the signal itself, having written nothing.
+        use std::os::unix::process::ExitStatusExt;
+        assert!(status.success() || status.code() == Some(130) || status.signal() == Some(sig), "{status:?}");
         let left: Vec<_> = std::fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name()).collect();
         assert_eq!(left, vec![std::ffi::OsString::from("out")], "killed at {ms} ms");
     }

@@ -1,6 +1,9 @@
 //! One small run of every subcommand as a user starts it: exit status 0, the files it names
 //! written and non-empty, nothing else left in the working folder (no temporaries).
 
+use crate::common;
+
+use common::commands::EDGES_QUICK;
 use std::path::Path;
 use std::process::Command;
 
@@ -55,25 +58,7 @@ fn every_subcommand_runs_and_writes_what_it_names() {
                 "fields.pvd",
             ],
         ),
-        (
-            &[
-                "edges",
-                "--length",
-                "0.05",
-                "--mu",
-                "0.3",
-                "--refine",
-                "2",
-                "--t-over-l",
-                "0.04",
-                "--h-over-l",
-                "0.1",
-                "--out",
-                "ed",
-            ],
-            "ed",
-            &["preslip.csv", "preslip.svg", "opening.csv", "run.toml"],
-        ),
+        (EDGES_QUICK, "ed", &["preslip.csv", "preslip.svg", "opening.csv", "run.toml"]),
         (&["sweep", "--length", "0.05", "--thickness", "0.002,0.004", "--out", "sw"], "sw", &["sweep.csv"]),
         (&["precursors", "--out", "pr"], "pr", &["events.csv", "loading.csv", "fig4.svg"]),
         (
