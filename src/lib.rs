@@ -19,7 +19,7 @@
 //! Beside them: [`analytical`] (closed forms the results are judged against), [`precursors`]
 //! (the paper's 1D friction model), [`numeric`] (helpers on sampled profiles), [`cancel`] (a
 //! host's token to stop a long run) and [`progress`] (the one progress callback of every long
-//! run). `tests/layering.rs` checks that no module imports a layer above its own.
+//! run). `tests/it/layering.rs` checks that no module imports a layer above its own.
 //!
 //! # Examples
 //!

@@ -226,7 +226,7 @@ impl Law {
 }
 
 /// Largest friction coefficient accepted: measured ones stay below ~10, and 1e6 is the
-/// bonded limit (nothing slips; tests/friction.rs); far above, the tangential thresholds
+/// bonded limit (nothing slips; tests/it/friction.rs); far above, the tangential thresholds
 /// dwarf N by so much that the contact updates lose every digit (mu = 2^64 cycled without
 /// settling for 8 s, issue 31).
 pub const MU_MAX: f64 = 1e6;

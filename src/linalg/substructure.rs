@@ -168,7 +168,7 @@ impl TwoDomain {
 
     /// The numeric factors of the two halves alone (faer's layout, one per core, into `l`,
     /// resized when needed), by our multifrontal code or by faer's own left-looking one: the
-    /// two are compared in `tests/parallel.rs` and `benches/kernels.rs`.
+    /// two are compared in `tests/it/parallel.rs` and `benches/kernels.rs`.
     /// Returns the dense kernels' work of both halves (ours; none for faer's).
     pub fn factor_halves(
         &self,
@@ -191,7 +191,7 @@ impl TwoDomain {
 
     /// Forward then backward solve of each half alone (one per core) with the factors of
     /// [`TwoDomain::factor_halves`], `k` columns of each half's length in `y`, by our
-    /// substitution or by faer's supernodal one: compared in `tests/parallel.rs` and
+    /// substitution or by faer's supernodal one: compared in `tests/it/parallel.rs` and
     /// `benches/kernels.rs`.
     pub fn solve_halves(&self, l: &[Vec<f64>; 2], y: &mut [Vec<f64>; 2], k: usize, faer: bool) {
         let half = |h: usize, y: &mut Vec<f64>| {

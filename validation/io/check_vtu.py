@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
 """Independent check of tribofe's writers with meshio (pip install meshio numpy).
 
-Reads the .vtu that `cargo test --test writers_io` leaves in target/tmp/io-check/, and
+Reads the .vtu that `cargo test --test it writers_io::` leaves in target/tmp/io-check/, and
 compares points, cells (type by type, in order) and every point/cell array with the JSON dump
 the same test writes. Also checks the .pvd collection and, with meshio's Gmsh reader, the
 points and node views of result.msh. Exits non-zero on any mismatch.
 
-    cargo test --release --test writers_io && python3 validation/io/check_vtu.py target/tmp/io-check
+    cargo test --release --test it writers_io:: && python3 validation/io/check_vtu.py target/tmp/io-check
 """
 import json
 import sys

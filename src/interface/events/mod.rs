@@ -72,7 +72,7 @@ pub enum Phase {
 /// How each state set's system is solved: the dense condensed S with a bordered inverse (the
 /// reference; O(n^2) per state change), or the block's sparse stiffness in x order factored
 /// per solve ([`crate::interface::banded`]; O(n) per solve, no condensation). The two agree
-/// to round-off (tests/operator.rs); banded pays off when many nodes change per event (thin
+/// to round-off (tests/it/operator.rs); banded pays off when many nodes change per event (thin
 /// layers), dense when one does (coulomb).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Operator {

@@ -18,7 +18,7 @@
 //!    their slip. Loading continues from there.
 //!
 //! Coulomb friction never becomes unstable, so a Coulomb run is the static loading alone:
-//! the same events as `slide` (tests/dynamics.rs).
+//! the same events as `slide` (tests/it/dynamics.rs).
 
 use crate::dynamics::driven::{Driven, DynState, EventLimits, EventRecord, Layout};
 use crate::dynamics::explicit::Elastodynamic;

@@ -33,7 +33,9 @@ use crate::fem::assembly::Assembler;
 use crate::interface::condense::{boundary_model, condense};
 use crate::interface::events::active::Solver as ActiveSolver;
 use crate::interface::events::simulation::{normal_phase, settle_continuous, Recorder};
-use crate::interface::events::{operator, tolerances, Event, EventKind, NodeState, Phase, Run, State, Violations};
+use crate::interface::events::{
+    operator, tolerances, Event, EventKind, NodeState, Phase, Run, State, Violations,
+};
 use crate::interface::law::Law;
 use crate::linalg::solve::{Solver, SolverOptions};
 use crate::progress::Progress;
@@ -188,7 +190,10 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let k_bonded = a0.f1[sv.iu()];
     sv.dscale = a0.b0[2 * n + 1].abs();
     if !(k_bonded > 0.0 && sv.dscale > 0.0) {
-        return Err(Error::input("condensed system", "the bonded block has no tangential or normal stiffness"));
+        return Err(Error::input(
+            "condensed system",
+            "the bonded block has no tangential or normal stiffness",
+        ));
     }
     sv.set_phase(Phase::Normal);
     let out = Run {

@@ -6,7 +6,7 @@
 //! 10 cycles), and each check is shown to fail on the other convention.
 
 #[allow(dead_code)] // the shared patch-test helpers are not used here
-mod common;
+use crate::common;
 
 use tribofe::interface::law::{Law, PaperOptions, Residual, Rule};
 use tribofe::scene::Scene;
