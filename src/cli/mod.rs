@@ -63,7 +63,7 @@ pub enum Command {
     Precursors(precursors::Args),
     /// Frictional interface (coulomb, static-kinetic, slip-weakening): N then X at height H, solved event by event.
     #[command(allow_negative_numbers = true)]
-    Slide(slide::Args),
+    Slide(Box<slide::Args>),
     /// Dynamic rupture on a rigid flat with slip-weakening friction (explicit elastodynamics; the cross-check scene).
     #[command(allow_negative_numbers = true)]
     Rupture(rupture::Args),
@@ -339,7 +339,7 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         Command::Check(a) => check::run(a),
         Command::Converge(a) => converge::run(a),
         Command::Precursors(args) => precursors::run(args).map_err(|e| typed_flag(e, LAW)),
-        Command::Slide(a) => slide::run(a).map_err(|e| typed_flag(e, LAW)),
+        Command::Slide(a) => slide::run(*a).map_err(|e| typed_flag(e, LAW)),
         Command::Edges(a) => edges::run(a).map_err(|e| typed_flag(e, LAW)),
         Command::Rupture(a) => rupture::run(a),
         Command::Bench(a) => bench::run(a),
