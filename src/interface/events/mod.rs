@@ -241,7 +241,8 @@ pub struct Run {
     /// Tangential stiffness of the all-stuck interface dF/dX, N/m per m (F^c = k_bonded X).
     pub k_bonded: f64,
     pub sliding_events: usize,
-    /// Bordering updates and full refactorisations of the free system.
+    /// Dense operator: bordering updates and full refactorisations of the free system; banded:
+    /// low-rank row updates and band factorisations.
     pub updates: usize,
     pub refreshes: usize,
 }

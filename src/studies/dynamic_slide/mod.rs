@@ -310,7 +310,21 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         speeds.c_s,
         lambda0,
         lambda0 / scene.mesh.h,
-        if weakens { format!(", D_c = {dc:.4e} m") } else { String::new() },
+        if weakens {
+            // The thin-layer stability number at the mean pressure (validation/dynamics/paper):
+            // a point held by its layer's stiffness G/t more stiffly than it weakens slips stably.
+            let kappa = mat.shear_modulus() * dc / ((mu_s - mu_d) * (o.n_force / c.l) * t);
+            format!(
+                ", D_c = {dc:.4e} m, thin-layer kappa = G D_c / ((mu_s - mu_d) (N/L) t) = {kappa:.3}{}",
+                if kappa > 0.7 {
+                    " (above ~0.7 the trailing edge, at ~0.7 N/L under the tilt, weakens stably: expect no stick-slip there)"
+                } else {
+                    ""
+                }
+            )
+        } else {
+            String::new()
+        },
         o.operator.name()
     ));
 
