@@ -8,7 +8,7 @@
 //!    is brought to its slip every D_c/20 (a fixed point at fixed U_H, each iterate one
 //!    solve); when that fixed point diverges (a change above D_c/2 in one iterate, or 30
 //!    iterates without settling to 1e-3 D_c) the patch is unstable and the event is run
-//!    dynamically ([`steps`]).
+//!    dynamically (`steps.rs`).
 //! 2. The event ([`crate::dynamics::driven`]): from the static field (v = 0), U_H held, until
 //!    no node slips and the kinetic energy is below 1e-6 of what the event dissipated, both
 //!    for one period of the block's thickness mode.

@@ -2,7 +2,7 @@
 //! velocity, U_H = V t, for comparison with the held-drive mode (issue 33).
 //!
 //! 1. The normal phase is the held mode's: N ramped quasi-statically and exactly at U_H = 0
-//!    ([`crate::dynamics::statics`]); slipping nodes stick where they are as the drive starts.
+//!    (the event solver's normal phase, `interface::events`); slipping nodes stick where they are as the drive starts.
 //! 2. From that equilibrium the whole drive phase is one explicit run
 //!    ([`crate::dynamics::driven::Driven::step`]) to --x-max, started on the quasi-static
 //!    path (u from the static field, v = V du/dU_H of the static path with the states of the
