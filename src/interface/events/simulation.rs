@@ -41,29 +41,7 @@ pub(crate) fn run_on(
     progress: &dyn Fn(f64),
 ) -> Result<Run> {
     check(pb)?;
-    let mut sv = Solver::new(op, n, pb)?;
-    // Bonded stiffness and the displacement scale (|V| under N) from the all-stuck solution.
-    let a = sv.solve()?;
-    let k_bonded = a.f1[sv.iu()];
-    let v_scale = a.b0[sv.set.iv()].abs();
-    if !(k_bonded > 0.0 && v_scale > 0.0) {
-        return Err(Error::input(
-            "condensed system",
-            "the bonded block has no tangential or normal stiffness",
-        ));
-    }
-    sv.dscale = v_scale;
-    sv.set_phase(Phase::Normal);
-    let out = Run {
-        events: vec![],
-        states: vec![],
-        max_violation: 0.0,
-        k_bonded,
-        sliding_events: 0,
-        updates: 0,
-        refreshes: 0,
-    };
-    let mut rec = Recorder { out, prev_u: vec![0.0; n], pb };
+    let (mut sv, mut rec) = start(op, n, pb)?;
     normal_phase(&mut sv, &mut rec)?;
 
     // X from 0 with N held. Static-kinetic: the normal loading stops, so every pre-slipped
@@ -96,6 +74,37 @@ fn check(pb: &Problem) -> Result<()> {
         return Err(Error::input("creep fraction", "must be in [0, 1)"));
     }
     Ok(())
+}
+
+/// The active set on `op`, all stuck, its bonded stiffness and displacement scale (|V| under
+/// N) read off the all-stuck solution, set for the normal phase; and an empty recorder.
+pub(crate) fn start<'a, 'p>(
+    op: Box<dyn Operator + 'a>,
+    n: usize,
+    pb: &'p Problem,
+) -> Result<(Solver<'a>, Recorder<'p>)> {
+    let mut sv = Solver::new(op, n, pb)?;
+    let a = sv.solve()?;
+    let k_bonded = a.f1[sv.iu()];
+    let v_scale = a.b0[sv.set.iv()].abs();
+    if !(k_bonded > 0.0 && v_scale > 0.0) {
+        return Err(Error::input(
+            "condensed system",
+            "the bonded block has no tangential or normal stiffness",
+        ));
+    }
+    sv.dscale = v_scale;
+    sv.set_phase(Phase::Normal);
+    let out = Run {
+        events: vec![],
+        states: vec![],
+        max_violation: 0.0,
+        k_bonded,
+        sliding_events: 0,
+        updates: 0,
+        refreshes: 0,
+    };
+    Ok((sv, Recorder { out, prev_u: vec![0.0; n], pb }))
 }
 
 /// N from 0 to its value (lambda = N reached / N); proportional loading, so the rate problem

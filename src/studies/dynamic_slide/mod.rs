@@ -28,16 +28,15 @@ use crate::error::{Error, Result};
 use crate::fem::assembly::Assembler;
 use crate::interface::banded::{BandedOperator, Solving};
 use crate::interface::condense::{boundary_model, condense, Condensed};
-use crate::interface::events::{self, tolerances, Event, EventKind, NodeState, Operator, Phase, Run};
+use crate::interface::events::{self, tolerances, Event, EventKind, NodeState, Operator, Phase};
 use crate::interface::law::Law;
 use crate::linalg::solve::{Solver, SolverOptions};
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{SlideOptions, SlideResult};
-use events::active::Solver as ActiveSolver;
 use events::operator::Affine;
 use events::search::Hit;
-use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, stuck_err, Recorder};
+use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, start, stuck_err};
 use std::time::Instant;
 
 mod steps;
@@ -329,29 +328,9 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     ));
 
     // The event solver's active set on that operator; the normal phase is the event solver's.
-    let mut sv = ActiveSolver::new(op, n, o)?;
-    let a = sv.solve()?;
-    let k_bonded = a.f1[sv.iu()];
-    sv.dscale = a.b0[2 * n + 1].abs();
-    if !(k_bonded > 0.0 && sv.dscale > 0.0) {
-        return Err(Error::input(
-            "condensed system",
-            "the bonded block has no tangential or normal stiffness",
-        ));
-    }
+    let (mut sv, mut rec) = start(op, n, o)?;
     let setup_s = clock.elapsed().as_secs_f64();
     let mut dynamic_s = 0.0;
-    sv.set_phase(Phase::Normal);
-    let out = Run {
-        events: vec![],
-        states: vec![],
-        max_violation: 0.0,
-        k_bonded,
-        sliding_events: 0,
-        updates: 0,
-        refreshes: 0,
-    };
-    let mut rec = Recorder { out, prev_u: vec![0.0; n], pb: o };
     normal_phase(&mut sv, &mut rec)?;
     // Drive phase: under slip weakening every pre-slipped node sticks where it is as the
     // drive starts (the event solver's rule), keeping the slip it made.
@@ -384,7 +363,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             rec.out.sliding_events += 1;
             rec.simple(&sv, &a, lam, EventKind::Sliding, 0)?;
             if o.x_max.is_none() {
-                x_stop = lam + 0.05 * lam.max(o.n_force / k_bonded);
+                x_stop = lam + 0.05 * lam.max(o.n_force / rec.out.k_bonded);
             }
         }
         if weakens && x_end.is_infinite() && sv.all_contact_slipping() {

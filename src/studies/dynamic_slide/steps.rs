@@ -95,12 +95,18 @@ pub(super) fn anchor_after(
 }
 
 /// What a dynamic event was, its nucleation node and slipped run (nodes whose event slip
-/// passed D_c/100, around the nucleation node): `precursor` (the run starts at the first
-/// contact node), `nucleation` (elsewhere), `sliding` (every contact node), `slip` (no node
-/// weakened fully: not an instability).
+/// passed D_c/100, around the nucleation node): see [`kind_of`].
 pub(super) fn classify_event(ev: &EventRecord, dc: f64, n: usize) -> (EventKind, usize, (usize, usize)) {
-    let thr = dc / 100.0;
-    let went: Vec<bool> = ev.slip.iter().map(|&s| s > thr).collect();
+    let went: Vec<bool> = ev.slip.iter().take(n).map(|&s| s > dc / 100.0).collect();
+    kind_of(ev, &went)
+}
+
+/// The kind, nucleation node and slipped run (the nodes that `went`, around the nucleation
+/// node) of an event: `precursor` (the run starts at the first contact node), `nucleation`
+/// (elsewhere), `sliding` (every contact node), `slip` (no node weakened fully, or no
+/// nucleation: not an instability).
+pub(super) fn kind_of(ev: &EventRecord, went: &[bool]) -> (EventKind, usize, (usize, usize)) {
+    let n = went.len();
     let node = ev.nucleation.unwrap_or(0);
     let (mut a, mut b) = (node, node);
     while a > 0 && went[a - 1] {

@@ -22,7 +22,7 @@
 //! f_gap and u_gap (distance to a static equilibrium after an event) are 0 here: no static
 //! equilibrium is solved.
 
-use super::steps::arrest;
+use super::steps::{arrest, kind_of};
 use super::{check as check_held, DynEvent, DynamicOptions, DynamicResult, DEFAULT_DAMPING_RATIO};
 use crate::dynamics::driven::{Contact, Driven, DynState, EventEnergy, EventRecord, Layout};
 use crate::dynamics::explicit::Elastodynamic;
@@ -31,8 +31,7 @@ use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
 use crate::fem::assembly::Assembler;
 use crate::interface::condense::{boundary_model, condense};
-use crate::interface::events::active::Solver as ActiveSolver;
-use crate::interface::events::simulation::{normal_phase, settle_continuous, Recorder};
+use crate::interface::events::simulation::{normal_phase, settle_continuous, start};
 use crate::interface::events::{
     operator, tolerances, Event, EventKind, NodeState, Phase, Run, State, Violations,
 };
@@ -185,27 +184,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let setup_s = clock.elapsed().as_secs_f64();
 
     // Normal phase, quasi-static and exact: the event solver's (as the held mode).
-    let mut sv = ActiveSolver::new(Box::new(operator::Dense::new(&s_h, 2 * n + 3)), n, o)?;
-    let a0 = sv.solve()?;
-    let k_bonded = a0.f1[sv.iu()];
-    sv.dscale = a0.b0[2 * n + 1].abs();
-    if !(k_bonded > 0.0 && sv.dscale > 0.0) {
-        return Err(Error::input(
-            "condensed system",
-            "the bonded block has no tangential or normal stiffness",
-        ));
-    }
-    sv.set_phase(Phase::Normal);
-    let out = Run {
-        events: vec![],
-        states: vec![],
-        max_violation: 0.0,
-        k_bonded,
-        sliding_events: 0,
-        updates: 0,
-        refreshes: 0,
-    };
-    let mut rec = Recorder { out, prev_u: vec![0.0; n], pb: o };
+    let (mut sv, mut rec) = start(Box::new(operator::Dense::new(&s_h, 2 * n + 3)), n, o)?;
     normal_phase(&mut sv, &mut rec)?;
     // Every pre-slipped node sticks where it is as the drive starts, keeping its slip.
     sv.set_phase(Phase::Drive);
@@ -460,26 +439,7 @@ fn close(
     push: &dyn Fn(&mut Run, Event, State) -> Result<()>,
 ) -> Result<EventKind> {
     let Open { x0, f0, went, e0, balance0, mut rec, .. } = ev;
-    let n = went.len();
-    let node = rec.nucleation.unwrap_or(0);
-    let (mut a, mut b) = (node, node);
-    while a > 0 && went[a - 1] {
-        a -= 1;
-    }
-    while b + 1 < n && went[b + 1] {
-        b += 1;
-    }
-    let first_contact = (0..n).find(|&k| !rec.open[k] || went[k]).unwrap_or(0);
-    let last_contact = (0..n).rev().find(|&k| !rec.open[k] || went[k]).unwrap_or(n - 1);
-    let kind = if !rec.weakened {
-        EventKind::Slip
-    } else if a <= first_contact && b >= last_contact {
-        EventKind::Sliding
-    } else if a <= first_contact {
-        EventKind::Precursor
-    } else {
-        EventKind::Nucleation
-    };
+    let (kind, node, (a, b)) = kind_of(&rec, &went);
     rec.duration = rec.steps as f64 * dt;
     rec.settled = settled;
     rec.energy = EventEnergy {
