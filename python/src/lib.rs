@@ -35,8 +35,10 @@ fn to_py(e: Error) -> PyErr {
     })
 }
 
-/// Runs `work` without the GIL. Every `poll` (the run's progress callback) takes the GIL back
-/// briefly: a pending interrupt key cancels the run, and the Python callback gets the fraction.
+/// Runs `work` without the GIL, on a worker thread, while this (the interpreter's main) thread
+/// waits and looks for a pending signal every [`SIGNAL_POLL`]: the interrupt key cancels the run
+/// wherever it is (the run checks its token at every solve), whether or not it reports progress.
+/// Every progress tick takes the GIL back briefly to give the Python callback the fraction.
 /// Returns the result and the wall time of `work` itself (the Rust core), s.
 fn run_detached<T: Send>(
     py: Python<'_>,
@@ -45,30 +47,47 @@ fn run_detached<T: Send>(
 ) -> PyResult<(T, f64)> {
     let cancel = Cancel::new();
     let pending: std::sync::Mutex<Option<PyErr>> = std::sync::Mutex::new(None);
+    let fail = |err: PyErr| {
+        pending.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert(err);
+        cancel.cancel();
+    };
     let poll = |t: &Tick| {
-        Python::attach(|py| {
-            // The callback gets the fraction done; a tick without one only checks signals.
-            let outcome = py.check_signals().and_then(|_| match (&progress, t.fraction) {
-                (Some(cb), Some(frac)) => cb.call1(py, (frac,)).map(|_| ()),
-                _ => Ok(()),
-            });
-            if let Err(err) = outcome {
-                pending.lock().unwrap_or_else(|e| e.into_inner()).get_or_insert(err);
-                cancel.cancel();
-            }
-        })
+        if let (Some(cb), Some(frac)) = (&progress, t.fraction) {
+            Python::attach(|py| cb.call1(py, (frac,)).map(|_| ()).unwrap_or_else(&fail));
+        }
     };
     let result = py.detach(|| {
-        let clock = std::time::Instant::now();
-        work(&cancel, Progress::new(&poll)).map(|r| (r, clock.elapsed().as_secs_f64()))
+        std::thread::scope(|s| {
+            let (tx, rx) = std::sync::mpsc::channel();
+            let (token, poll) = (&cancel, &poll);
+            let worker = s.spawn(move || {
+                let clock = std::time::Instant::now();
+                let r = work(token, Progress::new(poll)).map(|r| (r, clock.elapsed().as_secs_f64()));
+                let _ = tx.send(());
+                r
+            });
+            // Signal handlers run on the main thread only: look here until the worker is done.
+            while let Err(std::sync::mpsc::RecvTimeoutError::Timeout) = rx.recv_timeout(SIGNAL_POLL) {
+                Python::attach(|py| py.check_signals().unwrap_or_else(&fail));
+            }
+            worker.join()
+        })
     });
     if let Some(err) = pending.lock().unwrap_or_else(|e| e.into_inner()).take() {
         return Err(err); // KeyboardInterrupt, or the progress callback's own exception
     }
-    // A signal that arrived after the last progress point still ends the call here.
+    // A signal that arrived after the last look still ends the call here.
     py.check_signals()?;
-    result.map_err(to_py)
+    match result {
+        Ok(r) => r.map_err(to_py),
+        Err(_) => Err(pyo3::exceptions::PyRuntimeError::new_err(
+            "tribofe: the run's worker thread panicked (a bug: please report it)",
+        )),
+    }
 }
+
+/// How often the waiting main thread looks for a signal (the interrupt key's latency).
+const SIGNAL_POLL: std::time::Duration = std::time::Duration::from_millis(20);
 
 fn f64_arg(v: &Bound<'_, PyAny>, key: &str) -> PyResult<f64> {
     v.extract::<f64>().map_err(|_| PyTypeError::new_err(format!("{key}: expected a number (SI units)")))

@@ -230,7 +230,7 @@ def slide(
 
     ``law``: ``"coulomb"`` (``mu``), ``"static-kinetic"`` (``mu_s``, ``mu_d`` or the paper's
     ``r``, ``g``; ``rule`` ``"paper"`` or ``"overdamped"``) or ``"slip-weakening"`` (plus
-    ``dc``, m). The interrupt key stops the run within an event (:class:`KeyboardInterrupt`).
+    ``dc``, m). The interrupt key stops the run within a second (:class:`KeyboardInterrupt`).
     ``progress``: True for a tqdm bar (when tqdm is installed), a callable for the fraction
     done, False for silence.
     """

@@ -33,6 +33,9 @@ pub(crate) struct Solver<'a> {
     pub(super) creep: f64,
     /// The last solve's result, until the states, anchors, coefficients or phase change.
     last: Option<Affine>,
+    /// Checked at every fresh solve, so every loop of the solver (events, relaxations,
+    /// Newton) stops soon after a host cancels, whether or not it reports progress.
+    cancel: crate::Cancel,
 }
 
 impl<'a> Solver<'a> {
@@ -61,6 +64,7 @@ impl<'a> Solver<'a> {
             dscale: 1.0,
             creep: pb.creep_fraction,
             last: None,
+            cancel: pb.cancel.clone(),
         };
         sv.op.refresh(&sv.set)?;
         Ok(sv)
@@ -231,6 +235,7 @@ impl<'a> Solver<'a> {
         if let Some(a) = &self.last {
             return Ok(a.clone());
         }
+        self.cancel.check()?;
         let a = self.op.solve(&self.set)?;
         self.last = Some(a.clone());
         Ok(a)

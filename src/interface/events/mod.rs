@@ -129,7 +129,8 @@ pub struct Problem {
     /// differences after ~100 events, so the two give different event counts for long runs
     /// (validation/friction/README.md).
     pub newton: bool,
-    /// Checked at every event: once cancelled, the run returns [`crate::Error::Interrupted`].
+    /// Checked at every event and every fresh solve of the active-set system (so inside every
+    /// relaxation too): once cancelled, the run returns [`crate::Error::Interrupted`].
     pub cancel: crate::Cancel,
     /// Which operator solves each state set (results equal to round-off).
     pub operator: Operator,

@@ -332,35 +332,82 @@ mod tests {
     /// contracts by w/k0 = 1 - 1e-4 an iterate (2.7e5 iterates to 1e-12): Newton must take over
     /// after SLOW_FP of them and stop on the coefficient test 1e-12 mu_s, which bounds
     /// |u - u*| by 1e-12 mu_s P/(k0 - w).
-    #[test]
-    fn a_near_critical_relaxation_settles_by_newton_after_the_fixed_point_cap() {
-        let n = 6;
-        let x: Vec<f64> = (0..n).map(|i| i as f64 - 2.5).collect();
-        let mut kt = vec![1.0; n];
+    /// The six-node scene below, node 0 set slipping from its anchor 0 at the drive `lam`
+    /// where u* = D_c/2: (S, problem, lam, u*, D_c, the bound on |u - u*|).
+    struct NearCritical {
+        s: Vec<f64>,
+        pb: Problem,
+        lam: f64,
+        want: f64,
+        dc: f64,
+        tol: f64,
+    }
+
+    const N6: usize = 6;
+
+    fn near_critical(cancel: crate::Cancel) -> NearCritical {
+        let x: Vec<f64> = (0..N6).map(|i| i as f64 - 2.5).collect();
+        let mut kt = vec![1.0; N6];
         kt[0] = 2.0;
         let (k0, n_force, mu_s, mu_d) = (2.0, 1.0, 0.6, 0.3);
-        let p = n_force / n as f64;
+        let p = n_force / N6 as f64;
         let w = (1.0 - 1e-4) * k0;
         let dc = (mu_s - mu_d) * p / w;
-        let s = springs::operator(&x, &kt, 2.0, 0.0);
-        let pb = Problem { n_force, law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(), ..Default::default() };
-        let mut sv = springs::solver(&s, n, &pb);
-        // Where u* = D_c/2.
+        let law = Law::slip_weakening(mu_s, mu_d, dc).unwrap();
         let lam = (mu_s * p + 0.5 * dc * (k0 - w)) / k0;
-        let want = (k0 * lam - mu_s * p) / (k0 - w);
+        NearCritical {
+            s: springs::operator(&x, &kt, 2.0, 0.0),
+            pb: Problem { n_force, law, cancel, ..Default::default() },
+            lam,
+            want: (k0 * lam - mu_s * p) / (k0 - w),
+            dc,
+            tol: 1e-12 * mu_s * p / (k0 - w),
+        }
+    }
+
+    /// Node 0 slipping; the displacements before the relaxation.
+    fn start(sv: &mut Solver, lam: f64) -> Vec<f64> {
         sv.set_state(0, NodeState::Slip(1.0), 0.0).unwrap();
         let a0 = sv.solve().unwrap();
-        let u_pre: Vec<f64> = (0..n).map(|i| a0.b(i, lam)).collect();
+        (0..N6).map(|i| a0.b(i, lam)).collect()
+    }
+
+    #[test]
+    fn a_near_critical_relaxation_settles_by_newton_after_the_fixed_point_cap() {
+        let sc = near_critical(crate::Cancel::new());
+        let mut sv = springs::solver(&sc.s, N6, &sc.pb);
+        let u_pre = start(&mut sv, sc.lam);
         let before = sv.counts().0;
-        let (a, touched) = settle(&mut sv, lam, tolerances::max_changes(n), &u_pre, dc, false).unwrap();
-        let u = a.b(0, lam);
-        let tol = 1e-12 * mu_s * p / (k0 - w);
-        assert!((u - want).abs() < tol, "u {u} vs u* {want} (D_c {dc}): off by {:e}", (u - want).abs());
+        let (a, touched) =
+            settle(&mut sv, sc.lam, tolerances::max_changes(N6), &u_pre, sc.dc, false).unwrap();
+        let u = a.b(0, sc.lam);
+        assert!(
+            (u - sc.want).abs() < sc.tol,
+            "u {u} vs u* {} (D_c {}): off by {:e}",
+            sc.want,
+            sc.dc,
+            (u - sc.want).abs()
+        );
         assert!(touched[0] && !touched[1..].iter().any(|&t| t));
         assert_eq!(sv.states()[1..], [NodeState::Stick; 5]);
         // Each fixed-point iterate is one coefficient change (a remove and an add of the row):
         // SLOW_FP of them, then a few for Newton.
         let updates = sv.counts().0 - before;
         assert!((2 * SLOW_FP..2 * SLOW_FP + 100).contains(&updates), "{updates} bordering updates");
+    }
+
+    /// The same relaxation (2e4 iterates, no event, no progress point) stops at its first
+    /// fresh solve once the host cancels: one coefficient change (2 updates) at most.
+    #[test]
+    fn a_cancel_stops_a_relaxation_between_events() {
+        let host = crate::Cancel::new();
+        let sc = near_critical(host.clone());
+        let mut sv = springs::solver(&sc.s, N6, &sc.pb);
+        let u_pre = start(&mut sv, sc.lam);
+        host.cancel();
+        let before = sv.counts().0;
+        let r = settle(&mut sv, sc.lam, tolerances::max_changes(N6), &u_pre, sc.dc, false);
+        assert!(matches!(r, Err(crate::Error::Interrupted)), "{:?}", r.map(|_| ()));
+        assert!(sv.counts().0 - before <= 2, "{} updates after the cancel", sv.counts().0 - before);
     }
 }
