@@ -147,7 +147,10 @@ pub struct Problem {
 /// the run's own thread, inside the event loop, so it should be short; state it keeps is the
 /// host's (behind a `Mutex` or an atomic: the observer is `Send + Sync`, as runs go to threads).
 #[derive(Clone)]
-pub struct Observer(Arc<dyn Fn(usize, &Event, &State) + Send + Sync>);
+pub struct Observer(Arc<ObserverFn>);
+
+/// The observer's call: (index in [`Run::events`], event, state after it).
+type ObserverFn = dyn Fn(usize, &Event, &State) + Send + Sync;
 
 impl Observer {
     pub fn new(f: impl Fn(usize, &Event, &State) + Send + Sync + 'static) -> Observer {
