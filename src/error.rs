@@ -55,10 +55,11 @@ pub enum Error {
     Untrustworthy { detail: String, hint: String },
 
     /// A frictional run needed more events than its cap before reaching its end.
-    /// `precursors`: events classified as precursors before the first whole-interface slip;
-    /// `f_peak_over_n`: the largest F/N reached (both up to the cap).
-    #[error("the run needs more than {cap} events (stopped at X = {x:.6e} m, F/N = {f_over_n:.6}, after {precursors} precursors and a peak F/N = {f_peak_over_n:.6}); raise --max-events or lower --x-max/--cycles")]
-    EventCap { cap: usize, x: f64, f_over_n: f64, precursors: usize, f_peak_over_n: f64 },
+    /// `f_peak_over_n`: the largest F/N reached up to the cap. No precursor count: that is the
+    /// one definition's ([`crate::precursors::definition`]), which a caller applies to the
+    /// events an [`crate::interface::events::Observer`] saw (the fig. 5 study does).
+    #[error("the run needs more than {cap} events (stopped at X = {x:.6e} m, F/N = {f_over_n:.6}, after a peak F/N = {f_peak_over_n:.6}); raise --max-events or lower --x-max/--cycles")]
+    EventCap { cap: usize, x: f64, f_over_n: f64, f_peak_over_n: f64 },
 
     /// A self-check of the results (global balance...) failed beyond its threshold.
     #[error("self-check failed: {what} = {value:.2e} exceeds {limit:.1e}; {hint}")]

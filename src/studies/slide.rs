@@ -380,22 +380,7 @@ pub struct PaperComparison {
 /// The precursors of a run's first cycle ([`crate::precursors::definition`]); forces F_i in
 /// N/m.
 pub fn precursors(res: &SlideResult) -> Precursors {
-    let slips: Vec<Slip> = res
-        .run
-        .events
-        .iter()
-        .enumerate()
-        .filter_map(|(k, e)| {
-            e.region.map(|region| Slip {
-                event: k,
-                x_drive: e.x,
-                f: e.f,
-                node: e.node,
-                region,
-                ends_cycle: e.ends_cycle(),
-            })
-        })
-        .collect();
+    let slips: Vec<Slip> = res.run.events.iter().enumerate().filter_map(|(k, e)| e.slip(k)).collect();
     definition::find(&slips, &res.condensed.x, res.condensed.t)
 }
 

@@ -23,6 +23,7 @@ mod friction;
 mod gmsh_io;
 mod inputs;
 mod layering;
+mod observer;
 mod operator;
 mod paper_rule;
 mod parallel;

@@ -265,7 +265,7 @@ pub fn fe_map(args: FeMapArgs) -> tribofe::Result<()> {
         report::write_fe_fig5(dir, &cells, resolution, &what, inv, &scene)
     })?;
     outln!(
-        "counts: n, the advancing precursors before the first whole slip or front crossing (the slipped nodes joining edge to edge); capped: over --max-events, its count the event solver's precursor-kind events"
+        "counts: n, the advancing precursors before the first whole slip or front crossing (the slipped nodes joining edge to edge); capped: over --max-events, its count every precursor among the recorded events (the cascade the cap cut left out; a lower bound)"
     );
     outln!("{}", tribofe::precursors::definition::DEFINITION);
     outln!("wrote {}/{{fig5_fe.csv, boundary_fe.csv, fig5_fe.svg, run.toml}}", args.out.out.display());

@@ -27,6 +27,8 @@
 //!   phase under slip weakening.
 
 use crate::interface::law::Law;
+use crate::precursors::definition::Slip;
+use std::sync::Arc;
 
 pub(crate) mod active;
 mod classify;
@@ -134,6 +136,37 @@ pub struct Problem {
     pub cancel: crate::Cancel,
     /// Which operator solves each state set (results equal to round-off).
     pub operator: Operator,
+    /// Called once per recorded event (see [`Observer`]); None: no call.
+    pub observer: Option<Observer>,
+}
+
+/// A host's view of a run while it is recorded: called once per recorded event, in order, with
+/// the event's index in [`Run::events`], the event and the state after it. It sees the events
+/// even when the run keeps no states ([`Problem::keep_states`]) and when the run ends without a
+/// [`Run`] ([`crate::Error::EventCap`], [`crate::Error::Interrupted`]): that is how a study
+/// counts a capped run's precursors through [`crate::precursors::definition`]. It is called on
+/// the run's own thread, inside the event loop, so it should be short; state it keeps is the
+/// host's (behind a `Mutex` or an atomic: the observer is `Send + Sync`, as runs go to threads).
+#[derive(Clone)]
+pub struct Observer(Arc<ObserverFn>);
+
+/// The observer's call: (index in [`Run::events`], event, state after it).
+type ObserverFn = dyn Fn(usize, &Event, &State) + Send + Sync;
+
+impl Observer {
+    pub fn new(f: impl Fn(usize, &Event, &State) + Send + Sync + 'static) -> Observer {
+        Observer(Arc::new(f))
+    }
+
+    pub(crate) fn call(&self, index: usize, ev: &Event, st: &State) {
+        (self.0)(index, ev, st)
+    }
+}
+
+impl std::fmt::Debug for Observer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Observer")
+    }
 }
 
 impl Default for Problem {
@@ -150,6 +183,7 @@ impl Default for Problem {
             newton: false,
             cancel: crate::Cancel::new(),
             operator: Operator::Dense,
+            observer: None,
         }
     }
 }
@@ -252,6 +286,20 @@ impl Event {
     /// Whether the event ends a stick-slip cycle (a whole slip, or a front crossing).
     pub fn ends_cycle(&self) -> bool {
         self.kind.ends_cycle()
+    }
+
+    /// The event as the precursor definition reads it ([`crate::precursors::definition`]):
+    /// an instability (one with a slipped region), `index` its place in [`Run::events`]; None
+    /// for a continuous event. The one mapping from events to [`Slip`]s every count goes through.
+    pub fn slip(&self, index: usize) -> Option<Slip> {
+        self.region.map(|region| Slip {
+            event: index,
+            x_drive: self.x,
+            f: self.f,
+            node: self.node,
+            region,
+            ends_cycle: self.ends_cycle(),
+        })
     }
 
     fn simple(kind: EventKind, st: &State, node: usize) -> Event {

@@ -400,18 +400,22 @@ impl Recorder<'_> {
         let (out, pb) = (&mut self.out, self.pb);
         pb.cancel.check()?;
         if out.events.len() >= pb.max_events {
-            let before_slide = out.events.iter().take_while(|e| !e.ends_cycle());
+            // No precursor count here: the solver does not know the node positions and block
+            // thickness the one definition reads; a study counts through `Problem::observer`.
             return Err(Error::EventCap {
                 cap: pb.max_events,
                 x: st.x,
                 f_over_n: st.f / pb.n_force,
-                precursors: before_slide.filter(|e| e.kind == EventKind::Precursor).count(),
                 f_peak_over_n: out.events.iter().map(|e| e.f).fold(st.f, f64::max) / pb.n_force,
             });
         }
         out.max_violation = out.max_violation.max(st.violations.max());
         if !pb.keep_states {
             out.states.clear();
+        }
+        // The one call per recorded event.
+        if let Some(obs) = &pb.observer {
+            obs.call(out.events.len(), &ev, &st);
         }
         out.events.push(ev);
         out.states.push(st);

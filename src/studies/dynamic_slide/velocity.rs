@@ -209,7 +209,6 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                 cap: o.max_events,
                 x: last.x,
                 f_over_n: last.f / o.n_force,
-                precursors: run.events.iter().filter(|e| e.kind == EventKind::Precursor).count(),
                 f_peak_over_n: run.states.iter().map(|s| s.f).fold(0.0, f64::max) / o.n_force,
             });
         }

@@ -11,11 +11,10 @@
 
 use crate::error::Result;
 use crate::interface::condense::{condense, Condensed};
-use crate::interface::events::EventKind;
-use crate::interface::events::NodeState;
+use crate::interface::events::{EventKind, NodeState, Observer};
 use crate::interface::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
-use crate::precursors::definition::ZONE_T;
+use crate::precursors::definition::{self, Precursors, Slip, ZONE_T};
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{
@@ -23,6 +22,7 @@ use crate::studies::slide::{
     SlideResult,
 };
 use rayon::prelude::*;
+use std::sync::{Arc, Mutex, PoisonError};
 
 mod series;
 use series::interrupted;
@@ -210,9 +210,10 @@ pub enum CellRun {
         violation: f64,
         seconds: f64,
     },
-    /// Needed more than the cap of events before the first whole slip.
-    /// Over the event cap: the precursors recorded so far (a lower bound on n) and the
-    /// largest F reached, in units of mu_s N.
+    /// Needed more than the cap of events before the end of its first cycle: the precursors
+    /// of the recorded events by the one definition ([`SlipLog::at_cap`]: every precursor,
+    /// advancing or not, as `n` of [`CellRun::Done`]; a lower bound on the finished run's) and
+    /// the largest F reached, in units of mu_s N.
     Capped { seconds: f64, precursors: usize, f_peak: f64 },
     /// Refused by the event solver (a relaxation that did not settle...).
     Refused { seconds: f64 },
@@ -239,6 +240,44 @@ impl CellRun {
             CellRun::Done { n_advancing, .. } => Some(n_advancing),
             _ => None,
         }
+    }
+}
+
+/// A run's instabilities as the precursor definition reads them ([`Slip`]s), collected while
+/// the run is recorded through [`crate::interface::events::Problem::observer`]: a run that ends
+/// at its event cap returns no events, but its log still has them.
+#[derive(Debug, Clone, Default)]
+pub struct SlipLog(Arc<Mutex<Vec<Slip>>>);
+
+impl SlipLog {
+    pub fn new() -> SlipLog {
+        SlipLog::default()
+    }
+
+    /// The observer that fills this log (put it in the run's options).
+    pub fn observer(&self) -> Observer {
+        let log = self.0.clone();
+        Observer::new(move |k, e, _| {
+            if let Some(s) = e.slip(k) {
+                log.lock().unwrap_or_else(PoisonError::into_inner).push(s);
+            }
+        })
+    }
+
+    /// The slips logged so far, in order.
+    pub fn slips(&self) -> Vec<Slip> {
+        self.0.lock().unwrap_or_else(PoisonError::into_inner).clone()
+    }
+
+    /// The precursors of a run stopped by its event cap at drive displacement `x_stop` (m,
+    /// [`crate::Error::EventCap`]'s x), by [`definition::find`] on the interface nodes `x` (m)
+    /// under a block of thickness `t` (m). The cascade at `x_stop` is left out: the cap cut
+    /// it, and it may still grow, or end the cycle (then it is no precursor); so every count
+    /// is a lower bound on the finished run's.
+    pub fn at_cap(&self, x_stop: f64, x: &[f64], t: f64) -> Precursors {
+        let mut slips = self.slips();
+        slips.retain(|s| s.x_drive != x_stop);
+        definition::find(&slips, x, t)
     }
 }
 
@@ -275,6 +314,8 @@ pub fn fig5(
             let p = crate::precursors::Params::new(m.r, m.g)?;
             let mut cell = Cell { r: m.r, g: m.g, n_model: m.n, f_max_model: p.f_max(), runs: [None; 2] };
             for (k, &rule) in RULES.iter().enumerate().filter(|(_, r)| rules.contains(r)) {
+                // The run's slips, so a capped run is counted by the one definition too.
+                let log = SlipLog::new();
                 let o = SlideOptions {
                     law: sk(scene, m.r, m.g, rule)?,
                     cycles: 1,
@@ -282,6 +323,7 @@ pub fn fig5(
                     keep_states: false,
                     end_at_crossing: true,
                     cancel: cancel.clone(),
+                    observer: Some(log.observer()),
                     ..Default::default()
                 };
                 let clock = std::time::Instant::now();
@@ -308,9 +350,11 @@ pub fn fig5(
                             seconds,
                         }
                     }
-                    Err(crate::Error::EventCap { precursors, f_peak_over_n, .. }) => {
-                        CellRun::Capped { seconds, precursors, f_peak: f_peak_over_n / o.law.mu_s() }
-                    }
+                    Err(crate::Error::EventCap { x, f_peak_over_n, .. }) => CellRun::Capped {
+                        seconds,
+                        precursors: log.at_cap(x, &c.x, c.t).n_all(),
+                        f_peak: f_peak_over_n / o.law.mu_s(),
+                    },
                     // One cell's failure is that cell's result, not the map's.
                     Err(e @ crate::Error::Interrupted) => return Err(e),
                     Err(_) => CellRun::Refused { seconds },
