@@ -434,12 +434,14 @@ impl BandedOperator {
             }
         }
         *lu = f.lu;
-        Ok(self.finish(rows, &mut full))
+        Ok(self.finish(rows, &mut full, None))
     }
 
     /// Sets the constrained values exactly as given (the identity rows return them to
-    /// round-off) and reads b and f = S b at the boundary DOFs off the full solutions.
-    fn finish(&self, rows: &Rows, full: &mut [Vec<f64>; 2]) -> Solution {
+    /// round-off) and reads b and f = S b at the boundary DOFs off the full solutions; `kx`:
+    /// K times those (pinned) solutions where already known, summed in the same order (only a
+    /// zero, whose sign depends on the sum's start, is summed again).
+    fn finish(&self, rows: &Rows, full: &mut [Vec<f64>; 2], kx: Option<[&[f64]; 2]>) -> Solution {
         let nb = self.dim();
         for d in (0..nb).filter(|&d| !rows.free[d]) {
             let p = self.pos(d);
@@ -452,8 +454,12 @@ impl BandedOperator {
             let (c, v) = self.row(p);
             out.b0[d] = full[0][p];
             out.b1[d] = full[1][p];
-            out.f0[d] = c.iter().zip(v).map(|(&c, &v)| v * full[0][c]).sum();
-            out.f1[d] = c.iter().zip(v).map(|(&c, &v)| v * full[1][c]).sum();
+            let f = |k: usize| match kx {
+                Some(kx) if kx[k][p] != 0.0 => kx[k][p],
+                _ => c.iter().zip(v).map(|(&c, &v)| v * full[k][c]).sum(),
+            };
+            out.f0[d] = f(0);
+            out.f1[d] = f(1);
         }
         out
     }

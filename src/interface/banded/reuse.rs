@@ -35,8 +35,8 @@ pub const RANK_CAP: usize = 24;
 /// ~18 terms, so each equation holds to round-off whatever the scale of its forces.
 pub const REFINE: f64 = 32.0 * f64::EPSILON;
 
-/// A solution's residual b - M x and its equations' sizes (sum |M_rj x_j| + |b_r|).
-type Checked = (Vec<f64>, Vec<f64>);
+/// A solution's residual b - M x, its equations' sizes (sum |M_rj x_j| + |b_r|) and K x.
+type Checked = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// What a boundary row depends on besides K: free, slip coefficient, spring.
 type Key = (bool, f64, f64);
@@ -309,32 +309,51 @@ impl<'a> Solving<'a> {
         b[r] - self.lhs_with(rows, r, x, kx)
     }
 
-    /// rho = b - M x over the m + 3 equations for each (x, b) pair (one pass over K), and
-    /// each equation's size: sum |M_rj x_j| + |b_r|.
+    /// rho = b - M x over the m + 3 equations for each (x, b) pair (one pass over K), each
+    /// equation's size sum |M_rj x_j| + |b_r|, and K x (for the forces f = K x at the end).
     fn residuals(&self, rows: &Rows, x: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<Checked> {
         let nu = self.op.m + 3;
         let k = x.len();
         let mut kx = vec![vec![0.0; nu]; k];
         let mut ka = vec![vec![0.0; nu]; k];
-        for r in 0..nu {
-            let (c, v) = self.op.row(r);
-            for (j, xj) in x.iter().enumerate() {
-                let (mut s, mut a) = (0.0, 0.0);
+        if let ([x0, x1], [kx0, kx1], [ka0, ka1]) = (x, &mut kx[..], &mut ka[..]) {
+            // Both solutions in one pass: four independent sums per row instead of two
+            // dependent chains one after the other (each sum in the same order as alone).
+            for r in 0..nu {
+                let (c, v) = self.op.row(r);
+                let (mut s0, mut a0, mut s1, mut a1) = (0.0, 0.0, 0.0, 0.0);
                 for (&c, &v) in c.iter().zip(v) {
-                    let t = v * xj[c];
-                    s += t;
-                    a += t.abs();
+                    let (t0, t1) = (v * x0[c], v * x1[c]);
+                    s0 += t0;
+                    a0 += t0.abs();
+                    s1 += t1;
+                    a1 += t1.abs();
                 }
-                kx[j][r] = s;
-                ka[j][r] = a;
+                (kx0[r], ka0[r], kx1[r], ka1[r]) = (s0, a0, s1, a1);
+            }
+        } else {
+            for r in 0..nu {
+                let (c, v) = self.op.row(r);
+                for (j, xj) in x.iter().enumerate() {
+                    let (mut s, mut a) = (0.0, 0.0);
+                    for (&c, &v) in c.iter().zip(v) {
+                        let t = v * xj[c];
+                        s += t;
+                        a += t.abs();
+                    }
+                    kx[j][r] = s;
+                    ka[j][r] = a;
+                }
             }
         }
-        (0..k)
-            .map(|j| {
-                let rho = (0..nu).map(|r| b[j][r] - self.lhs_with(rows, r, &x[j], |q| kx[j][q])).collect();
+        kx.into_iter()
+            .zip(ka)
+            .enumerate()
+            .map(|(j, (kx, ka))| {
+                let rho = (0..nu).map(|r| b[j][r] - self.lhs_with(rows, r, &x[j], |q| kx[q])).collect();
                 let den =
-                    (0..nu).map(|r| self.size_at(rows, r, &x[j], |q| ka[j][q]) + b[j][r].abs()).collect();
-                (rho, den)
+                    (0..nu).map(|r| self.size_at(rows, r, &x[j], |q| ka[q]) + b[j][r].abs()).collect();
+                (rho, den, kx)
             })
             .collect()
     }
@@ -621,10 +640,9 @@ impl Operator for Solving<'_> {
         let vals = [rows.b0, rows.b1];
         let (x, res) = self.solve_full(&rows, &b, &vals, guess.as_ref().map(|l| &l.g[..]))?;
         let mut full: [Vec<f64>; 2] = x.try_into().map_err(|_| super::singular())?;
-        let sol = self.op.finish(&rows, &mut full);
+        let [(r0, d0, k0), (r1, d1, k1)]: [Checked; 2] = res.try_into().map_err(|_| super::singular())?;
+        let sol = self.op.finish(&rows, &mut full, Some([&k0, &k1]));
         let [x0, x1] = full;
-        let [(r0, d0), (r1, d1)]: [(Vec<f64>, Vec<f64>); 2] =
-            res.try_into().map_err(|_| super::singular())?;
         let g = [Guess { x: x0, res: r0, den: d0 }, Guess { x: x1, res: r1, den: d1 }];
         self.last = Some(Last { g, b, keys });
         Ok(Affine { b0: sol.b0, b1: sol.b1, f0: sol.f0, f1: sol.f1 })
@@ -643,7 +661,7 @@ impl Operator for Solving<'_> {
             let [b0, _] = self.rhs(&rows);
             let (mut x, _) = self.solve_full(&rows, &[b0], &[rows.b0], None)?;
             let mut x = [x.remove(0), vec![0.0; self.op.m + 3]];
-            let s = self.op.finish(&rows, &mut x);
+            let s = self.op.finish(&rows, &mut x, None);
             load[dj] = 0.0;
             for (i, &di) in dofs.iter().enumerate() {
                 out[i * k + j] = s.b0[di];
