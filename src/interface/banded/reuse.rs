@@ -316,43 +316,20 @@ impl<'a> Solving<'a> {
         let k = x.len();
         let mut kx = vec![vec![0.0; nu]; k];
         let mut ka = vec![vec![0.0; nu]; k];
-        if let ([x0, x1], [kx0, kx1], [ka0, ka1]) = (x, &mut kx[..], &mut ka[..]) {
-            // Both solutions in one pass: four independent sums per row instead of two
-            // dependent chains one after the other (each sum in the same order as alone).
-            for r in 0..nu {
-                let (c, v) = self.op.row(r);
-                let (mut s0, mut a0, mut s1, mut a1) = (0.0, 0.0, 0.0, 0.0);
-                for (&c, &v) in c.iter().zip(v) {
-                    let (t0, t1) = (v * x0[c], v * x1[c]);
-                    s0 += t0;
-                    a0 += t0.abs();
-                    s1 += t1;
-                    a1 += t1.abs();
-                }
-                (kx0[r], ka0[r], kx1[r], ka1[r]) = (s0, a0, s1, a1);
+        match (x, &mut kx[..], &mut ka[..]) {
+            ([x0, x1], [kx0, kx1], [ka0, ka1]) => self.op.product2(x0, x1, [kx0, ka0, kx1, ka1]),
+            ([x0], [kx0], [ka0]) => {
+                let (mut k1, mut a1) = (vec![0.0; nu], vec![0.0; nu]);
+                self.op.product2(x0, x0, [kx0, ka0, &mut k1, &mut a1]);
             }
-        } else {
-            for r in 0..nu {
-                let (c, v) = self.op.row(r);
-                for (j, xj) in x.iter().enumerate() {
-                    let (mut s, mut a) = (0.0, 0.0);
-                    for (&c, &v) in c.iter().zip(v) {
-                        let t = v * xj[c];
-                        s += t;
-                        a += t.abs();
-                    }
-                    kx[j][r] = s;
-                    ka[j][r] = a;
-                }
-            }
+            _ => unreachable!("one or two right-hand sides"),
         }
         kx.into_iter()
             .zip(ka)
             .enumerate()
             .map(|(j, (kx, ka))| {
                 let rho = (0..nu).map(|r| b[j][r] - self.lhs_with(rows, r, &x[j], |q| kx[q])).collect();
-                let den =
-                    (0..nu).map(|r| self.size_at(rows, r, &x[j], |q| ka[q]) + b[j][r].abs()).collect();
+                let den = (0..nu).map(|r| self.size_at(rows, r, &x[j], |q| ka[q]) + b[j][r].abs()).collect();
                 (rho, den, kx)
             })
             .collect()
