@@ -15,7 +15,7 @@
 use crate::error::{Error, Result};
 use crate::fem::constraints::Target;
 use crate::interface::condense::boundary_model;
-use crate::linalg::banded::{dot, dot2_abs, Banded};
+use crate::linalg::banded::{dot, dot_abs, Banded};
 use crate::scene::Scene;
 
 /// The block + rigid plate stiffness over (interior, interface) DOFs in band order, bordered by
@@ -312,7 +312,8 @@ impl BandedOperator {
         for r in 0..m {
             let (lo, hi) = (r.saturating_sub(kl), (r + ku + 1).min(m));
             let band = &self.kband[r * wk + lo + kl - r..r * wk + hi + kl - r];
-            let [mut s0, mut a0, mut s1, mut a1] = dot2_abs(band, &x0[lo..hi], &x1[lo..hi]);
+            let ((mut s0, mut a0), (mut s1, mut a1)) =
+                (dot_abs(band, &x0[lo..hi]), dot_abs(band, &x1[lo..hi]));
             for (p, &v) in self.kplate[r].iter().enumerate() {
                 if v != 0.0 {
                     let (t0, t1) = (v * p0[p], v * p1[p]);

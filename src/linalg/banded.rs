@@ -19,6 +19,8 @@ pub struct Banded {
     /// U's rows packed after the factorisation (columns r ..= r + kl + ku, kl + ku + 1 a row):
     /// the solves stream a third fewer bytes than through `a` (they are bandwidth bound).
     u: Vec<f64>,
+    /// 1 / U's diagonal.
+    dinv: Vec<f64>,
     piv: Vec<usize>,
     factored: bool,
 }
@@ -34,6 +36,7 @@ impl Banded {
             a: vec![0.0; m * w],
             l: vec![0.0; m * kl],
             u: vec![0.0; m * span],
+            dinv: vec![0.0; m],
             piv: vec![0; m],
             factored: false,
         }
@@ -106,6 +109,7 @@ impl Banded {
         }
         for (i, u) in self.u.chunks_exact_mut(span).enumerate() {
             u.copy_from_slice(&self.a[i * w + kl..i * w + kl + span]);
+            self.dinv[i] = 1.0 / u[0];
         }
         self.factored = true;
         Ok(())
@@ -137,8 +141,13 @@ impl Banded {
             for i in (0..m).rev() {
                 let len = span.min(m - i);
                 let row = &self.u[i * span..i * span + len];
-                let s = dot(&row[1..], &x[i + 1..i + len]);
-                x[i] = (x[i] - s) / row[0];
+                // The entries solved last enter the sum last, so that each row waits on the
+                // one before it for two products only, not the whole sum (latency bound).
+                let mut s = if len > 3 { dot(&row[3..], &x[i + 3..i + len]) } else { 0.0 };
+                for c in (1..len.min(3)).rev() {
+                    s += row[c] * x[i + c];
+                }
+                x[i] = (x[i] - s) * self.dinv[i];
             }
         }
     }
@@ -165,34 +174,29 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
     t
 }
 
-/// Both sum a_i x_i and sum |a_i x_i| for two vectors x and y at once (the residual checks'
-/// K x and its size), four interleaved partial sums each as in [`dot`].
+/// sum a_i x_i and sum |a_i x_i| (a residual's K x and its size), four interleaved partial
+/// sums each as in [`dot`].
 #[inline]
-pub fn dot2_abs(a: &[f64], x: &[f64], y: &[f64]) -> [f64; 4] {
-    let n = a.len().min(x.len()).min(y.len());
-    let (a, x, y) = (&a[..n], &x[..n], &y[..n]);
-    let (mut sx, mut ax, mut sy, mut ay) = ([0.0f64; 4], [0.0f64; 4], [0.0f64; 4], [0.0f64; 4]);
-    let (ac, xc, yc) = (a.chunks_exact(4), x.chunks_exact(4), y.chunks_exact(4));
-    let (ar, xr, yr) = (ac.remainder(), xc.remainder(), yc.remainder());
-    for ((a, x), y) in ac.zip(xc).zip(yc) {
+pub fn dot_abs(a: &[f64], x: &[f64]) -> (f64, f64) {
+    let n = a.len().min(x.len());
+    let (a, x) = (&a[..n], &x[..n]);
+    let (mut s, mut t) = ([0.0f64; 4], [0.0f64; 4]);
+    let (ac, xc) = (a.chunks_exact(4), x.chunks_exact(4));
+    let (ar, xr) = (ac.remainder(), xc.remainder());
+    for (a, x) in ac.zip(xc) {
         for k in 0..4 {
-            let (p, q) = (a[k] * x[k], a[k] * y[k]);
-            sx[k] += p;
-            ax[k] += p.abs();
-            sy[k] += q;
-            ay[k] += q.abs();
+            let p = a[k] * x[k];
+            s[k] += p;
+            t[k] += p.abs();
         }
     }
-    let fold = |s: [f64; 4]| (s[0] + s[2]) + (s[1] + s[3]);
-    let mut out = [fold(sx), fold(ax), fold(sy), fold(ay)];
-    for ((a, x), y) in ar.iter().zip(xr).zip(yr) {
-        let (p, q) = (a * x, a * y);
-        out[0] += p;
-        out[1] += p.abs();
-        out[2] += q;
-        out[3] += q.abs();
+    let (mut s, mut t) = ((s[0] + s[2]) + (s[1] + s[3]), (t[0] + t[2]) + (t[1] + t[3]));
+    for (a, x) in ar.iter().zip(xr) {
+        let p = a * x;
+        s += p;
+        t += p.abs();
     }
-    out
+    (s, t)
 }
 
 #[cfg(test)]
@@ -294,9 +298,10 @@ mod tests {
             // Reordered sums of n terms: within n ulps of the sum of magnitudes.
             let tol = |v: &[f64]| (n as f64 + 1.0) * f64::EPSILON * size(v);
             assert!((dot(&a, &x) - plain(&x)).abs() <= tol(&x), "n {n}");
-            let [sx, ax, sy, ay] = dot2_abs(&a, &x, &y);
-            assert!((sx - plain(&x)).abs() <= tol(&x) && (sy - plain(&y)).abs() <= tol(&y), "n {n}");
-            assert!((ax - size(&x)).abs() <= tol(&x) && (ay - size(&y)).abs() <= tol(&y), "n {n}");
+            for v in [&x, &y] {
+                let (sv, av) = dot_abs(&a, v);
+                assert!((sv - plain(v)).abs() <= tol(v) && (av - size(v)).abs() <= tol(v), "n {n}");
+            }
         }
     }
 
