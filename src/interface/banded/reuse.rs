@@ -239,6 +239,38 @@ impl<'a> Solving<'a> {
         Ok(x)
     }
 
+    /// x_k += Z y for each (k, y) of `ys` (at most two), reading Z once: the same sums, in
+    /// the same order, as [`Self::sub_zy`] for each.
+    fn add_zy(&self, xs: &mut [Vec<f64>], ys: &[(usize, Vec<f64>)]) {
+        let (xa, xb, ya, yb) = match ys {
+            [] => return,
+            [(k, y)] => return self.sub_zy(&mut xs[*k], y, 1.0),
+            [(0, ya), (1, yb)] => {
+                let (a, b) = xs.split_at_mut(1);
+                (&mut a[0], &mut b[0], ya, yb)
+            }
+            _ => {
+                for (k, y) in ys {
+                    self.sub_zy(&mut xs[*k], y, 1.0);
+                }
+                return;
+            }
+        };
+        for ((zj, &a), &b) in self.z.iter().zip(ya).zip(yb) {
+            match (a != 0.0, b != 0.0) {
+                (true, true) => {
+                    for ((x, y), z) in xa.iter_mut().zip(xb.iter_mut()).zip(zj) {
+                        *x += a * z;
+                        *y += b * z;
+                    }
+                }
+                (true, false) => xa.iter_mut().zip(zj).for_each(|(x, z)| *x += a * z),
+                (false, true) => xb.iter_mut().zip(zj).for_each(|(x, z)| *x += b * z),
+                (false, false) => {}
+            }
+        }
+    }
+
     /// x += s Z y.
     fn sub_zy(&self, x: &mut [f64], y: &[f64], s: f64) {
         for (zj, &yj) in self.z.iter().zip(y) {
@@ -383,8 +415,10 @@ impl<'a> Solving<'a> {
     ) -> Result<(Vec<Vec<f64>>, Vec<Checked>, bool)> {
         let m = self.op.m;
         let mut xs = Vec::with_capacity(b.len());
+        // Low-rank steps C^{-1} rho_R, applied below in one pass over Z for every solution.
+        let mut low: Vec<(usize, Vec<f64>)> = Vec::new();
         for (k, bk) in b.iter().enumerate() {
-            let mut x = match guess {
+            let x = match guess {
                 _ if bk.iter().all(|&v| v == 0.0) => vec![0.0; m + 3],
                 Some(g) => {
                     let (mut x, rho, den) = (g[k].x.clone(), &g[k].res, &g[k].den);
@@ -394,7 +428,7 @@ impl<'a> Solving<'a> {
                     if Self::backward_error(rho, den, off_r) <= REFINE {
                         if let Some(lu) = cap {
                             let rr: Vec<f64> = self.r_dofs.iter().map(|&d| rho[self.op.pos(d)]).collect();
-                            self.sub_zy(&mut x, &lu.solve(rr), 1.0);
+                            low.push((k, lu.solve(rr)));
                         }
                     } else {
                         let dx = self.woodbury(rho, cap)?;
@@ -404,8 +438,11 @@ impl<'a> Solving<'a> {
                 }
                 None => self.woodbury(bk, cap)?,
             };
-            self.pin(rows, &mut x, vals[k]);
             xs.push(x);
+        }
+        self.add_zy(&mut xs, &low);
+        for (x, v) in xs.iter_mut().zip(vals) {
+            self.pin(rows, x, v);
         }
         let mut ok = false;
         let mut res = vec![];
