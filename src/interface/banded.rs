@@ -11,6 +11,10 @@
 //! forces on the block and plate at those DOFs. A constrained DOF's equation is "b_d = given"
 //! (its row an identity row, scaled like a stiffness row); a free interface u-row of a
 //! slipping node is f_u + c f_v + k (u - u_k) = 0; other free rows f_d = external force.
+//!
+//! About 620 lines: the assembly in band order, its symmetry and rigid-motion checks, the
+//! bordered factor and solve and the residual products share one storage layout; the reuse of
+//! one factor across events is in `banded/reuse.rs`.
 
 use crate::error::{Error, Result};
 use crate::fem::constraints::Target;
