@@ -11,11 +11,15 @@
 //! forces on the block and plate at those DOFs. A constrained DOF's equation is "b_d = given"
 //! (its row an identity row, scaled like a stiffness row); a free interface u-row of a
 //! slipping node is f_u + c f_v + k (u - u_k) = 0; other free rows f_d = external force.
+//!
+//! About 620 lines: the assembly in band order, its symmetry and rigid-motion checks, the
+//! bordered factor and solve and the residual products share one storage layout; the reuse of
+//! one factor across events is in `banded/reuse.rs`.
 
 use crate::error::{Error, Result};
 use crate::fem::constraints::Target;
 use crate::interface::condense::boundary_model;
-use crate::linalg::banded::Banded;
+use crate::linalg::banded::{dot, dot_abs, Banded};
 use crate::scene::Scene;
 
 /// The block + rigid plate stiffness over (interior, interface) DOFs in band order, bordered by
@@ -32,6 +36,10 @@ pub struct BandedOperator {
     ptr: Vec<usize>,
     col: Vec<usize>,
     val: Vec<f64>,
+    /// K's rows r < m in band storage (columns r - kl ..= r + ku, kl + ku + 1 a row) and their
+    /// plate columns: the residual checks' products without index gathers.
+    kband: Vec<f64>,
+    kplate: Vec<[f64; 3]>,
     /// Band position of each interface node's u and v.
     pu: Vec<usize>,
     pv: Vec<usize>,
@@ -266,9 +274,67 @@ impl BandedOperator {
                 hint: "check the mesh and the material values".into(),
             });
         }
+        let wk = kl + ku + 1;
+        let (mut kband, mut kplate) = (vec![0.0; m * wk], vec![[0.0; 3]; m]);
+        for r in 0..m {
+            for k in ptr[r]..ptr[r + 1] {
+                match col[k] {
+                    c if c < m => kband[r * wk + c + kl - r] = val[k],
+                    c => kplate[r][c - m] = val[k],
+                }
+            }
+        }
         let x = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
         let w = sm.tributary_widths();
-        Ok(BandedOperator { n, m, kl, ku, ptr, col, val, pu, pv, scale, x, w, asymmetry, rigid_residual })
+        Ok(BandedOperator {
+            n,
+            m,
+            kl,
+            ku,
+            ptr,
+            col,
+            val,
+            kband,
+            kplate,
+            pu,
+            pv,
+            scale,
+            x,
+            w,
+            asymmetry,
+            rigid_residual,
+        })
+    }
+
+    /// K x and sum_j |K_rj x_j| for two vectors over all m + 3 rows, into `out` = (K x0, its
+    /// sizes, K x1, its sizes).
+    pub(crate) fn product2(&self, x0: &[f64], x1: &[f64], out: [&mut [f64]; 4]) {
+        let (m, kl, ku) = (self.m, self.kl, self.ku);
+        let wk = kl + ku + 1;
+        let [kx0, ka0, kx1, ka1] = out;
+        let (p0, p1) = (&x0[m..m + 3], &x1[m..m + 3]);
+        for r in 0..m {
+            let (lo, hi) = (r.saturating_sub(kl), (r + ku + 1).min(m));
+            let band = &self.kband[r * wk + lo + kl - r..r * wk + hi + kl - r];
+            let ((mut s0, mut a0), (mut s1, mut a1)) =
+                (dot_abs(band, &x0[lo..hi]), dot_abs(band, &x1[lo..hi]));
+            for (p, &v) in self.kplate[r].iter().enumerate() {
+                if v != 0.0 {
+                    let (t0, t1) = (v * p0[p], v * p1[p]);
+                    (s0, a0, s1, a1) = (s0 + t0, a0 + t0.abs(), s1 + t1, a1 + t1.abs());
+                }
+            }
+            (kx0[r], ka0[r], kx1[r], ka1[r]) = (s0, a0, s1, a1);
+        }
+        for r in m..m + 3 {
+            let (c, v) = self.row(r);
+            let (mut s0, mut a0, mut s1, mut a1) = (0.0, 0.0, 0.0, 0.0);
+            for (&c, &v) in c.iter().zip(v) {
+                let (t0, t1) = (v * x0[c], v * x1[c]);
+                (s0, a0, s1, a1) = (s0 + t0, a0 + t0.abs(), s1 + t1, a1 + t1.abs());
+            }
+            (kx0[r], ka0[r], kx1[r], ka1[r]) = (s0, a0, s1, a1);
+        }
     }
 
     /// A workspace for [`Self::solve`] (the band's storage, reused between solves).
@@ -434,12 +500,13 @@ impl BandedOperator {
             }
         }
         *lu = f.lu;
-        Ok(self.finish(rows, &mut full))
+        Ok(self.finish(rows, &mut full, None))
     }
 
     /// Sets the constrained values exactly as given (the identity rows return them to
-    /// round-off) and reads b and f = S b at the boundary DOFs off the full solutions.
-    fn finish(&self, rows: &Rows, full: &mut [Vec<f64>; 2]) -> Solution {
+    /// round-off) and reads b and f = S b at the boundary DOFs off the full solutions; `kx`:
+    /// K times those (pinned) solutions where already known.
+    fn finish(&self, rows: &Rows, full: &mut [Vec<f64>; 2], kx: Option<[&[f64]; 2]>) -> Solution {
         let nb = self.dim();
         for d in (0..nb).filter(|&d| !rows.free[d]) {
             let p = self.pos(d);
@@ -452,15 +519,15 @@ impl BandedOperator {
             let (c, v) = self.row(p);
             out.b0[d] = full[0][p];
             out.b1[d] = full[1][p];
-            out.f0[d] = c.iter().zip(v).map(|(&c, &v)| v * full[0][c]).sum();
-            out.f1[d] = c.iter().zip(v).map(|(&c, &v)| v * full[1][c]).sum();
+            let f = |k: usize| match kx {
+                Some(kx) => kx[k][p],
+                _ => c.iter().zip(v).map(|(&c, &v)| v * full[k][c]).sum(),
+            };
+            out.f0[d] = f(0);
+            out.f1[d] = f(1);
         }
         out
     }
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(a, b)| a * b).sum()
 }
 
 fn singular() -> Error {

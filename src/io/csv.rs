@@ -41,7 +41,11 @@ fn fast(out: &mut Vec<u8>, v: f64) -> bool {
     if !(1e-10..1e12).contains(&a) {
         return false;
     }
-    let mut e10 = a.log10().floor() as i32;
+    // floor(log10 a) or one less, from the binary exponent (no libm call: a normal a in
+    // [1e-10, 1e12) has log10 a in [e2 log10 2, e2 log10 2 + 0.302); 78913 / 2^18 is log10 2
+    // to 3e-7, far inside the 0.01 by which e2 log10 2 misses an integer for these e2).
+    let e2 = ((a.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    let mut e10 = (e2 * 78913) >> 18;
     // (hi, lo): y = a 10^(12 - e10) exactly; the estimate of e10 may be one off either way.
     let prod = |e10: i32| -> Option<(f64, f64)> {
         let s = 12 - e10;
@@ -65,8 +69,9 @@ fn fast(out: &mut Vec<u8>, v: f64) -> bool {
     if !(1e12..=1e13).contains(&hi) {
         return false;
     }
-    let fl = hi.floor();
-    let mut n = fl as u64;
+    // hi is positive: truncation is its floor.
+    let mut n = hi as u64;
+    let fl = n as f64;
     // hi - fl is exact (hi < 2^44 has at most 9 fraction bits); |lo| <= 2^-10.
     let mut frac = (hi - fl) + lo;
     if frac < 0.0 {

@@ -35,8 +35,8 @@ pub const RANK_CAP: usize = 24;
 /// ~18 terms, so each equation holds to round-off whatever the scale of its forces.
 pub const REFINE: f64 = 32.0 * f64::EPSILON;
 
-/// A solution's residual b - M x and its equations' sizes (sum |M_rj x_j| + |b_r|).
-type Checked = (Vec<f64>, Vec<f64>);
+/// A solution's residual b - M x, its equations' sizes (sum |M_rj x_j| + |b_r|) and K x.
+type Checked = (Vec<f64>, Vec<f64>, Vec<f64>);
 
 /// What a boundary row depends on besides K: free, slip coefficient, spring.
 type Key = (bool, f64, f64);
@@ -239,6 +239,38 @@ impl<'a> Solving<'a> {
         Ok(x)
     }
 
+    /// x_k += Z y for each (k, y) of `ys` (at most two), reading Z once: the same sums, in
+    /// the same order, as [`Self::sub_zy`] for each.
+    fn add_zy(&self, xs: &mut [Vec<f64>], ys: &[(usize, Vec<f64>)]) {
+        let (xa, xb, ya, yb) = match ys {
+            [] => return,
+            [(k, y)] => return self.sub_zy(&mut xs[*k], y, 1.0),
+            [(0, ya), (1, yb)] => {
+                let (a, b) = xs.split_at_mut(1);
+                (&mut a[0], &mut b[0], ya, yb)
+            }
+            _ => {
+                for (k, y) in ys {
+                    self.sub_zy(&mut xs[*k], y, 1.0);
+                }
+                return;
+            }
+        };
+        for ((zj, &a), &b) in self.z.iter().zip(ya).zip(yb) {
+            match (a != 0.0, b != 0.0) {
+                (true, true) => {
+                    for ((x, y), z) in xa.iter_mut().zip(xb.iter_mut()).zip(zj) {
+                        *x += a * z;
+                        *y += b * z;
+                    }
+                }
+                (true, false) => xa.iter_mut().zip(zj).for_each(|(x, z)| *x += a * z),
+                (false, true) => xb.iter_mut().zip(zj).for_each(|(x, z)| *x += b * z),
+                (false, false) => {}
+            }
+        }
+    }
+
     /// x += s Z y.
     fn sub_zy(&self, x: &mut [f64], y: &[f64], s: f64) {
         for (zj, &yj) in self.z.iter().zip(y) {
@@ -309,32 +341,28 @@ impl<'a> Solving<'a> {
         b[r] - self.lhs_with(rows, r, x, kx)
     }
 
-    /// rho = b - M x over the m + 3 equations for each (x, b) pair (one pass over K), and
-    /// each equation's size: sum |M_rj x_j| + |b_r|.
+    /// rho = b - M x over the m + 3 equations for each (x, b) pair (one pass over K), each
+    /// equation's size sum |M_rj x_j| + |b_r|, and K x (for the forces f = K x at the end).
     fn residuals(&self, rows: &Rows, x: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<Checked> {
         let nu = self.op.m + 3;
         let k = x.len();
         let mut kx = vec![vec![0.0; nu]; k];
         let mut ka = vec![vec![0.0; nu]; k];
-        for r in 0..nu {
-            let (c, v) = self.op.row(r);
-            for (j, xj) in x.iter().enumerate() {
-                let (mut s, mut a) = (0.0, 0.0);
-                for (&c, &v) in c.iter().zip(v) {
-                    let t = v * xj[c];
-                    s += t;
-                    a += t.abs();
-                }
-                kx[j][r] = s;
-                ka[j][r] = a;
+        match (x, &mut kx[..], &mut ka[..]) {
+            ([x0, x1], [kx0, kx1], [ka0, ka1]) => self.op.product2(x0, x1, [kx0, ka0, kx1, ka1]),
+            ([x0], [kx0], [ka0]) => {
+                let (mut k1, mut a1) = (vec![0.0; nu], vec![0.0; nu]);
+                self.op.product2(x0, x0, [kx0, ka0, &mut k1, &mut a1]);
             }
+            _ => unreachable!("one or two right-hand sides"),
         }
-        (0..k)
-            .map(|j| {
-                let rho = (0..nu).map(|r| b[j][r] - self.lhs_with(rows, r, &x[j], |q| kx[j][q])).collect();
-                let den =
-                    (0..nu).map(|r| self.size_at(rows, r, &x[j], |q| ka[j][q]) + b[j][r].abs()).collect();
-                (rho, den)
+        kx.into_iter()
+            .zip(ka)
+            .enumerate()
+            .map(|(j, (kx, ka))| {
+                let rho = (0..nu).map(|r| b[j][r] - self.lhs_with(rows, r, &x[j], |q| kx[q])).collect();
+                let den = (0..nu).map(|r| self.size_at(rows, r, &x[j], |q| ka[q]) + b[j][r].abs()).collect();
+                (rho, den, kx)
             })
             .collect()
     }
@@ -387,8 +415,10 @@ impl<'a> Solving<'a> {
     ) -> Result<(Vec<Vec<f64>>, Vec<Checked>, bool)> {
         let m = self.op.m;
         let mut xs = Vec::with_capacity(b.len());
+        // Low-rank steps C^{-1} rho_R, applied below in one pass over Z for every solution.
+        let mut low: Vec<(usize, Vec<f64>)> = Vec::new();
         for (k, bk) in b.iter().enumerate() {
-            let mut x = match guess {
+            let x = match guess {
                 _ if bk.iter().all(|&v| v == 0.0) => vec![0.0; m + 3],
                 Some(g) => {
                     let (mut x, rho, den) = (g[k].x.clone(), &g[k].res, &g[k].den);
@@ -398,7 +428,7 @@ impl<'a> Solving<'a> {
                     if Self::backward_error(rho, den, off_r) <= REFINE {
                         if let Some(lu) = cap {
                             let rr: Vec<f64> = self.r_dofs.iter().map(|&d| rho[self.op.pos(d)]).collect();
-                            self.sub_zy(&mut x, &lu.solve(rr), 1.0);
+                            low.push((k, lu.solve(rr)));
                         }
                     } else {
                         let dx = self.woodbury(rho, cap)?;
@@ -408,8 +438,11 @@ impl<'a> Solving<'a> {
                 }
                 None => self.woodbury(bk, cap)?,
             };
-            self.pin(rows, &mut x, vals[k]);
             xs.push(x);
+        }
+        self.add_zy(&mut xs, &low);
+        for (x, v) in xs.iter_mut().zip(vals) {
+            self.pin(rows, x, v);
         }
         let mut ok = false;
         let mut res = vec![];
@@ -621,10 +654,9 @@ impl Operator for Solving<'_> {
         let vals = [rows.b0, rows.b1];
         let (x, res) = self.solve_full(&rows, &b, &vals, guess.as_ref().map(|l| &l.g[..]))?;
         let mut full: [Vec<f64>; 2] = x.try_into().map_err(|_| super::singular())?;
-        let sol = self.op.finish(&rows, &mut full);
+        let [(r0, d0, k0), (r1, d1, k1)]: [Checked; 2] = res.try_into().map_err(|_| super::singular())?;
+        let sol = self.op.finish(&rows, &mut full, Some([&k0, &k1]));
         let [x0, x1] = full;
-        let [(r0, d0), (r1, d1)]: [(Vec<f64>, Vec<f64>); 2] =
-            res.try_into().map_err(|_| super::singular())?;
         let g = [Guess { x: x0, res: r0, den: d0 }, Guess { x: x1, res: r1, den: d1 }];
         self.last = Some(Last { g, b, keys });
         Ok(Affine { b0: sol.b0, b1: sol.b1, f0: sol.f0, f1: sol.f1 })
@@ -643,7 +675,7 @@ impl Operator for Solving<'_> {
             let [b0, _] = self.rhs(&rows);
             let (mut x, _) = self.solve_full(&rows, &[b0], &[rows.b0], None)?;
             let mut x = [x.remove(0), vec![0.0; self.op.m + 3]];
-            let s = self.op.finish(&rows, &mut x);
+            let s = self.op.finish(&rows, &mut x, None);
             load[dj] = 0.0;
             for (i, &di) in dofs.iter().enumerate() {
                 out[i * k + j] = s.b0[di];
