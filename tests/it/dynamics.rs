@@ -698,3 +698,31 @@ fn nodes_arresting_at_their_strength_end_the_event_by_the_quiet_test() {
     let (old, _, _, _) = arrest_at_strength(Some(0.0), Some(10 * cap));
     assert!(!old.settled && old.steps == 10 * cap, "the old test ended after {} steps", old.steps);
 }
+
+#[test]
+fn states_csv_is_written_unless_asked_not_to() {
+    // `--states none` leaves out states.csv and nothing else: the other files are the same
+    // bytes as the default run's (which writes it), with and without --dynamics.
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, extra: &[&str]| -> std::path::PathBuf {
+        let out = dir.path().join(name);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_tribofe"))
+            .args(["slide", "--law", "coulomb", "--length", "0.1", "--h", "0.001", "--out"])
+            .arg(&out)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&o.stderr));
+        out
+    };
+    for dynamics in [&[][..], &["--dynamics"][..]] {
+        let all = run(&format!("all{}", dynamics.len()), dynamics);
+        let none = run(&format!("none{}", dynamics.len()), &[dynamics, &["--states", "none"][..]].concat());
+        let states = std::fs::read_to_string(all.join("states.csv")).unwrap();
+        assert!(states.lines().count() > 100, "{dynamics:?}: {} lines", states.lines().count());
+        assert!(!none.join("states.csv").exists(), "{dynamics:?}");
+        for f in ["loading.csv", "events.csv", "fig4_fe.svg"] {
+            assert_eq!(std::fs::read(all.join(f)).unwrap(), std::fs::read(none.join(f)).unwrap(), "{f}");
+        }
+    }
+}
