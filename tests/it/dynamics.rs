@@ -627,12 +627,16 @@ use tribofe::dynamics::friction::SlipWeakening;
 
 /// The event of `arrest_at_strength` with a given rest rate (m/s) and step cap; also the
 /// default rest rate and the quiet window and cap (steps) of [`ds::event_cap_periods`].
-fn arrest_at_strength(rest_rate: Option<f64>, cap_steps: Option<usize>) -> (driven::EventRecord, f64, usize, usize) {
+fn arrest_at_strength(
+    rest_rate: Option<f64>,
+    cap_steps: Option<usize>,
+) -> (driven::EventRecord, f64, usize, usize) {
     let (l, t, h, xi) = (0.02, 0.002, 0.001, 2.0);
     let mesh = Rectangle::new(-0.5 * l, 0.5 * l, 0.0, t, (l / h) as usize, (t / h) as usize).build().unwrap();
     let model = Elastodynamic::new(&mesh, mat(), RHO).unwrap();
     let row = |y: f64| -> (Vec<usize>, Vec<f64>) {
-        let mut k: Vec<usize> = (0..mesh.n_nodes()).filter(|&k| (mesh.nodes[k][1] - y).abs() < 1e-12).collect();
+        let mut k: Vec<usize> =
+            (0..mesh.n_nodes()).filter(|&k| (mesh.nodes[k][1] - y).abs() < 1e-12).collect();
         k.sort_by(|&a, &b| mesh.nodes[a][0].total_cmp(&mesh.nodes[b][0]));
         let x = k.iter().map(|&k| mesh.nodes[k][0]).collect();
         (k, x)

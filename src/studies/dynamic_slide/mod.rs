@@ -20,17 +20,15 @@
 //! Coulomb friction never becomes unstable, so a Coulomb run is the static loading alone:
 //! the same events as `slide` (tests/it/dynamics.rs).
 
-use crate::dynamics::driven::{Driven, DynState, EventLimits, EventRecord, Layout};
-use crate::dynamics::explicit::Elastodynamic;
+use crate::dynamics::driven::{DynState, EventLimits, EventRecord};
 use crate::dynamics::friction::SlipWeakening;
 use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
-use crate::fem::assembly::Assembler;
 use crate::interface::banded::{BandedOperator, Solving};
-use crate::interface::condense::{boundary_model, condense, Condensed};
+use crate::interface::condense::{condense, Condensed};
 use crate::interface::events::{self, tolerances, Event, EventKind, NodeState, Operator, Phase};
 use crate::interface::law::Law;
-use crate::linalg::solve::{Solver, SolverOptions};
+use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{SlideOptions, SlideResult};
@@ -39,8 +37,10 @@ use events::search::Hit;
 use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, start, stuck_err};
 use std::time::Instant;
 
+mod setup;
 mod steps;
 pub mod velocity;
+use setup::Setup;
 use steps::{anchor_after, arrest, classify_event, relax};
 
 /// The dynamic options beside the slide options.
@@ -244,84 +244,33 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         None => Box::new(events::operator::Dense::new(&s_h, 2 * n + 3)),
     };
     let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
-    let friction = match o.law {
-        Law::SlipWeakening { dc, .. } => SlipWeakening::new(mu_s, mu_d, dc)?,
-        _ => SlipWeakening::coulomb(mu_s)?,
-    };
-    let weakens = o.law.weakens();
+    // The set-up both modes share; full fields: the block with its boundary held, factorised once.
+    let su = Setup::new(scene, o, d)?;
+    let full = su.full_field()?;
+    let full_field =
+        |a: &Affine, lam: f64| full.field(&(0..2 * n + 3).map(|j| a.b(j, lam)).collect::<Vec<_>>());
+    let (model, mat, friction, weakens) = (&su.model, su.mat, su.friction, su.weakens);
+    let (dt, dt_stable, eta, omega_t, period, lambda0) =
+        (su.dt, su.dt_stable, su.eta, su.omega_t, su.period, su.lambda0);
     let dc = friction.d_c;
-    // Full fields: the block with every boundary DOF prescribed, factorised once.
-    let (sm, bdofs) = boundary_model(scene)?;
-    let nf = sm.constraints.n_fixed();
-    let slots: Vec<usize> =
-        bdofs.iter().map(|&k| sm.constraints.fixed_slot(k).expect("boundary DOF fixed")).collect();
-    let red = sm.constraints.reduce()?;
-    let asm = Assembler::new(&sm.mesh, &red)?;
-    let (values, _) = asm.assemble(&sm.model(), &red, &[vec![]], &[vec![0.0; nf]])?;
-    let solver = Solver::analyse(&asm.pattern, SolverOptions::default())?;
-    let factor = solver.factorize(&asm.pattern, &values).map_err(|e| Error::Singular {
-        detail: format!("the block with its boundary held is not positive definite ({e})"),
-        node: None,
-        component: None,
-    })?;
-    let mat = crate::fem::material::Material::plane_strain(scene.block.young, scene.block.poisson)?;
-    let model = Elastodynamic::new(&sm.mesh, mat, scene.block.density)?;
-    let nn = sm.mesh.n_nodes();
-    let (t, hgt) = (scene.block.thickness, scene.loading.height);
-    let arm = hgt - t;
-    let full_field = |a: &Affine, lam: f64| -> Vec<f64> {
-        // b in the operator's order (U_H at H); the model's U0 is at the block top.
-        let mut g = vec![0.0; nf];
-        for (j, &slot) in slots.iter().enumerate() {
-            g[slot] = if j == 2 * n { a.b(j, lam) + arm * a.b(2 * n + 2, lam) } else { a.b(j, lam) };
-        }
-        let up = red.expand(&vec![0.0; red.n_free()], &g);
-        let mut ku = vec![0.0; 2 * nn];
-        model.apply_k(&up[..2 * nn], &mut ku);
-        let mut f = vec![0.0; red.n_full];
-        for i in 0..2 * nn {
-            f[i] = -ku[i];
-        }
-        let mut r = vec![0.0; red.n_free()];
-        red.project_add(&f, &mut r);
-        factor.solve_in_place(&mut r, 1);
-        red.expand(&r, &g)[..2 * nn].to_vec()
-    };
-    let speeds = WaveSpeeds::new(&mat, scene.block.density);
-    let omega_t = std::f64::consts::PI * speeds.c_s / (2.0 * t);
-    let eta = d.damping.unwrap_or(2.0 * DEFAULT_DAMPING_RATIO / omega_t);
-    let dt_stable = model.critical_dt(eta);
-    let dt = d.courant * dt_stable;
-    let period = 2.0 * std::f64::consts::PI / omega_t;
-    let quiet_steps = ((period / dt).ceil() as usize).max(10);
-    let xi = 0.5 * eta * omega_t;
-    let max_periods =
-        d.max_periods.unwrap_or_else(|| event_cap_periods(c.l, t, xi, d.ke_fraction));
-    let g = mat.shear_modulus();
-    let elastic_slip = mu_s * (o.n_force / c.l) * t / g;
+    let t = scene.block.thickness;
+    let max_periods = d.max_periods.unwrap_or_else(|| event_cap_periods(c.l, t, su.xi(), d.ke_fraction));
+    let elastic_slip = mu_s * (o.n_force / c.l) * t / mat.shear_modulus();
     let lim = EventLimits {
         ke_fraction: d.ke_fraction,
-        quiet_steps,
+        quiet_steps: su.quiet_steps,
         rest_rate: crate::dynamics::driven::rest_rate(&friction, elastic_slip, period),
         max_steps: (max_periods * period / dt).ceil() as usize,
-        sample_every: ((period / dt / 16.0).floor() as usize).max(1),
+        sample_every: su.sample_every,
     };
-    let top: Vec<usize> = sm.mesh.set_nodes(&sm.top_set)?;
-    let top_x: Vec<f64> = top.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
-    let layout = Layout::new(&model, sm.interface.clone(), c.x.clone(), top, top_x, arm)
-        .with_plate(d.plate_mass, d.plate_inertia)?;
-    let driven = Driven { model: &model, layout: &layout, friction, n_force: o.n_force, dt, eta };
-    let lambda0 = if weakens {
-        friction.cohesive_zone(mat.shear_modulus(), mat.nu, o.n_force / c.l)
-    } else {
-        f64::INFINITY
-    };
+    let layout = su.layout(c.x.clone(), d)?;
+    let driven = su.driven(&layout, o.n_force);
     progress.message(&format!(
         "dynamics: {} DOFs, dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), eta = {eta:.4e} s = {:.3} of critical at the thickness mode omega = {omega_t:.4e} rad/s; c_s = {:.4} m/s; Lambda_0 = {:.3e} m = {:.2} h{}; static phase on the {} operator",
         model.n_dofs(),
         d.courant,
-        0.5 * eta * omega_t,
-        speeds.c_s,
+        su.xi(),
+        su.speeds.c_s,
         lambda0,
         lambda0 / scene.mesh.h,
         if weakens {
@@ -559,7 +508,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         eta,
         xi_thickness: 0.5 * eta * omega_t,
         omega_thickness: omega_t,
-        speeds,
+        speeds: su.speeds,
         lambda0,
         steps,
         dofs: model.n_dofs(),
