@@ -396,13 +396,15 @@ impl Driven<'_> {
     }
 
     /// Runs until the event settles (or the step cap); `slip_threshold` (m) marks a node as
-    /// slipped for the tip and the nucleation node.
+    /// slipped for the tip and the nucleation node. Every 256 steps (~40 ms on the paper's
+    /// block at h = 1 mm) `cancel` is checked and `tick` called (a host's progress report).
     pub fn run_event(
         &self,
         st: &mut DynState,
         lim: &EventLimits,
         slip_threshold: f64,
         cancel: &crate::Cancel,
+        tick: &dyn Fn(),
     ) -> Result<EventRecord> {
         let (m, lay, dt) = (self.model, self.layout, self.dt);
         let nb = lay.base.len();
@@ -482,6 +484,7 @@ impl Driven<'_> {
             }
             if step % 256 == 0 {
                 cancel.check()?;
+                tick();
             }
         }
         rec.duration = rec.steps as f64 * dt;

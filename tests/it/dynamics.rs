@@ -630,7 +630,16 @@ use tribofe::dynamics::friction::SlipWeakening;
 fn arrest_at_strength(
     rest_rate: Option<f64>,
     cap_steps: Option<usize>,
-) -> (driven::EventRecord, f64, usize, usize) {
+) -> (tribofe::Result<driven::EventRecord>, f64, usize, usize) {
+    arrest_at_strength_with(rest_rate, cap_steps, &tribofe::Cancel::new(), &|| {})
+}
+
+fn arrest_at_strength_with(
+    rest_rate: Option<f64>,
+    cap_steps: Option<usize>,
+    cancel: &tribofe::Cancel,
+    tick: &dyn Fn(),
+) -> (tribofe::Result<driven::EventRecord>, f64, usize, usize) {
     let (l, t, h, xi) = (0.02, 0.002, 0.001, 2.0);
     let mesh = Rectangle::new(-0.5 * l, 0.5 * l, 0.0, t, (l / h) as usize, (t / h) as usize).build().unwrap();
     let model = Elastodynamic::new(&mesh, mat(), RHO).unwrap();
@@ -673,7 +682,7 @@ fn arrest_at_strength(
         d: vec![0.0; nb],
         time: 0.0,
     };
-    let rec = dr.run_event(&mut st, &lim, 1e-3 * elastic_slip, &tribofe::Cancel::new()).unwrap();
+    let rec = dr.run_event(&mut st, &lim, 1e-3 * elastic_slip, cancel, tick);
     (rec, default_rate, quiet_steps, cap)
 }
 
@@ -691,6 +700,7 @@ fn nodes_arresting_at_their_strength_end_the_event_by_the_quiet_test() {
     // nodes at rest at their strength; without it (rest rate 0, the old test) it runs to a cap
     // 10 x larger without ending.
     let (rec, rate, quiet, cap) = arrest_at_strength(None, None);
+    let rec = rec.unwrap();
     assert!(rec.settled, "not settled in {} steps (cap {cap})", rec.steps);
     assert!(rec.at_strength > 0, "no node ended at its strength: the test shows nothing");
     assert!(rec.steps < cap && rec.steps >= quiet, "{} steps, quiet {quiet}, cap {cap}", rec.steps);
@@ -699,7 +709,7 @@ fn nodes_arresting_at_their_strength_end_the_event_by_the_quiet_test() {
     // The resting nodes' last rates are below the rest rate and above 0: slow, not stuck.
     let last = rec.rates.last().unwrap();
     assert!(last.iter().all(|&v| f64::from(v) <= rate), "rates {last:?} vs {rate:e}");
-    let (old, _, _, _) = arrest_at_strength(Some(0.0), Some(10 * cap));
+    let old = arrest_at_strength(Some(0.0), Some(10 * cap)).0.unwrap();
     assert!(!old.settled && old.steps == 10 * cap, "the old test ended after {} steps", old.steps);
 }
 
@@ -729,4 +739,24 @@ fn states_csv_is_written_unless_asked_not_to() {
             assert_eq!(std::fs::read(all.join(f)).unwrap(), std::fs::read(none.join(f)).unwrap(), "{f}");
         }
     }
+}
+
+#[test]
+fn a_dynamic_event_ticks_and_can_be_cancelled_every_256_steps() {
+    // The event loop checks the cancel token and ticks the host's progress every 256 steps
+    // (~40 ms of work on the paper's block at h = 1 mm): a token cancelled at the 3rd tick
+    // stops the event there with the interrupted error (exit 130), not at its end.
+    let cancel = tribofe::Cancel::new();
+    let ticks = std::sync::atomic::AtomicUsize::new(0);
+    let tick = || {
+        if ticks.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1 == 3 {
+            cancel.cancel();
+        }
+    };
+    let (rec, _, _, _) = arrest_at_strength_with(None, None, &cancel, &tick);
+    let err = rec.unwrap_err();
+    assert_eq!(err.exit_status(), 130, "{err}");
+    assert_eq!(ticks.load(std::sync::atomic::Ordering::Relaxed), 3);
+    let (whole, _, _, _) = arrest_at_strength(None, None);
+    assert!(whole.unwrap().steps > 3 * 256, "the event must outlast three ticks");
 }

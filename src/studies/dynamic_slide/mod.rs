@@ -319,7 +319,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         o.cancel.check()?;
         let a = settle_continuous(&mut sv, lam, true, cap, "drive")?;
         let frac = if x_end.is_finite() { lam / x_end } else { 0.0 };
-        progress.fraction(frac.max(rec.out.sliding_events as f64 / o.cycles.max(1) as f64).min(1.0));
+        let shown = frac.max(rec.out.sliding_events as f64 / o.cycles.max(1) as f64).min(1.0);
+        progress.fraction(shown);
         if !weakens && !sliding_seen && lam > 0.0 && sv.all_contact_slipping() {
             // Coulomb's first whole-interface slip; by default the run ends 5 % further (`slide`).
             sliding_seen = true;
@@ -406,7 +407,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             d: (0..n).map(|k| sv.slip_memory(k, a_cur.b(k, lam))).collect(),
             time: 0.0,
         };
-        let ev = driven.run_event(&mut ds, &lim, dc / 100.0, &o.cancel)?;
+        let ev = driven.run_event(&mut ds, &lim, dc / 100.0, &o.cancel, &|| progress.fraction(shown))?;
         steps += ev.steps;
         if !ev.settled {
             // Where it still moves: the fastest base node of the last sample, and how many move.
