@@ -493,28 +493,5 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     }
     let total = clock.elapsed().as_secs_f64();
     let static_s = total - setup_s - dynamic_s;
-    let events_s = total - setup_s;
-    Ok(DynamicResult {
-        slide: SlideResult {
-            scene: scene.clone(),
-            options: o.clone(),
-            condensed: c,
-            run,
-            condense_s: setup_s,
-            events_s,
-        },
-        events: dyn_events,
-        dt,
-        dt_stable,
-        eta,
-        xi_thickness: 0.5 * eta * omega_t,
-        omega_thickness: omega_t,
-        speeds: su.speeds,
-        lambda0,
-        steps,
-        dofs: model.n_dofs(),
-        setup_s,
-        static_s,
-        dynamic_s,
-    })
+    Ok(su.result(scene, o, c, run, dyn_events, steps, [setup_s, static_s, dynamic_s]))
 }

@@ -2,7 +2,7 @@
 //! full fields), the explicit model, wave speeds, damping, time step, the event's windows and
 //! the friction law; and [`FullField`], the whole block's displacement from boundary values.
 
-use super::{DynamicOptions, DEFAULT_DAMPING_RATIO};
+use super::{DynEvent, DynamicOptions, DynamicResult, DEFAULT_DAMPING_RATIO};
 use crate::dynamics::driven::{Driven, Layout};
 use crate::dynamics::explicit::Elastodynamic;
 use crate::dynamics::friction::SlipWeakening;
@@ -11,11 +11,12 @@ use crate::error::{Error, Result};
 use crate::fem::assembly::Assembler;
 use crate::fem::constraints::Reduction;
 use crate::fem::material::Material;
-use crate::interface::condense::boundary_model;
+use crate::interface::condense::{boundary_model, Condensed};
+use crate::interface::events::Run;
 use crate::interface::law::Law;
 use crate::linalg::solve::{Factor, Solver, SolverOptions};
 use crate::scene::{Scene, SceneModel};
-use crate::studies::slide::SlideOptions;
+use crate::studies::slide::{SlideOptions, SlideResult};
 
 /// What both modes build before their drive phase.
 pub(super) struct Setup {
@@ -121,6 +122,44 @@ impl Setup {
         let top_x: Vec<f64> = top.iter().map(|&k| self.sm.mesh.nodes[k][0]).collect();
         Layout::new(&self.model, self.sm.interface.clone(), x, top, top_x, self.arm)
             .with_plate(d.plate_mass, d.plate_inertia)
+    }
+
+    /// The run's result: `times` (setup, static, dynamic) in s.
+    #[allow(clippy::too_many_arguments)]
+    pub fn result(
+        &self,
+        scene: &Scene,
+        o: &SlideOptions,
+        condensed: Condensed,
+        run: Run,
+        events: Vec<DynEvent>,
+        steps: usize,
+        times: [f64; 3],
+    ) -> DynamicResult {
+        let [setup_s, static_s, dynamic_s] = times;
+        DynamicResult {
+            slide: SlideResult {
+                scene: scene.clone(),
+                options: o.clone(),
+                condensed,
+                run,
+                condense_s: setup_s,
+                events_s: static_s + dynamic_s,
+            },
+            events,
+            dt: self.dt,
+            dt_stable: self.dt_stable,
+            eta: self.eta,
+            xi_thickness: self.xi(),
+            omega_thickness: self.omega_t,
+            speeds: self.speeds,
+            lambda0: self.lambda0,
+            steps,
+            dofs: self.model.n_dofs(),
+            setup_s,
+            static_s,
+            dynamic_s,
+        }
     }
 
     pub fn driven<'a>(&'a self, layout: &'a Layout, n_force: f64) -> Driven<'a> {

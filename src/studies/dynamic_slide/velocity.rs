@@ -35,7 +35,7 @@ use crate::interface::events::{
 use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;
-use crate::studies::slide::{SlideOptions, SlideResult};
+use crate::studies::slide::SlideOptions;
 use std::time::Instant;
 
 /// A base node is in an event while its slip rate exceeds this multiple of V.
@@ -343,29 +343,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     push(&mut run, simple(EventKind::End, &s, 0), s)?;
     let dynamic_s = dclock.elapsed().as_secs_f64();
     let total = clock.elapsed().as_secs_f64();
-    Ok(DynamicResult {
-        slide: SlideResult {
-            scene: scene.clone(),
-            options: o.clone(),
-            condensed: c,
-            run,
-            condense_s: setup_s,
-            events_s: total - setup_s,
-        },
-        events: dyn_events,
-        dt,
-        dt_stable,
-        eta,
-        xi_thickness: su.xi(),
-        omega_thickness: su.omega_t,
-        speeds: su.speeds,
-        lambda0,
-        steps,
-        dofs: model.n_dofs(),
-        setup_s,
-        static_s: total - setup_s - dynamic_s,
-        dynamic_s,
-    })
+    Ok(su.result(scene, o, c, run, dyn_events, steps, [setup_s, total - setup_s - dynamic_s, dynamic_s]))
 }
 
 /// Ends an event: its kind, its row of events.csv (onset X and F, region, relaxed F) and its
