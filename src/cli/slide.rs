@@ -76,6 +76,11 @@ pub struct Args {
     /// (fields_<event>.msh, Gmsh) or both.
     #[arg(long, default_value = "vtu", value_parser = ["vtu", "msh", "both"])]
     pub field_format: String,
+    /// states.csv (the interface after every event, ~40 bytes per node and event): `all` or
+    /// `none`. Default: all, except with --drive-velocity (its ~2000 samples x n rows are
+    /// written only when asked); `none` for long --dynamics runs (0.7 GB at h = 1 mm).
+    #[arg(long, value_parser = ["all", "none"])]
+    pub states: Option<String>,
     /// Output directory.
     #[arg(long, default_value = "out/slide")]
     pub out: PathBuf,
@@ -256,7 +261,8 @@ fn run_checked(
     ];
     let header = tribofe::report::run_toml(super::invocation(), &results, &scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
-    tribofe::report::slide::write(&res, dir.path(), &header, true)?;
+    let states = a.states.as_deref() != Some("none");
+    tribofe::report::slide::write(&res, dir.path(), &header, states)?;
     if a.fields > 0 {
         let picks = tribofe::report::slide::field_states(&res, a.fields);
         tribofe::report::slide::write_fields(&res, &picks, dir.path(), &Default::default(), field_format)?;
@@ -311,8 +317,9 @@ fn run_checked(
     }
     print_paper_comparison("FE", &res)?;
     outln!(
-        "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, run.toml{}}}",
+        "wrote {}/{{loading.csv, events.csv, {}fig4_fe.svg, fronts.svg, run.toml{}}}",
         a.out.display(),
+        if states { "states.csv, " } else { "" },
         match (a.fields, field_format) {
             (0, _) => "",
             (_, tribofe::io::FieldFormat::Msh) => ", fields_*.msh",
@@ -374,8 +381,9 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     let dir = super::begin_out(&a.out, a.force)?;
     let writing = std::time::Instant::now();
     // A constant-velocity run samples ~2000 states: states.csv (one row per node and state)
-    // would be ~2000 n rows, so it is left out there.
-    tribofe::report::dynamic_slide::write(&res, dir.path(), &header, a.drive_velocity.is_none())?;
+    // would be ~2000 n rows, so it is left out there unless asked for.
+    let states = a.states.as_deref().map_or(a.drive_velocity.is_none(), |s| s == "all");
+    tribofe::report::dynamic_slide::write(&res, dir.path(), &header, states)?;
     dir.commit()?;
     let written_s = writing.elapsed().as_secs_f64();
     let run = &res.slide.run;
@@ -416,8 +424,9 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
             res.steps as f64 * res.dofs as f64 / res.dynamic_s.max(f64::MIN_POSITIVE)
         );
         outln!(
-            "wrote {}/{{loading.csv, events.csv, fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
-            a.out.display()
+            "wrote {}/{{loading.csv, events.csv, {}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
+            a.out.display(),
+            if states { "states.csv, " } else { "" }
         );
         return Ok(());
     }
@@ -437,8 +446,9 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         written_s
     );
     outln!(
-        "wrote {}/{{loading.csv, events.csv, states.csv, fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
-        a.out.display()
+        "wrote {}/{{loading.csv, events.csv, {}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
+        a.out.display(),
+        if states { "states.csv, " } else { "" }
     );
     Ok(())
 }

@@ -170,6 +170,12 @@ pub struct EventLimits {
     pub ke_fraction: f64,
     /// ...and no base node slipping, both for this many consecutive steps.
     pub quiet_steps: usize,
+    /// A base node at its strength slipping slower than this (m/s) counts as stuck in that
+    /// test: a node that comes to rest exactly at its strength (tau -> mu(d) p from above,
+    /// e.g. a fully weakened node arresting at mu_d p) stays flagged as slipping at any
+    /// speed, down to round-off (1e-17 m/s), so without it the event never ends by the quiet
+    /// test. See [`rest_rate`].
+    pub rest_rate: f64,
     /// Cap on the steps of one event.
     pub max_steps: usize,
     /// Record a sample (tip, force, slip rates) every this many steps.
@@ -216,6 +222,9 @@ pub struct EventRecord {
     /// Some node reached D_c of slip since the last healing (weakened fully) in this event.
     pub weakened: bool,
     pub settled: bool,
+    /// Base nodes that ended the event at their strength but slower than the rest rate
+    /// (counted as stuck by the quiet test).
+    pub at_strength: usize,
     pub energy: EventEnergy,
     /// Base nodes open at the end.
     pub open: Vec<bool>,
@@ -387,13 +396,15 @@ impl Driven<'_> {
     }
 
     /// Runs until the event settles (or the step cap); `slip_threshold` (m) marks a node as
-    /// slipped for the tip and the nucleation node.
+    /// slipped for the tip and the nucleation node. Every 256 steps (~40 ms on the paper's
+    /// block at h = 1 mm) `cancel` is checked and `tick` called (a host's progress report).
     pub fn run_event(
         &self,
         st: &mut DynState,
         lim: &EventLimits,
         slip_threshold: f64,
         cancel: &crate::Cancel,
+        tick: &dyn Fn(),
     ) -> Result<EventRecord> {
         let (m, lay, dt) = (self.model, self.layout, self.dt);
         let nb = lay.base.len();
@@ -443,7 +454,23 @@ impl Driven<'_> {
                 rec.tip.push(tip(&rec, &lay.x));
                 rec.rates.push(lay.base.iter().map(|&k| st.v[2 * k].abs() as f32).collect());
             }
-            quiet = if out.any_slip { 0 } else { quiet + 1 };
+            // Slipping means at the strength and moving: a node at its strength at a
+            // negligible rate is at rest (EventLimits::rest_rate).
+            let mut resting = 0;
+            let mut moving = false;
+            if out.any_slip {
+                for (b, &k) in lay.base.iter().enumerate() {
+                    if contact[b].slipping {
+                        if st.v[2 * k].abs() > lim.rest_rate {
+                            moving = true;
+                            break;
+                        }
+                        resting += 1;
+                    }
+                }
+            }
+            rec.at_strength = if moving { 0 } else { resting };
+            quiet = if moving { 0 } else { quiet + 1 };
             let ke = m.kinetic_energy(&st.v) + lay.plate_kinetic(st.drive_velocity, st.qdot);
             let dissipated = e.friction + e.damping;
             if quiet >= lim.quiet_steps && ke <= lim.ke_fraction * dissipated.max(f64::MIN_POSITIVE) {
@@ -457,6 +484,7 @@ impl Driven<'_> {
             }
             if step % 256 == 0 {
                 cancel.check()?;
+                tick();
             }
         }
         rec.duration = rec.steps as f64 * dt;
@@ -474,6 +502,23 @@ impl Driven<'_> {
         Ok(rec)
     }
 }
+
+/// The slip rate below which a base node at its strength counts as at rest, m/s:
+/// `REST_SLIP` of the interface's slip scale per period of the block's thickness mode.
+/// The scale is D_c (a slip of s changes the coefficient by (mu_s - mu_d) s / D_c) or, if
+/// smaller, the elastic slip mu_s p t / G that relaxes the layer's whole shear (Coulomb:
+/// D_c plays no part). A node at that rate moves 1e-6 of the scale in a period, changing
+/// its friction force by 1e-6 of the weakening drop: the same fraction as the kinetic-energy
+/// test (1e-6 of the dissipation). Round-off rates of a node at rest are ~1e-17 m/s, a
+/// slipping node's at the end of an event (kinetic energy 1e-6 of the dissipation) 1e-9 to
+/// 1e-7 m/s, against 4.9e-11 m/s on the paper's scene (D_c = 4.6e-7 m, period 9.5 ms).
+pub fn rest_rate(friction: &SlipWeakening, elastic_slip: f64, period: f64) -> f64 {
+    let scale = if friction.mu_s > friction.mu_d { friction.d_c.min(elastic_slip) } else { elastic_slip };
+    REST_SLIP * scale / period
+}
+
+/// Slip per thickness period, as a fraction of the slip scale, of a node at rest.
+pub const REST_SLIP: f64 = 1e-6;
 
 /// x of the end of the slipped run around the nucleation node farther from it; NaN before one.
 fn tip(rec: &EventRecord, x: &[f64]) -> f64 {

@@ -621,3 +621,142 @@ fn dynamic_slide_refuses_what_it_cannot_run() {
     let e = ds::check(&scene, &ok, &DynamicOptions { damping: Some(0.0), ..d }).unwrap_err().to_string();
     assert!(e.contains("--damping"), "{e}");
 }
+
+use tribofe::dynamics::driven::{self, Driven, DynState, EventLimits, Layout};
+use tribofe::dynamics::friction::SlipWeakening;
+
+/// The event of `arrest_at_strength` with a given rest rate (m/s) and step cap; also the
+/// default rest rate and the quiet window and cap (steps) of [`ds::event_cap_periods`].
+fn arrest_at_strength(
+    rest_rate: Option<f64>,
+    cap_steps: Option<usize>,
+) -> (tribofe::Result<driven::EventRecord>, f64, usize, usize) {
+    arrest_at_strength_with(rest_rate, cap_steps, &tribofe::Cancel::new(), &|| {})
+}
+
+fn arrest_at_strength_with(
+    rest_rate: Option<f64>,
+    cap_steps: Option<usize>,
+    cancel: &tribofe::Cancel,
+    tick: &dyn Fn(),
+) -> (tribofe::Result<driven::EventRecord>, f64, usize, usize) {
+    let (l, t, h, xi) = (0.02, 0.002, 0.001, 2.0);
+    let mesh = Rectangle::new(-0.5 * l, 0.5 * l, 0.0, t, (l / h) as usize, (t / h) as usize).build().unwrap();
+    let model = Elastodynamic::new(&mesh, mat(), RHO).unwrap();
+    let row = |y: f64| -> (Vec<usize>, Vec<f64>) {
+        let mut k: Vec<usize> =
+            (0..mesh.n_nodes()).filter(|&k| (mesh.nodes[k][1] - y).abs() < 1e-12).collect();
+        k.sort_by(|&a, &b| mesh.nodes[a][0].total_cmp(&mesh.nodes[b][0]));
+        let x = k.iter().map(|&k| mesh.nodes[k][0]).collect();
+        (k, x)
+    };
+    let ((base, x), (top, top_x)) = (row(0.0), row(t));
+    let layout = Layout::new(&model, base, x, top, top_x, 0.04 - t);
+    let speeds = WaveSpeeds::new(&mat(), RHO);
+    let omega_t = std::f64::consts::PI * speeds.c_s / (2.0 * t);
+    let period = 2.0 * std::f64::consts::PI / omega_t;
+    let eta = 2.0 * xi / omega_t;
+    let dt = 0.9 * model.critical_dt(eta);
+    let (mu, n_force) = (0.5, 2.5 * l);
+    let friction = SlipWeakening::coulomb(mu).unwrap();
+    let elastic_slip = mu * (n_force / l) * t / mat().shear_modulus();
+    let default_rate = driven::rest_rate(&friction, elastic_slip, period);
+    let quiet_steps = (period / dt).ceil() as usize;
+    let cap = (ds::event_cap_periods(l, t, xi, 1e-6) * period / dt).ceil() as usize;
+    let lim = EventLimits {
+        ke_fraction: 1e-6,
+        quiet_steps,
+        rest_rate: rest_rate.unwrap_or(default_rate),
+        max_steps: cap_steps.unwrap_or(cap),
+        sample_every: quiet_steps / 16,
+    };
+    let dr = Driven { model: &model, layout: &layout, friction, n_force, dt, eta };
+    let nb = layout.base.len();
+    let mut st = DynState {
+        u: vec![0.0; model.n_dofs()],
+        v: vec![0.0; model.n_dofs()],
+        u_h: 0.0,
+        drive_velocity: 0.0,
+        q: [0.0; 2],
+        qdot: [0.0; 2],
+        d: vec![0.0; nb],
+        time: 0.0,
+    };
+    let rec = dr.run_event(&mut st, &lim, 1e-3 * elastic_slip, cancel, tick);
+    (rec, default_rate, quiet_steps, cap)
+}
+
+#[test]
+fn nodes_arresting_at_their_strength_end_the_event_by_the_quiet_test() {
+    // N = 2.5 Pa x L put at once on a 20 mm x 2 mm block on the rigid flat (h = 1 mm,
+    // Coulomb mu = 0.5, drive held, Kelvin-Voigt damping 2x critical at the thickness mode,
+    // so every mode of the block is overdamped): the block's Poisson expansion makes the edge
+    // nodes slip outward, and they creep without overshoot into the static state, where they
+    // are exactly at their strength (edge pre-slip, tau = mu p), reached from the slipping
+    // side, so they stay flagged as slipping down to round-off rates. (At 1x critical they
+    // overshoot by round-off and stick, at 10 % by inertia: no node ends at its strength.)
+    // With the rest rate (1e-6 of the slip scale per thickness period) the event ends by the
+    // quiet test within the physics' cap (4 x (L/(4t) + ln(1e6)/(4 pi xi)) periods), with
+    // nodes at rest at their strength; without it (rest rate 0, the old test) it runs to a cap
+    // 10 x larger without ending.
+    let (rec, rate, quiet, cap) = arrest_at_strength(None, None);
+    let rec = rec.unwrap();
+    assert!(rec.settled, "not settled in {} steps (cap {cap})", rec.steps);
+    assert!(rec.at_strength > 0, "no node ended at its strength: the test shows nothing");
+    assert!(rec.steps < cap && rec.steps >= quiet, "{} steps, quiet {quiet}, cap {cap}", rec.steps);
+    let e = &rec.energy;
+    assert!(e.kinetic_end <= 1e-6 * (e.friction + e.damping), "{e:?}");
+    // The resting nodes' last rates are below the rest rate and above 0: slow, not stuck.
+    let last = rec.rates.last().unwrap();
+    assert!(last.iter().all(|&v| f64::from(v) <= rate), "rates {last:?} vs {rate:e}");
+    let old = arrest_at_strength(Some(0.0), Some(10 * cap)).0.unwrap();
+    assert!(!old.settled && old.steps == 10 * cap, "the old test ended after {} steps", old.steps);
+}
+
+#[test]
+fn states_csv_is_written_unless_asked_not_to() {
+    // `--states none` leaves out states.csv and nothing else: the other files are the same
+    // bytes as the default run's (which writes it), with and without --dynamics.
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, extra: &[&str]| -> std::path::PathBuf {
+        let out = dir.path().join(name);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_tribofe"))
+            .args(["slide", "--law", "coulomb", "--length", "0.1", "--h", "0.001", "--out"])
+            .arg(&out)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&o.stderr));
+        out
+    };
+    for dynamics in [&[][..], &["--dynamics"][..]] {
+        let all = run(&format!("all{}", dynamics.len()), dynamics);
+        let none = run(&format!("none{}", dynamics.len()), &[dynamics, &["--states", "none"][..]].concat());
+        let states = std::fs::read_to_string(all.join("states.csv")).unwrap();
+        assert!(states.lines().count() > 100, "{dynamics:?}: {} lines", states.lines().count());
+        assert!(!none.join("states.csv").exists(), "{dynamics:?}");
+        for f in ["loading.csv", "events.csv", "fig4_fe.svg"] {
+            assert_eq!(std::fs::read(all.join(f)).unwrap(), std::fs::read(none.join(f)).unwrap(), "{f}");
+        }
+    }
+}
+
+#[test]
+fn a_dynamic_event_ticks_and_can_be_cancelled_every_256_steps() {
+    // The event loop checks the cancel token and ticks the host's progress every 256 steps
+    // (~40 ms of work on the paper's block at h = 1 mm): a token cancelled at the 3rd tick
+    // stops the event there with the interrupted error (exit 130), not at its end.
+    let cancel = tribofe::Cancel::new();
+    let ticks = std::sync::atomic::AtomicUsize::new(0);
+    let tick = || {
+        if ticks.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1 == 3 {
+            cancel.cancel();
+        }
+    };
+    let (rec, _, _, _) = arrest_at_strength_with(None, None, &cancel, &tick);
+    let err = rec.unwrap_err();
+    assert_eq!(err.exit_status(), 130, "{err}");
+    assert_eq!(ticks.load(std::sync::atomic::Ordering::Relaxed), 3);
+    let (whole, _, _, _) = arrest_at_strength(None, None);
+    assert!(whole.unwrap().steps > 3 * 256, "the event must outlast three ticks");
+}

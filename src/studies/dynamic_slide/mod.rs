@@ -20,17 +20,15 @@
 //! Coulomb friction never becomes unstable, so a Coulomb run is the static loading alone:
 //! the same events as `slide` (tests/it/dynamics.rs).
 
-use crate::dynamics::driven::{Driven, DynState, EventLimits, EventRecord, Layout};
-use crate::dynamics::explicit::Elastodynamic;
+use crate::dynamics::driven::{DynState, EventLimits, EventRecord};
 use crate::dynamics::friction::SlipWeakening;
 use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
-use crate::fem::assembly::Assembler;
 use crate::interface::banded::{BandedOperator, Solving};
-use crate::interface::condense::{boundary_model, condense, Condensed};
+use crate::interface::condense::{condense, Condensed};
 use crate::interface::events::{self, tolerances, Event, EventKind, NodeState, Operator, Phase};
 use crate::interface::law::Law;
-use crate::linalg::solve::{Solver, SolverOptions};
+use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{SlideOptions, SlideResult};
@@ -39,8 +37,10 @@ use events::search::Hit;
 use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, start, stuck_err};
 use std::time::Instant;
 
+mod setup;
 mod steps;
 pub mod velocity;
+use setup::Setup;
 use steps::{anchor_after, arrest, classify_event, relax};
 
 /// The dynamic options beside the slide options.
@@ -52,9 +52,9 @@ pub struct DynamicOptions {
     pub courant: f64,
     /// End of an event: kinetic energy below this fraction of the event's dissipation.
     pub ke_fraction: f64,
-    /// Cap on the steps of one event, in thickness-mode periods (events at the default damping
-    /// last 2 to 40; an event at rest but with a node exactly at its strength runs to it).
-    pub max_periods: f64,
+    /// Cap on the steps of one event, in thickness-mode periods; None: [`event_cap_periods`]
+    /// (what a front crossing the interface and the decay to `ke_fraction` need, times 4).
+    pub max_periods: Option<f64>,
     /// Constant drive velocity dU_H/dt, m/s (None: the drive held during each event and the
     /// loading quasi-static; see [`velocity`]).
     pub drive_velocity: Option<f64>,
@@ -76,7 +76,7 @@ impl Default for DynamicOptions {
             damping: None,
             courant: 0.9,
             ke_fraction: 1e-6,
-            max_periods: 2_000.0,
+            max_periods: None,
             drive_velocity: None,
             max_velocity_steps: velocity::MAX_STEPS,
             plate_mass: 0.0,
@@ -90,13 +90,22 @@ impl Default for DynamicOptions {
 /// mode omega_t = pi c_s / (2 t) (base stuck, top held by the plate).
 pub const DEFAULT_DAMPING_RATIO: f64 = 0.1;
 
-/// An event that hit its step cap is at rest: its kinetic energy below `ke_fraction` of what
-/// it dissipated and no base node (last sample) slipping 1e-6 D_c in a thickness period.
-fn at_rest(ev: &EventRecord, ke_fraction: f64, period: f64, dc: f64) -> bool {
-    let vmax = ev.rates.last().map_or(f64::INFINITY, |r| r.iter().fold(0.0f64, |m, &v| m.max(f64::from(v))));
-    let diss = ev.energy.friction + ev.energy.damping;
-    ev.energy.kinetic_end <= ke_fraction * diss && vmax * period <= 1e-6 * dc
+/// The default cap on one event, in periods T = 2 pi / omega_t of the thickness mode:
+/// [`EVENT_CAP_FACTOR`] x (a front crossing the length L at c_s, L / c_s = L / (4 t) periods,
+/// plus the decay of the kinetic energy to `ke_fraction` of the dissipation in the thickness
+/// mode, the least damped mode of the stuck block under Kelvin-Voigt damping: its amplitude
+/// decays at s omega_t, s = xi (xi <= 1) or xi - sqrt(xi^2 - 1) (overdamped), so
+/// ln(1 / ke_fraction) / (4 pi s) periods). The paper's block at the default damping
+/// (xi = 0.1): 4 (50 + 11) = 244 periods; its events last 2 to 16.
+pub fn event_cap_periods(length: f64, thickness: f64, xi: f64, ke_fraction: f64) -> f64 {
+    let crossing = length / (4.0 * thickness);
+    let s = if xi <= 1.0 { xi } else { xi - (xi * xi - 1.0).sqrt() };
+    let decay = (1.0 / ke_fraction).ln() / (4.0 * std::f64::consts::PI * s);
+    EVENT_CAP_FACTOR * (crossing + decay)
 }
+
+/// Margin of [`event_cap_periods`] over the physics (slow fronts, a second rupture).
+pub const EVENT_CAP_FACTOR: f64 = 4.0;
 
 /// Slip-weakening step of the static loading: D_c / this of slip (as the quasi-static solver).
 const STEPS_PER_DC: f64 = 20.0;
@@ -235,78 +244,33 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         None => Box::new(events::operator::Dense::new(&s_h, 2 * n + 3)),
     };
     let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
-    let friction = match o.law {
-        Law::SlipWeakening { dc, .. } => SlipWeakening::new(mu_s, mu_d, dc)?,
-        _ => SlipWeakening::coulomb(mu_s)?,
-    };
-    let weakens = o.law.weakens();
+    // The set-up both modes share; full fields: the block with its boundary held, factorised once.
+    let su = Setup::new(scene, o, d)?;
+    let full = su.full_field()?;
+    let full_field =
+        |a: &Affine, lam: f64| full.field(&(0..2 * n + 3).map(|j| a.b(j, lam)).collect::<Vec<_>>());
+    let (model, mat, friction, weakens) = (&su.model, su.mat, su.friction, su.weakens);
+    let (dt, dt_stable, eta, omega_t, period, lambda0) =
+        (su.dt, su.dt_stable, su.eta, su.omega_t, su.period, su.lambda0);
     let dc = friction.d_c;
-    // Full fields: the block with every boundary DOF prescribed, factorised once.
-    let (sm, bdofs) = boundary_model(scene)?;
-    let nf = sm.constraints.n_fixed();
-    let slots: Vec<usize> =
-        bdofs.iter().map(|&k| sm.constraints.fixed_slot(k).expect("boundary DOF fixed")).collect();
-    let red = sm.constraints.reduce()?;
-    let asm = Assembler::new(&sm.mesh, &red)?;
-    let (values, _) = asm.assemble(&sm.model(), &red, &[vec![]], &[vec![0.0; nf]])?;
-    let solver = Solver::analyse(&asm.pattern, SolverOptions::default())?;
-    let factor = solver.factorize(&asm.pattern, &values).map_err(|e| Error::Singular {
-        detail: format!("the block with its boundary held is not positive definite ({e})"),
-        node: None,
-        component: None,
-    })?;
-    let mat = crate::fem::material::Material::plane_strain(scene.block.young, scene.block.poisson)?;
-    let model = Elastodynamic::new(&sm.mesh, mat, scene.block.density)?;
-    let nn = sm.mesh.n_nodes();
-    let (t, hgt) = (scene.block.thickness, scene.loading.height);
-    let arm = hgt - t;
-    let full_field = |a: &Affine, lam: f64| -> Vec<f64> {
-        // b in the operator's order (U_H at H); the model's U0 is at the block top.
-        let mut g = vec![0.0; nf];
-        for (j, &slot) in slots.iter().enumerate() {
-            g[slot] = if j == 2 * n { a.b(j, lam) + arm * a.b(2 * n + 2, lam) } else { a.b(j, lam) };
-        }
-        let up = red.expand(&vec![0.0; red.n_free()], &g);
-        let mut ku = vec![0.0; 2 * nn];
-        model.apply_k(&up[..2 * nn], &mut ku);
-        let mut f = vec![0.0; red.n_full];
-        for i in 0..2 * nn {
-            f[i] = -ku[i];
-        }
-        let mut r = vec![0.0; red.n_free()];
-        red.project_add(&f, &mut r);
-        factor.solve_in_place(&mut r, 1);
-        red.expand(&r, &g)[..2 * nn].to_vec()
-    };
-    let speeds = WaveSpeeds::new(&mat, scene.block.density);
-    let omega_t = std::f64::consts::PI * speeds.c_s / (2.0 * t);
-    let eta = d.damping.unwrap_or(2.0 * DEFAULT_DAMPING_RATIO / omega_t);
-    let dt_stable = model.critical_dt(eta);
-    let dt = d.courant * dt_stable;
-    let period = 2.0 * std::f64::consts::PI / omega_t;
-    let quiet_steps = ((period / dt).ceil() as usize).max(10);
+    let t = scene.block.thickness;
+    let max_periods = d.max_periods.unwrap_or_else(|| event_cap_periods(c.l, t, su.xi(), d.ke_fraction));
+    let elastic_slip = mu_s * (o.n_force / c.l) * t / mat.shear_modulus();
     let lim = EventLimits {
         ke_fraction: d.ke_fraction,
-        quiet_steps,
-        max_steps: (d.max_periods * period / dt).ceil() as usize,
-        sample_every: ((period / dt / 16.0).floor() as usize).max(1),
+        quiet_steps: su.quiet_steps,
+        rest_rate: crate::dynamics::driven::rest_rate(&friction, elastic_slip, period),
+        max_steps: (max_periods * period / dt).ceil() as usize,
+        sample_every: su.sample_every,
     };
-    let top: Vec<usize> = sm.mesh.set_nodes(&sm.top_set)?;
-    let top_x: Vec<f64> = top.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
-    let layout = Layout::new(&model, sm.interface.clone(), c.x.clone(), top, top_x, arm)
-        .with_plate(d.plate_mass, d.plate_inertia)?;
-    let driven = Driven { model: &model, layout: &layout, friction, n_force: o.n_force, dt, eta };
-    let lambda0 = if weakens {
-        friction.cohesive_zone(mat.shear_modulus(), mat.nu, o.n_force / c.l)
-    } else {
-        f64::INFINITY
-    };
+    let layout = su.layout(c.x.clone(), d)?;
+    let driven = su.driven(&layout, o.n_force);
     progress.message(&format!(
         "dynamics: {} DOFs, dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), eta = {eta:.4e} s = {:.3} of critical at the thickness mode omega = {omega_t:.4e} rad/s; c_s = {:.4} m/s; Lambda_0 = {:.3e} m = {:.2} h{}; static phase on the {} operator",
         model.n_dofs(),
         d.courant,
-        0.5 * eta * omega_t,
-        speeds.c_s,
+        su.xi(),
+        su.speeds.c_s,
         lambda0,
         lambda0 / scene.mesh.h,
         if weakens {
@@ -351,12 +315,12 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let mut done = vec![0.0f64; n]; // slip since each coefficient was frozen
     let mut dyn_events: Vec<DynEvent> = Vec::new();
     let mut steps = 0usize;
-    let mut rested = 0usize;
     'drive: loop {
         o.cancel.check()?;
         let a = settle_continuous(&mut sv, lam, true, cap, "drive")?;
         let frac = if x_end.is_finite() { lam / x_end } else { 0.0 };
-        progress.fraction(frac.max(rec.out.sliding_events as f64 / o.cycles.max(1) as f64).min(1.0));
+        let shown = frac.max(rec.out.sliding_events as f64 / o.cycles.max(1) as f64).min(1.0);
+        progress.fraction(shown);
         if !weakens && !sliding_seen && lam > 0.0 && sv.all_contact_slipping() {
             // Coulomb's first whole-interface slip; by default the run ends 5 % further (`slide`).
             sliding_seen = true;
@@ -443,15 +407,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             d: (0..n).map(|k| sv.slip_memory(k, a_cur.b(k, lam))).collect(),
             time: 0.0,
         };
-        let mut ev = driven.run_event(&mut ds, &lim, dc / 100.0, &o.cancel)?;
+        let ev = driven.run_event(&mut ds, &lim, dc / 100.0, &o.cancel, &|| progress.fraction(shown))?;
         steps += ev.steps;
-        if !ev.settled && at_rest(&ev, d.ke_fraction, period, dc) {
-            // Nodes that come to rest exactly at their strength (tau -> mu(d) p from above,
-            // e.g. fully weakened nodes arresting at mu_d p) count as slipping in the event's
-            // quiet test at any speed, so it never ends by it; the block is at rest.
-            ev.settled = true;
-            rested += 1;
-        }
         if !ev.settled {
             // Where it still moves: the fastest base node of the last sample, and how many move.
             let last = ev.rates.last().cloned().unwrap_or_default();
@@ -463,7 +420,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                 detail: format!(
                     "a dynamic event at X = {lam:.6e} m did not settle within {} steps ({} thickness-mode periods): at the end the base node at x/L = {:.4} moves at {vmax:.3e} m/s ({moving} nodes above 1e-3 of that, {} open), kinetic energy {:.3e} of the dissipated {:.3e} J/m",
                     lim.max_steps,
-                    d.max_periods,
+                    max_periods,
                     c.x.get(kmax).copied().unwrap_or(0.0) / c.l,
                     ev.open.iter().filter(|&&o| o).count(),
                     en.kinetic_end / (en.friction + en.damping).max(f64::MIN_POSITIVE),
@@ -527,36 +484,14 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         }
     }
     let run = rec.finish(&sv);
-    if rested > 0 {
+    let resting = dyn_events.iter().filter(|e| e.record.at_strength > 0).count();
+    if resting > 0 {
         progress.message(&format!(
-            "{rested} dynamic events ended at the step cap at rest (kinetic energy below {:e} of their dissipation, no base node slipping 1e-6 D_c a period) with nodes exactly at their strength",
-            d.ke_fraction
+            "{resting} dynamic events ended with base nodes at rest exactly at their strength (slower than {:.2e} m/s, counted as stuck)",
+            lim.rest_rate
         ));
     }
     let total = clock.elapsed().as_secs_f64();
     let static_s = total - setup_s - dynamic_s;
-    let events_s = total - setup_s;
-    Ok(DynamicResult {
-        slide: SlideResult {
-            scene: scene.clone(),
-            options: o.clone(),
-            condensed: c,
-            run,
-            condense_s: setup_s,
-            events_s,
-        },
-        events: dyn_events,
-        dt,
-        dt_stable,
-        eta,
-        xi_thickness: 0.5 * eta * omega_t,
-        omega_thickness: omega_t,
-        speeds,
-        lambda0,
-        steps,
-        dofs: model.n_dofs(),
-        setup_s,
-        static_s,
-        dynamic_s,
-    })
+    Ok(su.result(scene, o, c, run, dyn_events, steps, [setup_s, static_s, dynamic_s]))
 }

@@ -22,24 +22,20 @@
 //! f_gap and u_gap (distance to a static equilibrium after an event) are 0 here: no static
 //! equilibrium is solved.
 
+use super::setup::Setup;
 use super::steps::{arrest, kind_of};
-use super::{check as check_held, DynEvent, DynamicOptions, DynamicResult, DEFAULT_DAMPING_RATIO};
-use crate::dynamics::driven::{Contact, Driven, DynState, EventEnergy, EventRecord, Layout};
-use crate::dynamics::explicit::Elastodynamic;
-use crate::dynamics::friction::SlipWeakening;
-use crate::dynamics::waves::WaveSpeeds;
+use super::{check as check_held, DynEvent, DynamicOptions, DynamicResult};
+use crate::dynamics::driven::{Contact, DynState, EventEnergy, EventRecord};
 use crate::error::{Error, Result};
-use crate::fem::assembly::Assembler;
-use crate::interface::condense::{boundary_model, condense};
+use crate::interface::condense::condense;
 use crate::interface::events::simulation::{normal_phase, settle_continuous, start};
 use crate::interface::events::{
     operator, tolerances, Event, EventKind, NodeState, Phase, Run, State, Violations,
 };
-use crate::interface::law::Law;
-use crate::linalg::solve::{Solver, SolverOptions};
+use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;
-use crate::studies::slide::{SlideOptions, SlideResult};
+use crate::studies::slide::SlideOptions;
 use std::time::Instant;
 
 /// A base node is in an event while its slip rate exceeds this multiple of V.
@@ -95,17 +91,10 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let vel = check(scene, o, d)?;
     let x_max = o.x_max.expect("checked");
     let clock = Instant::now();
-    // The step first (cheap), so a run over the step cap is refused before the condensation.
-    let (sm, bdofs) = boundary_model(scene)?;
-    let mat = crate::fem::material::Material::plane_strain(scene.block.young, scene.block.poisson)?;
-    let model = Elastodynamic::new(&sm.mesh, mat, scene.block.density)?;
-    let (t, hgt) = (scene.block.thickness, scene.loading.height);
-    let arm = hgt - t;
-    let speeds = WaveSpeeds::new(&mat, scene.block.density);
-    let omega_t = std::f64::consts::PI * speeds.c_s / (2.0 * t);
-    let eta = d.damping.unwrap_or(2.0 * DEFAULT_DAMPING_RATIO / omega_t);
-    let dt_stable = model.critical_dt(eta);
-    let dt = d.courant * dt_stable;
+    // The set-up first (the step; no condensation), so a run over the step cap is refused
+    // before the condensation.
+    let su = Setup::new(scene, o, d)?;
+    let (model, dt, dt_stable, eta) = (&su.model, su.dt, su.dt_stable, su.eta);
     let n_total = steps_needed(x_max, vel, dt);
     if n_total > d.max_velocity_steps as f64 {
         let v_min = x_max / (d.max_velocity_steps as f64 * dt);
@@ -118,64 +107,21 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         ));
     }
     let c = condense(scene, &SolverOptions::default())?;
-    let top: Vec<usize> = sm.mesh.set_nodes(&sm.top_set)?;
-    let top_x: Vec<f64> = top.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
-    let layout = Layout::new(&model, sm.interface.clone(), c.x.clone(), top, top_x, arm)
-        .with_plate(d.plate_mass, d.plate_inertia)?;
+    let layout = su.layout(c.x.clone(), d)?;
     let n = c.n;
-    let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
-    let friction = match o.law {
-        Law::SlipWeakening { dc, .. } => SlipWeakening::new(mu_s, mu_d, dc)?,
-        _ => SlipWeakening::coulomb(mu_s)?,
-    };
-    let weakens = o.law.weakens();
-    let s_h = c.at_height(hgt);
+    let (mu_s, friction, weakens, lambda0) = (o.law.mu_s(), su.friction, su.weakens, su.lambda0);
+    let s_h = c.at_height(scene.loading.height);
     // Full fields from boundary values (as the held mode): the block with its boundary held.
-    let nf = sm.constraints.n_fixed();
-    let slots: Vec<usize> =
-        bdofs.iter().map(|&k| sm.constraints.fixed_slot(k).expect("boundary DOF fixed")).collect();
-    let red = sm.constraints.reduce()?;
-    let asm = Assembler::new(&sm.mesh, &red)?;
-    let (values, _) = asm.assemble(&sm.model(), &red, &[vec![]], &[vec![0.0; nf]])?;
-    let solver = Solver::analyse(&asm.pattern, SolverOptions::default())?;
-    let factor = solver.factorize(&asm.pattern, &values).map_err(|e| Error::Singular {
-        detail: format!("the block with its boundary held is not positive definite ({e})"),
-        node: None,
-        component: None,
-    })?;
-    let nn = sm.mesh.n_nodes();
-    let full_field = |b: &[f64]| -> Vec<f64> {
-        let mut g = vec![0.0; nf];
-        for (j, &slot) in slots.iter().enumerate() {
-            g[slot] = if j == 2 * n { b[j] + arm * b[2 * n + 2] } else { b[j] };
-        }
-        let up = red.expand(&vec![0.0; red.n_free()], &g);
-        let mut ku = vec![0.0; 2 * nn];
-        model.apply_k(&up[..2 * nn], &mut ku);
-        let mut f = vec![0.0; red.n_full];
-        for i in 0..2 * nn {
-            f[i] = -ku[i];
-        }
-        let mut r = vec![0.0; red.n_free()];
-        red.project_add(&f, &mut r);
-        factor.solve_in_place(&mut r, 1);
-        red.expand(&r, &g)[..2 * nn].to_vec()
-    };
-    let driven = Driven { model: &model, layout: &layout, friction, n_force: o.n_force, dt, eta };
-    let lambda0 = if weakens {
-        friction.cohesive_zone(mat.shear_modulus(), mat.nu, o.n_force / c.l)
-    } else {
-        f64::INFINITY
-    };
-    let period = 2.0 * std::f64::consts::PI / omega_t;
-    let quiet_steps = ((period / dt).ceil() as usize).max(10);
-    let sample_every = ((period / dt / 16.0).floor() as usize).max(1);
+    let full = su.full_field()?;
+    let full_field = |b: &[f64]| full.field(b);
+    let driven = su.driven(&layout, o.n_force);
+    let (quiet_steps, sample_every) = (su.quiet_steps, su.sample_every);
     let thr = RATE_FACTOR * vel;
     progress.message(&format!(
         "dynamics, drive at V = {vel:e} m/s to X = {x_max:e} m: {n_total:.0} steps of dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), {} DOFs, eta = {eta:.4e} s = {:.3} of critical at the thickness mode; event threshold |v_x| > {RATE_FACTOR} V = {thr:.3e} m/s; plate mass {} kg/m, inertia {} kg m^2/m; Lambda_0 = {:.3e} m = {:.2} h",
         d.courant,
         model.n_dofs(),
-        0.5 * eta * omega_t,
+        su.xi(),
         d.plate_mass,
         d.plate_inertia,
         lambda0,
@@ -386,10 +332,9 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             push(&mut run, simple(EventKind::Sample, &s, 0), s)?;
             window.iter_mut().for_each(|v| *v = false);
         }
+        // Every 256 steps (~40 ms at h = 1 mm on the paper's block): cancel and progress.
         if steps.is_multiple_of(256) {
             o.cancel.check()?;
-        }
-        if steps.is_multiple_of(4096) {
             progress.fraction((ds.u_h / x_max).min(1.0));
         }
     }
@@ -397,29 +342,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     push(&mut run, simple(EventKind::End, &s, 0), s)?;
     let dynamic_s = dclock.elapsed().as_secs_f64();
     let total = clock.elapsed().as_secs_f64();
-    Ok(DynamicResult {
-        slide: SlideResult {
-            scene: scene.clone(),
-            options: o.clone(),
-            condensed: c,
-            run,
-            condense_s: setup_s,
-            events_s: total - setup_s,
-        },
-        events: dyn_events,
-        dt,
-        dt_stable,
-        eta,
-        xi_thickness: 0.5 * eta * omega_t,
-        omega_thickness: omega_t,
-        speeds,
-        lambda0,
-        steps,
-        dofs: model.n_dofs(),
-        setup_s,
-        static_s: total - setup_s - dynamic_s,
-        dynamic_s,
-    })
+    Ok(su.result(scene, o, c, run, dyn_events, steps, [setup_s, total - setup_s - dynamic_s, dynamic_s]))
 }
 
 /// Ends an event: its kind, its row of events.csv (onset X and F, region, relaxed F) and its

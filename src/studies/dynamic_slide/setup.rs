@@ -1,0 +1,200 @@
+//! The dynamic set-up both drive modes share: the block with its boundary prescribed (for
+//! full fields), the explicit model, wave speeds, damping, time step, the event's windows and
+//! the friction law; and [`FullField`], the whole block's displacement from boundary values.
+
+use super::{DynEvent, DynamicOptions, DynamicResult, DEFAULT_DAMPING_RATIO};
+use crate::dynamics::driven::{Driven, Layout};
+use crate::dynamics::explicit::Elastodynamic;
+use crate::dynamics::friction::SlipWeakening;
+use crate::dynamics::waves::WaveSpeeds;
+use crate::error::{Error, Result};
+use crate::fem::assembly::Assembler;
+use crate::fem::constraints::Reduction;
+use crate::fem::material::Material;
+use crate::interface::condense::{boundary_model, Condensed};
+use crate::interface::events::Run;
+use crate::interface::law::Law;
+use crate::linalg::solve::{Factor, Solver, SolverOptions};
+use crate::scene::{Scene, SceneModel};
+use crate::studies::slide::{SlideOptions, SlideResult};
+
+/// What both modes build before their drive phase.
+pub(super) struct Setup {
+    sm: SceneModel,
+    /// Slot of each boundary DOF (boundary order: interface u, v, then U0, V0, theta).
+    slots: Vec<usize>,
+    red: Reduction,
+    asm: Assembler,
+    values: Vec<f64>,
+    solver: Solver,
+    pub model: Elastodynamic,
+    pub mat: Material,
+    pub speeds: WaveSpeeds,
+    /// Thickness-shear mode omega_t = pi c_s / (2 t), rad/s, and its period, s.
+    pub omega_t: f64,
+    pub period: f64,
+    pub eta: f64,
+    pub dt_stable: f64,
+    pub dt: f64,
+    /// One thickness period in steps (at least 10), and the event's sampling stride (16 a period).
+    pub quiet_steps: usize,
+    pub sample_every: usize,
+    pub friction: SlipWeakening,
+    pub weakens: bool,
+    /// H - t, m.
+    pub arm: f64,
+    /// Lambda_0 at the mean pressure, m (infinite for Coulomb).
+    pub lambda0: f64,
+}
+
+impl Setup {
+    pub fn new(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<Self> {
+        let (sm, bdofs) = boundary_model(scene)?;
+        let nf = sm.constraints.n_fixed();
+        let slots: Vec<usize> =
+            bdofs.iter().map(|&k| sm.constraints.fixed_slot(k).expect("boundary DOF fixed")).collect();
+        let red = sm.constraints.reduce()?;
+        let asm = Assembler::new(&sm.mesh, &red)?;
+        let (values, _) = asm.assemble(&sm.model(), &red, &[vec![]], &[vec![0.0; nf]])?;
+        let solver = Solver::analyse(&asm.pattern, SolverOptions::default())?;
+        let b = &scene.block;
+        let mat = Material::plane_strain(b.young, b.poisson)?;
+        let model = Elastodynamic::new(&sm.mesh, mat, b.density)?;
+        let speeds = WaveSpeeds::new(&mat, b.density);
+        let omega_t = std::f64::consts::PI * speeds.c_s / (2.0 * b.thickness);
+        let period = 2.0 * std::f64::consts::PI / omega_t;
+        let eta = d.damping.unwrap_or(2.0 * DEFAULT_DAMPING_RATIO / omega_t);
+        let dt_stable = model.critical_dt(eta);
+        let dt = d.courant * dt_stable;
+        let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
+        let friction = match o.law {
+            Law::SlipWeakening { dc, .. } => SlipWeakening::new(mu_s, mu_d, dc)?,
+            _ => SlipWeakening::coulomb(mu_s)?,
+        };
+        let weakens = o.law.weakens();
+        let lambda0 = if weakens {
+            friction.cohesive_zone(mat.shear_modulus(), mat.nu, o.n_force / b.length)
+        } else {
+            f64::INFINITY
+        };
+        Ok(Self {
+            sm,
+            slots,
+            red,
+            asm,
+            values,
+            solver,
+            model,
+            mat,
+            speeds,
+            omega_t,
+            period,
+            eta,
+            dt_stable,
+            dt,
+            quiet_steps: ((period / dt).ceil() as usize).max(10),
+            sample_every: ((period / dt / 16.0).floor() as usize).max(1),
+            friction,
+            weakens,
+            arm: scene.loading.height - b.thickness,
+            lambda0,
+        })
+    }
+
+    /// Damping ratio at the thickness mode.
+    pub fn xi(&self) -> f64 {
+        0.5 * self.eta * self.omega_t
+    }
+
+    /// The block with its boundary held, factorised (once per run).
+    pub fn full_field(&self) -> Result<FullField<'_>> {
+        let factor = self.solver.factorize(&self.asm.pattern, &self.values).map_err(|e| Error::Singular {
+            detail: format!("the block with its boundary held is not positive definite ({e})"),
+            node: None,
+            component: None,
+        })?;
+        Ok(FullField { s: self, factor })
+    }
+
+    /// The event loop's view of the mesh (`x`: the interface nodes' x) with the options' plate.
+    pub fn layout(&self, x: Vec<f64>, d: &DynamicOptions) -> Result<Layout> {
+        let top: Vec<usize> = self.sm.mesh.set_nodes(&self.sm.top_set)?;
+        let top_x: Vec<f64> = top.iter().map(|&k| self.sm.mesh.nodes[k][0]).collect();
+        Layout::new(&self.model, self.sm.interface.clone(), x, top, top_x, self.arm)
+            .with_plate(d.plate_mass, d.plate_inertia)
+    }
+
+    /// The run's result: `times` (setup, static, dynamic) in s.
+    #[allow(clippy::too_many_arguments)]
+    pub fn result(
+        &self,
+        scene: &Scene,
+        o: &SlideOptions,
+        condensed: Condensed,
+        run: Run,
+        events: Vec<DynEvent>,
+        steps: usize,
+        times: [f64; 3],
+    ) -> DynamicResult {
+        let [setup_s, static_s, dynamic_s] = times;
+        DynamicResult {
+            slide: SlideResult {
+                scene: scene.clone(),
+                options: o.clone(),
+                condensed,
+                run,
+                condense_s: setup_s,
+                events_s: static_s + dynamic_s,
+            },
+            events,
+            dt: self.dt,
+            dt_stable: self.dt_stable,
+            eta: self.eta,
+            xi_thickness: self.xi(),
+            omega_thickness: self.omega_t,
+            speeds: self.speeds,
+            lambda0: self.lambda0,
+            steps,
+            dofs: self.model.n_dofs(),
+            setup_s,
+            static_s,
+            dynamic_s,
+        }
+    }
+
+    pub fn driven<'a>(&'a self, layout: &'a Layout, n_force: f64) -> Driven<'a> {
+        Driven { model: &self.model, layout, friction: self.friction, n_force, dt: self.dt, eta: self.eta }
+    }
+}
+
+/// The whole block's displacement for given boundary values, the block's interior in static
+/// equilibrium with them.
+pub(super) struct FullField<'a> {
+    s: &'a Setup,
+    factor: Factor<'a>,
+}
+
+impl FullField<'_> {
+    /// `b` in the event solver's boundary order (interface u, v, then U_H at the drive height
+    /// H, V, theta); the model's U0 is at the block top: U0 = U_H + (H - t) theta.
+    pub fn field(&self, b: &[f64]) -> Vec<f64> {
+        let (s, n2) = (self.s, self.s.slots.len() - 3);
+        let mut g = vec![0.0; s.sm.constraints.n_fixed()];
+        for (j, &slot) in s.slots.iter().enumerate() {
+            g[slot] = if j == n2 { b[j] + s.arm * b[n2 + 2] } else { b[j] };
+        }
+        let red = &s.red;
+        let nd = 2 * s.sm.mesh.n_nodes();
+        let up = red.expand(&vec![0.0; red.n_free()], &g);
+        let mut ku = vec![0.0; nd];
+        s.model.apply_k(&up[..nd], &mut ku);
+        let mut f = vec![0.0; red.n_full];
+        for (fi, k) in f.iter_mut().zip(&ku) {
+            *fi = -k;
+        }
+        let mut r = vec![0.0; red.n_free()];
+        red.project_add(&f, &mut r);
+        self.factor.solve_in_place(&mut r, 1);
+        red.expand(&r, &g)[..nd].to_vec()
+    }
+}
