@@ -138,7 +138,11 @@ def main():
         med = lambda v: v[len(v) // 2]
         print(f"nucleus to the nearest earlier arrest tip / t: median {med(near):.2f} (random nucleus: {med(rand):.2f}); "
               f"within 2 t: {sum(v <= 2 for v in near)} of {len(near)} (random: {sum(v <= 2 for v in rand)})")
-        print(f"first 30 instabilities, nucleus to nearest earlier tip / t: median {med(sorted(near[:0] + [r['nucleus_to_nearest_earlier_tip_over_t'] for r in rows[1:30]])):.2f}")
+        n30 = sorted(r["nucleus_to_nearest_earlier_tip_over_t"] for r in rows[1:31])
+        r30 = sorted(r["random_to_nearest_earlier_tip_over_t"] for r in rows[1:31])
+        print(f"instabilities 2 to 31 (the tips still sparse): nucleus to the nearest earlier tip / t median "
+              f"{med(n30):.2f}, largest {n30[-1]:.2f} (random nucleus: median {med(r30):.2f}); within 2 t: "
+              f"{sum(v <= 2 for v in n30)} of {len(n30)} (random: {sum(v <= 2 for v in r30)})")
     cross = next((r for r in rows if r["connected_before_over_L"] >= 0.5 - 1e-9), None)
     lo = [r for r in csv.DictReader(open(f"{out}/loading.csv")) if r["phase"] == "drive"]
     fmax = lambda xlim: max((float(r["F_over_N"]) / MU_S, float(r["X_m"])) for r in lo if float(r["X_m"]) <= xlim)
