@@ -77,7 +77,14 @@ def main():
         print(f"instabilities without a slipped region (skipped): events {', '.join(empty)}")
     dy = [r for r in dy if r["region_first_over_L"]]
     wanted = {int(r["event"]) - 1 for r in dy}
-    st = stream_states(f"{out}/states.csv", wanted)
+    old = {}
+    try:
+        st = stream_states(f"{out}/states.csv", wanted)
+    except FileNotFoundError:
+        # states.csv deleted after a first analysis: the predictions from that run's summary
+        st = {}
+        old = {int(r["event"]): r for r in csv.DictReader(open(arg("--summary")))}
+        print("states.csv absent: the arrest predictions are read back from the summary")
     tol = 5 * T / L  # the one definition's 5 t, in units of L
     tips = []  # arrest tips of the earlier instabilities (their far end, x/L)
     front = -0.5  # farthest point slipped so far in the cycle
@@ -111,6 +118,9 @@ def main():
             n0 = min(range(len(x)), key=lambda i: abs(x[i] - xn))
             pred0 = x[arrest(x, p, tau, n0, kappa, False)]
             predg = x[arrest(x, p, tau, n0, kappa, True)]
+        if k in old:
+            pred0 = float(old[k]["arrest_zero_gc_over_L"])
+            predg = float(old[k]["arrest_griffith_over_L"])
         rows.append(dict(event=k, kind=d["kind"], X_m=d["X_m"], F_onset_over_mu_s_N=d["F_onset_over_mu_s_N"],
                          F_after_over_mu_s_N=d["F_after_over_mu_s_N"], x_nucleation_over_L=xn,
                          region_first_over_L=a, region_last_over_L=b, site=site,
@@ -176,7 +186,9 @@ def main():
     model = arg("--model")
     if model:
         m = list(csv.DictReader(open(model)))
-        print("front envelope against the model (farthest slip reached by each model F_i):")
+        print("front against the model: at each model F_i, the model's front before precursor i (x_{i-1}) and the")
+        print("dynamic slip connected to the trailing edge before the first instability with onset above F_i:")
+        prev_x = -0.5
         for q in m:
             if q["stick_slip"] == "1":
                 break
@@ -190,8 +202,9 @@ def main():
                     break
             else:
                 reach = None
-            print(f"  F {fi:.4f}: model x {float(q['x']):+.4f}, dynamics (slip connected to the trailing edge) "
+            print(f"  F_{q['i']} {fi:.4f}: model front {prev_x:+.4f}, dynamics "
                   f"{'never reached this F' if reach is None else f'{reach:+.4f}'}")
+            prev_x = float(q["x"])
 
 
 if __name__ == "__main__":
