@@ -36,7 +36,7 @@ def main():
         i = rest.index("--fc-max")
         fc_max = float(rest[i + 1])
         del rest[i : i + 2]
-    runs = [a.split("=", 1) for a in rest]
+    runs = [a.rsplit("=", 1) for a in rest]
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5))
     ml = rows(f"{model}/loading.csv")
     ax.plot([float(r["Fc"]) for r in ml], [float(r["F"]) for r in ml], "k-", lw=1.5, label="model (paper)")

@@ -4,7 +4,7 @@
 # Usage: regime.sh H_MM DC_M KAPPA X_MAX HEAL [TIMEOUT_S]
 #   regime.sh 0.5 2.3107e-7 0.5093 2.0e-5 all       # kappa = 0.51 (README: "unstable regime")
 #   regime.sh 0.5 2.3107e-7 0.5093 2.0e-5 slipped
-#   regime.sh 0.25 1.1554e-7 0.2547 5.0e-6 all
+#   MAX_EVENTS=60000 regime.sh 0.25 1.1554e-7 0.2547 4.4e-6 all 1800
 # BIN (default ./target/release/tribofe, built), OUT_ROOT (default /tmp/regime) and MAX_EVENTS
 # (default 200000; h = 0.25 mm needs 60000: the states kept must fit half the memory) from the
 # environment. --x-max ends the run cleanly: the event cap (--max-events) is an error that
