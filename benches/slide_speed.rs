@@ -1,6 +1,8 @@
 //! Issue 32's speed targets, whole process and by phase (`cargo bench --bench slide_speed`):
 //! coulomb mu = 0.5 at h = 0.5 mm (801 interface nodes) on the dense and the banded operator,
-//! and the thin block t/L = 1/1600 (3,201 nodes, rule paper, first cycle) on the banded one.
+//! the banded one again without states.csv (`--states none`: the loading curve, the events and
+//! the figures only), and the thin block t/L = 1/1600 (3,201 nodes, rule paper, first cycle) on
+//! the banded one.
 //!
 //! In process (best of `REPEAT`): mesh (the block's mesh and constraints alone), setup (mesh
 //! and operator: the banded operator's assembly, or the dense condensation), events (the
@@ -37,6 +39,8 @@ struct Case {
     scene: Scene,
     options: SlideOptions,
     args: Vec<&'static str>,
+    /// Whether states.csv is written.
+    states: bool,
 }
 
 fn cases() -> Vec<Case> {
@@ -53,8 +57,20 @@ fn cases() -> Vec<Case> {
             scene: fine.clone(),
             options: SlideOptions { law: Law::coulomb(0.5).unwrap(), operator: op, ..Default::default() },
             args: vec!["--mu", "0.5", "--h", "0.0005", "--operator", flag],
+            states: true,
         });
     }
+    out.push(Case {
+        name: "coulomb h = 0.5 mm (801 nodes), banded, --states none",
+        scene: fine.clone(),
+        options: SlideOptions {
+            law: Law::coulomb(0.5).unwrap(),
+            operator: Operator::Banded,
+            ..Default::default()
+        },
+        args: vec!["--mu", "0.5", "--h", "0.0005", "--operator", "banded", "--states", "none"],
+        states: false,
+    });
     let mut thin = Scene::default();
     thin.block.thickness = 0.00025;
     thin.mesh.h = 0.000125;
@@ -89,6 +105,7 @@ fn cases() -> Vec<Case> {
             "--operator",
             "banded",
         ],
+        states: true,
     });
     out
 }
@@ -116,7 +133,7 @@ fn main() {
             let dir = tmp.path().join(format!("inproc{k}"));
             std::fs::create_dir_all(&dir).expect("folder");
             let (t, c0) = (Instant::now(), cpu(libc::RUSAGE_SELF));
-            tribofe::report::slide::write(&res, &dir, "# bench\n", true).expect("output");
+            tribofe::report::slide::write(&res, &dir, "# bench\n", c.states).expect("output");
             let (output, output_cpu) = (t.elapsed().as_secs_f64(), cpu(libc::RUSAGE_SELF) - c0);
             let row = [mesh, res.condense_s, res.events_s, output, total_run + output, run_cpu, output_cpu];
             for (b, v) in best.iter_mut().zip(row) {

@@ -54,6 +54,11 @@ pub struct Args {
     /// Whole-interface slips (stick-slip cycles) to run, static-kinetic and slip-weakening.
     #[arg(long, default_value_t = 10)]
     pub cycles: usize,
+    /// What ends a cycle: a `whole-slip` (one event slipping every contact node), or also a
+    /// `crossing` (an instability completing the run of nodes slipped by instabilities since
+    /// the last cycle end, trailing edge to leading edge: what `precursors fe` uses).
+    #[arg(long, default_value = "whole-slip", value_parser = ["whole-slip", "crossing"])]
+    pub cycle_end: String,
     /// Cap on events (each keeps the interface state: ~40 bytes per node).
     #[arg(long, default_value_t = 50_000)]
     pub max_events: usize,
@@ -230,6 +235,7 @@ fn run_checked(
         n_force: a.n_force,
         x_max: a.x_max,
         cycles: a.cycles,
+        end_at_crossing: a.cycle_end == "crossing",
         max_events: a.max_events,
         newton: a.newton,
         operator: if a.operator == "banded" {

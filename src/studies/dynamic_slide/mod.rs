@@ -41,7 +41,7 @@ mod setup;
 mod steps;
 pub mod velocity;
 use setup::Setup;
-use steps::{anchor_after, arrest, classify_event, relax};
+use steps::{anchor_after, arrest, classify_event, crossing, relax};
 
 /// The dynamic options beside the slide options.
 #[derive(Debug, Clone)]
@@ -313,6 +313,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let mut lam = 0.0;
     let mut idle = 0;
     let mut done = vec![0.0f64; n]; // slip since each coefficient was frozen
+    let mut slipped = vec![false; n]; // by instabilities since the last cycle end
     let mut dyn_events: Vec<DynEvent> = Vec::new();
     let mut steps = 0usize;
     'drive: loop {
@@ -438,6 +439,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         let f_after = a_after.f(sv.iu(), lam);
         let f_gap = (ev.force.last().copied().unwrap_or(f_after) - f_after).abs() / (mu_s * o.n_force);
         let (kind, node, region) = classify_event(&ev, dc, n);
+        let kind = crossing(kind, region, &ev.open[..n], &mut slipped, o.end_at_crossing);
         if kind.ends_cycle() {
             rec.out.sliding_events += 1;
         }

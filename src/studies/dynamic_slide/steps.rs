@@ -129,6 +129,36 @@ pub(super) fn kind_of(ev: &EventRecord, went: &[bool]) -> (EventKind, usize, (us
     (kind, node, (a, b))
 }
 
+/// With `on`, a `crossing`: an instability that is not a whole slip but completes the run of
+/// nodes slipped by instabilities since the last cycle end (`slipped`, updated) from the first
+/// contact node to the last but one, open nodes no obstacle (the quasi-static solver's rule,
+/// [`crate::interface::events::Problem::end_at_crossing`]). `open`: the nodes open after it.
+pub(super) fn crossing(
+    kind: EventKind,
+    region: (usize, usize),
+    open: &[bool],
+    slipped: &mut [bool],
+    on: bool,
+) -> EventKind {
+    if matches!(kind, EventKind::Precursor | EventKind::Nucleation) {
+        (region.0..=region.1).for_each(|k| slipped[k] = true);
+    }
+    let contact = || (0..open.len()).filter(|&k| !open[k]);
+    let crossed = match (contact().next(), contact().last()) {
+        (Some(c0), Some(c1)) => (c0..c1).all(|k| slipped[k] || open[k]),
+        _ => false,
+    };
+    let kind = if on && matches!(kind, EventKind::Precursor | EventKind::Nucleation) && crossed {
+        EventKind::Crossing
+    } else {
+        kind
+    };
+    if kind.ends_cycle() {
+        slipped.iter_mut().for_each(|v| *v = false);
+    }
+    kind
+}
+
 /// The front's arrest (the first sample at which the tip is at its final position) and the
 /// share of the force drop made before it.
 pub(super) fn arrest(rec: &EventRecord, f_onset: f64, f_after: f64) -> Option<(f64, Option<f64>)> {
@@ -138,4 +168,32 @@ pub(super) fn arrest(rec: &EventRecord, f_onset: f64, f_after: f64) -> Option<(f
     let drop = f_onset - f_after;
     let frac = (drop.abs() > 0.0).then(|| (f_onset - rec.force[k]) / drop);
     Some((t, frac))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use EventKind::{Crossing, Nucleation, Precursor, Sliding, Slip};
+
+    /// Eight nodes, the last one open: a precursor, an unconnected nucleation and the
+    /// instability joining them complete the run 0..=6 (the last contact node left out), so
+    /// the third is a crossing and the record clears; without `on` it stays a nucleation.
+    #[test]
+    fn the_instability_completing_the_slipped_run_is_a_crossing() {
+        let mut open = [false; 8];
+        open[7] = true;
+        for on in [true, false] {
+            let mut slipped = [false; 8];
+            assert_eq!(crossing(Precursor, (0, 2), &open, &mut slipped, on), Precursor);
+            assert_eq!(crossing(Slip, (3, 3), &open, &mut slipped, on), Slip); // not an instability
+            assert_eq!(crossing(Nucleation, (5, 5), &open, &mut slipped, on), Nucleation);
+            let joined = crossing(Nucleation, (3, 4), &open, &mut slipped, on);
+            assert_eq!(joined, if on { Crossing } else { Nucleation });
+            assert_eq!(slipped.iter().filter(|&&s| s).count(), if on { 0 } else { 6 });
+        }
+        // A whole slip ends the cycle by itself and clears the record.
+        let mut slipped = [true, false, false, false, false, false, false, false];
+        assert_eq!(crossing(Sliding, (0, 6), &open, &mut slipped, true), Sliding);
+        assert!(!slipped.iter().any(|&s| s));
+    }
 }

@@ -23,7 +23,7 @@
 //! equilibrium is solved.
 
 use super::setup::Setup;
-use super::steps::{arrest, kind_of};
+use super::steps::{arrest, crossing, kind_of};
 use super::{check as check_held, DynEvent, DynamicOptions, DynamicResult};
 use crate::dynamics::driven::{Contact, DynState, EventEnergy, EventRecord};
 use crate::error::{Error, Result};
@@ -195,6 +195,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let mut steps = 0usize;
     let mut open: Option<Open> = None;
     let mut dyn_events: Vec<DynEvent> = Vec::new();
+    // Nodes slipped by instabilities since the last cycle end, and whether a crossing ends one.
+    let mut slipped = (vec![false; layout.x.len()], o.end_at_crossing);
     let dc = friction.d_c;
     let sample_state = |ds: &DynState, contact: &[Contact], slipped: &[bool], f: f64| -> State {
         let base = &layout.base;
@@ -302,7 +304,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             let ev = open.take().expect("open event");
             let s = sample_state(&ds, &contact, &window, out.f_drive);
             let weakened = ev.rec.weakened;
-            let kind = close(&mut run, ev, s, out, &e, closed, dt, &layout.x, &mut dyn_events, &push)?;
+            let kind =
+                close(&mut run, ev, s, out, &e, closed, dt, &layout.x, &mut dyn_events, &mut slipped, &push)?;
             if weakened && closed {
                 // An instability: every node heals to mu_s (slip memory 0), as the held mode.
                 ds.d.iter_mut().for_each(|d| *d = 0.0);
@@ -358,10 +361,12 @@ fn close(
     dt: f64,
     x: &[f64],
     dyn_events: &mut Vec<DynEvent>,
+    slipped: &mut (Vec<bool>, bool),
     push: &dyn Fn(&mut Run, Event, State) -> Result<()>,
 ) -> Result<EventKind> {
     let Open { x0, f0, went, e0, balance0, mut rec, .. } = ev;
     let (kind, node, (a, b)) = kind_of(&rec, &went);
+    let kind = crossing(kind, (a, b), &rec.open[..went.len()], &mut slipped.0, slipped.1);
     rec.duration = rec.steps as f64 * dt;
     rec.settled = settled;
     rec.energy = EventEnergy {
