@@ -144,7 +144,7 @@ pub(super) fn crossing(
         (region.0..=region.1).for_each(|k| slipped[k] = true);
     }
     let contact = || (0..open.len()).filter(|&k| !open[k]);
-    let crossed = match (contact().next(), contact().last()) {
+    let crossed = match (contact().next(), contact().next_back()) {
         (Some(c0), Some(c1)) => (c0..c1).all(|k| slipped[k] || open[k]),
         _ => false,
     };
