@@ -277,7 +277,7 @@ fn run_checked(
     let worst = res.run.max_violation;
     let last = res.run.states.last().ok_or_else(|| Error::input("slide", "the run recorded no state"))?;
     outln!(
-        "{}: {} interface nodes, {} events ({}), {} whole-interface slips",
+        "{}: {} interface nodes, {} events ({}), {} cycles ended (whole-interface slips, or crossings with --cycle-end crossing)",
         law.name(),
         res.condensed.n,
         res.run.events.len(),
@@ -395,7 +395,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     let run = &res.slide.run;
     let inst = res.events.iter().filter(|e| e.record.weakened).count();
     outln!(
-        "{} --dynamics: {} interface nodes, {} events ({}), {} dynamic ({} instabilities), {} whole-interface slips",
+        "{} --dynamics: {} interface nodes, {} events ({}), {} dynamic ({} instabilities), {} cycles ended (whole-interface slips, or crossings with --cycle-end crossing)",
         law.name(),
         res.slide.condensed.n,
         run.events.len(),
