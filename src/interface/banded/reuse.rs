@@ -12,7 +12,7 @@
 //! refined by the full Woodbury solve until it meets [`REFINE`]; past the rank cap, or if that
 //! fails, the band is refactored at the current set (whose solve is the from-scratch path).
 //!
-//! About 660 lines: the low-rank bookkeeping, the residual checks and the small capacitance
+//! About 700 lines: the low-rank bookkeeping, the residual checks and the small capacitance
 //! LU are one algorithm whose invariants (R, Z, W Z and the carried residuals) must change
 //! together; its test is in `reuse/tests.rs`.
 
