@@ -179,6 +179,8 @@ fn drive_phase(sv: &mut Solver, mut rec: Recorder, progress: &dyn Fn(f64)) -> Re
     let mut lam = 0.0;
     let mut idle = 0;
     loop {
+        // Also here: a drive step without a state change reuses the last solve.
+        rec.pb.cancel.check()?;
         let Some(a) = settle_drive(sv, &mut rec, &mut dr, lam, progress)? else {
             return Ok(rec.finish(sv));
         };

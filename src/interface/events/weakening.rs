@@ -38,6 +38,8 @@ pub(super) fn drive(sv: &mut Solver, mut rec: Recorder, dc: f64, progress: &dyn 
     let mut idle = 0;
     sv.heal_memory();
     loop {
+        // Also here: a drive step without a state change reuses the last solve.
+        rec.pb.cancel.check()?;
         let a0 = sv.solve()?;
         let u_pre: Vec<f64> = (0..n).map(|i| a0.b(i, lam)).collect();
         let f_pre = a0.f(sv.iu(), lam);
