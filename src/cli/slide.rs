@@ -51,7 +51,8 @@ pub struct Args {
     /// slip for coulomb; the cycles for static-kinetic).
     #[arg(long)]
     pub x_max: Option<f64>,
-    /// Whole-interface slips (stick-slip cycles) to run, static-kinetic and slip-weakening.
+    /// Stick-slip cycles to run, static-kinetic and slip-weakening: whole-interface slips, or
+    /// also front crossings with `--cycle-end crossing`.
     #[arg(long, default_value_t = 10)]
     pub cycles: usize,
     /// What ends a cycle: a `whole-slip` (one event slipping every contact node), or also a
