@@ -40,17 +40,26 @@ pub(super) fn classify(
     if kind != EventKind::Sliding {
         (region.0..=region.1).for_each(|k| slipped[k] = true);
     }
-    // The leading corner node is left out: its pressure is singular in the discrete model
-    // and it holds after every node behind it has slipped (overdamped rule at (0.5, 0.5)).
-    let crossed = || {
-        let (Some(&c0), Some(&c1)) = (contact.first(), contact.last()) else { return false };
-        (c0..c1).all(|k| slipped[k] || states[k] == NodeState::Open || before[k] == NodeState::Open)
+    let open = |k: usize| states[k] == NodeState::Open || before[k] == NodeState::Open;
+    let kind = if kind != EventKind::Sliding && crossing && crossed(slipped, open) {
+        EventKind::Crossing
+    } else {
+        kind
     };
-    let kind = if kind != EventKind::Sliding && crossing && crossed() { EventKind::Crossing } else { kind };
     if kind.ends_cycle() {
         slipped.iter_mut().for_each(|v| *v = false);
     }
     kind
+}
+
+/// Whether the nodes `slipped` (or `open`) run from the first contact node to the last but
+/// one: a front crossing. The leading corner node is left out: its pressure is singular in the
+/// discrete model and it holds after every node behind it has slipped (overdamped rule at
+/// (0.5, 0.5)). The quasi-static and the dynamic classifications share it.
+pub(crate) fn crossed(slipped: &[bool], open: impl Fn(usize) -> bool) -> bool {
+    let contact = || (0..slipped.len()).filter(|&k| !open(k));
+    let (Some(c0), Some(c1)) = (contact().next(), contact().next_back()) else { return false };
+    (c0..c1).all(|k| slipped[k] || open(k))
 }
 
 #[cfg(test)]

@@ -31,7 +31,7 @@ use crate::precursors::definition::Slip;
 use std::sync::Arc;
 
 pub(crate) mod active;
-mod classify;
+pub(crate) mod classify;
 mod inverse;
 mod kind;
 pub(crate) mod operator;

@@ -143,11 +143,7 @@ pub(super) fn crossing(
     if matches!(kind, EventKind::Precursor | EventKind::Nucleation) {
         (region.0..=region.1).for_each(|k| slipped[k] = true);
     }
-    let contact = || (0..open.len()).filter(|&k| !open[k]);
-    let crossed = match (contact().next(), contact().next_back()) {
-        (Some(c0), Some(c1)) => (c0..c1).all(|k| slipped[k] || open[k]),
-        _ => false,
-    };
+    let crossed = crate::interface::events::classify::crossed(slipped, |k| open[k]);
     let kind = if on && matches!(kind, EventKind::Precursor | EventKind::Nucleation) && crossed {
         EventKind::Crossing
     } else {
