@@ -324,8 +324,9 @@ fn run_checked(
     }
     print_paper_comparison("FE", &res)?;
     outln!(
-        "wrote {}/{{loading.csv, events.csv, {}fig4_fe.svg, fronts.svg, run.toml{}}}",
+        "wrote {}/{{loading.csv, events.csv, {}{}fig4_fe.svg, fronts.svg, run.toml{}}}",
         a.out.display(),
+        if law.weakens() { "advances.csv, " } else { "" },
         if states { "states.csv, " } else { "" },
         match (a.fields, field_format) {
             (0, _) => "",
@@ -431,7 +432,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
             res.steps as f64 * res.dofs as f64 / res.dynamic_s.max(f64::MIN_POSITIVE)
         );
         outln!(
-            "wrote {}/{{loading.csv, events.csv, {}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
+            "wrote {}/{{loading.csv, events.csv, advances.csv, {}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
             a.out.display(),
             if states { "states.csv, " } else { "" }
         );
@@ -453,7 +454,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         written_s
     );
     outln!(
-        "wrote {}/{{loading.csv, events.csv, {}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
+        "wrote {}/{{loading.csv, events.csv, advances.csv, {}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
         a.out.display(),
         if states { "states.csv, " } else { "" }
     );
@@ -482,6 +483,13 @@ fn print_paper_comparison(label: &str, res: &tribofe::studies::slide::SlideResul
         f(c.x1_fe),
         f(c.f_max_fe)
     );
+    outln!(
+        "{label}: front advances n = {}, first at F = {}, front x = {}",
+        c.n_front,
+        f(c.f1_front),
+        f(c.x1_front)
+    );
     outln!("{}", tribofe::precursors::definition::DEFINITION);
+    outln!("{}", tribofe::precursors::definition::ADVANCES);
     Ok(())
 }

@@ -28,6 +28,12 @@
 //! - F_i is the drive force at the cascade's onset (the state before its first relaxation),
 //!   x_i the arrest point: the last node of the slipped region. F_1, x_1 are those of the
 //!   first advancing precursor.
+//! - *Front advances* ([`advances`]), the paper's n where fronts do not restart at the edge:
+//!   in elastodynamics an arrested front runs on by renucleating at its own tip (384 of 411
+//!   instabilities on the paper's scene, validation/dynamics/paper), which the trailing-edge
+//!   rule above does not count. The front is the far end of the run slipped by the cycle's
+//!   instabilities that starts within [`ZONE_T`] t of the trailing edge; a cascade advances it
+//!   when it moves that end more than [`ADVANCE_T`] t beyond the last counted advance's.
 //!
 //! Plain data in, plain data out: the studies hand over their events as [`Slip`]s.
 
@@ -41,6 +47,8 @@ pub const ADVANCE_T: f64 = 5.0;
 
 /// The definition in one line, printed under every summary that reports precursors.
 pub const DEFINITION: &str = "precursor: the instabilities at one drive X (one cascade) before the cycle ends, nucleating at the trailing edge (slip starting within 5 t of x = -L/2, nucleus within 5 t of that start); long: slipped > 5 t; n (compare with the paper's n): those whose arrest lies > 5 t beyond the last counted one's; F_i: drive force at the cascade's onset; x_i: its arrest point";
+/// The front-advance count in one line, printed where it is reported.
+pub const ADVANCES: &str = "front advance: a cascade before the cycle ends that moves the far end of the run slipped by the cycle's instabilities from the trailing edge (starting within 5 t of x = -L/2) more than 5 t beyond the last counted advance's; F: drive force at its onset; x: the new front";
 
 /// One instability of a frictional run, as the definition reads it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,17 +120,65 @@ impl Precursors {
     }
 }
 
+/// One advance of the slip front ([`advances`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Advance {
+    /// Event of the cascade's first instability.
+    pub first_event: usize,
+    /// Drive force at the cascade's onset, in the unit of [`Slip::f`].
+    pub f: f64,
+    /// The front after the cascade: the last node of the run slipped from the trailing edge.
+    pub front: usize,
+    /// Nucleation node of the cascade's first instability that joins that run.
+    pub node: usize,
+}
+
+/// The front advances among `slips` (a run's instabilities in order) on the interface nodes
+/// `x` (m, ascending from the trailing edge) under a block of thickness `t` (m), up to the
+/// first cascade that ends the cycle. A tip renucleation counts as well as a slip restarting
+/// at the trailing edge.
+pub fn advances(slips: &[Slip], x: &[f64], t: f64) -> Vec<Advance> {
+    let mut out = Vec::new();
+    let Some(&x0) = x.first() else { return out };
+    let mut counted = x0;
+    // The cycle's slipped runs (node ranges): sorted, disjoint, not touching.
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    for cascade in cascades(slips) {
+        if cascade.iter().any(|s| s.ends_cycle) {
+            break;
+        }
+        runs.extend(cascade.iter().map(|s| (s.region.0.min(s.node), s.region.1.max(s.node))));
+        runs.sort_unstable();
+        runs.dedup_by(|next, kept| {
+            let touches = next.0 <= kept.1 + 1;
+            if touches {
+                kept.1 = kept.1.max(next.1);
+            }
+            touches
+        });
+        let Some(&(a, b)) = runs.first() else { continue };
+        let (Some(&xa), Some(&xb)) = (x.get(a), x.get(b)) else { continue };
+        if xa - x0 <= ZONE_T * t && xb > counted + ADVANCE_T * t {
+            counted = xb;
+            let seed = cascade.iter().find(|s| s.region.0 <= b && s.region.1 >= a).unwrap_or(&cascade[0]);
+            out.push(Advance { first_event: cascade[0].event, f: cascade[0].f, front: b, node: seed.node });
+        }
+    }
+    out
+}
+
+/// `slips` split into cascades: runs of equal drive X.
+fn cascades(slips: &[Slip]) -> impl Iterator<Item = &[Slip]> {
+    slips.chunk_by(|a, b| a.x_drive == b.x_drive)
+}
+
 /// The precursors among `slips` (a run's instabilities in order) on an interface whose nodes
 /// lie at `x` (m, ascending from the trailing edge, `x[0]`) under a block of thickness `t` (m),
 /// up to the first cascade that ends the cycle.
 pub fn find(slips: &[Slip], x: &[f64], t: f64) -> Precursors {
     let mut all = Vec::new();
     let mut front = x.first().copied().unwrap_or(0.0);
-    let mut k = 0;
-    while k < slips.len() {
-        let end = k + slips[k..].iter().take_while(|s| s.x_drive == slips[k].x_drive).count();
-        let cascade = &slips[k..end];
-        k = end;
+    for cascade in cascades(slips) {
         if cascade.iter().any(|s| s.ends_cycle) {
             break;
         }
@@ -277,5 +333,70 @@ mod tests {
         let mut s = slips;
         s[3].x_drive = 2.0;
         assert_eq!(find(&s, &x, t).n_all(), 1);
+    }
+
+    fn fronts(slips: &[Slip]) -> Vec<usize> {
+        let (x, t) = nodes();
+        advances(slips, &x, t).iter().map(|a| a.front).collect()
+    }
+
+    #[test]
+    fn a_front_advances_by_renucleating_at_its_tip_which_the_trailing_edge_rule_does_not_count() {
+        let (x, t) = nodes();
+        let slips = [
+            slip(0, 1.0, 0.70, 0, (0, 20)),
+            // Nucleates at the arrested tip and runs 7.5 t on: an advance, no precursor.
+            slip(1, 2.0, 0.72, 21, (20, 35)),
+            // 2.5 t on: not counted.
+            slip(2, 3.0, 0.74, 36, (36, 40)),
+            // 6.5 t beyond the last counted front (node 35), by two steps: counted.
+            slip(3, 4.0, 0.76, 41, (41, 48)),
+        ];
+        let a = advances(&slips, &x, t);
+        assert_eq!(
+            a.iter().map(|a| (a.front, a.node, a.first_event)).collect::<Vec<_>>(),
+            [(20, 0, 0), (35, 21, 1), (48, 41, 3)]
+        );
+        assert_eq!(a[1].f, 0.72);
+        assert_eq!(find(&slips, &x, t).n(), 1);
+    }
+
+    #[test]
+    fn a_detached_slip_is_no_advance_until_a_later_one_joins_it_to_the_front() {
+        let slips =
+            [slip(0, 1.0, 0.7, 0, (0, 20)), slip(1, 2.0, 0.7, 60, (55, 70)), slip(2, 3.0, 0.7, 30, (21, 54))];
+        assert_eq!(fronts(&slips), [20, 70]);
+        // Slipped runs joined across the gap are joined in either order of their ends.
+        let slips =
+            [slip(0, 1.0, 0.7, 60, (55, 70)), slip(1, 2.0, 0.7, 40, (40, 54)), slip(2, 3.0, 0.7, 0, (0, 39))];
+        assert_eq!(fronts(&slips), [70]);
+    }
+
+    #[test]
+    fn a_slip_from_the_edge_nucleating_behind_a_preslip_zone_is_an_advance_though_no_precursor() {
+        // The thin block (t/L = 1/400): the first instability slips from the edge but nucleates
+        // 6.5 t in, at the tip of the corner's preslip zone.
+        let (x, t) = nodes();
+        let slips = [slip(0, 1.0, 0.7285, 13, (0, 26))];
+        assert_eq!(find(&slips, &x, t).n_all(), 0);
+        assert_eq!(fronts(&slips), [26]);
+        // A run starting more than 5 t from the edge is no front.
+        assert!(fronts(&[slip(0, 1.0, 0.7, 13, (11, 40))]).is_empty());
+    }
+
+    #[test]
+    fn on_trailing_edge_precursors_the_advances_are_the_advancing_precursors_up_to_the_cycle_end() {
+        let (x, t) = nodes();
+        let slips = [
+            slip(0, 1.0, 0.70, 0, (0, 40)),
+            slip(1, 2.0, 0.72, 0, (0, 30)),
+            slip(2, 3.0, 0.74, 0, (0, 44)),
+            slip(3, 4.0, 0.76, 0, (0, 51)),
+            Slip { ends_cycle: true, ..slip(4, 5.0, 0.9, 0, (0, 100)) },
+            slip(5, 6.0, 0.7, 0, (0, 90)),
+        ];
+        let counted: Vec<usize> = find(&slips, &x, t).counted().map(|q| q.arrest()).collect();
+        assert_eq!(fronts(&slips), counted);
+        assert_eq!(counted, [40, 51]);
     }
 }

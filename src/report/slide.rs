@@ -82,6 +82,30 @@ pub fn events_csv(r: &SlideResult) -> Result<String> {
     Ok(s)
 }
 
+/// The first cycle's front advances ([`crate::precursors::definition::advances`]), one row
+/// each; `precursor` is 1 where the same cascade is a counted precursor of the one definition.
+pub fn advances_csv(r: &SlideResult) -> Result<String> {
+    let k = r.options.law.mu_s() * r.options.n_force;
+    let c = &r.condensed;
+    let counted: Vec<usize> = crate::studies::slide::precursors(r).counted().map(|p| p.first_event).collect();
+    let mut s = String::from("advance,event,X_m,F_over_mu_s_N,front_over_L,x_nucleation_over_L,precursor\n");
+    for (i, a) in crate::studies::slide::front_advances(r).iter().enumerate() {
+        writeln!(
+            s,
+            "{},{},{},{},{},{},{}",
+            i + 1,
+            a.first_event,
+            num("X", r.run.events[a.first_event].x)?,
+            num("F", a.f / k)?,
+            num("x", c.x[a.front] / c.l)?,
+            num("x", c.x[a.node] / c.l)?,
+            u8::from(counted.contains(&a.first_event))
+        )
+        .unwrap();
+    }
+    Ok(s)
+}
+
 /// One row per state and interface node. The bytes are those `{:.12e}` gives
 /// ([`crate::io::csv::push_e12`]), formatted in chunks of states on the rayon pool and
 /// joined in order (804 states x 801 nodes: 3.2e6 numbers, 61 MB).
@@ -317,6 +341,9 @@ pub fn write(r: &SlideResult, dir: &Path, header: &str, states: bool) -> Result<
     // files' order, as one after another would.
     let others = || -> Result<Vec<PathBuf>> {
         let mut files = vec![("loading.csv", loading_csv(r)?), ("events.csv", events_csv(r)?)];
+        if r.options.law.weakens() {
+            files.push(("advances.csv", advances_csv(r)?));
+        }
         #[cfg(feature = "plots")]
         files.extend([("fig4_fe.svg", fig4_svg(r, &model_curve(r))?), ("fronts.svg", fronts_svg(r)?)]);
         files.push(("run.toml", header.to_string()));

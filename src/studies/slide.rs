@@ -375,13 +375,26 @@ pub struct PaperComparison {
     pub f1_fe: Option<f64>,
     pub x1_fe: Option<f64>,
     pub f_max_fe: Option<f64>,
+    /// FE front advances ([`definition::advances`]): their count, the first one's force at
+    /// onset and new front x/L (the paper's n, F_1, x_1 where fronts run on from their tips).
+    pub n_front: usize,
+    pub f1_front: Option<f64>,
+    pub x1_front: Option<f64>,
 }
 
 /// The precursors of a run's first cycle ([`crate::precursors::definition`]); forces F_i in
 /// N/m.
 pub fn precursors(res: &SlideResult) -> Precursors {
-    let slips: Vec<Slip> = res.run.events.iter().enumerate().filter_map(|(k, e)| e.slip(k)).collect();
-    definition::find(&slips, &res.condensed.x, res.condensed.t)
+    definition::find(&slips(res), &res.condensed.x, res.condensed.t)
+}
+
+/// The front advances of a run's first cycle ([`definition::advances`]); forces in N/m.
+pub fn front_advances(res: &SlideResult) -> Vec<definition::Advance> {
+    definition::advances(&slips(res), &res.condensed.x, res.condensed.t)
+}
+
+fn slips(res: &SlideResult) -> Vec<Slip> {
+    res.run.events.iter().enumerate().filter_map(|(k, e)| e.slip(k)).collect()
 }
 
 pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
@@ -395,6 +408,7 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
     let ev = crate::precursors::simulate(&p, 1);
     let k = mu_s * res.options.n_force;
     let pre = precursors(res);
+    let adv = front_advances(res);
     Some(PaperComparison {
         r,
         g,
@@ -408,6 +422,9 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
         f1_fe: pre.first().map(|q| q.f / k),
         x1_fe: pre.first().map(|q| c.x[q.arrest()] / c.l),
         f_max_fe: res.run.events.iter().rfind(|e| e.ends_cycle()).map(|e| e.f / k),
+        n_front: adv.len(),
+        f1_front: adv.first().map(|a| a.f / k),
+        x1_front: adv.first().map(|a| c.x[a.front] / c.l),
     })
 }
 

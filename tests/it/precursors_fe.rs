@@ -129,6 +129,30 @@ fn the_same_scene_gives_the_same_precursors_through_every_command() {
     assert_ne!(tl.n_fe_advancing, f4.cmp.n_fe_advancing, "the mesh changes the count");
 }
 
+#[test]
+/// The `paper` rule restarts every front at the trailing edge, so its front advances are its
+/// advancing precursors, cascade for cascade, at the paper's scene and at (0.8, 0.5); the
+/// overdamped rule's re-slips may join the front from inside, never lose an advance.
+fn quasi_static_front_advances_are_the_advancing_precursors() {
+    let scene = Scene::default();
+    for (r, g) in [(0.9, 0.35), (0.8, 0.5)] {
+        for rule in [Rule::Paper, Rule::Overdamped] {
+            let res =
+                run(&scene, &paper_scene_options(r, g, rule, 50_000), tribofe::Progress::none()).unwrap();
+            let pre = tribofe::studies::slide::precursors(&res);
+            let adv = tribofe::studies::slide::front_advances(&res);
+            let counted: Vec<(usize, usize)> = pre.counted().map(|p| (p.first_event, p.arrest())).collect();
+            let fronts: Vec<(usize, usize)> = adv.iter().map(|a| (a.first_event, a.front)).collect();
+            if rule == Rule::Paper {
+                assert!(counted.len() > 5, "({r}, {g}) n = {}", counted.len());
+                assert_eq!(fronts, counted, "({r}, {g})");
+            } else {
+                assert!(fronts.len() >= counted.len(), "({r}, {g}) {} < {}", fronts.len(), counted.len());
+            }
+        }
+    }
+}
+
 /// Static-kinetic options at (r, g) on the paper's scene: one cycle, at most `max_events`.
 fn paper_scene_options(r: f64, g: f64, rule: Rule, max_events: usize) -> SlideOptions {
     let (ms, md) = coefficients_from_rg(&Scene::default(), r, g).unwrap();
