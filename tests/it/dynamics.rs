@@ -452,6 +452,22 @@ fn block(l: f64, h: f64, n_thick: Option<usize>) -> Scene {
     s
 }
 
+/// The short slip-weakening scene of the dynamic tests: L = 0.1 m, h = 0.5 mm, the paper's
+/// (r, g), D_c the smallest the mesh resolves (Lambda_0 = 3 h), to X = 6e-6 m (the first
+/// instabilities), the static phase on `op`.
+fn short_weakening(op: Operator) -> (Scene, SlideOptions) {
+    let scene = block(0.1, 0.0005, None);
+    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
+    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
+    let o = SlideOptions {
+        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
+        x_max: Some(6.0e-6),
+        operator: op,
+        ..Default::default()
+    };
+    (scene, o)
+}
+
 #[test]
 fn dynamic_slide_coulomb_is_the_event_solver() {
     // Coulomb friction never becomes unstable, so --dynamics is its exact static loading
@@ -493,18 +509,11 @@ fn dynamic_slide_is_the_same_on_the_dense_and_the_banded_operator() {
     // near a patch's critical length amplifies a difference by up to 1/(1 - its contraction),
     // ~1e3 here: the same events (kind, node, dynamic or not), X and F within 1e-7 of their
     // scales (X at the end, mu_s N).
-    let scene = block(0.1, 0.0005, None);
-    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
-    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
     let run = |op| {
-        let o = SlideOptions {
-            law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
-            x_max: Some(6.0e-6),
-            operator: op,
-            ..Default::default()
-        };
+        let (scene, o) = short_weakening(op);
         ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap()
     };
+    let mu_s = short_weakening(Operator::Dense).1.law.mu_s();
     let (a, b) = (run(Operator::Dense), run(Operator::Banded));
     let (ea, eb) = (&a.slide.run.events, &b.slide.run.events);
     assert_eq!(ea.len(), eb.len(), "events: dense {} vs banded {}", ea.len(), eb.len());
@@ -526,14 +535,7 @@ fn healing_only_the_slipped_nodes_acts_after_the_first_instability() {
     // `--heal slipped` changes only what happens after an instability: the runs are the same
     // computation, bit for bit, up to and including the first one, and part after it (the
     // nodes outside its slipped region keep their slip, so the loading that follows differs).
-    let scene = block(0.1, 0.0005, None);
-    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
-    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
-    let o = SlideOptions {
-        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
-        x_max: Some(6.0e-6),
-        ..Default::default()
-    };
+    let (scene, o) = short_weakening(Operator::Dense);
     let run = |slipped| {
         let d = DynamicOptions { heal_slipped_only: slipped, ..Default::default() };
         ds::run(&scene, &o, &d, tribofe::Progress::none()).unwrap()
@@ -562,14 +564,7 @@ fn dynamic_events_balance_energy_and_end_at_rest() {
     // dissipation. Each event ends with the kinetic energy below 1e-6 of its dissipation, so
     // the static equilibrium that follows differs from the dynamic state by a force of that
     // order: |F_dyn - F_static| < 1e-3 mu_s N.
-    let scene = block(0.1, 0.0005, None);
-    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
-    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
-    let o = SlideOptions {
-        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
-        x_max: Some(6.0e-6),
-        ..Default::default()
-    };
+    let (scene, o) = short_weakening(Operator::Dense);
     let r = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
     let inst = r.events.iter().filter(|e| e.record.weakened).count();
     assert!(inst >= 2, "{inst} instabilities");

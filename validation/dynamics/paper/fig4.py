@@ -9,7 +9,8 @@ drawn in reverse order, so the first named is on top.
 Left: F/(mu_s N) against F^c/(mu_s N) = k_bonded X/(mu_s N) (loading.csv of each run; the
 model's loading.csv). Right: each instability's slipped region (x/L, horizontal bar) at its
 onset force (events.csv rows that are not quasi-static slips), the model's precursor fronts
-as steps. Needs matplotlib.
+as steps, and each run's front advances (advances.csv, where written) as dots joined by a
+step line. mu_s of each run is read from its run.toml. Needs matplotlib.
 """
 import csv
 import sys
@@ -19,13 +20,21 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-MU_S = 0.35 * 0.4 / (6 * 0.04) / 0.9
 STATIC = {"slip", "stick", "open", "close", "normal-load", "edge-preslip", "end", "creep", "sample"}
 
 
 def rows(path):
     with open(path) as f:
         return list(csv.DictReader(f))
+
+
+def mu_s(run_dir):
+    """mu_s from the [results] table of the run's run.toml."""
+    with open(f"{run_dir}/run.toml") as f:
+        for line in f:
+            if line.startswith("mu_s = "):
+                return float(line.split("=")[1])
+    raise SystemExit(f"{run_dir}/run.toml: no mu_s")
 
 
 def main():
@@ -48,10 +57,11 @@ def main():
     bx.plot([], [], "k-", lw=2.5, alpha=0.5, label="model precursors")
     for j, ((lab, d), c) in reversed(list(enumerate(zip(runs, ["C0", "C1", "C2", "C3", "C4"])))):
         w = 1.6 if j == 0 else 0.6
+        ms = mu_s(d)
         lo = rows(f"{d}/loading.csv")
-        lo = [r for r in lo if r["phase"] == "drive" and float(r["Fc_N_per_m"]) / (MU_S * float(r["N_N_per_m"])) <= fc_max]
-        fc = [float(r["Fc_N_per_m"]) / (MU_S * float(r["N_N_per_m"])) for r in lo]
-        f = [float(r["F_over_N"]) / MU_S for r in lo]
+        lo = [r for r in lo if r["phase"] == "drive" and float(r["Fc_N_per_m"]) / (ms * float(r["N_N_per_m"])) <= fc_max]
+        fc = [float(r["Fc_N_per_m"]) / (ms * float(r["N_N_per_m"])) for r in lo]
+        f = [float(r["F_over_N"]) / ms for r in lo]
         ax.plot(fc, f, "-", color=c, lw=0.7, label=lab)
         ev = rows(f"{d}/events.csv")
         first = True
@@ -62,6 +72,15 @@ def main():
             bx.plot([float(r["region_first_over_L"]), float(r["region_last_over_L"])], [y, y], "-", color=c,
                     lw=w, label=lab if first else None)
             first = False
+        try:
+            adv = rows(f"{d}/advances.csv")
+        except FileNotFoundError:
+            adv = []
+        if adv:
+            xs = [float(r["front_over_L"]) for r in adv]
+            ys = [float(r["F_over_mu_s_N"]) for r in adv]
+            bx.step(xs, ys, where="post", color=c, lw=1.0, ls=":")
+            bx.plot(xs, ys, "o", color=c, ms=3.5, mfc="white", label=f"{lab}: front advances ({len(adv)})")
     ax.set_xlabel("F^c / (mu_s N) (bonded-interface force at the same drive X)")
     ax.set_ylabel("F / (mu_s N)")
     ax.legend(fontsize=8)
