@@ -645,6 +645,10 @@ fn comparison<'py>(
     d.set_item("x_1_fe", c.x1_fe)?;
     d.set_item("F_max_fe", c.f_max_fe)?;
     d.set_item("definition", tribofe::precursors::definition::DEFINITION)?;
+    d.set_item("n_front", c.n_front)?;
+    d.set_item("F_1_front", c.f1_front)?;
+    d.set_item("x_1_front", c.x1_front)?;
+    d.set_item("front_definition", tribofe::precursors::definition::ADVANCES)?;
     Ok(d)
 }
 

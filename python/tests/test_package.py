@@ -127,6 +127,11 @@ def test_fe_precursor_studies():
     assert abs(by_rule["paper"]["F_1_fe"] - 0.7319) < 5e-5
     assert abs(by_rule["overdamped"]["F_1_fe"] - 0.7319) < 5e-5
     assert by_rule["paper"]["definition"].startswith("precursor: ")
+    # Front advances: the paper rule restarts every front at the trailing edge, so they are
+    # its advancing precursors; the overdamped rule's re-slips may join the front from inside.
+    assert by_rule["paper"]["n_front"] == 17
+    assert by_rule["paper"]["x_1_front"] == by_rule["paper"]["x_1_fe"]
+    assert by_rule["overdamped"]["n_front"] >= 4
     assert len(runs[0]["x_arrest_fe_over_L"]) == 17
     cells = tribofe.precursors.fe_fig5(resolution=4, progress=False)
     assert len(cells["r"]) == 16 and set(cells["status"]) <= {"done", "capped", "refused"}

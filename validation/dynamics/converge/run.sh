@@ -3,7 +3,8 @@
 # dynamics at fixed kappa (D_c fixed as h halves, so the cohesive zone spans 3, 6, 12 elements
 # at h = 0.5, 0.25, 0.125 mm).
 # Usage: run.sh R G H_MM DC_M [TIMEOUT_S]; from the environment: ETA (the damping eta, s;
-# default the solver's, 10 % of critical at the thickness mode), BIN (default
+# default the solver's, 10 % of critical at the thickness mode), RULE (paper or overdamped:
+# the quasi-static static-kinetic rule instead, same scene and mesh, DC ignored), BIN (default
 # ./target/release/tribofe, built) and OUT_ROOT (default /tmp/converge). Writes the log
 # (progress redraws removed) next to this file and the outputs (events.csv, advances.csv,
 # loading.csv, ...) in OUT_ROOT.
@@ -17,9 +18,10 @@ hm=$(python3 -c "print($h / 1000)")
 tag="r${r}_g${g}_h${h}_dc${dc}"
 damp=""
 if [ -n "$ETA" ]; then damp="--damping $ETA"; tag="${tag}_eta$ETA"; fi
+law="--dynamics --law slip-weakening --dc $dc $damp"
+if [ -n "$RULE" ]; then law="--law static-kinetic --rule $RULE"; tag="r${r}_g${g}_h${h}_qs_$RULE"; fi
 mkdir -p "$root"
-nice timeout "$lim" /usr/bin/time -v "$BIN" slide --dynamics --law slip-weakening --r "$r" --g "$g" \
-  --dc "$dc" --h "$hm" $damp --operator banded --cycles 1 --cycle-end crossing --states none \
-  --max-events "${MAX_EVENTS:-60000}" --out "$root/$tag" --force > "$root/$tag.log" 2>&1 \
-  || echo "exit $?" >> "$root/$tag.log"
-sed 's/slide --dynamics *[0-9.]* %//g' "$root/$tag.log" > "$here/$tag.log"
+nice timeout "$lim" /usr/bin/time -v "$BIN" slide $law --r "$r" --g "$g" --h "$hm" --operator banded \
+  --cycles 1 --cycle-end crossing --states none --max-events "${MAX_EVENTS:-60000}" \
+  --out "$root/$tag" --force > "$root/$tag.log" 2>&1 || echo "exit $?" >> "$root/$tag.log"
+sed 's/slide [-a-z]* *[0-9.]* %//g' "$root/$tag.log" > "$here/$tag.log"

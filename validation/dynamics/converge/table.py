@@ -16,7 +16,10 @@ import re
 import statistics
 import sys
 
-TAG = re.compile(r"r([\d.]+)_g([\d.]+)_h([\d.]+)_dc([\d.e+-]+?)(?:_eta([\d.e+-]+))?$")
+TAG = re.compile(r"r([\d.]+)_g([\d.]+)_h([\d.]+)(?:_dc([\d.e+-]+?)(?:_eta([\d.e+-]+))?|_qs_(\w+))$")
+
+
+STATIC = {"slip", "stick", "open", "close", "normal-load", "edge-preslip", "end", "creep", "sample"}
 
 
 def rows(path):
@@ -30,20 +33,21 @@ def one(root, name):
     if not os.path.exists(os.path.join(d, "advances.csv")):
         return None
     m = TAG.match(name)
-    r, g, h, dc, eta = m.groups()
+    r, g, h, dc, eta, rule = m.groups()
     ev = rows(os.path.join(d, "events.csv"))
-    cross = next((e for e in ev if e["kind"] == "crossing"), None)
+    cross = next((e for e in ev if e["kind"] in ("crossing", "sliding")), None)
     upto = ev[: ev.index(cross) + 1] if cross else ev
     adv = rows(os.path.join(d, "advances.csv"))
-    dy = [e for e in rows(os.path.join(d, "dyn_events.csv")) if e["instability"] == "1"]
+    dyn = os.path.join(d, "dyn_events.csv")
+    dy = [e for e in rows(dyn) if e["instability"] == "1"] if os.path.exists(dyn) else []
     model = re.search(r"n = (\d+), F_1 = ([\d.]+), x_1 = ([-\d.]+), F_max = ([\d.]+)", log)
-    fe = re.search(r"dynamics: n = (\d+) \(advancing.*?F_1 = ([-\d.]+), x_1 = ([-\d.]+)", log)
+    fe = re.search(r"(?:dynamics|FE): n = (\d+) \(advancing.*?F_1 = ([-\d.]+), x_1 = ([-\d.]+)", log)
     wall = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)", log)
     user = re.search(r"User time \(seconds\): ([\d.]+)", log)
     kappa = re.search(r"kappa = .*? = ([\d.]+)", log)
     wall_s = sum(float(x) * 60 ** i for i, x in enumerate(reversed(wall.group(1).split(":")))) if wall else float("nan")
     return dict(
-        r=r, g=g, h_mm=float(h), dc=dc, eta=eta or "default", kappa=kappa.group(1) if kappa else "?",
+        r=r, g=g, h_mm=float(h), dc=dc or "", run=f"quasi-static {rule}" if rule else "dynamics", eta=eta or ("" if rule else "default"), kappa=kappa.group(1) if kappa else "?",
         n_front=len(adv),
         f1_front=float(adv[0]["F_over_mu_s_N"]) if adv else float("nan"),
         x1_front=float(adv[0]["front_over_L"]) if adv else float("nan"),
@@ -54,7 +58,7 @@ def one(root, name):
         f_cross=float(cross["F_over_mu_s_N"]) if cross else float("nan"),
         x_cross=float(cross["X_m"]) if cross else float("nan"),
         drop_moving=statistics.median([float(e["drop_while_moving"]) for e in dy if e["drop_while_moving"]] or [float("nan")]),
-        instabilities=len(dy), events=len(ev),
+        instabilities=len(dy) if dy else sum(e["kind"] not in STATIC for e in upto), events=len(ev),
         model=model.groups() if model else None,
         wall_s=wall_s, cpu_s=float(user.group(1)) if user else float("nan"),
     )
@@ -68,26 +72,29 @@ def main():
     groups = {}
     for x in runs:
         groups.setdefault((x["r"], x["g"]), []).append(x)
-    head = ("| h (mm) | damping eta (s) | front advances n | first advance F/(mu_s N) | its front x/L | last front x/L "
-            "| one definition n, F_1, x_1 | largest F/(mu_s N) before the crossing | crossing F/(mu_s N), X (m) "
+    head = ("| run | h (mm) | damping eta (s) | front advances n | first advance F/(mu_s N) | its front x/L | last front x/L "
+            "| one definition n, F_1, x_1 | largest F/(mu_s N) before the crossing | cycle end (crossing or whole slip) F/(mu_s N), X (m) "
             "| median drop while moving | instabilities | wall, CPU (s) |")
     for (r, g), xs in groups.items():
-        xs.sort(key=lambda x: (x["eta"] != "default", -x["h_mm"], x["eta"]))
+        xs.sort(key=lambda x: (x["run"], x["eta"] != "default", -x["h_mm"], x["eta"]))
         md = xs[0]["model"]
-        print(f"\n### (r, g) = ({r}, {g}), kappa = {xs[0]['kappa']}, D_c = {xs[0]['dc']} m")
+        dx = next((x for x in xs if x["run"] == "dynamics"), xs[0])
+        print(f"\n### (r, g) = ({r}, {g}); dynamics at kappa = {dx['kappa']}, D_c = {dx['dc']} m")
         if md:
             print(f"model: n = {md[0]}, F_1 = {md[1]}, x_1 = {md[2]}, F_max = {md[3]}\n")
         print(head)
         print("|" + "---|" * (head.count("|") - 1))
         for x in xs:
-            print(f"| {x['h_mm']} | {x['eta']} | {x['n_front']} | {x['f1_front']:.4f} | {x['x1_front']:.4f} | {x['last_front']:.4f} "
+            print(f"| {x['run']} | {x['h_mm']} | {x['eta']} | {x['n_front']} | {x['f1_front']:.4f} | {x['x1_front']:.4f} | {x['last_front']:.4f} "
                   f"| {x['n']}, {x['f1']}, {x['x1']} | {x['f_peak']:.4f} | {x['f_cross']:.4f}, {x['x_cross']:.3e} "
                   f"| {x['drop_moving']:.2f} | {x['instabilities']} | {x['wall_s']:.0f}, {x['cpu_s']:.0f} |")
             out.append({k: v for k, v in x.items() if k != "model"})
-        mesh = [x for x in xs if x["eta"] == "default"]
-        if len(mesh) > 1:
-            sp = lambda k: max(x[k] for x in mesh) - min(x[k] for x in mesh)
-            print(f"\nspread over h = {', '.join(str(x['h_mm']) for x in mesh)} mm: n_front {sp('n_front')}, "
+        for kind in sorted({x["run"] for x in xs}):
+            mesh = [x for x in xs if x["run"] == kind and x["eta"] in ("default", "")]
+            if len(mesh) < 2:
+                continue
+            sp = lambda k: max(x[k] for x in mesh) - min(x[k] for x in mesh)  # noqa: E731
+            print(f"\n{kind}: spread over h = {', '.join(str(x['h_mm']) for x in mesh)} mm: n_front {sp('n_front')}, "
                   f"first advance F {sp('f1_front'):.4f}, its front {sp('x1_front'):.4f} L, "
                   f"largest F {sp('f_peak'):.4f}, crossing F {sp('f_cross'):.4f}")
     if "--csv" in sys.argv:
