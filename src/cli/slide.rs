@@ -84,10 +84,10 @@ pub struct Args {
     /// (fields_<event>.msh, Gmsh) or both.
     #[arg(long, default_value = "vtu", value_parser = ["vtu", "msh", "both"])]
     pub field_format: String,
-    /// states.csv (the interface after every event, ~40 bytes per node and event): `all` or
-    /// `none`. `all` keeps every event's state in memory (~48 bytes per node and event);
-    /// `none` keeps only the last one and each event's row, every other file unchanged
-    /// (no --fields). Default: all, except with --drive-velocity (its ~2000 samples x n rows
+    /// states.csv (the interface after every event: a row of ~95 bytes per node and event):
+    /// `all` or `none`. `all` also keeps every event's state in memory (48 bytes per node and
+    /// event); `none` keeps only the last state and each event's summary (every other file
+    /// the same bytes; --fields refused). Default: all, except with --drive-velocity (its ~2000 samples x n rows
     /// are written only when asked); `none` for long --dynamics runs (0.7 GB at h = 1 mm).
     #[arg(long, value_parser = ["all", "none"])]
     pub states: Option<String>,

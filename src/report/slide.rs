@@ -362,7 +362,8 @@ pub fn write(r: &SlideResult, dir: &Path, header: &str, states: bool) -> Result<
 /// and/or `fields_<state>.msh` (Gmsh) as `format` asks, with displacement, nodal stresses, von
 /// Mises, `interface_state` (0 stick, 1 slip, 2 open, -1 off the interface) and `event` (the
 /// state's row in loading.csv, the same at every node); with .vtu, `fields.pvd`, whose
-/// timestep is the drive X in m (pick the states with [`field_states`]: one per X).
+/// timestep is the drive X in m (pick the states with [`field_states`]: one per X). Needs a
+/// run that kept its states (refused otherwise).
 pub fn write_fields(
     r: &SlideResult,
     picks: &[usize],
@@ -418,7 +419,8 @@ pub fn write_fields(
 
 /// Up to `k` states for the field files, one per drive X (the settled state, the last at
 /// that X: an instability relaxes at fixed X, so its intermediate states share the X),
-/// spread evenly over the run, the first and last X included.
+/// spread evenly over the run, the first and last X included. Read off the summaries; the
+/// picks index the states, so [`write_fields`] needs a run that kept them.
 pub fn field_states(r: &SlideResult, k: usize) -> Vec<usize> {
     let s = &r.run.summaries;
     let settled: Vec<usize> = (0..s.len()).filter(|&i| i + 1 == s.len() || s[i + 1].x != s[i].x).collect();
