@@ -395,8 +395,10 @@ fn slide_result<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let run = &res.run;
     let c = &res.condensed;
-    let col =
-        |f: &dyn Fn(&tribofe::interface::events::State) -> f64| run.states.iter().map(f).collect::<Vec<_>>();
+    // The loading columns from every event's summary (kept whether or not the states are).
+    let col = |f: &dyn Fn(&tribofe::interface::events::Summary) -> f64| {
+        run.summaries.iter().map(f).collect::<Vec<_>>()
+    };
     let loading = PyDict::new(py);
     loading.set_item("X_m", arr(py, &col(&|s| s.x)))?;
     loading.set_item("F_N_per_m", arr(py, &col(&|s| s.f)))?;

@@ -60,7 +60,9 @@ pub struct Args {
     /// the last cycle end, trailing edge to leading edge: what `precursors fe` uses).
     #[arg(long, default_value = "whole-slip", value_parser = ["whole-slip", "crossing"])]
     pub cycle_end: String,
-    /// Cap on events (each keeps the interface state: ~40 bytes per node).
+    /// Cap on events. Each event keeps in memory its row (~0.2 kB, plus 8 bytes per run of
+    /// slipping nodes) and, unless `--states none`, the interface state after it (~48 bytes
+    /// per node); the cap is refused up front if that cannot fit in half the memory.
     #[arg(long, default_value_t = 50_000)]
     pub max_events: usize,
     /// Slip weakening: each relaxation's coefficients by Newton where a stable equilibrium is
@@ -82,9 +84,11 @@ pub struct Args {
     /// (fields_<event>.msh, Gmsh) or both.
     #[arg(long, default_value = "vtu", value_parser = ["vtu", "msh", "both"])]
     pub field_format: String,
-    /// states.csv (the interface after every event, ~40 bytes per node and event): `all` or
-    /// `none`. Default: all, except with --drive-velocity (its ~2000 samples x n rows are
-    /// written only when asked); `none` for long --dynamics runs (0.7 GB at h = 1 mm).
+    /// states.csv (the interface after every event: a row of ~95 bytes per node and event):
+    /// `all` or `none`. `all` also keeps every event's state in memory (48 bytes per node and
+    /// event); `none` keeps only the last state and each event's summary (every other file
+    /// the same bytes; --fields refused). Default: all, except with --drive-velocity (its ~2000 samples x n rows
+    /// are written only when asked); `none` for long --dynamics runs (0.7 GB at h = 1 mm).
     #[arg(long, value_parser = ["all", "none"])]
     pub states: Option<String>,
     /// Output directory.
@@ -221,6 +225,14 @@ fn run_checked(
     if a.newton && a.law != "slip-weakening" {
         return Err(Error::input("newton", "--newton cannot act without --law slip-weakening"));
     }
+    // Whether every event's state is kept in memory: only for states.csv and --fields.
+    let keep_states = a.states.as_deref().map_or(!(a.dynamics && a.drive_velocity.is_some()), |s| s == "all");
+    if a.fields > 0 && a.states.as_deref() == Some("none") {
+        return Err(Error::input(
+            "--fields",
+            "needs every event's state, which `--states none` does not keep: drop --fields or --states none",
+        ));
+    }
     if a.fields > a.max_events {
         return Err(Error::input(
             "--fields",
@@ -238,6 +250,7 @@ fn run_checked(
         cycles: a.cycles,
         end_at_crossing: a.cycle_end == "crossing",
         max_events: a.max_events,
+        keep_states,
         newton: a.newton,
         operator: if a.operator == "banded" {
             tribofe::interface::events::Operator::Banded
@@ -268,7 +281,7 @@ fn run_checked(
     ];
     let header = tribofe::report::run_toml(super::invocation(), &results, &scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
-    let states = a.states.as_deref() != Some("none");
+    let states = res.options.keep_states;
     tribofe::report::slide::write(&res, dir.path(), &header, states)?;
     if a.fields > 0 {
         let picks = tribofe::report::slide::field_states(&res, a.fields);
@@ -276,7 +289,7 @@ fn run_checked(
     }
     dir.commit()?;
     let worst = res.run.max_violation;
-    let last = res.run.states.last().ok_or_else(|| Error::input("slide", "the run recorded no state"))?;
+    let last = res.run.summaries.last().ok_or_else(|| Error::input("slide", "the run recorded no state"))?;
     outln!(
         "{}: {} interface nodes, {} events ({}), {} cycles ended (whole-interface slips, or crossings with --cycle-end crossing)",
         law.name(),
@@ -390,7 +403,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     let writing = std::time::Instant::now();
     // A constant-velocity run samples ~2000 states: states.csv (one row per node and state)
     // would be ~2000 n rows, so it is left out there unless asked for.
-    let states = a.states.as_deref().map_or(a.drive_velocity.is_none(), |s| s == "all");
+    let states = o.keep_states;
     tribofe::report::dynamic_slide::write(&res, dir.path(), &header, states)?;
     dir.commit()?;
     let written_s = writing.elapsed().as_secs_f64();

@@ -29,8 +29,8 @@ pub fn loading_csv(r: &SlideResult) -> Result<String> {
     let mut s = String::from(
         "event,phase,X_m,F_N_per_m,N_N_per_m,Fc_N_per_m,F_over_N,tilt_rad,V_m,n_stick,n_slip,n_open,max_violation\n",
     );
-    for (k, st) in r.run.states.iter().enumerate() {
-        let [a, b, c] = st.counts();
+    for (k, st) in r.run.summaries.iter().enumerate() {
+        let [a, b, c] = st.counts;
         let phase = if st.phase == Phase::Normal { "normal" } else { "drive" };
         writeln!(
             s,
@@ -42,7 +42,7 @@ pub fn loading_csv(r: &SlideResult) -> Result<String> {
             num("F/N", if st.n_force > 0.0 { st.f / st.n_force } else { 0.0 })?,
             num("tilt", st.tilt)?,
             num("V", st.v)?,
-            num("violation", st.violations.max())?
+            num("violation", st.max_violation)?
         )
         .unwrap();
     }
@@ -54,7 +54,7 @@ pub fn events_csv(r: &SlideResult) -> Result<String> {
     let n = r.options.n_force;
     let c = &r.condensed;
     let mut s = String::from("event,kind,X_m,F_N_per_m,F_over_mu_s_N,Fc_over_mu_s_N,x_nucleation_over_L,x_arrest_over_L,region_first_over_L,region_last_over_L,slipped_length_over_L,F_relaxed_over_mu_s_N,backslip_nodes,max_violation,overload\n");
-    for (k, (e, st)) in r.run.events.iter().zip(&r.run.states).enumerate() {
+    for (k, (e, st)) in r.run.events.iter().zip(&r.run.summaries).enumerate() {
         let (first, last, len) = match e.region {
             Some((a, b)) => (c.x[a] / c.l, c.x[b] / c.l, c.w[a..=b].iter().sum::<f64>() / c.l),
             None => (c.x[e.node] / c.l, c.x[e.node] / c.l, 0.0),
@@ -74,8 +74,8 @@ pub fn events_csv(r: &SlideResult) -> Result<String> {
             num("length", len)?,
             num("F*", e.f_relaxed / (mu_s * n))?,
             e.backslip,
-            num("violation", st.violations.max())?,
-            num("overload", st.violations.overload)?
+            num("violation", st.max_violation)?,
+            num("overload", st.overload)?
         )
         .unwrap();
     }
@@ -114,9 +114,11 @@ pub fn states_csv(r: &SlideResult) -> Result<String> {
     String::from_utf8(states_bytes(r)?).map_err(|e| crate::error::Error::input("states.csv", e.to_string()))
 }
 
-/// [`states_csv`]'s bytes (61 MB at h = 0.5 mm: not checked again as UTF-8).
+/// [`states_csv`]'s bytes (61 MB at h = 0.5 mm: not checked again as UTF-8). Needs a run
+/// that kept its states ([`crate::interface::events::Problem::keep_states`]).
 fn states_bytes(r: &SlideResult) -> Result<Vec<u8>> {
     use rayon::prelude::*;
+    needs_states(r, "states.csv")?;
     let c = &r.condensed;
     let pm = r.p_mean();
     let header = "event,x_over_L,p_over_pmean,tau_over_pmean,slip_m,gap_m,state\n";
@@ -162,12 +164,26 @@ fn states_bytes(r: &SlideResult) -> Result<Vec<u8>> {
     Ok(out)
 }
 
+/// Refuses a reader of every event's state (`what`) on a run that kept only its last.
+fn needs_states(r: &SlideResult, what: &str) -> Result<()> {
+    if r.run.has_all_states() {
+        return Ok(());
+    }
+    Err(crate::error::Error::input(
+        what,
+        format!(
+            "needs the interface state of every event, but the run kept only its last of {} (keep_states false, `--states none`): run with the states kept",
+            r.run.events.len()
+        ),
+    ))
+}
+
 /// The FE loading curve (F^c, F)/(mu_s N) of the drive phase: each instability is a vertical
 /// drop from its force to its relaxed force.
 pub fn fe_curve(r: &SlideResult) -> Vec<(f64, f64)> {
     let k = r.options.law.mu_s() * r.options.n_force;
     let mut pts = vec![(0.0, 0.0)];
-    for (e, st) in r.run.events.iter().zip(&r.run.states) {
+    for (e, st) in r.run.events.iter().zip(&r.run.summaries) {
         if st.phase != Phase::Drive {
             continue;
         }
@@ -234,7 +250,7 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
     let mut segs: Vec<(f64, f64, f64, bool)> = Vec::new();
     let mut runs: Vec<(f64, f64, f64)> = Vec::new();
     let mut force: Vec<(f64, f64)> = Vec::new();
-    for (k, (e, st)) in r.run.events.iter().zip(&r.run.states).enumerate() {
+    for (k, (e, st)) in r.run.events.iter().zip(&r.run.summaries).enumerate() {
         if st.phase != Phase::Drive {
             continue;
         }
@@ -248,15 +264,8 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
                 e.kind == crate::interface::events::EventKind::Sliding || (a == 0 && b + 1 == c.n),
             ));
         }
-        let mut i = 0;
-        while i < c.n {
-            if matches!(st.states[i], NodeState::Slip(_)) {
-                let j = (i..c.n).find(|&k| !matches!(st.states[k], NodeState::Slip(_))).unwrap_or(c.n);
-                runs.push((c.x[i] / c.l, c.x[j - 1] / c.l, y));
-                i = j;
-            } else {
-                i += 1;
-            }
+        for &(i, j) in &st.slip_runs {
+            runs.push((c.x[i as usize] / c.l, c.x[j as usize] / c.l, y));
         }
     }
     let (y0, y1) = force.iter().fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
@@ -334,8 +343,15 @@ pub fn fronts_svg(r: &SlideResult) -> Result<String> {
 }
 
 /// Writes every output into `dir`, `states.csv` (~40 bytes per node and state, hundreds of MB
-/// for long runs) only if `states`; `header` is the run.toml text (what produced the files).
+/// for long runs) only if `states` (which needs a run that kept its states); `header` is the
+/// run.toml text (what produced the files). Every other file reads [`Run::summaries`], so
+/// it is the same whether or not the run kept its states.
+///
+/// [`Run::summaries`]: crate::interface::events::Run::summaries
 pub fn write(r: &SlideResult, dir: &Path, header: &str, states: bool) -> Result<Vec<PathBuf>> {
+    if states {
+        needs_states(r, "states.csv")?;
+    }
     // states.csv (most of the output's time: formatting, the CSV guard, the copy into the
     // page cache) is made and written beside the other files; errors are reported in the
     // files' order, as one after another would.
@@ -373,7 +389,8 @@ pub fn write(r: &SlideResult, dir: &Path, header: &str, states: bool) -> Result<
 /// and/or `fields_<state>.msh` (Gmsh) as `format` asks, with displacement, nodal stresses, von
 /// Mises, `interface_state` (0 stick, 1 slip, 2 open, -1 off the interface) and `event` (the
 /// state's row in loading.csv, the same at every node); with .vtu, `fields.pvd`, whose
-/// timestep is the drive X in m (pick the states with [`field_states`]: one per X).
+/// timestep is the drive X in m (pick the states with [`field_states`]: one per X). Needs a
+/// run that kept its states (refused otherwise).
 pub fn write_fields(
     r: &SlideResult,
     picks: &[usize],
@@ -384,6 +401,7 @@ pub fn write_fields(
     if format == crate::io::FieldFormat::None || picks.is_empty() {
         return Ok(Vec::new());
     }
+    needs_states(r, "fields")?;
     if let Some(w) = picks.windows(2).find(|w| r.run.states[w[1]].x <= r.run.states[w[0]].x) {
         return Err(crate::error::Error::input(
             "fields",
@@ -428,9 +446,10 @@ pub fn write_fields(
 
 /// Up to `k` states for the field files, one per drive X (the settled state, the last at
 /// that X: an instability relaxes at fixed X, so its intermediate states share the X),
-/// spread evenly over the run, the first and last X included.
+/// spread evenly over the run, the first and last X included. Read off the summaries; the
+/// picks index the states, so [`write_fields`] needs a run that kept them.
 pub fn field_states(r: &SlideResult, k: usize) -> Vec<usize> {
-    let s = &r.run.states;
+    let s = &r.run.summaries;
     let settled: Vec<usize> = (0..s.len()).filter(|&i| i + 1 == s.len() || s[i + 1].x != s[i].x).collect();
     spread(settled.len(), k.min(settled.len())).into_iter().map(|i| settled[i]).collect()
 }

@@ -149,7 +149,8 @@ impl Opening {
     }
 }
 
-/// Open nodes from the trailing end of a state.
+/// Open nodes from the trailing end of a state (reads the per-node states: the edge runs
+/// keep them, [`SlideOptions::keep_states`] at its default).
 fn open_nodes(r: &SlideResult, k: usize) -> usize {
     r.run.states[k].states.iter().take_while(|s| **s == NodeState::Open).count()
 }

@@ -5,7 +5,7 @@ use crate::error::{Error, Result};
 use crate::fem::problem::{solve, LoadCase};
 use crate::interface::banded::BandedOperator;
 use crate::interface::condense::{boundary_model, condense, Condensed};
-use crate::interface::events::{run_with, NodeState, Operator, OperatorRef, Problem, Run};
+use crate::interface::events::{self, run_with, Operator, OperatorRef, Problem, Run};
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
 use crate::precursors::definition::{self, Precursors, Slip};
@@ -75,18 +75,15 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
             ),
         ));
     }
-    if o.keep_states && scene.mesh.file.is_none() {
+    if scene.mesh.file.is_none() {
         // Interface nodes of the structured mesh (the run checks again with the exact count,
         // and for a mesh file).
         let n = scene.estimate_nx() + 1.0;
-        // The dense condensed system first: it is the size that matters most (names --h).
-        crate::scene::limits::check_interface(n as usize)?;
-        crate::scene::limits::check_bytes(
-            o.max_events as f64 * (40.0 * n + 200.0),
-            "--max-events",
-            &format!("keeping up to {} states of about {n} interface nodes", o.max_events),
-            "lower --max-events",
-        )?;
+        if o.keep_states || o.operator == Operator::Dense {
+            // The dense condensed system first: it is the size that matters most (names --h).
+            crate::scene::limits::check_interface(n as usize)?;
+        }
+        check_records(o, n as usize, "about ")?;
     }
     // The model is linear and of small strains: a mean pressure N/L above E is a strain of
     // order one; below 1e-100 N/m the displacements underflow into subnormals (N = 1e-308
@@ -153,6 +150,30 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Refuses an event cap whose records would not fit in half the memory: per event its
+/// [`events::Event`] and [`events::Summary`] always, and its [`events::State`] (T, P, u, gap
+/// and state of each of the `n` nodes) when `keep_states` ([`events::bytes_per_event`]).
+fn check_records(o: &SlideOptions, n: usize, about: &str) -> Result<()> {
+    let per = events::bytes_per_event(n, o.keep_states);
+    let what = if o.keep_states {
+        format!(
+            "keeping up to {} states of {about}{n} interface nodes ({per:.0} bytes an event)",
+            o.max_events
+        )
+    } else {
+        format!(
+            "keeping up to {} event summaries (`--states none`: no states) of {about}{n} interface nodes ({per:.0} bytes an event at most)",
+            o.max_events
+        )
+    };
+    let hint = if o.keep_states {
+        "lower --max-events, or keep no states (`--states none`: no states.csv)"
+    } else {
+        "lower --max-events"
+    };
+    crate::scene::limits::check_bytes(o.max_events as f64 * per, "--max-events", &what, hint)
 }
 
 /// Condenses and runs; `progress` gets the fraction of the drive done at each event. With
@@ -237,15 +258,7 @@ fn run_on(
         return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
     }
     check_options(scene, o)?;
-    if o.keep_states {
-        // Every event keeps its state (u, p, t, state of each node, ~40 bytes a node).
-        crate::scene::limits::check_bytes(
-            o.max_events as f64 * (40.0 * c.n as f64 + 200.0),
-            "--max-events",
-            &format!("keeping up to {} states of {} interface nodes", o.max_events, c.n),
-            "lower --max-events",
-        )?;
-    }
+    check_records(o, c.n, "")?;
     let run = run_with(op, c.n, o, &|x| progress.fraction(x))?;
     Ok(SlideResult {
         scene: scene.clone(),
@@ -261,11 +274,18 @@ fn run_on(
 /// `res.run.states`): every interface and plate DOF prescribed at the state's value, one
 /// factorisation, one right-hand side per state. Returns the model they live on (the plate's
 /// U is referred to the block top there) and one full displacement vector per state, m.
+/// Needs a run that kept its states ([`Problem::keep_states`]).
 pub fn state_displacements(
     res: &SlideResult,
     states: &[usize],
     opts: &SolverOptions,
 ) -> Result<(SceneModel, Vec<Vec<f64>>)> {
+    if !res.run.has_all_states() {
+        return Err(Error::input(
+            "state",
+            "the run kept only its last state (keep_states false): the fields of an event need a run that keeps its states",
+        ));
+    }
     let (sm, bdofs) = boundary_model(&res.scene)?;
     let n = res.condensed.n;
     if sm.interface.len() != n {
@@ -303,14 +323,14 @@ pub fn coefficients_from_rg(scene: &Scene, r: f64, g: f64) -> Result<(f64, f64)>
 /// Front of the slip zone grown from the trailing edge (x = -L/2) of a state: x/L midway
 /// between the last slipping node of the run that starts at the first contact node (open
 /// trailing nodes are skipped) and the next node; None when that first contact node sticks.
+/// Read off the state's [`events::Summary`], so states need not be kept.
 pub fn trailing_front(res: &SlideResult, state: usize) -> Option<f64> {
-    let st = &res.run.states[state];
+    let st = &res.run.summaries[state];
     let c = &res.condensed;
-    let c0 = st.states.iter().position(|s| *s != NodeState::Open)?;
-    if !matches!(st.states[c0], NodeState::Slip(_)) {
-        return None;
-    }
-    let k = (c0..c.n).find(|&k| !matches!(st.states[k], NodeState::Slip(_))).unwrap_or(c.n);
+    let c0 = st.first_contact?;
+    // The run of slipping nodes that starts at the first contact node, if it slips.
+    let &(_, last) = st.slip_runs.iter().find(|r| r.0 == c0)?;
+    let k = last as usize + 1;
     if k >= c.n {
         return Some(0.5);
     }
@@ -333,7 +353,7 @@ pub fn front_offset(res: &SlideResult) -> Option<FrontOffset> {
     let (l, t) = (res.condensed.l, res.condensed.t);
     let g = 6.0 * mu * res.scene.loading.height / l;
     let mut d = Vec::new();
-    for (k, st) in res.run.states.iter().enumerate() {
+    for (k, st) in res.run.summaries.iter().enumerate() {
         if st.phase != crate::interface::events::Phase::Drive || mu == 0.0 {
             continue;
         }

@@ -30,8 +30,8 @@ impl StateField {
     ];
 }
 
-/// The events as columns, one entry per event that has a recorded state (all of them unless
-/// `keep_states` was off); forces in units of mu_s N where the name says so.
+/// The events as columns, one entry per event (read off the events and their summaries, so
+/// kept states or not); forces in units of mu_s N where the name says so.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct EventColumns {
     /// The event kind's CSV name.
@@ -58,7 +58,8 @@ pub struct EventColumns {
 }
 
 impl SlideResult {
-    /// The field over every recorded state: a row-major array of shape [states, nodes].
+    /// The field over every recorded state: a row-major array of shape [states, nodes] (one
+    /// row, the last state, for a run that did not keep its states).
     pub fn field(&self, which: StateField) -> (Vec<f64>, [usize; 2]) {
         let n = self.condensed.n;
         let states = &self.run.states;
@@ -96,7 +97,7 @@ impl SlideResult {
         let scale = mu_s * self.options.n_force;
         let c = &self.condensed;
         let mut t = EventColumns::default();
-        for (e, st) in self.run.events.iter().zip(&self.run.states) {
+        for (e, st) in self.run.events.iter().zip(&self.run.summaries) {
             let (first, last, len) = match e.region {
                 Some((a, b)) => (c.x[a] / c.l, c.x[b] / c.l, c.w[a..=b].iter().sum::<f64>() / c.l),
                 None => (c.x[e.node] / c.l, c.x[e.node] / c.l, 0.0),
@@ -114,8 +115,8 @@ impl SlideResult {
             t.slipped_length_over_l.push(len);
             t.f_relaxed_over_mu_s_n.push(e.f_relaxed / scale);
             t.backslip_nodes.push(e.backslip);
-            t.max_violation.push(st.violations.max());
-            t.overload.push(st.violations.overload);
+            t.max_violation.push(st.max_violation);
+            t.overload.push(st.overload);
         }
         t
     }

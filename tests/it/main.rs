@@ -23,6 +23,7 @@ mod friction;
 mod gmsh_io;
 mod inputs;
 mod layering;
+mod lean;
 mod observer;
 mod operator;
 mod paper_rule;

@@ -112,8 +112,9 @@ pub struct Problem {
     pub cycles: usize,
     /// Cap on recorded events (a run that needs more stops with [`crate::Error::EventCap`]).
     pub max_events: usize,
-    /// Keep every event's state (false: only the last, for studies that need the events
-    /// alone; a state is ~40 bytes per node).
+    /// Keep every event's [`State`] (false: only the last one; every event's [`Summary`] is
+    /// kept either way). A state is ~40 bytes per node ([`STATE_BYTES_PER_NODE`]), a summary
+    /// ~100 bytes plus 8 per run of slipping nodes ([`Summary::bytes`]).
     pub keep_states: bool,
     /// Static-kinetic: nodes whose pressure force is below this fraction of the mean nodal
     /// force N/n slide continuously at mu_d (creep) instead of triggering an instability
@@ -266,11 +267,97 @@ pub struct Event {
     pub all_slipping: bool,
 }
 
+/// Bytes a kept [`State`] takes per interface node: T, P, u, gap (4 f64) and the node state
+/// (an enum of 16 bytes); plus [`STATE_BYTES_FIXED`] a state.
+pub const STATE_BYTES_PER_NODE: f64 = 48.0;
+pub const STATE_BYTES_FIXED: f64 = 200.0;
+
+/// What the reports read of one recorded state, kept for every event whether or not the run
+/// keeps its [`State`]s ([`Problem::keep_states`]): loading.csv's row, events.csv's violation
+/// and overload, fronts.svg's runs of slipping nodes and the trailing slip front
+/// ([`crate::studies::slide::trailing_front`]). Equal to [`Summary::of`] the state it sums up.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Summary {
+    pub phase: Phase,
+    /// As the [`State`]'s: X (m), N reached and F (N/m), tilt (rad), V (m).
+    pub x: f64,
+    pub n_force: f64,
+    pub f: f64,
+    pub tilt: f64,
+    pub v: f64,
+    /// Nodes sticking, slipping, open ([`State::counts`]).
+    pub counts: [u32; 3],
+    /// [`Violations::max`] and [`Violations::overload`] of the state.
+    pub max_violation: f64,
+    pub overload: f64,
+    /// The first node not open (None: every node open).
+    pub first_contact: Option<u32>,
+    /// First and last node of each run of consecutive slipping nodes, in node order.
+    pub slip_runs: Vec<(u32, u32)>,
+}
+
+impl Summary {
+    /// The summary of a state (node indices fit u32: the interface is bounded far below by
+    /// [`crate::scene::limits::check_interface`]).
+    pub fn of(st: &State) -> Summary {
+        let slipping = |i: usize| matches!(st.states[i], NodeState::Slip(_));
+        let n = st.states.len();
+        let mut slip_runs = Vec::new();
+        let mut i = 0;
+        while i < n {
+            if slipping(i) {
+                let j = (i..n).find(|&k| !slipping(k)).unwrap_or(n);
+                slip_runs.push((i as u32, (j - 1) as u32));
+                i = j;
+            } else {
+                i += 1;
+            }
+        }
+        let [a, b, c] = st.counts();
+        Summary {
+            phase: st.phase,
+            x: st.x,
+            n_force: st.n_force,
+            f: st.f,
+            tilt: st.tilt,
+            v: st.v,
+            counts: [a as u32, b as u32, c as u32],
+            max_violation: st.violations.max(),
+            overload: st.violations.overload,
+            first_contact: st.states.iter().position(|s| *s != NodeState::Open).map(|k| k as u32),
+            slip_runs,
+        }
+    }
+
+    /// Upper bound of the bytes one recorded event takes when states are not kept, on an
+    /// interface of `n` nodes: its [`Event`] and [`Summary`] and the most runs of slipping
+    /// nodes a state can have ((n + 1)/2, 8 bytes each).
+    pub fn bytes(n: usize) -> f64 {
+        (std::mem::size_of::<Event>() + std::mem::size_of::<Summary>()) as f64 + 8.0 * n.div_ceil(2) as f64
+    }
+}
+
+/// Bytes the records of one event take on an interface of `n` nodes: its state, event and
+/// summary when states are kept ([`Problem::keep_states`]), else the event and summary alone.
+pub fn bytes_per_event(n: usize, keep_states: bool) -> f64 {
+    let summary = Summary::bytes(n);
+    if keep_states {
+        summary + STATE_BYTES_PER_NODE * n as f64 + STATE_BYTES_FIXED
+    } else {
+        summary
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct Run {
     pub events: Vec<Event>,
-    /// One state per event, or only the last one ([`Problem::keep_states`] false).
+    /// One state per event, or only the last one ([`Problem::keep_states`] false). Readers
+    /// that need the per-node fields of every event (states.csv, `--fields`, the field
+    /// arrays, the precursor field checks, the edge study) need a run that kept them; the
+    /// reports of the loading and the events read [`Run::summaries`].
     pub states: Vec<State>,
+    /// One per event, always.
+    pub summaries: Vec<Summary>,
     /// Largest [`Violations::max`] over every recorded state, kept or not.
     pub max_violation: f64,
     /// Tangential stiffness of the all-stuck interface dF/dX, N/m per m (F^c = k_bonded X).
@@ -280,6 +367,39 @@ pub struct Run {
     /// low-rank row updates and band factorisations.
     pub updates: usize,
     pub refreshes: usize,
+}
+
+impl Run {
+    /// An empty run (no event yet) of bonded stiffness `k_bonded`.
+    pub(crate) fn new(k_bonded: f64) -> Run {
+        Run {
+            events: vec![],
+            states: vec![],
+            summaries: vec![],
+            max_violation: 0.0,
+            k_bonded,
+            sliding_events: 0,
+            updates: 0,
+            refreshes: 0,
+        }
+    }
+
+    /// Whether every event's state is here (the run kept its states).
+    pub fn has_all_states(&self) -> bool {
+        self.states.len() == self.events.len()
+    }
+
+    /// Records one event and the state after it: its summary always, the state itself if
+    /// `keep_states` (else it replaces the one kept).
+    pub(crate) fn push(&mut self, ev: Event, st: State, keep_states: bool) {
+        self.max_violation = self.max_violation.max(st.violations.max());
+        self.summaries.push(Summary::of(&st));
+        if !keep_states {
+            self.states.clear();
+        }
+        self.events.push(ev);
+        self.states.push(st);
+    }
 }
 
 impl Event {

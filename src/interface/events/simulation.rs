@@ -95,16 +95,7 @@ pub(crate) fn start<'a, 'p>(
     }
     sv.dscale = v_scale;
     sv.set_phase(Phase::Normal);
-    let out = Run {
-        events: vec![],
-        states: vec![],
-        max_violation: 0.0,
-        k_bonded,
-        sliding_events: 0,
-        updates: 0,
-        refreshes: 0,
-    };
-    Ok((sv, Recorder { out, prev_u: vec![0.0; n], pb }))
+    Ok((sv, Recorder { out: Run::new(k_bonded), prev_u: vec![0.0; n], pb }))
 }
 
 /// N from 0 to its value (lambda = N reached / N); proportional loading, so the rate problem
@@ -411,16 +402,11 @@ impl Recorder<'_> {
                 f_peak_over_n: out.events.iter().map(|e| e.f).fold(st.f, f64::max) / pb.n_force,
             });
         }
-        out.max_violation = out.max_violation.max(st.violations.max());
-        if !pb.keep_states {
-            out.states.clear();
-        }
         // The one call per recorded event.
         if let Some(obs) = &pb.observer {
             obs.call(out.events.len(), &ev, &st);
         }
-        out.events.push(ev);
-        out.states.push(st);
+        out.push(ev, st, pb.keep_states);
         Ok(())
     }
 

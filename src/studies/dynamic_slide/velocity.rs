@@ -146,16 +146,14 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let slip: Vec<f64> = (0..n).map(|k| sv.slip_memory(k, p.b(k, 0.0))).collect();
     let mut run = rec.out;
     let push = |run: &mut Run, ev: Event, s: State| -> Result<()> {
-        run.max_violation = run.max_violation.max(s.violations.max());
-        run.events.push(ev);
-        run.states.push(s);
+        run.push(ev, s, o.keep_states);
         if run.events.len() > o.max_events {
-            let last = run.states.last().expect("state");
+            let last = run.summaries.last().expect("summary");
             return Err(Error::EventCap {
                 cap: o.max_events,
                 x: last.x,
                 f_over_n: last.f / o.n_force,
-                f_peak_over_n: run.states.iter().map(|s| s.f).fold(0.0, f64::max) / o.n_force,
+                f_peak_over_n: run.summaries.iter().map(|s| s.f).fold(0.0, f64::max) / o.n_force,
             });
         }
         Ok(())

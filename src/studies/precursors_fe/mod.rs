@@ -112,7 +112,8 @@ pub struct FieldChecks {
     pub x_nucleation: Option<f64>,
 }
 
-/// Measures [`FieldChecks`] on a run that kept its states.
+/// Measures [`FieldChecks`] on a run that kept its states (it reads each state's per-node
+/// pressures: the [`crate::interface::events::Summary`]s do not hold them).
 pub fn field_checks(res: &SlideResult) -> FieldChecks {
     let c = &res.condensed;
     let (evs, states) = (&res.run.events, &res.run.states);
