@@ -30,10 +30,12 @@
 //!   first advancing precursor.
 //! - *Front advances* ([`advances`]), the paper's n where fronts do not restart at the edge:
 //!   in elastodynamics an arrested front runs on by renucleating at its own tip (384 of 411
-//!   instabilities on the paper's scene, validation/dynamics/paper), which the trailing-edge
-//!   rule above does not count. The front is the far end of the run slipped by the cycle's
-//!   instabilities that starts within [`ZONE_T`] t of the trailing edge; a cascade advances it
-//!   when it moves that end more than [`ADVANCE_T`] t beyond the last counted advance's.
+//!   instabilities on the paper's scene, validation/dynamics/paper), or at the tip of a
+//!   quasi-static preslip zone longer than 5 t, which the trailing-edge rule above does not
+//!   count. The front is the far end of the run slipped since the cycle began (by its
+//!   instabilities, and the preslip just before each) that starts within [`ZONE_T`] t of the
+//!   trailing edge; a cascade advances it when it moves that end more than [`ADVANCE_T`] t
+//!   beyond the last counted advance's.
 //!
 //! Plain data in, plain data out: the studies hand over their events as [`Slip`]s.
 
@@ -48,7 +50,7 @@ pub const ADVANCE_T: f64 = 5.0;
 /// The definition in one line, printed under every summary that reports precursors.
 pub const DEFINITION: &str = "precursor: the instabilities at one drive X (one cascade) before the cycle ends, nucleating at the trailing edge (slip starting within 5 t of x = -L/2, nucleus within 5 t of that start); long: slipped > 5 t; n (compare with the paper's n): those whose arrest lies > 5 t beyond the last counted one's; F_i: drive force at the cascade's onset; x_i: its arrest point";
 /// The front-advance count in one line, printed where it is reported.
-pub const ADVANCES: &str = "front advance: a cascade before the cycle ends that moves the far end of the run slipped by the cycle's instabilities from the trailing edge (starting within 5 t of x = -L/2) more than 5 t beyond the last counted advance's; F: drive force at its onset; x: the new front";
+pub const ADVANCES: &str = "front advance: a cascade before the cycle ends that moves the far end of the run slipped since the cycle began (by its instabilities, and quasi-statically before each) from the trailing edge (starting within 5 t of x = -L/2) more than 5 t beyond the last counted advance's; F: drive force at its onset; x: the new front";
 
 /// One instability of a frictional run, as the definition reads it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,6 +66,10 @@ pub struct Slip {
     pub region: (usize, usize),
     /// It ends the stick-slip cycle (a whole slip or a front crossing).
     pub ends_cycle: bool,
+    /// The first run of slipping nodes (first, last node) in the state just before it, where
+    /// known: quasi-static preslip, which joins a front to the trailing edge when it starts
+    /// there ([`advances`]; the trailing-edge rule of [`find`] does not read it).
+    pub preslip: Option<(usize, usize)>,
 }
 
 /// One precursor (a cascade).
@@ -148,6 +154,7 @@ pub fn advances(slips: &[Slip], x: &[f64], t: f64) -> Vec<Advance> {
             break;
         }
         runs.extend(cascade.iter().map(|s| (s.region.0.min(s.node), s.region.1.max(s.node))));
+        runs.extend(cascade.iter().filter_map(|s| s.preslip));
         runs.sort_unstable();
         runs.dedup_by(|next, kept| {
             let touches = next.0 <= kept.1 + 1;
@@ -156,9 +163,15 @@ pub fn advances(slips: &[Slip], x: &[f64], t: f64) -> Vec<Advance> {
             }
             touches
         });
-        let Some(&(a, b)) = runs.first() else { continue };
-        let (Some(&xa), Some(&xb)) = (x.get(a), x.get(b)) else { continue };
-        if xa - x0 <= ZONE_T * t && xb > counted + ADVANCE_T * t {
+        // The front: the farthest end of a run starting in the trailing-edge zone (an open
+        // or lone slipping node there may split off the run that carries it).
+        let Some(&(a, b)) =
+            runs.iter().filter(|r| x.get(r.0).is_some_and(|&xa| xa - x0 <= ZONE_T * t)).max_by_key(|r| r.1)
+        else {
+            continue;
+        };
+        let Some(&xb) = x.get(b) else { continue };
+        if xb > counted + ADVANCE_T * t {
             counted = xb;
             let seed = cascade.iter().find(|s| s.region.0 <= b && s.region.1 >= a).unwrap_or(&cascade[0]);
             out.push(Advance { first_event: cascade[0].event, f: cascade[0].f, front: b, node: seed.node });
@@ -238,7 +251,7 @@ mod tests {
     }
 
     fn slip(event: usize, x_drive: f64, f: f64, node: usize, region: (usize, usize)) -> Slip {
-        Slip { event, x_drive, f, node, region, ends_cycle: false }
+        Slip { event, x_drive, f, node, region, ends_cycle: false, preslip: None }
     }
 
     #[test]
@@ -380,8 +393,22 @@ mod tests {
         let slips = [slip(0, 1.0, 0.7285, 13, (0, 26))];
         assert_eq!(find(&slips, &x, t).n_all(), 0);
         assert_eq!(fronts(&slips), [26]);
-        // A run starting more than 5 t from the edge is no front.
+        // A run starting more than 5 t from the edge is no front, unless the preslip before
+        // it joins it to the edge.
         assert!(fronts(&[slip(0, 1.0, 0.7, 13, (11, 40))]).is_empty());
+        let joined = Slip { preslip: Some((0, 10)), ..slip(0, 1.0, 0.7, 13, (11, 40)) };
+        assert_eq!(fronts(&[joined]), [40]);
+        // A preslip zone alone, with no instability, moves no front; one apart from the
+        // slipped run joins nothing.
+        let apart = Slip { preslip: Some((0, 5)), ..slip(0, 1.0, 0.7, 13, (11, 40)) };
+        assert!(fronts(&[apart]).is_empty());
+        // A lone slipping node at the edge, apart from a run that starts in the zone too
+        // (node 8, 4 t in), does not hide that run's front.
+        let lone = [
+            slip(0, 1.0, 0.7, 9, (8, 30)),
+            Slip { preslip: Some((0, 0)), ..slip(1, 2.0, 0.7, 31, (31, 50)) },
+        ];
+        assert_eq!(fronts(&lone), [30, 50]);
     }
 
     #[test]

@@ -413,8 +413,19 @@ pub fn front_advances(res: &SlideResult) -> Vec<definition::Advance> {
     definition::advances(&slips(res), &res.condensed.x, res.condensed.t)
 }
 
+/// The run's instabilities, each with the preslip of the state before it (its first run of
+/// slipping nodes: [`Slip::preslip`]).
 fn slips(res: &SlideResult) -> Vec<Slip> {
-    res.run.events.iter().enumerate().filter_map(|(k, e)| e.slip(k)).collect()
+    let before = |k: usize| {
+        let s = res.run.summaries.get(k.checked_sub(1)?)?;
+        s.slip_runs.first().map(|&(a, b)| (a as usize, b as usize))
+    };
+    res.run
+        .events
+        .iter()
+        .enumerate()
+        .filter_map(|(k, e)| e.slip(k).map(|s| Slip { preslip: before(k), ..s }))
+        .collect()
 }
 
 pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {

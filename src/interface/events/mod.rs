@@ -419,6 +419,7 @@ impl Event {
             node: self.node,
             region,
             ends_cycle: self.ends_cycle(),
+            preslip: None,
         })
     }
 

@@ -14,7 +14,9 @@ import csv
 import os
 import re
 import statistics
+import subprocess
 import sys
+import tempfile
 
 TAG = re.compile(r"r([\d.]+)_g([\d.]+)_h([\d.]+)(?:_dc([\d.e+-]+?)(?:_eta([\d.e+-]+))?|_qs_(\w+))$")
 
@@ -25,6 +27,28 @@ STATIC = {"slip", "stick", "open", "close", "normal-load", "edge-preslip", "end"
 def rows(path):
     with open(path) as f:
         return list(csv.DictReader(f))
+
+
+def model_fronts(r, g):
+    """The model's precursors (F_i, x_i) at (r, g), from `tribofe precursors model`."""
+    with tempfile.TemporaryDirectory() as d:
+        subprocess.run([os.environ.get("BIN", "./target/release/tribofe"), "precursors", "model", "--r", r, "--g", g,
+                        "--out", d, "--force"], check=True, capture_output=True)
+        return [(float(e["F"]), float(e["x"])) for e in rows(f"{d}/events.csv") if e["stick_slip"] == "0"]
+
+
+def front_lag(adv, model):
+    """The run's front (its last advance at or below F_i, the trailing edge before the first) minus
+    the model's x_i, at each model precursor whose F_i the run's advances reach: median, largest |.|."""
+    lag = []
+    for f, x in model:
+        if not adv or f > float(adv[-1]["F_over_mu_s_N"]):
+            break
+        front = max([float(a["front_over_L"]) for a in adv if float(a["F_over_mu_s_N"]) <= f] or [-0.5])
+        lag.append(front - x)
+    if not lag:
+        return float("nan"), float("nan")
+    return statistics.median(lag), max(lag, key=abs)
 
 
 def one(root, name):
@@ -60,6 +84,7 @@ def one(root, name):
         drop_moving=statistics.median([float(e["drop_while_moving"]) for e in dy if e["drop_while_moving"]] or [float("nan")]),
         instabilities=len(dy) if dy else sum(e["kind"] not in STATIC for e in upto), events=len(ev),
         model=model.groups() if model else None,
+        lag=front_lag(adv, model_fronts(r, g)),
         wall_s=wall_s, cpu_s=float(user.group(1)) if user else float("nan"),
     )
 
@@ -74,7 +99,7 @@ def main():
         groups.setdefault((x["r"], x["g"]), []).append(x)
     head = ("| run | h (mm) | damping eta (s) | front advances n | first advance F/(mu_s N) | its front x/L | last front x/L "
             "| one definition n, F_1, x_1 | largest F/(mu_s N) before the crossing | cycle end (crossing or whole slip) F/(mu_s N), X (m) "
-            "| median drop while moving | instabilities | wall, CPU (s) |")
+            "| front - model x_i at the model's F_i: median, largest | median drop while moving | instabilities | wall, CPU (s) |")
     for (r, g), xs in groups.items():
         xs.sort(key=lambda x: (x["run"], x["eta"] != "default", -x["h_mm"], x["eta"]))
         md = xs[0]["model"]
@@ -87,8 +112,8 @@ def main():
         for x in xs:
             print(f"| {x['run']} | {x['h_mm']} | {x['eta']} | {x['n_front']} | {x['f1_front']:.4f} | {x['x1_front']:.4f} | {x['last_front']:.4f} "
                   f"| {x['n']}, {x['f1']}, {x['x1']} | {x['f_peak']:.4f} | {x['f_cross']:.4f}, {x['x_cross']:.3e} "
-                  f"| {x['drop_moving']:.2f} | {x['instabilities']} | {x['wall_s']:.0f}, {x['cpu_s']:.0f} |")
-            out.append({k: v for k, v in x.items() if k != "model"})
+                  f"| {x['lag'][0]:+.3f}, {x['lag'][1]:+.3f} | {x['drop_moving']:.2f} | {x['instabilities']} | {x['wall_s']:.0f}, {x['cpu_s']:.0f} |")
+            out.append({k: v for k, v in x.items() if k not in ("model", "lag")} | {"lag_median_over_L": x["lag"][0], "lag_largest_over_L": x["lag"][1]})
         for kind in sorted({x["run"] for x in xs}):
             mesh = [x for x in xs if x["run"] == kind and x["eta"] in ("default", "")]
             if len(mesh) < 2:

@@ -87,9 +87,10 @@ def main():
     bx.set_xlabel("slipped region x / L (one bar per instability, at its onset force)")
     bx.set_ylabel("F / (mu_s N) at onset")
     bx.set_xlim(-0.5, 0.5)
-    ax.set_ylim(0.5, 1.0)
-    ax.set_xlim(0.5, min(fc_max, ax.get_xlim()[1]))
-    bx.set_ylim(0.7, 1.0)
+    f1 = float(me[0]["F"])  # the model's F_1 sets the scale of both panels
+    ax.set_ylim(f1 - 0.2, 1.0)
+    ax.set_xlim(f1 - 0.2, min(fc_max, ax.get_xlim()[1]))
+    bx.set_ylim(f1 - 0.03, 1.0)
     bx.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out)
