@@ -32,10 +32,10 @@
 //!   in elastodynamics an arrested front runs on by renucleating at its own tip (384 of 411
 //!   instabilities on the paper's scene, validation/dynamics/paper), or at the tip of a
 //!   quasi-static preslip zone longer than 5 t, which the trailing-edge rule above does not
-//!   count. The front is the far end of the run slipped since the cycle began (by its
-//!   instabilities, and the preslip just before each) that starts within [`ZONE_T`] t of the
-//!   trailing edge; a cascade advances it when it moves that end more than [`ADVANCE_T`] t
-//!   beyond the last counted advance's.
+//!   count. The front is the far end of the runs slipped since the cycle began (by its
+//!   instabilities, and the preslip just before each) reached from the trailing edge across
+//!   stuck gaps of at most [`ZONE_T`] t; a cascade advances it when it moves that end more
+//!   than [`ADVANCE_T`] t beyond the last counted advance's.
 //!
 //! Plain data in, plain data out: the studies hand over their events as [`Slip`]s.
 
@@ -50,7 +50,7 @@ pub const ADVANCE_T: f64 = 5.0;
 /// The definition in one line, printed under every summary that reports precursors.
 pub const DEFINITION: &str = "precursor: the instabilities at one drive X (one cascade) before the cycle ends, nucleating at the trailing edge (slip starting within 5 t of x = -L/2, nucleus within 5 t of that start); long: slipped > 5 t; n (compare with the paper's n): those whose arrest lies > 5 t beyond the last counted one's; F_i: drive force at the cascade's onset; x_i: its arrest point";
 /// The front-advance count in one line, printed where it is reported.
-pub const ADVANCES: &str = "front advance: a cascade before the cycle ends that moves the far end of the run slipped since the cycle began (by its instabilities, and quasi-statically before each) from the trailing edge (starting within 5 t of x = -L/2) more than 5 t beyond the last counted advance's; F: drive force at its onset; x: the new front";
+pub const ADVANCES: &str = "front advance: a cascade before the cycle ends that moves the front, the far end of the runs slipped since the cycle began (by its instabilities, and quasi-statically before each) reached from the trailing edge across stuck gaps of at most 5 t, more than 5 t beyond the last counted advance's; F: drive force at its onset; x: the new front";
 
 /// One instability of a frictional run, as the definition reads it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -135,7 +135,7 @@ pub struct Advance {
     pub f: f64,
     /// The front after the cascade: the last node of the run slipped from the trailing edge.
     pub front: usize,
-    /// Nucleation node of the cascade's first instability that joins that run.
+    /// Nucleation node of the cascade's first instability behind the new front.
     pub node: usize,
 }
 
@@ -163,17 +163,25 @@ pub fn advances(slips: &[Slip], x: &[f64], t: f64) -> Vec<Advance> {
             }
             touches
         });
-        // The front: the farthest end of a run starting in the trailing-edge zone (an open
-        // or lone slipping node there may split off the run that carries it).
-        let Some(&(a, b)) =
-            runs.iter().filter(|r| x.get(r.0).is_some_and(|&xa| xa - x0 <= ZONE_T * t)).max_by_key(|r| r.1)
-        else {
-            continue;
-        };
-        let Some(&xb) = x.get(b) else { continue };
+        // The front: the far end of the runs reached from the trailing edge across stuck gaps
+        // of at most ZONE_T t (the definition's resolution: an open corner, a lone slipping
+        // node, a renucleation just ahead of an arrested tip).
+        let mut b = None;
+        let mut reach = x0;
+        for &(c, d) in &runs {
+            let (Some(&xc), Some(&xd)) = (x.get(c), x.get(d)) else { break };
+            if xc - reach > ZONE_T * t {
+                break;
+            }
+            if xd >= reach {
+                (b, reach) = (Some(d), xd);
+            }
+        }
+        let Some(b) = b else { continue };
+        let xb = reach;
         if xb > counted + ADVANCE_T * t {
             counted = xb;
-            let seed = cascade.iter().find(|s| s.region.0 <= b && s.region.1 >= a).unwrap_or(&cascade[0]);
+            let seed = cascade.iter().find(|s| s.region.1 <= b).unwrap_or(&cascade[0]);
             out.push(Advance { first_event: cascade[0].event, f: cascade[0].f, front: b, node: seed.node });
         }
     }
@@ -400,8 +408,11 @@ mod tests {
         assert_eq!(fronts(&[joined]), [40]);
         // A preslip zone alone, with no instability, moves no front; one apart from the
         // slipped run joins nothing.
-        let apart = Slip { preslip: Some((0, 5)), ..slip(0, 1.0, 0.7, 13, (11, 40)) };
+        let apart = Slip { preslip: Some((0, 0)), ..slip(0, 1.0, 0.7, 13, (11, 40)) };
         assert!(fronts(&[apart]).is_empty());
+        // A stuck gap of 5 t or less (here 3 t) does not part the runs.
+        let near = Slip { preslip: Some((0, 5)), ..slip(0, 1.0, 0.7, 13, (11, 40)) };
+        assert_eq!(fronts(&[near]), [40]);
         // A lone slipping node at the edge, apart from a run that starts in the zone too
         // (node 8, 4 t in), does not hide that run's front.
         let lone = [
