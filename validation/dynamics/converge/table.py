@@ -51,6 +51,16 @@ def front_lag(adv, model):
     return statistics.median(lag), max(lag, key=abs)
 
 
+ENVELOPE_F = (0.75, 0.80, 0.85, 0.90)
+
+
+def front_at(adv, f):
+    """The front x/L after the last advance with onset force <= f (mu_s N); nan past the run's last advance's force."""
+    if not adv or f > float(adv[-1]["F_over_mu_s_N"]) + 0.01:
+        return float("nan")
+    return max([float(a["front_over_L"]) for a in adv if float(a["F_over_mu_s_N"]) <= f] or [-0.5])
+
+
 def one(root, name):
     d = os.path.join(root, name)
     log = open(d + ".log").read()
@@ -85,6 +95,7 @@ def one(root, name):
         instabilities=len(dy) if dy else sum(e["kind"] not in STATIC for e in upto), events=len(ev),
         model=model.groups() if model else None,
         lag=front_lag(adv, model_fronts(r, g)),
+        envelope=[front_at(adv, f) for f in ENVELOPE_F],
         wall_s=wall_s, cpu_s=float(user.group(1)) if user else float("nan"),
     )
 
@@ -99,7 +110,7 @@ def main():
         groups.setdefault((x["r"], x["g"]), []).append(x)
     head = ("| run | h (mm) | damping eta (s) | front advances n | first advance F/(mu_s N) | its front x/L | last front x/L "
             "| one definition n, F_1, x_1 | largest F/(mu_s N) before the crossing | cycle end (crossing or whole slip) F/(mu_s N), X (m) "
-            "| front - model x_i at the model's F_i: median, largest | median drop while moving | instabilities | wall, CPU (s) |")
+            f"| front x/L at F/(mu_s N) = {', '.join(map(str, ENVELOPE_F))} | front - model x_i at the model's F_i: median, largest | median drop while moving | instabilities | wall, CPU (s) |")
     for (r, g), xs in groups.items():
         xs.sort(key=lambda x: (x["run"], x["eta"] != "default", -x["h_mm"], x["eta"]))
         md = xs[0]["model"]
@@ -112,8 +123,10 @@ def main():
         for x in xs:
             print(f"| {x['run']} | {x['h_mm']} | {x['eta']} | {x['n_front']} | {x['f1_front']:.4f} | {x['x1_front']:.4f} | {x['last_front']:.4f} "
                   f"| {x['n']}, {x['f1']}, {x['x1']} | {x['f_peak']:.4f} | {x['f_cross']:.4f}, {x['x_cross']:.3e} "
-                  f"| {x['lag'][0]:+.3f}, {x['lag'][1]:+.3f} | {x['drop_moving']:.2f} | {x['instabilities']} | {x['wall_s']:.0f}, {x['cpu_s']:.0f} |")
-            out.append({k: v for k, v in x.items() if k not in ("model", "lag")} | {"lag_median_over_L": x["lag"][0], "lag_largest_over_L": x["lag"][1]})
+                  f"| {', '.join(f'{v:+.3f}' for v in x['envelope'])} | {x['lag'][0]:+.3f}, {x['lag'][1]:+.3f} | {x['drop_moving']:.2f} | {x['instabilities']} | {x['wall_s']:.0f}, {x['cpu_s']:.0f} |")
+            out.append({k: v for k, v in x.items() if k not in ("model", "lag", "envelope")}
+                       | {"lag_median_over_L": x["lag"][0], "lag_largest_over_L": x["lag"][1]}
+                       | {f"front_over_L_at_F_{f}": v for f, v in zip(ENVELOPE_F, x["envelope"])})
         for kind in sorted({x["run"] for x in xs}):
             mesh = [x for x in xs if x["run"] == kind and x["eta"] in ("default", "")]
             if len(mesh) < 2:

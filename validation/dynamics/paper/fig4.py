@@ -8,7 +8,8 @@ drawn in reverse order, so the first named is on top.
 
 Left: F/(mu_s N) against F^c/(mu_s N) = k_bonded X/(mu_s N) (loading.csv of each run; the
 model's loading.csv). Right: each instability's slipped region (x/L, horizontal bar) at its
-onset force (events.csv rows that are not quasi-static slips), the model's precursor fronts
+onset force (events.csv rows that are not quasi-static slips; the first named run only), the
+model's precursor fronts
 as steps, and each run's front advances (advances.csv, where written) as dots joined by a
 step line. mu_s of each run is read from its run.toml. Needs matplotlib.
 """
@@ -63,7 +64,7 @@ def main():
         fc = [float(r["Fc_N_per_m"]) / (ms * float(r["N_N_per_m"])) for r in lo]
         f = [float(r["F_over_N"]) / ms for r in lo]
         ax.plot(fc, f, "-", color=c, lw=0.7, label=lab)
-        ev = rows(f"{d}/events.csv")
+        ev = rows(f"{d}/events.csv") if j == 0 else []  # one run's bars keep the panel legible
         first = True
         for r in ev:
             if r["kind"] in STATIC or float(r["X_m"]) <= 0.0 or float(r["Fc_over_mu_s_N"]) > fc_max:
