@@ -401,8 +401,8 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     let header = tribofe::report::run_toml(super::invocation(), &results, scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
     let writing = std::time::Instant::now();
-    // A constant-velocity run samples ~2000 states: states.csv (one row per node and state)
-    // would be ~2000 n rows, so it is left out there unless asked for.
+    // states.csv whenever the run kept its states (`--states`; the constant-velocity drive's
+    // ~2000 samples x n rows are kept only when asked for, see run_checked).
     let states = o.keep_states;
     tribofe::report::dynamic_slide::write(&res, dir.path(), &header, states)?;
     dir.commit()?;
@@ -444,31 +444,27 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
             res.dynamic_s,
             res.steps as f64 * res.dofs as f64 / res.dynamic_s.max(f64::MIN_POSITIVE)
         );
+    } else {
+        let worst_gap = res.events.iter().map(|e| e.f_gap).fold(0.0, f64::max);
         outln!(
-            "wrote {}/{{loading.csv, events.csv, advances.csv, {}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
-            a.out.display(),
-            if states { "states.csv, " } else { "" }
+            "largest |F_dynamic - F_static| at an event's end {:.2e} mu_s N; wall time {:.2} s (setup {:.2} s, static loading {:.2} s on the {} operator: {}, dynamic events {:.2} s, writing {:.2} s)",
+            worst_gap,
+            clock.elapsed().as_secs_f64(),
+            res.setup_s,
+            res.static_s,
+            o.operator.name(),
+            match o.operator {
+                tribofe::interface::events::Operator::Banded => format!("{} banded LU solves", run.refreshes),
+                _ => format!("{} bordering updates, {} full LU", run.updates, run.refreshes),
+            },
+            res.dynamic_s,
+            written_s
         );
-        return Ok(());
     }
-    let worst_gap = res.events.iter().map(|e| e.f_gap).fold(0.0, f64::max);
     outln!(
-        "largest |F_dynamic - F_static| at an event's end {:.2e} mu_s N; wall time {:.2} s (setup {:.2} s, static loading {:.2} s on the {} operator: {}, dynamic events {:.2} s, writing {:.2} s)",
-        worst_gap,
-        clock.elapsed().as_secs_f64(),
-        res.setup_s,
-        res.static_s,
-        o.operator.name(),
-        match o.operator {
-            tribofe::interface::events::Operator::Banded => format!("{} banded LU solves", run.refreshes),
-            _ => format!("{} bordering updates, {} full LU", run.updates, run.refreshes),
-        },
-        res.dynamic_s,
-        written_s
-    );
-    outln!(
-        "wrote {}/{{loading.csv, events.csv, advances.csv, {}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
+        "wrote {}/{{loading.csv, events.csv, {}{}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
         a.out.display(),
+        if law.weakens() { "advances.csv, " } else { "" },
         if states { "states.csv, " } else { "" }
     );
     Ok(())

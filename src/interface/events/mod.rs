@@ -113,8 +113,8 @@ pub struct Problem {
     /// Cap on recorded events (a run that needs more stops with [`crate::Error::EventCap`]).
     pub max_events: usize,
     /// Keep every event's [`State`] (false: only the last one; every event's [`Summary`] is
-    /// kept either way). A state is ~40 bytes per node ([`STATE_BYTES_PER_NODE`]), a summary
-    /// ~100 bytes plus 8 per run of slipping nodes ([`Summary::bytes`]).
+    /// kept either way). A state is ~48 bytes per node ([`STATE_BYTES_PER_NODE`]), an event
+    /// with its summary ~0.2 kB plus 8 bytes per run of slipping nodes ([`Summary::bytes`]).
     pub keep_states: bool,
     /// Static-kinetic: nodes whose pressure force is below this fraction of the mean nodal
     /// force N/n slide continuously at mu_d (creep) instead of triggering an instability
