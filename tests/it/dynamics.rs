@@ -443,8 +443,9 @@ use tribofe::scene::Scene;
 use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};
 use tribofe::studies::slide::{self, SlideOptions};
 
-/// The paper's block (t = 2 mm, H = 4 cm) with `l` and `h` changed.
-fn block(l: f64, h: f64, n_thick: Option<usize>) -> Scene {
+/// The paper's block (t = 2 mm, H = 4 cm) with `l` and `h` changed (and the elements
+/// through the thickness; None: round(t / h)).
+pub(crate) fn block(l: f64, h: f64, n_thick: Option<usize>) -> Scene {
     let mut s = Scene::default();
     s.block.length = l;
     s.mesh.h = h;
@@ -453,15 +454,15 @@ fn block(l: f64, h: f64, n_thick: Option<usize>) -> Scene {
 }
 
 /// The short slip-weakening scene of the dynamic tests: L = 0.1 m, h = 0.5 mm, the paper's
-/// (r, g), D_c the smallest the mesh resolves (Lambda_0 = 3 h), to X = 6e-6 m (the first
-/// instabilities), the static phase on `op`.
-fn short_weakening(op: Operator) -> (Scene, SlideOptions) {
+/// (r, g), D_c the smallest the mesh resolves (Lambda_0 = 3 h), to X = `x_max` (the first
+/// instabilities come from 4.8e-6 m on), the static phase on `op`.
+pub(crate) fn short_weakening(op: Operator, x_max: f64) -> (Scene, SlideOptions) {
     let scene = block(0.1, 0.0005, None);
     let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
     let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
     let o = SlideOptions {
         law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
-        x_max: Some(6.0e-6),
+        x_max: Some(x_max),
         operator: op,
         ..Default::default()
     };
@@ -510,10 +511,10 @@ fn dynamic_slide_is_the_same_on_the_dense_and_the_banded_operator() {
     // ~1e3 here: the same events (kind, node, dynamic or not), X and F within 1e-7 of their
     // scales (X at the end, mu_s N).
     let run = |op| {
-        let (scene, o) = short_weakening(op);
+        let (scene, o) = short_weakening(op, 6.0e-6);
         ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap()
     };
-    let mu_s = short_weakening(Operator::Dense).1.law.mu_s();
+    let mu_s = short_weakening(Operator::Dense, 6.0e-6).1.law.mu_s();
     let (a, b) = (run(Operator::Dense), run(Operator::Banded));
     let (ea, eb) = (&a.slide.run.events, &b.slide.run.events);
     assert_eq!(ea.len(), eb.len(), "events: dense {} vs banded {}", ea.len(), eb.len());
@@ -535,7 +536,7 @@ fn healing_only_the_slipped_nodes_acts_after_the_first_instability() {
     // `--heal slipped` changes only what happens after an instability: the runs are the same
     // computation, bit for bit, up to and including the first one, and part after it (the
     // nodes outside its slipped region keep their slip, so the loading that follows differs).
-    let (scene, o) = short_weakening(Operator::Dense);
+    let (scene, o) = short_weakening(Operator::Dense, 6.0e-6);
     let run = |slipped| {
         let d = DynamicOptions { heal_slipped_only: slipped, ..Default::default() };
         ds::run(&scene, &o, &d, tribofe::Progress::none()).unwrap()
@@ -564,7 +565,7 @@ fn dynamic_events_balance_energy_and_end_at_rest() {
     // dissipation. Each event ends with the kinetic energy below 1e-6 of its dissipation, so
     // the static equilibrium that follows differs from the dynamic state by a force of that
     // order: |F_dyn - F_static| < 1e-3 mu_s N.
-    let (scene, o) = short_weakening(Operator::Dense);
+    let (scene, o) = short_weakening(Operator::Dense, 6.0e-6);
     let r = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
     let inst = r.events.iter().filter(|e| e.record.weakened).count();
     assert!(inst >= 2, "{inst} instabilities");

@@ -7,7 +7,7 @@ use tribofe::dynamics::explicit::Elastodynamic;
 use tribofe::dynamics::friction::SlipWeakening;
 use tribofe::fem::material::Material;
 use tribofe::interface::condense::{boundary_model, condense};
-use tribofe::interface::events::{EventKind, NodeState, Phase};
+use tribofe::interface::events::{EventKind, NodeState, Operator, Phase};
 use tribofe::interface::law::Law;
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::Scene;
@@ -16,10 +16,7 @@ use tribofe::studies::slide::{self, SlideOptions, SlideResult};
 
 /// The paper's block (t = 2 mm, H = 4 cm) with `l` and `h` changed.
 fn block(l: f64, h: f64) -> Scene {
-    let mut s = Scene::default();
-    s.block.length = l;
-    s.mesh.h = h;
-    s
+    crate::dynamics::block(l, h, None)
 }
 
 fn at_velocity(v: f64) -> DynamicOptions {
@@ -95,14 +92,8 @@ fn slip_weakening_first_instability_approaches_the_held_drive() {
     // falls at each halving, by at least 1.25, and is below 2.5e-3 mu_s N at 1 um/s; the
     // onset X within 2.5 % of the held X (measured 0.37 %, 0.10 %, 0.04 %); the slipped
     // region is the held one's (-0.45 .. -0.34 L) at 1 um/s to one node.
-    let scene = block(0.1, 0.0005);
-    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
-    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
-    let o = SlideOptions {
-        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
-        x_max: Some(4.9e-6),
-        ..Default::default()
-    };
+    let (scene, o) = crate::dynamics::short_weakening(Operator::Dense, 4.9e-6);
+    let mu_s = o.law.mu_s();
     let held = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
     let first = |r: &ds::DynamicResult| -> (f64, f64, (usize, usize)) {
         let e = r.events.iter().find(|e| e.record.weakened).expect("an instability");
@@ -295,14 +286,7 @@ fn ledger_closes_with_a_heavy_plate_and_a_moving_drive() {
     // each dynamic event, shadow kinetic (block + plate) + strain + friction + damping =
     // work of N + contact work + drive work, to round-off (tolerance 1e-8 of the event's
     // dissipation, as for the held drive).
-    let scene = block(0.1, 0.0005);
-    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
-    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
-    let o = SlideOptions {
-        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
-        x_max: Some(5.2e-6),
-        ..Default::default()
-    };
+    let (scene, o) = crate::dynamics::short_weakening(Operator::Dense, 5.2e-6);
     let m_block = 1000.0 * 0.1 * scene.block.thickness;
     let d = DynamicOptions {
         plate_mass: 10.0 * m_block,

@@ -19,10 +19,7 @@ const LIMIT: Duration = Duration::from_secs(120);
 
 /// The paper's block (t = 2 mm, H = 4 cm) with `l` and `h` changed.
 fn block(l: f64, h: f64) -> Scene {
-    let mut s = Scene::default();
-    s.block.length = l;
-    s.mesh.h = h;
-    s
+    crate::dynamics::block(l, h, None)
 }
 
 /// Runs `tribofe slide <args> --states <states> --out <dir>/<name>`; exit status and stderr.
@@ -173,14 +170,7 @@ fn keep_states_false_holds_one_state_and_the_same_summaries() {
         }
     }
     // The held-drive and the constant-velocity dynamics.
-    let scene = block(0.1, 0.0005);
-    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
-    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
-    let sw = SlideOptions {
-        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
-        x_max: Some(6e-6),
-        ..Default::default()
-    };
+    let (scene, sw) = crate::dynamics::short_weakening(tribofe::interface::events::Operator::Dense, 6e-6);
     let vel_scene = block(0.1, 0.001);
     let cl = SlideOptions { law: Law::coulomb(0.5).unwrap(), x_max: Some(3.4e-5), ..Default::default() };
     let vel = DynamicOptions { drive_velocity: Some(1e-5), ..Default::default() };
