@@ -19,7 +19,7 @@
 use crate::error::{Error, Result};
 use crate::fem::constraints::Target;
 use crate::interface::condense::boundary_model;
-use crate::linalg::banded::{dot, dot_abs, Banded};
+use crate::linalg::banded::{dot, Banded};
 use crate::scene::Scene;
 
 /// The block + rigid plate stiffness over (interior, interface) DOFs in band order, bordered by
@@ -36,10 +36,6 @@ pub struct BandedOperator {
     ptr: Vec<usize>,
     col: Vec<usize>,
     val: Vec<f64>,
-    /// K's rows r < m in band storage (columns r - kl ..= r + ku, kl + ku + 1 a row) and their
-    /// plate columns: the residual checks' products without index gathers.
-    kband: Vec<f64>,
-    kplate: Vec<[f64; 3]>,
     /// Band position of each interface node's u and v.
     pu: Vec<usize>,
     pv: Vec<usize>,
@@ -274,59 +270,16 @@ impl BandedOperator {
                 hint: "check the mesh and the material values".into(),
             });
         }
-        let wk = kl + ku + 1;
-        let (mut kband, mut kplate) = (vec![0.0; m * wk], vec![[0.0; 3]; m]);
-        for r in 0..m {
-            for k in ptr[r]..ptr[r + 1] {
-                match col[k] {
-                    c if c < m => kband[r * wk + c + kl - r] = val[k],
-                    c => kplate[r][c - m] = val[k],
-                }
-            }
-        }
         let x = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
         let w = sm.tributary_widths();
-        Ok(BandedOperator {
-            n,
-            m,
-            kl,
-            ku,
-            ptr,
-            col,
-            val,
-            kband,
-            kplate,
-            pu,
-            pv,
-            scale,
-            x,
-            w,
-            asymmetry,
-            rigid_residual,
-        })
+        Ok(BandedOperator { n, m, kl, ku, ptr, col, val, pu, pv, scale, x, w, asymmetry, rigid_residual })
     }
 
     /// K x and sum_j |K_rj x_j| for two vectors over all m + 3 rows, into `out` = (K x0, its
     /// sizes, K x1, its sizes).
     pub(crate) fn product2(&self, x0: &[f64], x1: &[f64], out: [&mut [f64]; 4]) {
-        let (m, kl, ku) = (self.m, self.kl, self.ku);
-        let wk = kl + ku + 1;
         let [kx0, ka0, kx1, ka1] = out;
-        let (p0, p1) = (&x0[m..m + 3], &x1[m..m + 3]);
-        for r in 0..m {
-            let (lo, hi) = (r.saturating_sub(kl), (r + ku + 1).min(m));
-            let band = &self.kband[r * wk + lo + kl - r..r * wk + hi + kl - r];
-            let ((mut s0, mut a0), (mut s1, mut a1)) =
-                (dot_abs(band, &x0[lo..hi]), dot_abs(band, &x1[lo..hi]));
-            for (p, &v) in self.kplate[r].iter().enumerate() {
-                if v != 0.0 {
-                    let (t0, t1) = (v * p0[p], v * p1[p]);
-                    (s0, a0, s1, a1) = (s0 + t0, a0 + t0.abs(), s1 + t1, a1 + t1.abs());
-                }
-            }
-            (kx0[r], ka0[r], kx1[r], ka1[r]) = (s0, a0, s1, a1);
-        }
-        for r in m..m + 3 {
+        for r in 0..self.m + 3 {
             let (c, v) = self.row(r);
             let (mut s0, mut a0, mut s1, mut a1) = (0.0, 0.0, 0.0, 0.0);
             for (&c, &v) in c.iter().zip(v) {
