@@ -756,3 +756,33 @@ fn a_dynamic_event_ticks_and_can_be_cancelled_every_256_steps() {
     let (whole, _, _, _) = arrest_at_strength(None, None);
     assert!(whole.unwrap().steps > 3 * 256, "the event must outlast three ticks");
 }
+
+#[test]
+fn pre_slipped_edges_weaken_as_the_drive_starts() {
+    // A short block (L = 5 cm, t = 2 mm): normal loading alone slips the edge nodes past D_c
+    // at mu_s (the normal phase does not weaken), so as the drive starts they are re-armed at
+    // mu_d below the force they carry. They must slip statically until |T| = mu_d P, before
+    // any of them sticks by its rate: node by node, with the rate sticks in between, the
+    // patch relaxed by a sweep that met the change cap at X = 0 (an error, exit 3).
+    let mut scene = block(0.05, 0.0005, None);
+    scene.block.thickness = 0.002;
+    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
+    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
+    let o = SlideOptions {
+        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
+        x_max: Some(1e-7),
+        ..Default::default()
+    };
+    let r = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
+    let run = &r.slide.run;
+    let normal = run.states.iter().find(|s| s.phase == Phase::Normal).unwrap();
+    let weak: Vec<usize> = (0..normal.u.len()).filter(|&k| normal.u[k].abs() >= dc).collect();
+    assert!(weak.len() >= 4, "edge nodes slipped past D_c under N alone: {}", weak.len());
+    let drive = run.states.iter().find(|s| s.phase == Phase::Drive).unwrap();
+    for &k in &weak {
+        let (t, p) = (drive.t_force[k], drive.p_force[k]);
+        // The event solver's state tolerance: 1e-9 of the mean nodal force, N / n.
+        let tol = 1e-9 * normal.n_force / normal.u.len() as f64;
+        assert!(t.abs() <= mu_d * p + tol, "node {k}: |T| = {t:e} > mu_d P = {:e}", mu_d * p);
+    }
+}

@@ -48,6 +48,19 @@ impl Solver<'_> {
                 return Ok(Fix::Changed(i, EventKind::Stick));
             }
         }
+        if allow_continuous_slip {
+            // Static overloads first: a stuck node in contact past its threshold at lam slips
+            // before any slipping node sticks by its rate. Node by node, with the rate sticks
+            // in between, an overloaded patch (pre-slipped nodes re-armed below their force
+            // by slip weakening) relaxes by a Gauss-Seidel sweep that ends only at the cap.
+            for i in 0..n {
+                let (t, p) = (a.f(i, lam), a.f(n + i, lam));
+                if self.set.states[i] == NodeState::Stick && p > tf && t.abs() - self.mu_stick(i) * p > tf {
+                    self.set_state(i, NodeState::Slip(-t.signum()), 0.0)?;
+                    return Ok(Fix::Changed(i, EventKind::Slip));
+                }
+            }
+        }
         let mut unstable = None;
         for i in 0..n {
             let mu_s = self.mu_stick(i);
