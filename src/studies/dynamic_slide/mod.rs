@@ -320,7 +320,10 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         o.cancel.check()?;
         let a = settle_continuous(&mut sv, lam, true, cap, "drive")?;
         let frac = if x_end.is_finite() { lam / x_end } else { 0.0 };
-        let shown = frac.max(rec.out.sliding_events as f64 / o.cycles.max(1) as f64).min(1.0);
+        // Cycles done, and of the current one the share of the interface its instabilities
+        // have slipped (the crossing ends it at 1).
+        let share = slipped.iter().filter(|&&s| s).count() as f64 / n as f64;
+        let shown = frac.max((rec.out.sliding_events as f64 + share) / o.cycles.max(1) as f64).min(1.0);
         progress.fraction(shown);
         if !weakens && !sliding_seen && lam > 0.0 && sv.all_contact_slipping() {
             // Coulomb's first whole-interface slip; by default the run ends 5 % further (`slide`).
