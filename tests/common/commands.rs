@@ -17,3 +17,19 @@ pub const EDGES_QUICK: &[&str] = &[
     "--out",
     "ed",
 ];
+
+/// A quick `precursors --fe --dc` scan (short block, one D_c) into `pd`.
+pub const DC_QUICK: &[&str] = &[
+    "precursors",
+    "--fe",
+    "--dc",
+    "1e-6",
+    "--length",
+    "0.05",
+    "--thickness",
+    "0.004",
+    "--h",
+    "0.002",
+    "--out",
+    "pd",
+];

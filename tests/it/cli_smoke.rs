@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use common::commands::EDGES_QUICK;
+use common::commands::{DC_QUICK, EDGES_QUICK};
 use std::path::Path;
 use std::process::Command;
 
@@ -99,24 +99,7 @@ fn every_subcommand_runs_and_writes_what_it_names() {
             "ph",
             &["heights.csv", "heights.svg", "run.toml"],
         ),
-        (
-            &[
-                "precursors",
-                "--fe",
-                "--dc",
-                "1e-6",
-                "--length",
-                "0.05",
-                "--thickness",
-                "0.004",
-                "--h",
-                "0.002",
-                "--out",
-                "pd",
-            ],
-            "pd",
-            &["dc.csv", "dc.svg", "run.toml", "paper/fig4_fe.svg", "dc_1e-6/events.csv"],
-        ),
+        (DC_QUICK, "pd", &["dc.csv", "dc.svg", "run.toml", "paper/fig4_fe.svg", "dc_1e-6/events.csv"]),
         (&["bench", "--case", "strip2", "--dgemm", "0", "--out", "be"], "be", &["bench.csv"]),
     ];
     for (args, out, files) in cases {

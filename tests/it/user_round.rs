@@ -5,7 +5,7 @@
 
 use crate::common;
 
-use common::commands::EDGES_QUICK;
+use common::commands::{DC_QUICK, EDGES_QUICK};
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -158,24 +158,7 @@ fn every_command_writes_a_run_file_with_its_provenance() {
         ),
         (&["precursors", "--fe", "--thin-layer", "0.04", "--length", "0.05", "--out", "pt"], "pt", true),
         (&["precursors", "--fe", "--heights", "0.1", "--length", "0.05", "--out", "ph"], "ph", true),
-        (
-            &[
-                "precursors",
-                "--fe",
-                "--dc",
-                "1e-6",
-                "--length",
-                "0.05",
-                "--thickness",
-                "0.004",
-                "--h",
-                "0.002",
-                "--out",
-                "pd",
-            ],
-            "pd",
-            true,
-        ),
+        (DC_QUICK, "pd", true),
         (&["precursors", "--bonded-fields", "--length", "0.05", "--out", "pb"], "pb", true),
     ];
     for (args, out, has_scene) in cases {
