@@ -457,7 +457,12 @@ pub(crate) fn block(l: f64, h: f64, n_thick: Option<usize>) -> Scene {
 /// (r, g), D_c the smallest the mesh resolves (Lambda_0 = 3 h), to X = `x_max` (the first
 /// instabilities come from 4.8e-6 m on), the static phase on `op`.
 pub(crate) fn short_weakening(op: Operator, x_max: f64) -> (Scene, SlideOptions) {
-    let scene = block(0.1, 0.0005, None);
+    weakening_on(block(0.1, 0.0005, None), op, x_max)
+}
+
+/// `scene` with slip weakening at the paper's (r, g), D_c the smallest its mesh resolves, to
+/// X = `x_max`, the static phase on `op`.
+fn weakening_on(scene: Scene, op: Operator, x_max: f64) -> (Scene, SlideOptions) {
     let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
     let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
     let o = SlideOptions {
@@ -764,15 +769,8 @@ fn pre_slipped_edges_weaken_as_the_drive_starts() {
     // mu_d below the force they carry. They must slip statically until |T| = mu_d P, before
     // any of them sticks by its rate: node by node, with the rate sticks in between, the
     // patch relaxed by a sweep that met the change cap at X = 0 (an error, exit 3).
-    let mut scene = block(0.05, 0.0005, None);
-    scene.block.thickness = 0.002;
-    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
-    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
-    let o = SlideOptions {
-        law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
-        x_max: Some(1e-7),
-        ..Default::default()
-    };
+    let (scene, o) = weakening_on(block(0.05, 0.0005, None), Operator::Dense, 1e-7);
+    let Law::SlipWeakening { mu_d, dc, .. } = o.law else { unreachable!("slip weakening") };
     let r = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
     let run = &r.slide.run;
     let normal = run.states.iter().find(|s| s.phase == Phase::Normal).unwrap();
