@@ -1,7 +1,7 @@
 #!/bin/sh
 # The convergence study's table and figures from the runs of run.sh (README.md here).
 # Usage: figures.sh [OUT_ROOT]  (default /tmp/converge); BIN as in run.sh. Writes table.md,
-# table.csv and fig4_r<R>_g<G>.png next to this file (needs matplotlib).
+# table.csv, cost.png and fig4_r<R>_g<G>.png next to this file (needs matplotlib).
 set -e
 cd "$(dirname "$0")/../../.."
 root=${1:-${OUT_ROOT:-/tmp/converge}}
@@ -9,6 +9,7 @@ if [ -z "$BIN" ]; then cargo build --release; BIN=./target/release/tribofe; fi
 export BIN
 here=validation/dynamics/converge
 python3 $here/table.py "$root" --csv $here/table.csv > $here/table.md
+python3 $here/cost.py $here/table.csv $here/cost.png
 for rg in "0.9 0.35" "0.7 0.5" "0.8 0.2"; do
   set -- $rg
   "$BIN" precursors model --r "$1" --g "$2" --out "$root/model_r$1_g$2" --force > /dev/null

@@ -5,7 +5,8 @@ Usage: table.py OUT_ROOT [--csv FILE]
 
 Reads every run folder OUT_ROOT/r<R>_g<G>_h<H>_dc<DC>[_eta<ETA>] that run.sh wrote, with its
 log next to it, and prints one markdown row per run, grouped by (r, g): the front-advance
-count and its first advance (F, front x), the one precursor definition's n, F_1, x_1, the
+count and its first advance (F, front x), the front x at given forces (on the staircase of
+advances, and on the curve through them), the one precursor definition's n, F_1, x_1, the
 largest force before the front crossing, the crossing, the median share of each
 instability's force drop made while its front still moved (assumption 5: 0), and the time.
 Below each group: the spread (largest minus smallest) over the meshes at the default damping.
@@ -61,6 +62,17 @@ def front_at(adv, f):
     return max([float(a["front_over_L"]) for a in adv if float(a["F_over_mu_s_N"]) <= f] or [-0.5])
 
 
+def tip_curve(adv, f):
+    """The front x/L at force f on the curve through the advances' points (F, front), linear
+    between the first consecutive pair that brackets f; nan outside. Unlike the staircase
+    (front_at), it does not jump by a whole step as a mesh moves a step across f."""
+    pts = [(float(a["F_over_mu_s_N"]), float(a["front_over_L"])) for a in adv]
+    for (fa, xa), (fb, xb) in zip(pts, pts[1:]):
+        if fa <= f <= fb and fb > fa:
+            return xa + (f - fa) / (fb - fa) * (xb - xa)
+    return float("nan")
+
+
 def one(root, name):
     d = os.path.join(root, name)
     log = open(d + ".log").read()
@@ -96,6 +108,7 @@ def one(root, name):
         model=model.groups() if model else None,
         lag=front_lag(adv, model_fronts(r, g)),
         envelope=[front_at(adv, f) for f in ENVELOPE_F],
+        tips=[tip_curve(adv, f) for f in ENVELOPE_F],
         wall_s=wall_s, cpu_s=float(user.group(1)) if user else float("nan"),
     )
 
@@ -110,7 +123,7 @@ def main():
         groups.setdefault((x["r"], x["g"]), []).append(x)
     head = ("| run | h (mm) | damping eta (s) | front advances n | first advance F/(mu_s N) | its front x/L | last front x/L "
             "| one definition n, F_1, x_1 | largest F/(mu_s N) before the crossing | cycle end (crossing or whole slip) F/(mu_s N), X (m) "
-            f"| front x/L at F/(mu_s N) = {', '.join(map(str, ENVELOPE_F))} | front - model x_i at the model's F_i: median, largest | median drop while moving | instabilities | wall, CPU (s) |")
+            f"| front x/L at F/(mu_s N) = {', '.join(map(str, ENVELOPE_F))} | the same on the advances' curve (linear between them) | front - model x_i at the model's F_i: median, largest | median drop while moving | instabilities | wall, CPU (s) |")
     for (r, g), xs in groups.items():
         xs.sort(key=lambda x: (x["run"], x["eta"] != "default", -x["h_mm"], x["eta"]))
         md = xs[0]["model"]
@@ -123,10 +136,11 @@ def main():
         for x in xs:
             print(f"| {x['run']} | {x['h_mm']} | {x['eta']} | {x['n_front']} | {x['f1_front']:.4f} | {x['x1_front']:.4f} | {x['last_front']:.4f} "
                   f"| {x['n']}, {x['f1']}, {x['x1']} | {x['f_peak']:.4f} | {x['f_cross']:.4f}, {x['x_cross']:.3e} "
-                  f"| {', '.join(f'{v:+.3f}' for v in x['envelope'])} | {x['lag'][0]:+.3f}, {x['lag'][1]:+.3f} | {x['drop_moving']:.2f} | {x['instabilities']} | {x['wall_s']:.0f}, {x['cpu_s']:.0f} |")
-            out.append({k: v for k, v in x.items() if k not in ("model", "lag", "envelope")}
+                  f"| {', '.join(f'{v:+.3f}' for v in x['envelope'])} | {', '.join(f'{v:+.3f}' for v in x['tips'])} | {x['lag'][0]:+.3f}, {x['lag'][1]:+.3f} | {x['drop_moving']:.2f} | {x['instabilities']} | {x['wall_s']:.0f}, {x['cpu_s']:.0f} |")
+            out.append({k: v for k, v in x.items() if k not in ("model", "lag", "envelope", "tips")}
                        | {"lag_median_over_L": x["lag"][0], "lag_largest_over_L": x["lag"][1]}
-                       | {f"front_over_L_at_F_{f}": v for f, v in zip(ENVELOPE_F, x["envelope"])})
+                       | {f"front_over_L_at_F_{f}": v for f, v in zip(ENVELOPE_F, x["envelope"])}
+                       | {f"tip_curve_over_L_at_F_{f}": v for f, v in zip(ENVELOPE_F, x["tips"])})
         for kind in sorted({x["run"] for x in xs}):
             mesh = [x for x in xs if x["run"] == kind and x["eta"] in ("default", "")]
             if len(mesh) < 2:
