@@ -758,7 +758,7 @@ fn precursors_fe_fig5<'py>(
 #[pyfunction]
 #[pyo3(signature = (*, s_ratio=2.0, h=1e-3, dc=7.7e-7, t_end=0.1, length=0.2, height=0.1, mu_s=0.648,
     mu_d=0.583, sigma0=2.5, young=2000.0, poisson=0.4, density=1000.0, courant=0.5, damping=0.0,
-    contact="bilateral", normal_lag=None, progress=None))]
+    contact="bilateral", normal_lag=None, patch_taper=0.0, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn rupture<'py>(
     py: Python<'py>,
@@ -778,6 +778,7 @@ fn rupture<'py>(
     damping: f64,
     contact: &str,
     normal_lag: Option<f64>,
+    patch_taper: f64,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::dynamics::{friction::SlipWeakening, rupture as rp};
@@ -796,6 +797,7 @@ fn rupture<'py>(
         damping,
         contact: contact.parse().map_err(to_py)?,
         normal_lag,
+        patch_taper,
         ..Default::default()
     };
     spec.validate().map_err(to_py)?;

@@ -105,6 +105,17 @@ def test_rupture_equals_the_command(tribofe_bin, tmp_path):
     assert abs(e["residual_J_per_m"]) < 1e-10 * e["background_work_J_per_m"]
     with pytest.raises(tribofe.InputError, match="contact"):
         tribofe.dynamics.rupture(contact="glue", progress=False)
+    # A ramped patch edge is the command's --patch-taper: the same arrivals, and refused when
+    # wider than the patch.
+    ramp = tmp_path / "ramp"
+    assert run_cli(tribofe_bin, "rupture", "--patch-taper", "0.004", "--t-end", "0.02", "--out", str(ramp)).returncode == 0
+    res = tribofe.dynamics.rupture(patch_taper=0.004, t_end=0.02, progress=False)
+    x, t = np.asarray(res["x_m"]), np.asarray(res["t_arrival_s"])
+    mask = (x >= -1e-12) & np.isfinite(t)
+    assert mask.sum() > 10
+    np.testing.assert_allclose(t[mask], floats(read_csv(ramp / "arrival.csv")["t_arrival_s"]), rtol=1e-11)
+    with pytest.raises(tribofe.InputError, match="patch-taper"):
+        tribofe.dynamics.rupture(patch_taper=0.05, progress=False)
 
 
 def test_paper_model():

@@ -401,7 +401,8 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         the shared cross-check spec). Keywords: ``s_ratio``, ``h`` (m), ``dc`` (m), ``t_end``
         (s), ``length``, ``height`` (m), ``mu_s``, ``mu_d``, ``sigma0`` (Pa), ``young`` (Pa),
         ``poisson``, ``density`` (kg/m^3), ``courant``, ``damping`` (s), ``contact``
-        (``"bilateral"``, ``"unilateral"``, ``"symmetric"``), ``normal_lag`` (s).
+        (``"bilateral"``, ``"unilateral"``, ``"symmetric"``), ``normal_lag`` (s),
+        ``patch_taper`` (m: a cosine ramp of the initial shear across the patch edge).
 
         Returns per base node ``x_m``, ``t_arrival_s`` (NaN where the front never arrived),
         ``slip_m``, ``peak_slip_rate_m_per_s``..., and the force drop, front speed, wave

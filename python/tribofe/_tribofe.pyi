@@ -127,5 +127,6 @@ def rupture(
     damping: float = 0.0,
     contact: str = "bilateral",
     normal_lag: Optional[float] = None,
+    patch_taper: float = 0.0,
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...

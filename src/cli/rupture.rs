@@ -56,6 +56,10 @@ pub struct Args {
     /// d sigma*/dt = -(sigma* - sigma) / T (default: none, as the spec).
     #[arg(long)]
     pub normal_lag: Option<f64>,
+    /// Width of a cosine ramp of the initial shear centred on the nucleation patch's edge
+    /// (|x| = 0.01 m), m (default 0, as the spec: a jump).
+    #[arg(long, default_value_t = 0.0)]
+    pub patch_taper: f64,
     /// Output directory.
     #[arg(long, default_value = "out/rupture")]
     pub out: PathBuf,
@@ -80,16 +84,18 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         damping: a.damping,
         contact: a.contact.parse::<Contact>()?,
         normal_lag: a.normal_lag,
+        patch_taper: a.patch_taper,
         ..Default::default()
     };
     spec.validate()?;
     tribofe::io::outdir::check(&a.out, a.force)?;
     let lambda0 = spec.lambda0()?;
     outln!(
-        "rupture: S = {}, tau0 = {:.6} Pa outside |x| <= {} m, h = {} m, D_c = {:e} m; Lambda_0 = {:.4e} m = {:.2} elements",
+        "rupture: S = {}, tau0 = {:.6} Pa outside |x| <= {} m ({}), h = {} m, D_c = {:e} m; Lambda_0 = {:.4e} m = {:.2} elements",
         spec.s_ratio,
         spec.tau0(),
         spec.patch_half_width,
+        if spec.patch_taper > 0.0 { format!("edge ramp {} m", spec.patch_taper) } else { "edge: a jump".to_string() },
         spec.h,
         spec.friction.d_c,
         lambda0,

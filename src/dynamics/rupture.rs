@@ -76,6 +76,9 @@ pub struct RuptureSpec {
     /// Nucleation patch |x| <= this, m, where tau0 = overstress * mu_s sigma0.
     pub patch_half_width: f64,
     pub overstress: f64,
+    /// Width of a cosine ramp of tau0 centred on the patch edge, m; 0 (the spec): a jump. A
+    /// ramp the mesh resolves takes the jump's mesh dependence out of the arrival times.
+    pub patch_taper: f64,
     /// dt = courant h / c_p (the spec: 0.5).
     pub courant: f64,
     /// Run to this time (steps = round(t_end / dt)), s.
@@ -106,6 +109,7 @@ impl Default for RuptureSpec {
             friction: SlipWeakening { mu_s: 0.648, mu_d: 0.583, d_c: 7.7e-7 },
             patch_half_width: 0.01,
             overstress: 1.005,
+            patch_taper: 0.0,
             courant: 0.5,
             t_end: 0.1,
             damping: 0.0,
@@ -128,6 +132,18 @@ impl RuptureSpec {
     pub fn tau0(&self) -> f64 {
         let f = &self.friction;
         self.sigma0 * (f.mu_s + self.s_ratio * f.mu_d) / (1.0 + self.s_ratio)
+    }
+
+    /// The initial shear at x: tau_in on the patch, tau_out outside, across its edge a jump or
+    /// the cosine ramp of [`Self::patch_taper`].
+    pub fn prestress(&self, x: f64, tau_in: f64, tau_out: f64) -> f64 {
+        let (a, w) = (self.patch_half_width, self.patch_taper);
+        if w == 0.0 {
+            // The patch edge is a node: include it whatever the rounding of its coordinate.
+            return if x.abs() <= a + 1e-6 * self.h { tau_in } else { tau_out };
+        }
+        let s = ((x.abs() - (a - w / 2.0)) / w).clamp(0.0, 1.0);
+        tau_out + (tau_in - tau_out) * 0.5 * (1.0 + (std::f64::consts::PI * s).cos())
     }
 
     /// Lambda_0 of [`SlipWeakening::cohesive_zone`] at sigma0, m.
@@ -165,6 +181,16 @@ impl RuptureSpec {
         }
         if let Some(t) = self.normal_lag {
             pos("normal-stress lag T (s, --normal-lag)", t)?;
+        }
+        if !(self.patch_taper >= 0.0 && self.patch_taper <= 2.0 * self.patch_half_width) {
+            return Err(Error::input(
+                "nucleation ramp width (m, --patch-taper)",
+                format!(
+                    "{} must be between 0 and the patch width {} m (the ramp is centred on its edge)",
+                    self.patch_taper,
+                    2.0 * self.patch_half_width
+                ),
+            ));
         }
         if !(self.damping.is_finite() && self.damping >= 0.0) {
             return Err(Error::input("damping (s, --damping)", format!("{} must be >= 0", self.damping)));
@@ -280,11 +306,7 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
     let x: Vec<f64> = base.iter().map(|&k| mesh.nodes[k][0]).collect();
     let width: Vec<f64> = (0..=nx).map(|i| if i == 0 || i == nx { spec.h / 2.0 } else { spec.h }).collect();
     let (tau_out, tau_in) = (spec.tau0(), spec.overstress * spec.friction.mu_s * spec.sigma0);
-    // The patch edge |x| = 0.01 m is a node: include it whatever the rounding of its coordinate.
-    let tau0: Vec<f64> = x
-        .iter()
-        .map(|&xi| if xi.abs() <= spec.patch_half_width + 1e-6 * spec.h { tau_in } else { tau_out })
-        .collect();
+    let tau0: Vec<f64> = x.iter().map(|&xi| spec.prestress(xi, tau_in, tau_out)).collect();
 
     let n = model.n_dofs();
     let (mut u, mut v, mut ku, mut u_prev) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
