@@ -134,9 +134,10 @@ impl RuptureSpec {
         self.sigma0 * (f.mu_s + self.s_ratio * f.mu_d) / (1.0 + self.s_ratio)
     }
 
-    /// The initial shear at x: tau_in on the patch, tau_out outside, across its edge a jump or
-    /// the cosine ramp of [`Self::patch_taper`].
-    pub fn prestress(&self, x: f64, tau_in: f64, tau_out: f64) -> f64 {
+    /// The initial shear at x, Pa: overstress mu_s sigma0 on the patch, [`Self::tau0`] outside,
+    /// across its edge a jump or the cosine ramp of [`Self::patch_taper`].
+    pub fn prestress(&self, x: f64) -> f64 {
+        let (tau_in, tau_out) = (self.overstress * self.friction.mu_s * self.sigma0, self.tau0());
         let (a, w) = (self.patch_half_width, self.patch_taper);
         if w == 0.0 {
             // The patch edge is a node: include it whatever the rounding of its coordinate.
@@ -305,8 +306,7 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
     debug_assert!(base.iter().all(|&k| mesh.nodes[k][1] == 0.0));
     let x: Vec<f64> = base.iter().map(|&k| mesh.nodes[k][0]).collect();
     let width: Vec<f64> = (0..=nx).map(|i| if i == 0 || i == nx { spec.h / 2.0 } else { spec.h }).collect();
-    let (tau_out, tau_in) = (spec.tau0(), spec.overstress * spec.friction.mu_s * spec.sigma0);
-    let tau0: Vec<f64> = x.iter().map(|&xi| spec.prestress(xi, tau_in, tau_out)).collect();
+    let tau0: Vec<f64> = x.iter().map(|&xi| spec.prestress(xi)).collect();
 
     let n = model.n_dofs();
     let (mut u, mut v, mut ku, mut u_prev) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
