@@ -128,6 +128,11 @@ pub struct Args {
     /// the `slipped` ones (event slip above D_c/100; the others keep their slip).
     #[arg(long, default_value = "all", value_parser = ["all", "slipped"])]
     pub heal: String,
+    /// Slip-weakening coefficient updates per D_c of slip in the static loading (--dynamics;
+    /// default 20). Onsets lag by up to (mu_s - mu_d) / N of the strength: 80 takes the
+    /// paper's first onset from 1e-3 to 5e-6 mu_s N of its converged value (docs/dynamics.md).
+    #[arg(long)]
+    pub weakening_steps: Option<f64>,
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
@@ -165,6 +170,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             ("--plate-mass", a.plate_mass.is_some()),
             ("--plate-inertia", a.plate_inertia.is_some()),
             ("--heal", super::given("heal")),
+            ("--weakening-steps", a.weakening_steps.is_some()),
         ] {
             if on {
                 return Err(Error::input(flag, "acts only with --dynamics"));
@@ -357,6 +363,12 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     if a.fields > 0 {
         return Err(Error::input("--fields", "not written by --dynamics yet"));
     }
+    if a.weakening_steps.is_some() && (a.drive_velocity.is_some() || a.law != "slip-weakening") {
+        return Err(Error::input(
+            "--weakening-steps",
+            "acts only on the held mode's static loading under --law slip-weakening (not with --drive-velocity)",
+        ));
+    }
     let d = ds::DynamicOptions {
         damping: a.damping,
         courant: a.courant,
@@ -364,6 +376,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         plate_mass: a.plate_mass.unwrap_or(0.0),
         plate_inertia: a.plate_inertia.unwrap_or(0.0),
         heal_slipped_only: a.heal == "slipped",
+        weakening_steps: a.weakening_steps.unwrap_or(ds::DEFAULT_WEAKENING_STEPS),
         ..Default::default()
     };
     let clock = std::time::Instant::now();

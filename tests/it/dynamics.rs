@@ -655,8 +655,15 @@ fn dynamic_slide_refuses_what_it_cannot_run() {
     let ok = SlideOptions { law: Law::coulomb(0.5).unwrap(), ..Default::default() };
     let e = ds::check(&sri, &ok, &d).unwrap_err().to_string();
     assert!(e.contains("--element qua4"), "{e}");
-    let e = ds::check(&scene, &ok, &DynamicOptions { damping: Some(0.0), ..d }).unwrap_err().to_string();
+    let e =
+        ds::check(&scene, &ok, &DynamicOptions { damping: Some(0.0), ..d.clone() }).unwrap_err().to_string();
     assert!(e.contains("--damping"), "{e}");
+    for w in [0.5, 2e4, f64::NAN] {
+        let e = ds::check(&scene, &ok, &DynamicOptions { weakening_steps: w, ..d.clone() })
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("--weakening-steps"), "{e}");
+    }
 }
 
 use tribofe::dynamics::driven::{self, Driven, DynState, EventLimits, Layout};

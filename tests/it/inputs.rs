@@ -439,6 +439,42 @@ fn converge_target_names_the_run_with_fewest_unknowns() {
     }
 }
 
+/// `--weakening-steps` belongs to the held mode's static loading under slip weakening.
+#[test]
+fn weakening_steps_act_only_on_the_held_slip_weakening_loading() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = out.to_str().unwrap();
+    for (args, why) in [
+        (&["slide", "--weakening-steps", "80"][..], "--dynamics"),
+        (&["slide", "--dynamics", "--law", "coulomb", "--weakening-steps", "80"], "slip-weakening"),
+        (
+            &[
+                "slide",
+                "--dynamics",
+                "--drive-velocity",
+                "1e-5",
+                "--x-max",
+                "1e-6",
+                "--weakening-steps",
+                "80",
+            ],
+            "--drive-velocity",
+        ),
+        (&["slide", "--dynamics", "--law", "slip-weakening", "--weakening-steps", "0.5"], "[1, 1e4]"),
+    ] {
+        let mut a = args.to_vec();
+        a.extend(["--out", o]);
+        let r = tribofe(&a);
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(
+            r.status.code() == Some(2) && err.contains("--weakening-steps") && err.contains(why),
+            "{a:?}: {err}"
+        );
+        assert!(!out.exists());
+    }
+}
+
 #[test]
 fn slide_and_stability_refuse_flags_that_cannot_act() {
     let dir = tempfile::tempdir().unwrap();

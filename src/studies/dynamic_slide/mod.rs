@@ -5,10 +5,10 @@
 //!    the dense condensed S or, with `--operator banded`, the banded block: O(n) a solve):
 //!    its normal phase, then U_H with nodes sticking, slipping (at a frozen coefficient) or
 //!    opening, every change found exactly. Under slip weakening a slipping node's coefficient
-//!    is brought to its slip every D_c/20 (a fixed point at fixed U_H, each iterate one
-//!    solve); when that fixed point diverges (a change above D_c/2 in one iterate, or 30
-//!    iterates without settling to 1e-3 D_c) the patch is unstable and the event is run
-//!    dynamically (`steps.rs`).
+//!    is brought to its slip every D_c/20 of slip (`DynamicOptions::weakening_steps`; a fixed
+//!    point at fixed U_H, each iterate one solve); when that fixed point diverges (a change
+//!    above D_c/2 in one iterate, or 30 iterates without settling to 1e-3 D_c) the patch is
+//!    unstable and the event is run dynamically (`steps.rs`).
 //! 2. The event ([`crate::dynamics::driven`]): from the static field (v = 0), U_H held, until
 //!    no node slips and the kinetic energy is below 1e-6 of what the event dissipated, both
 //!    for one period of the block's thickness mode.
@@ -68,6 +68,10 @@ pub struct DynamicOptions {
     /// After an instability heal only the nodes that slipped in it (event slip above
     /// D_c/100), the others keeping their slip; false: every node heals (the model's rule).
     pub heal_slipped_only: bool,
+    /// The static loading updates a slipping node's slip-weakening coefficient every D_c /
+    /// this of its slip; between updates the coefficient lags, so onsets come late by up to
+    /// (mu_s - mu_d) / this of the strength (docs/dynamics.md, "`--drive-velocity V`").
+    pub weakening_steps: f64,
 }
 
 impl Default for DynamicOptions {
@@ -82,6 +86,7 @@ impl Default for DynamicOptions {
             plate_mass: 0.0,
             plate_inertia: 0.0,
             heal_slipped_only: false,
+            weakening_steps: DEFAULT_WEAKENING_STEPS,
         }
     }
 }
@@ -107,8 +112,9 @@ pub fn event_cap_periods(length: f64, thickness: f64, xi: f64, ke_fraction: f64)
 /// Margin of [`event_cap_periods`] over the physics (slow fronts, a second rupture).
 pub const EVENT_CAP_FACTOR: f64 = 4.0;
 
-/// Slip-weakening step of the static loading: D_c / this of slip (as the quasi-static solver).
-const STEPS_PER_DC: f64 = 20.0;
+/// Default slip-weakening step of the static loading: D_c / this of slip (as the quasi-static
+/// solver).
+pub const DEFAULT_WEAKENING_STEPS: f64 = 20.0;
 
 /// One dynamic event, as measured.
 #[derive(Debug, Clone)]
@@ -185,6 +191,15 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<()> 
                 format!("{eta}: events end only when the kinetic energy decays; give eta > 0 s (default: 10 % of critical at the thickness mode)"),
             ));
         }
+    }
+    if !(d.weakening_steps >= 1.0 && d.weakening_steps <= 1e4) {
+        return Err(Error::input(
+            "--weakening-steps",
+            format!(
+                "{}: give the coefficient updates per D_c of slip in [1, 1e4] (default {DEFAULT_WEAKENING_STEPS})",
+                d.weakening_steps
+            ),
+        ));
     }
     if !(d.courant > 0.0 && d.courant <= 1.0) {
         return Err(Error::input(
@@ -348,7 +363,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                 break 'drive;
             }
         }
-        // Next X: the next threshold, or a slipping node's next D_c / 20 of slip.
+        // Next X: the next threshold, or a slipping node's next D_c / weakening_steps of slip.
         let mut next: Option<(f64, Option<(usize, Hit)>)> =
             sv.next_event(&a, lam).map(|(dl, i, h)| (dl, Some((i, h))));
         if weakens {
@@ -358,7 +373,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                     && rate > 0.0
                     && sv.slip_memory(k, a.b(k, lam)) < dc
                 {
-                    let dl = (dc / STEPS_PER_DC - done[k]).max(0.0) / rate;
+                    let dl = (dc / d.weakening_steps - done[k]).max(0.0) / rate;
                     if next.is_none_or(|b| dl < b.0) {
                         next = Some((dl, None));
                     }

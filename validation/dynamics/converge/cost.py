@@ -32,7 +32,7 @@ ROUND_OFF_PEAK = 0.006
 def main():
     table, out = sys.argv[1], sys.argv[2]
     with open(table) as f:
-        runs = [r for r in csv.DictReader(f) if r["run"] == "dynamics" and r["eta"] == "default"]
+        runs = [r for r in csv.DictReader(f) if r["run"] == "dynamics" and r["eta"] == r["ws"] == "default"]
     scenes = sorted({(r["r"], r["g"]) for r in runs}, reverse=True)
     fig, axes = plt.subplots(1, len(PANELS), figsize=(13, 4.2))
     for ax, (key, label) in zip(axes, PANELS):

@@ -15,7 +15,7 @@ for rg in "0.9 0.35" "0.7 0.5" "0.8 0.2"; do
   "$BIN" precursors model --r "$1" --g "$2" --out "$root/model_r$1_g$2" --force > /dev/null
   runs=""
   for h in 0.125 0.25 0.5; do  # the finest first: its instabilities are drawn
-    d=$(ls -d "$root"/r$1_g$2_h${h}_dc* 2>/dev/null | grep -v _eta | head -1)
+    d=$(ls -d "$root"/r$1_g$2_h${h}_dc* 2>/dev/null | grep -v -e _eta -e _ws | head -1)
     if [ -n "$d" ] && [ -f "$d/advances.csv" ]; then runs="$runs dynamics_h${h}mm=$d"; fi
   done
   for rule in paper overdamped; do

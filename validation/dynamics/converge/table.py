@@ -3,7 +3,7 @@
 
 Usage: table.py OUT_ROOT [--csv FILE]
 
-Reads every run folder OUT_ROOT/r<R>_g<G>_h<H>_dc<DC>[_eta<ETA>] that run.sh wrote, with its
+Reads every run folder OUT_ROOT/r<R>_g<G>_h<H>_dc<DC>[_eta<ETA>][_ws<N>] that run.sh wrote, with its
 log next to it, and prints one markdown row per run, grouped by (r, g): the front-advance
 count and its first advance (F, front x), the front x at given forces (on the staircase of
 advances, and on the curve through them), the one precursor definition's n, F_1, x_1, the
@@ -19,7 +19,7 @@ import subprocess
 import sys
 import tempfile
 
-TAG = re.compile(r"r([\d.]+)_g([\d.]+)_h([\d.]+)(?:_dc([\d.e+-]+?)(?:_eta([\d.e+-]+))?|_qs_(\w+))$")
+TAG = re.compile(r"r([\d.]+)_g([\d.]+)_h([\d.]+)(?:_dc([\d.e+-]+?)(?:_eta([\d.e+-]+))?(?:_ws(\d+))?|_qs_(\w+))$")
 
 
 STATIC = {"slip", "stick", "open", "close", "normal-load", "edge-preslip", "end", "creep", "sample"}
@@ -79,7 +79,7 @@ def one(root, name):
     if not os.path.exists(os.path.join(d, "advances.csv")):
         return None
     m = TAG.match(name)
-    r, g, h, dc, eta, rule = m.groups()
+    r, g, h, dc, eta, ws, rule = m.groups()
     ev = rows(os.path.join(d, "events.csv"))
     cross = next((e for e in ev if e["kind"] in ("crossing", "sliding")), None)
     upto = ev[: ev.index(cross) + 1] if cross else ev
@@ -93,7 +93,8 @@ def one(root, name):
     kappa = re.search(r"kappa = .*? = ([\d.]+)", log)
     wall_s = sum(float(x) * 60 ** i for i, x in enumerate(reversed(wall.group(1).split(":")))) if wall else float("nan")
     return dict(
-        r=r, g=g, h_mm=float(h), dc=dc or "", run=f"quasi-static {rule}" if rule else "dynamics", eta=eta or ("" if rule else "default"), kappa=kappa.group(1) if kappa else "?",
+        r=r, g=g, h_mm=float(h), dc=dc or "", run=f"quasi-static {rule}" if rule else "dynamics", eta=eta or ("" if rule else "default"),
+        ws=ws or ("" if rule else "default"), kappa=kappa.group(1) if kappa else "?",
         n_front=len(adv),
         f1_front=float(adv[0]["F_over_mu_s_N"]) if adv else float("nan"),
         x1_front=float(adv[0]["front_over_L"]) if adv else float("nan"),
@@ -121,11 +122,11 @@ def main():
     groups = {}
     for x in runs:
         groups.setdefault((x["r"], x["g"]), []).append(x)
-    head = ("| run | h (mm) | damping eta (s) | front advances n | first advance F/(mu_s N) | its front x/L | last front x/L "
+    head = ("| run | h (mm) | damping eta (s) | coefficient updates per D_c | front advances n | first advance F/(mu_s N) | its front x/L | last front x/L "
             "| one definition n, F_1, x_1 | largest F/(mu_s N) before the crossing | cycle end (crossing or whole slip) F/(mu_s N), X (m) "
             f"| front x/L at F/(mu_s N) = {', '.join(map(str, ENVELOPE_F))} | the same on the advances' curve (linear between them) | front - model x_i at the model's F_i: median, largest | median drop while moving | instabilities | wall, CPU (s) |")
     for (r, g), xs in groups.items():
-        xs.sort(key=lambda x: (x["run"], x["eta"] != "default", -x["h_mm"], x["eta"]))
+        xs.sort(key=lambda x: (x["run"], (x["eta"], x["ws"]) != ("default", "default"), -x["h_mm"], x["eta"], x["ws"].zfill(6)))
         md = xs[0]["model"]
         dx = next((x for x in xs if x["run"] == "dynamics"), xs[0])
         print(f"\n### (r, g) = ({r}, {g}); dynamics at kappa = {dx['kappa']}, D_c = {dx['dc']} m")
@@ -134,7 +135,7 @@ def main():
         print(head)
         print("|" + "---|" * (head.count("|") - 1))
         for x in xs:
-            print(f"| {x['run']} | {x['h_mm']} | {x['eta']} | {x['n_front']} | {x['f1_front']:.4f} | {x['x1_front']:.4f} | {x['last_front']:.4f} "
+            print(f"| {x['run']} | {x['h_mm']} | {x['eta']} | {x['ws']} | {x['n_front']} | {x['f1_front']:.4f} | {x['x1_front']:.4f} | {x['last_front']:.4f} "
                   f"| {x['n']}, {x['f1']}, {x['x1']} | {x['f_peak']:.4f} | {x['f_cross']:.4f}, {x['x_cross']:.3e} "
                   f"| {', '.join(f'{v:+.3f}' for v in x['envelope'])} | {', '.join(f'{v:+.3f}' for v in x['tips'])} | {x['lag'][0]:+.3f}, {x['lag'][1]:+.3f} | {x['drop_moving']:.2f} | {x['instabilities']} | {x['wall_s']:.0f}, {x['cpu_s']:.0f} |")
             out.append({k: v for k, v in x.items() if k not in ("model", "lag", "envelope", "tips")}
@@ -142,7 +143,7 @@ def main():
                        | {f"front_over_L_at_F_{f}": v for f, v in zip(ENVELOPE_F, x["envelope"])}
                        | {f"tip_curve_over_L_at_F_{f}": v for f, v in zip(ENVELOPE_F, x["tips"])})
         for kind in sorted({x["run"] for x in xs}):
-            mesh = [x for x in xs if x["run"] == kind and x["eta"] in ("default", "")]
+            mesh = [x for x in xs if x["run"] == kind and x["eta"] in ("default", "") and x["ws"] in ("default", "")]
             if len(mesh) < 2:
                 continue
             sp = lambda k: max(x[k] for x in mesh) - min(x[k] for x in mesh)  # noqa: E731
