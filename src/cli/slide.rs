@@ -129,8 +129,9 @@ pub struct Args {
     #[arg(long, default_value = "all", value_parser = ["all", "slipped"])]
     pub heal: String,
     /// Slip-weakening coefficient updates per D_c of slip in the static loading (--dynamics;
-    /// default 20). Onsets lag by up to (mu_s - mu_d) / N of the strength: 80 takes the
-    /// paper's first onset from 1e-3 to 5e-6 mu_s N of its converged value (docs/dynamics.md).
+    /// default 20). Onsets lag by up to (mu_s - mu_d) / N of the strength: on the paper's
+    /// scene N = 20 to 1280 move the first onset by 4e-4 mu_s N; where a weakened zone is
+    /// marginally stable much more (validation/dynamics/converge/README.md).
     #[arg(long)]
     pub weakening_steps: Option<f64>,
 }

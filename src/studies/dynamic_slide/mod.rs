@@ -68,9 +68,10 @@ pub struct DynamicOptions {
     /// After an instability heal only the nodes that slipped in it (event slip above
     /// D_c/100), the others keeping their slip; false: every node heals (the model's rule).
     pub heal_slipped_only: bool,
-    /// The static loading updates a slipping node's slip-weakening coefficient every D_c /
-    /// this of its slip; between updates the coefficient lags, so onsets come late by up to
-    /// (mu_s - mu_d) / this of the strength (docs/dynamics.md, "`--drive-velocity V`").
+    /// The held mode's static loading updates a slipping node's slip-weakening coefficient
+    /// every D_c / this of its slip; between updates the coefficient lags by up to
+    /// (mu_s - mu_d) / this (validation/dynamics/converge/README.md, "The static loading's
+    /// weakening step"). The constant-velocity drive updates it every explicit step instead.
     pub weakening_steps: f64,
 }
 
