@@ -8,16 +8,17 @@ coarse mesh's base nodes with x >= x_min (default 0 and 0.015 m) where all three
 arrived, prints the largest difference of consecutive meshes' arrival times, e1 (coarse -
 medium) and e2 (medium - fine), and the observed order log2(e1 / e2).
 """
-import csv
 import math
+import os
 import sys
+
+from compare import ARRIVAL_COLS, BadInput, read_csv
 
 
 def arrivals(folder):
     """x (rounded to 0.1 um, so the meshes' common nodes match) -> arrival time, s."""
-    with open(f"{folder}/arrival.csv") as f:
-        return {round(float(r["x_m"]) * 1e7): float(r["t_arrival_s"]) for r in csv.DictReader(f)
-                if r["t_arrival_s"] not in ("", "nan", "NaN")}
+    rows = read_csv(os.path.join(folder, "arrival.csv"), ARRIVAL_COLS)
+    return {round(x * 1e7): t for x, t in rows if math.isfinite(t)}
 
 
 def main():
@@ -27,7 +28,12 @@ def main():
         i = args.index("--x-min")
         x_mins = [float(v) for v in args[i + 1:]]
         args = args[:i]
-    a, b, c = (arrivals(d) for d in args)
+    if len(args) != 3:
+        sys.exit("usage: arrival_order.py COARSE MEDIUM FINE [--x-min M ...]")
+    try:
+        a, b, c = (arrivals(d) for d in args)
+    except BadInput as e:
+        sys.exit(f"arrival_order.py: {e}")
     for x_min in x_mins:
         keys = [k for k in a if k >= round(x_min * 1e7) and k in b and k in c]
         e1 = max((abs(a[k] - b[k]) for k in keys), default=0.0)
