@@ -16,6 +16,10 @@ pub mod exit {
     /// An I/O failure while writing results (disk full, permissions...), or a resource the
     /// system refused (threads).
     pub const OUTPUT: i32 = 4;
+    /// Incomplete: the run met a cap (events, an event's steps) after it started; what it had
+    /// computed up to there is written, and the cap is named on stderr and in run.toml
+    /// (`[results] incomplete`).
+    pub const INCOMPLETE: i32 = 5;
     /// Interrupted by SIGINT or SIGTERM (128 + SIGINT, as shells report it).
     pub const INTERRUPTED: i32 = 130;
     /// Standard output closed before everything was printed (`tribofe check | head -1`);
@@ -85,6 +89,10 @@ pub enum Error {
     #[error("the system refused {what}: {why}")]
     Resource { what: String, why: String },
 
+    /// A run met a cap after it started; its partial results were written (exit status 5).
+    #[error("incomplete: {what}; the results up to there are written and run.toml names the cap")]
+    Incomplete { what: String },
+
     /// SIGINT or SIGTERM arrived; temporaries were removed.
     #[error("interrupted; temporaries removed, the output folder is as before (or complete, if the run had finished)")]
     Interrupted,
@@ -116,6 +124,7 @@ impl Error {
             | Error::EventCap { .. } => exit::INPUT,
             Error::Singular { .. } | Error::Untrustworthy { .. } | Error::SelfCheck { .. } => exit::NUMERICAL,
             Error::Plot { .. } | Error::Io { .. } | Error::Resource { .. } => exit::OUTPUT,
+            Error::Incomplete { .. } => exit::INCOMPLETE,
             Error::Interrupted => exit::INTERRUPTED,
         }
     }

@@ -5,6 +5,7 @@ use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use tribofe::interface::law::Law;
+use tribofe::studies::dynamic_slide as ds;
 use tribofe::studies::slide::{LawChoice, SlideOptions};
 use tribofe::Error;
 
@@ -52,14 +53,15 @@ pub struct Args {
     #[arg(long)]
     pub x_max: Option<f64>,
     /// Stick-slip cycles to run, static-kinetic and slip-weakening: whole-interface slips, or
-    /// also front crossings with `--cycle-end crossing`.
-    #[arg(long, default_value_t = 10)]
-    pub cycles: usize,
+    /// also front crossings with `--cycle-end crossing` (default 10; 1 with --dynamics).
+    #[arg(long)]
+    pub cycles: Option<usize>,
     /// What ends a cycle: a `whole-slip` (one event slipping every contact node), or also a
     /// `crossing` (an instability completing the run of nodes slipped by instabilities since
-    /// the last cycle end, trailing edge to leading edge: what `precursors fe` uses).
-    #[arg(long, default_value = "whole-slip", value_parser = ["whole-slip", "crossing"])]
-    pub cycle_end: String,
+    /// the last cycle end, trailing edge to leading edge: what `precursors fe` uses). Default
+    /// whole-slip; crossing with --dynamics.
+    #[arg(long, value_parser = ["whole-slip", "crossing"])]
+    pub cycle_end: Option<String>,
     /// Cap on events. Each event keeps in memory its row (~0.2 kB, plus 8 bytes per run of
     /// slipping nodes) and, unless `--states none`, the interface state after it (~48 bytes
     /// per node); the cap is refused up front if that cannot fit in half the memory.
@@ -72,9 +74,10 @@ pub struct Args {
     pub newton: bool,
     /// How each state set is solved: `dense` (the condensed S with a bordered inverse, the
     /// reference) or `banded` (the block's sparse stiffness in x order, one banded LU per solve:
-    /// cost per event grows like n, not n^2; equal results to round-off)
-    #[arg(long, default_value = "dense", value_parser = ["dense", "banded"])]
-    pub operator: String,
+    /// cost per event grows like n, not n^2; equal results to round-off). Default dense;
+    /// banded with --dynamics, whose runs have thousands of events on fine meshes.
+    #[arg(long, value_parser = ["dense", "banded"])]
+    pub operator: Option<String>,
     /// Write the whole block's fields for this many states spread evenly over the drive X, one
     /// per X (the settled state), first and last included (0: none); fields.pvd is indexed by
     /// X in m, each file holds its `event` (docs/outputs.md).
@@ -87,8 +90,8 @@ pub struct Args {
     /// states.csv (the interface after every event: a row of ~95 bytes per node and event):
     /// `all` or `none`. `all` also keeps every event's state in memory (48 bytes per node and
     /// event); `none` keeps only the last state and each event's summary (every other file
-    /// the same bytes; --fields refused). Default: all, except with --drive-velocity (its ~2000 samples x n rows
-    /// are written only when asked); `none` for long --dynamics runs (0.7 GB at h = 1 mm).
+    /// the same bytes; --fields refused). Default: all; none with --dynamics (a first cycle
+    /// keeps ~0.7 GB of states at h = 1 mm, and the drive's samples x n rows likewise).
     #[arg(long, value_parser = ["all", "none"])]
     pub states: Option<String>,
     /// Output directory.
@@ -99,7 +102,11 @@ pub struct Args {
     pub force: bool,
     /// Run each instability elastodynamically (explicit, drive held; docs/dynamics.md): the
     /// loading between events stays quasi-static and exact. Takes --law coulomb or
-    /// slip-weakening (--dc default: the smallest D_c whose cohesive zone spans 3 elements).
+    /// slip-weakening: --dc defaults to the D_c giving the thin-layer stability number
+    /// kappa = 0.509 (the paper's scene: 2.3107e-7 m), whatever the mesh; without --h the
+    /// mesh is refined until the cohesive zone spans at least 3 elements, and a given --h
+    /// that does not resolve it is refused. Defaults --cycles 1 --cycle-end crossing
+    /// --states none --operator banded (the paper's first cycle, docs/dynamics.md).
     #[arg(long)]
     pub dynamics: bool,
     /// Block density, kg/m^3 (--dynamics; default the scene's [block] density, 1000).
@@ -178,19 +185,55 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             }
         }
     }
-    if a.dynamics && a.law == "slip-weakening" && a.dc.is_none() {
-        // --dc defaults to the smallest D_c the mesh resolves (Lambda_0 = 3 h).
-        let mut b = a;
-        let probe = LawChoice { dc: Some(1.0), ..law_choice(&b) }.law(&scene)?;
-        let dc = tribofe::studies::dynamic_slide::default_dc(&scene, probe.mu_s(), probe.mu_d(), b.n_force)?;
-        eprintln!(
-            "--dc not given: D_c = {dc:.4e} m, the smallest whose cohesive zone spans 3 elements of h = {} m",
-            scene.mesh.h
-        );
-        b.dc = Some(dc);
-        return run_checked(b, scene, field_format);
+    if a.dynamics && a.law == "slip-weakening" {
+        let mut a = a;
+        let mut scene = scene;
+        resolve_physics(&mut a, &mut scene)?;
+        return run_checked(a, scene, field_format);
     }
     run_checked(a, scene, field_format)
+}
+
+/// Physics is input, resolution is checked (`--dynamics --law slip-weakening`): D_c from the
+/// library's physical default when not given, then the element size: chosen so that the
+/// cohesive zone spans at least 3 elements when neither --h nor the scene file's `[mesh] h`
+/// sets it, checked (and refused naming the --h that would) when given.
+fn resolve_physics(a: &mut Args, scene: &mut tribofe::scene::Scene) -> tribofe::Result<()> {
+    use tribofe::studies::dynamic_slide::physics;
+    let probe = LawChoice { dc: Some(1.0), ..law_choice(a) }.law(scene)?;
+    let (mu_s, mu_d) = (probe.mu_s(), probe.mu_d());
+    let dc = match a.dc {
+        Some(dc) => dc,
+        None => {
+            let dc = physics::default_dc(scene, mu_s, mu_d, a.n_force)?;
+            eprintln!(
+                "--dc not given: D_c = {dc:.5e} m, the D_c giving the thin-layer stability number kappa = {:.4} of the paper's scene at D_c = {:e} m (whatever the mesh)",
+                physics::default_kappa()?,
+                physics::PAPER_DC
+            );
+            dc
+        }
+    };
+    a.dc = Some(dc);
+    let given = a.scene.has("--h") || super::scene_args::file_sets(&a.scene, "mesh", "h")?;
+    if scene.mesh.file.is_none() && !given {
+        let l0 = physics::lambda0(scene, mu_s, mu_d, dc, a.n_force)?;
+        let h = physics::resolving_h(scene.block.thickness, l0);
+        if h < scene.mesh.h {
+            scene.mesh.h = h;
+            scene.validate()?;
+        }
+        eprintln!(
+            "--h not given: h = {:.4e} m (t/{}), so that the cohesive zone Lambda_0 = {l0:.4e} m spans {:.2} elements (at least {}; 6 or more move the peak force by under 0.01 mu_s N and the count of front advances by several, validation/dynamics/converge)",
+            scene.mesh.h,
+            (scene.block.thickness / scene.mesh.h).round(),
+            l0 / scene.mesh.h,
+            physics::MIN_ZONE_ELEMENTS
+        );
+    }
+    let kappa = physics::kappa(scene, mu_s, mu_d, dc, a.n_force);
+    eprintln!("kappa = {kappa:.4}: {}", physics::regime(kappa));
+    Ok(())
 }
 
 fn law_choice(a: &Args) -> LawChoice {
@@ -233,7 +276,7 @@ fn run_checked(
         return Err(Error::input("newton", "--newton cannot act without --law slip-weakening"));
     }
     // Whether every event's state is kept in memory: only for states.csv and --fields.
-    let keep_states = a.states.as_deref().map_or(!(a.dynamics && a.drive_velocity.is_some()), |s| s == "all");
+    let keep_states = a.states.as_deref().map_or(!a.dynamics, |s| s == "all");
     if a.fields > 0 && a.states.as_deref() == Some("none") {
         return Err(Error::input(
             "--fields",
@@ -254,12 +297,15 @@ fn run_checked(
         law,
         n_force: a.n_force,
         x_max: a.x_max,
-        cycles: a.cycles,
-        end_at_crossing: a.cycle_end == "crossing",
+        cycles: a.cycles.unwrap_or(if a.dynamics { ds::DEFAULT_CYCLES } else { SlideOptions::default().cycles }),
+        end_at_crossing: a
+            .cycle_end
+            .as_deref()
+            .map_or(a.dynamics && ds::DEFAULT_END_AT_CROSSING, |c| c == "crossing"),
         max_events: a.max_events,
         keep_states,
         newton: a.newton,
-        operator: if a.operator == "banded" {
+        operator: if a.operator.as_deref().map_or(a.dynamics, |o| o == "banded") {
             tribofe::interface::events::Operator::Banded
         } else {
             tribofe::interface::events::Operator::Dense
@@ -360,7 +406,6 @@ fn run_checked(
 
 /// `slide --dynamics`: the library's dynamic run, its files and a summary.
 fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> tribofe::Result<()> {
-    use tribofe::studies::dynamic_slide as ds;
     if a.fields > 0 {
         return Err(Error::input("--fields", "not written by --dynamics yet"));
     }
@@ -412,6 +457,13 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         ("plate_mass_kg_per_m", toml::Value::from(d.plate_mass)),
         ("plate_inertia_kg_m2_per_m", toml::Value::from(d.plate_inertia)),
     ];
+    // summary.csv's row, NaN (a quantity the run does not have) left out, and the cap if met.
+    let summary = ds::summary::COLUMNS.iter().zip(ds::summary::values(&res));
+    let mut results: Vec<(&str, toml::Value)> = results.into_iter().collect();
+    results.extend(summary.filter(|(_, v)| v.is_finite()).map(|(c, v)| (c.0, toml::Value::from(v))));
+    if let Some(why) = &res.incomplete {
+        results.push(("incomplete", toml::Value::from(why.as_str())));
+    }
     let header = tribofe::report::run_toml(super::invocation(), &results, scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
     let writing = std::time::Instant::now();
@@ -475,12 +527,31 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
             written_s
         );
     }
+    print_summary(&res)?;
     outln!(
-        "wrote {}/{{loading.csv, events.csv, {}{}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
+        "wrote {}/{{summary.csv, loading.csv, events.csv, {}{}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
         a.out.display(),
         if law.weakens() { "advances.csv, " } else { "" },
         if states { "states.csv, " } else { "" }
     );
+    match res.incomplete {
+        Some(what) => Err(Error::Incomplete { what }),
+        None => Ok(()),
+    }
+}
+
+/// summary.csv as a table, 4 significant digits, with what converges said beside each row.
+fn print_summary(res: &ds::DynamicResult) -> tribofe::Result<()> {
+    outln!("summary (summary.csv; converged quantities per validation/dynamics/converge):");
+    for (c, v) in ds::summary::COLUMNS.iter().zip(ds::summary::values(res)) {
+        let shown = match v {
+            v if !v.is_finite() => "-".to_string(),
+            v if v.fract() == 0.0 && v.abs() < 1e6 => format!("{v}"),
+            v if v != 0.0 && (v.abs() < 1e-2 || v.abs() >= 1e4) => format!("{v:.4e}"),
+            v => format!("{v:.4}"),
+        };
+        outln!("  {:<40} {:>12}  {}", c.0, shown, c.1);
+    }
     Ok(())
 }
 

@@ -201,12 +201,32 @@ fn colour(v: f32) -> String {
     format!("#{:02x}{:02x}{:02x}", r as u8, g as u8, b as u8)
 }
 
-/// Writes slide's files, fronts_t.csv, dyn_events.csv and one `spacetime_<event>.svg` per
+/// summary.csv: the run's one row ([`crate::studies::dynamic_slide::summary::COLUMNS`]);
+/// an empty cell where a quantity does not exist in the run (no crossing reached...).
+pub fn summary_csv(r: &DynamicResult) -> Result<String> {
+    use crate::studies::dynamic_slide::summary;
+    let cols = summary::COLUMNS;
+    let mut s = cols.iter().map(|c| c.0).collect::<Vec<_>>().join(",");
+    s.push('\n');
+    let row: Vec<String> = summary::values(r)
+        .iter()
+        .zip(cols)
+        .map(|(&v, c)| if v.is_finite() { num(c.0, v) } else { Ok(String::new()) })
+        .collect::<Result<_>>()?;
+    s.push_str(&row.join(","));
+    s.push('\n');
+    Ok(s)
+}
+
+/// Writes slide's files, summary.csv, fronts_t.csv, dyn_events.csv and one `spacetime_<event>.svg` per
 /// instability into `dir`.
 pub fn write(r: &DynamicResult, dir: &Path, header: &str, states: bool) -> Result<Vec<PathBuf>> {
     let mut out = super::slide::write(&r.slide, dir, header, states)?;
-    let mut files =
-        vec![("fronts_t.csv".to_string(), fronts_csv(r)?), ("dyn_events.csv".to_string(), events_csv(r)?)];
+    let mut files = vec![
+        ("summary.csv".to_string(), summary_csv(r)?),
+        ("fronts_t.csv".to_string(), fronts_csv(r)?),
+        ("dyn_events.csv".to_string(), events_csv(r)?),
+    ];
     for e in r.events.iter().filter(|e| e.record.weakened) {
         files.push((format!("spacetime_{:06}.svg", e.event), spacetime_svg(r, e)));
     }

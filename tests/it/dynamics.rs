@@ -500,7 +500,7 @@ pub(crate) fn short_weakening(op: Operator, x_max: f64) -> (Scene, SlideOptions)
 /// X = `x_max`, the static phase on `op`.
 fn weakening_on(scene: Scene, op: Operator, x_max: f64) -> (Scene, SlideOptions) {
     let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.9, 0.35).unwrap();
-    let dc = ds::default_dc(&scene, mu_s, mu_d, 1.0).unwrap();
+    let dc = ds::smallest_resolved_dc(&scene, mu_s, mu_d, 1.0).unwrap();
     let o = SlideOptions {
         law: Law::slip_weakening(mu_s, mu_d, dc).unwrap(),
         x_max: Some(x_max),
@@ -645,11 +645,11 @@ fn dynamic_slide_refuses_what_it_cannot_run() {
     };
     let e = ds::check(&scene, &sk, &d).unwrap_err().to_string();
     assert!(e.contains("slip-weakening") && e.contains("mesh"), "{e}");
-    // D_c below the resolved one (Lambda_0 < 3 h) names --dc and the value to use.
-    let dc = ds::default_dc(&scene, 0.648, 0.583, 1.0).unwrap();
+    // D_c below the resolved one (Lambda_0 < 3 h) names --h and the value that would resolve it.
+    let dc = ds::smallest_resolved_dc(&scene, 0.648, 0.583, 1.0).unwrap();
     let sw = SlideOptions { law: Law::slip_weakening(0.648, 0.583, 0.5 * dc).unwrap(), ..Default::default() };
     let e = ds::check(&scene, &sw, &d).unwrap_err().to_string();
-    assert!(e.contains("--dc") && e.contains("fewer than 3"), "{e}");
+    assert!(e.contains("--h 2.5000e-4") && e.contains("fewer than 3"), "{e}");
     let mut sri = scene.clone();
     sri.mesh.element = "qua4-sri".into();
     let ok = SlideOptions { law: Law::coulomb(0.5).unwrap(), ..Default::default() };
@@ -760,7 +760,7 @@ fn nodes_arresting_at_their_strength_end_the_event_by_the_quiet_test() {
 #[test]
 fn states_csv_is_written_unless_asked_not_to() {
     // `--states none` leaves out states.csv and nothing else: the other files are the same
-    // bytes as the default run's (which writes it), with and without --dynamics.
+    // bytes as the `--states all` run's, with and without --dynamics (whose default is none).
     let dir = tempfile::tempdir().unwrap();
     let run = |name: &str, extra: &[&str]| -> std::path::PathBuf {
         let out = dir.path().join(name);
@@ -774,8 +774,12 @@ fn states_csv_is_written_unless_asked_not_to() {
         out
     };
     for dynamics in [&[][..], &["--dynamics"][..]] {
-        let all = run(&format!("all{}", dynamics.len()), dynamics);
+        let all = run(&format!("all{}", dynamics.len()), &[dynamics, &["--states", "all"][..]].concat());
         let none = run(&format!("none{}", dynamics.len()), &[dynamics, &["--states", "none"][..]].concat());
+        if !dynamics.is_empty() {
+            let default = run("default_dynamics", dynamics);
+            assert!(!default.join("states.csv").exists());
+        }
         let states = std::fs::read_to_string(all.join("states.csv")).unwrap();
         assert!(states.lines().count() > 100, "{dynamics:?}: {} lines", states.lines().count());
         assert!(!none.join("states.csv").exists(), "{dynamics:?}");

@@ -21,7 +21,6 @@
 //! the same events as `slide` (tests/it/dynamics.rs).
 
 use crate::dynamics::driven::{DynState, EventLimits, EventRecord};
-use crate::dynamics::friction::SlipWeakening;
 use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
 use crate::interface::banded::{BandedOperator, Solving};
@@ -37,8 +36,11 @@ use events::search::Hit;
 use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, start, stuck_err};
 use std::time::Instant;
 
+pub mod physics;
 mod setup;
 mod steps;
+pub mod summary;
+pub use physics::{default_dc, smallest_resolved_dc};
 pub mod velocity;
 use setup::Setup;
 use steps::{anchor_after, arrest, classify_event, crossing, relax};
@@ -113,6 +115,11 @@ pub fn event_cap_periods(length: f64, thickness: f64, xi: f64, ke_fraction: f64)
 /// Margin of [`event_cap_periods`] over the physics (slow fronts, a second rupture).
 pub const EVENT_CAP_FACTOR: f64 = 4.0;
 
+/// `slide --dynamics` runs the paper's first cycle by default: one cycle, ended by the first
+/// front crossing (what F_1, x_1, the envelope and the peak are read on).
+pub const DEFAULT_CYCLES: usize = 1;
+pub const DEFAULT_END_AT_CROSSING: bool = true;
+
 /// Default slip-weakening step of the static loading: D_c / this of slip (as the quasi-static
 /// solver).
 pub const DEFAULT_WEAKENING_STEPS: f64 = 20.0;
@@ -156,15 +163,12 @@ pub struct DynamicResult {
     pub setup_s: f64,
     pub static_s: f64,
     pub dynamic_s: f64,
-}
-
-/// The smallest D_c whose cohesive zone Lambda_0 at the mean pressure spans 3 elements.
-pub fn default_dc(scene: &Scene, mu_s: f64, mu_d: f64, n_force: f64) -> Result<f64> {
-    let b = &scene.block;
-    let g = b.young / (2.0 * (1.0 + b.poisson));
-    let p = n_force / b.length;
-    let unit = SlipWeakening::new(mu_s, mu_d, 1.0)?.cohesive_zone(g, b.poisson, p);
-    Ok(crate::dynamics::rupture::MIN_ZONE_ELEMENTS * scene.mesh.h / unit)
+    /// The cap the run met before its end (events, an event's steps), if any: the tables
+    /// hold what was computed up to there.
+    pub incomplete: Option<String>,
+    /// The held mode's static-loading coefficient updates per D_c (NaN under the
+    /// constant-velocity drive, which updates every step).
+    pub weakening_steps: f64,
 }
 
 /// Refusals before any work: the element, the law, damping and step.
@@ -182,7 +186,7 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<()> 
     if let Law::StaticKinetic { .. } = o.law {
         return Err(Error::input(
             "--law",
-            "static-kinetic is refused with --dynamics: its abrupt drop mu_s -> mu_d has no length scale, so a dynamic front on it is set by the mesh (issue 33); use --law slip-weakening (with --dc, default the smallest D_c the mesh resolves)",
+            "static-kinetic is refused with --dynamics: its abrupt drop mu_s -> mu_d has no length scale, so a dynamic front on it is set by the mesh (issue 33); use --law slip-weakening (with --dc; default: the D_c giving kappa = 0.509, the paper scene's 2.3107e-7 m)",
         ));
     }
     if let Some(eta) = d.damping {
@@ -209,20 +213,7 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<()> 
         ));
     }
     if let Law::SlipWeakening { mu_s, mu_d, dc } = o.law {
-        let b = &scene.block;
-        let g = b.young / (2.0 * (1.0 + b.poisson));
-        let l0 = SlipWeakening::new(mu_s, mu_d, dc)?.cohesive_zone(g, b.poisson, o.n_force / b.length);
-        if l0 < crate::dynamics::rupture::MIN_ZONE_ELEMENTS * scene.mesh.h {
-            return Err(Error::input(
-                "--dc",
-                format!(
-                    "{dc:e} m: the cohesive zone Lambda_0 = {l0:.3e} m spans {:.2} elements of h = {} m, fewer than 3; the front would be mesh dependent: use --dc >= {:.3e} m or a smaller --h",
-                    l0 / scene.mesh.h,
-                    scene.mesh.h,
-                    default_dc(scene, mu_s, mu_d, o.n_force)?
-                ),
-            ));
-        }
+        physics::check_resolved(scene, mu_s, mu_d, dc, o.n_force, "--h")?;
     }
     Ok(())
 }
@@ -290,16 +281,10 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         lambda0,
         lambda0 / scene.mesh.h,
         if weakens {
-            // The thin-layer stability number at the mean pressure (validation/dynamics/paper):
-            // a point held by its layer's stiffness G/t more stiffly than it weakens slips stably.
-            let kappa = mat.shear_modulus() * dc / ((mu_s - mu_d) * (o.n_force / c.l) * t);
+            let kappa = physics::kappa(scene, mu_s, mu_d, dc, o.n_force);
             format!(
-                ", D_c = {dc:.4e} m, thin-layer kappa = G D_c / ((mu_s - mu_d) (N/L) t) = {kappa:.3}{}",
-                if kappa > 0.7 {
-                    " (above ~0.7 the trailing edge, at ~0.7 N/L under the tilt, weakens stably: expect no stick-slip there)"
-                } else {
-                    ""
-                }
+                ", D_c = {dc:.4e} m, thin-layer kappa = G D_c / ((mu_s - mu_d) (N/L) t) = {kappa:.3}: {}",
+                physics::regime(kappa)
             )
         } else {
             String::new()
@@ -332,6 +317,22 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let mut slipped = vec![false; n]; // by instabilities since the last cycle end
     let mut dyn_events: Vec<DynEvent> = Vec::new();
     let mut steps = 0usize;
+    let mut incomplete = None;
+    // A cap met after the run started ends it with what it computed (exit status 5 in the
+    // command), not with an error that would discard the work.
+    macro_rules! capped {
+        ($e:expr, $drive:lifetime) => {
+            match $e {
+                Err(Error::EventCap { cap, x, f_over_n, .. }) => {
+                    incomplete = Some(format!(
+                        "--max-events = {cap} met at X = {x:.6e} m, F/N = {f_over_n:.6}; raise --max-events or lower --cycles/--x-max"
+                    ));
+                    break $drive;
+                }
+                r => r?,
+            }
+        };
+    }
     'drive: loop {
         o.cancel.check()?;
         let a = settle_continuous(&mut sv, lam, true, cap, "drive")?;
@@ -345,7 +346,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             // Coulomb's first whole-interface slip; by default the run ends 5 % further (`slide`).
             sliding_seen = true;
             rec.out.sliding_events += 1;
-            rec.simple(&sv, &a, lam, EventKind::Sliding, 0)?;
+            capped!(rec.simple(&sv, &a, lam, EventKind::Sliding, 0), 'drive);
             if o.x_max.is_none() {
                 x_stop = lam + 0.05 * lam.max(o.n_force / rec.out.k_bonded);
             }
@@ -357,7 +358,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                 // Steady sliding at mu_d, reached stably: nothing sticks again with the drive
                 // advancing; the run ends here.
                 rec.out.sliding_events += 1;
-                rec.simple(&sv, &a, lam, EventKind::Sliding, 0)?;
+                capped!(rec.simple(&sv, &a, lam, EventKind::Sliding, 0), 'drive);
                 progress.message(&format!(
                     "steady sliding at mu_d reached stably at X = {lam:.6e} m (no instability): the run ends"
                 ));
@@ -388,7 +389,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                     hint: "give --x-max".into(),
                 });
             }
-            rec.simple(&sv, &a, x_stop, EventKind::End, 0)?;
+            capped!(rec.simple(&sv, &a, x_stop, EventKind::End, 0), 'drive);
             break;
         };
         idle = if dl == 0.0 { idle + 1 } else { 0 };
@@ -407,7 +408,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                 done[i] = 0.0;
             }
             let a = settle_continuous(&mut sv, lam, true, cap, "drive")?;
-            rec.simple(&sv, &a, lam, hit_kind(h), i)?;
+            capped!(rec.simple(&sv, &a, lam, hit_kind(h), i), 'drive);
             continue;
         }
         // Slip weakening: bring the slipping coefficients to their slips at fixed U_H.
@@ -436,18 +437,15 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                 last.iter().enumerate().fold((0, 0.0f32), |b, (k, &v)| if v > b.1 { (k, v) } else { b });
             let moving = last.iter().filter(|&&v| v > 1e-3 * vmax).count();
             let en = &ev.energy;
-            return Err(Error::Untrustworthy {
-                detail: format!(
-                    "a dynamic event at X = {lam:.6e} m did not settle within {} steps ({} thickness-mode periods): at the end the base node at x/L = {:.4} moves at {vmax:.3e} m/s ({moving} nodes above 1e-3 of that, {} open), kinetic energy {:.3e} of the dissipated {:.3e} J/m",
-                    lim.max_steps,
-                    max_periods,
-                    c.x.get(kmax).copied().unwrap_or(0.0) / c.l,
-                    ev.open.iter().filter(|&&o| o).count(),
-                    en.kinetic_end / (en.friction + en.damping).max(f64::MIN_POSITIVE),
-                    en.friction + en.damping
-                ),
-                hint: "raise --damping".into(),
-            });
+            incomplete = Some(format!(
+                "a dynamic event at X = {lam:.6e} m did not settle within its cap of {} steps ({max_periods:.0} thickness-mode periods): at the end the base node at x/L = {:.4} moves at {vmax:.3e} m/s ({moving} nodes above 1e-3 of that, {} open), kinetic energy {:.3e} of the dissipated {:.3e} J/m; the tables end before it; raise --damping",
+                lim.max_steps,
+                c.x.get(kmax).copied().unwrap_or(0.0) / c.l,
+                ev.open.iter().filter(|&&o| o).count(),
+                en.kinetic_end / (en.friction + en.damping).max(f64::MIN_POSITIVE),
+                en.friction + en.damping
+            ));
+            break 'drive;
         }
         // Back to statics: every contact node anchored where the event left it.
         let a_after =
@@ -462,7 +460,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         if kind.ends_cycle() {
             rec.out.sliding_events += 1;
         }
-        rec.record(&sv, &a_after, lam, |st| Event {
+        capped!(rec.record(&sv, &a_after, lam, |st| Event {
             kind,
             f: before.f,
             x: lam,
@@ -471,7 +469,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             f_relaxed: st.f,
             backslip: 0,
             all_slipping: kind == EventKind::Sliding,
-        })?;
+        }), 'drive);
         let (t_arrest, drop_while_moving) =
             arrest(&ev, before.f, f_after).map_or((None, None), |(t, f)| (Some(t), f));
         dyn_events.push(DynEvent {
@@ -514,5 +512,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     }
     let total = clock.elapsed().as_secs_f64();
     let static_s = total - setup_s - dynamic_s;
-    Ok(su.result(scene, o, c, run, dyn_events, steps, [setup_s, static_s, dynamic_s]))
+    let mut res = su.result(scene, o, c, run, dyn_events, steps, [setup_s, static_s, dynamic_s]);
+    res.incomplete = incomplete;
+    res.weakening_steps = d.weakening_steps;
+    Ok(res)
 }

@@ -159,6 +159,8 @@ impl Setup {
             setup_s,
             static_s,
             dynamic_s,
+            incomplete: None,
+            weakening_steps: f64::NAN,
         }
     }
 

@@ -1,0 +1,136 @@
+//! Physics is input, resolution is checked: the dynamic run's default D_c comes from a
+//! stated stability number and never from the mesh; the mesh is then chosen (or a given one
+//! checked) so that the cohesive zone spans at least [`MIN_ZONE_ELEMENTS`] elements.
+
+use crate::dynamics::friction::SlipWeakening;
+use crate::error::{Error, Result};
+use crate::scene::Scene;
+
+pub use crate::dynamics::rupture::MIN_ZONE_ELEMENTS;
+
+/// The convergence study's D_c on the paper's scene (validation/dynamics/converge): there
+/// the thin-layer stability number is [`default_kappa`] = 0.509 and the paper's precursors
+/// exist; F_1, x_1, the front envelope and the peak converge as h halves at this D_c.
+pub const PAPER_DC: f64 = 2.3107e-7;
+
+/// G D_c / ((mu_s - mu_d) (N/L) t) without D_c, m^-1: the thin-layer stability number per
+/// metre of D_c. A point of the layer is held by the layer's shear stiffness G/t and weakens
+/// at (mu_s - mu_d) p / D_c; the first exceeding the second (kappa > ~1) slips stably.
+fn kappa_per_dc(scene: &Scene, mu_s: f64, mu_d: f64, n_force: f64) -> f64 {
+    let b = &scene.block;
+    let g = b.young / (2.0 * (1.0 + b.poisson));
+    g / ((mu_s - mu_d) * (n_force / b.length) * b.thickness)
+}
+
+/// The thin-layer stability number kappa = G D_c / ((mu_s - mu_d) (N/L) t), dimensionless.
+pub fn kappa(scene: &Scene, mu_s: f64, mu_d: f64, dc: f64, n_force: f64) -> f64 {
+    kappa_per_dc(scene, mu_s, mu_d, n_force) * dc
+}
+
+/// The paper's scene and law ((r, g) = (0.9, 0.35), N = 1 N/m): what [`PAPER_DC`] refers to.
+fn paper() -> Result<(Scene, f64, f64)> {
+    let s = Scene::default();
+    let (mu_s, mu_d) = crate::studies::slide::coefficients_from_rg(&s, 0.9, 0.35)?;
+    Ok((s, mu_s, mu_d))
+}
+
+/// kappa of [`PAPER_DC`] on the paper's scene (0.5093): the default stability number.
+pub fn default_kappa() -> Result<f64> {
+    let (s, mu_s, mu_d) = paper()?;
+    Ok(kappa(&s, mu_s, mu_d, PAPER_DC, 1.0))
+}
+
+/// The default D_c, m: the one giving every scene the paper scene's [`default_kappa`], so
+/// exactly [`PAPER_DC`] there. It depends on the block, the law and N, never on the mesh.
+pub fn default_dc(scene: &Scene, mu_s: f64, mu_d: f64, n_force: f64) -> Result<f64> {
+    if !(mu_s > mu_d) {
+        return Err(Error::input("--mu-s/--mu-d", format!("mu_s = {mu_s} must exceed mu_d = {mu_d} to weaken")));
+    }
+    let (s, ms, md) = paper()?;
+    // A ratio of the same expression, so the paper's scene gets PAPER_DC to the last bit.
+    Ok(PAPER_DC * (kappa_per_dc(&s, ms, md, 1.0) / kappa_per_dc(scene, mu_s, mu_d, n_force)))
+}
+
+/// Lambda_0 = (9 pi / 32) G D_c / ((1 - nu) (mu_s - mu_d) N/L), m, at the mean pressure.
+pub fn lambda0(scene: &Scene, mu_s: f64, mu_d: f64, dc: f64, n_force: f64) -> Result<f64> {
+    let b = &scene.block;
+    let g = b.young / (2.0 * (1.0 + b.poisson));
+    Ok(SlipWeakening::new(mu_s, mu_d, dc)?.cohesive_zone(g, b.poisson, n_force / b.length))
+}
+
+/// The smallest D_c whose cohesive zone spans [`MIN_ZONE_ELEMENTS`] elements of the scene's
+/// h, m: what a given mesh can resolve (named in refusals; not a default).
+pub fn smallest_resolved_dc(scene: &Scene, mu_s: f64, mu_d: f64, n_force: f64) -> Result<f64> {
+    Ok(MIN_ZONE_ELEMENTS * scene.mesh.h / lambda0(scene, mu_s, mu_d, 1.0, n_force)?)
+}
+
+/// The largest element size t/k (k = 1, 2, ...: a whole number of elements through the
+/// thickness) at which Lambda_0 spans at least [`MIN_ZONE_ELEMENTS`] elements, m.
+pub fn resolving_h(thickness: f64, lambda0: f64) -> f64 {
+    let mut k = ((MIN_ZONE_ELEMENTS * thickness / lambda0).ceil() as usize).max(1);
+    while lambda0 * k as f64 / thickness < MIN_ZONE_ELEMENTS {
+        k += 1;
+    }
+    thickness / k as f64
+}
+
+/// Refuses a mesh that does not resolve the cohesive zone, naming the element size that would
+/// and the D_c this mesh resolves. `h_name` is the size as the user gave it (`--h`).
+pub fn check_resolved(scene: &Scene, mu_s: f64, mu_d: f64, dc: f64, n_force: f64, h_name: &str) -> Result<()> {
+    let l0 = lambda0(scene, mu_s, mu_d, dc, n_force)?;
+    let h = scene.mesh.h;
+    if l0 < MIN_ZONE_ELEMENTS * h {
+        return Err(Error::input(
+            h_name,
+            format!(
+                "{h} m: the cohesive zone Lambda_0 = {l0:.3e} m (D_c = {dc:.4e} m) spans {:.2} elements, fewer than {MIN_ZONE_ELEMENTS}, so the fronts would be set by the mesh: use {h_name} {:.4e} (or leave it out to have it chosen), or --dc >= {:.3e} m",
+                l0 / h,
+                resolving_h(scene.block.thickness, l0),
+                smallest_resolved_dc(scene, mu_s, mu_d, n_force)?
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The regime the thin-layer balance expects, a heuristic said as such.
+pub fn regime(kappa: f64) -> &'static str {
+    if kappa < 1.0 {
+        "kappa < ~1: a weakened trailing zone can go unstable, precursors are possible (heuristic from the thin-layer balance)"
+    } else {
+        "kappa > ~1: the interface weakens stably, expect no precursors (heuristic from the thin-layer balance)"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_is_the_papers_dc_there_and_never_follows_the_mesh() {
+        let (s, ms, md) = paper().unwrap();
+        assert_eq!(default_dc(&s, ms, md, 1.0).unwrap(), PAPER_DC);
+        let mut fine = s.clone();
+        fine.mesh.h = 1.25e-4;
+        assert_eq!(default_dc(&fine, ms, md, 1.0).unwrap(), PAPER_DC);
+        // kappa by hand: G = 2e3/2.8, (mu_s - mu_d) = 0.35 * 0.4 / 0.24 * (1/0.9 - 1), N/L = 2.5.
+        let dmu = 0.35 * 0.4 / 0.24 * (1.0 / 0.9 - 1.0);
+        let k = 2e3 / 2.8 * PAPER_DC / (dmu * 2.5 * 0.002);
+        assert!((default_kappa().unwrap() - k).abs() < 1e-12 * k, "{k}");
+        // A thicker block keeps kappa: D_c scales with t.
+        let mut thick = s.clone();
+        thick.block.thickness = 0.004;
+        assert!((default_dc(&thick, ms, md, 1.0).unwrap() / PAPER_DC - 2.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn the_resolving_size_is_a_whole_fraction_of_t() {
+        // The paper's D_c spans 3.00001 elements of t/4 = 0.5 mm.
+        let (s, ms, md) = paper().unwrap();
+        let l0 = lambda0(&s, ms, md, PAPER_DC, 1.0).unwrap();
+        assert!((l0 / 5e-4 - 3.0).abs() < 1e-4, "{l0}");
+        assert_eq!(resolving_h(0.002, l0), 0.0005);
+        assert_eq!(resolving_h(0.002, 0.1), 0.002);
+        assert!(check_resolved(&s, ms, md, PAPER_DC, 1.0, "--h").unwrap_err().to_string().contains("--h 5.0000e-4"));
+    }
+}
