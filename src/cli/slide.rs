@@ -297,7 +297,11 @@ fn run_checked(
         law,
         n_force: a.n_force,
         x_max: a.x_max,
-        cycles: a.cycles.unwrap_or(if a.dynamics { ds::DEFAULT_CYCLES } else { SlideOptions::default().cycles }),
+        cycles: a.cycles.unwrap_or(if a.dynamics {
+            ds::DEFAULT_CYCLES
+        } else {
+            SlideOptions::default().cycles
+        }),
         end_at_crossing: a
             .cycle_end
             .as_deref()
@@ -578,10 +582,11 @@ fn print_paper_comparison(label: &str, res: &tribofe::studies::slide::SlideResul
         f(c.f_max_fe)
     );
     outln!(
-        "{label}: front advances n = {}, first at F = {}, front x = {}",
+        "{label}: front advances n = {}, first at F = {}, front x = {} (counted from the {} edge, where slip nucleates)",
         c.n_front,
         f(c.f1_front),
-        f(c.x1_front)
+        f(c.x1_front),
+        tribofe::studies::slide::nucleating_edge(res).name()
     );
     outln!("{}", tribofe::precursors::definition::DEFINITION);
     outln!("{}", tribofe::precursors::definition::ADVANCES);

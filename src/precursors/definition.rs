@@ -48,9 +48,9 @@ pub const LONG_T: f64 = 5.0;
 pub const ADVANCE_T: f64 = 5.0;
 
 /// The definition in one line, printed under every summary that reports precursors.
-pub const DEFINITION: &str = "precursor: the instabilities at one drive X (one cascade) before the cycle ends, nucleating at the trailing edge (slip starting within 5 t of x = -L/2, nucleus within 5 t of that start); long: slipped > 5 t; n (compare with the paper's n): those whose arrest lies > 5 t beyond the last counted one's; F_i: drive force at the cascade's onset; x_i: its arrest point";
+pub const DEFINITION: &str = "precursor: the instabilities at one drive X (one cascade) before the cycle ends, nucleating at the trailing edge (slip starting within 5 t of x = -L/2, nucleus within 5 t of that start; from x = +L/2 instead when the first instability nucleates nearer the leading edge); long: slipped > 5 t; n (compare with the paper's n): those whose arrest lies > 5 t beyond the last counted one's; F_i: drive force at the cascade's onset; x_i: its arrest point";
 /// The front-advance count in one line, printed where it is reported.
-pub const ADVANCES: &str = "front advance: a cascade before the cycle ends that moves the front, the far end of the runs slipped since the cycle began (by its instabilities, and quasi-statically before each) reached from the trailing edge across stuck gaps of at most 5 t, more than 5 t beyond the last counted advance's; F: drive force at its onset; x: the new front";
+pub const ADVANCES: &str = "front advance: a cascade before the cycle ends that moves the front, the far end of the runs slipped since the cycle began (by its instabilities, and quasi-statically before each) reached from the nucleating edge (trailing, or leading when slip nucleates there) across stuck gaps of at most 5 t, more than 5 t beyond the last counted advance's; F: drive force at its onset; x: the new front";
 
 /// One instability of a frictional run, as the definition reads it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -186,6 +186,86 @@ pub fn advances(slips: &[Slip], x: &[f64], t: f64) -> Vec<Advance> {
         }
     }
     out
+}
+
+/// The edge the first cycle's slip nucleates at: the one nearer the first instability's
+/// nucleation node. The paper's torque makes it the trailing edge (x = -L/2); where the
+/// pressure slope reverses (H below about t/2, where the block's own shear couple wins) it
+/// is the leading edge, and the definitions run from there ([`find_from_edge`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Edge {
+    Trailing,
+    Leading,
+}
+
+impl Edge {
+    pub fn name(self) -> &'static str {
+        match self {
+            Edge::Trailing => "trailing",
+            Edge::Leading => "leading",
+        }
+    }
+}
+
+/// [`Edge`] of `slips` on the nodes `x` (ascending); trailing when there is no instability.
+pub fn nucleating_edge(slips: &[Slip], x: &[f64]) -> Edge {
+    match (slips.first(), x.first(), x.last()) {
+        (Some(s), Some(&a), Some(&b)) if x.get(s.node).is_some_and(|&xn| xn - a > b - xn) => Edge::Leading,
+        _ => Edge::Trailing,
+    }
+}
+
+/// `slips` and `x` seen from the leading edge: x -> -x, node i -> n - 1 - i, so that the
+/// definitions, written from x[0], run from the other edge.
+fn mirrored(slips: &[Slip], x: &[f64]) -> (Vec<Slip>, Vec<f64>) {
+    let n = x.len();
+    let m = |i: usize| n.saturating_sub(1).saturating_sub(i);
+    let xs = x.iter().rev().map(|v| -v).collect();
+    let ss = slips
+        .iter()
+        .map(|s| Slip {
+            node: m(s.node),
+            region: (m(s.region.1), m(s.region.0)),
+            preslip: s.preslip.map(|(a, b)| (m(b), m(a))),
+            ..*s
+        })
+        .collect();
+    (ss, xs)
+}
+
+/// [`find`] from the edge slip nucleates at; node indices are the caller's. From the leading
+/// edge a precursor's `region` is (start, arrest) in the direction the front ran, so
+/// [`Precursor::arrest`] stays its arrest node.
+pub fn find_from_edge(slips: &[Slip], x: &[f64], t: f64) -> (Edge, Precursors) {
+    match nucleating_edge(slips, x) {
+        Edge::Trailing => (Edge::Trailing, find(slips, x, t)),
+        Edge::Leading => {
+            let (ss, xs) = mirrored(slips, x);
+            let m = |i: usize| x.len() - 1 - i;
+            let mut p = find(&ss, &xs, t);
+            for q in &mut p.all {
+                q.node = m(q.node);
+                q.region = (m(q.region.0), m(q.region.1));
+            }
+            (Edge::Leading, p)
+        }
+    }
+}
+
+/// [`advances`] from the edge slip nucleates at; node indices are the caller's.
+pub fn advances_from_edge(slips: &[Slip], x: &[f64], t: f64) -> (Edge, Vec<Advance>) {
+    match nucleating_edge(slips, x) {
+        Edge::Trailing => (Edge::Trailing, advances(slips, x, t)),
+        Edge::Leading => {
+            let (ss, xs) = mirrored(slips, x);
+            let m = |i: usize| x.len() - 1 - i;
+            let a = advances(&ss, &xs, t)
+                .into_iter()
+                .map(|a| Advance { front: m(a.front), node: m(a.node), ..a })
+                .collect();
+            (Edge::Leading, a)
+        }
+    }
 }
 
 /// `slips` split into cascades: runs of equal drive X.
@@ -433,5 +513,37 @@ mod tests {
             slip(2, 3.0, 0.7, 0, (0, 90)),
         ];
         assert_eq!(fronts(&slips), [40]);
+    }
+
+    #[test]
+    fn a_run_nucleating_at_the_leading_edge_is_counted_from_there() {
+        // Nodes 1 t apart; three cascades from the leading edge, the mirror of three from the
+        // trailing edge: the same count and forces, positions mirrored, the edge named.
+        let t = 1.0;
+        let x: Vec<f64> = (0..101).map(|i| i as f64 - 50.0).collect();
+        let slip = |k: usize, node: usize, region: (usize, usize)| Slip {
+            event: k,
+            x_drive: k as f64,
+            f: 0.7 + 0.01 * k as f64,
+            node,
+            region,
+            ends_cycle: false,
+            preslip: None,
+        };
+        let trailing = [slip(0, 1, (0, 20)), slip(1, 2, (0, 40)), slip(2, 1, (0, 60))];
+        let leading = [slip(0, 99, (80, 100)), slip(1, 98, (60, 100)), slip(2, 99, (40, 100))];
+        let (et, pt) = find_from_edge(&trailing, &x, t);
+        let (el, pl) = find_from_edge(&leading, &x, t);
+        assert_eq!((et, el), (Edge::Trailing, Edge::Leading));
+        assert_eq!((pt.n(), pl.n()), (3, 3));
+        for (a, b) in pt.counted().zip(pl.counted()) {
+            assert_eq!(a.f, b.f);
+            assert_eq!(x[a.arrest()], -x[b.arrest()]);
+        }
+        assert_eq!(pl.first().unwrap().arrest(), 80);
+        // The trailing-edge rule alone finds none of the leading ones.
+        assert_eq!(find(&leading, &x, t).n_all(), 0);
+        let (_, al) = advances_from_edge(&leading, &x, t);
+        assert_eq!(al.iter().map(|a| a.front).collect::<Vec<_>>(), vec![80, 60, 40]);
     }
 }

@@ -48,8 +48,10 @@ impl Params {
         if r >= 1.0 {
             return bad("r", r, "r = mu_d/mu_s must be < 1 since mu_s > mu_d");
         }
-        if g <= 0.0 {
-            return bad("g", g, "g = 6 mu_d H/L must be > 0: without torque (H = 0) the trailing edge is not singled out and there are no precursors");
+        // g = 0 (H = 0) is the paper's control case: uniform pressure, the whole interface
+        // reaches mu_s at once, F_1 = F_max = 1 and n = 0 (x_1 is past the leading edge).
+        if g < 0.0 {
+            return bad("g", g, "g = 6 mu_d H/L must be >= 0 (H >= 0: the drive at or above the interface; g = 0 is the control case without torque)");
         }
         if g >= 1.0 {
             return bad(

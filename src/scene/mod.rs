@@ -250,7 +250,10 @@ impl Scene {
         };
         scaled("block.length (m, --length)", self.block.length, "m")?;
         scaled("block.thickness (m, --thickness)", self.block.thickness, "m")?;
-        scaled("loading.height (m, --height)", self.loading.height, "m")?;
+        // H = 0 is the paper's control case: the drive in the interface plane, no torque.
+        if self.loading.height != 0.0 {
+            scaled("loading.height (m, --height)", self.loading.height, "m")?;
+        }
         scaled("mesh.h (m, --h)", self.mesh.h, "m")?;
         scaled("block.young (Pa, --young)", self.block.young, "Pa")?;
         scaled("block.density (kg/m^3)", self.block.density, "kg/m^3")?;

@@ -316,8 +316,32 @@ pub fn state_displacements(
 /// Coefficients from the paper's (r, g) at the scene's H/L: mu_d = g L/(6 H), mu_s = mu_d/r.
 pub fn coefficients_from_rg(scene: &Scene, r: f64, g: f64) -> Result<(f64, f64)> {
     let p = crate::precursors::Params::new(r, g)?;
+    if scene.loading.height == 0.0 {
+        return Err(Error::input(
+            "--g",
+            "at --height 0 g = 6 mu_d H/L is 0 whatever the coefficients, so (r, g) cannot set them: give --mu-s and --mu-d (or neither, for the paper's)",
+        ));
+    }
+    if p.g() == 0.0 {
+        return Err(Error::input(
+            "--g",
+            "g = 6 mu_d H/L = 0 is the control case without torque, H = 0: give --height 0 (with --mu-s and --mu-d, or neither for the paper's)",
+        ));
+    }
     let mu_d = p.g() * scene.block.length / (6.0 * scene.loading.height);
     Ok((mu_d / p.r(), mu_d))
+}
+
+/// The default coefficients: the paper's (r, g) = (0.9, 0.35) at the scene's H/L; at H = 0
+/// (the control case, where g is 0 whatever the coefficients) at the paper's H/L = 0.1, so
+/// the control case keeps the paper's friction with the torque removed.
+pub fn default_coefficients(scene: &Scene) -> Result<(f64, f64)> {
+    if scene.loading.height == 0.0 {
+        let mut paper = scene.clone();
+        paper.loading.height = 0.1 * scene.block.length;
+        return coefficients_from_rg(&paper, 0.9, 0.35);
+    }
+    coefficients_from_rg(scene, 0.9, 0.35)
 }
 
 /// Front of the slip zone grown from the trailing edge (x = -L/2) of a state: x/L midway
@@ -405,12 +429,18 @@ pub struct PaperComparison {
 /// The precursors of a run's first cycle ([`crate::precursors::definition`]); forces F_i in
 /// N/m.
 pub fn precursors(res: &SlideResult) -> Precursors {
-    definition::find(&slips(res), &res.condensed.x, res.condensed.t)
+    definition::find_from_edge(&slips(res), &res.condensed.x, res.condensed.t).1
+}
+
+/// The edge the run's first instability nucleates at ([`definition::nucleating_edge`]): the
+/// edge [`precursors`] and [`front_advances`] count from.
+pub fn nucleating_edge(res: &SlideResult) -> definition::Edge {
+    definition::nucleating_edge(&slips(res), &res.condensed.x)
 }
 
 /// The front advances of a run's first cycle ([`definition::advances`]); forces in N/m.
 pub fn front_advances(res: &SlideResult) -> Vec<definition::Advance> {
-    definition::advances(&slips(res), &res.condensed.x, res.condensed.t)
+    definition::advances_from_edge(&slips(res), &res.condensed.x, res.condensed.t).1
 }
 
 /// The run's instabilities, each with the preslip of the state before it (its first run of
@@ -521,7 +551,12 @@ impl LawChoice {
                 }
                 let mu = match (self.mu, self.g) {
                     (Some(m), None) => m,
-                    (None, Some(g)) => g * scene.block.length / (6.0 * scene.loading.height),
+                    (None, Some(g)) if scene.loading.height > 0.0 => {
+                        g * scene.block.length / (6.0 * scene.loading.height)
+                    }
+                    (None, Some(_)) => {
+                        return Err(Error::input("--g", "at --height 0 g is 0 whatever mu: give --mu"))
+                    }
                     (None, None) => 0.5,
                     _ => return Err(Error::input("mu", "give --mu or --g, not both")),
                 };
@@ -537,7 +572,7 @@ impl LawChoice {
                 let (ms, md) = match (self.mu_s, self.mu_d, self.r, self.g) {
                     (Some(s), Some(d), None, None) => (s, d),
                     (None, None, Some(r), Some(g)) => coefficients_from_rg(scene, r, g)?,
-                    (None, None, None, None) => coefficients_from_rg(scene, 0.9, 0.35)?,
+                    (None, None, None, None) => default_coefficients(scene)?,
                     _ => {
                         return Err(Error::input(
                             "mu-s/mu-d",

@@ -14,6 +14,7 @@ mod check;
 mod cli_smoke;
 mod convergence;
 mod dynamics;
+mod dynamics_defaults;
 mod dynamics_velocity;
 mod edges;
 mod elements;

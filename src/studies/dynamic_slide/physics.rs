@@ -44,7 +44,10 @@ pub fn default_kappa() -> Result<f64> {
 /// exactly [`PAPER_DC`] there. It depends on the block, the law and N, never on the mesh.
 pub fn default_dc(scene: &Scene, mu_s: f64, mu_d: f64, n_force: f64) -> Result<f64> {
     if !(mu_s > mu_d) {
-        return Err(Error::input("--mu-s/--mu-d", format!("mu_s = {mu_s} must exceed mu_d = {mu_d} to weaken")));
+        return Err(Error::input(
+            "--mu-s/--mu-d",
+            format!("mu_s = {mu_s} must exceed mu_d = {mu_d} to weaken"),
+        ));
     }
     let (s, ms, md) = paper()?;
     // A ratio of the same expression, so the paper's scene gets PAPER_DC to the last bit.
@@ -76,7 +79,14 @@ pub fn resolving_h(thickness: f64, lambda0: f64) -> f64 {
 
 /// Refuses a mesh that does not resolve the cohesive zone, naming the element size that would
 /// and the D_c this mesh resolves. `h_name` is the size as the user gave it (`--h`).
-pub fn check_resolved(scene: &Scene, mu_s: f64, mu_d: f64, dc: f64, n_force: f64, h_name: &str) -> Result<()> {
+pub fn check_resolved(
+    scene: &Scene,
+    mu_s: f64,
+    mu_d: f64,
+    dc: f64,
+    n_force: f64,
+    h_name: &str,
+) -> Result<()> {
     let l0 = lambda0(scene, mu_s, mu_d, dc, n_force)?;
     let h = scene.mesh.h;
     if l0 < MIN_ZONE_ELEMENTS * h {
@@ -131,6 +141,9 @@ mod tests {
         assert!((l0 / 5e-4 - 3.0).abs() < 1e-4, "{l0}");
         assert_eq!(resolving_h(0.002, l0), 0.0005);
         assert_eq!(resolving_h(0.002, 0.1), 0.002);
-        assert!(check_resolved(&s, ms, md, PAPER_DC, 1.0, "--h").unwrap_err().to_string().contains("--h 5.0000e-4"));
+        assert!(check_resolved(&s, ms, md, PAPER_DC, 1.0, "--h")
+            .unwrap_err()
+            .to_string()
+            .contains("--h 5.0000e-4"));
     }
 }

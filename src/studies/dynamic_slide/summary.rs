@@ -5,6 +5,7 @@
 
 use super::{physics, DynamicResult};
 use crate::interface::law::Law;
+use crate::precursors::definition::Edge;
 
 /// Forces (units of mu_s N) at which the front envelope is read.
 pub const ENVELOPE_F: [f64; 4] = [0.75, 0.80, 0.85, 0.90];
@@ -14,12 +15,25 @@ pub const ENVELOPE_F: [f64; 4] = [0.75, 0.80, 0.85, 0.90];
 pub const COLUMNS: &[(&str, &str)] = &[
     ("first_advance_F_over_mu_s_N", "F_1: drive force at the first front advance (converges)"),
     ("first_advance_front_over_L", "x_1: the front after it (converges)"),
-    ("largest_F_before_crossing_over_mu_s_N", "the largest force up to and including the cycle's end (converges)"),
-    ("crossing_F_over_mu_s_N", "the force at the cycle's end, the front crossing (not converged: round-off moves it)"),
+    (
+        "largest_F_before_crossing_over_mu_s_N",
+        "the largest force up to and including the cycle's end (converges)",
+    ),
+    (
+        "crossing_F_over_mu_s_N",
+        "the force at the cycle's end, the front crossing (not converged: round-off moves it)",
+    ),
     ("crossing_X_m", "the drive displacement at the cycle's end"),
     ("front_advances", "count of front advances (not converged)"),
-    ("trailing_edge_precursors", "count of the one definition's advancing precursors (not converged)"),
-    ("envelope_front_over_L_at_F_0.75", "front x on the curve through the advances at F = 0.75 mu_s N (converges)"),
+    ("edge_precursors", "count of the one definition's advancing precursors (not converged)"),
+    (
+        "nucleation_at_leading_edge",
+        "0: slip nucleates at the trailing edge and the counts run from there; 1: at the leading edge",
+    ),
+    (
+        "envelope_front_over_L_at_F_0.75",
+        "front x on the curve through the advances at F = 0.75 mu_s N (converges)",
+    ),
     ("envelope_front_over_L_at_F_0.80", "the same at 0.80"),
     ("envelope_front_over_L_at_F_0.85", "the same at 0.85"),
     ("envelope_front_over_L_at_F_0.90", "the same at 0.90"),
@@ -61,6 +75,7 @@ pub fn values(r: &DynamicResult) -> Vec<f64> {
         cross.map_or(nan, |i| events[i].x),
         adv.len() as f64,
         pre.n() as f64,
+        f64::from(u8::from(crate::studies::slide::nucleating_edge(res) == Edge::Leading)),
     ];
     v.extend(ENVELOPE_F.iter().map(|&f| envelope(&curve, f)));
     v.extend([
@@ -96,6 +111,6 @@ mod tests {
         assert!((super::envelope(&c, 0.75) + 0.3).abs() < 1e-15);
         assert!((super::envelope(&c, 0.85) + 0.05).abs() < 1e-15);
         assert!(super::envelope(&c, 0.95).is_nan() && super::envelope(&c, 0.6).is_nan());
-        assert_eq!(super::COLUMNS.len(), 20);
+        assert_eq!(super::COLUMNS.len(), 21);
     }
 }
