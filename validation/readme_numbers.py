@@ -407,6 +407,36 @@ add(cells(F, "the one precursor definition (nucleus within 5 t", [rx(THIN_LOG, r
 add(cells(F, "front advances before the crossing (model 10); the crossing force", [
     rx(THIN_LOG, FRONT, "first", 1), rx(THIN_LOG, r"last peak F = ([0-9.]+)")]))
 
+# -- README's findings table: the same reads as docs/findings.md's rows -----------------------
+add(cells(R, "The bonded check holds in the interior", [slope_below]))
+add(cells(R, "The corrected model (`analytical::thin_layer`) fixes the slope", [
+    csv_(SWEEP, "slope_ratio_corrected", nu04, "max", value=lambda r: abs(1 - float(r["slope_ratio_corrected"]))),
+    csv_(SWEEP, "slope_ratio", nu04, "max", value=lambda r: 100 * abs(1 - float(r["slope_ratio"])))]))
+add(cells(R, "Edge zones are the clamped strip's slowest decay mode", [rx(CONV_TXT, STRIP, "first", 1), rx(CONV_TXT, STRIP, "first", 2)]))
+add(cells(R, "Torque sets the first precursor", [csv_(HEIGHTS, "F1_rel_dev", g_from(0.0875), "max", value=lambda r: 100 * abs(float(r["F1_rel_dev"])))]))
+add(cells(R, "The stick-slip peak stays below the model's F_max", [
+    rx("validation/precursors/thin_layer_r0.95_g0.2.txt", r"^F_max: .*offset from the model ([-0-9.]+) %"),
+    rx("validation/precursors/thin_layer_r0.5_g0.6.txt", r"^F_max: .*offset from the model ([-0-9.]+) %")]))
+add(cells(R, "relaxed residual explains part of that deficit", [share("0.9", "0.35")], scale=100))
+add(cells(R, "Dynamics at kappa = 1.02", [
+    rx(H1_LOG, r"^dynamics: n = \d+ \(advancing; of (\d+) precursors"), rx(H1_LOG, r"^slip-weakening .*\((\d+) instabilities\)")]))
+add(cells(R, "Dynamics at kappa = 0.51: the first precursor", [
+    rx(REP_LOG, FRONT, "first", 2), rx(REP_LOG, FRONT, "first", 3),
+    rx(REP_LOG, PAPER_IT, "first", 2), rx(REP_LOG, PAPER_IT, "first", 3)]))
+add(cells(R, "The largest force before the front crossing", [
+    derive("(min + max)/2", lambda a, b: (a + b) / 2, peak9("min"), peak9("max")),
+    derive("(max - min)/2", lambda a, b: (b - a) / 2, peak9("min"), peak9("max")),
+    model_fig4("Fmax_over_mu_s_N")]))
+add(cells(R, "The count of front advances does not converge", [
+    csv_(TABLE, "n_front", dyn("0.9", h)) for h in ("0.5", "0.25", "0.125")] + [model_fig4("precursors_advancing_5t")]))
+add(cells(R, "Fronts stop short", [
+    rx(REGIME, r"^\|arrest - Griffith prediction\| / L over \d+: median ([0-9.]+)"),
+    rx(REGIME, r"^\|arrest - zero G_c prediction\| / L over \d+: median ([0-9.]+)")]))
+add(cells(R, "Assumption 5 (relaxation after arrest)", [csv_(TABLE, "drop_moving", dyn("0.9", "0.5"))]))
+add(cells(R, "the model's F_1 fails", [
+    csv_(TABLE, "f1_front", dyn("0.7", "0.5")),
+    rx("validation/dynamics/converge/r0.7_g0.5_h0.5_dc1.274e-6.log", PAPER_IT, "first", 2)]))
+
 add(cells(F, "hostile inputs rerun", [
     csv_(HOSTILE, "verdict", {}, "count"), csv_(HOSTILE, "verdict", {"verdict": "ok"}, "count")]))
 
@@ -493,6 +523,34 @@ def parse(quoted):
     return float(quoted.replace(",", ""))
 
 
+def slug(heading):
+    """GitHub's anchor for a markdown heading."""
+    h = re.sub(r"[^\w\- ]", "", heading.strip().lower())
+    return h.replace(" ", "-")
+
+
+def check_links(root, doc, lines):
+    """Relative links of `doc` must name an existing file, and an existing heading if they
+    carry an anchor."""
+    problems = []
+    for n, line in enumerate(lines, 1):
+        for m in re.finditer(r"\]\(([^)\s]+)\)", line):
+            target = m.group(1)
+            if re.match(r"^[a-z]+:", target):
+                continue
+            path, _, anchor = target.partition("#")
+            full = os.path.normpath(os.path.join(root, os.path.dirname(doc), path)) if path else _path(root, doc)
+            if not os.path.exists(full):
+                problems.append(f"{doc}:{n}: link to a missing file: {target}")
+                continue
+            if anchor and full.endswith(".md"):
+                with open(full) as f:
+                    heads = {slug(h.lstrip("#")) for h in f.read().split("\n") if re.match(r"^#{1,6} ", h)}
+                if anchor not in heads:
+                    problems.append(f"{doc}:{n}: link to a missing heading: {target}")
+    return problems
+
+
 def run(root, show=False):
     docs = {}
     for d in (README, FINDINGS):
@@ -544,6 +602,8 @@ def run(root, show=False):
                 f"{w.doc}:{n}: stale number '{quoted}': the committed value is {committed:.6g} "
                 f"(to the quoted precision: +-{precision(quoted):g}), read from {e.source.describe}")
 
+    for d, lines in docs.items():
+        problems += check_links(root, d, lines)
     unregistered = 0
     for d, lines in docs.items():
         for header, rows in checked_tables(d, lines):
