@@ -342,7 +342,11 @@ add(cells(F, "kappa = 0.25 (h = 0.25 mm): the first arrest", [csv_(REGIME25, "re
 add(cells(F, "force-drop timing (secondary)", [csv_(TABLE, "drop_moving", dyn("0.9", h)) for h in ("0.5", "0.25", "0.125")]))
 add(cells(F, "paper's scene: F_1 over three meshes and three dampings", [
     csv_(TABLE, "f1_front", dyn_dampings("0.9"), "min"), csv_(TABLE, "f1_front", dyn_dampings("0.9"), "max")]))
-add(cells(F, "paper's scene: x_1 over three meshes and three dampings", [csv_(TABLE, "x1_front", dyn_dampings("0.9"), "min")]))
+add(cells(F, "paper's scene: x_1 over three meshes and three dampings", [
+    csv_(TABLE, "x1_front", dyn_dampings("0.9"), "min"), csv_(TABLE, "x1_front", dyn_dampings("0.9"), "max")]))
+LOG7 = "validation/dynamics/converge/r0.7_g0.5_h{}_dc1.274e-6.log"
+add(cells(F, "(0.7, 0.5): the first instability's onset force at h", [rx(LOG7.format(h), EVENT_F, "first", 1) for h in ("0.5", "0.25", "0.125")]))
+add(cells(F, "(0.7, 0.5): where it starts slipping, near end", [rx(LOG7.format(h), EVENT_F, "first", 2) for h in ("0.5", "0.25", "0.125")]))
 add(cells(F, "paper's scene: spread of the front envelope", [
     csv_(TABLE, f"tip_curve_over_L_at_F_{f}", dyn("0.9"), "spread") for f in ("0.8", "0.85", "0.9")]))
 peak9 = lambda agg: csv_(TABLE, "f_peak", dyn_dampings("0.9"), agg)  # noqa: E731
@@ -366,7 +370,10 @@ add(cells(F, "(0.7, 0.5): front advances", [csv_(TABLE, "n_front", dyn("0.7", h)
 add(cells(F, "(0.8, 0.2): first front advance", [csv_(TABLE, "f1_front", dyn("0.8", "0.5"))]))
 add(cells(F, "(0.8, 0.2): largest force before the crossing", [csv_(TABLE, "f_peak", dyn("0.8", h)) for h in ("0.5", "0.25", "0.125")]))
 add(cells(F, "(0.8, 0.2): front advances", [csv_(TABLE, "n_front", dyn("0.8", h)) for h in ("0.5", "0.25", "0.125")]))
-add(cells(F, "cost, paper's scene: CPU seconds", [csv_(TABLE, "cpu_s", dyn("0.9", h)) for h in ("0.5", "0.25", "0.125")]))
+cpu9 = [csv_(TABLE, "cpu_s", dyn("0.9", h)) for h in ("0.5", "0.25", "0.125")]
+add(cells(F, "cost, paper's scene: CPU seconds", cpu9 + [
+    derive("CPU(h/2)/CPU(h)", lambda a, b: b / a, cpu9[0], cpu9[1]),
+    derive("CPU(h/2)/CPU(h)", lambda a, b: b / a, cpu9[1], cpu9[2])]))
 WALL = r"wall time ([0-9.]+) s \(setup [0-9.]+ s, static loading ([0-9.]+) s"
 add(cells(F, "share of the h = 0.125 mm run's wall time", [
     derive("100 static/wall", lambda s, w: 100 * s / w, rx(H125_LOG, WALL, "first", 2), rx(H125_LOG, WALL, "first", 1))]))
@@ -374,7 +381,7 @@ add(cells(F, "share of the h = 0.125 mm run's wall time", [
 WS = "validation/dynamics/converge/r{}_h0.5_dc{}_ws{}.log"
 ws7 = lambda n: WS.format("0.7_g0.5", "1.274e-6", n)  # noqa: E731
 ws9 = lambda n: WS.format("0.9_g0.35", "2.3107e-7", n)  # noqa: E731
-add(cells(F, "(0.7, 0.5): the first instability's onset force", [rx(ws7(20), EVENT_F, "first", 1), rx(ws7(5120), EVENT_F, "first", 1)]))
+add(cells(F, "(0.7, 0.5), by weakening step: the first instability's onset force", [rx(ws7(20), EVENT_F, "first", 1), rx(ws7(5120), EVENT_F, "first", 1)]))
 add(cells(F, "(0.7, 0.5): where it slips, far end", [rx(ws7(20), EVENT_F, "first", 3), rx(ws7(5120), EVENT_F, "first", 3)]))
 ws_rows = {"r": "0.7", "run": "dynamics", "ws": lambda v: v not in ("default", "")}
 add(cells(F, "(0.7, 0.5): largest force before the crossing over N", [
