@@ -439,6 +439,9 @@ add(cells(R, "The count of front advances does not converge", [
 add(cells(R, "Fronts stop short", [
     rx(REGIME, r"^\|arrest - Griffith prediction\| / L over \d+: median ([0-9.]+)"),
     rx(REGIME, r"^\|arrest - zero G_c prediction\| / L over \d+: median ([0-9.]+)")]))
+add(cells(R, "The control case H = 0", [
+    csv_("validation/dynamics/control_h0/summary.csv", "largest_F_before_crossing_over_mu_s_N"),
+    rx("validation/dynamics/control_h0/h0.txt", r"F_max = ([0-9.]+)")]))
 add(cells(R, "Assumption 5 (relaxation after arrest)", [csv_(TABLE, "drop_moving", dyn("0.9", "0.5"))]))
 add(cells(R, "the model's F_1 fails", [
     csv_(TABLE, "f1_front", dyn("0.7", "0.5")),

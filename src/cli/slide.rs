@@ -141,6 +141,12 @@ pub struct Args {
     /// marginally stable much more (validation/dynamics/converge/README.md).
     #[arg(long)]
     pub weakening_steps: Option<f64>,
+    /// A refinement series at fixed physics (--dynamics): run N meshes (2 to 4), h, h/2...,
+    /// D_c fixed; writes refinement.csv (each summary quantity per mesh, its spread and a
+    /// converged yes/no: the two finest meshes within 0.01 mu_s N for forces, 0.02 L for
+    /// positions, equal for counts) instead of one run's files.
+    #[arg(long, value_name = "N")]
+    pub refine: Option<usize>,
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
@@ -179,6 +185,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             ("--plate-inertia", a.plate_inertia.is_some()),
             ("--heal", super::given("heal")),
             ("--weakening-steps", a.weakening_steps.is_some()),
+            ("--refine", a.refine.is_some()),
         ] {
             if on {
                 return Err(Error::input(flag, "acts only with --dynamics"));
@@ -429,6 +436,9 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         weakening_steps: a.weakening_steps.unwrap_or(ds::DEFAULT_WEAKENING_STEPS),
         ..Default::default()
     };
+    if let Some(levels) = a.refine {
+        return run_refinement(a, scene, &o, &d, levels);
+    }
     let clock = std::time::Instant::now();
     let shown = std::sync::atomic::AtomicI64::new(-1);
     let tick = |t: &tribofe::Tick| match t.fraction {
@@ -539,6 +549,70 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         if states { "states.csv, " } else { "" }
     );
     match res.incomplete {
+        Some(what) => Err(Error::Incomplete { what }),
+        None => Ok(()),
+    }
+}
+
+/// `--refine N`: the series, refinement.csv and run.toml, and the verdicts printed.
+fn run_refinement(
+    a: &Args,
+    scene: &tribofe::scene::Scene,
+    o: &SlideOptions,
+    d: &ds::DynamicOptions,
+    levels: usize,
+) -> tribofe::Result<()> {
+    if a.drive_velocity.is_some() {
+        return Err(Error::input("--refine", "runs the held mode's series; not with --drive-velocity"));
+    }
+    let tick = |t: &tribofe::Tick| {
+        if t.fraction.is_none() && t.message.starts_with("refinement") {
+            eprintln!("{}", t.message);
+        }
+    };
+    let r = ds::refine::refine(scene, o, d, levels, tribofe::Progress::new(&tick))?;
+    let mut results: Vec<(&str, toml::Value)> = vec![
+        ("refinement_h_m", toml::Value::Array(r.h.iter().map(|&h| toml::Value::from(h)).collect())),
+        ("wall_s", toml::Value::Array(r.seconds.iter().map(|&h| toml::Value::from(h)).collect())),
+        ("force_tolerance_over_mu_s_N", toml::Value::from(ds::refine::FORCE_TOL)),
+        ("position_tolerance_over_L", toml::Value::from(ds::refine::POSITION_TOL)),
+    ];
+    if let Some(why) = &r.incomplete {
+        results.push(("incomplete", toml::Value::from(why.as_str())));
+    }
+    let header = tribofe::report::run_toml(super::invocation(), &results, scene)?;
+    let dir = super::begin_out(&a.out, a.force)?;
+    tribofe::report::write_atomic(
+        &dir.path().join("refinement.csv"),
+        tribofe::report::dynamic_slide::refinement_csv(&r)?.as_bytes(),
+    )?;
+    tribofe::report::write_atomic(&dir.path().join("run.toml"), header.as_bytes())?;
+    dir.commit()?;
+    outln!(
+        "refinement at fixed physics, h = {} m (converged: the two finest within {} mu_s N for forces, {} L for positions, equal for counts):",
+        r.h.iter().map(|h| format!("{h:.4e}")).collect::<Vec<_>>().join(", "),
+        ds::refine::FORCE_TOL,
+        ds::refine::POSITION_TOL
+    );
+    for v in r.verdicts() {
+        outln!(
+            "  {:<40} {}  spread {:.4}  converged {}",
+            v.name,
+            v.values
+                .iter()
+                .map(|x| if x.is_finite() { format!("{x:>8.4}") } else { format!("{:>8}", "-") })
+                .collect::<Vec<_>>()
+                .join(" "),
+            v.spread,
+            match v.converged {
+                Some(true) => "yes",
+                Some(false) => "no",
+                None => "-",
+            }
+        );
+    }
+    outln!("wrote {}/{{refinement.csv, run.toml}}", a.out.display());
+    match r.incomplete {
         Some(what) => Err(Error::Incomplete { what }),
         None => Ok(()),
     }

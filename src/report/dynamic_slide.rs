@@ -237,3 +237,36 @@ pub fn write(r: &DynamicResult, dir: &Path, header: &str, states: bool) -> Resul
     }
     Ok(out)
 }
+
+/// refinement.csv: one row per judged quantity, its value on each mesh (columns named by h in
+/// m), the spread, the change between the two finest meshes, the tolerance and the verdict
+/// ([`crate::studies::dynamic_slide::refine`]); an empty cell where a mesh lacks the quantity.
+pub fn refinement_csv(r: &crate::studies::dynamic_slide::refine::Refinement) -> Result<String> {
+    use crate::studies::dynamic_slide::refine::tolerance;
+    let cell = |what: &str, v: f64| if v.is_finite() { num(what, v) } else { Ok(String::new()) };
+    let mut s = String::from("quantity");
+    for h in &r.h {
+        write!(s, ",value_at_h_{h:e}_m").unwrap();
+    }
+    s.push_str(",spread,change_between_two_finest,tolerance,converged\n");
+    for v in r.verdicts() {
+        s.push_str(v.name);
+        for &x in &v.values {
+            write!(s, ",{}", cell(v.name, x)?).unwrap();
+        }
+        let verdict = match v.converged {
+            Some(true) => "yes",
+            Some(false) => "no",
+            None => "",
+        };
+        writeln!(
+            s,
+            ",{},{},{},{verdict}",
+            cell("spread", v.spread)?,
+            cell("change", v.last_change)?,
+            num("tolerance", tolerance(v.name))?
+        )
+        .unwrap();
+    }
+    Ok(s)
+}

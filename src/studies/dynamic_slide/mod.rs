@@ -37,6 +37,7 @@ use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, s
 use std::time::Instant;
 
 pub mod physics;
+pub mod refine;
 mod setup;
 mod steps;
 pub mod summary;
