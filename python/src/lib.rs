@@ -758,7 +758,7 @@ fn precursors_fe_fig5<'py>(
 #[pyfunction]
 #[pyo3(signature = (*, s_ratio=2.0, h=1e-3, dc=7.7e-7, t_end=0.1, length=0.2, height=0.1, mu_s=0.648,
     mu_d=0.583, sigma0=2.5, young=2000.0, poisson=0.4, density=1000.0, courant=0.5, damping=0.0,
-    contact="bilateral", normal_lag=None, patch_taper=0.0, progress=None))]
+    contact="bilateral", normal_lag=tribofe::dynamics::rupture::DEFAULT_NORMAL_LAG, patch_taper=0.0, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn rupture<'py>(
     py: Python<'py>,
@@ -777,7 +777,7 @@ fn rupture<'py>(
     courant: f64,
     damping: f64,
     contact: &str,
-    normal_lag: Option<f64>,
+    normal_lag: f64,
     patch_taper: f64,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -796,11 +796,15 @@ fn rupture<'py>(
         t_end,
         damping,
         contact: contact.parse().map_err(to_py)?,
-        normal_lag,
+        normal_lag: rp::normal_lag(normal_lag),
         patch_taper,
         ..Default::default()
     };
     spec.validate().map_err(to_py)?;
+    if let Some(w) = spec.instantaneous_normal_warning() {
+        let w = w.replace("--normal-lag", "normal_lag=");
+        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &std::ffi::CString::new(w).unwrap_or_default(), 1)?;
+    }
     let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, poll))?;
     let opt = |v: &[Option<f64>]| v.iter().map(|t| t.unwrap_or(f64::NAN)).collect::<Vec<_>>();
     let out = PyDict::new(py);

@@ -398,7 +398,9 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
     @staticmethod
     def rupture(progress: Any = True, **keys: Any) -> Dict[str, Any]:
         """The dynamic-rupture scene on a rigid flat, as ``tribofe rupture`` (same defaults:
-        the shared cross-check spec). Keywords: ``s_ratio``, ``h`` (m), ``dc`` (m), ``t_end``
+        the cross-check spec's scene with the normal-stress lag ``normal_lag`` = 1e-3 s;
+        ``normal_lag=0`` is the spec's instantaneous normal stress, warned on a rigid flat).
+        Keywords: ``s_ratio``, ``h`` (m), ``dc`` (m), ``t_end``
         (s), ``length``, ``height`` (m), ``mu_s``, ``mu_d``, ``sigma0`` (Pa), ``young`` (Pa),
         ``poisson``, ``density`` (kg/m^3), ``courant``, ``damping`` (s), ``contact``
         (``"bilateral"``, ``"unilateral"``, ``"symmetric"``), ``normal_lag`` (s),

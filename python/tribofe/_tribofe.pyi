@@ -126,7 +126,7 @@ def rupture(
     courant: float = 0.5,
     damping: float = 0.0,
     contact: str = "bilateral",
-    normal_lag: Optional[float] = None,
+    normal_lag: float = 1e-3,
     patch_taper: float = 0.0,
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...

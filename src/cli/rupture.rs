@@ -53,9 +53,11 @@ pub struct Args {
     #[arg(long, default_value = "bilateral")]
     pub contact: String,
     /// Normal-stress regularisation time T, s: the strength follows the normal stress with
-    /// d sigma*/dt = -(sigma* - sigma) / T (default: none, as the spec).
-    #[arg(long)]
-    pub normal_lag: Option<f64>,
+    /// d sigma*/dt = -(sigma* - sigma) / T (Prakash-Clifton). Default 1e-3 s, the time scale
+    /// the rigid-flat rupture converges with (docs/dynamics.md); 0: the instantaneous normal
+    /// stress of the cross-check spec (warned on a rigid flat: ill-posed above a threshold).
+    #[arg(long, default_value_t = tribofe::dynamics::rupture::DEFAULT_NORMAL_LAG)]
+    pub normal_lag: f64,
     /// Width of a cosine ramp of the initial shear centred on the nucleation patch's edge
     /// (|x| = 0.01 m), m (default 0, as the spec: a jump).
     #[arg(long, default_value_t = 0.0)]
@@ -83,12 +85,15 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         t_end: a.t_end,
         damping: a.damping,
         contact: a.contact.parse::<Contact>()?,
-        normal_lag: a.normal_lag,
+        normal_lag: tribofe::dynamics::rupture::normal_lag(a.normal_lag),
         patch_taper: a.patch_taper,
         ..Default::default()
     };
     spec.validate()?;
     tribofe::io::outdir::check(&a.out, a.force)?;
+    if let Some(w) = spec.instantaneous_normal_warning() {
+        eprintln!("warning: {w}");
+    }
     let lambda0 = spec.lambda0()?;
     outln!(
         "rupture: S = {}, tau0 = {:.6} Pa outside |x| <= {} m ({}), h = {} m, D_c = {:e} m; Lambda_0 = {:.4e} m = {:.2} elements",

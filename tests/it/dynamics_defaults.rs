@@ -147,3 +147,34 @@ fn a_run_that_meets_a_cap_writes_what_it_computed_and_exits_incomplete() {
     let toml = std::fs::read_to_string(out.join("run.toml")).unwrap();
     assert!(toml.contains("incomplete = \"--max-events = 40 met"), "{toml}");
 }
+
+#[test]
+fn rupture_regularises_the_normal_stress_by_default_and_warns_without_it() {
+    // The default is the normal-stress lag T = 1 ms (run.toml's scene records it); the spec's
+    // instantaneous normal stress (--normal-lag 0) on a rigid flat is warned about, on the
+    // symmetric fault (normal stress constant) not. Refused: a negative T.
+    let dir = tempfile::tempdir().unwrap();
+    let short = ["rupture", "--t-end", "0.01"];
+    let with = |extra: &[&str], name: &str| {
+        let mut a = short.to_vec();
+        a.extend(extra);
+        tribofe(&a, &dir.path().join(name), 120)
+    };
+    let d = with(&[], "default");
+    assert_eq!(d.code, 0, "{}", d.stderr);
+    assert!(!d.stderr.contains("warning"), "{}", d.stderr);
+    let i = with(&["--normal-lag", "0"], "instantaneous");
+    assert_eq!(i.code, 0, "{}", i.stderr);
+    assert!(i.stderr.contains("warning: the instantaneous normal stress on a rigid flat"), "{}", i.stderr);
+    let s = with(&["--normal-lag", "0", "--contact", "symmetric"], "symmetric");
+    assert!(s.code == 0 && !s.stderr.contains("warning"), "{}", s.stderr);
+    let n = with(&["--normal-lag", "-1e-3"], "negative");
+    assert_eq!(n.code, 2, "{}", n.stderr);
+    assert!(n.stderr.contains("--normal-lag"), "{}", n.stderr);
+    // The default's force drop differs from the instantaneous run's: the lag acts.
+    let drop = |name: &str| -> String {
+        let s = std::fs::read_to_string(dir.path().join(name).join("summary.csv")).unwrap();
+        s.lines().nth(1).unwrap().split(',').next().unwrap().to_string()
+    };
+    assert_ne!(drop("default"), drop("instantaneous"));
+}
