@@ -186,7 +186,15 @@ fn assumption5_measures_match_an_independent_recomputation() {
     // The tip moves the field ahead of it (its stress concentration): a measure that reads
     // the pre-event field back as the samples would give 0 in every instability.
     assert!(concentration.iter().all(|(all, _)| *all > 0.0), "{concentration:?}");
-    // (The short block, L/t = 50, is not the paper's thin layer: its arrests are not held
-    // to the Griffith estimate here; validation/dynamics/assumption5 measures that.)
-    let _ = (mg, m0);
+    // The Griffith balance is a long-front estimate: it leaves out the cohesive zone
+    // (Lambda_0 = 3 h here) and the tip is read to a node, so the median arrest lies within
+    // Lambda_0 + h of it (measured: 1 h); the zero-fracture-energy rule, which kappa = 0.51
+    // makes wrong by a fair part of the run, is farther (measured: 18 h).
+    let zone = tribofe::dynamics::friction::SlipWeakening::new(mu_s, mu_d, dc).unwrap().cohesive_zone(
+        g,
+        b.poisson,
+        o.n_force / b.length,
+    );
+    assert!(mg <= zone + h, "median |arrest - Griffith| {mg} m, Lambda_0 + h = {} m", zone + h);
+    assert!(m0 > zone + h, "median |arrest - (tau = mu_d p)| {m0} m within Lambda_0 + h");
 }

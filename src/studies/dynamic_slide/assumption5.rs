@@ -48,6 +48,7 @@ pub struct Assumption5 {
 /// kappa = G_s D_c / ((mu_s - mu_d) p t), validation/dynamics/paper/regime.py's rule.
 /// `d_c` = 0 gives the zero-fracture-energy rule (tau < mu_d p). None of them: the last
 /// node in that direction. Returns the node index.
+#[allow(clippy::too_many_arguments)]
 pub fn predicted_arrest(
     p: &[f64],
     tau: &[f64],
