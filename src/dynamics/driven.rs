@@ -219,6 +219,21 @@ pub struct EventRecord {
     pub force: Vec<f64>,
     pub tip: Vec<f64>,
     pub rates: Vec<Vec<f32>>,
+    /// The base nodes' contact forces before the event, N/m: the first step's P* and T*
+    /// (before the friction cap), which start from the static field at rest and so are its
+    /// reactions: the pre-event field (sum P = N, sum T = -F_onset). The nucleating patch
+    /// starts above its strength there (its slip has outrun its coefficient: the
+    /// instability), so T differs from T* on it from the first step on.
+    pub p_pre: Vec<f64>,
+    pub t_pre: Vec<f64>,
+    /// Slip memory of each base node at the onset (slip since the last healing), m: the
+    /// nucleating patch is the run of nodes past `threshold` around the nucleation node.
+    pub d_pre: Vec<f64>,
+    /// P and T (N/m) of every base node at the samples up to the front's arrest
+    /// ([`arrest_sample`]; `p_samples[j]` is at `t[j]`): the later samples are dropped, only
+    /// the propagation is read from them and they cost 2 x `rates`.
+    pub p_samples: Vec<Vec<f32>>,
+    pub t_samples: Vec<Vec<f32>>,
     /// Some node reached D_c of slip since the last healing (weakened fully) in this event.
     pub weakened: bool,
     pub settled: bool,
@@ -248,12 +263,14 @@ pub struct Work {
     u_prev: Vec<f64>,
 }
 
-/// A base node after a step: the flat's forces on it (T along x, P along y, N/m), whether
-/// it slipped (friction at its strength) and whether it is open.
+/// A base node after a step: the flat's forces on it (T along x, P along y, N/m), the T*
+/// that would have stopped it (N/m; 0 when open), whether it slipped (friction at its
+/// strength) and whether it is open.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Contact {
     pub t: f64,
     pub p: f64,
+    pub t_trial: f64,
     pub slipping: bool,
     pub open: bool,
 }
@@ -327,20 +344,20 @@ impl Driven<'_> {
             let (vxm, vym) = (st.v[ix], st.v[iy]);
             let p_star = -fy - mk * vym / dt - mk * st.u[iy] / (dt * dt);
             let mut slipping = false;
-            let (t, p) = if p_star > 0.0 {
+            let (t, p, t_trial) = if p_star > 0.0 {
                 let strength = self.friction.mu(st.d[b]) * p_star;
                 let t_star = -fx - mk * vxm / dt;
                 if t_star.abs() <= strength {
-                    (t_star, p_star)
+                    (t_star, p_star, t_star)
                 } else {
                     slipping = true;
-                    (strength * t_star.signum(), p_star)
+                    (strength * t_star.signum(), p_star, t_star)
                 }
             } else {
-                (0.0, 0.0)
+                (0.0, 0.0, 0.0)
             };
             any_slip |= slipping;
-            contact[b] = Contact { t, p, slipping, open: p_star <= 0.0 };
+            contact[b] = Contact { t, p, t_trial, slipping, open: p_star <= 0.0 };
             let vx = vxm + dt * (fx + t) / mk;
             let vy = if p_star > 0.0 { -st.u[iy] / dt } else { vym + dt * (fy + p) / mk };
             let (vbx, vby) = (0.5 * (vxm + vx), 0.5 * (vym + vy));
@@ -412,6 +429,7 @@ impl Driven<'_> {
         let mut contact = vec![Contact::default(); nb];
         let d0 = st.d.clone();
         let mut rec = EventRecord {
+            d_pre: d0.clone(),
             slip: vec![0.0; nb],
             peak_rate: vec![0.0; nb],
             threshold: slip_threshold,
@@ -428,6 +446,8 @@ impl Driven<'_> {
             e.residual = out.balance - b0;
             if step == 0 {
                 e.strain_start = e.strain;
+                rec.p_pre = contact.iter().map(|c| c.p).collect();
+                rec.t_pre = contact.iter().map(|c| c.t_trial).collect();
             }
             f_drive = out.f_drive;
             for (b, &k) in lay.base.iter().enumerate() {
@@ -453,6 +473,8 @@ impl Driven<'_> {
                 rec.force.push(f_drive);
                 rec.tip.push(tip(&rec, &lay.x));
                 rec.rates.push(lay.base.iter().map(|&k| st.v[2 * k].abs() as f32).collect());
+                rec.p_samples.push(contact.iter().map(|c| c.p as f32).collect());
+                rec.t_samples.push(contact.iter().map(|c| c.t as f32).collect());
             }
             // Slipping means at the strength and moving: a node at its strength at a
             // negligible rate is at rest (EventLimits::rest_rate).
@@ -500,8 +522,18 @@ impl Driven<'_> {
         rec.t.push(rec.duration);
         rec.force.push(f_drive);
         rec.tip.push(tip(&rec, &lay.x));
+        let keep = arrest_sample(&rec.tip).map_or(0, |k| k + 1);
+        rec.p_samples.truncate(keep);
+        rec.t_samples.truncate(keep);
         Ok(rec)
     }
+}
+
+/// The front's arrest: the first sample at which the tip is at its final position (None:
+/// the event never nucleated).
+pub fn arrest_sample(tip: &[f64]) -> Option<usize> {
+    let last = tip.iter().rev().find(|x| x.is_finite())?;
+    tip.iter().position(|x| x == last)
 }
 
 /// The slip rate below which a base node at its strength counts as at rest, m/s:

@@ -4,6 +4,7 @@
 
 use super::{finite, write_atomic};
 use crate::error::Result;
+use crate::studies::dynamic_slide::assumption5::Assumption5;
 use crate::studies::dynamic_slide::{DynEvent, DynamicResult};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -45,21 +46,30 @@ pub fn fronts_csv(r: &DynamicResult) -> Result<String> {
     Ok(s)
 }
 
-/// dyn_events.csv: one row per dynamic event.
+/// dyn_events.csv: one row per dynamic event. The assumption-5 columns (held drive only,
+/// empty otherwise; [`crate::studies::dynamic_slide::assumption5`]): the dynamic arrest
+/// (x/L of the tip's final place) beside the arrests predicted from the pre-event field with
+/// zero fracture energy (tau = mu_d p) and with the thin-layer Griffith balance, and the
+/// largest changes of p (over p_pre) and tau (over the strength drop (mu_s - mu_d) p_pre)
+/// ahead of the running tip, anywhere ahead and from 2.5 t ahead on.
+/// `force_drop_at_arrest_over_event_drop`: (F_onset - F(t_arrest)) / (F_onset - F_after), not
+/// a share (above 1: the force undershoots its final value at the arrest).
 pub fn events_csv(r: &DynamicResult) -> Result<String> {
     let res = &r.slide;
     let (k, c) = (res.options.law.mu_s() * res.options.n_force, &res.condensed);
     let mut s = String::from(
-        "event,kind,instability,X_m,F_onset_over_mu_s_N,F_after_over_mu_s_N,duration_s,steps,region_first_over_L,region_last_over_L,t_arrest_s,drop_while_moving,peak_slip_rate_m_per_s,f_gap_over_mu_s_N,u_gap_over_max_slip,energy_residual_over_dissipated\n",
+        "event,kind,instability,X_m,F_onset_over_mu_s_N,F_after_over_mu_s_N,duration_s,steps,region_first_over_L,region_last_over_L,t_arrest_s,arrest_over_L,predicted_arrest_mu_d_over_L,predicted_arrest_griffith_over_L,dp_ahead_over_p_pre,dtau_ahead_over_strength_drop,dp_ahead_2_5t_over_p_pre,dtau_ahead_2_5t_over_strength_drop,force_drop_at_arrest_over_event_drop,peak_slip_rate_m_per_s,f_gap_over_mu_s_N,u_gap_over_max_slip,energy_residual_over_dissipated\n",
     );
     for e in &r.events {
         let ev = &res.run.events[e.event];
         let (a, b) = ev.region.map_or((f64::NAN, f64::NAN), |(a, b)| (c.x[a] / c.l, c.x[b] / c.l));
         let en = &e.record.energy;
         let diss = (en.friction + en.damping).max(f64::MIN_POSITIVE);
+        let a5 = e.assumption5.filter(|_| e.record.weakened);
+        let a5v = |f: &dyn Fn(&Assumption5) -> f64| a5.as_ref().map(f);
         writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             e.event,
             ev.kind,
             u8::from(e.record.weakened),
@@ -71,7 +81,14 @@ pub fn events_csv(r: &DynamicResult) -> Result<String> {
             if a.is_finite() { num("x", a)? } else { String::new() },
             if b.is_finite() { num("x", b)? } else { String::new() },
             opt("t_arrest", e.t_arrest)?,
-            opt("drop", e.drop_while_moving)?,
+            opt("arrest", a5v(&|a| a.arrest / c.l))?,
+            opt("predicted arrest", a5v(&|a| a.predicted_mu_d / c.l))?,
+            opt("predicted arrest", a5v(&|a| a.predicted_griffith / c.l))?,
+            opt("dp ahead", a5v(&|a| a.dp_ahead))?,
+            opt("dtau ahead", a5v(&|a| a.dtau_ahead))?,
+            opt("dp ahead", a5v(&|a| a.dp_far))?,
+            opt("dtau ahead", a5v(&|a| a.dtau_far))?,
+            opt("drop", e.force_drop_at_arrest)?,
             num("rate", peak(e))?,
             num("gap", e.f_gap)?,
             num("gap", e.u_gap)?,

@@ -9,6 +9,7 @@
 mod common;
 
 mod analytical;
+mod assumption5;
 mod bounds;
 mod check;
 mod cli_smoke;

@@ -36,6 +36,7 @@ use events::search::Hit;
 use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, start, stuck_err};
 use std::time::Instant;
 
+pub mod assumption5;
 pub mod physics;
 pub mod refine;
 mod setup;
@@ -136,9 +137,14 @@ pub struct DynEvent {
     pub record: EventRecord,
     /// Time at which the tip reached its final position (front arrest), s since onset.
     pub t_arrest: Option<f64>,
-    /// (F_onset - F(t_arrest)) / (F_onset - F_after): the share of the drop made while the
-    /// front still moved (the paper's assumption 5 says 0).
-    pub drop_while_moving: Option<f64>,
+    /// (F_onset - F(t_arrest)) / (F_onset - F_after): the force drop made by the front's
+    /// arrest over the event's. Not a share: above 1 the force undershoots its final value at
+    /// the arrest and recovers after; with slip weakening the friction force falls behind the
+    /// tip as it passes, so it is near 1 by construction and says nothing about assumption 5.
+    pub force_drop_at_arrest: Option<f64>,
+    /// Assumption 5 as the model needs it: the field ahead of the running tip and the arrest
+    /// predicted from the pre-event field (held drive only; None in `--drive-velocity`).
+    pub assumption5: Option<assumption5::Assumption5>,
     /// |F_dynamic at the end - F of the static equilibrium| / (mu_s N), and the largest
     /// difference of a displacement over the block / the event's largest slip.
     pub f_gap: f64,
@@ -471,8 +477,9 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             backslip: 0,
             all_slipping: kind == EventKind::Sliding,
         }), 'drive);
-        let (t_arrest, drop_while_moving) =
+        let (t_arrest, force_drop_at_arrest) =
             arrest(&ev, before.f, f_after).map_or((None, None), |(t, f)| (Some(t), f));
+        let assumption5 = assumption5::measure(&ev, &c.x, &c.w, &friction, mat.shear_modulus(), t);
         dyn_events.push(DynEvent {
             event: rec.out.events.len() - 1,
             x: lam,
@@ -480,7 +487,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             f_after,
             record: ev,
             t_arrest,
-            drop_while_moving,
+            force_drop_at_arrest,
+            assumption5,
             f_gap,
             u_gap,
         });

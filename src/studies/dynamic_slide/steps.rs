@@ -2,7 +2,7 @@
 //! drive (stable, or the onset of a dynamic event), the static state after an event, what an
 //! event was, and its arrest.
 
-use crate::dynamics::driven::{DynState, EventRecord};
+use crate::dynamics::driven::{arrest_sample, DynState, EventRecord};
 use crate::error::Result;
 use crate::interface::events::active::Solver;
 use crate::interface::events::operator::Affine;
@@ -155,11 +155,11 @@ pub(super) fn crossing(
     kind
 }
 
-/// The front's arrest (the first sample at which the tip is at its final position) and the
-/// share of the force drop made before it.
+/// The front's arrest time ([`arrest_sample`]) and the force drop made by then over the
+/// event's, (F_onset - F(t_arrest)) / (F_onset - F_after): not a share, it exceeds 1 when the
+/// force undershoots its final value at the arrest and recovers after.
 pub(super) fn arrest(rec: &EventRecord, f_onset: f64, f_after: f64) -> Option<(f64, Option<f64>)> {
-    let last = rec.tip.iter().rev().find(|x| x.is_finite())?;
-    let k = rec.tip.iter().position(|x| x == last)?;
+    let k = arrest_sample(&rec.tip)?;
     let t = rec.t[k];
     let drop = f_onset - f_after;
     let frac = (drop.abs() > 0.0).then(|| (f_onset - rec.force[k]) / drop);

@@ -397,7 +397,8 @@ fn close(
         },
         s,
     )?;
-    let (t_arrest, drop_while_moving) = arrest(&rec, f0, f_after).map_or((None, None), |(t, f)| (Some(t), f));
+    let (t_arrest, force_drop_at_arrest) =
+        arrest(&rec, f0, f_after).map_or((None, None), |(t, f)| (Some(t), f));
     dyn_events.push(DynEvent {
         event: run.events.len() - 1,
         x: x0,
@@ -405,7 +406,8 @@ fn close(
         f_after,
         record: rec,
         t_arrest,
-        drop_while_moving,
+        force_drop_at_arrest,
+        assumption5: None,
         f_gap: 0.0,
         u_gap: 0.0,
     });

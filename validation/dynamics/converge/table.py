@@ -104,7 +104,8 @@ def one(root, name):
         f_peak=max(float(e["F_over_mu_s_N"]) for e in upto),
         f_cross=float(cross["F_over_mu_s_N"]) if cross else float("nan"),
         x_cross=float(cross["X_m"]) if cross else float("nan"),
-        drop_moving=statistics.median([float(e["drop_while_moving"]) for e in dy if e["drop_while_moving"]] or [float("nan")]),
+        # renamed force_drop_at_arrest_over_event_drop (not a share: it exceeds 1); old runs keep the old name
+        drop_moving=statistics.median([float(e[k]) for e in dy for k in ("force_drop_at_arrest_over_event_drop", "drop_while_moving") if e.get(k)] or [float("nan")]),
         instabilities=len(dy) if dy else sum(e["kind"] not in STATIC for e in upto), events=len(ev),
         model=model.groups() if model else None,
         lag=front_lag(adv, model_fronts(r, g)),
