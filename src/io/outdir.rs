@@ -871,4 +871,43 @@ mod tests {
         assert_eq!(std::fs::read_to_string(d.path().join("b/x.csv")).unwrap(), "3\n");
         assert!(!d.path().join("a").exists());
     }
+
+    /// A commit into an existing folder: the listed files replaced, a stale listed one
+    /// removed, the user's entries (one written while the run was under way) kept.
+    #[test]
+    fn a_commit_replaces_listed_files_only() {
+        let d = tempfile::tempdir().unwrap();
+        let out = d.path().join("o");
+        let first = OutDir::begin(&out, false).unwrap();
+        std::fs::write(first.path().join("a.csv"), "1\n").unwrap();
+        std::fs::create_dir(first.path().join("sub")).unwrap();
+        std::fs::write(first.path().join("sub/b.csv"), "2\n").unwrap();
+        first.commit().unwrap();
+        assert!(matches!(standing(&out), Standing::Tribofe(ref m) if m.files.len() == 2));
+        let second = OutDir::begin(&out, false).unwrap();
+        std::fs::write(second.path().join("a.csv"), "3\n").unwrap();
+        std::fs::write(out.join("note"), "mine").unwrap();
+        second.commit().unwrap();
+        assert_eq!(std::fs::read_to_string(out.join("a.csv")).unwrap(), "3\n");
+        assert!(!out.join("sub").exists(), "the stale listed file and its emptied folder go");
+        assert_eq!(std::fs::read_to_string(out.join("note")).unwrap(), "mine");
+        assert!(matches!(standing(&out), Standing::Tribofe(ref m) if m.files.len() == 1));
+    }
+
+    /// A manifest naming a path outside the folder (or the run file) is no manifest: a
+    /// crafted run.toml cannot make tribofe remove a file elsewhere.
+    #[test]
+    fn manifests_with_paths_outside_the_folder_are_refused() {
+        let h = "0".repeat(64);
+        for path in ["../x", "/etc/passwd", "a/../../x", "", "run.toml", "a\\b"] {
+            let text = format!(
+                "{RUN_FILE_MARKER}\n[manifest]\nalgorithm = \"sha256\"\n[[manifest.files]]\npath = \"{path}\"\nsize = 0\nsha256 = \"{h}\"\n"
+            );
+            assert!(Manifest::of_run_file(&text, RUN_FILE).is_none(), "{path:?}");
+        }
+        let ok = format!(
+            "{RUN_FILE_MARKER}\n[manifest]\nalgorithm = \"sha256\"\n[[manifest.files]]\npath = \"a/b.csv\"\nsize = 0\nsha256 = \"{h}\"\n"
+        );
+        assert!(Manifest::of_run_file(&ok, RUN_FILE).is_some());
+    }
 }
