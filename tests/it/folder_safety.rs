@@ -284,3 +284,28 @@ fn sweep_merge_joins_only_verified_shards_of_one_sweep() {
     refused(d, &["sweep", "--merge", "a", "--out", "mine"], &["sweep.csv", "--force"]);
     assert_eq!(read(&d.join("mine/sweep.csv")), "my table\n");
 }
+
+#[test]
+fn a_file_past_the_size_limit_fails_cleanly() {
+    use std::os::unix::process::CommandExt;
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_tribofe"));
+    cmd.current_dir(d).args(check_args("ck"));
+    // SAFETY: setrlimit is async-signal-safe; the child only lowers its own file-size limit.
+    unsafe {
+        cmd.pre_exec(|| {
+            let lim = libc::rlimit { rlim_cur: 4096, rlim_max: 4096 };
+            if libc::setrlimit(libc::RLIMIT_FSIZE, &lim) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    let o = cmd.output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    // SIGXFSZ is ignored: the write fails (EFBIG), status 4, the temporary folder removed.
+    assert_eq!(o.status.code(), Some(4), "{:?}: {err}", o.status);
+    let left: Vec<_> = std::fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert!(left.is_empty(), "{left:?}");
+}
