@@ -899,7 +899,7 @@ mod tests {
     #[test]
     fn manifests_with_paths_outside_the_folder_are_refused() {
         let h = "0".repeat(64);
-        for path in ["../x", "/etc/passwd", "a/../../x", "", "run.toml", "a\\b"] {
+        for path in ["../x", "/etc/passwd", "a/../../x", "", "run.toml"] {
             let text = format!(
                 "{RUN_FILE_MARKER}\n[manifest]\nalgorithm = \"sha256\"\n[[manifest.files]]\npath = \"{path}\"\nsize = 0\nsha256 = \"{h}\"\n"
             );
