@@ -181,6 +181,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
             &record,
             &text,
             &[(name.as_str(), table.as_bytes())],
+            tribofe::report::write_atomic,
         )?;
         vec![]
     } else {

@@ -516,7 +516,7 @@ pub fn remove_orphans(out: &Path) {
         }
     }
     // Inside a tribofe folder (sweep shards, files renamed in across file systems): the files
-    // `.<file>.<pid>.tmp` of a killed writer ([`crate::report::write_atomic`]).
+    // `.<file>.<pid>.tmp` of a killed writer.
     if !is_tribofe_folder(out) {
         return;
     }
@@ -590,13 +590,15 @@ fn clashes(
 /// manifest appended) straight into the folder `out`, each by its own temporary and rename,
 /// the run file first: how the shards of one sweep share a folder, written concurrently.
 /// Never writes over a file that is not this record's own (a rerun of the same shard) unless
-/// `force`, and never over a folder, link or special file.
+/// `force`, and never over a folder, link or special file. `write` writes one file whole (a
+/// temporary and a rename: `report::write_atomic`, which sits above this layer).
 pub fn write_in_place(
     out: &Path,
     force: bool,
     record: &str,
     text: &str,
     files: &[(&str, &[u8])],
+    write: impl Fn(&Path, &[u8]) -> Result<()>,
 ) -> Result<()> {
     check(out, force)?;
     std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
@@ -619,9 +621,9 @@ pub fn write_in_place(
     }
     body.push('\n');
     body.push_str(&Manifest::of_bytes(files).to_toml()?);
-    crate::report::write_atomic(&out.join(record), body.as_bytes())?;
+    write(&out.join(record), body.as_bytes())?;
     for (name, bytes) in files {
-        crate::report::write_atomic(&out.join(name), bytes)?;
+        write(&out.join(name), bytes)?;
     }
     Ok(())
 }
