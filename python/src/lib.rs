@@ -803,7 +803,12 @@ fn rupture<'py>(
     spec.validate().map_err(to_py)?;
     if let Some(w) = spec.instantaneous_normal_warning() {
         let w = w.replace("--normal-lag", "normal_lag=");
-        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &std::ffi::CString::new(w).unwrap_or_default(), 1)?;
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyUserWarning>(),
+            &std::ffi::CString::new(w).unwrap_or_default(),
+            1,
+        )?;
     }
     let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, poll))?;
     let opt = |v: &[Option<f64>]| v.iter().map(|t| t.unwrap_or(f64::NAN)).collect::<Vec<_>>();

@@ -34,12 +34,15 @@ use clap::{Parser, Subcommand};
     after_help = "Exit status: 0 success; 2 bad input (parameter, scene key, mesh, unreadable file, size \
 above --max-dofs, unusable output folder); 3 numerical refusal (singular or ill-conditioned system, \
 failed self-check); 4 failure while writing results, or threads refused by the system; 130 \
-interrupted by SIGINT/SIGTERM (temporaries removed, the output folder as before); 141 standard output \
+interrupted by SIGINT/SIGTERM (temporaries removed, the output folder as before; an interrupt after \
+the results were committed lets the run finish with its own status and a note); 141 standard output \
 closed before everything was printed (`| head`; the results are on disk, written before anything is \
-printed). Inputs are checked before any work starts; results go to a fresh folder renamed into place \
-at the end. --out refuses an existing folder that holds files tribofe did not write (no run.toml of \
-a previous run) unless --force is given; every folder holds a run.toml (version, source revision, \
-date, host, command line, options, scene; docs/outputs-and-provenance.md)."
+printed). Inputs are checked before any work starts; results go to a hidden folder and are put in \
+place at the end. Every folder holds a run.toml (version, source revision, date, host, command line, \
+options, scene, and the size and SHA-256 of every file written). --out refuses an existing folder \
+that is not tribofe's by that record unless --force is given; a rerun replaces only the files its \
+run.toml lists and keeps everything else, and never writes over a user's file of the same name \
+(docs/outputs-and-provenance.md)."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -241,34 +244,35 @@ pub fn write_run_file(
     tribofe::report::run_file::write(dir, invocation(), scene, results)
 }
 
-/// [`write_run_file`] under another name (`run_<I>of<N>.toml` of a sweep shard).
-pub fn write_run_file_named(
-    dir: &std::path::Path,
-    name: &str,
-    scene: Option<&tribofe::scene::Scene>,
-    results: &impl serde::Serialize,
-) -> tribofe::Result<()> {
-    let text = tribofe::report::run_file::run_toml(invocation(), scene, results)?;
-    tribofe::report::write_atomic(&dir.join(name), text.as_bytes())
-}
-
-/// The output folders this process has under way, for the interrupt handler: the binary's own
-/// state (the library has no process-wide switch; each folder has its own [`Cleanup`]).
+/// The output folders this process has under way or committed, for the interrupt handler:
+/// the binary's own state (the library has no process-wide switch; each folder has its own
+/// [`Cleanup`](tribofe::io::outdir::Cleanup)).
 static UNDER_WAY: std::sync::Mutex<Vec<tribofe::io::outdir::Cleanup>> = std::sync::Mutex::new(Vec::new());
+
+/// Set when SIGINT/SIGTERM arrived after a folder was committed and none was left under way:
+/// the run finishes with its own status, and [`run`] says so on stderr.
+static LATE_INTERRUPT: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
 /// [`tribofe::io::outdir::OutDir::begin`], the folder registered for removal on SIGINT/SIGTERM.
 pub fn begin_out(out: &std::path::Path, force: bool) -> tribofe::Result<tribofe::io::outdir::OutDir> {
     // Locked first: once the handler holds the list, no new temporary folder is made.
     let mut list = UNDER_WAY.lock().unwrap_or_else(|e| e.into_inner());
+    // An interrupt already taken (after an earlier folder's commit) ends the run here.
+    if LATE_INTERRUPT.load(std::sync::atomic::Ordering::SeqCst) {
+        return Err(tribofe::Error::Interrupted);
+    }
     let dir = tribofe::io::outdir::OutDir::begin(out, force)?;
-    list.retain(|c| c.is_open());
+    list.retain(|c| c.is_open() || c.is_committed());
     list.push(dir.cleanup());
     Ok(dir)
 }
 
 /// SIGINT and SIGTERM are taken by one thread (blocked in all others, so this runs before any
-/// thread starts): it removes the temporary output folders and exits with status 130, leaving
-/// every `--out` as it was. Not for `bench`, whose child processes would inherit the mask.
+/// thread starts). It removes the temporary output folders; when that leaves every `--out` as
+/// it was, it exits with status 130. When a folder was already committed (the interrupt landed
+/// after the commit point) and none is left under way, the run goes on to its end and exits
+/// with its own status, a note on stderr ([`LATE_INTERRUPT`]). Not for `bench`, whose child
+/// processes would inherit the mask.
 fn catch_interrupts() {
     // SAFETY: plain libc signal-set calls on a local set; the mask is set before any thread
     // is spawned, so every later thread inherits it.
@@ -282,19 +286,33 @@ fn catch_interrupts() {
         }
         set
     };
-    let waiter = std::thread::Builder::new().name("tribofe-signals".into()).spawn(move || {
+    let waiter = std::thread::Builder::new().name("tribofe-signals".into()).spawn(move || loop {
         let mut sig = 0;
         // SAFETY: `set` is an initialised signal set; sigwait only writes `sig`.
-        if unsafe { libc::sigwait(&set, &mut sig) } == 0 {
+        if unsafe { libc::sigwait(&set, &mut sig) } != 0 {
+            return;
+        }
+        let list = UNDER_WAY.lock().unwrap_or_else(|e| e.into_inner());
+        // remove() waits for a commit in progress: each folder ends removed or committed.
+        let removed = list.iter().filter(|c| c.remove()).count();
+        let committed: Vec<String> =
+            list.iter().filter(|c| c.is_committed()).map(|c| c.out().display().to_string()).collect();
+        use std::io::Write;
+        if committed.is_empty() || removed > 0 {
             // Held until exit: no folder is registered after the cleanup.
-            let list = UNDER_WAY.lock().unwrap_or_else(|e| e.into_inner());
-            for c in list.iter() {
-                c.remove();
+            let mut e = std::io::stderr();
+            if !committed.is_empty() {
+                let _ = writeln!(
+                    e,
+                    "note: {} already hold(s) this run's complete results (committed before the interrupt)",
+                    tribofe::error::quote(&committed.join(", "))
+                );
             }
-            use std::io::Write;
-            let _ = writeln!(std::io::stderr(), "error: {}", tribofe::Error::Interrupted);
+            let _ = writeln!(e, "error: {}", tribofe::Error::Interrupted);
             std::process::exit(tribofe::error::exit::INTERRUPTED);
         }
+        // After the commit point: the results stand; the run ends on its own.
+        LATE_INTERRUPT.store(true, std::sync::atomic::Ordering::SeqCst);
     });
     if waiter.is_err() {
         // No thread for it: restore the default action rather than ignore interrupts.
@@ -304,6 +322,10 @@ fn catch_interrupts() {
 }
 
 pub fn run(cli: Cli) -> tribofe::Result<()> {
+    // A file past RLIMIT_FSIZE is then a write error (EFBIG), cleaned up like any other,
+    // instead of a signal that kills the process with its temporaries on disk.
+    // SAFETY: setting a signal's disposition to ignore has no handler to run.
+    unsafe { libc::signal(libc::SIGXFSZ, libc::SIG_IGN) };
     if !matches!(cli.command, Command::Bench(_)) {
         catch_interrupts();
     }
@@ -348,6 +370,15 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
             typed_flag(e, &[("mu-s", "--friction"), ("mu-d", "--friction"), ("cycles", "--cycles")])
         }),
     };
+    // --write-scene: only once the run was accepted and has finished.
+    let done = done.and_then(|_| scene_args::write_pending_scene());
+    if LATE_INTERRUPT.load(std::sync::atomic::Ordering::SeqCst) {
+        use std::io::Write;
+        let _ = writeln!(
+            std::io::stderr(),
+            "note: interrupted (SIGINT/SIGTERM) after the results were committed; the run finished and its status stands"
+        );
+    }
     if done.is_ok() && draws && !tribofe::report::FIGURES {
         outln!("note: no figures (SVG) drawn: this tribofe was built without the `plots` feature; the tables are complete");
     }

@@ -11,7 +11,9 @@ pub struct SceneArgs {
     /// Scene file (TOML); every key defaults to the paper's value.
     #[arg(long)]
     pub scene: Option<PathBuf>,
-    /// Writes the effective scene (file + flags) as TOML to FILE, a template to edit.
+    /// Writes the effective scene (file + flags) as TOML to FILE, a template to edit, once the
+    /// run has finished; a new file, or with --force an existing regular file (never a
+    /// folder, link, FIFO or device).
     #[arg(long, value_name = "FILE")]
     pub write_scene: Option<PathBuf>,
     /// Block length L, m (paper: 0.4).
@@ -267,7 +269,10 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
         )?;
     }
     if let Some(path) = &args.write_scene {
-        tribofe::report::write_atomic(path, s.to_toml()?.as_bytes())?;
+        // Checked now, written only when the run has finished ([`write_pending_scene`]).
+        let force = super::given("force");
+        check_scene_target(path, force)?;
+        *PENDING_SCENE.lock().unwrap_or_else(|e| e.into_inner()) = Some((path.clone(), s.to_toml()?, force));
     }
     Ok(s)
 }
@@ -282,4 +287,75 @@ pub fn file_sets(args: &SceneArgs, table: &str, key: &str) -> tribofe::Result<bo
         msg: e.to_string(),
     })?;
     Ok(v.get(table).and_then(|t| t.get(key)).is_some())
+}
+
+/// The `--write-scene` file waiting for the run to finish: path, text, whether `--force`.
+static PENDING_SCENE: std::sync::Mutex<Option<(PathBuf, String, bool)>> = std::sync::Mutex::new(None);
+
+/// A `--write-scene` refusal naming the flag and the path.
+fn refuse(path: &std::path::Path, why: &str) -> tribofe::Error {
+    tribofe::Error::input(
+        "--write-scene",
+        format!("'{}' {why}", tribofe::error::quote(&path.display().to_string())),
+    )
+}
+
+/// Refuses a `--write-scene` target that is not a new file or (with `--force`) an existing
+/// regular file: a folder, a symbolic link, a FIFO, a device (/dev/null) or a socket never.
+fn check_scene_target(path: &std::path::Path, force: bool) -> tribofe::Result<()> {
+    if path.file_name().is_none() {
+        return Err(refuse(path, "has no file name: give a file, e.g. scene.toml"));
+    }
+    match std::fs::symlink_metadata(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(refuse(path, &format!("cannot be checked ({e}); give another file"))),
+        Ok(m) if m.file_type().is_symlink() => Err(refuse(
+            path,
+            "is a symbolic link: --write-scene writes regular files only and does not follow links; give the file itself or a new name",
+        )),
+        Ok(m) if m.is_dir() => Err(refuse(path, "is a folder: give a file name, e.g. scene.toml")),
+        Ok(m) if !m.is_file() => Err(refuse(
+            path,
+            "is not a regular file (a FIFO, device or socket): --write-scene writes regular files only; give a new file name",
+        )),
+        Ok(_) if !force => Err(refuse(path, "exists: give --force to replace it, or a new file name")),
+        Ok(_) => Ok(()),
+    }
+}
+
+/// Writes the pending `--write-scene` file, once the run has finished: a new file never
+/// replaces anything (a complete temporary renamed with RENAME_NOREPLACE);
+/// with `--force` it replaces a regular file only, checked again just before the rename.
+pub fn write_pending_scene() -> tribofe::Result<()> {
+    use std::io::Write;
+    let Some((path, text, force)) = PENDING_SCENE.lock().unwrap_or_else(|e| e.into_inner()).take() else {
+        return Ok(());
+    };
+    check_scene_target(&path, force)?;
+    let name = path.file_name().unwrap_or_default().to_string_lossy().into_owned();
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+    std::fs::create_dir_all(dir).map_err(|e| tribofe::Error::io(dir, e))?;
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let written = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&tmp)
+        .and_then(|mut f| f.write_all(text.as_bytes()).and_then(|_| f.sync_all()));
+    let placed = written.map_err(|e| tribofe::Error::io(&tmp, e)).and_then(|_| {
+        if force && std::fs::symlink_metadata(&path).is_ok() {
+            check_scene_target(&path, true)?;
+            std::fs::rename(&tmp, &path).map_err(|e| tribofe::Error::io(&path, e))
+        } else {
+            match tribofe::io::outdir::rename_noreplace(&tmp, &path) {
+                Ok(()) => Ok(()),
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Err(refuse(
+                    &path,
+                    "was created meanwhile: give --force to replace it, or a new file name",
+                )),
+                Err(e) => Err(tribofe::Error::io(&path, e)),
+            }
+        }
+    });
+    let _ = std::fs::remove_file(&tmp);
+    placed
 }

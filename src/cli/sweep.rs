@@ -48,8 +48,8 @@ pub struct Args {
     pub merge: Vec<PathBuf>,
     #[arg(long, default_value = "out/sweep")]
     pub out: PathBuf,
-    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted);
-    /// with --shard, write into it without deleting anything.
+    /// Write into the --out folder even if it is not tribofe's by its run.toml; only files of
+    /// this run's names are replaced (regular files only), nothing else is deleted.
     #[arg(long)]
     pub force: bool,
 }
@@ -160,6 +160,8 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         ("points", toml::Value::from(points.len() as i64)),
         ("grid_points", toml::Value::from(total as i64)),
         ("wall_seconds", toml::Value::from(wall)),
+        // What --merge compares across shards: one sweep's grid and options.
+        ("sweep", toml::Value::Table(tribofe::studies::sweep::identity(&axes, &o))),
     ]
     .into_iter()
     .map(|(k, v)| (k.to_string(), v))
@@ -169,10 +171,18 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     let maps = if shard.is_some() {
         // Shards of one sweep share the folder (a Slurm array): each writes its own file, whole.
         // Each shard's provenance in its own run file, whole, next to its table.
+        // The run file lists the table (size, SHA-256): what --merge and later runs go by.
         let (i, n) = shard.unwrap_or((1, 1));
-        std::fs::create_dir_all(&args.out).map_err(|e| tribofe::Error::io(&args.out, e))?;
-        super::write_run_file_named(&args.out, &format!("run_{i}of{n}.toml"), Some(&base), &results)?;
-        tribofe::report::write_atomic(&args.out.join(&name), table.as_bytes())?;
+        let text = tribofe::report::run_file::run_toml(super::invocation(), Some(&base), &results)?;
+        let record = format!("run_{i}of{n}.toml");
+        tribofe::io::outdir::write_in_place(
+            &args.out,
+            args.force,
+            &record,
+            &text,
+            &[(name.as_str(), table.as_bytes())],
+            tribofe::report::write_atomic,
+        )?;
         vec![]
     } else {
         let dir = super::begin_out(&args.out, args.force)?;
@@ -198,8 +208,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     Ok(())
 }
 
-/// `--merge`: reads the shard files, joins them (tribofe::report::sweep::merge) and writes
-/// OUT/sweep.csv, replacing only a sweep table (a file whose first line is the same header).
+/// `--merge`: reads the shard files, checks by their run files that they are tribofe's, whole
+/// and of one sweep, joins them (tribofe::report::sweep::merge) and writes OUT/sweep.csv and
+/// its run.toml as every command writes its folder (a user's sweep.csv is never replaced).
 fn merge(args: &Args) -> tribofe::Result<()> {
     use tribofe::error::quote;
     use tribofe::Error;
@@ -211,9 +222,11 @@ fn merge(args: &Args) -> tribofe::Result<()> {
             "joins finished shards and computes nothing: give it without --shard, --friction or swept values",
         ));
     }
+    let shown = |p: &std::path::Path| quote(&p.display().to_string());
     let mut files = Vec::new();
     for p in &args.merge {
-        if p.is_dir() {
+        let meta = std::fs::metadata(p);
+        if meta.as_ref().is_ok_and(|m| m.is_dir()) {
             let entries = std::fs::read_dir(p).map_err(|e| Error::read(p, e))?;
             for e in entries {
                 let path = e.map_err(|e| Error::read(p, e))?.path();
@@ -222,44 +235,128 @@ fn merge(args: &Args) -> tribofe::Result<()> {
                     files.push((name, path));
                 }
             }
-        } else if p.is_file() {
+        } else if meta.as_ref().is_ok_and(|m| m.is_file()) {
             let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
             files.push((name, p.clone()));
         } else {
             return Err(Error::input(
                 "--merge",
-                format!("'{}' is neither a folder nor a file", quote(&p.display().to_string())),
+                format!("'{}' is neither a folder nor a regular file", shown(p)),
             ));
         }
     }
-    let parts = files
-        .iter()
-        .map(|(name, path)| {
-            Ok((name.clone(), std::fs::read_to_string(path).map_err(|e| Error::read(path, e))?))
-        })
-        .collect::<tribofe::Result<Vec<_>>>()?;
+    tribofe::io::outdir::check(&args.out, args.force)?;
+    // Each table by its shard's run file: listed there with this size and hash, and the
+    // sweep it records (grid, options, scene) the same for all.
+    let mut first: Option<(String, toml::Value)> = None;
+    let mut parts = Vec::with_capacity(files.len());
+    for (name, path) in &files {
+        let (i, n) = tribofe::report::sweep::shard_of(name).unwrap_or_default();
+        let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+        let record = dir.join(format!("run_{i}of{n}.toml"));
+        let refuse = |why: &str| Error::input("--merge", format!("'{}' {why}", shown(path)));
+        if !record.is_file() {
+            return Err(refuse(&format!(
+                "has no run file beside it ('{}'): give the folder the shard wrote, or run the shard again",
+                shown(&record)
+            )));
+        }
+        let text = read_bounded(&record)?;
+        let manifest = tribofe::io::outdir::Manifest::of_run_file(&text, &format!("run_{i}of{n}.toml"))
+            .ok_or_else(|| {
+                refuse(&format!(
+                    "has no run file of tribofe with a manifest beside it ('{}'): run the shard again with this tribofe",
+                    shown(&record)
+                ))
+            })?;
+        let table = read_bounded(path)?;
+        let listed = manifest.files.iter().find(|l| l.path == *name);
+        if !listed.is_some_and(|l| {
+            l.size == table.len() as u64 && l.sha256 == tribofe::io::outdir::sha256_hex(table.as_bytes())
+        }) {
+            return Err(refuse(&format!(
+                "is not the table its run file '{}' records (edited, or from another run): run the shard again",
+                shown(&record)
+            )));
+        }
+        let run: toml::Table = text.parse().map_err(|_| refuse("has an unreadable run file"))?;
+        let sweep = run.get("results").and_then(|r| r.get("sweep")).cloned();
+        let Some(sweep) = sweep else {
+            return Err(refuse(
+                "has a run file that does not record its sweep: run the shard again with this tribofe",
+            ));
+        };
+        let id = toml::Value::Table(
+            [
+                ("sweep".to_string(), sweep),
+                ("scene".to_string(), run.get("scene").cloned().unwrap_or(toml::Value::Boolean(false))),
+            ]
+            .into_iter()
+            .collect(),
+        );
+        match &first {
+            None => first = Some((name.clone(), id)),
+            Some((other, v)) if *v != id => {
+                return Err(Error::input(
+                    "--merge",
+                    format!(
+                        "'{}' and '{}' are shards of different sweeps (their run files record other grids, options or scenes): merge the shards of one sweep",
+                        quote(other),
+                        quote(name)
+                    ),
+                ))
+            }
+            Some(_) => {}
+        }
+        parts.push((name.clone(), table));
+    }
     let table = tribofe::report::sweep::merge(&parts)?;
-    let header = table.lines().next().unwrap_or_default();
-    let target = args.out.join("sweep.csv");
-    if target.exists() {
-        let old = std::fs::read_to_string(&target).map_err(|e| Error::read(&target, e))?;
-        if old.lines().next() != Some(header) {
-            return Err(Error::input(
-                "--out",
-                format!(
-                    "'{}' exists and is not a table of this sweep: give another --out",
-                    quote(&target.display().to_string())
-                ),
-            ));
-        }
-    }
-    std::fs::create_dir_all(&args.out).map_err(|e| Error::io(&args.out, e))?;
-    tribofe::report::write_atomic(&target, table.as_bytes())?;
+    let dir = super::begin_out(&args.out, args.force)?;
+    tribofe::report::write_atomic(&dir.path().join("sweep.csv"), table.as_bytes())?;
+    let results: toml::Table = [
+        ("shards", toml::Value::from(parts.len() as i64)),
+        ("rows", toml::Value::from(table.lines().count().saturating_sub(1) as i64)),
+        (
+            "sweep",
+            first.and_then(|f| f.1.get("sweep").cloned()).unwrap_or(toml::Value::Table(Default::default())),
+        ),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.to_string(), v))
+    .collect();
+    super::write_run_file(dir.path(), None, &results)?;
+    dir.commit()?;
     outln!(
         "joined {} shards, {} rows, into {}",
         parts.len(),
         table.lines().count() - 1,
-        quote(&target.display().to_string())
+        quote(&args.out.join("sweep.csv").display().to_string())
     );
     Ok(())
+}
+
+/// A shard's table or run file, read whole but bounded (a sweep's table is ~1 kB a point).
+fn read_bounded(path: &std::path::Path) -> tribofe::Result<String> {
+    use std::io::Read;
+    const MAX: u64 = 1 << 30;
+    let mut text = String::new();
+    // Checked before opening: a FIFO would block the open.
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return Err(tribofe::Error::input(
+            "--merge",
+            format!("'{}' is not a regular file", tribofe::error::quote(&path.display().to_string())),
+        ));
+    }
+    let f = std::fs::File::open(path).map_err(|e| tribofe::Error::read(path, e))?;
+    f.take(MAX + 1).read_to_string(&mut text).map_err(|e| tribofe::Error::read(path, e))?;
+    if text.len() as u64 > MAX {
+        return Err(tribofe::Error::input(
+            "--merge",
+            format!(
+                "'{}' is above 1 GiB: not a shard of a sweep",
+                tribofe::error::quote(&path.display().to_string())
+            ),
+        ));
+    }
+    Ok(text)
 }

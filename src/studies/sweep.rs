@@ -234,6 +234,40 @@ pub struct Point {
 /// points, not an allocator abort.
 pub const MAX_POINTS: usize = 100_000;
 
+/// What makes two runs one sweep, for its shards' run files (`[results.sweep]`): the grid
+/// (each axis's parameter and values, in order) and every option that changes a row; the
+/// shard itself, the cancel token and the solver's defaults aside. `sweep --merge` joins only
+/// shards whose tables are equal (and whose scenes are).
+pub fn identity(axes: &[Axis], o: &SweepOptions) -> toml::Table {
+    use toml::Value;
+    let mut t = toml::Table::new();
+    let grid: Vec<Value> = axes
+        .iter()
+        .map(|a| {
+            let mut ax = toml::Table::new();
+            ax.insert("param".into(), Value::from(a.param.flag()));
+            ax.insert("values".into(), Value::Array(a.values.iter().map(|&v| Value::from(v)).collect()));
+            Value::Table(ax)
+        })
+        .collect();
+    t.insert("grid".into(), Value::Array(grid));
+    t.insert("converged".into(), Value::from(o.converged));
+    t.insert("interior_tol".into(), Value::from(o.verdict.interior_tol));
+    t.insert("edge_fraction".into(), Value::from(o.verdict.edge_fraction));
+    if let Some(v) = o.verdict.tension_fn {
+        t.insert("tension_fn".into(), Value::from(v));
+    }
+    if let Some(f) = &o.friction {
+        let mut ft = toml::Table::new();
+        ft.insert("mu_s".into(), Value::from(f.mu_s));
+        ft.insert("mu_d".into(), Value::from(f.mu_d));
+        ft.insert("rule".into(), Value::from(f.rule.name()));
+        ft.insert("cycles".into(), Value::from(f.cycles as i64));
+        t.insert("friction".into(), Value::Table(ft));
+    }
+    t
+}
+
 /// Number of grid points of `axes`, refused above [`MAX_POINTS`] before any allocation.
 pub fn grid_size(axes: &[Axis]) -> Result<usize> {
     axes.iter()

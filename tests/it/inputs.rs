@@ -237,9 +237,13 @@ fn max_dofs_acts_on_every_meshing_subcommand_and_is_scene_data() {
     let scene = d.join("s.toml");
     std::fs::write(&scene, "[mesh]\nmax_dofs = 2000\n").unwrap();
     refused(d, &["--scene", scene.to_str().unwrap()], &["too large", "2000"]);
+    // A refused run writes no scene; an accepted one writes the limit it ran under.
     let written = d.join("w.toml");
     refused(d, &["--max-dofs", "2000", "--write-scene", written.to_str().unwrap()], &["too large"]);
-    assert!(std::fs::read_to_string(&written).unwrap().contains("max_dofs = 2000"));
+    assert!(!written.exists(), "a refused run wrote its --write-scene file");
+    let (code, err, _) = check(d, &["--max-dofs", "1000000", "--write-scene", written.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::read_to_string(&written).unwrap().contains("max_dofs = 1000000"));
     // No process-wide state: two scenes with different limits in one process.
     let base = tribofe::scene::Scene::default();
     let mut small = base.clone();
@@ -347,7 +351,7 @@ fn tree(dir: &Path) -> Vec<String> {
 }
 
 #[test]
-fn output_folder_is_replaced_whole_or_not_at_all() {
+fn output_folder_is_replaced_by_record_or_not_at_all() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let out = d.join("out");
@@ -360,20 +364,22 @@ fn output_folder_is_replaced_whole_or_not_at_all() {
     assert!(
         run.contains("\n[tribofe]\n") && run.contains("n_force_n_per_m") && run.contains("[scene.block]")
     );
-    // The previous folder, marked; a rerun with other ratios replaces it whole (no stale files).
+    // A rerun with other ratios replaces the files the first run listed (no stale ones) and
+    // keeps a file the user put there.
     std::fs::write(out.join("old"), "").unwrap();
-    let mut old = full.clone();
-    old.push("old".into());
-    old.sort();
     let other = ["check", "--h", "2e-4", "--out", o];
     assert!(tribofe(&other).status.success());
     let new = tree(&out);
-    assert!(!new.contains(&"old".to_string()) && !new.contains(&"fields_FN0.3.vtu".to_string()), "{new:?}");
-    // Killed at points spread over a run (~0.4 s): the folder is the previous one or the new
-    // one, never a mix, and no temporary is left.
+    assert!(new.contains(&"old".to_string()) && !new.contains(&"fields_FN0.3.vtu".to_string()), "{new:?}");
+    // Interrupted at points spread over a run (~0.4 s): the folder is the previous one or the
+    // new one, never a mix, and no temporary is left.
     for (i, ms) in [5u64, 40, 80, 130, 200, 300, 450].into_iter().enumerate() {
         std::fs::write(out.join("old"), "").unwrap();
         let before = tree(&out);
+        // Each commit renames a new run.toml into place: a new inode.
+        use std::os::unix::fs::MetadataExt;
+        let record = || std::fs::metadata(out.join("run.toml")).unwrap().ino();
+        let record_before = record();
         let mut child = Command::new(env!("CARGO_BIN_EXE_tribofe"))
             .args(other)
             .stdout(std::process::Stdio::null())
@@ -391,6 +397,14 @@ fn output_folder_is_replaced_whole_or_not_at_all() {
         // running alongside), ended by the signal itself, having written nothing.
         use std::os::unix::process::ExitStatusExt;
         assert!(status.success() || status.code() == Some(130) || status.signal() == Some(sig), "{status:?}");
+        // 130 only with the folder as before; after the commit point the run's own status.
+        if status.code() == Some(130) || status.signal() == Some(sig) {
+            assert_eq!(
+                record(),
+                record_before,
+                "interrupted at {ms} ms ({status:?}) but the folder holds the new run"
+            );
+        }
         let left: Vec<_> = std::fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name()).collect();
         assert_eq!(left, vec![std::ffi::OsString::from("out")], "killed at {ms} ms");
     }

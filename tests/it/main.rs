@@ -21,6 +21,7 @@ mod edges;
 mod elements;
 mod embed;
 mod engine;
+mod folder_safety;
 mod friction;
 mod gmsh_io;
 mod inputs;

@@ -55,11 +55,11 @@ fn a_foreign_file_in_out_survives_and_the_run_is_refused() {
         refused(d, args, &["proj", "--force"]);
         assert_eq!(std::fs::read_to_string(d.join("proj/notes.txt")).unwrap(), "my notes");
     }
-    // --force replaces the folder whole.
+    // --force writes into it; the user's file stays (only files of the run's names are replaced).
     let mut forced = check_args("proj");
     forced.push("--force");
     ok(d, &forced);
-    assert!(!d.join("proj/notes.txt").exists() && d.join("proj/run.toml").exists());
+    assert!(d.join("proj/notes.txt").exists() && d.join("proj/run.toml").exists());
     // An empty existing folder is used as is.
     std::fs::create_dir(d.join("empty")).unwrap();
     ok(d, &check_args("empty"));
@@ -67,14 +67,14 @@ fn a_foreign_file_in_out_survives_and_the_run_is_refused() {
 }
 
 #[test]
-fn a_second_run_replaces_a_tribofe_folder_whole() {
+fn a_second_run_replaces_the_files_the_first_one_listed() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     ok(d, &["check", "--length", "0.05", "--no-converged", "--out", "ck"]);
     assert!(d.join("ck/fields_FN0.vtu").exists());
     ok(d, &check_args("ck"));
     assert!(d.join("ck/summary.csv").exists());
-    assert!(!d.join("ck/fields_FN0.vtu").exists(), "the first run's files go with its folder");
+    assert!(!d.join("ck/fields_FN0.vtu").exists(), "the first run's listed files it does not write go");
 }
 
 #[test]
