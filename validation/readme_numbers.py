@@ -339,6 +339,10 @@ add(cells(F, "instabilities nucleating at an earlier arrested tip", [
     rx(REGIME, r"'previous-tip': (\d+)"), rx(REGIME, r"'trailing-edge': (\d+)")]))
 add(cells(F, "kappa = 0.25 (h = 0.25 mm): the first arrest", [csv_(REGIME25, "region_last_over_L", {}, "first")]))
 
+add(cells(F, "2.5 t ahead of the tip: change of p", [csv_("validation/dynamics/assumption5/table.csv", "dp_2_5t_median", {"r": "0.9"}), csv_("validation/dynamics/assumption5/table.csv", "dp_2_5t_90", {"r": "0.9"})]))
+add(cells(F, "2.5 t ahead: change of tau", [csv_("validation/dynamics/assumption5/table.csv", "dtau_2_5t_median", {"r": "0.9"}), csv_("validation/dynamics/assumption5/table.csv", "dtau_2_5t_90", {"r": "0.9"})]))
+add(cells(F, "abs(arrest - Griffith arrest from the pre-event field)", [csv_("validation/dynamics/assumption5/table.csv", "griffith_err_median_over_L", {"r": "0.9"}), csv_("validation/dynamics/assumption5/table.csv", "mu_d_err_median_over_L", {"r": "0.9"})]))
+add(cells(F, "the Griffith arrest error, median", [csv_("validation/dynamics/assumption5/table.csv", "griffith_err_median_over_L", {"r": "0.8"}), csv_("validation/dynamics/assumption5/table.csv", "griffith_err_median_over_L", {"r": "0.7"})]))
 add(cells(F, "force-drop timing (secondary)", [csv_(TABLE, "drop_moving", dyn("0.9", h)) for h in ("0.5", "0.25", "0.125")]))
 add(cells(F, "paper's scene: F_1 over three meshes and three dampings", [
     csv_(TABLE, "f1_front", dyn_dampings("0.9"), "min"), csv_(TABLE, "f1_front", dyn_dampings("0.9"), "max")]))
@@ -442,7 +446,11 @@ add(cells(R, "Fronts stop short", [
 add(cells(R, "The control case H = 0", [
     csv_("validation/dynamics/control_h0/summary.csv", "largest_F_before_crossing_over_mu_s_N"),
     rx("validation/dynamics/control_h0/h0.txt", r"F_max = ([0-9.]+)")]))
-add(cells(R, "Assumption 5 (relaxation after arrest)", [csv_(TABLE, "drop_moving", dyn("0.9", "0.5"))]))
+A5 = "validation/dynamics/assumption5/table.csv"
+a5 = lambda r: {"r": r}  # noqa: E731
+add(cells(R, "Assumption 5 (the field ahead", [
+    csv_(A5, "dp_2_5t_median", a5("0.9")), csv_(A5, "dtau_2_5t_median", a5("0.9")),
+    csv_(A5, "griffith_err_median_over_L", a5("0.9"))]))
 add(cells(R, "the model's F_1 fails", [
     csv_(TABLE, "f1_front", dyn("0.7", "0.5")),
     rx("validation/dynamics/converge/r0.7_g0.5_h0.5_dc1.274e-6.log", PAPER_IT, "first", 2)]))

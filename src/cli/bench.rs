@@ -33,7 +33,8 @@ pub struct Args {
     /// Writes bench.csv and dgemm.csv here.
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    /// Write into the --out folder even if it is not tribofe's by its run.toml; only files of
+    /// this run's names are replaced (regular files only), nothing else is deleted.
     #[arg(long)]
     #[arg(requires = "out")]
     pub force: bool,

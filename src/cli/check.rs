@@ -13,7 +13,8 @@ pub struct Args {
     /// Output directory.
     #[arg(long, default_value = "out/check")]
     pub out: PathBuf,
-    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    /// Write into the --out folder even if it is not tribofe's by its run.toml; only files of
+    /// this run's names are replaced (regular files only), nothing else is deleted.
     #[arg(long)]
     pub force: bool,
     /// Field files of the whole mesh: vtu (fields_FN*.vtu + fields.pvd, ParaView, raw binary),

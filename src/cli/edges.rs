@@ -47,7 +47,8 @@ pub struct Args {
     pub h_over_l: Vec<f64>,
     #[arg(long, default_value = "out/edges")]
     pub out: PathBuf,
-    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    /// Write into the --out folder even if it is not tribofe's by its run.toml; only files of
+    /// this run's names are replaced (regular files only), nothing else is deleted.
     #[arg(long)]
     pub force: bool,
 }

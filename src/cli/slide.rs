@@ -97,7 +97,8 @@ pub struct Args {
     /// Output directory.
     #[arg(long, default_value = "out/slide")]
     pub out: PathBuf,
-    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    /// Write into the --out folder even if it is not tribofe's by its run.toml; only files of
+    /// this run's names are replaced (regular files only), nothing else is deleted.
     #[arg(long)]
     pub force: bool,
     /// Run each instability elastodynamically (explicit, drive held; docs/dynamics.md): the
@@ -600,7 +601,11 @@ fn run_refinement(
             v.name,
             v.values
                 .iter()
-                .map(|x| if x.is_finite() { format!("{x:>8.4}") } else { format!("{:>8}", "-") })
+                .map(|&x| match x {
+                    x if !x.is_finite() => format!("{:>8}", "-"),
+                    x if x.fract() == 0.0 => format!("{x:>8}"),
+                    x => format!("{x:>8.4}"),
+                })
                 .collect::<Vec<_>>()
                 .join(" "),
             v.spread,

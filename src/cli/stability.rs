@@ -21,7 +21,8 @@ pub struct Args {
     /// Output directory (`validation/stability` refreshes the committed results).
     #[arg(long, default_value = "out/stability")]
     pub out: PathBuf,
-    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    /// Write into the --out folder even if it is not tribofe's by its run.toml; only files of
+    /// this run's names are replaced (regular files only), nothing else is deleted.
     #[arg(long)]
     pub force: bool,
 }

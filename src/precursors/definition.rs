@@ -48,9 +48,9 @@ pub const LONG_T: f64 = 5.0;
 pub const ADVANCE_T: f64 = 5.0;
 
 /// The definition in one line, printed under every summary that reports precursors.
-pub const DEFINITION: &str = "precursor: the instabilities at one drive X (one cascade) before the cycle ends, nucleating at the trailing edge (slip starting within 5 t of x = -L/2, nucleus within 5 t of that start; from x = +L/2 instead when the first instability nucleates nearer the leading edge); long: slipped > 5 t; n (compare with the paper's n): those whose arrest lies > 5 t beyond the last counted one's; F_i: drive force at the cascade's onset; x_i: its arrest point";
+pub const DEFINITION: &str = "precursor: the instabilities at one drive X (one cascade) before the cycle ends, nucleating at the trailing edge (slip starting within 5 t of x = -L/2, nucleus within 5 t of that start; from x = +L/2 instead when H < t/2, where the block's own couple makes the pressure lowest at the leading edge); long: slipped > 5 t; n (compare with the paper's n): those whose arrest lies > 5 t beyond the last counted one's; F_i: drive force at the cascade's onset; x_i: its arrest point";
 /// The front-advance count in one line, printed where it is reported.
-pub const ADVANCES: &str = "front advance: a cascade before the cycle ends that moves the front, the far end of the runs slipped since the cycle began (by its instabilities, and quasi-statically before each) reached from the nucleating edge (trailing, or leading when slip nucleates there) across stuck gaps of at most 5 t, more than 5 t beyond the last counted advance's; F: drive force at its onset; x: the new front";
+pub const ADVANCES: &str = "front advance: a cascade before the cycle ends that moves the front, the far end of the runs slipped since the cycle began (by its instabilities, and quasi-statically before each) reached from the edge of lowest pressure (trailing, or leading when H < t/2) across stuck gaps of at most 5 t, more than 5 t beyond the last counted advance's; F: drive force at its onset; x: the new front";
 
 /// One instability of a frictional run, as the definition reads it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -188,10 +188,11 @@ pub fn advances(slips: &[Slip], x: &[f64], t: f64) -> Vec<Advance> {
     out
 }
 
-/// The edge the first cycle's slip nucleates at: the one nearer the first instability's
-/// nucleation node. The paper's torque makes it the trailing edge (x = -L/2); where the
-/// pressure slope reverses (H below about t/2, where the block's own shear couple wins) it
-/// is the leading edge, and the definitions run from there ([`find_from_edge`]).
+/// The edge the first cycle's slip nucleates at: where the interior pressure is lowest. The
+/// paper's torque makes it the trailing edge (x = -L/2); where the pressure slope reverses (H
+/// below t/2, where the block's own shear couple wins: the interior slope goes like H - t/2,
+/// docs/check.md) it is the leading edge, and the definitions run from there
+/// ([`find_from_edge`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Edge {
     Trailing,
@@ -205,13 +206,14 @@ impl Edge {
             Edge::Leading => "leading",
         }
     }
-}
 
-/// [`Edge`] of `slips` on the nodes `x` (ascending); trailing when there is no instability.
-pub fn nucleating_edge(slips: &[Slip], x: &[f64]) -> Edge {
-    match (slips.first(), x.first(), x.last()) {
-        (Some(s), Some(&a), Some(&b)) if x.get(s.node).is_some_and(|&xn| xn - a > b - xn) => Edge::Leading,
-        _ => Edge::Trailing,
+    /// The edge of lowest interior pressure for a drive at height `h` over a block `t` thick.
+    pub fn of_lowest_pressure(h: f64, t: f64) -> Edge {
+        if h < 0.5 * t {
+            Edge::Leading
+        } else {
+            Edge::Trailing
+        }
     }
 }
 
@@ -233,11 +235,11 @@ fn mirrored(slips: &[Slip], x: &[f64]) -> (Vec<Slip>, Vec<f64>) {
     (ss, xs)
 }
 
-/// [`find`] from the edge slip nucleates at; node indices are the caller's. From the leading
-/// edge a precursor's `region` is (start, arrest) in the direction the front ran, so
-/// [`Precursor::arrest`] stays its arrest node.
-pub fn find_from_edge(slips: &[Slip], x: &[f64], t: f64) -> (Edge, Precursors) {
-    match nucleating_edge(slips, x) {
+/// [`find`] from `edge`; node indices are the caller's. From the leading edge a precursor's
+/// `region` is (start, arrest) in the direction the front ran, so [`Precursor::arrest`] stays
+/// its arrest node.
+pub fn find_from_edge(edge: Edge, slips: &[Slip], x: &[f64], t: f64) -> (Edge, Precursors) {
+    match edge {
         Edge::Trailing => (Edge::Trailing, find(slips, x, t)),
         Edge::Leading => {
             let (ss, xs) = mirrored(slips, x);
@@ -252,9 +254,9 @@ pub fn find_from_edge(slips: &[Slip], x: &[f64], t: f64) -> (Edge, Precursors) {
     }
 }
 
-/// [`advances`] from the edge slip nucleates at; node indices are the caller's.
-pub fn advances_from_edge(slips: &[Slip], x: &[f64], t: f64) -> (Edge, Vec<Advance>) {
-    match nucleating_edge(slips, x) {
+/// [`advances`] from `edge`; node indices are the caller's.
+pub fn advances_from_edge(edge: Edge, slips: &[Slip], x: &[f64], t: f64) -> (Edge, Vec<Advance>) {
+    match edge {
         Edge::Trailing => (Edge::Trailing, advances(slips, x, t)),
         Edge::Leading => {
             let (ss, xs) = mirrored(slips, x);
@@ -532,8 +534,8 @@ mod tests {
         };
         let trailing = [slip(0, 1, (0, 20)), slip(1, 2, (0, 40)), slip(2, 1, (0, 60))];
         let leading = [slip(0, 99, (80, 100)), slip(1, 98, (60, 100)), slip(2, 99, (40, 100))];
-        let (et, pt) = find_from_edge(&trailing, &x, t);
-        let (el, pl) = find_from_edge(&leading, &x, t);
+        let (et, pt) = find_from_edge(Edge::Trailing, &trailing, &x, t);
+        let (el, pl) = find_from_edge(Edge::Leading, &leading, &x, t);
         assert_eq!((et, el), (Edge::Trailing, Edge::Leading));
         assert_eq!((pt.n(), pl.n()), (3, 3));
         for (a, b) in pt.counted().zip(pl.counted()) {
@@ -543,7 +545,11 @@ mod tests {
         assert_eq!(pl.first().unwrap().arrest(), 80);
         // The trailing-edge rule alone finds none of the leading ones.
         assert_eq!(find(&leading, &x, t).n_all(), 0);
-        let (_, al) = advances_from_edge(&leading, &x, t);
+        let (_, al) = advances_from_edge(Edge::Leading, &leading, &x, t);
+        assert_eq!(
+            (Edge::of_lowest_pressure(0.04, 0.002), Edge::of_lowest_pressure(0.0, 0.002)),
+            (Edge::Trailing, Edge::Leading)
+        );
         assert_eq!(al.iter().map(|a| a.front).collect::<Vec<_>>(), vec![80, 60, 40]);
     }
 }

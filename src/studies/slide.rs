@@ -429,18 +429,18 @@ pub struct PaperComparison {
 /// The precursors of a run's first cycle ([`crate::precursors::definition`]); forces F_i in
 /// N/m.
 pub fn precursors(res: &SlideResult) -> Precursors {
-    definition::find_from_edge(&slips(res), &res.condensed.x, res.condensed.t).1
+    definition::find_from_edge(nucleating_edge(res), &slips(res), &res.condensed.x, res.condensed.t).1
 }
 
-/// The edge the run's first instability nucleates at ([`definition::nucleating_edge`]): the
-/// edge [`precursors`] and [`front_advances`] count from.
+/// The edge [`precursors`] and [`front_advances`] count from: that of the lowest interior
+/// pressure ([`definition::Edge::of_lowest_pressure`]).
 pub fn nucleating_edge(res: &SlideResult) -> definition::Edge {
-    definition::nucleating_edge(&slips(res), &res.condensed.x)
+    definition::Edge::of_lowest_pressure(res.scene.loading.height, res.scene.block.thickness)
 }
 
 /// The front advances of a run's first cycle ([`definition::advances`]); forces in N/m.
 pub fn front_advances(res: &SlideResult) -> Vec<definition::Advance> {
-    definition::advances_from_edge(&slips(res), &res.condensed.x, res.condensed.t).1
+    definition::advances_from_edge(nucleating_edge(res), &slips(res), &res.condensed.x, res.condensed.t).1
 }
 
 /// The run's instabilities, each with the preslip of the state before it (its first run of

@@ -173,7 +173,11 @@ fn invalid_params_say_why() {
     assert!(why(f64::NAN, 0.3).contains("finite"));
     assert!(why(0.5, f64::INFINITY).contains("finite"));
     assert!(why(0.5, 1.0).contains("g must be < 1 so the trailing-edge pressure stays positive"));
-    assert!(why(0.5, -0.1).contains("> 0"));
+    assert!(why(0.5, -0.1).contains(">= 0"));
+    // g = 0 is the control case without torque: accepted, the model's answer is no precursor.
+    let p = Params::new(0.9, 0.0).unwrap();
+    assert_eq!((p.f1(), p.f_max()), (1.0, 1.0));
+    assert_eq!(tribofe::precursors::n_precursors(&p).unwrap(), 0);
     assert!(n_map(1).is_err() && n_map(401).is_err());
 }
 

@@ -56,7 +56,11 @@ fn paper_rule_states_are_admissible() {
 }
 
 #[test]
-/// H = 0: no torque, no trailing edge singled out; no precursor longer than the edge zone.
+/// H = 0: no torque. The block's own couple leaves the interior pressure slope going like
+/// H - t/2 (docs/check.md), so the pressure is lowest at the leading edge and the counts run
+/// from there (they once ran from the trailing edge, where nothing nucleates, and found
+/// none). Without the paper's mechanism no precursor runs far: the one long slip is the
+/// leading edge zone's.
 fn no_long_precursor_without_torque() {
     let mut sc = thin(0.004);
     sc.loading.height = 0.0;
@@ -67,7 +71,19 @@ fn no_long_precursor_without_torque() {
     };
     let res = run(&sc, &o, tribofe::Progress::none()).unwrap();
     assert!(res.run.events.iter().any(|e| e.kind == EventKind::Sliding));
-    assert_eq!(tribofe::studies::slide::precursors(&res).n_long(), 0);
+    assert_eq!(
+        tribofe::studies::slide::nucleating_edge(&res),
+        tribofe::precursors::definition::Edge::Leading
+    );
+    let pre = tribofe::studies::slide::precursors(&res);
+    let c = &res.condensed;
+    let lengths: Vec<f64> = pre.all.iter().map(|p| (c.x[p.region.0] - c.x[p.region.1]).abs() / c.t).collect();
+    // Measured: 0, 1, 2 t at the leading corner, then one slip of 96 t = 0.96 L, all but the
+    // trailing 4 t: the whole-interface slip in all but name (the same in dynamics,
+    // validation/dynamics/control_h0). None in between, where the paper's precursors live.
+    let whole = 0.9 * c.l / c.t;
+    assert!(lengths.iter().all(|&l| l <= 5.0 || l > whole), "{lengths:?}");
+    assert_eq!(pre.n_long(), 1, "{lengths:?}");
 }
 
 /// n, F_1 and x_1 of the `paper` rule at (r, g) through `slide` (its command's options: no

@@ -73,7 +73,8 @@ struct OutArgs {
     /// Output directory (created if needed).
     #[arg(long, default_value = "out/precursors")]
     out: PathBuf,
-    /// Replace the --out folder even if it holds files tribofe did not write (they are deleted).
+    /// Write into the --out folder even if it is not tribofe's by its run.toml; only files of
+    /// this run's names are replaced (regular files only), nothing else is deleted.
     #[arg(long)]
     force: bool,
 }

@@ -44,10 +44,10 @@ pub struct Refinement {
 
 /// The tolerance of a judged quantity: forces, positions, counts (exact).
 pub fn tolerance(name: &str) -> f64 {
-    if name.contains("_F_") {
-        FORCE_TOL
-    } else if name.contains("_over_L") {
+    if name.contains("_over_L") {
         POSITION_TOL
+    } else if name.contains("_F_") {
+        FORCE_TOL
     } else {
         0.0
     }
@@ -121,4 +121,38 @@ pub fn refine(
         out.seconds.push(clock.elapsed().as_secs_f64());
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_quantity_is_judged_by_its_kind() {
+        assert_eq!(tolerance("first_advance_F_over_mu_s_N"), FORCE_TOL);
+        assert_eq!(tolerance("first_advance_front_over_L"), POSITION_TOL);
+        assert_eq!(tolerance("envelope_front_over_L_at_F_0.85"), POSITION_TOL);
+        assert_eq!(tolerance("front_advances"), 0.0);
+        let col = |n: &str| summary::COLUMNS.iter().position(|c| c.0 == n).unwrap();
+        let mut a = vec![f64::NAN; summary::COLUMNS.len()];
+        let mut b = a.clone();
+        (a[col("envelope_front_over_L_at_F_0.85")], b[col("envelope_front_over_L_at_F_0.85")]) =
+            (-0.127, -0.1373);
+        (a[col("front_advances")], b[col("front_advances")]) = (14.0, 19.0);
+        (a[col("largest_F_before_crossing_over_mu_s_N")], b[col("largest_F_before_crossing_over_mu_s_N")]) =
+            (0.9519, 0.9675);
+        let r = Refinement {
+            h: vec![5e-4, 2.5e-4],
+            values: vec![a, b],
+            seconds: vec![1.0, 2.0],
+            incomplete: None,
+        };
+        let v = r.verdicts();
+        let get = |n: &str| v.iter().find(|x| x.name == n).unwrap().clone();
+        assert_eq!(get("envelope_front_over_L_at_F_0.85").converged, Some(true));
+        assert_eq!(get("front_advances").converged, Some(false));
+        assert_eq!(get("largest_F_before_crossing_over_mu_s_N").converged, Some(false));
+        assert!((get("front_advances").spread - 5.0).abs() < 1e-12);
+        assert_eq!(get("first_advance_F_over_mu_s_N").converged, None);
+    }
 }
