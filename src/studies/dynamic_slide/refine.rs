@@ -111,7 +111,7 @@ pub fn refine(
         s.validate()?;
         progress.message(&format!("refinement level {} of {levels}: h = {:.4e} m", k + 1, s.mesh.h));
         let clock = std::time::Instant::now();
-        let r = run(&s, o, d, progress.clone())?;
+        let r = run(&s, o, d, progress)?;
         if let Some(why) = &r.incomplete {
             out.incomplete = Some(format!("the level h = {:.4e} m: {why}", s.mesh.h));
             break;
