@@ -443,6 +443,12 @@ add(cells(R, "The count of front advances does not converge", [
 add(cells(R, "Fronts stop short", [
     rx(REGIME, r"^\|arrest - Griffith prediction\| / L over \d+: median ([0-9.]+)"),
     rx(REGIME, r"^\|arrest - zero G_c prediction\| / L over \d+: median ([0-9.]+)")]))
+REF = "validation/dynamics/refine/paper/refinement.csv"
+add(cells(R, "A refinement series at fixed physics", [
+    csv_(REF, "value_at_h_5e-4_m", {"quantity": "first_advance_F_over_mu_s_N"}),
+    csv_(REF, "value_at_h_2.5e-4_m", {"quantity": "first_advance_F_over_mu_s_N"}),
+    csv_(REF, "value_at_h_5e-4_m", {"quantity": "largest_F_before_crossing_over_mu_s_N"}),
+    csv_(REF, "value_at_h_2.5e-4_m", {"quantity": "largest_F_before_crossing_over_mu_s_N"})]))
 add(cells(R, "The control case H = 0", [
     csv_("validation/dynamics/control_h0/summary.csv", "largest_F_before_crossing_over_mu_s_N"),
     rx("validation/dynamics/control_h0/h0.txt", r"F_max = ([0-9.]+)")]))
