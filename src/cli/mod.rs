@@ -33,7 +33,8 @@ use clap::{Parser, Subcommand};
     about = "2D plane-strain FE verifier for frictional interfaces (SI units)",
     after_help = "Exit status: 0 success; 2 bad input (parameter, scene key, mesh, unreadable file, size \
 above --max-dofs, unusable output folder); 3 numerical refusal (singular or ill-conditioned system, \
-failed self-check); 4 failure while writing results, or threads refused by the system; 130 \
+failed self-check); 4 failure while writing results, or threads refused by the system; 5 incomplete \
+(a cap met mid-run: the results up to there written, the cap named in run.toml); 130 \
 interrupted by SIGINT/SIGTERM (temporaries removed, the output folder as before; an interrupt after \
 the results were committed lets the run finish with its own status and a note); 141 standard output \
 closed before everything was printed (`| head`; the results are on disk, written before anything is \
