@@ -5,27 +5,10 @@
 //! --merge` joins only verified shards of one sweep.
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn tribofe(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tribofe")).current_dir(dir).args(args).output().unwrap()
-}
-
-fn ok(dir: &Path, args: &[&str]) {
-    let o = tribofe(dir, args);
-    assert_eq!(o.status.code(), Some(0), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
-}
-
-/// Asserts exit status 2 and a message naming every word of `words`.
-fn refused(dir: &Path, args: &[&str], words: &[&str]) -> String {
-    let o = tribofe(dir, args);
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(2), "{args:?} should be refused: {err}");
-    for w in words {
-        assert!(err.contains(w), "{args:?}: the message should name '{w}': {err}");
-    }
-    err
-}
+// The command runners and the refusal check are user_round's.
+use super::user_round::{ok, refused, tribofe};
 
 /// The cheapest check: a short block, coarse mesh, no converged run, no fields.
 fn check_args(out: &str) -> Vec<&str> {

@@ -10,18 +10,18 @@ use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
-fn tribofe(dir: &Path, args: &[&str]) -> Output {
+pub(crate) fn tribofe(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_tribofe")).current_dir(dir).args(args).output().unwrap()
 }
 
-fn ok(dir: &Path, args: &[&str]) -> String {
+pub(crate) fn ok(dir: &Path, args: &[&str]) -> String {
     let o = tribofe(dir, args);
     assert_eq!(o.status.code(), Some(0), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 /// Asserts exit status 2 and a message holding every word of `words`; returns the message.
-fn refused(dir: &Path, args: &[&str], words: &[&str]) -> String {
+pub(crate) fn refused(dir: &Path, args: &[&str], words: &[&str]) -> String {
     let o = tribofe(dir, args);
     let err = String::from_utf8_lossy(&o.stderr).into_owned();
     assert_eq!(o.status.code(), Some(2), "{args:?} should be refused: {err}");
