@@ -100,7 +100,7 @@ def test_rupture_equals_the_command(tribofe_bin, tmp_path):
     np.testing.assert_allclose(t[mask], floats(cli["t_arrival_s"]), rtol=1e-11)
     summary = read_csv(out / "summary.csv")
     assert abs(res["force_drop_N_per_m"] - float(summary["force_drop_n_per_m"][0])) <= 1e-11 * res["force_drop_N_per_m"]
-    # The energy ledger closes to round-off (docs/dynamics.md: 5.5e-15 of the work).
+    # The energy ledger closes to round-off (docs/dynamics-verification.md: 5.5e-15 of the work).
     e = res["energy"]
     assert abs(e["residual_J_per_m"]) < 1e-10 * e["background_work_J_per_m"]
     with pytest.raises(tribofe.InputError, match="contact"):

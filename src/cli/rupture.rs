@@ -54,7 +54,7 @@ pub struct Args {
     pub contact: String,
     /// Normal-stress regularisation time T, s: the strength follows the normal stress with
     /// d sigma*/dt = -(sigma* - sigma) / T (Prakash-Clifton). Default 1e-3 s, the time scale
-    /// the rigid-flat rupture converges with (docs/dynamics.md); 0: the instantaneous normal
+    /// the rigid-flat rupture converges with (docs/dynamics-findings.md); 0: the instantaneous normal
     /// stress of the cross-check spec (warned on a rigid flat: ill-posed above a threshold).
     #[arg(long, default_value_t = tribofe::dynamics::rupture::DEFAULT_NORMAL_LAG)]
     pub normal_lag: f64,

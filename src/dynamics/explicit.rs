@@ -13,7 +13,7 @@
 //! translation share one. On a regular grid (one matrix, row-by-row numbering: every mesh
 //! `Rectangle` builds) K u is a node-wise stencil (`stencil`), optionally on several threads
 //! with the same bits, and `Explicit::step` makes one fused pass over the node rows; other
-//! meshes go element by element. Throughput and where the time goes: docs/dynamics.md.
+//! meshes go element by element. Throughput and where the time goes: docs/dynamics-verification.md.
 //!
 //! The stable step is bounded rigorously by the element eigenvalues (Irons: the largest
 //! eigenvalue of M^-1 K is at most the largest of the elements' Me^-1 Ke with their own lumped

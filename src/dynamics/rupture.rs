@@ -122,7 +122,7 @@ impl Default for RuptureSpec {
 
 /// The normal-stress lag T of `tribofe rupture` and `tribofe.dynamics.rupture` when none is
 /// given, s: the time scale with which the rigid-flat rupture's arrival times converge at
-/// order 2 as h halves (0.5, 0.25, 0.125 mm, with a patch ramp; docs/dynamics.md). It is a
+/// order 2 as h halves (0.5, 0.25, 0.125 mm, with a patch ramp; docs/dynamics-findings.md). It is a
 /// property of the interface, not of the mesh: T spans 4 explicit steps at the default
 /// h = 1 mm (dt = 0.24 ms) and more on finer meshes. [`RuptureSpec::default`] stays the
 /// cross-check spec, without it.

@@ -1,5 +1,5 @@
 //! Explicit elastodynamics (src/dynamics): wave speeds, energy, and the frictional base.
-//! Tolerances are derived in each test from the scheme's known errors (docs/dynamics.md).
+//! Tolerances are derived in each test from the scheme's known errors (docs/dynamics-verification.md).
 
 use tribofe::dynamics::explicit::{Elastodynamic, Explicit};
 use tribofe::dynamics::waves::WaveSpeeds;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Convergence of rupture arrival times over three meshes (docs/dynamics.md, the regularised flat).
+"""Convergence of rupture arrival times over three meshes (docs/dynamics-findings.md, the regularised flat).
 
 Usage: arrival_order.py COARSE MEDIUM FINE [--x-min M ...]
 

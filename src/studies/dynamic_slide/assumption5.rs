@@ -3,7 +3,7 @@
 //! instability, (1) how much p and tau change ahead of the moving tip while it runs, in
 //! units of the local strength drop, and (2) where the pre-event field says the front
 //! stops, with zero fracture energy (tau = mu_d p, the paper's rule) and with the thin-layer
-//! Griffith balance, beside where it stopped (docs/dynamics.md, "Assumption 5").
+//! Griffith balance, beside where it stopped (docs/dynamics-findings.md, "Assumption 5").
 
 use crate::dynamics::driven::EventRecord;
 use crate::dynamics::friction::SlipWeakening;
