@@ -202,45 +202,22 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     run_checked(a, scene, field_format)
 }
 
-/// Physics is input, resolution is checked (`--dynamics --law slip-weakening`): D_c from the
-/// library's physical default when not given, then the element size: chosen so that the
-/// cohesive zone spans at least 3 elements when neither --h nor the scene file's `[mesh] h`
-/// sets it, checked (and refused naming the --h that would) when given.
+/// Physics is input, resolution is checked (`--dynamics --law slip-weakening`): the library's
+/// choice of D_c and h ([`tribofe::studies::dynamic_slide::physics::resolve`]), its notes on
+/// stderr.
 fn resolve_physics(a: &mut Args, scene: &mut tribofe::scene::Scene) -> tribofe::Result<()> {
-    use tribofe::studies::dynamic_slide::physics;
-    let probe = LawChoice { dc: Some(1.0), ..law_choice(a) }.law(scene)?;
-    let (mu_s, mu_d) = (probe.mu_s(), probe.mu_d());
-    let dc = match a.dc {
-        Some(dc) => dc,
-        None => {
-            let dc = physics::default_dc(scene, mu_s, mu_d, a.n_force)?;
-            eprintln!(
-                "--dc not given: D_c = {dc:.5e} m, the D_c giving the thin-layer stability number kappa = {:.4} of the paper's scene at D_c = {:e} m (whatever the mesh)",
-                physics::default_kappa()?,
-                physics::PAPER_DC
-            );
-            dc
-        }
-    };
-    a.dc = Some(dc);
     let given = a.scene.has("--h") || super::scene_args::file_sets(&a.scene, "mesh", "h")?;
-    if scene.mesh.file.is_none() && !given {
-        let l0 = physics::lambda0(scene, mu_s, mu_d, dc, a.n_force)?;
-        let h = physics::resolving_h(scene.block.thickness, l0);
-        if h < scene.mesh.h {
-            scene.mesh.h = h;
-            scene.validate()?;
-        }
-        eprintln!(
-            "--h not given: h = {:.4e} m (t/{}), so that the cohesive zone Lambda_0 = {l0:.4e} m spans {:.2} elements (at least {}; 6 or more move the peak force by under 0.01 mu_s N and the count of front advances by several, validation/dynamics/converge)",
-            scene.mesh.h,
-            (scene.block.thickness / scene.mesh.h).round(),
-            l0 / scene.mesh.h,
-            physics::MIN_ZONE_ELEMENTS
-        );
+    let r = tribofe::studies::dynamic_slide::physics::resolve(
+        scene,
+        &law_choice(a),
+        a.n_force,
+        given,
+        ["--dc", "--h"],
+    )?;
+    a.dc = r.law.dc();
+    for note in &r.notes {
+        eprintln!("{note}");
     }
-    let kappa = physics::kappa(scene, mu_s, mu_d, dc, a.n_force);
-    eprintln!("kappa = {kappa:.4}: {}", physics::regime(kappa));
     Ok(())
 }
 
@@ -442,7 +419,10 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     }
     let clock = std::time::Instant::now();
     let shown = std::sync::atomic::AtomicI64::new(-1);
+    // The fraction redraws one line: only on a terminal (a log gets the messages alone).
+    let tty = std::io::IsTerminal::is_terminal(&std::io::stderr());
     let tick = |t: &tribofe::Tick| match t.fraction {
+        Some(_) if !tty => {}
         Some(f) => {
             let pm = (1000.0 * f) as i64;
             if shown.swap(pm, std::sync::atomic::Ordering::Relaxed) != pm {
@@ -452,7 +432,9 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         None => eprintln!("\r{}", t.message),
     };
     let res = ds::run(scene, &o, &d, tribofe::Progress::new(&tick))?;
-    eprintln!();
+    if tty {
+        eprintln!();
+    }
     let law = o.law;
     let results = [
         ("law", toml::Value::from(law.name())),

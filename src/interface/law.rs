@@ -206,6 +206,14 @@ impl Law {
         }
     }
 
+    /// The weakening slip D_c, m (slip weakening only).
+    pub fn dc(&self) -> Option<f64> {
+        match *self {
+            Law::SlipWeakening { dc, .. } => Some(dc),
+            _ => None,
+        }
+    }
+
     pub fn name(&self) -> String {
         match self {
             Law::Coulomb { .. } => "coulomb".into(),

@@ -103,6 +103,66 @@ pub fn check_resolved(
     Ok(())
 }
 
+/// What [`resolve`] chose, with the lines that say so (printed by the command, returned to
+/// Python).
+#[derive(Debug, Clone)]
+pub struct Resolved {
+    /// The slip-weakening law with its D_c.
+    pub law: crate::interface::law::Law,
+    /// kappa and the regime it suggests.
+    pub kappa: f64,
+    pub notes: Vec<String>,
+}
+
+/// Physics is input, resolution is checked, for `slide --dynamics --law slip-weakening` from
+/// any front end: D_c from [`default_dc`] when `choice.dc` is None; then, when `h_given` is
+/// false (no `--h`, no `[mesh] h`, no `h=`) and the scene is generated, the element size is
+/// refined to [`resolving_h`] if the scene's does not resolve Lambda_0. A given size is
+/// checked later by [`check_resolved`] (in the run's own checks). `names`: D_c and h as the
+/// front end's user types them (`["--dc", "--h"]`, `["dc=", "h="]`), for the notes.
+pub fn resolve(
+    scene: &mut Scene,
+    choice: &crate::studies::slide::LawChoice,
+    n_force: f64,
+    h_given: bool,
+    names: [&str; 2],
+) -> Result<Resolved> {
+    let probe = crate::studies::slide::LawChoice { dc: Some(1.0), ..choice.clone() }.law(scene)?;
+    let (mu_s, mu_d) = (probe.mu_s(), probe.mu_d());
+    let mut notes = Vec::new();
+    let dc = match choice.dc {
+        Some(dc) => dc,
+        None => {
+            let dc = default_dc(scene, mu_s, mu_d, n_force)?;
+            notes.push(format!(
+                "{} not given: D_c = {dc:.5e} m, the D_c giving the thin-layer stability number kappa = {:.4} of the paper's scene at D_c = {PAPER_DC:e} m (whatever the mesh)",
+                names[0],
+                default_kappa()?
+            ));
+            dc
+        }
+    };
+    let law = crate::studies::slide::LawChoice { dc: Some(dc), ..choice.clone() }.law(scene)?;
+    if scene.mesh.file.is_none() && !h_given {
+        let l0 = lambda0(scene, mu_s, mu_d, dc, n_force)?;
+        let h = resolving_h(scene.block.thickness, l0);
+        if h < scene.mesh.h {
+            scene.mesh.h = h;
+            scene.validate()?;
+        }
+        notes.push(format!(
+            "{} not given: h = {:.4e} m (t/{}), so that the cohesive zone Lambda_0 = {l0:.4e} m spans {:.2} elements (at least {MIN_ZONE_ELEMENTS}; 6 or more move the peak force by under 0.01 mu_s N and the count of front advances by several, validation/dynamics/converge)",
+            names[1],
+            scene.mesh.h,
+            (scene.block.thickness / scene.mesh.h).round(),
+            l0 / scene.mesh.h,
+        ));
+    }
+    let kappa = kappa(scene, mu_s, mu_d, dc, n_force);
+    notes.push(format!("kappa = {kappa:.4}: {}", regime(kappa)));
+    Ok(Resolved { law, kappa, notes })
+}
+
 /// The regime the thin-layer balance expects, a heuristic said as such.
 pub fn regime(kappa: f64) -> &'static str {
     if kappa < 1.0 {
