@@ -842,6 +842,156 @@ fn rupture<'py>(
     Ok(out)
 }
 
+/// `tribofe slide --dynamics` (docs/dynamics.md): the quasi-static loading with each
+/// instability run in elastodynamics (or the whole drive at `drive_velocity`). Every default
+/// is the library's (the command's): None means "the library's default".
+#[pyfunction]
+#[pyo3(signature = (scene=None, law="slip-weakening", *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
+    dc=None, h=None, n_force=1.0, x_max=None, cycles=None, cycle_end=None, max_events=50_000,
+    operator=None, keep_states=false, damping=None, courant=None, drive_velocity=None,
+    plate_mass=0.0, plate_inertia=0.0, heal="all", weakening_steps=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn dynamic_slide<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    law: &str,
+    mu: Option<f64>,
+    mu_s: Option<f64>,
+    mu_d: Option<f64>,
+    r: Option<f64>,
+    g: Option<f64>,
+    dc: Option<f64>,
+    h: Option<f64>,
+    n_force: f64,
+    x_max: Option<f64>,
+    cycles: Option<usize>,
+    cycle_end: Option<&str>,
+    max_events: usize,
+    operator: Option<&str>,
+    keep_states: bool,
+    damping: Option<f64>,
+    courant: Option<f64>,
+    drive_velocity: Option<f64>,
+    plate_mass: f64,
+    plate_inertia: f64,
+    heal: &str,
+    weakening_steps: Option<f64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::interface::events::Operator;
+    use tribofe::studies::dynamic_slide as ds;
+    let mut scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    if let Some(h) = h {
+        scene.mesh.h = h;
+        scene.validate().map_err(to_py)?;
+    }
+    let mut choice = tribofe::studies::slide::LawChoice {
+        law: law.to_string(),
+        mu,
+        mu_s,
+        mu_d,
+        r,
+        g,
+        rule: "paper".to_string(),
+        dc,
+    };
+    let mut notes = Vec::new();
+    if law == "slip-weakening" {
+        let res =
+            ds::physics::resolve(&mut scene, &choice, n_force, h.is_some(), ["dc=", "h="]).map_err(to_py)?;
+        choice.dc = res.law.dc();
+        notes = res.notes;
+    }
+    let choose = |key: &str, v: Option<&str>, accepted: [&str; 2]| -> PyResult<Option<bool>> {
+        match v {
+            None => Ok(None),
+            Some(v) if v == accepted[0] => Ok(Some(true)),
+            Some(v) if v == accepted[1] => Ok(Some(false)),
+            Some(v) => Err(to_py(Error::input(
+                format!("{key}="),
+                format!("{v:?}: give {:?} or {:?}", accepted[0], accepted[1]),
+            ))),
+        }
+    };
+    let end_at_crossing = choose("cycle_end", cycle_end, ["crossing", "whole-slip"])?;
+    let banded = choose("operator", operator, ["banded", "dense"])?;
+    let heal_slipped_only = choose("heal", Some(heal), ["slipped", "all"])?.unwrap_or(false);
+    let o = tribofe::studies::slide::SlideOptions {
+        law: choice.law(&scene).map_err(to_py)?,
+        n_force,
+        x_max,
+        cycles: cycles.unwrap_or(ds::DEFAULT_CYCLES),
+        end_at_crossing: end_at_crossing.unwrap_or(ds::DEFAULT_END_AT_CROSSING),
+        max_events,
+        keep_states,
+        operator: if banded.unwrap_or(true) { Operator::Banded } else { Operator::Dense },
+        ..Default::default()
+    };
+    let d = ds::DynamicOptions {
+        damping,
+        courant: courant.unwrap_or(ds::DEFAULT_COURANT),
+        drive_velocity,
+        plate_mass,
+        plate_inertia,
+        heal_slipped_only,
+        weakening_steps: weakening_steps.unwrap_or(ds::DEFAULT_WEAKENING_STEPS),
+        ..Default::default()
+    };
+    tribofe::studies::slide::check_options(&scene, &o).map_err(to_py)?;
+    let (res, core_s) = run_detached(py, progress, |cancel, poll| {
+        let o = tribofe::studies::slide::SlideOptions { cancel: cancel.clone(), ..o };
+        ds::run(&scene, &o, &d, poll)
+    })?;
+    // The tables from the command's own writers: every column of each CSV, as written.
+    use tribofe::report::{dynamic_slide as rd, slide as rs};
+    let out = PyDict::new(py);
+    out.set_item("loading", columns(py, &rs::loading_csv(&res.slide).map_err(to_py)?)?)?;
+    out.set_item("events", columns(py, &rs::events_csv(&res.slide).map_err(to_py)?)?)?;
+    out.set_item("dyn_events", columns(py, &rd::events_csv(&res).map_err(to_py)?)?)?;
+    out.set_item("fronts", columns(py, &rd::fronts_csv(&res).map_err(to_py)?)?)?;
+    out.set_item("summary", columns(py, &rd::summary_csv(&res).map_err(to_py)?)?)?;
+    if res.slide.options.law.weakens() {
+        out.set_item("advances", columns(py, &rs::advances_csv(&res.slide).map_err(to_py)?)?)?;
+    }
+    // Each dynamic event's samples: time since onset (s), drive force (N/m), tip x (m, NaN
+    // before nucleation), and |v_x| of every base node (samples x nodes, m/s) at slip_rate_t_s.
+    let samples = PyList::empty(py);
+    for e in &res.events {
+        let rec = &e.record;
+        let d = PyDict::new(py);
+        d.set_item("event", e.event)?;
+        d.set_item("instability", rec.weakened)?;
+        d.set_item("t_s", arr(py, &rec.t))?;
+        d.set_item("F_N_per_m", arr(py, &rec.force))?;
+        d.set_item("tip_m", arr(py, &rec.tip))?;
+        let n = res.slide.condensed.n;
+        let flat: Vec<f64> = rec.rates.iter().flat_map(|row| row.iter().map(|&v| v as f64)).collect();
+        d.set_item("slip_rate_m_per_s", PyArray1::from_vec(py, flat).reshape([rec.rates.len(), n])?)?;
+        // The rates' rows are the samples before the event's end (its last sample has none).
+        d.set_item("slip_rate_t_s", arr(py, &rec.t[..rec.rates.len().min(rec.t.len())]))?;
+        samples.append(d)?;
+    }
+    out.set_item("samples", samples)?;
+    let c = &res.slide.condensed;
+    out.set_item("law", res.slide.options.law.name())?;
+    out.set_item("mu_s", res.slide.options.law.mu_s())?;
+    out.set_item("mu_d", res.slide.options.law.mu_d())?;
+    out.set_item("x_over_L", arr(py, &c.x.iter().map(|x| x / c.l).collect::<Vec<_>>()))?;
+    out.set_item("h_m", scene.mesh.h)?;
+    out.set_item("dt_s", res.dt)?;
+    out.set_item("dt_stable_s", res.dt_stable)?;
+    out.set_item("damping_eta_s", res.eta)?;
+    out.set_item("c_s_m_per_s", res.speeds.c_s)?;
+    out.set_item("c_p_m_per_s", res.speeds.c_p)?;
+    out.set_item("c_R_m_per_s", res.speeds.c_r)?;
+    out.set_item("dofs", res.dofs)?;
+    out.set_item("steps", res.steps)?;
+    out.set_item("incomplete", res.incomplete.clone())?;
+    out.set_item("notes", notes)?;
+    out.set_item("core_s", core_s)?;
+    Ok(out)
+}
+
 #[pymodule]
 fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
@@ -853,6 +1003,7 @@ fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(precursors_fe_fig4, m)?)?;
     m.add_function(wrap_pyfunction!(precursors_fe_fig5, m)?)?;
     m.add_function(wrap_pyfunction!(rupture, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamic_slide, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -280,3 +280,87 @@ def test_interrupt_stops_a_long_run_within_a_second(tmp_path):
         assert out.startswith("interrupted"), out
         assert waited < 1.0 + 0.5, f"took {waited:.2f} s after SIGINT at {after} s (1 s asked, 0.5 s for the interpreter to exit)"
         assert list(tmp_path.iterdir()) == []
+
+
+# The short slip-weakening scene of the Rust tests (L = 0.1 m, to X = 6e-6 m: 4 instabilities,
+# a few seconds), its D_c and h left to the library as the command leaves them.
+DYN_ARGS = ["--dynamics", "--law", "slip-weakening", "--length", "0.1", "--x-max", "6e-6"]
+
+
+def test_dynamic_slide_equals_the_command_table_by_table(tribofe_bin, tmp_path):
+    out = tmp_path / "dyn"
+    r = run_cli(tribofe_bin, "slide", *DYN_ARGS, "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    res = tribofe.dynamics.slide(tribofe.Scene(length=0.1), x_max=6e-6)
+    assert res.incomplete is None
+    assert sum(1 for s in res.samples if s["instability"]) >= 1
+    # The command writes each table with 10 significant digits (12 in loading.csv): equal to
+    # the printed digits, every column of every CSV, integers as integers.
+    for name, table in [("loading", res.loading), ("events", res.events), ("dyn_events", res.dyn_events),
+                        ("fronts_t", res.fronts), ("advances", res.advances)]:
+        cli = read_csv(out / f"{name}.csv")
+        assert list(table.keys()) == list(cli.keys()), name
+        for col, cells in cli.items():
+            got = np.asarray(table[col])
+            if all(c.lstrip("-").isdigit() for c in cells):
+                assert got.dtype.kind == "i", (name, col, got.dtype)
+                np.testing.assert_array_equal(got, [int(c) for c in cells], err_msg=f"{name}.{col}")
+            elif got.dtype.kind == "f":
+                want = np.array([float(c) if c else np.nan for c in cells])
+                np.testing.assert_allclose(got, want, rtol=1e-10, atol=0, equal_nan=True, err_msg=f"{name}.{col}")
+            else:
+                assert list(got) == cells, (name, col)
+    summary = read_csv(out / "summary.csv")
+    assert list(res.summary) == list(summary)
+    for k, (v,) in summary.items():
+        if v:
+            assert abs(float(res.summary[k]) - float(v)) <= 1e-10 * abs(float(v)), k
+        else:
+            assert np.isnan(res.summary[k]), k
+    # The library's choices, as the command made them: D_c for kappa = 0.509 and h = t/4.
+    assert res.h_m == 5e-4
+    assert abs(res.summary["kappa"] - 0.5093) < 5e-5
+    assert any(n.startswith("dc= not given") for n in res.notes), res.notes
+    # The samples: one row of slip rates per sample, one column per base node.
+    s = res.samples[0]
+    assert s["slip_rate_m_per_s"].shape == (len(s["slip_rate_t_s"]), len(res.x_over_L))
+    np.testing.assert_array_equal(s["slip_rate_t_s"], s["t_s"][: len(s["slip_rate_t_s"])])
+
+
+def test_dynamic_slide_is_silent_and_refuses_a_wrong_choice(capfd):
+    res = tribofe.dynamics.slide(tribofe.Scene(length=0.1), law="coulomb", x_max=1e-6)
+    assert res.law.startswith("coulomb")
+    out, err = capfd.readouterr()
+    assert out == "" and err == "", (out, err)
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.dynamics.slide(tribofe.Scene(length=0.1), x_max=1e-6, cycle_end="cross")
+    assert "cycle_end=" in str(e.value) and '"crossing"' in str(e.value) and '"whole-slip"' in str(e.value)
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.dynamics.slide(tribofe.Scene(length=0.1), x_max=1e-6, heal="some")
+    assert "heal=" in str(e.value)
+
+
+def test_dynamic_slide_defaults_are_the_commands():
+    import inspect
+
+    sig = inspect.signature(tribofe.dynamics.slide)
+    # None means the library's default (the command's); these are the shared literal ones.
+    assert sig.parameters["law"].default == "slip-weakening"
+    assert sig.parameters["n_force"].default == 1.0
+    assert sig.parameters["max_events"].default == 50_000
+    assert sig.parameters["heal"].default == "all"
+    for k in ("dc", "h", "cycles", "cycle_end", "operator", "damping", "courant", "weakening_steps"):
+        assert sig.parameters[k].default is None, k
+
+
+def test_dynamic_slide_literal_defaults_equal_the_commands_help(tribofe_bin):
+    import inspect
+    import re
+
+    help_text = run_cli(tribofe_bin, "slide", "--help").stdout
+    sig = inspect.signature(tribofe.dynamics.slide)
+    for flag, key in [("--n-force", "n_force"), ("--max-events", "max_events"), ("--heal", "heal")]:
+        m = re.search(rf"{flag} <[A-Z_]+>\n(?:.*\n)*?.*\[default: ([^\]]+)\]", help_text)
+        assert m, flag
+        default = sig.parameters[key].default
+        assert str(default) == m.group(1) or (isinstance(default, float) and float(m.group(1)) == default), (flag, m.group(1), default)

@@ -20,6 +20,7 @@ from . import errors
 from ._tribofe import Scene, __version__
 from ._tribofe import check as _check
 from ._tribofe import converge as _converge
+from ._tribofe import dynamic_slide as _dynamic_slide
 from ._tribofe import precursors_fe_fig4 as _fe_fig4
 from ._tribofe import precursors_fe_fig5 as _fe_fig5
 from ._tribofe import precursors_model as _precursors_model
@@ -39,6 +40,7 @@ __all__ = [
     "CheckResult",
     "CheckCase",
     "SlideResult",
+    "DynamicSlideResult",
     "TribofeError",
     "InputError",
     "NumericalError",
@@ -392,8 +394,133 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         return _table(cols)
 
 
+@dataclass(frozen=True)
+class DynamicSlideResult:
+    """A dynamic slide (``tribofe slide --dynamics``): the command's tables, each with every
+    column of its CSV (``loading``, ``events``, ``dyn_events``, ``fronts``, ``summary``, and
+    ``advances`` for a weakening law; DataFrames when pandas is installed, else dicts of
+    arrays; integer columns as integers, an empty cell as NaN), each dynamic event's samples
+    (``samples[k]``: ``t_s``, ``F_N_per_m``, ``tip_m``, and ``slip_rate_m_per_s``, samples x
+    base nodes at the times ``slip_rate_t_s``), the run's scales, and the notes on what the library chose (D_c, h, kappa).
+    ``incomplete`` names the cap a run met (None when it reached its end)."""
+
+    law: str
+    mu_s: float
+    mu_d: float
+    x_over_L: np.ndarray
+    h_m: float
+    dt_s: float
+    dt_stable_s: float
+    damping_eta_s: float
+    c_s_m_per_s: float
+    c_p_m_per_s: float
+    c_R_m_per_s: float
+    dofs: int
+    steps: int
+    loading: Any
+    events: Any
+    dyn_events: Any
+    fronts: Any
+    summary: Dict[str, Any]
+    samples: List[Dict[str, Any]]
+    notes: List[str]
+    incomplete: Optional[str] = None
+    advances: Any = None
+    core_s: float = field(default=0.0, compare=False)
+
+    def __repr__(self) -> str:
+        f1 = self.summary.get("first_advance_F_over_mu_s_N", float("nan"))
+        return (
+            f"DynamicSlideResult({self.law}, {len(self.x_over_L)} interface nodes, h = {self.h_m:.4g} m, "
+            f"{len(self.samples)} dynamic events, F_1 = {f1:.4f} mu_s N"
+            f"{', incomplete: ' + self.incomplete if self.incomplete else ''}, {self.core_s:.2f} s)"
+        )
+
+
 class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
     """Explicit elastodynamics with a frictional base (docs/dynamics.md)."""
+
+    @staticmethod
+    def slide(
+        scene: Optional[Scene] = None,
+        law: str = "slip-weakening",
+        *,
+        mu: Optional[float] = None,
+        mu_s: Optional[float] = None,
+        mu_d: Optional[float] = None,
+        r: Optional[float] = None,
+        g: Optional[float] = None,
+        dc: Optional[float] = None,
+        h: Optional[float] = None,
+        n_force: float = 1.0,
+        x_max: Optional[float] = None,
+        cycles: Optional[int] = None,
+        cycle_end: Optional[str] = None,
+        max_events: int = 50_000,
+        operator: Optional[str] = None,
+        keep_states: bool = False,
+        damping: Optional[float] = None,
+        courant: Optional[float] = None,
+        drive_velocity: Optional[float] = None,
+        plate_mass: float = 0.0,
+        plate_inertia: float = 0.0,
+        heal: str = "all",
+        weakening_steps: Optional[float] = None,
+        progress: Any = False,
+    ) -> DynamicSlideResult:
+        """``tribofe slide --dynamics``: the paper's plate-driven block, loaded quasi-statically,
+        each instability run in elastodynamics with the drive held (or the whole drive at
+        ``drive_velocity``, m/s, with ``x_max`` required). Every ``None`` is the command's
+        default, read from the library: ``dc`` (m) the D_c giving the paper scene's kappa =
+        0.509 (2.3107e-7 m there), ``h`` (m) the scene's element size refined until the
+        cohesive zone spans 3 elements (a given ``h`` that does not is refused), ``cycles`` 1
+        ended at the first front crossing (``cycle_end``: ``"crossing"`` or ``"whole-slip"``),
+        ``operator`` ``"banded"`` (or ``"dense"``), ``damping`` (Kelvin-Voigt eta, s) 10 % of
+        critical at the thickness mode, ``courant`` 0.9 of the stable step, ``weakening_steps``
+        20. ``law``: ``"slip-weakening"`` (``mu_s``, ``mu_d`` or the paper's ``r``, ``g``) or
+        ``"coulomb"`` (``mu``). ``plate_mass`` (kg/m), ``plate_inertia`` (kg m^2/m), ``heal``
+        (``"all"`` or ``"slipped"``). Silent unless ``progress`` is True (a tqdm bar) or a
+        callable; the interrupt key stops the run (:class:`KeyboardInterrupt`). A run that
+        meets a cap returns what it computed with ``incomplete`` naming the cap, and warns."""
+        cb, close = _progress(progress, "slide --dynamics")
+        try:
+            raw = _dynamic_slide(
+                scene if scene is not None else Scene(),
+                law,
+                mu=mu,
+                mu_s=mu_s,
+                mu_d=mu_d,
+                r=r,
+                g=g,
+                dc=dc,
+                h=h,
+                n_force=n_force,
+                x_max=x_max,
+                cycles=cycles,
+                cycle_end=cycle_end,
+                max_events=max_events,
+                operator=operator,
+                keep_states=keep_states,
+                damping=damping,
+                courant=courant,
+                drive_velocity=drive_velocity,
+                plate_mass=plate_mass,
+                plate_inertia=plate_inertia,
+                heal=heal,
+                weakening_steps=weakening_steps,
+                progress=cb,
+            )
+        finally:
+            close()
+        if raw["incomplete"]:
+            import warnings
+
+            warnings.warn(f"tribofe: the run is incomplete: {raw['incomplete']}", stacklevel=2)
+        summary = {k: (v[0] if len(v) else float("nan")) for k, v in raw.pop("summary").items()}
+        for k in ("loading", "events", "dyn_events", "fronts", "advances"):
+            if k in raw:
+                raw[k] = _table(raw[k])
+        return DynamicSlideResult(summary=summary, **raw)
 
     @staticmethod
     def rupture(progress: Any = True, **keys: Any) -> Dict[str, Any]:

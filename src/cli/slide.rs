@@ -118,7 +118,7 @@ pub struct Args {
     #[arg(long)]
     pub damping: Option<f64>,
     /// Time step as a fraction of the stable step of the mesh and damping (--dynamics).
-    #[arg(long, default_value_t = 0.9)]
+    #[arg(long, default_value_t = ds::DEFAULT_COURANT)]
     pub courant: f64,
     /// Drive the plate at this constant velocity, m/s, through the whole drive phase
     /// (--dynamics; needs --x-max; events read off the slip rates). Default: the drive held

@@ -83,7 +83,7 @@ impl Default for DynamicOptions {
     fn default() -> Self {
         Self {
             damping: None,
-            courant: 0.9,
+            courant: DEFAULT_COURANT,
             ke_fraction: 1e-6,
             max_periods: None,
             drive_velocity: None,
@@ -95,6 +95,9 @@ impl Default for DynamicOptions {
         }
     }
 }
+
+/// Default time step, as a fraction of the stable one (the command's `--courant`).
+pub const DEFAULT_COURANT: f64 = 0.9;
 
 /// Default damping: this fraction of critical at the block's fundamental thickness-shear
 /// mode omega_t = pi c_s / (2 t) (base stuck, top held by the plate).
