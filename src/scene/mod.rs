@@ -84,15 +84,6 @@ pub enum MeshGeometry {
     File,
 }
 
-impl MeshGeometry {
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Block => "block",
-            Self::File => "file",
-        }
-    }
-}
-
 /// What every verdict against the paper's model says of a mesh of the file's own shape.
 pub const FILE_GEOMETRY_NOTE: &str =
     "the mesh file's own (mesh.geometry = file), not the L x t block; the paper's model does not describe it";
