@@ -242,7 +242,7 @@ pub fn check_shape(m: &Mesh, sides: &Sides, block: &str, t: f64, tol: f64, file_
     let mut inner = Vec::new();
     let mut overlap: Option<(usize, usize, usize, usize)> = None;
     for (&(a, b), &(count, e)) in sides {
-        if count > 2 && overlap.map_or(true, |o| e < o.0) {
+        if count > 2 && overlap.is_none_or(|o| e < o.0) {
             overlap = Some((e, count, a, b));
         } else if count == 1 && !outer(m.nodes[a], m.nodes[b]) {
             inner.push((e, a, b));

@@ -27,6 +27,9 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
+/// Nodes as (tag, x, y).
+type Nodes = Vec<(usize, f64, f64)>;
+
 /// A QUA4 block as MSH 2.2 ASCII: nodes (tag, x, y) (only those of elements are written),
 /// quads by node tag, groups `interface` (the quad sides on y = 0), `top` (on y = t), `block`.
 fn write_msh(path: &Path, nodes: &[(usize, f64, f64)], quads: &[[usize; 4]]) {
@@ -67,7 +70,7 @@ fn write_msh(path: &Path, nodes: &[(usize, f64, f64)], quads: &[[usize; 4]]) {
 }
 
 /// The regular nx x ny grid on [x0, x0 + w] x [0, t], node tags from `first` row by row.
-fn grid(x0: f64, w: f64, nx: usize, ny: usize, first: usize) -> Vec<(usize, f64, f64)> {
+fn grid(x0: f64, w: f64, nx: usize, ny: usize, first: usize) -> Nodes {
     let mut v = Vec::new();
     for j in 0..=ny {
         for i in 0..=nx {
@@ -78,7 +81,7 @@ fn grid(x0: f64, w: f64, nx: usize, ny: usize, first: usize) -> Vec<(usize, f64,
 }
 
 /// 20 x 4 QUA4 (1 mm x 0.5 mm), node (i, j) tagged j 21 + i + 1; `skip` leaves out elements.
-fn block_20x4(skip: impl Fn(usize, usize) -> bool) -> (Vec<(usize, f64, f64)>, Vec<[usize; 4]>) {
+fn block_20x4(skip: impl Fn(usize, usize) -> bool) -> (Nodes, Vec<[usize; 4]>) {
     let nodes = grid(-L / 2.0, L, 20, 4, 1);
     let n = |i: usize, j: usize| 1 + j * 21 + i;
     let quads = (0..4)
