@@ -23,7 +23,7 @@
 /// [`Scene::from_file`] reads a TOML scene (unknown keys refused, naming the line);
 /// [`Overrides`] applies command-line style changes; [`Scene::validate`] refuses bad values
 /// before any work.
-pub use crate::scene::{Overrides, PlateModel, Scene};
+pub use crate::scene::{MeshGeometry, Overrides, PlateModel, Scene};
 
 /// Solver options (ordering, threads) for [`check`]; `Default` is what the command uses.
 pub use crate::linalg::solve::SolverOptions;

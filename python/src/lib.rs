@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
 use tribofe::interface::law::Rule;
-use tribofe::scene::{Overrides, PlateModel, Scene as RsScene};
+use tribofe::scene::{MeshGeometry, Overrides, PlateModel, Scene as RsScene};
 use tribofe::{Cancel, Error, Progress, Tick};
 
 /// The exception class of `tribofe.errors` for an error of the library.
@@ -100,7 +100,7 @@ struct Scene {
 }
 
 const SCENE_KEYS: &str = "length, thickness, young, poisson, height, fn_ratios, plate, plate_thickness, \
-plate_young, plate_poisson, h, grading, h_max, n_thick, element, mesh, tol, max_dofs";
+plate_young, plate_poisson, h, grading, h_max, n_thick, element, mesh, geometry, tol, max_dofs";
 
 fn overrides(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Overrides> {
     let mut o = Overrides::default();
@@ -136,6 +136,19 @@ fn overrides(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Overrides> {
             }
             "element" => o.element = Some(v.extract()?),
             "mesh" => o.mesh = Some(PathBuf::from(v.str()?.to_string())),
+            "geometry" => {
+                let s: String = v.extract()?;
+                o.geometry = Some(match s.as_str() {
+                    "block" => MeshGeometry::Block,
+                    "file" => MeshGeometry::File,
+                    _ => {
+                        return Err(to_py(Error::input(
+                            "geometry",
+                            format!("'{}': use block or file", tribofe::error::quote(&s)),
+                        )))
+                    }
+                })
+            }
             "plate" => {
                 let s: String = v.extract()?;
                 o.plate = Some(match s.as_str() {

@@ -43,6 +43,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         ("--element", a.element.is_some(), "the elements compared are --elements"),
         ("--fn-ratios", a.fn_ratios.is_some(), "the load case compared is --case"),
         ("--mesh", a.mesh.is_some(), "the study meshes the block itself at each size"),
+        ("--geometry", a.geometry.is_some(), "the study meshes the block itself at each size"),
     ];
     if let Some((flag, _, why)) = fixed.iter().find(|f| f.1) {
         return Err(tribofe::Error::input(*flag, format!("cannot act in `converge`: {why}")));

@@ -56,7 +56,7 @@ pub struct Args {
 pub fn run(a: Args) -> tribofe::Result<()> {
     super::scene_args::refuse_inapplicable(
         &a.scene,
-        &["--h", "--grading", "--h-max", "--n-thick", "--height", "--fn-ratios", "--tol", "--mesh"],
+        &["--h", "--grading", "--h-max", "--n-thick", "--height", "--fn-ratios", "--tol", "--mesh", "--geometry"],
         "`edges` builds its own meshes: --refine (pre-slip) and --t-over-l (h = t/2), the heights from --h-over-l",
     )?;
     let scene = scene_from(&a.scene)?;

@@ -31,7 +31,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     // Every study sets its own mesh sizes and load case: these flags could not act.
     super::scene_args::refuse_inapplicable(
         &args.scene,
-        &["--h", "--n-thick", "--fn-ratios", "--mesh"],
+        &["--h", "--n-thick", "--fn-ratios", "--mesh", "--geometry"],
         "each `stability` study sets its own meshes (--n-ref, --corner-max) and load case",
     )?;
     let scene = super::check::scene(&args.scene)?;

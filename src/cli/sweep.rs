@@ -74,7 +74,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     }
     super::scene_args::refuse_inapplicable(
         &args.scene,
-        &["--mesh"],
+        &["--mesh", "--geometry"],
         "the sweep varies the block's geometry, which a mesh file fixes",
     )?;
     if !args.as_meshed {

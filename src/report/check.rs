@@ -187,6 +187,12 @@ pub fn table(res: &CheckResult) -> String {
         "tribofe check: block L = {} m, t = {} m, E = {} Pa, nu = {}; {:?} plate; H = {} m; {} elements ({}), {} nodes, {} unknowns",
         sc.block.length, sc.block.thickness, sc.block.young, sc.block.poisson, sc.plate.model, sc.loading.height, res.n_elements, sc.mesh.element, res.n_nodes, res.stats.n_unknowns
     );
+    if let Some(note) = &res.geometry_note {
+        let _ = writeln!(
+            s,
+            "geometry: {note}: the model, corrected and dev columns compare with a block this mesh is not"
+        );
+    }
     let _ = writeln!(
         s,
         "stresses in units of the mean pressure N/L; widths in units of t; forces per unit width (N/m)"

@@ -40,13 +40,18 @@ pub fn run_toml<R: Serialize>(
 ) -> Result<String> {
     #[derive(Serialize)]
     struct Run<'a, R> {
+        /// A mesh of the file's own shape: no verdict against the paper's model describes it.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        geometry: Option<&'static str>,
         tribofe: Provenance,
         options: &'a toml::Table,
         results: &'a R,
         #[serde(skip_serializing_if = "Option::is_none")]
         scene: Option<&'a crate::scene::Scene>,
     }
+    let file_shape = scene.is_some_and(|s| s.mesh.geometry == crate::scene::MeshGeometry::File);
     let run = Run {
+        geometry: file_shape.then_some(crate::scene::FILE_GEOMETRY_NOTE),
         tribofe: Provenance {
             version: env!("CARGO_PKG_VERSION"),
             revision: option_env!("TRIBOFE_GIT_REVISION"),

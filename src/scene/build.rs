@@ -101,6 +101,7 @@ impl Scene {
             &self.mesh.interface,
             &self.mesh.top,
             self.block.thickness,
+            self.mesh.geometry == super::MeshGeometry::File,
         )
         .map_err(|e| match e {
             Error::Mesh(why) => {

@@ -74,6 +74,20 @@ pub struct Loading {
     pub fn_ratios: Vec<f64>,
 }
 
+/// What a mesh file must be: the scene's L x t block (the default), or the file's own shape
+/// (holes, notches accepted), which the paper's model does not describe.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MeshGeometry {
+    #[default]
+    Block,
+    File,
+}
+
+/// What every verdict against the paper's model says of a mesh of the file's own shape.
+pub const FILE_GEOMETRY_NOTE: &str =
+    "the mesh file's own (mesh.geometry = file), not the L x t block; the paper's model does not describe it";
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct MeshSpec {
@@ -95,6 +109,9 @@ pub struct MeshSpec {
     pub interface: String,
     pub top: String,
     pub block: String,
+    /// Whether the mesh file must be the L x t block (`block`) or has its own shape, holes
+    /// and notches accepted (`file`, `--geometry`).
+    pub geometry: MeshGeometry,
     /// Largest number of unknowns a run may have (`--max-dofs`); none = half this machine's
     /// memory at [`limits::BYTES_PER_DOF`], at most [`limits::DEFAULT_MAX_DOFS_CAP`].
     pub max_dofs: Option<usize>,
@@ -144,6 +161,7 @@ impl Default for MeshSpec {
             interface: "interface".into(),
             top: "top".into(),
             block: "block".into(),
+            geometry: MeshGeometry::Block,
             max_dofs: None,
         }
     }
@@ -337,6 +355,13 @@ impl Scene {
             ));
         }
         limits::effective(self.mesh.max_dofs)?;
+        if self.mesh.geometry == MeshGeometry::File && self.mesh.file.is_none() {
+            return Err(Error::input(
+                "mesh.geometry (--geometry)",
+                "file accepts a mesh file that is not the L x t block, but there is none: \
+                 the built-in mesh is the block; give mesh.file (--mesh) or remove the key",
+            ));
+        }
         if self.mesh.n_thick == Some(0) {
             return Err(Error::input(
                 "mesh.n_thick (--n-thick)",
@@ -381,9 +406,16 @@ impl Scene {
         Ok(())
     }
 
-    /// Advice that does not stop the run: element and material pairs known to lock.
+    /// Advice that does not stop the run: element and material pairs known to lock, a mesh
+    /// of the file's own shape.
     pub fn warnings(&self) -> Vec<String> {
         let mut w = Vec::new();
+        if self.mesh.geometry == MeshGeometry::File {
+            w.push(format!(
+                "geometry: {FILE_GEOMETRY_NOTE}: every comparison with it (model, corrected, deviations, \
+                 edge zones) is one with a block this mesh is not"
+            ));
+        }
         let lock = |nu: f64, what: &str| {
             format!(
                 "mesh.element = {} with {what} = {nu} (>= 0.499) locks volumetrically and underestimates \

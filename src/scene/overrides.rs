@@ -2,7 +2,7 @@
 //! scene's value. Applied by [`Scene::apply`], then checked by the same [`Scene::validate`] as a
 //! scene file.
 
-use super::{PlateModel, Scene};
+use super::{MeshGeometry, PlateModel, Scene};
 use crate::error::{Error, Result};
 use std::path::PathBuf;
 
@@ -24,6 +24,7 @@ pub struct Overrides {
     pub n_thick: Option<usize>,
     pub element: Option<String>,
     pub mesh: Option<PathBuf>,
+    pub geometry: Option<MeshGeometry>,
     pub tol: Option<f64>,
     pub max_dofs: Option<usize>,
 }
@@ -64,6 +65,7 @@ impl Scene {
         if o.mesh.is_some() {
             s.mesh.file = o.mesh.clone();
         }
+        set!(o.geometry, s.mesh.geometry);
         set!(o.tol, s.report.tol);
         if o.max_dofs.is_some() {
             s.mesh.max_dofs = o.max_dofs;

@@ -81,6 +81,9 @@ pub struct CheckResult {
     pub stats: SolverStats,
     /// Full displacements of each combined case (for field output) and the model used.
     pub displacements: Vec<Vec<f64>>,
+    /// With `mesh.geometry = file`: what every verdict against the paper's model must say,
+    /// with the share of L t the elements cover.
+    pub geometry_note: Option<String>,
 }
 
 impl CheckResult {
@@ -133,6 +136,7 @@ pub fn converged_scene(scene: &Scene) -> Scene {
     s.mesh.grading = Some(1.15);
     s.mesh.h_max = Some(4.0 * t);
     s.mesh.file = None;
+    s.mesh.geometry = crate::scene::MeshGeometry::Block;
     s
 }
 
@@ -483,6 +487,14 @@ fn finish(
         n_elements: sm.mesh.n_elements(),
         stats: SolverStats { timings, ..sol.stats.clone() },
         displacements,
+        geometry_note: (scene.mesh.geometry == crate::scene::MeshGeometry::File).then(|| {
+            let full = scene.block.length * scene.block.thickness;
+            format!(
+                "{} (its elements cover {:.6} of L t)",
+                crate::scene::FILE_GEOMETRY_NOTE,
+                sm.mesh.total_area() / full
+            )
+        }),
     };
     Ok(res)
 }

@@ -27,6 +27,7 @@ mod gmsh_io;
 mod inputs;
 mod layering;
 mod lean;
+mod mesh_geometry;
 mod observer;
 mod operator;
 mod paper_rule;
