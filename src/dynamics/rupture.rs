@@ -250,14 +250,22 @@ impl RuptureSpec {
                 ),
             ));
         }
+        // The front speed is fitted over the window's nodes inside the block: it must reach
+        // into the half 0 <= x <= L/2 the +x front runs over (a short block measures less of it).
         let (a, b) = self.speed_window;
-        if !(a >= 0.0 && a < b && b <= half) {
+        if !(a.is_finite() && b.is_finite() && 0.0 <= a && a < b) {
+            return Err(Error::input(
+                "front-speed window (m, RuptureSpec::speed_window)",
+                format!("({a}, {b}): give 0 <= a < b, finite"),
+            ));
+        }
+        if a >= half {
             return Err(Error::input(
                 "block length (m, --length)",
                 format!(
-                    "{} m: the front speed is measured over {a} <= x <= {b} m, which must lie in the block's half 0 <= x <= L/2 = {half} m; give --length >= {} m",
+                    "{} m: the front speed is measured over {a} <= x <= {b} m, which lies beyond the block's end x = L/2 = {half} m; give --length > {} m",
                     self.length,
-                    2.0 * b
+                    2.0 * a
                 ),
             ));
         }

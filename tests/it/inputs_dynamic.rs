@@ -111,7 +111,7 @@ fn negative_looking_values_reach_the_checks() {
 
 /// `rupture`: damping whose stable step overflowed (1e200 ran undamped) or is below dt names
 /// --damping and its largest accepted value; a too-large --courant a possible bound; the patch
-/// and the speed window must fit the block; D_c whose zone exceeds the half block; moduli out of
+/// must lie inside the interface and the speed window reach into the block; D_c whose zone exceeds the half block; moduli out of
 /// range; a run shorter than one step.
 #[test]
 fn rupture_refuses_what_cannot_run() {
@@ -121,7 +121,7 @@ fn rupture_refuses_what_cannot_run() {
         (&["--courant", "2"], "--courant", &["--courant <= 0.77"]),
         (&["--courant", "1e-308"], "--courant", &["0.01"]),
         (&["--length", "0.02"], "--length", &["patch", "--length > 0.02"]),
-        (&["--length", "0.1"], "--length", &["front speed", "--length >= 0.16"]),
+        (&["--length", "0.05"], "--length", &["front speed", "--length > 0.06"]),
         (&["--dc", "1e308"], "--dc", &["Lambda_0"]),
         (&["--young", "1e308"], "--young", &[]),
         (&["--poisson", "-inf"], "--poisson", &[]),
