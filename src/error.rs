@@ -1,6 +1,8 @@
 //! One error type for the whole library. Every variant names what was wrong and where
 //! (parameter, file and line, node and component) so the CLI can print it as is, and maps to
-//! one documented exit status ([`Error::exit_status`]).
+//! one documented exit status ([`Error::exit_status`]). Its text (`Display`) has every control
+//! byte of an input (a scene string, a file name) escaped ([`quote_lines`]), for the terminal
+//! and for the Python layer alike.
 
 use std::path::PathBuf;
 
@@ -33,29 +35,29 @@ pub mod exit {
 pub enum Error {
     /// A parameter outside its physical or numerical range; `what` is the name the user gave
     /// (`--h`, `block.thickness`...).
-    #[error("invalid {what}: {why}")]
+    #[error("invalid {}: {}", quote_lines(.what), quote_lines(.why))]
     Input { what: String, why: String },
 
     /// A file that could not be parsed; `at` is "line N" (text) or "byte N" (binary).
-    #[error("{}: {at}: {msg}", file.display())]
+    #[error("{}: {}: {}", path_text(.file), quote_lines(.at), quote_lines(.msg))]
     Parse { file: PathBuf, at: String, msg: String },
 
     /// A mesh that cannot be used (degenerate element, unknown set, a geometry that
     /// contradicts the scene...).
-    #[error("mesh: {0}")]
+    #[error("mesh: {}", quote_lines(.0))]
     Mesh(String),
 
     /// The problem would not fit: estimated unknowns and memory against the limit.
-    #[error("problem too large: about {dofs:.3e} unknowns and {} GiB estimated, above the limit of {limit} unknowns (--max-dofs); {suggestion}", num(*gib))]
+    #[error("problem too large: about {dofs:.3e} unknowns and {} GiB estimated, above the limit of {limit} unknowns (--max-dofs); {}", num(*gib), quote_lines(.suggestion))]
     TooLarge { dofs: f64, gib: f64, limit: usize, suggestion: String },
 
     /// The reduced stiffness matrix is not positive definite; `node` (tag) and `component`
     /// (0 = u, 1 = v) name the first bad pivot when it is a node's DOF.
-    #[error("the boundary conditions leave the body free to move: {detail}")]
+    #[error("the boundary conditions leave the body free to move: {}", quote_lines(.detail))]
     Singular { detail: String, node: Option<u64>, component: Option<usize> },
 
     /// The solve went through but its residual says the answer cannot be trusted.
-    #[error("untrustworthy solution: {detail}; {hint}")]
+    #[error("untrustworthy solution: {}; {}", quote_lines(.detail), quote_lines(.hint))]
     Untrustworthy { detail: String, hint: String },
 
     /// A frictional run needed more events than its cap before reaching its end.
@@ -66,31 +68,31 @@ pub enum Error {
     EventCap { cap: usize, x: f64, f_over_n: f64, f_peak_over_n: f64 },
 
     /// A self-check of the results (global balance...) failed beyond its threshold.
-    #[error("self-check failed: {what} = {value:.2e} exceeds {limit:.1e}; {hint}")]
+    #[error("self-check failed: {} = {value:.2e} exceeds {limit:.1e}; {}", quote_lines(.what), quote_lines(.hint))]
     SelfCheck { what: String, value: f64, limit: f64, hint: String },
 
     /// A chart that could not be drawn.
-    #[error("{file}: cannot draw the chart: {msg}")]
+    #[error("{}: cannot draw the chart: {}", quote_lines(.file), quote_lines(.msg))]
     Plot { file: String, msg: String },
 
     /// An input file that cannot be read.
-    #[error("cannot read {}: {source}", path.display())]
+    #[error("cannot read {}: {source}", path_text(.path))]
     Read { path: PathBuf, source: std::io::Error },
 
     /// An output folder that cannot be used (a file of that name, another run's lock...).
-    #[error("output folder {}: {why}", path.display())]
+    #[error("output folder {}: {}", path_text(.path), quote_lines(.why))]
     Output { path: PathBuf, why: String },
 
     /// Writing results failed.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {source}", path_text(.path))]
     Io { path: PathBuf, source: std::io::Error },
 
     /// The system refused a resource (a thread pool...).
-    #[error("the system refused {what}: {why}")]
+    #[error("the system refused {}: {}", quote_lines(.what), quote_lines(.why))]
     Resource { what: String, why: String },
 
     /// A run met a cap after it started; its partial results were written (exit status 5).
-    #[error("incomplete: {what}; the results up to there are written and run.toml names the cap")]
+    #[error("incomplete: {}; the results up to there are written and run.toml names the cap", quote_lines(.what))]
     Incomplete { what: String },
 
     /// SIGINT or SIGTERM arrived; temporaries were removed.
@@ -139,6 +141,21 @@ pub fn positive(what: &str, v: f64) -> Result<()> {
     }
 }
 
+/// `Ok` for a positive value in [1e-100, 1e100] (`unit` its unit), else the refusal naming
+/// `what`: lengths and moduli far outside it under- or overflow in the element products
+/// (h^2, E h^2) before any check can see it; physical values are far inside.
+pub fn scaled(what: &str, v: f64, unit: &str) -> Result<()> {
+    positive(what, v)?;
+    if (1e-100..=1e100).contains(&v) {
+        Ok(())
+    } else {
+        Err(Error::input(
+            what,
+            format!("{} {unit} is outside [1e-100, 1e100] {unit}, where double precision holds the stiffness; check the units", num(v)),
+        ))
+    }
+}
+
 /// A value for a message: plain in [1e-4, 1e6), else in scientific notation.
 pub fn num(v: f64) -> String {
     if v == 0.0 || (1e-4..1e6).contains(&v.abs()) {
@@ -165,6 +182,11 @@ pub fn quote(s: &str) -> String {
         }
     }
     out
+}
+
+/// A path for a message, quoted ([`quote`]): a file name may hold any byte but `/` and NUL.
+fn path_text(p: &std::path::Path) -> String {
+    quote(&p.display().to_string())
 }
 
 /// Quotes a whole message for a terminal: as [`quote`], but line breaks and tabs kept. Every

@@ -13,9 +13,65 @@ use tribofe::interface::law::Rule;
 use tribofe::scene::{MeshGeometry, Overrides, PlateModel, Scene as RsScene};
 use tribofe::{Cancel, Error, Progress, Tick};
 
+/// The library's names of parameters that differ from the Python keyword (the command's
+/// flags are renamed by [`keywords`]).
+const KEYWORDS: &[(&str, &str)] = &[
+    ("N", "n_force"),
+    ("x-max", "x_max"),
+    ("mu-s", "mu_s"),
+    ("mu-d", "mu_d"),
+    ("mu-s/mu-d", "mu_s/mu_d"),
+    ("--mu-s/--mu-d", "mu_s/mu_d"),
+    ("--s", "s_ratio"),
+    ("--plate-modulus", "plate_young"),
+];
+
+/// A refusal as a Python caller reads it: the parameter by its keyword (`dc=`, `n_force=`),
+/// not by the command's flag (`--dc`) or the library's name (`N`). Every flag in the message
+/// becomes its keyword (`--x-max` -> `x_max=`); the command's own advice that has no keyword
+/// (`--states none`) reads the same way, as the nearest spelling.
+fn keywords(e: Error) -> Error {
+    let rename = |text: &str| {
+        let mut out = String::with_capacity(text.len());
+        let mut rest = text;
+        while let Some(at) = rest.find("--") {
+            out.push_str(&rest[..at]);
+            let tail = &rest[at + 2..];
+            let len = tail.find(|c: char| !(c.is_ascii_alphanumeric() || c == '-')).unwrap_or(tail.len());
+            let flag = &tail[..len];
+            if flag.is_empty() || !flag.starts_with(|c: char| c.is_ascii_lowercase()) {
+                out.push_str("--");
+                rest = tail;
+                continue;
+            }
+            let full = format!("--{flag}");
+            let key = KEYWORDS
+                .iter()
+                .find(|(f, _)| *f == full)
+                .map_or(flag.replace('-', "_"), |(_, k)| k.to_string());
+            out.push_str(&key);
+            out.push('=');
+            rest = &tail[len..];
+        }
+        out.push_str(rest);
+        out
+    };
+    match e {
+        Error::Input { what, why } => {
+            let what = match KEYWORDS.iter().find(|(name, _)| *name == what) {
+                Some((_, key)) => format!("{key}="),
+                None => rename(&what),
+            };
+            Error::Input { what, why: rename(&why) }
+        }
+        e => e,
+    }
+}
+
 /// The exception class of `tribofe.errors` for an error of the library.
 fn to_py(e: Error) -> PyErr {
     use tribofe::error::exit;
+    let e = keywords(e);
     let class = match e.exit_status() {
         exit::INPUT => "InputError",
         exit::NUMERICAL => "NumericalError",

@@ -135,7 +135,7 @@ pub fn invocation() -> &'static tribofe::report::run_file::Invocation {
 /// `--flag -1,2` as `--flag=-1,2`: clap reads a lone negative number after a flag as its value
 /// (allow_negative_numbers) but a negative list or range (`-1,2`, `-1:1:5`) as an unknown
 /// flag. A word after a long flag that takes a value is joined to it when it starts with `-`
-/// and a digit or `.`, which no flag does.
+/// and a digit or `.`, or is a negative number as Rust reads one (`-inf`), which no flag is.
 fn join_negative_values(cmd: &clap::Command, args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
     let sub = args.iter().skip(1).find_map(|a| a.to_str().and_then(|a| cmd.find_subcommand(a)));
     let Some(mut sub) = sub else { return args };
@@ -154,9 +154,12 @@ fn join_negative_values(cmd: &clap::Command, args: Vec<std::ffi::OsString>) -> V
     while let Some(a) = it.next() {
         let flag =
             a.to_str().and_then(|s| s.strip_prefix("--")).filter(|f| !f.contains('=') && !f.is_empty());
+        // `-inf`, `-nan` and `-infinity` too (clap takes them for flags): they reach the
+        // range checks and are refused there, naming the flag.
         let next_negative = it.peek().and_then(|n| n.to_str()).is_some_and(|n| {
             let mut c = n.chars();
-            c.next() == Some('-') && c.next().is_some_and(|c| c.is_ascii_digit() || c == '.')
+            c.next() == Some('-')
+                && (c.next().is_some_and(|c| c.is_ascii_digit() || c == '.') || n.parse::<f64>().is_ok())
         });
         match flag {
             Some(f) if next_negative && takes_value(f) => {

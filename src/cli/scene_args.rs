@@ -294,6 +294,17 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
     Ok(s)
 }
 
+/// Replaces the pending `--write-scene` text with `scene` as the run will use it: a command
+/// that sets scene values beyond the scene flags (`slide --density`, the mesh h that
+/// `slide --dynamics` chooses) writes the scene that reproduces its run.
+pub fn update_pending_scene(scene: &Scene) -> tribofe::Result<()> {
+    let mut pending = PENDING_SCENE.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, text, _)) = pending.as_mut() {
+        *text = scene.to_toml()?;
+    }
+    Ok(())
+}
+
 /// Whether the --scene file sets `[table] key` itself (not the paper's default filled in).
 pub fn file_sets(args: &SceneArgs, table: &str, key: &str) -> tribofe::Result<bool> {
     let Some(file) = &args.scene else { return Ok(false) };

@@ -243,6 +243,8 @@ fn run_checked(
         scene.block.density = rho;
         scene.validate()?;
     }
+    // --write-scene: with the density and the h chosen by resolve_physics.
+    super::scene_args::update_pending_scene(&scene)?;
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
     }

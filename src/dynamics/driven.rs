@@ -130,10 +130,15 @@ impl Layout {
 /// Refuses a plate mass or inertia that is negative or not finite.
 pub fn check_plate(mass: f64, inertia: f64) -> Result<()> {
     for (flag, v, unit) in [("--plate-mass", mass, "kg/m"), ("--plate-inertia", inertia, "kg m^2/m")] {
-        if !(v.is_finite() && v >= 0.0) {
+        // Above 1e100 the plate's 2x2 matrix (products of two) overflows: a plate that heavy
+        // is the rigid, unmoving one anyway.
+        if !(v.is_finite() && (0.0..=1e100).contains(&v)) {
             return Err(Error::input(
                 flag,
-                format!("{v}: give a finite value >= 0 {unit} (0: the massless plate)"),
+                format!(
+                    "{}: give a value in [0, 1e100] {unit} (0: the massless plate)",
+                    crate::error::num(v)
+                ),
             ));
         }
     }

@@ -272,7 +272,23 @@ impl Elastodynamic {
 pub fn critical_dt(lambda_max: f64, eta: f64) -> f64 {
     let omega = lambda_max.sqrt();
     let xi = 0.5 * eta * omega;
-    2.0 / omega * ((1.0 + xi * xi).sqrt() - xi)
+    // sqrt(1 + xi^2) - xi written as 1 / (sqrt(1 + xi^2) + xi): the difference cancels to 0
+    // above xi ~ 1e8 and xi^2 overflows to inf (dt_c = inf: an undamped run) above 1e154.
+    2.0 / omega / (xi.hypot(1.0) + xi)
+}
+
+/// Smallest time step accepted, as a fraction of the stable one (`--courant`): below, the
+/// steps grow as 1/courant and buy nothing, the time error (order dt^2) being already far
+/// below the mesh's at the defaults.
+pub const MIN_COURANT: f64 = 0.01;
+
+/// The largest damping eta (s) whose stable step [`critical_dt`] is still `dt`, for the bound
+/// `lambda_max`: dt_c(eta) = dt solved for eta, (1 - a^2) / (a omega) with a = dt omega / 2;
+/// 0 when dt is above the undamped step.
+pub fn largest_damping(lambda_max: f64, dt: f64) -> f64 {
+    let omega = lambda_max.sqrt();
+    let a = 0.5 * dt * omega;
+    ((1.0 - a * a) / (a * omega)).max(0.0)
 }
 
 /// Largest eigenvalue of Me^-1 Ke (Me diagonal): of the symmetric Me^-1/2 Ke Me^-1/2.

@@ -181,15 +181,31 @@ impl RuptureSpec {
 
     /// Every value checked before any work, with the flag to change.
     pub fn validate(&self) -> Result<()> {
-        let pos = crate::error::positive;
-        pos("block length (m, --length)", self.length)?;
-        pos("block height (m, --height)", self.height)?;
-        pos("element size (m, --h)", self.h)?;
-        pos("density (kg/m^3, --density)", self.density)?;
-        pos("sigma0 (Pa, --sigma0)", self.sigma0)?;
+        let (pos, scaled) = (crate::error::positive, crate::error::scaled);
+        scaled("block length (m, --length)", self.length, "m")?;
+        scaled("block height (m, --height)", self.height, "m")?;
+        scaled("element size (m, --h)", self.h, "m")?;
+        scaled("density (kg/m^3, --density)", self.density, "kg/m^3")?;
+        scaled("sigma0 (Pa, --sigma0)", self.sigma0, "Pa")?;
+        scaled("Young's modulus (Pa, --young)", self.young, "Pa")?;
         pos("t_end (s, --t-end)", self.t_end)?;
         pos("courant factor (--courant)", self.courant)?;
-        self.material()?;
+        if self.courant < super::explicit::MIN_COURANT {
+            return Err(Error::input(
+                "courant factor (--courant)",
+                format!(
+                    "{} is below {}: the steps grow as 1/courant and buy no accuracy (the time error is far below the mesh's); give --courant in [{}, the stable bound]",
+                    crate::error::num(self.courant),
+                    super::explicit::MIN_COURANT,
+                    super::explicit::MIN_COURANT
+                ),
+            ));
+        }
+        // E is checked above: what the material refuses is nu.
+        self.material().map_err(|e| match e {
+            Error::Input { what, why } => Error::Input { what: format!("{what} (--poisson)"), why },
+            e => e,
+        })?;
         SlipWeakening::new(self.friction.mu_s, self.friction.mu_d, self.friction.d_c)?;
         if !(self.friction.mu_s > self.friction.mu_d) {
             return Err(Error::input(
@@ -222,6 +238,37 @@ impl RuptureSpec {
         if !(self.damping.is_finite() && self.damping >= 0.0) {
             return Err(Error::input("damping (s, --damping)", format!("{} must be >= 0", self.damping)));
         }
+        let half = self.length / 2.0;
+        if !(self.patch_half_width > 0.0 && self.patch_half_width < half) {
+            return Err(Error::input(
+                "block length (m, --length)",
+                format!(
+                    "{} m: the nucleation patch |x| <= {} m must lie inside the interface with unbroken interface beyond it for the rupture to run into; give --length > {} m",
+                    self.length,
+                    self.patch_half_width,
+                    2.0 * self.patch_half_width
+                ),
+            ));
+        }
+        // The front speed is fitted over the window's nodes inside the block: it must reach
+        // into the half 0 <= x <= L/2 the +x front runs over (a short block measures less of it).
+        let (a, b) = self.speed_window;
+        if !(a.is_finite() && b.is_finite() && 0.0 <= a && a < b) {
+            return Err(Error::input(
+                "front-speed window (m, RuptureSpec::speed_window)",
+                format!("({a}, {b}): give 0 <= a < b, finite"),
+            ));
+        }
+        if a >= half {
+            return Err(Error::input(
+                "block length (m, --length)",
+                format!(
+                    "{} m: the front speed is measured over {a} <= x <= {b} m, which lies beyond the block's end x = L/2 = {half} m; give --length > {} m",
+                    self.length,
+                    2.0 * a
+                ),
+            ));
+        }
         for (what, len) in [("--length", self.length), ("--height", self.height)] {
             let n = len / self.h;
             if (n - n.round()).abs() > 1e-6 * n || n.round() < 2.0 {
@@ -238,7 +285,32 @@ impl RuptureSpec {
                 format!("{cells:.3e} elements exceed the 2e7 this command runs; use a larger --h"),
             ));
         }
+        self.check_step()?;
+        let dt = self.dt()?;
+        if (self.t_end / dt).round() < 1.0 {
+            return Err(Error::input(
+                "t_end (s, --t-end)",
+                format!(
+                    "{} s is shorter than one step dt = {dt:.4e} s: give --t-end >= {dt:.4e} s",
+                    self.t_end
+                ),
+            ));
+        }
         let lambda0 = self.lambda0()?;
+        // Lambda_0 per metre of D_c (finite where Lambda_0 itself overflows).
+        let m = self.material()?;
+        let per_dc =
+            SlipWeakening { d_c: 1.0, ..self.friction }.cohesive_zone(m.shear_modulus(), m.nu, self.sigma0);
+        if !(lambda0 <= self.length / 2.0) {
+            return Err(Error::input(
+                "D_c (m, --dc)",
+                format!(
+                    "the cohesive zone Lambda_0 = {lambda0:.3e} m is longer than the half block L/2 = {} m the front runs over from the patch: no front can form; lower --dc to at most {:.3e} m",
+                    self.length / 2.0,
+                    self.length / 2.0 / per_dc
+                ),
+            ));
+        }
         if lambda0 < MIN_ZONE_ELEMENTS * self.h {
             return Err(Error::input(
                 "D_c (m, --dc) or element size (m, --h)",
@@ -254,6 +326,59 @@ impl RuptureSpec {
             ));
         }
         Ok(())
+    }
+}
+
+impl RuptureSpec {
+    /// dt = courant h / c_p, s.
+    pub fn dt(&self) -> Result<f64> {
+        Ok(self.courant * self.h / WaveSpeeds::new(&self.material()?, self.density).c_p)
+    }
+
+    /// The element bound on the largest eigenvalue of M^-1 K, 1/s^2: every element of the
+    /// mesh is the same h x h square, so one element's (no mesh to build).
+    fn lambda_bound(&self) -> Result<f64> {
+        let one = Rectangle::new(0.0, self.h, 0.0, self.h, 1, 1).build()?;
+        Ok(Elastodynamic::new(&one, self.material()?, self.density)?.lambda_bound)
+    }
+
+    /// Refuses a step above the stable one of the mesh and damping, naming what to change:
+    /// --damping when the undamped step would admit dt (its largest value given), else
+    /// --courant.
+    fn check_step(&self) -> Result<()> {
+        use super::explicit::{critical_dt, largest_damping};
+        let (dt, lambda) = (self.dt()?, self.lambda_bound()?);
+        let dt_stable = critical_dt(lambda, self.damping);
+        if dt <= dt_stable {
+            return Ok(());
+        }
+        let courant_max = self.courant * dt_stable / dt;
+        if self.damping > 0.0 && dt <= critical_dt(lambda, 0.0) {
+            // A courant far below the undamped bound is no remedy: the run's steps grow as 1/it.
+            let or_courant = if courant_max >= 0.01 {
+                format!(", or --courant <= {} at this damping", crate::error::num(courant_max))
+            } else {
+                String::new()
+            };
+            return Err(Error::input(
+                "damping (s, --damping)",
+                format!(
+                    "{} s lowers the stable step to {dt_stable:.4e} s, below dt = {} h / c_p = {dt:.4e} s: give --damping <= {:.4e} s at --courant {}{or_courant}",
+                    crate::error::num(self.damping),
+                    self.courant,
+                    largest_damping(lambda, dt),
+                    self.courant
+                ),
+            ));
+        }
+        Err(Error::input(
+            "courant factor (--courant)",
+            format!(
+                "dt = {} h / c_p = {dt:.4e} s exceeds the stable step {dt_stable:.4e} s of this mesh; use --courant <= {}",
+                self.courant,
+                crate::error::num(courant_max)
+            ),
+        ))
     }
 }
 
@@ -313,19 +438,9 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
     let (nx, ny) = ((spec.length / spec.h).round() as usize, (spec.height / spec.h).round() as usize);
     let mesh = Rectangle::new(-spec.length / 2.0, spec.length / 2.0, 0.0, spec.height, nx, ny).build()?;
     let model = Elastodynamic::new(&mesh, mat, spec.density)?;
-    let dt = spec.courant * spec.h / speeds.c_p;
+    // Checked against the stable step in validate().
+    let dt = spec.dt()?;
     let dt_stable = model.critical_dt(spec.damping);
-    if dt > dt_stable {
-        return Err(Error::input(
-            "courant factor (--courant)",
-            format!(
-                "dt = {} h / c_p = {dt:.4e} s exceeds the stable step {dt_stable:.4e} s of this mesh{}; use --courant <= {:.3}",
-                spec.courant,
-                if spec.damping > 0.0 { " and damping" } else { "" },
-                dt_stable * speeds.c_p / spec.h
-            ),
-        ));
-    }
     let steps = (spec.t_end / dt).round() as usize;
     // Base nodes, by x (the mesher numbers row by row: the first nx + 1 nodes).
     let base: Vec<usize> = (0..=nx).collect();

@@ -62,6 +62,17 @@ fn cycles_bound(o: &SlideOptions) -> usize {
 /// represent ([`DC_MIN_OVER_SLIP_SCALE`], [`LC_MAX_OVER_LENGTH`]), more cycles than the
 /// event cap allows, no event cap.
 pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
+    // N, X_max: the event solver's own checks, here so that every mode (quasi-static,
+    // --dynamics, the constant-velocity drive) refuses them before any work.
+    events::simulation::check(o)?;
+    // Every mode stops once `cycles` cycles have ended (the dynamic one under Coulomb too):
+    // 0 would end the run at its first event, whatever X_max.
+    if o.cycles == 0 {
+        return Err(Error::input(
+            "cycles",
+            "0: a run ends after this many cycles (or at x-max, if sooner); give at least 1",
+        ));
+    }
     if o.max_events == 0 {
         return Err(Error::input("--max-events", "0: a run records at least the normal load"));
     }
@@ -85,19 +96,7 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
         }
         check_records(o, n as usize, "about ")?;
     }
-    // The model is linear and of small strains: a mean pressure N/L above E is a strain of
-    // order one; below 1e-100 N/m the displacements underflow into subnormals (N = 1e-308
-    // gave X = 4.9e-314 m and violations of 8 % with exit 0).
-    let (p, e) = (o.n_force / scene.block.length, scene.block.young);
-    if o.n_force.is_finite() && (o.n_force < 1e-100 || p > e) && o.n_force > 0.0 {
-        return Err(Error::input(
-            "--n-force",
-            format!(
-                "{:e} N/m: the mean pressure N/L = {p:e} Pa must lie between 1e-100 N/m over L and Young's modulus E = {e:e} Pa (the interface model is linear and of small strains)",
-                o.n_force
-            ),
-        ));
-    }
+    check_n_force(scene, o.n_force)?;
     if let Some(x) = o.x_max {
         if x > scene.block.length {
             return Err(Error::input(
@@ -148,6 +147,27 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
                 ),
             ));
         }
+    }
+    Ok(())
+}
+
+/// Refuses a normal force N (N/m) the model cannot represent, naming it `N` (the command's
+/// `--n-force`): not a positive number, or a mean pressure N/L outside [1e-100 N/m over L, E].
+/// Called by [`check_options`] and by whatever derives a scale from N before it
+/// ([`crate::studies::dynamic_slide::physics`]).
+pub fn check_n_force(scene: &Scene, n_force: f64) -> Result<()> {
+    crate::error::positive("N", n_force)?;
+    // The model is linear and of small strains: a mean pressure N/L above E is a strain of
+    // order one; below 1e-100 N/m the displacements underflow into subnormals (N = 1e-308
+    // gave X = 4.9e-314 m and violations of 8 % with exit 0).
+    let (p, e) = (n_force / scene.block.length, scene.block.young);
+    if n_force < 1e-100 || p > e {
+        return Err(Error::input(
+            "--n-force",
+            format!(
+                "{n_force:e} N/m: the mean pressure N/L = {p:e} Pa must lie between 1e-100 N/m over L and Young's modulus E = {e:e} Pa (the interface model is linear and of small strains)"
+            ),
+        ));
     }
     Ok(())
 }
@@ -254,9 +274,6 @@ fn run_on(
     progress: Progress,
 ) -> Result<SlideResult> {
     let clock = Instant::now();
-    if o.cycles == 0 && o.x_max.is_none() && o.law.weakens() {
-        return Err(Error::input("cycles", "need at least one stick-slip cycle, or an x-max"));
-    }
     check_options(scene, o)?;
     check_records(o, c.n, "")?;
     let run = run_with(op, c.n, o, &|x| progress.fraction(x))?;

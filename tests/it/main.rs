@@ -25,6 +25,7 @@ mod folder_safety;
 mod friction;
 mod gmsh_io;
 mod inputs;
+mod inputs_dynamic;
 mod layering;
 mod lean;
 mod mesh_geometry;

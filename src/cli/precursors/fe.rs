@@ -61,7 +61,7 @@ pub fn fe(args: FeArgs) -> tribofe::Result<()> {
     }
     let p = Params::new(args.rg.r, args.rg.g)?;
     let scene = fe_scene(&args.scene, &args.out)?;
-    let bar = spinner("precursors --fe: one run per event rule");
+    let bar = spinner("precursors fe: one run per event rule");
     let cancel = tribofe::Cancel::new();
     let paper = tribofe::interface::law::PaperOptions {
         residual: args.residual,

@@ -191,7 +191,7 @@ fn fe_scene(scene: &super::check::SceneArgs, out: &OutArgs) -> tribofe::Result<t
         if given {
             return Err(Error::input(
                 flag,
-                "cannot act in `precursors --fe`, which loads N then X until the interface slides",
+                "cannot act in the FE precursor studies (`precursors fe`, `fe-map`, `thin-layer`, `heights`, `dc`), which load N then X until the interface slides",
             ));
         }
     }

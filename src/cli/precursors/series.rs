@@ -64,7 +64,7 @@ pub fn thin_layer(args: ThinLayerArgs) -> tribofe::Result<()> {
         ("--h-max", a.h_max.is_some()),
     ] {
         if given {
-            return Err(Error::input(flag, "cannot act with --thin-layer, which sets t = (t/L) L, h = t and 2 elements through t per run"));
+            return Err(Error::input(flag, "cannot act in `precursors thin-layer`, which sets t = (t/L) L, h = t and 2 elements through t per run (--t-over-l)"));
         }
     }
     let p = Params::new(args.rg.r, args.rg.g)?;

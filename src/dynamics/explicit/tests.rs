@@ -173,4 +173,12 @@ fn damped_critical_step() {
     let (l, eta) = (9.0, 0.1);
     let dt = critical_dt(l, eta);
     assert!((l * dt * dt + 2.0 * eta * l * dt - 4.0).abs() < 1e-12);
+    // Heavy damping: the step falls like 1/eta (2 / (eta lambda)), never 0 or inf by
+    // cancellation or overflow, and largest_damping inverts it.
+    for eta in [1e10, 1e100, 1e200] {
+        let dt = critical_dt(l, eta);
+        assert!(dt > 0.0 && (dt * eta * l / 2.0 - 1.0).abs() < 1e-9, "{eta}: {dt}");
+        assert!((super::largest_damping(l, dt) / eta - 1.0).abs() < 1e-6, "{eta}");
+    }
+    assert!((super::largest_damping(l, critical_dt(l, 0.1)) - 0.1).abs() < 1e-12);
 }

@@ -60,8 +60,9 @@ pub(crate) fn run_on(
     drive_phase(&mut sv, rec, progress)
 }
 
-/// The problem's own inputs, refused before any work.
-fn check(pb: &Problem) -> Result<()> {
+/// The problem's own inputs, refused before any work (also by
+/// [`crate::studies::slide::check_options`], which every frictional run calls up front).
+pub(crate) fn check(pb: &Problem) -> Result<()> {
     if !(pb.n_force.is_finite() && pb.n_force > 0.0) {
         return Err(Error::input("N", format!("{} N/m must be a positive number", pb.n_force)));
     }

@@ -99,6 +99,11 @@ impl Default for DynamicOptions {
 /// Default time step, as a fraction of the stable one (the command's `--courant`).
 pub const DEFAULT_COURANT: f64 = 0.9;
 
+/// Smallest and largest damping accepted, as fractions of critical at the thickness mode
+/// (see [`check`]).
+pub const MIN_DAMPING_RATIO: f64 = 1e-3;
+pub const MAX_DAMPING_RATIO: f64 = 10.0;
+
 /// Default damping: this fraction of critical at the block's fundamental thickness-shear
 /// mode omega_t = pi c_s / (2 t) (base stuck, top held by the plate).
 pub const DEFAULT_DAMPING_RATIO: f64 = 0.1;
@@ -181,6 +186,12 @@ pub struct DynamicResult {
     pub weakening_steps: f64,
 }
 
+/// The block's shear-wave speed c_s, m/s.
+pub fn shear_speed(scene: &Scene) -> Result<f64> {
+    let b = &scene.block;
+    Ok(WaveSpeeds::new(&crate::fem::material::Material::plane_strain(b.young, b.poisson)?, b.density).c_s)
+}
+
 /// Refusals before any work: the element, the law, damping and step.
 pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<()> {
     crate::studies::slide::check_options(scene, o)?;
@@ -206,20 +217,46 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<()> 
                 format!("{eta}: events end only when the kinetic energy decays; give eta > 0 s (default: 10 % of critical at the thickness mode)"),
             ));
         }
+        let omega_t = std::f64::consts::PI * shear_speed(scene)? / (2.0 * scene.block.thickness);
+        let (eta_min, eta_max) = (2.0 * MIN_DAMPING_RATIO / omega_t, 2.0 * MAX_DAMPING_RATIO / omega_t);
+        if eta < eta_min {
+            return Err(Error::input(
+                "--damping",
+                format!(
+                    "{eta:e} s is {:.3e} of critical at the thickness mode omega_t = {omega_t:.4e} rad/s; give eta >= {eta_min:.4e} s ({MIN_DAMPING_RATIO} of critical): an event ends when its kinetic energy has decayed, which below takes over {:.0} thickness periods",
+                    0.5 * eta * omega_t,
+                    (1.0 / DynamicOptions::default().ke_fraction).ln() / (4.0 * std::f64::consts::PI * MIN_DAMPING_RATIO)
+                ),
+            ));
+        }
+        if eta > eta_max {
+            return Err(Error::input(
+                "--damping",
+                format!(
+                    "{eta:e} s is {:.3e} of critical at the thickness mode omega_t = {omega_t:.4e} rad/s; give eta <= {eta_max:.4e} s ({MAX_DAMPING_RATIO} of critical): beyond, every mode of the block is overdamped, an event is a creep rather than a rupture, and its cost grows as eta^2 (the stable step falls as 1/eta, the decay time rises as eta)",
+                    0.5 * eta * omega_t
+                ),
+            ));
+        }
     }
+    crate::dynamics::driven::check_plate(d.plate_mass, d.plate_inertia)?;
     if !(d.weakening_steps >= 1.0 && d.weakening_steps <= 1e4) {
         return Err(Error::input(
             "--weakening-steps",
             format!(
                 "{}: give the coefficient updates per D_c of slip in [1, 1e4] (default {DEFAULT_WEAKENING_STEPS})",
-                d.weakening_steps
+                crate::error::num(d.weakening_steps)
             ),
         ));
     }
-    if !(d.courant > 0.0 && d.courant <= 1.0) {
+    let min_courant = crate::dynamics::explicit::MIN_COURANT;
+    if !(d.courant >= min_courant && d.courant <= 1.0) {
         return Err(Error::input(
             "--courant",
-            format!("{}: give a fraction of the stable step in (0, 1]", d.courant),
+            format!(
+                "{}: give a fraction of the stable step in [{min_courant}, 1] (below {min_courant} the steps grow as 1/courant and buy no accuracy)",
+                crate::error::num(d.courant)
+            ),
         ));
     }
     if let Law::SlipWeakening { mu_s, mu_d, dc } = o.law {

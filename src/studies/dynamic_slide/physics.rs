@@ -43,6 +43,7 @@ pub fn default_kappa() -> Result<f64> {
 /// The default D_c, m: the one giving every scene the paper scene's [`default_kappa`], so
 /// exactly [`PAPER_DC`] there. It depends on the block, the law and N, never on the mesh.
 pub fn default_dc(scene: &Scene, mu_s: f64, mu_d: f64, n_force: f64) -> Result<f64> {
+    crate::studies::slide::check_n_force(scene, n_force)?;
     if !(mu_s > mu_d) {
         return Err(Error::input(
             "--mu-s/--mu-d",
@@ -56,6 +57,7 @@ pub fn default_dc(scene: &Scene, mu_s: f64, mu_d: f64, n_force: f64) -> Result<f
 
 /// Lambda_0 = (9 pi / 32) G D_c / ((1 - nu) (mu_s - mu_d) N/L), m, at the mean pressure.
 pub fn lambda0(scene: &Scene, mu_s: f64, mu_d: f64, dc: f64, n_force: f64) -> Result<f64> {
+    crate::studies::slide::check_n_force(scene, n_force)?;
     let b = &scene.block;
     let g = b.young / (2.0 * (1.0 + b.poisson));
     Ok(SlipWeakening::new(mu_s, mu_d, dc)?.cohesive_zone(g, b.poisson, n_force / b.length))

@@ -42,21 +42,36 @@ use std::time::Instant;
 pub const RATE_FACTOR: f64 = 10.0;
 /// The drive phase is sampled into about this many rows of loading.csv.
 pub const LOADING_ROWS: u64 = 2000;
+/// Largest drive velocity, in units of the shear-wave speed c_s: the drive must be
+/// quasi-static against the waves that carry it through the block (its shear wave has strain
+/// V/c_s), and its event threshold [`RATE_FACTOR`] V well below the slip rates of an
+/// instability, (tau/G) c_s.
+pub const MAX_DRIVE_OVER_C_S: f64 = 0.01;
 /// Default cap on the explicit steps of one run (X_max / V / dt): 1e7 steps of the paper's
 /// block (2.4e3 DOFs at h = 1 mm) are about 2.4e10 DOF-updates, minutes on this machine.
 pub const MAX_STEPS: u64 = 10_000_000;
 /// Samples of one event's slip rates kept at most (the stride doubles beyond).
 const EVENT_SAMPLES: usize = 4096;
 
-/// Refusals of the constant-velocity mode that need no mesh: V > 0, --x-max given.
+/// Refusals of the constant-velocity mode that need no mesh: V > 0 and slow against the
+/// waves, --x-max given.
 pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<f64> {
     check_held(scene, o, d)?;
-    crate::dynamics::driven::check_plate(d.plate_mass, d.plate_inertia)?;
     let v = d.drive_velocity.unwrap_or(f64::NAN);
     if !(v.is_finite() && v > 0.0) {
         return Err(Error::input(
             "--drive-velocity",
             format!("{v}: give the drive velocity dU_H/dt in m/s, > 0 (without the flag the drive is held during each event)"),
+        ));
+    }
+    let c_s = super::shear_speed(scene)?;
+    if v > MAX_DRIVE_OVER_C_S * c_s {
+        return Err(Error::input(
+            "--drive-velocity",
+            format!(
+                "{v:e} m/s is not slow against the waves: give V <= {MAX_DRIVE_OVER_C_S} c_s = {:.4e} m/s (c_s = {c_s:.4e} m/s). A faster plate launches a shear wave of strain V/c_s above 1 %, outside the small-strain model, and the event threshold {RATE_FACTOR} V would pass the slip rates (tau/G) c_s of the instabilities it is to detect",
+                MAX_DRIVE_OVER_C_S * c_s
+            ),
         ));
     }
     if o.x_max.is_none() {
