@@ -214,7 +214,7 @@ fn resolve_physics(a: &mut Args, scene: &mut tribofe::scene::Scene) -> tribofe::
         Some(dc) => dc,
         None => {
             let dc = physics::default_dc(scene, mu_s, mu_d, a.n_force)?;
-            eprintln!(
+            errln!(
                 "--dc not given: D_c = {dc:.5e} m, the D_c giving the thin-layer stability number kappa = {:.4} of the paper's scene at D_c = {:e} m (whatever the mesh)",
                 physics::default_kappa()?,
                 physics::PAPER_DC
@@ -231,7 +231,7 @@ fn resolve_physics(a: &mut Args, scene: &mut tribofe::scene::Scene) -> tribofe::
             scene.mesh.h = h;
             scene.validate()?;
         }
-        eprintln!(
+        errln!(
             "--h not given: h = {:.4e} m (t/{}), so that the cohesive zone Lambda_0 = {l0:.4e} m spans {:.2} elements (at least {}; 6 or more move the peak force by under 0.01 mu_s N and the count of front advances by several, validation/dynamics/converge)",
             scene.mesh.h,
             (scene.block.thickness / scene.mesh.h).round(),
@@ -240,7 +240,7 @@ fn resolve_physics(a: &mut Args, scene: &mut tribofe::scene::Scene) -> tribofe::
         );
     }
     let kappa = physics::kappa(scene, mu_s, mu_d, dc, a.n_force);
-    eprintln!("kappa = {kappa:.4}: {}", physics::regime(kappa));
+    errln!("kappa = {kappa:.4}: {}", physics::regime(kappa));
     Ok(())
 }
 
@@ -446,13 +446,13 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         Some(f) => {
             let pm = (1000.0 * f) as i64;
             if shown.swap(pm, std::sync::atomic::Ordering::Relaxed) != pm {
-                eprint!("\rslide --dynamics {:5.1} %", 0.1 * pm as f64);
+                err!("\rslide --dynamics {:5.1} %", 0.1 * pm as f64);
             }
         }
-        None => eprintln!("\r{}", t.message),
+        None => errln!("\r{}", t.message),
     };
     let res = ds::run(scene, &o, &d, tribofe::Progress::new(&tick))?;
-    eprintln!();
+    errln!();
     let law = o.law;
     let results = [
         ("law", toml::Value::from(law.name())),
@@ -568,7 +568,7 @@ fn run_refinement(
     }
     let tick = |t: &tribofe::Tick| {
         if t.fraction.is_none() && t.message.starts_with("refinement") {
-            eprintln!("{}", t.message);
+            errln!("{}", t.message);
         }
     };
     let r = ds::refine::refine(scene, o, d, levels, tribofe::Progress::new(&tick))?;
