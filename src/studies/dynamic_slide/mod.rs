@@ -118,7 +118,7 @@ pub fn event_cap_periods(length: f64, thickness: f64, xi: f64, ke_fraction: f64)
 /// mesh (2406 unknowns, 5e7 unknown-steps a second here), whose default events cap at 1.4e4
 /// steps (twice that per halving of h). A damping whose cap is above it is refused up front
 /// with the range this scene accepts (`Setup::check_event_work`): on the paper's scene about
-/// 4e-6 to 6e-3 s.
+/// 1.9e-6 to 6.1e-3 s.
 pub const MAX_EVENT_STEPS: u64 = 200_000;
 
 /// Margin of [`event_cap_periods`] over the physics (slow fronts, a second rupture).
