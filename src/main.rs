@@ -11,6 +11,8 @@ use std::io::Write;
 use tribofe::error::exit;
 
 fn main() {
+    // Before any thread starts: arenas that fit RLIMIT_AS (scene::limits::fit_malloc_arenas).
+    tribofe::scene::limits::fit_malloc_arenas();
     let args = match cli::parse() {
         Ok(a) => a,
         Err(e) => {

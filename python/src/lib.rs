@@ -1063,6 +1063,8 @@ fn dynamic_slide<'py>(
 
 #[pymodule]
 fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // Malloc arenas that fit RLIMIT_AS (threads of other modules may already run: best effort).
+    tribofe::scene::limits::fit_malloc_arenas();
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(slide, m)?)?;

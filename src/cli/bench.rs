@@ -129,7 +129,7 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
     let mut dgemm = Vec::new();
     if args.dgemm > 0 {
         for &t in &args.threads {
-            eprintln!("bench: dense {n} x {n} matmul on {t} thread(s) ...", n = args.dgemm);
+            errln!("bench: dense {n} x {n} matmul on {t} thread(s) ...", n = args.dgemm);
             dgemm.push((t, bench::dgemm_gflops(args.dgemm, t)));
         }
     }

@@ -12,6 +12,19 @@ macro_rules! outln {
     ($($t:tt)*) => { $crate::cli::write_stdout(format_args!("{}\n", format_args!($($t)*)))? };
 }
 
+/// `eprint!` that never panics: with standard error closed or full (`2>/dev/full`, a closed
+/// pipe) the text is lost, not the run (`eprint!` panics there: exit 101).
+macro_rules! err {
+    ($($t:tt)*) => {{
+        let _ = std::io::Write::write_fmt(&mut std::io::stderr(), format_args!($($t)*));
+    }};
+}
+/// `eprintln!` counterpart of [`err!`].
+macro_rules! errln {
+    () => { err!("\n") };
+    ($($t:tt)*) => { err!("{}\n", format_args!($($t)*)) };
+}
+
 mod bench;
 mod check;
 mod converge;
@@ -334,7 +347,14 @@ pub fn run(cli: Cli) -> tribofe::Result<()> {
         catch_interrupts();
     }
     // Built here so that threads the system refuses are an error, not a panic at first use.
-    rayon::ThreadPoolBuilder::new().build_global().map_err(|e| tribofe::Error::Resource {
+    // Under a process limit, only the workers whose fixed reserves fit (scene::limits).
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if std::env::var_os("RAYON_NUM_THREADS").is_none() {
+        if let Some(n) = tribofe::scene::limits::worker_threads() {
+            pool = pool.num_threads(n);
+        }
+    }
+    pool.build_global().map_err(|e| tribofe::Error::Resource {
         what: "the worker threads (rayon pool; RAYON_NUM_THREADS sets their number)".into(),
         why: e.to_string(),
     })?;

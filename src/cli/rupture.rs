@@ -62,6 +62,11 @@ pub struct Args {
     /// (|x| = 0.01 m), m (default 0, as the spec: a jump).
     #[arg(long, default_value_t = 0.0)]
     pub patch_taper: f64,
+    /// Most explicit steps the run may take (t_end / dt, dt = courant h / c_p); a run above it
+    /// is refused before any work. The default, 1e6 steps, is about 15 minutes on the default
+    /// mesh (one step of 200 x 100 elements about 1 ms); the default run is 417 steps.
+    #[arg(long, default_value_t = tribofe::dynamics::rupture::DEFAULT_MAX_STEPS)]
+    pub max_steps: u64,
     /// Output directory.
     #[arg(long, default_value = "out/rupture")]
     pub out: PathBuf,
@@ -88,16 +93,18 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         contact: a.contact.parse::<Contact>()?,
         normal_lag: tribofe::dynamics::rupture::normal_lag(a.normal_lag),
         patch_taper: a.patch_taper,
+        max_steps: a.max_steps,
         ..Default::default()
     };
     spec.validate()?;
     tribofe::io::outdir::check(&a.out, a.force)?;
     if let Some(w) = spec.instantaneous_normal_warning() {
-        eprintln!("warning: {w}");
+        errln!("warning: {w}");
     }
     let lambda0 = spec.lambda0()?;
+    let (dt, steps) = spec.steps()?;
     outln!(
-        "rupture: S = {}, tau0 = {:.6} Pa outside |x| <= {} m ({}), h = {} m, D_c = {:e} m; Lambda_0 = {:.4e} m = {:.2} elements",
+        "rupture: S = {}, tau0 = {:.6} Pa outside |x| <= {} m ({}), h = {} m, D_c = {:e} m; Lambda_0 = {:.4e} m = {:.2} elements; {steps:.0} steps of dt = {dt:.4e} s (--max-steps {})",
         spec.s_ratio,
         spec.tau0(),
         spec.patch_half_width,
@@ -105,7 +112,8 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         spec.h,
         spec.friction.d_c,
         lambda0,
-        lambda0 / spec.h
+        lambda0 / spec.h,
+        spec.max_steps
     );
     let bar = ProgressBar::new(1000).with_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {percent}% {elapsed}")

@@ -308,7 +308,8 @@ pub fn update_pending_scene(scene: &Scene) -> tribofe::Result<()> {
 /// Whether the --scene file sets `[table] key` itself (not the paper's default filled in).
 pub fn file_sets(args: &SceneArgs, table: &str, key: &str) -> tribofe::Result<bool> {
     let Some(file) = &args.scene else { return Ok(false) };
-    let text = std::fs::read_to_string(file).map_err(|e| tribofe::Error::read(file, e))?;
+    let text =
+        tribofe::io::input::read_text(file, "scene file (--scene)", tribofe::io::input::TOML_MAX_BYTES)?;
     let v: toml::Value = toml::from_str(&text).map_err(|e| tribofe::Error::Parse {
         file: file.clone(),
         at: "scene".into(),

@@ -216,7 +216,7 @@ fn resolve_physics(a: &mut Args, scene: &mut tribofe::scene::Scene) -> tribofe::
     )?;
     a.dc = r.law.dc();
     for note in &r.notes {
-        eprintln!("{note}");
+        errln!("{note}");
     }
     Ok(())
 }
@@ -428,14 +428,14 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         Some(f) => {
             let pm = (1000.0 * f) as i64;
             if shown.swap(pm, std::sync::atomic::Ordering::Relaxed) != pm {
-                eprint!("\rslide --dynamics {:5.1} %", 0.1 * pm as f64);
+                err!("\rslide --dynamics {:5.1} %", 0.1 * pm as f64);
             }
         }
-        None => eprintln!("\r{}", t.message),
+        None => errln!("\r{}", t.message),
     };
     let res = ds::run(scene, &o, &d, tribofe::Progress::new(&tick))?;
     if tty {
-        eprintln!();
+        errln!();
     }
     let law = o.law;
     let results = [
@@ -552,7 +552,7 @@ fn run_refinement(
     }
     let tick = |t: &tribofe::Tick| {
         if t.fraction.is_none() && t.message.starts_with("refinement") {
-            eprintln!("{}", t.message);
+            errln!("{}", t.message);
         }
     };
     let r = ds::refine::refine(scene, o, d, levels, tribofe::Progress::new(&tick))?;

@@ -335,28 +335,9 @@ fn merge(args: &Args) -> tribofe::Result<()> {
     Ok(())
 }
 
-/// A shard's table or run file, read whole but bounded (a sweep's table is ~1 kB a point).
+/// A shard's table (1 GiB at most: ~1 kB a point) or run file (a TOML file), read whole.
 fn read_bounded(path: &std::path::Path) -> tribofe::Result<String> {
-    use std::io::Read;
-    const MAX: u64 = 1 << 30;
-    let mut text = String::new();
-    // Checked before opening: a FIFO would block the open.
-    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
-        return Err(tribofe::Error::input(
-            "--merge",
-            format!("'{}' is not a regular file", tribofe::error::quote(&path.display().to_string())),
-        ));
-    }
-    let f = std::fs::File::open(path).map_err(|e| tribofe::Error::read(path, e))?;
-    f.take(MAX + 1).read_to_string(&mut text).map_err(|e| tribofe::Error::read(path, e))?;
-    if text.len() as u64 > MAX {
-        return Err(tribofe::Error::input(
-            "--merge",
-            format!(
-                "'{}' is above 1 GiB: not a shard of a sweep",
-                tribofe::error::quote(&path.display().to_string())
-            ),
-        ));
-    }
-    Ok(text)
+    use tribofe::io::input::{read_text, TABLE_MAX_BYTES, TOML_MAX_BYTES};
+    let toml = path.extension().is_some_and(|e| e == "toml");
+    read_text(path, "--merge", if toml { TOML_MAX_BYTES } else { TABLE_MAX_BYTES })
 }

@@ -418,8 +418,8 @@ impl Driven<'_> {
     }
 
     /// Runs until the event settles (or the step cap); `slip_threshold` (m) marks a node as
-    /// slipped for the tip and the nucleation node. Every 256 steps (~40 ms on the paper's
-    /// block at h = 1 mm) `cancel` is checked and `tick` called (a host's progress report).
+    /// slipped for the tip and the nucleation node. Every [`crate::cancel::BEAT`] of wall time
+    /// `cancel` is checked and `tick` called (a host's progress report).
     pub fn run_event(
         &self,
         st: &mut DynState,
@@ -445,6 +445,7 @@ impl Driven<'_> {
         let mut start_balance = None;
         let mut quiet = 0usize;
         let mut f_drive = 0.0;
+        let mut beat = cancel.beat();
         for step in 0..lim.max_steps {
             let out = self.step(st, &mut w, &mut e, &mut contact);
             let b0 = *start_balance.get_or_insert(out.balance);
@@ -510,8 +511,7 @@ impl Driven<'_> {
                 rec.settled = true;
                 break;
             }
-            if step % 256 == 0 {
-                cancel.check()?;
+            if beat.due()? {
                 tick();
             }
         }

@@ -93,6 +93,9 @@ pub struct RuptureSpec {
     /// towards sigma as d sigma*/dt = -(sigma* - sigma) / T, implicit in each step. None
     /// (the spec): the strength follows sigma at once.
     pub normal_lag: Option<f64>,
+    /// Most explicit steps a run may take ([`DEFAULT_MAX_STEPS`]): t_end / dt above it is
+    /// refused before any work ([`RuptureSpec::steps`]).
+    pub max_steps: u64,
 }
 
 impl Default for RuptureSpec {
@@ -116,9 +119,15 @@ impl Default for RuptureSpec {
             contact: Contact::Bilateral,
             speed_window: (0.03, 0.08),
             normal_lag: None,
+            max_steps: DEFAULT_MAX_STEPS,
         }
     }
 }
+
+/// Default cap on a run's explicit steps: one step of the default mesh (200 x 100 elements)
+/// takes about 1 ms here, so 1e6 steps are about 15 minutes; the spec's run is 417 steps.
+/// The cost of a step grows with the elements (at most 2e7): the run's cost is printed first.
+pub const DEFAULT_MAX_STEPS: u64 = 1_000_000;
 
 /// The normal-stress lag T of `tribofe rupture` and `tribofe.dynamics.rupture` when none is
 /// given, s: the time scale with which the rigid-flat rupture's arrival times converge at
@@ -177,6 +186,33 @@ impl RuptureSpec {
                 "the instantaneous normal stress on a rigid flat (--normal-lag 0): above a friction threshold the problem is ill-posed and the fronts depend on the mesh; the regularised default is --normal-lag {DEFAULT_NORMAL_LAG}"
             )
         })
+    }
+
+    /// The explicit step dt = courant h / c_p (s) and the steps to t_end, round(t_end / dt)
+    /// (a float: it may be far above any count).
+    pub fn steps(&self) -> Result<(f64, f64)> {
+        let c_p = WaveSpeeds::new(&self.material()?, self.density).c_p;
+        let dt = self.courant * self.h / c_p;
+        Ok((dt, (self.t_end / dt).round()))
+    }
+
+    /// Refuses a run of more than [`Self::max_steps`] explicit steps, naming what sets them.
+    fn check_steps(&self) -> Result<()> {
+        let (dt, steps) = self.steps()?;
+        let c_p = WaveSpeeds::new(&self.material()?, self.density).c_p;
+        if !(steps <= self.max_steps as f64) {
+            return Err(Error::input(
+                "--t-end (with --courant, --h, --young, --poisson, --density)",
+                format!(
+                    "t_end / dt = {} s / {dt:.4e} s = {steps:.3e} explicit steps (dt = courant h / c_p, c_p = {c_p:.4e} m/s), above \
+                     --max-steps {}: give --t-end <= {:.4e} s, a larger --h or --courant, or raise --max-steps",
+                    self.t_end,
+                    self.max_steps,
+                    self.max_steps as f64 * dt
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// Every value checked before any work, with the flag to change.
@@ -325,7 +361,10 @@ impl RuptureSpec {
                 ),
             ));
         }
-        Ok(())
+        if self.max_steps == 0 {
+            return Err(Error::input("--max-steps", "0: give at least 1 step"));
+        }
+        self.check_steps()
     }
 }
 
@@ -429,8 +468,8 @@ pub struct RuptureResult {
     pub energy: RuptureEnergy,
 }
 
-/// Runs the scene; `progress` gets the fraction of the steps done every ~1 % of them, where
-/// `cancel` is checked too.
+/// Runs the scene; `progress` gets the fraction of the steps done and `cancel` is checked
+/// every [`crate::cancel::BEAT`] of wall time.
 pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress) -> Result<RuptureResult> {
     spec.validate()?;
     let mat = spec.material()?;
@@ -441,7 +480,7 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
     // Checked against the stable step in validate().
     let dt = spec.dt()?;
     let dt_stable = model.critical_dt(spec.damping);
-    let steps = (spec.t_end / dt).round() as usize;
+    let steps = spec.steps()?.1 as usize;
     // Base nodes, by x (the mesher numbers row by row: the first nx + 1 nodes).
     let base: Vec<usize> = (0..=nx).collect();
     debug_assert!(base.iter().all(|&k| mesh.nodes[k][1] == 0.0));
@@ -466,7 +505,7 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
     let mut min_sigma = f64::INFINITY;
     let thr = spec.friction.d_c / 100.0;
     let slip_factor = if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 };
-    let every = (steps / 100).max(1);
+    let mut beat = cancel.beat();
     // The base rule at the current step: fills fbx, fby, tr from ku (= K u^n) and v^{n-1/2}.
     // seff: the regularised normal stress sigma* (advanced here, once per call).
     let base_rule = |u: &[f64],
@@ -571,9 +610,8 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
             peak[b] = f64::max(peak[b], vx.abs());
             d[b] = d_new;
         }
-        if step % every == 0 {
+        if beat.due()? {
             progress.fraction(step as f64 / steps as f64);
-            cancel.check()?;
         }
     }
     // The friction at t_end itself (step N), as the spec's force drop asks.

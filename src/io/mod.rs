@@ -4,6 +4,7 @@
 //! - [`vtu`] writes VTK XML `.vtu` files and `.pvd` collections (ParaView).
 //! - [`gmsh_post`] writes the mesh and `$NodeData`/`$ElementData` views as MSH 4.1 (Gmsh).
 //! - [`csv`] formats CSV numbers (`{:.12e}`, fast) and screens cells for the output guard.
+//! - [`input`] reads an input file: a regular file only, bounded by size.
 //! - [`outdir`] makes an output folder a unit (written aside, renamed into place).
 //!
 //! Writers take [`Field`]s, plain named arrays, so they do not depend on the solver, and
@@ -13,6 +14,7 @@
 pub mod csv;
 pub mod gmsh;
 pub mod gmsh_post;
+pub mod input;
 pub mod outdir;
 pub mod vtu;
 

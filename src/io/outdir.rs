@@ -344,7 +344,6 @@ fn verify(dir: &Path, l: &Listed, record: &str) -> std::result::Result<(), Strin
 
 /// The manifest of the run file `dir/name`, or why the folder has none.
 fn read_record(dir: &Path, name: &str) -> std::result::Result<Manifest, String> {
-    use std::io::Read;
     let path = dir.join(name);
     let m = match std::fs::symlink_metadata(&path) {
         Ok(m) => m,
@@ -354,11 +353,10 @@ fn read_record(dir: &Path, name: &str) -> std::result::Result<Manifest, String> 
     if !m.is_file() {
         return Err(format!("its {name} is {}", kind(&m)));
     }
-    let mut text = String::new();
-    let read = std::fs::File::open(&path).and_then(|f| f.take(RUN_FILE_MAX_BYTES).read_to_string(&mut text));
-    if let Err(e) = read {
-        return Err(format!("its {name} cannot be read: {e}"));
-    }
+    let text = match crate::io::input::read_text(&path, name, RUN_FILE_MAX_BYTES) {
+        Ok(t) => t,
+        Err(e) => return Err(format!("its {name} cannot be read: {e}")),
+    };
     if !text.starts_with(RUN_FILE_MARKER) {
         return Err(format!("its {name} was not written by tribofe"));
     }

@@ -39,10 +39,53 @@ pub fn memory_bytes() -> (f64, &'static str) {
             best = (b, what);
         }
     };
-    take(rlimit(Rlim::As), "the process limit RLIMIT_AS (ulimit -v)");
-    take(rlimit(Rlim::Data), "the process limit RLIMIT_DATA (ulimit -d)");
+    // Under a process limit, the threads' fixed reserves are not the run's to use: the workers'
+    // and the main thread's packing buffers ([`THREAD_RESERVE_BYTES`]).
+    let reserve = THREAD_RESERVE_BYTES * (rayon::current_num_threads() + 1) as f64;
+    let room = |b: Option<f64>| b.map(|b| (b - reserve).max(1.0));
+    take(room(rlimit(Rlim::As)), "the process limit RLIMIT_AS (ulimit -v, less the threads' reserves)");
+    take(room(rlimit(Rlim::Data)), "the process limit RLIMIT_DATA (ulimit -d, less the threads' reserves)");
     take(cgroup_max(), "the cgroup's memory limit");
     best
+}
+
+/// Address space a thread reserves for good beyond its stack: glibc's malloc arena
+/// (HEAP_MAX_SIZE, 64 MiB on 64-bit) and the dense products' packing buffer (private_gemm's,
+/// 64 MiB, allocated at a thread's first product and kept).
+pub const THREAD_RESERVE_BYTES: f64 = 64.0 * (1u64 << 20) as f64;
+
+/// The smaller finite one of RLIMIT_AS and RLIMIT_DATA, bytes.
+fn process_limit() -> Option<f64> {
+    [rlimit(Rlim::As), rlimit(Rlim::Data)].into_iter().flatten().reduce(f64::min)
+}
+
+/// Under a process limit, the worker threads whose reserves ([`THREAD_RESERVE_BYTES`] each)
+/// fit in a quarter of it (at least 1, at most the cores); None without a limit. Runs of
+/// 20-70 MB aborted in the allocator (status 134) under limits of 100-400 MB: two workers,
+/// the main thread and their 64 MiB buffers took the room the guard had counted on.
+pub fn worker_threads() -> Option<usize> {
+    let limit = process_limit()?;
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    Some(((0.25 * limit / THREAD_RESERVE_BYTES) as usize).clamp(1, cores))
+}
+
+/// Caps glibc's malloc arenas to fit the process limit: glibc gives threads that allocate at
+/// once arenas of their own (up to 8 per core), each reserving [`THREAD_RESERVE_BYTES`] of
+/// address space, which RLIMIT_AS counts. With a finite RLIMIT_AS or RLIMIT_DATA the arenas
+/// may reserve at most an eighth of it (at least one: the threads then share the main heap,
+/// slower only when many allocate at once); without one nothing changes. Returns the cap set,
+/// if any. Call it before threads start (the command's `main`, the Python module's import).
+pub fn fit_malloc_arenas() -> Option<usize> {
+    let arenas = ((process_limit()? / 8.0 / THREAD_RESERVE_BYTES) as usize).clamp(1, 64);
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        // SAFETY: mallopt only sets an allocator parameter; M_ARENA_MAX takes any count >= 1.
+        if unsafe { libc::mallopt(libc::M_ARENA_MAX, arenas as libc::c_int) } == 1 {
+            return Some(arenas);
+        }
+    }
+    let _ = arenas;
+    None
 }
 
 enum Rlim {

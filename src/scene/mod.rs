@@ -221,7 +221,8 @@ impl SceneModel {
 impl Scene {
     /// Reads a scene file; unknown keys and bad values are errors naming the file and line.
     pub fn from_file(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::read(path, e))?;
+        let text =
+            crate::io::input::read_text(path, "scene file (--scene)", crate::io::input::TOML_MAX_BYTES)?;
         let scene: Scene = toml::from_str(&text).map_err(|e| {
             let line = e.span().map_or(0, |s| text[..s.start].matches('\n').count() + 1);
             Error::Parse {

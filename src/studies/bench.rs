@@ -181,7 +181,10 @@ pub fn run_case(case: Case, cfg: &Config, outputs: Option<Outputs>) -> Result<Ro
         supernodal: cfg.supernodal,
         ..Default::default()
     };
-    eprintln!(
+    // Ignored errors: a closed or full standard error must not end the run (eprintln! panics).
+    use std::io::Write;
+    let _ = writeln!(
+        std::io::stderr(),
         "bench: {} ({} thread(s), {}, {}) ...",
         case.name(),
         cfg.threads,
@@ -194,7 +197,8 @@ pub fn run_case(case: Case, cfg: &Config, outputs: Option<Outputs>) -> Result<Ro
         Case::Square(n) => square(n, &opts),
     })?;
     row.ordering = ordering_name(&cfg.ordering).into();
-    eprintln!("bench: {} done in {:.1} s", case.name(), clock.elapsed().as_secs_f64());
+    let _ =
+        writeln!(std::io::stderr(), "bench: {} done in {:.1} s", case.name(), clock.elapsed().as_secs_f64());
     Ok(row)
 }
 

@@ -51,6 +51,9 @@ pub const DC_MIN_OVER_SLIP_SCALE: f64 = 1e-6;
 /// stably at mu_s and only a slip of order D_c would end the run.
 pub const LC_MAX_OVER_LENGTH: f64 = 100.0;
 
+/// The default event cap ([`Problem`]'s).
+pub const DEFAULT_MAX_EVENTS: usize = 50_000;
+
 /// Largest --cycles: each cycle is at least one event, and the event cap bounds the run.
 fn cycles_bound(o: &SlideOptions) -> usize {
     o.max_events
@@ -172,28 +175,68 @@ pub fn check_n_force(scene: &Scene, n_force: f64) -> Result<()> {
     Ok(())
 }
 
-/// Refuses an event cap whose records would not fit in half the memory: per event its
+/// The events whose records fit in half the memory this process may use: per event its
 /// [`events::Event`] and [`events::Summary`] always, and its [`events::State`] (T, P, u, gap
 /// and state of each of the `n` nodes) when `keep_states` ([`events::bytes_per_event`]).
+fn records_fit(o: &SlideOptions, n: usize) -> usize {
+    let per = events::bytes_per_event(n, o.keep_states);
+    (0.5 * crate::scene::limits::memory_bytes().0 / per) as usize
+}
+
+/// Refuses a run whose records could not fit in any case: fewer events fit in half the memory
+/// than its normal load and cycles need. A larger cap (the default 50 000) is not refused for
+/// room it may never use: the run stops when its records fill that half ([`records_capped`]).
+/// A cap raised above the default ([`DEFAULT_MAX_EVENTS`]) is a request for that many
+/// events, refused up front when they cannot fit.
 fn check_records(o: &SlideOptions, n: usize, about: &str) -> Result<()> {
     let per = events::bytes_per_event(n, o.keep_states);
-    let what = if o.keep_states {
-        format!(
-            "keeping up to {} states of {about}{n} interface nodes ({per:.0} bytes an event)",
-            o.max_events
-        )
-    } else {
-        format!(
-            "keeping up to {} event summaries (`--states none`: no states) of {about}{n} interface nodes ({per:.0} bytes an event at most)",
-            o.max_events
-        )
-    };
+    if o.max_events > DEFAULT_MAX_EVENTS {
+        let what = format!(
+            "keeping up to {} {} of {about}{n} interface nodes ({per:.0} bytes an event)",
+            o.max_events,
+            if o.keep_states { "states" } else { "event summaries" }
+        );
+        let hint = format!(
+            "lower --max-events (at most the default {DEFAULT_MAX_EVENTS} is capped by the memory instead)"
+        );
+        crate::scene::limits::check_bytes(o.max_events as f64 * per, "--max-events", &what, &hint)?;
+    }
+    let least = if o.law.weakens() { o.cycles + 1 } else { 2 }.min(o.max_events);
+    let what = format!(
+        "recording the {least} events this run needs at least ({}) of {about}{n} interface nodes ({per:.0} bytes an event)",
+        if o.keep_states { "with their states" } else { "summaries only" }
+    );
     let hint = if o.keep_states {
-        "lower --max-events, or keep no states (`--states none`: no states.csv)"
+        "lower --cycles, or keep no states (`slide --states none`: no states.csv)"
     } else {
-        "lower --max-events"
+        "lower --cycles"
     };
-    crate::scene::limits::check_bytes(o.max_events as f64 * per, "--max-events", &what, hint)
+    crate::scene::limits::check_bytes(least as f64 * per, "--max-events", &what, hint)
+}
+
+/// The run on `o` with its event cap lowered to the records that fit ([`records_fit`]); that
+/// cap met is refused naming the memory, not --max-events.
+fn records_capped(o: &SlideOptions, n: usize, run: impl FnOnce(&SlideOptions) -> Result<Run>) -> Result<Run> {
+    let fit = records_fit(o, n);
+    if fit >= o.max_events {
+        return run(o);
+    }
+    let capped = SlideOptions { max_events: fit.max(1), ..o.clone() };
+    run(&capped).map_err(|e| match e {
+        Error::EventCap { cap, x, f_over_n, .. } if cap == capped.max_events => {
+            let (mem, source) = crate::scene::limits::memory_bytes();
+            Error::input(
+                "--max-events",
+                format!(
+                    "the records of {cap} events ({:.0} bytes each) fill half of {source} ({:.2} GiB) at X = {x:.6e} m, F/N = {f_over_n:.6}, below the cap of {}; keep no states (`slide --states none`), lower --x-max or --cycles, or run with more memory",
+                    events::bytes_per_event(n, o.keep_states),
+                    mem / (1u64 << 30) as f64,
+                    o.max_events
+                ),
+            )
+        }
+        e => e,
+    })
 }
 
 /// Condenses and runs; `progress` gets the fraction of the drive done at each event. With
@@ -276,7 +319,7 @@ fn run_on(
     let clock = Instant::now();
     check_options(scene, o)?;
     check_records(o, c.n, "")?;
-    let run = run_with(op, c.n, o, &|x| progress.fraction(x))?;
+    let run = records_capped(o, c.n, |o| run_with(op, c.n, o, &|x| progress.fraction(x)))?;
     Ok(SlideResult {
         scene: scene.clone(),
         options: o.clone(),

@@ -35,6 +35,7 @@ mod paper_rule;
 mod parallel;
 mod precursors;
 mod precursors_fe;
+mod run_bounds;
 mod slide_fields;
 mod stability;
 mod sweep;

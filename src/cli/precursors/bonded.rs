@@ -52,7 +52,7 @@ pub fn bonded(args: BondedArgs) -> tribofe::Result<()> {
                 s.loading.height = h * l;
                 s.block.thickness = t * l;
                 s.mesh.h = s.mesh.h.min(s.block.thickness / 2.0);
-                eprintln!("sweep: H/L = {h}, t/L = {t}");
+                errln!("sweep: H/L = {h}, t/L = {t}");
                 let mut f = fields(&s)?;
                 (f.h_over_l, f.t_over_l) = (h, t); // exact keys for the table
                 sweep_fields.push(f);

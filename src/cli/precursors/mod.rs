@@ -128,15 +128,61 @@ fn counter(len: usize, what: &str) -> indicatif::ProgressBar {
         .with_style(indicatif::ProgressStyle::with_template(&style).unwrap())
 }
 
-/// A spinner with elapsed time for a step that reports no fraction.
-fn spinner(what: &str) -> indicatif::ProgressBar {
+/// A spinner with elapsed time for a step that reports no fraction, turned every 200 ms by a
+/// thread of its own ([`Spinner`]).
+fn spinner(what: &str) -> Spinner {
     let bar = indicatif::ProgressBar::new_spinner().with_style(
         indicatif::ProgressStyle::with_template("{spinner} {msg}, {elapsed}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
     );
     bar.set_message(what.to_string());
-    bar.enable_steady_tick(std::time::Duration::from_millis(200));
-    bar
+    let stop = std::sync::Arc::new((std::sync::Mutex::new(false), std::sync::Condvar::new()));
+    let (b, s) = (bar.clone(), stop.clone());
+    // thread::Builder, not indicatif's steady tick (thread::spawn): where the system refuses a
+    // thread (`ulimit -v`) that panicked; here the spinner just stands still.
+    let thread = std::thread::Builder::new()
+        .name("tribofe-spinner".into())
+        .spawn(move || {
+            let (lock, cv) = &*s;
+            let mut stopped = lock.lock().unwrap_or_else(|e| e.into_inner());
+            while !*stopped {
+                b.tick();
+                stopped = cv
+                    .wait_timeout(stopped, std::time::Duration::from_millis(200))
+                    .unwrap_or_else(|e| e.into_inner())
+                    .0;
+            }
+        })
+        .ok();
+    Spinner { bar, stop, thread }
+}
+
+/// A spinner and the thread turning it (none if the system refused it); stopped on drop.
+struct Spinner {
+    bar: indicatif::ProgressBar,
+    stop: std::sync::Arc<(std::sync::Mutex<bool>, std::sync::Condvar)>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Spinner {
+    fn finish_and_clear(mut self) {
+        self.halt();
+        self.bar.finish_and_clear();
+    }
+
+    fn halt(&mut self) {
+        *self.stop.0.lock().unwrap_or_else(|e| e.into_inner()) = true;
+        self.stop.1.notify_all();
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+impl Drop for Spinner {
+    fn drop(&mut self) {
+        self.halt();
+    }
 }
 
 /// Writes a study's folder whole: `write` fills a temporary sibling of `out` (given the

@@ -177,7 +177,7 @@ impl Default for Problem {
             law: Law::Coulomb { mu: 0.5 },
             x_max: None,
             cycles: 10,
-            max_events: 50_000,
+            max_events: crate::studies::slide::DEFAULT_MAX_EVENTS,
             keep_states: true,
             creep_fraction: 1e-3,
             end_at_crossing: false,

@@ -23,7 +23,11 @@ use std::path::Path;
 
 /// Reads a Gmsh `.msh` file.
 pub fn read(path: &Path) -> Result<Mesh> {
-    let bytes = std::fs::read(path).map_err(|e| Error::read(path, e))?;
+    let bytes = crate::io::input::read_bounded(
+        path,
+        "mesh file (--mesh, mesh.file)",
+        crate::io::input::MESH_MAX_BYTES,
+    )?;
     parse(&bytes, path)
 }
 

@@ -122,6 +122,13 @@ pub fn event_cap_periods(length: f64, thickness: f64, xi: f64, ke_fraction: f64)
     EVENT_CAP_FACTOR * (crossing + decay)
 }
 
+/// Most explicit steps one event of the held mode may be capped at: about 10 s on the paper's
+/// mesh (2406 unknowns, 5e7 unknown-steps a second here), whose default events cap at 1.4e4
+/// steps (twice that per halving of h). A damping whose cap is above it is refused up front
+/// with the range this scene accepts (`Setup::check_event_work`): on the paper's scene about
+/// 1.9e-6 to 6.1e-3 s.
+pub const MAX_EVENT_STEPS: u64 = 200_000;
+
 /// Margin of [`event_cap_periods`] over the physics (slow fronts, a second rupture).
 pub const EVENT_CAP_FACTOR: f64 = 4.0;
 
@@ -272,6 +279,10 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     }
     check(scene, o, d)?;
     let clock = Instant::now();
+    // The set-up both modes share (first: a damping above the event cap is refused before the
+    // condensation); full fields: the block with its boundary held, factorised once.
+    let su = Setup::new(scene, o, d)?;
+    su.check_event_work(scene, d)?;
     // The static phase's operator: the dense condensed S, or the banded block (O(n) a solve).
     let (c, banded) = if o.operator == Operator::Banded {
         let op = BandedOperator::new(scene, scene.loading.height)?;
@@ -298,8 +309,6 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         None => Box::new(events::operator::Dense::new(&s_h, 2 * n + 3)),
     };
     let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
-    // The set-up both modes share; full fields: the block with its boundary held, factorised once.
-    let su = Setup::new(scene, o, d)?;
     let full = su.full_field()?;
     let full_field =
         |a: &Affine, lam: f64| full.field(&(0..2 * n + 3).map(|j| a.b(j, lam)).collect::<Vec<_>>());

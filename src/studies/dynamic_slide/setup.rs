@@ -106,6 +106,67 @@ impl Setup {
         0.5 * self.eta * self.omega_t
     }
 
+    /// One event's step cap at damping `eta` (s): its periods ([`super::event_cap_periods`],
+    /// or the options' own) over the step the damping allows.
+    pub fn event_steps(&self, scene: &Scene, d: &DynamicOptions, eta: f64) -> f64 {
+        let xi = 0.5 * eta * self.omega_t;
+        let periods = d.max_periods.unwrap_or_else(|| {
+            super::event_cap_periods(scene.block.length, scene.block.thickness, xi, d.ke_fraction)
+        });
+        (periods * self.period / (d.courant * self.model.critical_dt(eta))).ceil()
+    }
+
+    /// Refuses a damping whose event cap is above [`super::MAX_EVENT_STEPS`], naming the range of --damping this scene accepts: light damping rings down
+    /// slowly (the cap's decay term grows as 1/eta), heavy damping shrinks the stable step
+    /// (dt ~ 2/(omega_max^2 eta)); both ran past 30 s where the default takes 0.5 s.
+    pub fn check_event_work(&self, scene: &Scene, d: &DynamicOptions) -> Result<()> {
+        let work = |eta: f64| self.event_steps(scene, d, eta);
+        let cap = super::MAX_EVENT_STEPS as f64;
+        if work(self.eta) <= cap {
+            return Ok(());
+        }
+        // The cap is least near critical damping of the thickness mode: search 1e-8 to 1e4 of it.
+        let eta_c = 2.0 / self.omega_t;
+        let grid: Vec<f64> = (0..=240).map(|k| eta_c * 10f64.powf(-8.0 + 0.05 * k as f64)).collect();
+        let best = grid.iter().copied().min_by(|a, b| work(*a).total_cmp(&work(*b))).unwrap_or(eta_c);
+        let steps = work(self.eta);
+        let head = format!(
+            "{:.4e} s: an event may take up to {steps:.3e} explicit steps (its cap: 4 x (a front crossing + the ring-down of the kinetic energy to {:e} of the dissipation) at dt = {:.3e} s), above the {cap:.1e} an event is allowed",
+            self.eta,
+            d.ke_fraction,
+            d.courant * self.model.critical_dt(self.eta)
+        );
+        if work(best) > cap {
+            return Err(Error::input(
+                "--damping",
+                format!(
+                    "{head}; no damping fits this mesh (at best {:.3e} steps): use a larger --h",
+                    work(best)
+                ),
+            ));
+        }
+        // Bisection in log eta on each side of the best, to where the work meets the cap.
+        let edge = |mut inside: f64, mut outside: f64| {
+            for _ in 0..60 {
+                let mid = (inside * outside).sqrt();
+                if work(mid) <= cap {
+                    inside = mid;
+                } else {
+                    outside = mid;
+                }
+            }
+            inside
+        };
+        let (lo, hi) = (edge(best, grid[0]), edge(best, grid[grid.len() - 1]));
+        Err(Error::input(
+            "--damping",
+            format!(
+                "{head}; give --damping between {lo:.2e} and {hi:.2e} s for this scene (default {:.3e} s, {DEFAULT_DAMPING_RATIO} of critical at the thickness mode)",
+                2.0 * DEFAULT_DAMPING_RATIO / self.omega_t
+            ),
+        ))
+    }
+
     /// The block with its boundary held, factorised (once per run).
     pub fn full_field(&self) -> Result<FullField<'_>> {
         let factor = self.solver.factorize(&self.asm.pattern, &self.values).map_err(|e| Error::Singular {

@@ -208,6 +208,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let mut steps = 0usize;
     let mut open: Option<Open> = None;
     let mut dyn_events: Vec<DynEvent> = Vec::new();
+    let mut beat = o.cancel.beat();
     // Nodes slipped by instabilities since the last cycle end, and whether a crossing ends one.
     let mut slipped = (vec![false; layout.x.len()], o.end_at_crossing);
     let dc = friction.d_c;
@@ -348,9 +349,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             push(&mut run, simple(EventKind::Sample, &s, 0), s)?;
             window.iter_mut().for_each(|v| *v = false);
         }
-        // Every 256 steps (~40 ms at h = 1 mm on the paper's block): cancel and progress.
-        if steps.is_multiple_of(256) {
-            o.cancel.check()?;
+        if beat.due()? {
             progress.fraction((ds.u_h / x_max).min(1.0));
         }
     }
