@@ -257,7 +257,10 @@ fn resolve_physics(a: &mut Args, scene: &mut tribofe::scene::Scene) -> tribofe::
 fn spacetime(a: &Args) -> tribofe::Result<Spacetime> {
     let s = a.spacetime.as_deref().map_or(Ok(Spacetime::None), str::parse)?;
     if a.refine.is_some() && s != Spacetime::None {
-        return Err(Error::input("--spacetime", "acts on one run's files; --refine writes refinement.csv only"));
+        return Err(Error::input(
+            "--spacetime",
+            "acts on one run's files; --refine writes refinement.csv only",
+        ));
     }
     Ok(s)
 }

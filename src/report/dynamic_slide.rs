@@ -30,8 +30,10 @@ fn opt(what: &str, v: Option<f64>) -> Result<String> {
 /// 2 t wide at the run's ends; empty when its nodes were reached at once), and over c_s
 /// (dimensionless); `flag`: why the speed may exceed c_p, named wherever it applies:
 /// `preslip` (the window holds a node slipped before the event, the nucleating zone that
-/// moves at once) or `join` (a node that arrived before the front reached it: a patch of its
-/// own that the front joins); empty otherwise.
+/// moves at once), `join` (a node that arrived before the front reached it: a patch of its
+/// own that the front joins), or, with neither, `above_c_p` (no wave from behind brought the
+/// load: the rigid plate or the threshold running ahead of a growing front,
+/// [`crate::studies::dynamic_slide::fronts::Cause::AboveCp`]); empty otherwise.
 pub fn fronts_csv(r: &DynamicResult) -> Result<String> {
     use crate::studies::dynamic_slide::fronts::arrivals;
     let (c, t) = (&r.slide.condensed, r.slide.scene.block.thickness);
@@ -41,7 +43,7 @@ pub fn fronts_csv(r: &DynamicResult) -> Result<String> {
     // Empty: the first node (no speed) or a window reached at once (a jump; flagged).
     let speed = |v: f64| if v.is_finite() { num("speed", v) } else { Ok(String::new()) };
     for e in &r.events {
-        for a in arrivals(&e.record, &c.x, t) {
+        for a in arrivals(&e.record, &c.x, t, r.speeds.c_p) {
             writeln!(
                 s,
                 "{},{},{},{},{},{},{},{}",
@@ -161,7 +163,9 @@ impl Spacetime {
     /// The rows asked for that are no dynamic event of the run.
     pub fn missing(&self, r: &DynamicResult) -> Vec<usize> {
         match self {
-            Spacetime::Events(k) => k.iter().copied().filter(|k| !r.events.iter().any(|e| e.event == *k)).collect(),
+            Spacetime::Events(k) => {
+                k.iter().copied().filter(|k| !r.events.iter().any(|e| e.event == *k)).collect()
+            }
             _ => vec![],
         }
     }
@@ -220,7 +224,8 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
     let t_of = |k: usize| rec.t.get(k).copied().unwrap_or(rec.duration);
     let t_end = spacetime_end(rec);
     let rows_shown = (0..ns).filter(|&k| t_of(k) <= t_end).count().max(1);
-    let reached: Vec<usize> = (0..nx).filter(|&i| rec.arrival.get(i).is_some_and(|a| a.is_finite())).collect();
+    let reached: Vec<usize> =
+        (0..nx).filter(|&i| rec.arrival.get(i).is_some_and(|a| a.is_finite())).collect();
     let margin = 2.0 * r.slide.scene.block.thickness;
     let (xa, xb) = match (reached.first(), reached.last()) {
         (Some(&i), Some(&j)) => ((c.x[i] - margin).max(c.x[0]), (c.x[j] + margin).min(c.x[nx - 1])),
@@ -255,9 +260,9 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
         let j1 = (j0 + ct).min(rows_shown);
         let (ya, yb) = (py(if j0 == 0 { 0.0 } else { t_of(j0 - 1) }), py(t_of(j1 - 1)));
         for block in cols.chunks(cx) {
-            let v = (j0..j1).flat_map(|k| block.iter().map(move |&i| (k, i))).fold(0.0f64, |m, (k, i)| {
-                m.max(f64::from(rec.rates[k][i]))
-            });
+            let v = (j0..j1)
+                .flat_map(|k| block.iter().map(move |&i| (k, i)))
+                .fold(0.0f64, |m, (k, i)| m.max(f64::from(rec.rates[k][i])));
             if v <= 10f64.powi(bottom) {
                 continue;
             }
@@ -295,7 +300,11 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
                 );
             }
             // Labelled where the right-going line leaves the box.
-            let (xe, te) = if x0 + v * (t_end - t0) <= xb { (x0 + v * (t_end - t0), t_end) } else { (xb, t0 + (xb - x0) / v) };
+            let (xe, te) = if x0 + v * (t_end - t0) <= xb {
+                (x0 + v * (t_end - t0), t_end)
+            } else {
+                (xb, t0 + (xb - x0) / v)
+            };
             let _ = writeln!(
                 g,
                 "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"#1f4e9c\" text-anchor=\"end\">{name}</text>",
@@ -306,7 +315,10 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
     }
     g.push_str("</g>\n");
     s.push_str(&g);
-    let _ = writeln!(s, "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>");
+    let _ = writeln!(
+        s,
+        "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
+    );
     let (xt, xd) = ticks(xa / c.l, xb / c.l);
     for v in xt {
         let x = px(v * c.l);
@@ -353,7 +365,10 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
             colour(f as f32)
         );
     }
-    let _ = writeln!(s, "<rect x=\"{bx}\" y=\"{mt}\" width=\"{bw}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>");
+    let _ = writeln!(
+        s,
+        "<rect x=\"{bx}\" y=\"{mt}\" width=\"{bw}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
+    );
     for k in 0..=SPACETIME_DECADES {
         let y = mt + h * (1.0 - f64::from(k) / f64::from(SPACETIME_DECADES));
         let _ = writeln!(
@@ -410,7 +425,9 @@ pub fn cycle_svg(r: &DynamicResult) -> String {
         })
         .collect();
     let (w, h, ml, mt, mb, mr) = (760.0, 520.0, 80.0, 50.0, 60.0, 30.0);
-    let (f0, f1) = inst.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |m, i| (m.0.min(i.0.f_onset / k), m.1.max(i.0.f_onset / k)));
+    let (f0, f1) = inst.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |m, i| {
+        (m.0.min(i.0.f_onset / k), m.1.max(i.0.f_onset / k))
+    });
     let (f0, f1) = if f0 < f1 {
         let pad = 0.05 * (f1 - f0);
         (f0 - pad, f1 + pad)
@@ -441,7 +458,13 @@ pub fn cycle_svg(r: &DynamicResult) -> String {
     for &(e, (a, b), end) in &inst {
         let y = py(e.f_onset / k);
         let (x0, x1) = (px(c.x[a] / c.l), px(c.x[b] / c.l));
-        let colour = if end { "#8b0000" } else if a == 0 { "#1f4e9c" } else { "#e08a00" };
+        let colour = if end {
+            "#8b0000"
+        } else if a == 0 {
+            "#1f4e9c"
+        } else {
+            "#e08a00"
+        };
         let _ = writeln!(
             s,
             "<rect class=\"instability\" x=\"{x0:.2}\" y=\"{:.2}\" width=\"{:.2}\" height=\"{bar:.2}\" fill=\"{colour}\"><title>event {}: F = {} mu_s N, x/L {} to {}</title></rect>",
@@ -453,7 +476,12 @@ pub fn cycle_svg(r: &DynamicResult) -> String {
             sig4(c.x[b] / c.l)
         );
         if let Some(n) = e.record.nucleation {
-            let _ = writeln!(s, "<circle cx=\"{:.2}\" cy=\"{y:.2}\" r=\"{:.1}\" fill=\"black\"/>", px(c.x[n] / c.l), bar.max(2.0) / 2.0 + 0.5);
+            let _ = writeln!(
+                s,
+                "<circle cx=\"{:.2}\" cy=\"{y:.2}\" r=\"{:.1}\" fill=\"black\"/>",
+                px(c.x[n] / c.l),
+                bar.max(2.0) / 2.0 + 0.5
+            );
         }
         if end || e.f_onset == peak {
             let what = match (end, e.f_onset == peak) {
@@ -470,7 +498,10 @@ pub fn cycle_svg(r: &DynamicResult) -> String {
             );
         }
     }
-    let _ = writeln!(s, "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>");
+    let _ = writeln!(
+        s,
+        "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
+    );
     let (xt, xd) = ticks(xa, xb);
     for v in xt {
         let x = px(v);

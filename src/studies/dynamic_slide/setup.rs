@@ -101,7 +101,12 @@ impl Setup {
             weakens,
             arm: scene.loading.height - b.thickness,
             lambda0,
-            arrival_rate: super::physics::arrival_rate(&friction, o.n_force / b.length, b.density, speeds.c_s),
+            arrival_rate: super::physics::arrival_rate(
+                &friction,
+                o.n_force / b.length,
+                b.density,
+                speeds.c_s,
+            ),
         })
     }
 

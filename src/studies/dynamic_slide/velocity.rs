@@ -205,33 +205,34 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let dc = friction.d_c;
     // The state at level n after the step from n: X^n, u^n, the plate's q^n and the
     // forces at n (F^n, P, T), all of one time level (loading.csv's rows).
-    let sample_state = |ds: &DynState, at: &Level, u: &[f64], contact: &[Contact], slipped: &[bool], f: f64| {
-        let base = &layout.base;
-        State {
-            phase: Phase::Drive,
-            x: at.x,
-            n_force: o.n_force,
-            f,
-            tilt: at.q[1],
-            v: at.q[0],
-            t_force: contact.iter().map(|c| c.t).collect(),
-            p_force: contact.iter().map(|c| c.p).collect(),
-            u: base.iter().map(|&k| u[2 * k]).collect(),
-            gap: base.iter().map(|&k| u[2 * k + 1]).collect(),
-            states: (0..n)
-                .map(|b| {
-                    if contact[b].open {
-                        NodeState::Open
-                    } else if slipped[b] {
-                        NodeState::Slip(if ds.v[2 * base[b]] < 0.0 { -1.0 } else { 1.0 })
-                    } else {
-                        NodeState::Stick
-                    }
-                })
-                .collect(),
-            violations: Violations::default(),
-        }
-    };
+    let sample_state =
+        |ds: &DynState, at: &Level, u: &[f64], contact: &[Contact], slipped: &[bool], f: f64| {
+            let base = &layout.base;
+            State {
+                phase: Phase::Drive,
+                x: at.x,
+                n_force: o.n_force,
+                f,
+                tilt: at.q[1],
+                v: at.q[0],
+                t_force: contact.iter().map(|c| c.t).collect(),
+                p_force: contact.iter().map(|c| c.p).collect(),
+                u: base.iter().map(|&k| u[2 * k]).collect(),
+                gap: base.iter().map(|&k| u[2 * k + 1]).collect(),
+                states: (0..n)
+                    .map(|b| {
+                        if contact[b].open {
+                            NodeState::Open
+                        } else if slipped[b] {
+                            NodeState::Slip(if ds.v[2 * base[b]] < 0.0 { -1.0 } else { 1.0 })
+                        } else {
+                            NodeState::Stick
+                        }
+                    })
+                    .collect(),
+                violations: Violations::default(),
+            }
+        };
     // The level the last step started from (X^0, q^0 before the first).
     let mut at = Level { x: ds.u_h, q: ds.q };
     loop {
