@@ -5,6 +5,7 @@ use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use tribofe::interface::law::Law;
+use tribofe::report::dynamic_slide::Spacetime;
 use tribofe::studies::dynamic_slide as ds;
 use tribofe::studies::slide::{LawChoice, SlideOptions};
 use tribofe::Error;
@@ -148,6 +149,12 @@ pub struct Args {
     /// positions, equal for counts) instead of one run's files.
     #[arg(long, value_name = "N")]
     pub refine: Option<usize>,
+    /// Space-time pictures of the slip rate (--dynamics): `none`, `all` (one per instability,
+    /// spacetime_<event>.svg) or the events.csv rows N,M,... of dynamic events
+    /// (dyn_events.csv's `event`). cycle.svg, every instability of the run in one picture, is
+    /// always written. Default none.
+    #[arg(long, value_name = "all|none|N,M,...")]
+    pub spacetime: Option<String>,
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
@@ -176,6 +183,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         return Err(Error::input("--field-format", "acts only with --fields N (N > 0 states to write)"));
     }
     tribofe::io::outdir::check(&a.out, a.force)?;
+    spacetime(&a)?;
     if !a.dynamics {
         for (flag, on) in [
             ("--density", a.density.is_some()),
@@ -187,6 +195,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             ("--heal", super::given("heal")),
             ("--weakening-steps", a.weakening_steps.is_some()),
             ("--refine", a.refine.is_some()),
+            ("--spacetime", a.spacetime.is_some()),
         ] {
             if on {
                 return Err(Error::input(flag, "acts only with --dynamics"));
@@ -219,6 +228,18 @@ fn resolve_physics(a: &mut Args, scene: &mut tribofe::scene::Scene) -> tribofe::
         errln!("{note}");
     }
     Ok(())
+}
+
+/// `--spacetime` as given (refused before any work if it does not parse).
+fn spacetime(a: &Args) -> tribofe::Result<Spacetime> {
+    let s = a.spacetime.as_deref().map_or(Ok(Spacetime::None), str::parse)?;
+    if a.refine.is_some() && s != Spacetime::None {
+        return Err(Error::input(
+            "--spacetime",
+            "acts on one run's files; --refine writes refinement.csv only",
+        ));
+    }
+    Ok(s)
 }
 
 fn law_choice(a: &Args) -> LawChoice {
@@ -469,8 +490,15 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     // states.csv whenever the run kept its states (`--states`; the constant-velocity drive's
     // ~2000 samples x n rows are kept only when asked for, see run_checked).
     let states = o.keep_states;
-    tribofe::report::dynamic_slide::write(&res, dir.path(), &header, states)?;
+    let pictures = spacetime(a)?;
+    tribofe::report::dynamic_slide::write(&res, dir.path(), &header, states, &pictures)?;
     dir.commit()?;
+    let missing = pictures.missing(&res);
+    if !missing.is_empty() {
+        eprintln!(
+            "--spacetime: events.csv rows {missing:?} are no dynamic event of this run (dyn_events.csv's `event` lists them); not drawn"
+        );
+    }
     let written_s = writing.elapsed().as_secs_f64();
     let run = &res.slide.run;
     let inst = res.events.iter().filter(|e| e.record.weakened).count();
@@ -528,10 +556,14 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     }
     print_summary(&res)?;
     outln!(
-        "wrote {}/{{summary.csv, loading.csv, events.csv, {}{}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, spacetime_*.svg, run.toml}}",
+        "wrote {}/{{summary.csv, loading.csv, events.csv, {}{}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, cycle.svg, {}run.toml}}",
         a.out.display(),
         if law.weakens() { "advances.csv, " } else { "" },
-        if states { "states.csv, " } else { "" }
+        if states { "states.csv, " } else { "" },
+        match pictures.picks(&res).len() {
+            0 => String::new(),
+            n => format!("{n} spacetime_*.svg, "),
+        }
     );
     match res.incomplete {
         Some(what) => Err(Error::Incomplete { what }),

@@ -185,6 +185,9 @@ pub struct EventLimits {
     pub max_steps: usize,
     /// Record a sample (tip, force, slip rates) every this many steps.
     pub sample_every: usize,
+    /// A base node's front arrival is the first step its |v_x| exceeds this, m/s
+    /// ([`EventRecord::arrival`]).
+    pub arrival_rate: f64,
 }
 
 /// Energies of one event, J/m (the scheme's exact ledger).
@@ -239,6 +242,11 @@ pub struct EventRecord {
     /// the propagation is read from them and they cost 2 x `rates`.
     pub p_samples: Vec<Vec<f32>>,
     pub t_samples: Vec<Vec<f32>>,
+    /// Time since onset (s) of the first step at which each base node's |v_x| exceeded
+    /// `arrival_rate` (m/s); NaN: never. Per step, not per sample: a front at c_s crosses a
+    /// quarter of the thickness between samples, one step is ~1/12 of that.
+    pub arrival: Vec<f64>,
+    pub arrival_rate: f64,
     /// Some node reached D_c of slip since the last healing (weakened fully) in this event.
     pub weakened: bool,
     pub settled: bool,
@@ -287,6 +295,24 @@ pub struct StepOut {
     pub f_drive: f64,
     pub any_slip: bool,
     pub balance: f64,
+}
+
+impl EventRecord {
+    /// Base node `b` moving at `rate` (|v_x|, m/s) at `t` s since onset: its peak rate and
+    /// its arrival ([`Self::arrival`]).
+    pub fn note_rate(&mut self, b: usize, rate: f64, t: f64) {
+        self.peak_rate[b] = self.peak_rate[b].max(rate);
+        if rate > self.arrival_rate && self.arrival[b].is_nan() {
+            self.arrival[b] = t;
+        }
+    }
+}
+
+impl Work {
+    /// After a [`Driven::step`] from level n: the displacements u^n it started from, m.
+    pub fn u_before(&self) -> &[f64] {
+        &self.u_prev
+    }
 }
 
 impl Driven<'_> {
@@ -439,6 +465,8 @@ impl Driven<'_> {
             peak_rate: vec![0.0; nb],
             threshold: slip_threshold,
             open: vec![false; nb],
+            arrival: vec![f64::NAN; nb],
+            arrival_rate: lim.arrival_rate,
             ..Default::default()
         };
         let mut e = EventEnergy::default();
@@ -456,9 +484,10 @@ impl Driven<'_> {
                 rec.t_pre = contact.iter().map(|c| c.t_trial).collect();
             }
             f_drive = out.f_drive;
+            let now = (step + 1) as f64 * dt;
             for (b, &k) in lay.base.iter().enumerate() {
                 rec.open[b] = contact[b].open;
-                rec.peak_rate[b] = rec.peak_rate[b].max(st.v[2 * k].abs());
+                rec.note_rate(b, st.v[2 * k].abs(), now);
             }
             // The event's slip, the nucleation node, the tip.
             for b in 0..nb {

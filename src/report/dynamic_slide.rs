@@ -1,6 +1,7 @@
 //! Output of `tribofe slide --dynamics`: the files of `slide` (written by [`super::slide`])
-//! plus fronts_t.csv, dyn_events.csv and a space-time diagram of the slip rate along the
-//! interface for each instability (`spacetime_<event>.svg`, x against time).
+//! plus summary.csv, fronts_t.csv, dyn_events.csv, cycle.svg (every instability's extent
+//! against the drive force) and, on request, space-time pictures of the slip rate
+//! (`spacetime_<event>.svg`, [`Spacetime`]).
 
 use super::{finite, write_atomic};
 use crate::error::Result;
@@ -17,28 +18,43 @@ fn opt(what: &str, v: Option<f64>) -> Result<String> {
     v.map_or(Ok(String::new()), |v| num(what, v))
 }
 
-/// fronts_t.csv: event, time since onset, tip x/L, tip speed (central difference of the
-/// samples, m/s); rows only once the event has nucleated.
+/// fronts_t.csv: one row per base node a dynamic event's front reached
+/// ([`crate::studies::dynamic_slide::fronts`]): the first node reached (`side` 0), then each
+/// side outward (-1 toward -x, +1 toward +x) to the end of the run of reached nodes.
+/// `arrival_s`: the node's own arrival, the first explicit step at which its |v_x| exceeded
+/// the arrival rate ([`crate::studies::dynamic_slide::physics::arrival_rate`]: 0.1 of
+/// (mu_s - mu_d) (N/L) / (rho c_s), whatever the mesh), s since the onset; `front_time_s`:
+/// when the front reached it (the largest arrival between it and the first node), so
+/// (front_time_s, x_over_L) is the front's position in time; `front_speed_m_per_s`: the
+/// least-squares slope of distance against front time over 1 t either side (the window kept
+/// 2 t wide at the run's ends; empty when its nodes were reached at once), and over c_s
+/// (dimensionless); `flag`: why the speed may exceed c_p, named wherever it applies:
+/// `preslip` (the window holds a node slipped before the event, the nucleating zone that
+/// moves at once), `join` (a node that arrived before the front reached it: a patch of its
+/// own that the front joins), or, with neither, `above_c_p` (no wave from behind brought the
+/// load: the rigid plate or the threshold running ahead of a growing front,
+/// [`crate::studies::dynamic_slide::fronts::Cause::AboveCp`]); empty otherwise.
 pub fn fronts_csv(r: &DynamicResult) -> Result<String> {
-    let l = r.slide.condensed.l;
-    let mut s = String::from("event,time_s,tip_x_over_L,tip_speed_m_per_s\n");
+    use crate::studies::dynamic_slide::fronts::arrivals;
+    let (c, t) = (&r.slide.condensed, r.slide.scene.block.thickness);
+    let mut s = String::from(
+        "event,side,x_over_L,arrival_s,front_time_s,front_speed_m_per_s,front_speed_over_c_s,flag\n",
+    );
+    // Empty: the first node (no speed) or a window reached at once (a jump; flagged).
+    let speed = |v: f64| if v.is_finite() { num("speed", v) } else { Ok(String::new()) };
     for e in &r.events {
-        let rec = &e.record;
-        let k: Vec<usize> = (0..rec.t.len()).filter(|&k| rec.tip[k].is_finite()).collect();
-        for (j, &i) in k.iter().enumerate() {
-            let (a, b) = (k[j.saturating_sub(1)], k[(j + 1).min(k.len() - 1)]);
-            let speed = if rec.t[b] > rec.t[a] {
-                (rec.tip[b] - rec.tip[a]).abs() / (rec.t[b] - rec.t[a])
-            } else {
-                0.0
-            };
+        for a in arrivals(&e.record, &c.x, t, r.speeds.c_p) {
             writeln!(
                 s,
-                "{},{},{},{}",
+                "{},{},{},{},{},{},{},{}",
                 e.event,
-                num("t", rec.t[i])?,
-                num("tip", rec.tip[i] / l)?,
-                num("speed", speed)?
+                a.side,
+                num("x", c.x[a.node] / c.l)?,
+                num("arrival", a.own)?,
+                num("front time", a.front)?,
+                speed(a.speed)?,
+                speed(a.speed / r.speeds.c_s)?,
+                a.cause.name()
             )
             .unwrap();
         }
@@ -103,101 +119,274 @@ fn peak(e: &DynEvent) -> f64 {
     e.record.peak_rate.iter().cloned().fold(0.0, f64::max)
 }
 
-/// A heat map of |slip rate| over x/L (horizontal) and time (vertical, down), as plain SVG.
+/// Which per-event space-time pictures `write` draws (`--spacetime`): none (the default),
+/// every instability, or the events.csv rows given.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub enum Spacetime {
+    #[default]
+    None,
+    All,
+    Events(Vec<usize>),
+}
+
+impl std::str::FromStr for Spacetime {
+    type Err = crate::error::Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "none" => Ok(Spacetime::None),
+            "all" => Ok(Spacetime::All),
+            list => list
+                .split(',')
+                .map(|k| k.trim().parse::<usize>())
+                .collect::<std::result::Result<Vec<_>, _>>()
+                .map(Spacetime::Events)
+                .map_err(|_| {
+                    crate::error::Error::input(
+                        "--spacetime",
+                        format!("'{s}': give all, none or event rows (events.csv's `event`) as N,M,..."),
+                    )
+                }),
+        }
+    }
+}
+
+impl Spacetime {
+    /// The dynamic events to draw.
+    pub fn picks<'a>(&self, r: &'a DynamicResult) -> Vec<&'a DynEvent> {
+        match self {
+            Spacetime::None => vec![],
+            Spacetime::All => r.events.iter().filter(|e| e.record.weakened).collect(),
+            Spacetime::Events(k) => r.events.iter().filter(|e| k.contains(&e.event)).collect(),
+        }
+    }
+
+    /// The rows asked for that are no dynamic event of the run.
+    pub fn missing(&self, r: &DynamicResult) -> Vec<usize> {
+        match self {
+            Spacetime::Events(k) => {
+                k.iter().copied().filter(|k| !r.events.iter().any(|e| e.event == *k)).collect()
+            }
+            _ => vec![],
+        }
+    }
+}
+
+/// `v` to 4 significant digits (titles and labels).
+fn sig4(v: f64) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    let d = v.abs().log10().floor() as i32;
+    if (-3..4).contains(&d) {
+        format!("{:.*}", (3 - d).max(0) as usize, v)
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// Tick values in [a, b]: a step of 1, 2 or 5 times a power of ten giving 4 to 10 ticks,
+/// and the decimals that show the step.
+fn ticks(a: f64, b: f64) -> (Vec<f64>, usize) {
+    let span = (b - a).max(f64::MIN_POSITIVE);
+    let p = 10f64.powf((span / 5.0).log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0].iter().map(|m| m * p).find(|s| span / s <= 10.0).unwrap_or(10.0 * p);
+    let first = (a / step).ceil() as i64;
+    let v = (first..).map(|k| k as f64 * step).take_while(|v| *v <= b + 1e-9 * span).collect();
+    (v, (-step.log10().floor()).max(0.0) as usize)
+}
+
+/// `10^k` as SVG text (a superscript tspan).
+fn decade(k: i32) -> String {
+    format!("10<tspan dy=\"-7\" font-size=\"11\">{k}</tspan>")
+}
+
+/// The end of a space-time picture's time axis, s since the onset: 5 % past the last sample
+/// with a node above the arrival rate (the whole event if none is).
+pub fn spacetime_end(rec: &crate::dynamics::driven::EventRecord) -> f64 {
+    let active = |k: usize| rec.rates[k].iter().any(|&v| f64::from(v) > rec.arrival_rate);
+    let last = (0..rec.rates.len()).rev().find(|&k| active(k));
+    last.map_or(rec.duration, |k| (1.05 * rec.t[k]).min(rec.duration)).max(f64::MIN_POSITIVE)
+}
+
+/// Decades shown by the space-time colour scale, below the event's peak rate.
+pub const SPACETIME_DECADES: i32 = 4;
+
+/// A space-time picture of one dynamic event: log10 |v_x| over x/L (across) and time since
+/// the onset (down), as plain SVG. Cropped to the activity: x to the nodes the front reached
+/// (2 t margin), time to the last sample with a node above the arrival rate (5 % margin,
+/// so the ring-down is left out); the colour scale spans [`SPACETIME_DECADES`] decades
+/// below the peak (white below); dashed lines run at c_s and c_R both ways from the first
+/// node reached, at its arrival.
 pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
     let rec = &e.record;
     let c = &r.slide.condensed;
-    let (w, h, ml, mt, mb) = (800.0, 500.0, 70.0, 40.0, 50.0);
-    let nt = rec.rates.len().max(1);
-    let nx = c.n;
-    // At most 400 columns and 300 rows (the largest rate of each block of cells).
-    let (cx, ct) = (nx.div_ceil(400), nt.div_ceil(300));
-    let vmax = peak(e).max(f64::MIN_POSITIVE) as f32;
+    let (nx, ns) = (c.n, rec.rates.len());
+    let t_of = |k: usize| rec.t.get(k).copied().unwrap_or(rec.duration);
+    let t_end = spacetime_end(rec);
+    let rows_shown = (0..ns).filter(|&k| t_of(k) <= t_end).count().max(1);
+    let reached: Vec<usize> =
+        (0..nx).filter(|&i| rec.arrival.get(i).is_some_and(|a| a.is_finite())).collect();
+    let margin = 2.0 * r.slide.scene.block.thickness;
+    let (xa, xb) = match (reached.first(), reached.last()) {
+        (Some(&i), Some(&j)) => ((c.x[i] - margin).max(c.x[0]), (c.x[j] + margin).min(c.x[nx - 1])),
+        _ => (c.x[0], c.x[nx - 1]),
+    };
+    let cols: Vec<usize> = (0..nx).filter(|&i| c.x[i] >= xa && c.x[i] <= xb).collect();
+    let peak = peak(e).max(f64::MIN_POSITIVE);
+    let top = peak.log10().ceil() as i32;
+    let bottom = top - SPACETIME_DECADES;
+    let (w, h, ml, mt, mb, mr) = (720.0, 480.0, 80.0, 50.0, 60.0, 150.0);
+    let px = |x: f64| ml + (x - xa) / (xb - xa).max(f64::MIN_POSITIVE) * w;
+    let py = |t: f64| mt + t / t_end * h;
     let mut s = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
-        w + ml + 120.0,
-        h + mt + mb
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"14\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<defs><clipPath id=\"plot\"><rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\"/></clipPath></defs>\n",
+        ml + w + mr,
+        mt + h + mb
     );
+    let k_onset = e.f_onset / (r.slide.options.law.mu_s() * r.slide.options.n_force);
     let _ = writeln!(
         s,
-        "<text x=\"{}\" y=\"22\" text-anchor=\"middle\">event {} ({}): slip rate |v_x| along the interface, max {:.3e} m/s, {:.4} s</text>",
+        "<text class=\"title\" x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"16\">event {} ({}), F = {} mu_s N: slip rate, peak {} m/s</text>",
         ml + w / 2.0,
         e.event,
         r.slide.run.events[e.event].kind,
-        vmax,
-        rec.duration
+        sig4(k_onset),
+        sig4(peak)
     );
-    let (cols, rows) = (nx.div_ceil(cx), nt.div_ceil(ct));
-    let (dw, dh) = (w / cols as f64, h / rows as f64);
-    for j in 0..rows {
-        for i in 0..cols {
-            let mut v = 0.0f32;
-            for tk in j * ct..((j + 1) * ct).min(rec.rates.len()) {
-                for xk in i * cx..((i + 1) * cx).min(nx) {
-                    v = v.max(rec.rates[tk][xk]);
-                }
-            }
-            if v <= 0.0 {
+    // The heat map: at most 360 columns and 320 rows, the largest rate of each block.
+    let (cx, ct) = (cols.len().div_ceil(360).max(1), rows_shown.div_ceil(320).max(1));
+    let mut g = String::from("<g clip-path=\"url(#plot)\">\n");
+    for j0 in (0..rows_shown).step_by(ct) {
+        let j1 = (j0 + ct).min(rows_shown);
+        let (ya, yb) = (py(if j0 == 0 { 0.0 } else { t_of(j0 - 1) }), py(t_of(j1 - 1)));
+        for block in cols.chunks(cx) {
+            let v = (j0..j1)
+                .flat_map(|k| block.iter().map(move |&i| (k, i)))
+                .fold(0.0f64, |m, (k, i)| m.max(f64::from(rec.rates[k][i])));
+            if v <= 10f64.powi(bottom) {
                 continue;
             }
+            let (i0, i1) = (block[0], block[block.len() - 1]);
+            let half = |i: usize, d: isize| {
+                let k = (i as isize + d).clamp(0, nx as isize - 1) as usize;
+                0.5 * (c.x[i] + c.x[k])
+            };
+            let (x0, x1) = (px(half(i0, -1)), px(half(i1, 1)));
+            let f = (v.log10() - f64::from(bottom)) / f64::from(SPACETIME_DECADES);
             let _ = writeln!(
-                s,
+                g,
                 "<rect x=\"{:.2}\" y=\"{:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{}\"/>",
-                ml + i as f64 * dw,
-                mt + j as f64 * dh,
-                dw + 0.3,
-                dh + 0.3,
-                colour(v / vmax)
+                x0,
+                ya,
+                (x1 - x0).max(0.3) + 0.3,
+                (yb - ya).max(0.3) + 0.3,
+                colour(f as f32)
             );
         }
     }
+    // Guides at c_s and c_R from the first node reached.
+    if let Some(&first) = reached.iter().min_by(|&&i, &&j| rec.arrival[i].total_cmp(&rec.arrival[j])) {
+        let (x0, t0) = (c.x[first], rec.arrival[first]);
+        for (name, v, dash) in [("c_s", r.speeds.c_s, "8 4"), ("c_R", r.speeds.c_r, "3 3")] {
+            for side in [-1.0, 1.0] {
+                let x1 = x0 + side * v * (t_end - t0);
+                let _ = writeln!(
+                    g,
+                    "<line class=\"guide\" x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\" stroke=\"#1f4e9c\" stroke-width=\"1.5\" stroke-dasharray=\"{dash}\"/>",
+                    px(x0),
+                    py(t0),
+                    px(x1),
+                    py(t_end)
+                );
+            }
+            // Labelled where the right-going line leaves the box.
+            let (xe, te) = if x0 + v * (t_end - t0) <= xb {
+                (x0 + v * (t_end - t0), t_end)
+            } else {
+                (xb, t0 + (xb - x0) / v)
+            };
+            let _ = writeln!(
+                g,
+                "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"#1f4e9c\" text-anchor=\"end\">{name}</text>",
+                px(xe) - 4.0,
+                py(te) - 4.0
+            );
+        }
+    }
+    g.push_str("</g>\n");
+    s.push_str(&g);
     let _ = writeln!(
         s,
         "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
     );
-    for k in 0..=4 {
-        let f = k as f64 / 4.0;
-        let x = c.x[0] + f * (c.x[nx - 1] - c.x[0]);
+    let (xt, xd) = ticks(xa / c.l, xb / c.l);
+    for v in xt {
+        let x = px(v * c.l);
         let _ = writeln!(
             s,
-            "<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">{:.2}</text>",
-            ml + f * w,
-            mt + h + 18.0,
-            x / c.l
+            "<line x1=\"{x:.1}\" y1=\"{}\" x2=\"{x:.1}\" y2=\"{}\" stroke=\"black\"/><text x=\"{x:.1}\" y=\"{}\" text-anchor=\"middle\">{v:.xd$}</text>",
+            mt + h,
+            mt + h + 6.0,
+            mt + h + 22.0
         );
+    }
+    let (tt, td) = ticks(0.0, t_end);
+    for v in tt {
+        let y = py(v);
         let _ = writeln!(
             s,
-            "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{:.3}</text>",
+            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{ml}\" y2=\"{y:.1}\" stroke=\"black\"/><text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{v:.td$}</text>",
             ml - 6.0,
-            mt + f * h + 4.0,
-            f * rec.duration
+            ml - 9.0,
+            y + 5.0
         );
     }
     let _ = writeln!(
         s,
         "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">position x / L (dimensionless)</text>",
         ml + w / 2.0,
-        mt + h + 40.0
+        mt + h + 48.0
     );
     let _ = writeln!(
         s,
-        "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">time since onset (s)</text>",
-        mt + h / 2.0,
+        "<text x=\"18\" y=\"{0}\" transform=\"rotate(-90 18 {0})\" text-anchor=\"middle\">time since onset (s)</text>",
         mt + h / 2.0
     );
-    for k in 0..=10 {
-        let f = k as f32 / 10.0;
+    // The colour bar: one band per tenth of a decade, a labelled tick at each decade.
+    let (bx, bw) = (ml + w + 24.0, 22.0);
+    let steps = 10 * SPACETIME_DECADES;
+    for k in 0..steps {
+        let f = (k as f64 + 0.5) / steps as f64;
         let _ = writeln!(
             s,
-            "<rect x=\"{}\" y=\"{:.1}\" width=\"20\" height=\"{:.1}\" fill=\"{}\"/>",
-            ml + w + 20.0,
-            mt + (1.0 - f as f64) * (h - h / 11.0),
-            h / 11.0,
-            colour(f)
+            "<rect x=\"{bx}\" y=\"{:.2}\" width=\"{bw}\" height=\"{:.2}\" fill=\"{}\"/>",
+            mt + h * (1.0 - (k + 1) as f64 / steps as f64),
+            h / steps as f64 + 0.3,
+            colour(f as f32)
         );
     }
-    let _ = writeln!(s, "<text x=\"{}\" y=\"{}\">{:.2e} m/s</text>", ml + w + 45.0, mt + 12.0, vmax);
-    let _ = writeln!(s, "<text x=\"{}\" y=\"{}\">0</text>", ml + w + 45.0, mt + h);
+    let _ = writeln!(
+        s,
+        "<rect x=\"{bx}\" y=\"{mt}\" width=\"{bw}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
+    );
+    for k in 0..=SPACETIME_DECADES {
+        let y = mt + h * (1.0 - f64::from(k) / f64::from(SPACETIME_DECADES));
+        let _ = writeln!(
+            s,
+            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{}\" y2=\"{y:.1}\" stroke=\"black\"/><text class=\"cbar-tick\" x=\"{}\" y=\"{:.1}\">{}</text>",
+            bx + bw,
+            bx + bw + 5.0,
+            bx + bw + 8.0,
+            y + 5.0,
+            decade(bottom + k)
+        );
+    }
+    let lx = bx + bw + 62.0;
+    let _ = writeln!(
+        s,
+        "<text x=\"{lx}\" y=\"{0}\" transform=\"rotate(-90 {lx} {0})\" text-anchor=\"middle\">slip rate |v_x| (m/s)</text>",
+        mt + h / 2.0
+    );
     s.push_str("</svg>\n");
     s
 }
@@ -218,6 +407,138 @@ fn colour(v: f32) -> String {
     format!("#{:02x}{:02x}{:02x}", r as u8, g as u8, b as u8)
 }
 
+/// cycle.svg: the run's instabilities as experiments image precursors (Rubinstein et al.,
+/// PRL 98, 226103, 2007): each one's slipped extent (x/L, across) at the drive force of its
+/// onset (F/(mu_s N), up), one bar each, with its nucleation node as a dot; the cycle's end
+/// (a crossing or whole slip) in dark red and the largest onset force marked.
+pub fn cycle_svg(r: &DynamicResult) -> String {
+    let res = &r.slide;
+    let c = &res.condensed;
+    let k = res.options.law.mu_s() * res.options.n_force;
+    let inst: Vec<(&DynEvent, (usize, usize), bool)> = r
+        .events
+        .iter()
+        .filter(|e| e.record.weakened)
+        .filter_map(|e| {
+            let ev = &res.run.events[e.event];
+            ev.region.map(|g| (e, g, ev.ends_cycle()))
+        })
+        .collect();
+    let (w, h, ml, mt, mb, mr) = (760.0, 520.0, 80.0, 50.0, 60.0, 30.0);
+    let (f0, f1) = inst.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |m, i| {
+        (m.0.min(i.0.f_onset / k), m.1.max(i.0.f_onset / k))
+    });
+    let (f0, f1) = if f0 < f1 {
+        let pad = 0.05 * (f1 - f0);
+        (f0 - pad, f1 + pad)
+    } else if f0.is_finite() {
+        (f0 - 0.05, f0 + 0.05)
+    } else {
+        (0.0, 1.0)
+    };
+    let (xa, xb) = (c.x[0] / c.l, c.x[c.n - 1] / c.l);
+    let px = |x: f64| ml + (x - xa) / (xb - xa) * w;
+    let py = |f: f64| mt + (1.0 - (f - f0) / (f1 - f0)) * h;
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"14\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
+        ml + w + mr,
+        mt + h + mb
+    );
+    let ends = inst.iter().filter(|i| i.2).count();
+    let _ = writeln!(
+        s,
+        "<text class=\"title\" x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"16\">{} instabilities: slipped extent at the onset force ({} cycle end{})</text>",
+        ml + w / 2.0,
+        inst.len(),
+        ends,
+        if ends == 1 { "" } else { "s" }
+    );
+    let bar = (0.8 * h / inst.len().max(1) as f64).clamp(1.5, 5.0);
+    let peak = inst.iter().map(|i| i.0.f_onset).fold(f64::NEG_INFINITY, f64::max);
+    for &(e, (a, b), end) in &inst {
+        let y = py(e.f_onset / k);
+        let (x0, x1) = (px(c.x[a] / c.l), px(c.x[b] / c.l));
+        let colour = if end {
+            "#8b0000"
+        } else if a == 0 {
+            "#1f4e9c"
+        } else {
+            "#e08a00"
+        };
+        let _ = writeln!(
+            s,
+            "<rect class=\"instability\" x=\"{x0:.2}\" y=\"{:.2}\" width=\"{:.2}\" height=\"{bar:.2}\" fill=\"{colour}\"><title>event {}: F = {} mu_s N, x/L {} to {}</title></rect>",
+            y - bar / 2.0,
+            (x1 - x0).max(1.5),
+            e.event,
+            sig4(e.f_onset / k),
+            sig4(c.x[a] / c.l),
+            sig4(c.x[b] / c.l)
+        );
+        if let Some(n) = e.record.nucleation {
+            let _ = writeln!(
+                s,
+                "<circle cx=\"{:.2}\" cy=\"{y:.2}\" r=\"{:.1}\" fill=\"black\"/>",
+                px(c.x[n] / c.l),
+                bar.max(2.0) / 2.0 + 0.5
+            );
+        }
+        if end || e.f_onset == peak {
+            let what = match (end, e.f_onset == peak) {
+                (true, true) => "cycle end, peak",
+                (true, false) => "cycle end",
+                _ => "peak",
+            };
+            let _ = writeln!(
+                s,
+                "<text class=\"mark\" x=\"{:.1}\" y=\"{:.1}\" font-size=\"13\">{what}: F = {} mu_s N</text>",
+                (x1 + 6.0).min(ml + w - 190.0),
+                y - bar / 2.0 - 3.0,
+                sig4(e.f_onset / k)
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
+    );
+    let (xt, xd) = ticks(xa, xb);
+    for v in xt {
+        let x = px(v);
+        let _ = writeln!(
+            s,
+            "<line x1=\"{x:.1}\" y1=\"{}\" x2=\"{x:.1}\" y2=\"{}\" stroke=\"black\"/><text x=\"{x:.1}\" y=\"{}\" text-anchor=\"middle\">{v:.xd$}</text>",
+            mt + h,
+            mt + h + 6.0,
+            mt + h + 22.0
+        );
+    }
+    let (ft, fd) = ticks(f0, f1);
+    for v in ft {
+        let y = py(v);
+        let _ = writeln!(
+            s,
+            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{ml}\" y2=\"{y:.1}\" stroke=\"black\"/><text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{v:.fd$}</text>",
+            ml - 6.0,
+            ml - 9.0,
+            y + 5.0
+        );
+    }
+    let _ = writeln!(
+        s,
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">slipped extent x / L (dimensionless; dot: nucleation; blue from the trailing edge, orange inside, dark red the cycle end)</text>",
+        ml + w / 2.0,
+        mt + h + 48.0
+    );
+    let _ = writeln!(
+        s,
+        "<text x=\"18\" y=\"{0}\" transform=\"rotate(-90 18 {0})\" text-anchor=\"middle\">drive force at the onset F / (mu_s N) (dimensionless)</text>",
+        mt + h / 2.0
+    );
+    s.push_str("</svg>\n");
+    s
+}
+
 /// summary.csv: the run's one row ([`crate::studies::dynamic_slide::summary::COLUMNS`]);
 /// an empty cell where a quantity does not exist in the run (no crossing reached...).
 pub fn summary_csv(r: &DynamicResult) -> Result<String> {
@@ -235,16 +556,23 @@ pub fn summary_csv(r: &DynamicResult) -> Result<String> {
     Ok(s)
 }
 
-/// Writes slide's files, summary.csv, fronts_t.csv, dyn_events.csv and one `spacetime_<event>.svg` per
-/// instability into `dir`.
-pub fn write(r: &DynamicResult, dir: &Path, header: &str, states: bool) -> Result<Vec<PathBuf>> {
+/// Writes slide's files, summary.csv, fronts_t.csv, dyn_events.csv, cycle.svg and the
+/// space-time pictures `spacetime` asks for (`spacetime_<event>.svg`) into `dir`.
+pub fn write(
+    r: &DynamicResult,
+    dir: &Path,
+    header: &str,
+    states: bool,
+    spacetime: &Spacetime,
+) -> Result<Vec<PathBuf>> {
     let mut out = super::slide::write(&r.slide, dir, header, states)?;
     let mut files = vec![
         ("summary.csv".to_string(), summary_csv(r)?),
         ("fronts_t.csv".to_string(), fronts_csv(r)?),
         ("dyn_events.csv".to_string(), events_csv(r)?),
+        ("cycle.svg".to_string(), cycle_svg(r)),
     ];
-    for e in r.events.iter().filter(|e| e.record.weakened) {
+    for e in spacetime.picks(r) {
         files.push((format!("spacetime_{:06}.svg", e.event), spacetime_svg(r, e)));
     }
     for (name, text) in files {

@@ -713,6 +713,7 @@ fn arrest_at_strength_with(
         rest_rate: rest_rate.unwrap_or(default_rate),
         max_steps: cap_steps.unwrap_or(cap),
         sample_every: quiet_steps / 16,
+        arrival_rate: f64::INFINITY,
     };
     let dr = Driven { model: &model, layout: &layout, friction, n_force, dt, eta };
     let nb = layout.base.len();

@@ -96,6 +96,70 @@ fn the_default_first_run_completes_the_papers_first_cycle_with_precursors() {
     let toml = std::fs::read_to_string(out.join("run.toml")).unwrap();
     assert!(toml.contains("first_advance_F_over_mu_s_N") && !toml.contains("incomplete"), "{toml}");
     assert!(!out.join("states.csv").exists(), "--states none is the dynamic default");
+    // fronts_t.csv: no front speed above c_p without its cause. The paper's material
+    // (E = 2 kPa, nu = 0.4, rho = 1000 kg/m^3): c_p = sqrt(E (1 - nu) / (rho (1 + nu)
+    // (1 - 2 nu))) = 2.0702 m/s, c_s = sqrt(E / (2 rho (1 + nu))) = 0.84515 m/s.
+    let (e, nu, rho) = (2000.0f64, 0.4f64, 1000.0f64);
+    let c_p = (e * (1.0 - nu) / (rho * (1.0 + nu) * (1.0 - 2.0 * nu))).sqrt();
+    let c_s = (e / (2.0 * rho * (1.0 + nu))).sqrt();
+    let fronts = std::fs::read_to_string(out.join("fronts_t.csv")).unwrap();
+    let mut lines = fronts.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "event,side,x_over_L,arrival_s,front_time_s,front_speed_m_per_s,front_speed_over_c_s,flag"
+    );
+    let (mut fast, mut unflagged) = (vec![], vec![]);
+    for l in lines {
+        let f: Vec<&str> = l.split(',').collect();
+        if f[5].is_empty() {
+            // The first node reached, or a window reached at once (an infinite speed).
+            assert!(f[1] == "0" || !f[7].is_empty(), "a jump without its cause: {l}");
+            continue;
+        }
+        let (v, over) = (f[5].parse::<f64>().unwrap(), f[6].parse::<f64>().unwrap());
+        assert!((over * c_s / v - 1.0).abs() < 1e-6, "{l}");
+        if v > c_p && f[7].is_empty() {
+            fast.push(l.to_string());
+        }
+        if f[7].is_empty() {
+            unflagged.push(v);
+        }
+    }
+    assert!(
+        fast.is_empty(),
+        "{} front speeds above c_p = {c_p} m/s without a cause: {:?}",
+        fast.len(),
+        &fast[..fast.len().min(5)]
+    );
+    // Above c_p with neither preslip nor join in the window (`above_c_p`): rare and near c_p
+    // (measured 10 of 3 634 rows, at most 1.23 c_p); the unflagged fronts run between c_s
+    // and c_p (measured 539 rows, median 1.31 c_s).
+    let rows = fronts.lines().count() - 1;
+    let above: Vec<f64> = fronts
+        .lines()
+        .filter(|l| l.ends_with(",above_c_p"))
+        .map(|l| l.split(',').nth(5).unwrap().parse().unwrap())
+        .collect();
+    assert!(above.len() * 100 <= rows && above.iter().all(|&v| v < 1.5 * c_p), "{above:?} of {rows}");
+    unflagged.sort_by(f64::total_cmp);
+    let median = unflagged[unflagged.len() / 2];
+    assert!(
+        unflagged.len() > 300 && median > 0.5 * c_s && median < c_p,
+        "{} speeds, median {median}",
+        unflagged.len()
+    );
+    // cycle.svg: one bar per instability (dyn_events.csv's instability = 1); no per-event
+    // picture unless asked (--spacetime).
+    let dyn_events = std::fs::read_to_string(out.join("dyn_events.csv")).unwrap();
+    let inst = dyn_events.lines().skip(1).filter(|l| l.split(',').nth(2) == Some("1")).count();
+    let cycle = std::fs::read_to_string(out.join("cycle.svg")).unwrap();
+    assert!(inst > 10, "{inst} instabilities");
+    assert_eq!(cycle.matches("class=\"instability\"").count(), inst);
+    assert_eq!(cycle.matches(">cycle end").count(), 1, "one crossing marked");
+    let pictures = std::fs::read_dir(&out)
+        .unwrap()
+        .filter(|f| f.as_ref().unwrap().file_name().to_string_lossy().starts_with("spacetime_"));
+    assert_eq!(pictures.count(), 0);
 }
 
 #[test]
@@ -177,4 +241,180 @@ fn rupture_regularises_the_normal_stress_by_default_and_warns_without_it() {
         s.lines().nth(1).unwrap().split(',').next().unwrap().to_string()
     };
     assert_ne!(drop("default"), drop("instantaneous"));
+}
+
+#[test]
+fn fronts_come_from_arrival_times_and_the_pictures_show_the_activity() {
+    // The short scene (L = 0.1 m, h = 0.5 mm, X to 6e-6 m: 2-3 s); its instability whose
+    // front runs farthest outside the pre-slipped zone (the first ones lie inside theirs).
+    use tribofe::interface::events::Operator;
+    use tribofe::report::dynamic_slide::{self as report, Spacetime};
+    use tribofe::studies::dynamic_slide::{self as ds, fronts};
+    let (scene, o) = crate::dynamics::short_weakening(Operator::Dense, 6e-6);
+    let r = ds::run(&scene, &o, &ds::DynamicOptions::default(), tribofe::Progress::none()).unwrap();
+    let c = &r.slide.condensed;
+    let free = |e: &ds::DynEvent| {
+        let arr = fronts::arrivals(&e.record, &c.x, scene.block.thickness, r.speeds.c_p);
+        [-1, 1]
+            .map(|s| arr.iter().filter(|a| a.side == s && a.cause == fronts::Cause::None).count())
+            .into_iter()
+            .max()
+            .unwrap_or(0)
+    };
+    let e = r.events.iter().filter(|e| e.record.weakened).max_by_key(|e| free(e)).expect("an instability");
+    let rec = &e.record;
+    // The threshold is the law's: 1 % of (mu_s - mu_d) (N/L) / (rho c_s).
+    let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
+    let want = 0.01 * (mu_s - mu_d) * (o.n_force / scene.block.length) / (scene.block.density * r.speeds.c_s);
+    assert!((rec.arrival_rate / want - 1.0).abs() < 1e-12, "{} vs {want}", rec.arrival_rate);
+    // Independently, from the samples: a node's arrival is the first sample above the
+    // threshold, late by less than one sample interval dts on the per-step arrival. Over the
+    // longest unflagged stretch of one side, the mean speed from the samples and from the
+    // front times then agree within dts / (time between the two ends) each way.
+    let arr = fronts::arrivals(rec, &c.x, scene.block.thickness, r.speeds.c_p);
+    let dts = rec.t[1] - rec.t[0];
+    let sampled = |i: usize| -> f64 {
+        let k = rec.rates.iter().position(|v| f64::from(v[i]) > rec.arrival_rate).unwrap();
+        rec.t[k]
+    };
+    let side = |s: i32| arr.iter().filter(move |a| a.side == s && a.cause == fronts::Cause::None);
+    let best = [-1, 1].into_iter().max_by_key(|&s| side(s).count()).unwrap();
+    let run: Vec<&fronts::Arrival> = side(best).collect();
+    assert!(run.len() >= 9, "{} unflagged nodes on side {best}: {arr:?}", run.len());
+    let (a, b) = (run[0], run[run.len() - 1]);
+    assert!(run.iter().all(|p| p.own == p.front), "no join inside the stretch");
+    let dist = (c.x[b.node] - c.x[a.node]).abs();
+    let (t_csv, t_samples) = (b.front - a.front, sampled(b.node) - sampled(a.node));
+    assert!(t_csv > 10.0 * dts, "{t_csv} s over {dist} m: too short for the check");
+    let (v_csv, v_samples) = (dist / t_csv, dist / t_samples);
+    assert!(
+        (t_samples - t_csv).abs() < dts,
+        "front times {t_csv} s, from the samples {t_samples} s (dts {dts})"
+    );
+    assert!(v_csv < r.speeds.c_p && v_csv > 0.05 * r.speeds.c_s, "{v_csv} m/s");
+    eprintln!(
+        "mean front speed {v_csv:.4} m/s (samples {v_samples:.4}) over {dist:.4e} m; c_s {:.4}",
+        r.speeds.c_s
+    );
+    // A windowed speed inside the stretch (its window, 1 t either side, all in it): the
+    // least-squares slope of the sampled arrivals against distance over the same nodes. Each
+    // sampled time is off by [0, dts) from the per-step one, so the slopes differ by at most
+    // dts sum|r - mean r| / sum (r - mean r)^2.
+    let t = scene.block.thickness;
+    let first = arr[0].node;
+    let r_of = |p: &fronts::Arrival| (c.x[p.node] - c.x[first]).abs();
+    let around = |m: &fronts::Arrival| -> Vec<&&fronts::Arrival> {
+        run.iter().filter(|p| (r_of(p) - r_of(m)).abs() <= t * (1.0 + 1e-9)).collect()
+    };
+    let full = 2 * (t / scene.mesh.h).round() as usize + 1;
+    let m = *run[run.len() / 2..]
+        .iter()
+        .chain(&run[..run.len() / 2])
+        .find(|m| around(m).len() == full)
+        .expect("a window in the stretch");
+    let win = around(m);
+    let n = win.len() as f64;
+    let rm = win.iter().map(|p| r_of(p)).sum::<f64>() / n;
+    let tm = win.iter().map(|p| sampled(p.node)).sum::<f64>() / n;
+    let sxx = win.iter().map(|p| (r_of(p) - rm).powi(2)).sum::<f64>();
+    let beta = win.iter().map(|p| (r_of(p) - rm) * (sampled(p.node) - tm)).sum::<f64>() / sxx;
+    let bound = dts * win.iter().map(|p| (r_of(p) - rm).abs()).sum::<f64>() / sxx;
+    assert!(
+        (beta - 1.0 / m.speed).abs() <= bound,
+        "windowed speed {} m/s, from the samples {} m/s",
+        m.speed,
+        1.0 / beta
+    );
+
+    // The space-time picture: cropped to the activity, log colour bar with a tick per decade,
+    // titles to 4 significant digits.
+    let svg = report::spacetime_svg(&r, e);
+    let t_end = report::spacetime_end(rec);
+    assert!(t_end < 0.8 * rec.duration, "crop {t_end} of {} s (measured 0.73)", rec.duration);
+    let active = |k: usize| rec.rates[k].iter().any(|&v| f64::from(v) > rec.arrival_rate);
+    let last = (0..rec.rates.len()).rev().find(|&k| active(k)).unwrap();
+    assert!(
+        rec.t[last] <= t_end && t_end <= 1.05 * rec.t[last] + 1e-12,
+        "last active sample {} s, shown to {t_end} s",
+        rec.t[last]
+    );
+    let ticks = svg.matches("class=\"cbar-tick\"").count();
+    assert!(ticks >= 3, "{ticks} colour-bar ticks");
+    let title = svg.split("class=\"title\"").nth(1).unwrap().split("</text>").next().unwrap();
+    for w in title.split(|ch: char| !(ch.is_ascii_digit() || ch == '.' || ch == 'e' || ch == '-')) {
+        let mant = w.split('e').next().unwrap().trim_start_matches(['-', '0', '.']);
+        if w.parse::<f64>().is_ok() && w.contains('.') {
+            assert!(mant.chars().filter(|ch| ch.is_ascii_digit()).count() <= 4, "{w} in {title}");
+        }
+    }
+    assert_eq!(svg.matches("class=\"guide\"").count(), 4, "c_s and c_R both ways");
+    // cycle.svg: one bar per instability; per-event pictures only as asked.
+    let inst = r.events.iter().filter(|e| e.record.weakened).count();
+    assert_eq!(report::cycle_svg(&r).matches("class=\"instability\"").count(), inst);
+    let dir = tempfile::tempdir().unwrap();
+    let names = |sp: &Spacetime, d: &str| -> Vec<String> {
+        let p = dir.path().join(d);
+        std::fs::create_dir_all(&p).unwrap();
+        report::write(&r, &p, "", false, sp).unwrap();
+        let mut v: Vec<String> = std::fs::read_dir(&p)
+            .unwrap()
+            .map(|f| f.unwrap().file_name().into_string().unwrap())
+            .filter(|f| f.ends_with(".svg") && f != "fig4_fe.svg" && f != "fronts.svg")
+            .collect();
+        v.sort();
+        v
+    };
+    assert_eq!(names(&Spacetime::None, "none"), ["cycle.svg"]);
+    assert_eq!(
+        names(&Spacetime::Events(vec![e.event]), "one"),
+        ["cycle.svg".to_string(), format!("spacetime_{:06}.svg", e.event)]
+    );
+    assert_eq!(names(&Spacetime::All, "all").len(), 1 + inst);
+    assert_eq!("3,17".parse::<Spacetime>().unwrap(), Spacetime::Events(vec![3, 17]));
+    let err = "3,x".parse::<Spacetime>().unwrap_err().to_string();
+    assert!(err.contains("--spacetime"), "{err}");
+}
+
+mod fronts_unit {
+    use tribofe::dynamics::driven::EventRecord;
+    use tribofe::studies::dynamic_slide::fronts::{arrivals, Cause};
+
+    fn record(arrival: Vec<f64>) -> EventRecord {
+        let n = arrival.len();
+        EventRecord { arrival, d_pre: vec![0.0; n], threshold: 1e-9, ..Default::default() }
+    }
+
+    #[test]
+    fn a_steady_front_has_its_speed_and_a_patch_ahead_is_a_join() {
+        // Nodes 1 mm apart, t = 2 mm: a front from node 3 at 0.5 m/s to the right and
+        // 0.25 m/s to the left, exactly; then node 8 arrives early (a patch of its own).
+        let x: Vec<f64> = (0..12).map(|i| i as f64 * 1e-3).collect();
+        let mut a: Vec<f64> =
+            x.iter().map(|&xi| if xi >= 3e-3 { (xi - 3e-3) / 0.5 } else { (3e-3 - xi) / 0.25 }).collect();
+        let r = arrivals(&record(a.clone()), &x, 2e-3, 2.0);
+        assert_eq!((r[0].node, r[0].side), (3, 0));
+        assert_eq!(r.len(), 12);
+        for f in &r[1..] {
+            let want = if f.side > 0 { 0.5 } else { 0.25 };
+            assert!((f.speed / want - 1.0).abs() < 1e-12, "{f:?}");
+            assert_eq!(f.cause, Cause::None);
+        }
+        a[8] = 1e-3; // before the front's 10 ms
+        let r = arrivals(&record(a), &x, 2e-3, 2.0);
+        let at = |k: usize| r.iter().find(|f| f.node == k).unwrap();
+        assert_eq!(at(8).front, 8e-3, "the front reaches 8 when 7 has arrived (8 ms)");
+        assert_eq!(at(8).cause, Cause::Join);
+        assert_eq!(at(4).cause, Cause::None, "8 is 4 mm = 2 t from 4: outside its window");
+        // A node that slipped before the event flags the windows holding it.
+        let mut rec = record(vec![0.0, 1.0, 2.0, 3.0]);
+        rec.d_pre[0] = 1.0;
+        let r = arrivals(&rec, &x[..4], 1e-3, 2.0);
+        assert!(
+            r[0].cause == Cause::Preslip && r[1].cause == Cause::Preslip && r[3].cause == Cause::None,
+            "{r:?}"
+        );
+        // Above c_p with neither cause: named as such.
+        let r = arrivals(&record(x.iter().map(|&xi| xi / 3.0).collect()), &x, 2e-3, 2.0);
+        assert!(r[1..].iter().all(|f| f.cause == Cause::AboveCp && (f.speed - 3.0).abs() < 1e-9), "{r:?}");
+    }
 }

@@ -71,6 +71,34 @@ fn coulomb_slow_drive_reproduces_the_event_solver() {
         assert!(nodes <= 1, "V = {v}: slipping nodes differ by {nodes}");
         assert!(dy.events.is_empty(), "V = {v}: {} events in a Coulomb run", dy.events.len());
         errs.push(err);
+        // loading.csv's rows are one time level each (X^n with F^n): on a static segment
+        // (states unchanged between two events, slope k = dF/dX exact) the drive's F sits
+        // at F_qs + eta V k once the start's transient has decayed (second half of segments
+        // lasting 10 thickness periods or more); a row carrying F^(n-1) would sit at
+        // (eta - dt) V k, 1 - dt / eta = 0.7 of it here.
+        let period = 2.0 * std::f64::consts::PI / dy.omega_thickness;
+        let drive: Vec<_> = qs.run.states.iter().filter(|s| s.phase == Phase::Drive).collect();
+        let mut ratios = vec![];
+        for (e, s) in dy.slide.run.events.iter().zip(&dy.slide.run.states) {
+            let k = drive.partition_point(|q| q.x <= s.x);
+            if e.kind != EventKind::Sample || k == 0 || k >= drive.len() {
+                continue;
+            }
+            let (a, b) = (drive[k - 1], drive[k]);
+            if (b.x - a.x) / v < 10.0 * period || s.x < 0.5 * (a.x + b.x) {
+                continue;
+            }
+            let slope = (b.f - a.f) / (b.x - a.x);
+            ratios.push((s.f - (a.f + slope * (s.x - a.x))) / (dy.eta * v * slope));
+        }
+        ratios.sort_by(f64::total_cmp);
+        let med = ratios[ratios.len() / 2];
+        eprintln!(
+            "V = {v:e}: (F - F_qs) / (eta V k) median {med:.4} over {} rows, dt / eta = {:.3}",
+            ratios.len(),
+            dy.dt / dy.eta
+        );
+        assert!(ratios.len() > 100 && (med - 1.0).abs() < 0.02, "{med} over {} rows", ratios.len());
     }
     for w in errs.windows(2) {
         let ratio = w[0] / w[1];

@@ -37,6 +37,7 @@ use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, s
 use std::time::Instant;
 
 pub mod assumption5;
+pub mod fronts;
 pub mod physics;
 pub mod refine;
 mod setup;
@@ -325,6 +326,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         rest_rate: crate::dynamics::driven::rest_rate(&friction, elastic_slip, period),
         max_steps: (max_periods * period / dt).ceil() as usize,
         sample_every: su.sample_every,
+        arrival_rate: su.arrival_rate,
     };
     let layout = su.layout(c.x.clone(), d)?;
     let driven = su.driven(&layout, o.n_force);

@@ -8,6 +8,23 @@ use crate::scene::Scene;
 
 pub use crate::dynamics::rupture::MIN_ZONE_ELEMENTS;
 
+/// A base node is reached by a dynamic front when its |v_x| first exceeds this fraction of
+/// [`arrival_rate`]'s scale (fronts_t.csv): 1 %, below the slowest instabilities' peaks (7 %
+/// of the scale on the paper's scene, whose stress drop is a fraction of the strength drop)
+/// and far above a node at rest (0 exactly in the held drive; 1e-9 to 1e-7 m/s at an
+/// event's end).
+pub const ARRIVAL_FRACTION: f64 = 0.01;
+
+/// The front-arrival threshold, m/s: [`ARRIVAL_FRACTION`] of dtau / (rho c_s), the particle
+/// velocity of a shear wave carrying the strength drop dtau = (mu_s - mu_d) N/L at the mean
+/// pressure (mu_s N/L without a drop); the scale is 1.92e-4 m/s on the paper's scene (the
+/// threshold 1.92e-6 m/s), whose fronts slip at up to 3.7e-4 m/s. Set by the law, the load
+/// and the material, never by the mesh.
+pub fn arrival_rate(f: &SlipWeakening, n_over_l: f64, density: f64, c_s: f64) -> f64 {
+    let drop = if f.mu_s > f.mu_d { f.mu_s - f.mu_d } else { f.mu_s };
+    ARRIVAL_FRACTION * drop * n_over_l / (density * c_s)
+}
+
 /// The convergence study's D_c on the paper's scene (validation/dynamics/converge): there
 /// the thin-layer stability number is [`default_kappa`] = 0.509 and the paper's precursors
 /// exist; F_1, x_1, the front envelope and the peak converge as h halves at this D_c.

@@ -45,6 +45,9 @@ pub(super) struct Setup {
     pub arm: f64,
     /// Lambda_0 at the mean pressure, m (infinite for Coulomb).
     pub lambda0: f64,
+    /// A front reaches a base node when its |v_x| first exceeds this, m/s
+    /// ([`super::physics::arrival_rate`]).
+    pub arrival_rate: f64,
 }
 
 impl Setup {
@@ -98,6 +101,12 @@ impl Setup {
             weakens,
             arm: scene.loading.height - b.thickness,
             lambda0,
+            arrival_rate: super::physics::arrival_rate(
+                &friction,
+                o.n_force / b.length,
+                b.density,
+                speeds.c_s,
+            ),
         })
     }
 

@@ -88,6 +88,13 @@ pub fn steps_needed(x_max: f64, v: f64, dt: f64) -> f64 {
     (x_max / (v * dt)).ceil()
 }
 
+/// A time level of the drive: X (m) and the plate's (V, theta).
+#[derive(Clone, Copy)]
+struct Level {
+    x: f64,
+    q: [f64; 2],
+}
+
 /// An event while it runs.
 struct Open {
     x0: f64,
@@ -212,37 +219,43 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     // Nodes slipped by instabilities since the last cycle end, and whether a crossing ends one.
     let mut slipped = (vec![false; layout.x.len()], o.end_at_crossing);
     let dc = friction.d_c;
-    let sample_state = |ds: &DynState, contact: &[Contact], slipped: &[bool], f: f64| -> State {
-        let base = &layout.base;
-        State {
-            phase: Phase::Drive,
-            x: ds.u_h,
-            n_force: o.n_force,
-            f,
-            tilt: ds.q[1],
-            v: ds.q[0],
-            t_force: contact.iter().map(|c| c.t).collect(),
-            p_force: contact.iter().map(|c| c.p).collect(),
-            u: base.iter().map(|&k| ds.u[2 * k]).collect(),
-            gap: base.iter().map(|&k| ds.u[2 * k + 1]).collect(),
-            states: (0..n)
-                .map(|b| {
-                    if contact[b].open {
-                        NodeState::Open
-                    } else if slipped[b] {
-                        NodeState::Slip(if ds.v[2 * base[b]] < 0.0 { -1.0 } else { 1.0 })
-                    } else {
-                        NodeState::Stick
-                    }
-                })
-                .collect(),
-            violations: Violations::default(),
-        }
-    };
+    // The state at level n after the step from n: X^n, u^n, the plate's q^n and the
+    // forces at n (F^n, P, T), all of one time level (loading.csv's rows).
+    let sample_state =
+        |ds: &DynState, at: &Level, u: &[f64], contact: &[Contact], slipped: &[bool], f: f64| {
+            let base = &layout.base;
+            State {
+                phase: Phase::Drive,
+                x: at.x,
+                n_force: o.n_force,
+                f,
+                tilt: at.q[1],
+                v: at.q[0],
+                t_force: contact.iter().map(|c| c.t).collect(),
+                p_force: contact.iter().map(|c| c.p).collect(),
+                u: base.iter().map(|&k| u[2 * k]).collect(),
+                gap: base.iter().map(|&k| u[2 * k + 1]).collect(),
+                states: (0..n)
+                    .map(|b| {
+                        if contact[b].open {
+                            NodeState::Open
+                        } else if slipped[b] {
+                            NodeState::Slip(if ds.v[2 * base[b]] < 0.0 { -1.0 } else { 1.0 })
+                        } else {
+                            NodeState::Stick
+                        }
+                    })
+                    .collect(),
+                violations: Violations::default(),
+            }
+        };
+    // The level the last step started from (X^0, q^0 before the first).
+    let mut at = Level { x: ds.u_h, q: ds.q };
     loop {
         if ds.u_h >= x_max - 0.5 * vel * dt {
             break;
         }
+        at = Level { x: ds.u_h, q: ds.q };
         let out = driven.step(&mut ds, &mut w, &mut e, &mut contact);
         steps += 1;
         let b0 = *balance_first.get_or_insert(out.balance);
@@ -264,8 +277,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         }
         if open.is_none() && max_rate > thr {
             open = Some(Open {
-                x0: ds.u_h - vel * dt,
-                f0: f_prev,
+                x0: at.x,
+                f0: out.f_drive,
                 d0: ds.d.clone(),
                 went: vec![false; n],
                 e0: e,
@@ -277,6 +290,13 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                     peak_rate: vec![0.0; n],
                     nucleation: Some(fastest),
                     open: vec![false; n],
+                    // In an event every node's rate is measured against the event's own
+                    // threshold too: below it the node creeps with the drive.
+                    arrival: vec![f64::NAN; n],
+                    arrival_rate: su.arrival_rate.max(thr),
+                    // The nodes already slipped at the onset (fronts_t.csv's `preslip`).
+                    d_pre: ds.d.clone(),
+                    threshold: dc / 100.0,
                     ..Default::default()
                 },
             });
@@ -286,9 +306,10 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         if let Some(ev) = open.as_mut() {
             let rec = &mut ev.rec;
             rec.steps += 1;
+            let now = rec.steps as f64 * dt;
             for (b, &k) in layout.base.iter().enumerate() {
                 let r = ds.v[2 * k].abs();
-                rec.peak_rate[b] = rec.peak_rate[b].max(r);
+                rec.note_rate(b, r, now);
                 ev.went[b] |= r > thr;
                 rec.slip[b] = ds.d[b] - ev.d0[b];
                 rec.open[b] = contact[b].open;
@@ -316,7 +337,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         let at_end = ds.u_h >= x_max - 0.5 * vel * dt;
         if closed || (at_end && open.is_some()) {
             let ev = open.take().expect("open event");
-            let s = sample_state(&ds, &contact, &window, out.f_drive);
+            let s = sample_state(&ds, &at, w.u_before(), &contact, &window, out.f_drive);
             let weakened = ev.rec.weakened;
             let kind =
                 close(&mut run, ev, s, out, &e, closed, dt, &layout.x, &mut dyn_events, &mut slipped, &push)?;
@@ -345,7 +366,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             }
         }
         if (steps as u64).is_multiple_of(row_every) && !at_end {
-            let s = sample_state(&ds, &contact, &window, out.f_drive);
+            let s = sample_state(&ds, &at, w.u_before(), &contact, &window, out.f_drive);
             push(&mut run, simple(EventKind::Sample, &s, 0), s)?;
             window.iter_mut().for_each(|v| *v = false);
         }
@@ -353,7 +374,9 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             progress.fraction((ds.u_h / x_max).min(1.0));
         }
     }
-    let s = sample_state(&ds, &contact, &window, f_prev);
+    // The last level the drive reached (the start if it took no step).
+    let u_end = if steps == 0 { &ds.u[..] } else { w.u_before() };
+    let s = sample_state(&ds, &at, u_end, &contact, &window, f_prev);
     push(&mut run, simple(EventKind::End, &s, 0), s)?;
     let dynamic_s = dclock.elapsed().as_secs_f64();
     let total = clock.elapsed().as_secs_f64();
