@@ -64,7 +64,12 @@ fn coulomb_slow_drive_reproduces_the_event_solver() {
     for v in [1e-5, 5e-6, 2.5e-6] {
         let dy = ds::run(&scene, &o, &at_velocity(v), tribofe::Progress::none()).unwrap();
         let (err, nodes, samples) = against_static(&qs, &dy.slide, 0.5);
-        let bound = dy.eta * v * qs.run.k_bonded / 0.5;
+        // The steady Kelvin-Voigt lag is eta V k <= eta V k_bonded; where a node changes
+        // state the lag moves between two such values, and a damped oscillator overshoots a
+        // step by less than the step itself: at most twice the bonded lag. (Measured 1.08 x
+        // at 10 um/s once loading.csv's rows pair X^n with F^n; the order-1 ratio below is
+        // the sharp check.)
+        let bound = 2.0 * dy.eta * v * qs.run.k_bonded / 0.5;
         eprintln!("V = {v:e}: max |dF| = {err:.3e} mu N (lag bound {bound:.3e}), slip count within {nodes} node(s) over {samples} samples");
         assert!(samples > 1000, "{samples} samples");
         assert!(err <= bound, "V = {v}: |dF| {err:e} above the Kelvin-Voigt lag {bound:e}");

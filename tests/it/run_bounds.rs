@@ -47,9 +47,11 @@ fn a_rupture_above_its_step_cap_is_refused_at_once() {
         &["--t-end", "--max-steps", "4.140e15 explicit steps"],
     );
     // Fast waves make dt tiny: the same cap, naming what sets dt.
-    refused_within(&["rupture", "--young", "1e30"], fast, &["--young", "--max-steps"]);
+    // (D_c scaled with E so that the cohesive zone stays resolved and only the step count fails.)
+    refused_within(&["rupture", "--young", "1e30", "--dc", "1e-33"], fast, &["--young", "--max-steps"]);
     refused_within(&["rupture", "--density", "1e-30"], fast, &["--density", "--max-steps"]);
-    refused_within(&["rupture", "--courant", "1e-9"], fast, &["--courant", "--max-steps"]);
+    // (A courant below 0.01 is refused as such first: inputs_dynamic.)
+    refused_within(&["rupture", "--courant", "1e-9"], fast, &["--courant"]);
     // The cap is the user's: the default run (414 steps) under a cap of 100 is refused too.
     refused_within(&["rupture", "--max-steps", "100"], fast, &["4.140e2 explicit steps", "--max-steps 100"]);
 }
@@ -160,7 +162,9 @@ fn a_tight_address_space_is_a_refusal_not_an_abort() {
 #[test]
 fn slide_dynamics_damping_outside_its_range_is_refused_at_once() {
     let fast = Duration::from_secs(3);
-    for eta in ["1e-7", "1"] {
+    // Below 0.001 of critical the damping is refused as too light first (inputs_dynamic).
+    refused_within(&["slide", "--dynamics", "--damping", "1e-7"], fast, &["--damping"]);
+    for eta in ["1e-2", "2e-2"] {
         let r = refused_within(
             &["slide", "--dynamics", "--damping", eta],
             fast,
