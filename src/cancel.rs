@@ -57,7 +57,8 @@ pub struct Beat<'a> {
 impl<'a> Beat<'a> {
     pub fn new(cancel: &'a Cancel) -> Beat<'a> {
         let now = Instant::now();
-        Beat { cancel, count: 0, stride: 1, read: now, beat: now }
+        // The first call is a beat: a token cancelled before the loop stops it at once.
+        Beat { cancel, count: 0, stride: 1, read: now, beat: now.checked_sub(BEAT).unwrap_or(now) }
     }
 
     /// `Err(Error::Interrupted)` once cancelled (seen within about [`BEAT`]); `Ok(true)` when a

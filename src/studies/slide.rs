@@ -197,7 +197,7 @@ fn check_records(o: &SlideOptions, n: usize, about: &str) -> Result<()> {
             if o.keep_states { "states" } else { "event summaries" }
         );
         let hint = format!(
-            "lower --max-events (at most the default {DEFAULT_MAX_EVENTS} is capped by the memory instead)"
+            "lower --max-events (at most the default {DEFAULT_MAX_EVENTS} is capped by the memory instead), or keep summaries only with `slide --states none`"
         );
         crate::scene::limits::check_bytes(o.max_events as f64 * per, "--max-events", &what, &hint)?;
     }

@@ -791,23 +791,25 @@ fn states_csv_is_written_unless_asked_not_to() {
 }
 
 #[test]
-fn a_dynamic_event_ticks_and_can_be_cancelled_every_256_steps() {
-    // The event loop checks the cancel token and ticks the host's progress every 256 steps
-    // (~40 ms of work on the paper's block at h = 1 mm): a token cancelled at the 3rd tick
-    // stops the event there with the interrupted error (exit 130), not at its end.
+fn a_dynamic_event_ticks_and_can_be_cancelled_at_its_beat() {
+    // The event loop checks the cancel token and ticks the host's progress at a wall-clock
+    // beat (cancel::BEAT, 0.1 s), the first at its first step: a token already cancelled
+    // stops the event there with the interrupted error (exit 130), not at its end; a live
+    // token lets it tick at its first step.
     let cancel = tribofe::Cancel::new();
     let ticks = std::sync::atomic::AtomicUsize::new(0);
     let tick = || {
-        if ticks.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1 == 3 {
-            cancel.cancel();
-        }
+        ticks.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     };
+    let (live, _, _, _) = arrest_at_strength_with(None, None, &cancel, &tick);
+    assert!(live.unwrap().steps > 256, "the event must outlast its first step by far");
+    assert!(ticks.load(std::sync::atomic::Ordering::Relaxed) >= 1);
+    cancel.cancel();
+    ticks.store(0, std::sync::atomic::Ordering::Relaxed);
     let (rec, _, _, _) = arrest_at_strength_with(None, None, &cancel, &tick);
     let err = rec.unwrap_err();
     assert_eq!(err.exit_status(), 130, "{err}");
-    assert_eq!(ticks.load(std::sync::atomic::Ordering::Relaxed), 3);
-    let (whole, _, _, _) = arrest_at_strength(None, None);
-    assert!(whole.unwrap().steps > 3 * 256, "the event must outlast three ticks");
+    assert_eq!(ticks.load(std::sync::atomic::Ordering::Relaxed), 0);
 }
 
 #[test]

@@ -151,7 +151,15 @@ fn the_default_first_run_completes_the_papers_first_cycle_with_precursors() {
     // cycle.svg: one bar per instability (dyn_events.csv's instability = 1); no per-event
     // picture unless asked (--spacetime).
     let dyn_events = std::fs::read_to_string(out.join("dyn_events.csv")).unwrap();
-    let inst = dyn_events.lines().skip(1).filter(|l| l.split(',').nth(2) == Some("1")).count();
+    // (An instability with a slipped region: its columns 8, 9 filled.)
+    let inst = dyn_events
+        .lines()
+        .skip(1)
+        .filter(|l| {
+            let c: Vec<&str> = l.split(',').collect();
+            c[2] == "1" && !c[8].is_empty()
+        })
+        .count();
     let cycle = std::fs::read_to_string(out.join("cycle.svg")).unwrap();
     assert!(inst > 10, "{inst} instabilities");
     assert_eq!(cycle.matches("class=\"instability\"").count(), inst);
