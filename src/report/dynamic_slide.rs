@@ -185,6 +185,50 @@ fn sig4(v: f64) -> String {
 }
 
 /// Tick values in [a, b]: a step of 1, 2 or 5 times a power of ten giving 4 to 10 ticks,
+/// An axis: its value range and where a value is drawn (pixels).
+type Axis<'a> = ((f64, f64), &'a dyn Fn(f64) -> f64);
+
+/// A plot's frame at [left, top, width, height], ticks on both axes and their labels.
+fn frame(s: &mut String, [ml, mt, w, h]: [f64; 4], x: Axis, y: Axis, xlabel: &str, ylabel: &str) {
+    let _ = writeln!(
+        s,
+        "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
+    );
+    let (xt, xd) = ticks(x.0 .0, x.0 .1);
+    for v in xt {
+        let px = x.1(v);
+        let _ = writeln!(
+            s,
+            "<line x1=\"{px:.1}\" y1=\"{}\" x2=\"{px:.1}\" y2=\"{}\" stroke=\"black\"/><text x=\"{px:.1}\" y=\"{}\" text-anchor=\"middle\">{v:.xd$}</text>",
+            mt + h,
+            mt + h + 6.0,
+            mt + h + 22.0
+        );
+    }
+    let (yt, yd) = ticks(y.0 .0, y.0 .1);
+    for v in yt {
+        let py = y.1(v);
+        let _ = writeln!(
+            s,
+            "<line x1=\"{}\" y1=\"{py:.1}\" x2=\"{ml}\" y2=\"{py:.1}\" stroke=\"black\"/><text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{v:.yd$}</text>",
+            ml - 6.0,
+            ml - 9.0,
+            py + 5.0
+        );
+    }
+    let _ = writeln!(
+        s,
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{xlabel}</text>",
+        ml + w / 2.0,
+        mt + h + 48.0
+    );
+    let _ = writeln!(
+        s,
+        "<text x=\"18\" y=\"{0}\" transform=\"rotate(-90 18 {0})\" text-anchor=\"middle\">{ylabel}</text>",
+        mt + h / 2.0
+    );
+}
+
 /// and the decimals that show the step.
 fn ticks(a: f64, b: f64) -> (Vec<f64>, usize) {
     let span = (b - a).max(f64::MIN_POSITIVE);
@@ -315,42 +359,13 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
     }
     g.push_str("</g>\n");
     s.push_str(&g);
-    let _ = writeln!(
-        s,
-        "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
-    );
-    let (xt, xd) = ticks(xa / c.l, xb / c.l);
-    for v in xt {
-        let x = px(v * c.l);
-        let _ = writeln!(
-            s,
-            "<line x1=\"{x:.1}\" y1=\"{}\" x2=\"{x:.1}\" y2=\"{}\" stroke=\"black\"/><text x=\"{x:.1}\" y=\"{}\" text-anchor=\"middle\">{v:.xd$}</text>",
-            mt + h,
-            mt + h + 6.0,
-            mt + h + 22.0
-        );
-    }
-    let (tt, td) = ticks(0.0, t_end);
-    for v in tt {
-        let y = py(v);
-        let _ = writeln!(
-            s,
-            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{ml}\" y2=\"{y:.1}\" stroke=\"black\"/><text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{v:.td$}</text>",
-            ml - 6.0,
-            ml - 9.0,
-            y + 5.0
-        );
-    }
-    let _ = writeln!(
-        s,
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">position x / L (dimensionless)</text>",
-        ml + w / 2.0,
-        mt + h + 48.0
-    );
-    let _ = writeln!(
-        s,
-        "<text x=\"18\" y=\"{0}\" transform=\"rotate(-90 18 {0})\" text-anchor=\"middle\">time since onset (s)</text>",
-        mt + h / 2.0
+    frame(
+        &mut s,
+        [ml, mt, w, h],
+        ((xa / c.l, xb / c.l), &|v| px(v * c.l)),
+        ((0.0, t_end), &py),
+        "position x / L (dimensionless)",
+        "time since onset (s)",
     );
     // The colour bar: one band per tenth of a decade, a labelled tick at each decade.
     let (bx, bw) = (ml + w + 24.0, 22.0);
@@ -498,42 +513,13 @@ pub fn cycle_svg(r: &DynamicResult) -> String {
             );
         }
     }
-    let _ = writeln!(
-        s,
-        "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
-    );
-    let (xt, xd) = ticks(xa, xb);
-    for v in xt {
-        let x = px(v);
-        let _ = writeln!(
-            s,
-            "<line x1=\"{x:.1}\" y1=\"{}\" x2=\"{x:.1}\" y2=\"{}\" stroke=\"black\"/><text x=\"{x:.1}\" y=\"{}\" text-anchor=\"middle\">{v:.xd$}</text>",
-            mt + h,
-            mt + h + 6.0,
-            mt + h + 22.0
-        );
-    }
-    let (ft, fd) = ticks(f0, f1);
-    for v in ft {
-        let y = py(v);
-        let _ = writeln!(
-            s,
-            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{ml}\" y2=\"{y:.1}\" stroke=\"black\"/><text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{v:.fd$}</text>",
-            ml - 6.0,
-            ml - 9.0,
-            y + 5.0
-        );
-    }
-    let _ = writeln!(
-        s,
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">slipped extent x / L (dimensionless; dot: nucleation; blue from the trailing edge, orange inside, dark red the cycle end)</text>",
-        ml + w / 2.0,
-        mt + h + 48.0
-    );
-    let _ = writeln!(
-        s,
-        "<text x=\"18\" y=\"{0}\" transform=\"rotate(-90 18 {0})\" text-anchor=\"middle\">drive force at the onset F / (mu_s N) (dimensionless)</text>",
-        mt + h / 2.0
+    frame(
+        &mut s,
+        [ml, mt, w, h],
+        ((xa, xb), &px),
+        ((f0, f1), &py),
+        "slipped extent x / L (dimensionless; dot: nucleation; blue from the trailing edge, orange inside, dark red the cycle end)",
+        "drive force at the onset F / (mu_s N) (dimensionless)",
     );
     s.push_str("</svg>\n");
     s
