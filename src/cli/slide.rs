@@ -529,8 +529,8 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     print_paper_comparison("dynamics", &res.slide)?;
     if let Some(v) = a.drive_velocity {
         outln!(
-            "drive at V = {v:e} m/s: events where some slip rate exceeds {} V; wall time {:.2} s (setup {:.2} s, normal phase {:.2} s, explicit drive {:.2} s, {:.3e} DOF-updates/s wall)",
-            ds::velocity::RATE_FACTOR,
+            "drive at V = {v:e} m/s: events where some slip rate exceeds {:.3e} m/s; wall time {:.2} s (setup {:.2} s, normal phase {:.2} s, explicit drive {:.2} s, {:.3e} DOF-updates/s wall)",
+            ds::velocity::event_threshold(scene, &o, v)?,
             clock.elapsed().as_secs_f64(),
             res.setup_s,
             res.static_s,

@@ -112,42 +112,40 @@ fn coulomb_slow_drive_reproduces_the_event_solver() {
 }
 
 #[test]
-fn slip_weakening_first_instability_approaches_the_held_drive() {
-    // L = 0.1 m, h = 0.5 mm, (r, g) = (0.9, 0.35), D_c the smallest resolved: the held mode's
-    // first instability is at X = 4.8064e-6 m, F = 0.77146 mu_s N. A slow drive crosses the
-    // static stability limit late by the time the unstable patch takes to grow (a slow
-    // passage through a saddle-node: delay ~ V^(2/3) in the normal form) and F rises by
-    // k_bonded V during it; measured |dF| = 4.3e-3, 2.7e-3, 1.9e-3 (1.4e-3 at 0.5 um/s) mu_s N
-    // at V = 4, 2, 1 um/s: a + b V with a = 1.0e-3 mu_s N, the held mode's own error from
-    // its coefficient update every D_c/20 of slip (at D_c/320 its onset is 0.772365, and the
-    // drive's gaps to that are 3.4e-3, 1.8e-3, 9.6e-4, 5.2e-4: validation/dynamics/velocity;
-    // below ~0.5 um/s this test's ratio would stall on that offset). Asserted: the error
-    // falls at each halving, by at least 1.25, and is below 2.5e-3 mu_s N at 1 um/s; the
-    // onset X within 2.5 % of the held X (measured 0.37 %, 0.10 %, 0.04 %); the slipped
-    // region is the held one's (-0.45 .. -0.34 L) at 1 um/s to one node.
+fn slip_weakening_events_are_read_at_the_laws_rate_and_approach_the_held_limit() {
+    // L = 0.1 m, h = 0.5 mm, (r, g) = (0.9, 0.35), D_c = 2.3107e-7 m. Events are read at the
+    // law's own threshold (the front arrival rate, 1.917e-6 m/s here), whatever V, and V is
+    // refused above a tenth of it, where creep at ~V cannot be told from an instability.
     let (scene, o) = crate::dynamics::short_weakening(Operator::Dense, 4.9e-6);
     let mu_s = o.law.mu_s();
-    let held = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
+    let thr = ds::physics::event_rate(&scene, mu_s, o.law.mu_d(), o.n_force).unwrap();
+    assert!((thr - 1.917e-6).abs() < 1e-9, "{thr}");
+    let e = ds::run(&scene, &o, &at_velocity(1e-6), tribofe::Progress::none()).unwrap_err();
+    let m = e.to_string();
+    assert!(m.contains("--drive-velocity <= 1.917e-7") && e.exit_status() == 2, "{m}");
+    // The held mode's limit as its coefficient updates per D_c grow (0.771948, 0.771944 at
+    // 80, 320; validation/dynamics/velocity): the V -> 0 limit of the drive.
+    let held = DynamicOptions { weakening_steps: 320.0, ..Default::default() };
+    let held = ds::run(&scene, &o, &held, tribofe::Progress::none()).unwrap();
     let first = |r: &ds::DynamicResult| -> (f64, f64, (usize, usize)) {
         let e = r.events.iter().find(|e| e.record.weakened).expect("an instability");
         (e.x, e.f_onset / mu_s, r.slide.run.events[e.event].region.expect("region"))
     };
     let (x_h, f_h, reg_h) = first(&held);
-    let mut errs = vec![];
-    for v in [4e-6, 2e-6, 1e-6] {
-        let r = ds::run(&scene, &o, &at_velocity(v), tribofe::Progress::none()).unwrap();
-        let (x, f, reg) = first(&r);
-        eprintln!("V = {v:e}: first instability X = {x:.6e} (held {x_h:.6e}), F = {f:.5} (held {f_h:.5}) mu_s N, nodes {reg:?} (held {reg_h:?})");
-        assert!((x - x_h).abs() < 0.025 * x_h, "V = {v}: onset X {x:e} vs {x_h:e}");
-        if v == 1e-6 {
-            assert!(reg.0.abs_diff(reg_h.0) <= 1 && reg.1.abs_diff(reg_h.1) <= 1, "{reg:?} vs {reg_h:?}");
-        }
-        errs.push((f - f_h).abs());
-    }
-    for w in errs.windows(2) {
-        assert!(w[0] >= 1.25 * w[1], "onset F errors {errs:?} do not fall as V halves");
-    }
-    assert!(errs[2] < 2.5e-3, "onset F error {} mu_s N at V = 1e-6 m/s", errs[2]);
+    // At the largest V accepted: a slow drive crosses the stability limit late by the time
+    // the unstable patch takes to grow and F rises by about k_bonded V meanwhile: measured
+    // order 1 in V, dF = 5.2e-4 mu_s N at 5e-7 m/s (the 10 V threshold's series), so
+    // 2.0e-4 at 1.9e-7; asserted within twice that. The onset X within 0.5 % (dX = 9e-10 m
+    // at 5e-7 m/s), the slipped region the held one's to one node, and the instability
+    // healed (the drive's slip memory is back at 0 after it: no second weakening at mu_d).
+    let v = 0.1 * thr;
+    let r = ds::run(&scene, &o, &at_velocity(v), tribofe::Progress::none()).unwrap();
+    let (x, f, reg) = first(&r);
+    eprintln!("V = {v:e}: first instability X = {x:.6e} (held {x_h:.6e}), F = {f:.6} (held {f_h:.6}) mu_s N, nodes {reg:?} (held {reg_h:?})");
+    assert!((x - x_h).abs() < 0.005 * x_h, "onset X {x:e} vs {x_h:e}");
+    assert!((f - f_h).abs() < 4e-4, "onset F {f} vs the held limit {f_h}");
+    assert!(reg.0.abs_diff(reg_h.0) <= 1 && reg.1.abs_diff(reg_h.1) <= 1, "{reg:?} vs {reg_h:?}");
+    assert_eq!(r.events.iter().filter(|e| e.record.weakened).count(), 1);
 }
 
 #[test]

@@ -21,8 +21,26 @@ pub const ARRIVAL_FRACTION: f64 = 0.01;
 /// threshold 1.92e-6 m/s), whose fronts slip at up to 3.7e-4 m/s. Set by the law, the load
 /// and the material, never by the mesh.
 pub fn arrival_rate(f: &SlipWeakening, n_over_l: f64, density: f64, c_s: f64) -> f64 {
-    let drop = if f.mu_s > f.mu_d { f.mu_s - f.mu_d } else { f.mu_s };
-    ARRIVAL_FRACTION * drop * n_over_l / (density * c_s)
+    ARRIVAL_FRACTION * rate_scale(f.mu_s, f.mu_d, n_over_l, density, c_s)
+}
+
+/// dtau / (rho c_s), m/s: the particle velocity of a shear wave carrying the strength drop
+/// dtau = (mu_s - mu_d) N/L (mu_s N/L without a drop): the law's own slip-rate scale.
+fn rate_scale(mu_s: f64, mu_d: f64, n_over_l: f64, density: f64, c_s: f64) -> f64 {
+    let drop = if mu_s > mu_d { mu_s - mu_d } else { mu_s };
+    drop * n_over_l / (density * c_s)
+}
+
+/// The constant-velocity drive's event threshold under a weakening law, m/s: the front
+/// arrival rate at the mean pressure (1.92e-6 m/s on the paper's scene and the short one),
+/// so a node is in an event exactly when a front has reached it. It is set by the law, the
+/// load and the material, never by V or the mesh, so the V -> 0 limit is the held mode's;
+/// the weakest instability seen, the held mode's first on the short scene (L = 0.1 m),
+/// peaks at 2.1 times it.
+pub fn event_rate(scene: &Scene, mu_s: f64, mu_d: f64, n_force: f64) -> Result<f64> {
+    let b = &scene.block;
+    let c_s = super::shear_speed(scene)?;
+    Ok(ARRIVAL_FRACTION * rate_scale(mu_s, mu_d, n_force / b.length, b.density, c_s))
 }
 
 /// The convergence study's D_c on the paper's scene (validation/dynamics/converge): there

@@ -8,10 +8,13 @@
 //!    path (u from the static field, v = V du/dU_H of the static path with the states of the
 //!    start), so the start launches no wave of order rho c V.
 //! 3. Events are read off the slip rates: one starts when some base node's |v_x| exceeds
-//!    [`RATE_FACTOR`] V and ends when every node has stayed below it for one period of the
-//!    block's thickness-shear mode. A quasi-static slip runs at most at about V (a node
-//!    cannot slip faster than the plate drags it, the tilt aside), an instability at
-//!    (tau / G) c_s >> V for a slow drive. Onset X and F are those of the last step before
+//!    the event threshold ([`event_threshold`]) and ends when every node has stayed below it
+//!    for one period of the block's thickness-shear mode. Under a weakening law the threshold
+//!    is the law's own, independent of V ([`super::physics::event_rate`]), and V is refused
+//!    above 1/[`RATE_FACTOR`] of it: a quasi-static slip runs at about V (a node cannot slip
+//!    faster than the plate drags it, the tilt aside), so a faster drive cannot be told
+//!    from an instability. Without weakening (Coulomb: no rate scale) it is [`RATE_FACTOR`]
+//!    V. Onset X and F are those of the last step before
 //!    the threshold was crossed; the slipped region is the run of nodes that crossed it
 //!    around the first one; the relaxed F is the one at the event's end. After an event in
 //!    which some node weakened fully (slip >= D_c) every node heals to mu_s (slip memory 0),
@@ -38,7 +41,9 @@ use crate::scene::Scene;
 use crate::studies::slide::SlideOptions;
 use std::time::Instant;
 
-/// A base node is in an event while its slip rate exceeds this multiple of V.
+/// Without weakening (Coulomb: no rate scale of its own) a base node is in an event while
+/// its slip rate exceeds this multiple of V. Under a weakening law the threshold is the
+/// law's own ([`super::physics::event_rate`]) and V must stay below 1 / this of it.
 pub const RATE_FACTOR: f64 = 10.0;
 /// The drive phase is sampled into about this many rows of loading.csv.
 pub const LOADING_ROWS: u64 = 2000;
@@ -74,6 +79,19 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<f64>
             ),
         ));
     }
+    if o.law.weakens() {
+        let thr = super::physics::event_rate(scene, o.law.mu_s(), o.law.mu_d(), o.n_force)?;
+        if RATE_FACTOR * v > thr {
+            return Err(Error::input(
+                "--drive-velocity",
+                format!(
+                    "{v:e} m/s is too fast to tell instabilities from the creep the drive imposes: events are read off the slip rates at the law's threshold {thr:.3e} m/s (the front arrival rate, {} of the strength drop's shear-wave particle velocity (mu_s - mu_d) (N/L) / (rho c_s), whatever V), and slipping nodes creep at about V; give --drive-velocity <= {:.3e} m/s ({RATE_FACTOR} times below it; the run costs X_max / V / dt steps), or leave it out for the held mode, this mode's V -> 0 limit",
+                    super::physics::ARRIVAL_FRACTION,
+                    thr / RATE_FACTOR
+                ),
+            ));
+        }
+    }
     if o.x_max.is_none() {
         return Err(Error::input(
             "--x-max",
@@ -81,6 +99,17 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<f64>
         ));
     }
     Ok(v)
+}
+
+/// The slip rate above which a base node is in an event, m/s: the law's own
+/// ([`super::physics::event_rate`], independent of V) under a weakening law, [`RATE_FACTOR`]
+/// V without one.
+pub fn event_threshold(scene: &Scene, o: &SlideOptions, v: f64) -> Result<f64> {
+    if o.law.weakens() {
+        super::physics::event_rate(scene, o.law.mu_s(), o.law.mu_d(), o.n_force)
+    } else {
+        Ok(RATE_FACTOR * v)
+    }
 }
 
 /// Explicit steps the run takes to X_max at V with step dt.
@@ -138,9 +167,9 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let full_field = |b: &[f64]| full.field(b);
     let driven = su.driven(&layout, o.n_force);
     let (quiet_steps, sample_every) = (su.quiet_steps, su.sample_every);
-    let thr = RATE_FACTOR * vel;
+    let thr = event_threshold(scene, o, vel)?;
     progress.message(&format!(
-        "dynamics, drive at V = {vel:e} m/s to X = {x_max:e} m: {n_total:.0} steps of dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), {} DOFs, eta = {eta:.4e} s = {:.3} of critical at the thickness mode; event threshold |v_x| > {RATE_FACTOR} V = {thr:.3e} m/s; plate mass {} kg/m, inertia {} kg m^2/m; Lambda_0 = {:.3e} m = {:.2} h",
+        "dynamics, drive at V = {vel:e} m/s to X = {x_max:e} m: {n_total:.0} steps of dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), {} DOFs, eta = {eta:.4e} s = {:.3} of critical at the thickness mode; event threshold |v_x| > {thr:.3e} m/s; plate mass {} kg/m, inertia {} kg m^2/m; Lambda_0 = {:.3e} m = {:.2} h",
         d.courant,
         model.n_dofs(),
         su.xi(),
