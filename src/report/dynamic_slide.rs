@@ -439,7 +439,7 @@ pub fn cycle_svg(r: &DynamicResult) -> String {
             ev.region.map(|g| (e, g, ev.ends_cycle()))
         })
         .collect();
-    let (w, h, ml, mt, mb, mr) = (760.0, 520.0, 80.0, 50.0, 60.0, 30.0);
+    let (w, h, ml, mt, mb, mr) = (760.0, 520.0, 80.0, 50.0, 80.0, 30.0);
     let (f0, f1) = inst.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |m, i| {
         (m.0.min(i.0.f_onset / k), m.1.max(i.0.f_onset / k))
     });
@@ -500,14 +500,16 @@ pub fn cycle_svg(r: &DynamicResult) -> String {
         }
         if end || e.f_onset == peak {
             let what = match (end, e.f_onset == peak) {
-                (true, true) => "cycle end, peak",
+                (true, true) => "cycle end, largest onset",
                 (true, false) => "cycle end",
-                _ => "peak",
+                _ => "largest onset",
             };
+            // Right of the bar, or left of it where the text would leave the frame; a white
+            // halo keeps it legible over other bars.
+            let (x, anchor) = if x1 + 6.0 + 230.0 <= ml + w { (x1 + 6.0, "start") } else { (x0 - 6.0, "end") };
             let _ = writeln!(
                 s,
-                "<text class=\"mark\" x=\"{:.1}\" y=\"{:.1}\" font-size=\"13\">{what}: F = {} mu_s N</text>",
-                (x1 + 6.0).min(ml + w - 190.0),
+                "<text class=\"mark\" x=\"{x:.1}\" y=\"{:.1}\" font-size=\"13\" text-anchor=\"{anchor}\" paint-order=\"stroke\" stroke=\"white\" stroke-width=\"3\">{what}: F = {} mu_s N</text>",
                 y - bar / 2.0 - 3.0,
                 sig4(e.f_onset / k)
             );
@@ -518,8 +520,14 @@ pub fn cycle_svg(r: &DynamicResult) -> String {
         [ml, mt, w, h],
         ((xa, xb), &px),
         ((f0, f1), &py),
-        "slipped extent x / L (dimensionless; dot: nucleation; blue from the trailing edge, orange inside, dark red the cycle end)",
+        "slipped extent x / L (dimensionless)",
         "drive force at the onset F / (mu_s N) (dimensionless)",
+    );
+    let _ = writeln!(
+        s,
+        "<text class=\"key\" x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"12\">dot: nucleation node; bars: blue from the trailing edge, orange inside, dark red the cycle's end</text>",
+        ml + w / 2.0,
+        mt + h + mb - 6.0
     );
     s.push_str("</svg>\n");
     s
