@@ -5,6 +5,8 @@
 
 use crate::error::{Error, Result};
 
+pub mod rate_state;
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlipWeakening {
     pub mu_s: f64,

@@ -506,7 +506,8 @@ pub fn cycle_svg(r: &DynamicResult) -> String {
             };
             // Right of the bar, or left of it where the text would leave the frame; a white
             // halo keeps it legible over other bars.
-            let (x, anchor) = if x1 + 6.0 + 230.0 <= ml + w { (x1 + 6.0, "start") } else { (x0 - 6.0, "end") };
+            let (x, anchor) =
+                if x1 + 6.0 + 230.0 <= ml + w { (x1 + 6.0, "start") } else { (x0 - 6.0, "end") };
             let _ = writeln!(
                 s,
                 "<text class=\"mark\" x=\"{x:.1}\" y=\"{:.1}\" font-size=\"13\" text-anchor=\"{anchor}\" paint-order=\"stroke\" stroke=\"white\" stroke-width=\"3\">{what}: F = {} mu_s N</text>",
