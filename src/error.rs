@@ -48,7 +48,7 @@ pub enum Error {
     Mesh(String),
 
     /// The problem would not fit: estimated unknowns and memory against the limit.
-    #[error("problem too large: about {dofs:.3e} unknowns and {} GiB estimated, above the limit of {limit} unknowns (--max-dofs); {}", num(*gib), quote_lines(.suggestion))]
+    #[error("problem too large: about {dofs:.3e} unknowns and {} estimated, above the limit of {limit} unknowns (--max-dofs); {}", crate::scene::limits::bytes_text(*gib * (1u64 << 30) as f64), quote_lines(.suggestion))]
     TooLarge { dofs: f64, gib: f64, limit: usize, suggestion: String },
 
     /// The reduced stiffness matrix is not positive definite; `node` (tag) and `component`

@@ -85,9 +85,9 @@ pub fn run(mut args: Args) -> tribofe::Result<()> {
         return Err(tribofe::Error::input(
             "--dgemm",
             format!(
-                "{}: three {0} x {0} matrices need {:.1} GiB, more than half the memory this process may use (machine, ulimit or cgroup)",
+                "{}: three {0} x {0} matrices need {}, more than half the memory this process may use (machine, ulimit or cgroup)",
                 args.dgemm,
-                dgemm_bytes / (1u64 << 30) as f64
+                tribofe::scene::limits::bytes_text(dgemm_bytes)
             ),
         ));
     }

@@ -470,6 +470,9 @@ pub fn check(out: &Path, force: bool) -> Result<()> {
         return bad("has no final name (use e.g. out/check)".into());
     }
     remove_orphans(out);
+    if let Some(why) = locked_on_the_way(out) {
+        return bad(why);
+    }
     match std::fs::symlink_metadata(out) {
         Ok(m) if m.is_dir() => {
             if force {
@@ -494,6 +497,72 @@ pub fn check(out: &Path, force: bool) -> Result<()> {
         Ok(_) => bad("is an existing file, not a folder; remove it or choose another --out".into()),
         Err(_) => Ok(()),
     }
+}
+
+/// Why the run could not clean up after itself or replace its files, if so: the folder that
+/// holds `out`, `out` itself or a file its run.toml lists is immutable or append-only
+/// (`chattr +i`/`+a`, which stop root too). In an append-only parent the temporary folder
+/// could be made but never removed (nor renamed into place): it stayed as a hidden
+/// `.<name>.tmp-<pid>` that no later run could remove either. In a locked `out` the commit
+/// failed half-way, some files new and some old.
+fn locked_on_the_way(out: &Path) -> Option<String> {
+    let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let show = |p: &Path| crate::error::quote(&p.display().to_string());
+    if let Some(what) = locked(parent) {
+        return Some(format!(
+            "cannot hold this run's temporary folder: the folder '{}' that holds it is {what}, so the hidden temporary '.<name>.tmp-<pid>' could be neither removed nor renamed into place; nothing was written (remove the attribute with chattr, or choose another --out)",
+            show(parent)
+        ));
+    }
+    if !std::fs::symlink_metadata(out).is_ok_and(|m| m.is_dir()) {
+        return None;
+    }
+    if let Some(what) = locked(out) {
+        return Some(format!(
+            "is {what}: this run's files could not be put in place or the previous run's replaced; nothing was written (remove the attribute with chattr, or choose another --out)"
+        ));
+    }
+    let listed = read_record(out, RUN_FILE).map(|m| m.files).unwrap_or_default();
+    let names = listed.iter().map(|l| l.path.as_str()).chain([RUN_FILE]);
+    for rel in names.filter(|rel| spot(out, rel).is_ok_and(|s| s == Spot::Regular)) {
+        if let Some(what) = locked(&out.join(rel)) {
+            return Some(format!(
+                "holds '{}', a file of the previous run, which is {what}: it could not be replaced or removed; nothing was written (remove the attribute with chattr, or choose another --out)",
+                crate::error::quote(rel)
+            ));
+        }
+    }
+    None
+}
+
+/// Whether `path` is immutable or append-only (the inode flags of `chattr`); None where the
+/// file system has no such flags or they cannot be read.
+#[cfg(target_os = "linux")]
+fn locked(path: &Path) -> Option<&'static str> {
+    use std::os::unix::fs::OpenOptionsExt;
+    use std::os::unix::io::AsRawFd;
+    // linux/fs.h: FS_IMMUTABLE_FL, FS_APPEND_FL.
+    const IMMUTABLE: libc::c_long = 0x10;
+    const APPEND: libc::c_long = 0x20;
+    // Followed if a link: the callers pass a real folder or file, or the parent as given.
+    let f = std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path).ok()?;
+    let mut flags: libc::c_long = 0;
+    // SAFETY: FS_IOC_GETFLAGS writes the inode's flags (an int) into `flags`, a valid long.
+    if unsafe { libc::ioctl(f.as_raw_fd(), libc::FS_IOC_GETFLAGS, &mut flags) } != 0 {
+        return None;
+    }
+    if flags & IMMUTABLE != 0 {
+        Some("immutable (chattr +i)")
+    } else if flags & APPEND != 0 {
+        Some("append-only (chattr +a)")
+    } else {
+        None
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn locked(_: &Path) -> Option<&'static str> {
+    None
 }
 
 /// Removes the hidden temporaries `.<name>.tmp-<pid>` (and `.<name>.tmp-<pid>.old`) next to

@@ -171,6 +171,18 @@ pub fn check(dofs: f64, limit: Option<usize>, suggestion: impl FnOnce(f64) -> St
     Ok(())
 }
 
+/// `bytes` in the binary unit that fits (GiB, MiB, KiB), so that the small limits of a tight
+/// `ulimit -v` do not read "0.0 GiB".
+pub fn bytes_text(bytes: f64) -> String {
+    const KIB: f64 = 1024.0;
+    match bytes {
+        b if b >= KIB * KIB * KIB => format!("{:.1} GiB", b / (KIB * KIB * KIB)),
+        b if b >= KIB * KIB => format!("{:.1} MiB", b / (KIB * KIB)),
+        b if b >= KIB => format!("{:.1} KiB", b / KIB),
+        b => format!("{b:.0} bytes"),
+    }
+}
+
 /// Dense matrices of (2n + 3)^2 doubles a frictional run holds at once: the condensed S, its
 /// copy at the drive height, the inverse of the free system and its spare, and one more (a
 /// parallel study's clone).
@@ -184,13 +196,12 @@ pub fn check_interface(n: usize) -> Result<()> {
     let (mem, source) = memory_bytes();
     let have = 0.5 * mem;
     if need > have {
-        let gib = |b: f64| b / (1u64 << 30) as f64;
         return Err(Error::input(
             "mesh.h (--h)",
             format!(
-                "the frictional interface would have {n} nodes: its dense condensed system needs about {:.1} GiB ({DENSE_COPIES} matrices of (2n + 3)^2 doubles), above half of {source} ({:.1} GiB); make h along the interface {:.1}x larger or the block shorter",
-                gib(need),
-                gib(have),
+                "the frictional interface would have {n} nodes: its dense condensed system needs about {} ({DENSE_COPIES} matrices of (2n + 3)^2 doubles), above half of {source} ({}); make h along the interface {:.1}x larger or the block shorter",
+                bytes_text(need),
+                bytes_text(have),
                 (need / have).sqrt()
             ),
         ));
@@ -204,15 +215,27 @@ pub fn check_interface(n: usize) -> Result<()> {
 pub fn check_bytes(need: f64, flag: &str, what: &str, hint: &str) -> Result<()> {
     let (mem, source) = memory_bytes();
     if need > 0.5 * mem {
-        let gib = |b: f64| b / (1u64 << 30) as f64;
         return Err(Error::input(
             flag,
             format!(
-                "{what} needs about {:.1} GiB, above half of {source} ({:.1} GiB); {hint}",
-                gib(need),
-                gib(mem)
+                "{what} needs about {}, above half of {source} ({}); {hint}",
+                bytes_text(need),
+                bytes_text(mem)
             ),
         ));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::bytes_text;
+
+    #[test]
+    fn bytes_are_printed_in_the_unit_that_fits() {
+        assert_eq!(bytes_text(10.7 * (1u64 << 30) as f64), "10.7 GiB");
+        assert_eq!(bytes_text(9.24 * (1u64 << 20) as f64), "9.2 MiB");
+        assert_eq!(bytes_text(1.0), "1 bytes");
+        assert_eq!(bytes_text(4096.0), "4.0 KiB");
+    }
 }

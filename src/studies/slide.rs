@@ -61,7 +61,7 @@ fn cycles_bound(o: &SlideOptions) -> usize {
 
 /// Refuses, before any work, the options that make a frictional run degenerate or
 /// unbounded, naming the flag and the reason: a coulomb mu = 0 (the whole interface slides
-/// as soon as it is loaded: nothing to compute), D_c outside the range the mesh and the block
+/// as soon as it is loaded: nothing to compute, and no mu_s N to scale the results by), D_c outside the range the mesh and the block
 /// represent ([`DC_MIN_OVER_SLIP_SCALE`], [`LC_MAX_OVER_LENGTH`]), more cycles than the
 /// event cap allows, no event cap.
 pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
@@ -112,12 +112,12 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
         }
     }
     if let Law::Coulomb { mu } = o.law {
-        // The default end is 5 % past the first whole-interface slip, which mu = 0 puts at
-        // X = 0: an end at zero length. A frictionless run to a given X is well posed.
-        if mu == 0.0 && o.x_max.is_none() {
+        // Every result is in units of mu_s N (F/(mu_s N), fig. 4, the precursor heights): 0
+        // made them infinite (Python's curve_F_over_mu_s_N), with or without --x-max.
+        if mu == 0.0 {
             return Err(Error::input(
                 "--mu",
-                "0: without friction the whole interface slides as soon as it is loaded, there are no events to compute and the default end (5 % past the first whole slip) is X = 0; give mu > 0, or --x-max for the frictionless response",
+                "0: every result of slide is in units of mu_s N (F/(mu_s N), fig. 4), which is 0 without friction, and without friction the whole interface slides as soon as it is loaded: there are no events to compute; give mu > 0 (a nearly frictionless interface: a small mu such as 1e-3)",
             ));
         }
     }
@@ -228,9 +228,9 @@ fn records_capped(o: &SlideOptions, n: usize, run: impl FnOnce(&SlideOptions) ->
             Error::input(
                 "--max-events",
                 format!(
-                    "the records of {cap} events ({:.0} bytes each) fill half of {source} ({:.2} GiB) at X = {x:.6e} m, F/N = {f_over_n:.6}, below the cap of {}; keep no states (`slide --states none`), lower --x-max or --cycles, or run with more memory",
+                    "the records of {cap} events ({:.0} bytes each) fill half of {source} ({}) at X = {x:.6e} m, F/N = {f_over_n:.6}, below the cap of {}; keep no states (`slide --states none`), lower --x-max or --cycles, or run with more memory",
                     events::bytes_per_event(n, o.keep_states),
-                    mem / (1u64 << 30) as f64,
+                    crate::scene::limits::bytes_text(mem),
                     o.max_events
                 ),
             )

@@ -38,18 +38,12 @@ fn refused(args: &[&str], flag: &str, also: &[&str]) -> Ran {
 #[test]
 fn degenerate_frictional_inputs_are_refused_with_the_reason() {
     refused(&["slide", "--law", "coulomb", "--mu", "0"], "--mu", &["slides as soon as it is loaded"]);
-    // Given an end, the frictionless response is well posed; it ran forever drawing fig. 4
-    // with F/(mu_s N) infinite. Its shear force is zero to round-off (F/N below 1e-12).
-    let dir = out("mu0");
-    let r = run(
-        &["slide", "--law", "coulomb", "--mu", "0", "--x-max", "1e-6", "--out", dir.to_str().unwrap()],
-        LIMIT,
-    );
-    assert_eq!(r.code, 0, "{}", r.stderr);
-    let line = r.stdout.lines().find(|l| l.starts_with("final F/N = ")).unwrap();
-    let f: f64 = line["final F/N = ".len()..].split_whitespace().next().unwrap().parse().unwrap();
-    assert!(f.abs() < 1e-12, "{line}");
-    let _ = std::fs::remove_dir_all(&dir);
+    // With an end too: every result is in units of mu_s N, which mu = 0 makes 0 (Python's
+    // curve_F_over_mu_s_N was infinite; the command once hung drawing fig. 4 from it).
+    for mode in [&[][..], &["--dynamics"][..]] {
+        let args = [&["slide", "--law", "coulomb", "--mu", "0", "--x-max", "1e-6"][..], mode].concat();
+        refused(&args, "--mu", &["units of mu_s N", "give mu > 0"]);
+    }
     refused(&["slide", "--law", "coulomb", "--mu", "1e7"], "mu", &["above 1000000"]);
     refused(&["slide", "--x-max", "1e308"], "--x-max", &["block's length"]);
     // N/L against [1e-100 N/m / L, E]: subnormal displacements, or strains of order one.
@@ -102,13 +96,38 @@ fn a_relaxation_capped_at_one_event_finishes() {
 fn the_memory_guard_reads_the_process_limit() {
     // Under ulimit -v 8000000 (KiB) the condensation of a 1 m thick block (8e5 unknowns, its
     // 805 right-hand sides held twice: 10.7 GiB) aborted in the allocator.
+    let r = under_limit(&["slide", "--thickness", "1"], 8_000_000);
+    // 7.6 GiB less the three threads' reserves of 64 MiB (scene::limits::THREAD_RESERVE_BYTES).
+    for s in ["--thickness", "RLIMIT_AS", "7.4 GiB"] {
+        assert!(r.stderr.contains(s), "{s}: {}", r.stderr);
+    }
+}
+
+/// A limit below 1 GiB is printed in MiB: it read "(0.0 GiB)". The paper's slide under
+/// `ulimit -v 150000`: its dense condensed system, 5 x 805^2 doubles = 24.7 MiB, above half of
+/// what is left of 146.5 MiB once the threads' reserves (64 MiB each) are taken.
+#[test]
+fn the_memory_guard_prints_a_small_limit_in_mib() {
+    let r = under_limit(&["slide"], 150_000);
+    assert!(r.stderr.contains("--h") && r.stderr.contains("RLIMIT_AS"), "{}", r.stderr);
+    assert!(r.stderr.contains("needs about 24.7 MiB") && !r.stderr.contains("GiB"), "{}", r.stderr);
+    let tail = r.stderr.split(" reserves) (").nth(1).expect("the limit in parentheses");
+    let (num, unit) = tail.split_once(' ').unwrap();
+    let mib: f64 = num.parse().unwrap();
+    assert!(unit.starts_with("MiB)") && mib > 0.0 && mib < 0.5 * 146.5, "{}", r.stderr);
+}
+
+/// `args` under `ulimit -v KIB`: refused (2), nothing written.
+fn under_limit(args: &[&str], kib: u64) -> Ran {
     use std::os::unix::process::CommandExt;
-    let dir = out("thick");
-    let r = run_with(&["slide", "--thickness", "1", "--out", dir.to_str().unwrap()], LIMIT, |c| {
+    let dir = out(&format!("limit_{kib}"));
+    let d = dir.to_str().unwrap().to_string();
+    let a = [args, &["--out", &d]].concat();
+    let r = run_with(&a, LIMIT, |c| {
         // SAFETY: setrlimit only, between fork and exec.
         unsafe {
-            c.pre_exec(|| {
-                let lim = libc::rlimit { rlim_cur: 8_000_000 * 1024, rlim_max: 8_000_000 * 1024 };
+            c.pre_exec(move || {
+                let lim = libc::rlimit { rlim_cur: kib * 1024, rlim_max: kib * 1024 };
                 if libc::setrlimit(libc::RLIMIT_AS, &lim) != 0 {
                     return Err(std::io::Error::last_os_error());
                 }
@@ -117,10 +136,8 @@ fn the_memory_guard_reads_the_process_limit() {
         }
     });
     assert_eq!(r.code, 2, "{}", r.stderr);
-    // 7.6 GiB less the three threads' reserves of 64 MiB (scene::limits::THREAD_RESERVE_BYTES).
-    for s in ["--thickness", "RLIMIT_AS", "7.4 GiB"] {
-        assert!(r.stderr.contains(s), "{s}: {}", r.stderr);
-    }
+    assert!(!dir.exists(), "the refusal left {}", dir.display());
+    r
 }
 
 fn data(name: &str) -> String {

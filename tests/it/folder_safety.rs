@@ -292,3 +292,78 @@ fn a_file_past_the_size_limit_fails_cleanly() {
     let left: Vec<_> = std::fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// `chattr` on `path` (`+a`, `-a`...); false where the file system or the process cannot.
+fn chattr(flag: &str, path: &Path) -> bool {
+    Command::new("chattr").arg(flag).arg(path).output().is_ok_and(|o| o.status.success())
+}
+
+/// Clears the attributes it set, whatever the test's outcome (else the tempdir stays).
+struct Unlock(Vec<std::path::PathBuf>);
+
+impl Drop for Unlock {
+    fn drop(&mut self) {
+        for p in &self.0 {
+            chattr("-ia", p);
+        }
+    }
+}
+
+/// An append-only or immutable folder (`chattr +a`/`+i`, which stop root too): in an
+/// append-only parent the run's hidden temporary `.<name>.tmp-<pid>` could be made but not
+/// removed nor renamed into place, and stayed for good (exit 4, after the work); in a locked
+/// `--out`, or with a locked file of the previous run, the commit stopped half-way. Each is
+/// refused before any work, naming the folder or file and the attribute, and nothing is left.
+#[test]
+fn locked_folders_are_refused_before_work_and_leave_no_temporary() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let parent = d.join("p");
+    std::fs::create_dir(&parent).unwrap();
+    let mut unlock = Unlock(vec![]);
+    if !chattr("+a", &parent) {
+        eprintln!("skipped: chattr +a is not available here (file system or capability)");
+        return;
+    }
+    unlock.0.push(parent.clone());
+    let entries = |p: &Path| -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(p)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    };
+    for force in [false, true] {
+        let mut args = check_args("p/o");
+        if force {
+            args.push("--force");
+        }
+        refused(d, &args, &["p", "append-only (chattr +a)", "temporary"]);
+        assert!(entries(&parent).is_empty(), "left {:?}", entries(&parent));
+    }
+    chattr("-a", &parent);
+    // A previous run's folder made append-only, then one of its files immutable.
+    ok(d, &check_args("p/o"));
+    let out = parent.join("o");
+    let before: Vec<(String, String)> = entries(&out).into_iter().map(|n| (read(&out.join(&n)), n)).collect();
+    for (flag, target, word) in
+        [("+a", out.clone(), "append-only (chattr +a)"), ("+i", out.join("summary.csv"), "summary.csv")]
+    {
+        assert!(chattr(flag, &target));
+        unlock.0.push(target.clone());
+        for force in [false, true] {
+            let mut args = check_args("p/o");
+            args.extend(["--fn-ratios", "0.2"]);
+            if force {
+                args.push("--force");
+            }
+            refused(d, &args, &["p/o", word]);
+            let now: Vec<(String, String)> =
+                entries(&out).into_iter().map(|n| (read(&out.join(&n)), n)).collect();
+            assert_eq!(now, before, "{flag} {}: the folder changed", target.display());
+            assert_eq!(entries(&parent), vec!["o".to_string()], "a temporary was left");
+        }
+        chattr("-ia", &target);
+    }
+}

@@ -71,17 +71,32 @@ fn dynamic_slide_refuses_the_quasi_static_ends() {
     refused(1, &["slide", "--dynamics", "--law", "slip-weakening", "--n-force", "0"], "--n-force", &[]);
 }
 
-/// A drive faster than 1 % of the shear-wave speed, damping outside [1e-3, 10] of critical at
-/// the thickness mode, a step below 1 % of the stable one, a plate heavier than 1e100.
+/// A drive faster than 1 % of the shear-wave speed, damping outside the range its event's step
+/// cap allows (the one rule of --damping, in both drive modes, printing the range), a step
+/// below 1 % of the stable one, a plate heavier than 1e100.
 #[test]
 fn dynamic_slide_refuses_numeric_extremes() {
     let dynamic = ["slide", "--dynamics"];
     let cases: &[(&[&str], &str, &[&str])] = &[
         (&["--drive-velocity", "10", "--x-max", "1e-6"], "--drive-velocity", &["c_s", "V <="]),
         (&["--drive-velocity", "10"], "--drive-velocity", &["c_s"]),
-        (&["--damping", "1"], "--damping", &["eta <="]),
-        (&["--damping", "1e308"], "--damping", &["eta <="]),
-        (&["--damping", "1e-308"], "--damping", &["eta >="]),
+        (&["--damping", "1"], "--damping", &["give --damping between"]),
+        (&["--damping", "1e308"], "--damping", &["give --damping between"]),
+        (&["--damping", "1e-308"], "--damping", &["give --damping between"]),
+        (&["--damping", "0"], "--damping", &["eta > 0"]),
+        (&["--damping", "nan"], "--damping", &["eta > 0"]),
+        // Heavy damping shrinks dt below any V's step cap: named as --damping, not as an
+        // impossible --drive-velocity.
+        (
+            &["--drive-velocity", "4e-6", "--x-max", "1e-6", "--damping", "1e308"],
+            "--damping",
+            &["give --damping between"],
+        ),
+        (
+            &["--drive-velocity", "4e-6", "--x-max", "1e-6", "--damping", "1e-308"],
+            "--damping",
+            &["give --damping between"],
+        ),
         (&["--courant", "1e-308"], "--courant", &["[0.01, 1]"]),
         (&["--plate-mass", "1e308"], "--plate-mass", &["1e100"]),
         (&["--plate-inertia", "-1"], "--plate-inertia", &[]),

@@ -158,13 +158,13 @@ fn a_tight_address_space_is_a_refusal_not_an_abort() {
 }
 
 /// A damping whose event cap is above 200 000 steps is refused at once, naming --damping and
-/// the range the scene accepts (it ran past 30 s; the default takes 0.5 s).
+/// the range the scene accepts (it ran past 30 s; the default takes 0.5 s). That range is the
+/// one rule of --damping: too light and too heavy are refused by it alike.
 #[test]
 fn slide_dynamics_damping_outside_its_range_is_refused_at_once() {
     let fast = Duration::from_secs(3);
-    // Below 0.001 of critical the damping is refused as too light first (inputs_dynamic).
-    refused_within(&["slide", "--dynamics", "--damping", "1e-7"], fast, &["--damping"]);
-    for eta in ["1e-2", "2e-2"] {
+    let mut ranges = Vec::new();
+    for eta in ["1e-7", "1e-2", "2e-2"] {
         let r = refused_within(
             &["slide", "--dynamics", "--damping", eta],
             fast,
@@ -175,6 +175,12 @@ fn slide_dynamics_damping_outside_its_range_is_refused_at_once() {
         let lo: f64 = tail.split_whitespace().next().unwrap().parse().unwrap();
         let hi: f64 = tail.split(" and ").nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap();
         let eta: f64 = eta.parse().unwrap();
+        ranges.push((lo, hi));
         assert!(lo < 3.013e-4 && 3.013e-4 < hi && !(lo..=hi).contains(&eta), "{lo} {hi}: {}", r.stderr);
     }
+    // One range whatever the refused value: on the paper's scene about 1.9e-6 to 6.1e-3 s,
+    // reaching below the old second rule's floor (0.001 of critical, 3.0e-6 s).
+    assert!(ranges.iter().all(|r| *r == ranges[0]), "{ranges:?}");
+    let (lo, hi) = ranges[0];
+    assert!((1.5e-6..3.0e-6).contains(&lo) && (5e-3..7e-3).contains(&hi), "{lo} {hi}");
 }

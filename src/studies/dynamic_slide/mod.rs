@@ -100,11 +100,6 @@ impl Default for DynamicOptions {
 /// Default time step, as a fraction of the stable one (the command's `--courant`).
 pub const DEFAULT_COURANT: f64 = 0.9;
 
-/// Smallest and largest damping accepted, as fractions of critical at the thickness mode
-/// (see [`check`]).
-pub const MIN_DAMPING_RATIO: f64 = 1e-3;
-pub const MAX_DAMPING_RATIO: f64 = 10.0;
-
 /// Default damping: this fraction of critical at the block's fundamental thickness-shear
 /// mode omega_t = pi c_s / (2 t) (base stuck, top held by the plate).
 pub const DEFAULT_DAMPING_RATIO: f64 = 0.1;
@@ -118,15 +113,17 @@ pub const DEFAULT_DAMPING_RATIO: f64 = 0.1;
 /// (xi = 0.1): 4 (50 + 11) = 244 periods; its events last 2 to 16.
 pub fn event_cap_periods(length: f64, thickness: f64, xi: f64, ke_fraction: f64) -> f64 {
     let crossing = length / (4.0 * thickness);
-    let s = if xi <= 1.0 { xi } else { xi - (xi * xi - 1.0).sqrt() };
+    // xi - sqrt(xi^2 - 1) without the cancellation (0, not NaN, when xi^2 overflows).
+    let s = if xi <= 1.0 { xi } else { 1.0 / (xi + (xi * xi - 1.0).sqrt()) };
     let decay = (1.0 / ke_fraction).ln() / (4.0 * std::f64::consts::PI * s);
     EVENT_CAP_FACTOR * (crossing + decay)
 }
 
 /// Most explicit steps one event of the held mode may be capped at: about 10 s on the paper's
 /// mesh (2406 unknowns, 5e7 unknown-steps a second here), whose default events cap at 1.4e4
-/// steps (twice that per halving of h). A damping whose cap is above it is refused up front
-/// with the range this scene accepts (`Setup::check_event_work`): on the paper's scene about
+/// steps (twice that per halving of h). A damping whose cap is above it is refused up front,
+/// in both drive modes, with the range this scene accepts (`Setup::check_event_work`, the one
+/// range rule of --damping): on the paper's scene about
 /// 1.9e-6 to 6.1e-3 s.
 pub const MAX_EVENT_STEPS: u64 = 200_000;
 
@@ -225,27 +222,8 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<()> 
                 format!("{eta}: events end only when the kinetic energy decays; give eta > 0 s (default: 10 % of critical at the thickness mode)"),
             ));
         }
-        let omega_t = std::f64::consts::PI * shear_speed(scene)? / (2.0 * scene.block.thickness);
-        let (eta_min, eta_max) = (2.0 * MIN_DAMPING_RATIO / omega_t, 2.0 * MAX_DAMPING_RATIO / omega_t);
-        if eta < eta_min {
-            return Err(Error::input(
-                "--damping",
-                format!(
-                    "{eta:e} s is {:.3e} of critical at the thickness mode omega_t = {omega_t:.4e} rad/s; give eta >= {eta_min:.4e} s ({MIN_DAMPING_RATIO} of critical): an event ends when its kinetic energy has decayed, which below takes over {:.0} thickness periods",
-                    0.5 * eta * omega_t,
-                    (1.0 / DynamicOptions::default().ke_fraction).ln() / (4.0 * std::f64::consts::PI * MIN_DAMPING_RATIO)
-                ),
-            ));
-        }
-        if eta > eta_max {
-            return Err(Error::input(
-                "--damping",
-                format!(
-                    "{eta:e} s is {:.3e} of critical at the thickness mode omega_t = {omega_t:.4e} rad/s; give eta <= {eta_max:.4e} s ({MAX_DAMPING_RATIO} of critical): beyond, every mode of the block is overdamped, an event is a creep rather than a rupture, and its cost grows as eta^2 (the stable step falls as 1/eta, the decay time rises as eta)",
-                    0.5 * eta * omega_t
-                ),
-            ));
-        }
+        // Its range is the one of the event's step cap, which needs the mesh
+        // (`Setup::check_event_work`, before the condensation, in both drive modes).
     }
     crate::dynamics::driven::check_plate(d.plate_mass, d.plate_inertia)?;
     if !(d.weakening_steps >= 1.0 && d.weakening_steps <= 1e4) {

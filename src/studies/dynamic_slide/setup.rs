@@ -139,8 +139,10 @@ impl Setup {
         let grid: Vec<f64> = (0..=240).map(|k| eta_c * 10f64.powf(-8.0 + 0.05 * k as f64)).collect();
         let best = grid.iter().copied().min_by(|a, b| work(*a).total_cmp(&work(*b))).unwrap_or(eta_c);
         let steps = work(self.eta);
+        // Extreme damping makes the count infinite (the ring-down, or dt underflowing to 0).
+        let steps = if steps.is_finite() { format!("{steps:.3e}") } else { "more than 1e308".into() };
         let head = format!(
-            "{:.4e} s: an event may take up to {steps:.3e} explicit steps (its cap: 4 x (a front crossing + the ring-down of the kinetic energy to {:e} of the dissipation) at dt = {:.3e} s), above the {cap:.1e} an event is allowed",
+            "{:.4e} s: an event may take up to {steps} explicit steps (its cap: 4 x (a front crossing + the ring-down of the kinetic energy to {:e} of the dissipation) at dt = {:.3e} s), above the {cap:.1e} an event is allowed",
             self.eta,
             d.ke_fraction,
             d.courant * self.model.critical_dt(self.eta)

@@ -145,6 +145,9 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     // The set-up first (the step; no condensation), so a run over the step cap is refused
     // before the condensation.
     let su = Setup::new(scene, o, d)?;
+    // The one damping rule of both modes: outside its range --damping is named here, not
+    // --drive-velocity below (heavy damping shrinks dt, so no V could fit the step cap).
+    su.check_event_work(scene, d)?;
     let (model, dt, dt_stable, eta) = (&su.model, su.dt, su.dt_stable, su.eta);
     let n_total = steps_needed(x_max, vel, dt);
     if n_total > d.max_velocity_steps as f64 {
