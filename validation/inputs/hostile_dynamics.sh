@@ -80,8 +80,11 @@ for f in --dc --damping --courant --weakening-steps --density --x-max --cycles -
     --h --n-force --height --plate-mass --plate-inertia; do
     sweep_flag "slide --dynamics" "$f" -- "${DYN[@]}"
 done
+# The constant-velocity drive at the largest V slip weakening accepts (a tenth of its event
+# threshold), to X = 2e-7 m (2e4 steps).
+DYNV=(slide --dynamics --law slip-weakening --length 0.1 --x-max 2e-7 --drive-velocity 1.9e-7)
 for f in --drive-velocity --plate-mass --plate-inertia --x-max; do
-    sweep_flag "slide --dynamics --drive-velocity 4e-6" "$f" -- "${DYN[@]}" --drive-velocity 4e-6
+    sweep_flag "slide --dynamics --drive-velocity 1.9e-7" "$f" -- "${DYNV[@]}"
 done
 sweep_flag "slide --dynamics --law coulomb" --x-max -- slide --dynamics --law coulomb --length 0.1
 
