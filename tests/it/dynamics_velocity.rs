@@ -313,19 +313,20 @@ fn heavy_plate_rings_at_the_rigid_body_frequencies() {
 
 #[test]
 fn ledger_closes_with_a_heavy_plate_and_a_moving_drive() {
-    // Slip weakening at V = 4e-6 m/s with a plate of 10x the block's mass and inertia: over
-    // each dynamic event, shadow kinetic (block + plate) + strain + friction + damping =
-    // work of N + contact work + drive work, to round-off (tolerance 1e-8 of the event's
-    // dissipation, as for the held drive).
-    let (scene, o) = crate::dynamics::short_weakening(Operator::Dense, 5.2e-6);
+    // Slip weakening at the largest V it accepts (1.9e-7 m/s) with a plate of 10x the
+    // block's mass and inertia, through the first instability: over each dynamic event,
+    // shadow kinetic (block + plate) + strain + friction + damping = work of N + contact work
+    // + drive work, to round-off (tolerance 1e-8 of the event's dissipation, as for the held
+    // drive).
+    let (scene, o) = crate::dynamics::short_weakening(Operator::Dense, 4.9e-6);
     let m_block = 1000.0 * 0.1 * scene.block.thickness;
     let d = DynamicOptions {
         plate_mass: 10.0 * m_block,
         plate_inertia: 10.0 * m_block * 0.04 * 0.04,
-        ..at_velocity(4e-6)
+        ..at_velocity(1.9e-7)
     };
     let r = ds::run(&scene, &o, &d, tribofe::Progress::none()).unwrap();
-    assert!(!r.events.is_empty());
+    assert!(r.events.iter().any(|e| e.record.weakened), "no instability");
     for e in &r.events {
         let en = &e.record.energy;
         let diss = en.friction + en.damping;
