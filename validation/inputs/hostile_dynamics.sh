@@ -74,18 +74,22 @@ sweep_flag() {
     done
 }
 
-# slide --dynamics on a short block (L = 0.1 m, a few seconds at most when accepted).
-DYN=(slide --dynamics --law slip-weakening --length 0.1 --x-max 2e-6)
-for f in --dc --damping --courant --weakening-steps --density --x-max --cycles --max-events \
+# slide --dynamics on a short block (L = 0.1 m, a few seconds at most when accepted). A flag
+# is given once (a repeated one is refused by the parser before any check), so the base
+# leaves out the flag under test.
+DYN=(slide --dynamics --law slip-weakening --length 0.1)
+for f in --dc --damping --courant --weakening-steps --density --cycles --max-events \
     --h --n-force --height --plate-mass --plate-inertia; do
-    sweep_flag "slide --dynamics" "$f" -- "${DYN[@]}"
+    sweep_flag "slide --dynamics" "$f" -- "${DYN[@]}" --x-max 2e-6
 done
+sweep_flag "slide --dynamics" --x-max -- "${DYN[@]}"
 # The constant-velocity drive at the largest V slip weakening accepts (a tenth of its event
 # threshold), to X = 2e-7 m (2e4 steps).
-DYNV=(slide --dynamics --law slip-weakening --length 0.1 --x-max 2e-7 --drive-velocity 1.9e-7)
-for f in --drive-velocity --plate-mass --plate-inertia --x-max; do
-    sweep_flag "slide --dynamics --drive-velocity 1.9e-7" "$f" -- "${DYNV[@]}"
+for f in --plate-mass --plate-inertia; do
+    sweep_flag "slide --dynamics --drive-velocity 1.9e-7" "$f" -- "${DYN[@]}" --x-max 2e-7 --drive-velocity 1.9e-7
 done
+sweep_flag "slide --dynamics --drive-velocity" --drive-velocity -- "${DYN[@]}" --x-max 2e-7
+sweep_flag "slide --dynamics --drive-velocity 1.9e-7" --x-max -- "${DYN[@]}" --drive-velocity 1.9e-7
 sweep_flag "slide --dynamics --law coulomb" --x-max -- slide --dynamics --law coulomb --length 0.1
 
 # rupture at a short end time.
