@@ -48,7 +48,7 @@ pub enum Error {
     Mesh(String),
 
     /// The problem would not fit: estimated unknowns and memory against the limit.
-    #[error("problem too large: about {dofs:.3e} unknowns and {} estimated, above the limit of {limit} unknowns (--max-dofs); {}", crate::scene::limits::bytes_text(*gib * (1u64 << 30) as f64), quote_lines(.suggestion))]
+    #[error("problem too large: about {dofs:.3e} unknowns and {} estimated, above the limit of {limit} unknowns (--max-dofs); {}", bytes_text(*gib * (1u64 << 30) as f64), quote_lines(.suggestion))]
     TooLarge { dofs: f64, gib: f64, limit: usize, suggestion: String },
 
     /// The reduced stiffness matrix is not positive definite; `node` (tag) and `component`
@@ -202,3 +202,15 @@ pub fn quote_lines(s: &str) -> String {
 }
 
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// `bytes` in the binary unit that fits (GiB, MiB, KiB), so that the small limits of a tight
+/// `ulimit -v` do not read "0.0 GiB".
+pub fn bytes_text(bytes: f64) -> String {
+    const KIB: f64 = 1024.0;
+    match bytes {
+        b if b >= KIB * KIB * KIB => format!("{:.1} GiB", b / (KIB * KIB * KIB)),
+        b if b >= KIB * KIB => format!("{:.1} MiB", b / (KIB * KIB)),
+        b if b >= KIB => format!("{:.1} KiB", b / KIB),
+        b => format!("{b:.0} bytes"),
+    }
+}

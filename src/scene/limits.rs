@@ -171,17 +171,7 @@ pub fn check(dofs: f64, limit: Option<usize>, suggestion: impl FnOnce(f64) -> St
     Ok(())
 }
 
-/// `bytes` in the binary unit that fits (GiB, MiB, KiB), so that the small limits of a tight
-/// `ulimit -v` do not read "0.0 GiB".
-pub fn bytes_text(bytes: f64) -> String {
-    const KIB: f64 = 1024.0;
-    match bytes {
-        b if b >= KIB * KIB * KIB => format!("{:.1} GiB", b / (KIB * KIB * KIB)),
-        b if b >= KIB * KIB => format!("{:.1} MiB", b / (KIB * KIB)),
-        b if b >= KIB => format!("{:.1} KiB", b / KIB),
-        b => format!("{b:.0} bytes"),
-    }
-}
+pub use crate::error::bytes_text;
 
 /// Dense matrices of (2n + 3)^2 doubles a frictional run holds at once: the condensed S, its
 /// copy at the drive height, the inverse of the free system and its spare, and one more (a

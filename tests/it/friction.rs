@@ -82,14 +82,14 @@ fn large_mu_reproduces_the_bonded_check() {
 }
 
 #[test]
-fn zero_mu_carries_no_shear_and_no_force() {
-    let r = slide(&coarse(), Law::coulomb(0.0).unwrap(), Some(1e-6));
-    for st in &r.run.states {
-        assert!(st.f.abs() < 1e-12, "F = {:e} N/m", st.f);
-        let tmax = st.t_force.iter().fold(0.0f64, |m, t| m.max(t.abs()));
-        assert!(tmax < 1e-12, "nodal shear {tmax:e}");
+fn zero_mu_is_refused_before_any_work() {
+    // Every result of slide is in units of mu_s N, so mu = 0 is refused, with or without an
+    // end X (it once ran to --x-max and returned F/(mu_s N) = inf to Python).
+    for x_max in [None, Some(1e-6)] {
+        let o = SlideOptions { law: Law::coulomb(0.0).unwrap(), x_max, ..Default::default() };
+        let e = run(&coarse(), &o, tribofe::Progress::none()).unwrap_err();
+        assert!(e.to_string().contains("--mu") && e.exit_status() == 2, "{e}");
     }
-    assert!(worst_violation(&r) < 1e-9);
 }
 
 #[test]
