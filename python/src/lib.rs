@@ -533,6 +533,21 @@ fn slide_result<'py>(
     Ok(out)
 }
 
+/// A library table as a dict of columns, in its order: int64 and float64 arrays (NaN where
+/// the CSV cell is empty), lists of strings.
+fn table<'py>(py: Python<'py>, t: &tribofe::report::table::Table) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::report::table::Values;
+    let out = PyDict::new(py);
+    for c in &t.columns {
+        match &c.values {
+            Values::Int(v) => out.set_item(c.name, PyArray1::from_slice(py, v))?,
+            Values::Float(v) => out.set_item(c.name, arr(py, v))?,
+            Values::Text(v) => out.set_item(c.name, v)?,
+        }
+    }
+    Ok(out)
+}
+
 /// A CSV table (header line, then rows) as a dict of columns: whole numbers as int arrays,
 /// numbers as float arrays (empty cells NaN), the rest as lists of strings.
 fn columns<'py>(py: Python<'py>, csv: &str) -> PyResult<Bound<'py, PyDict>> {
@@ -1063,7 +1078,12 @@ fn dynamic_slide<'py>(
     let out = PyDict::new(py);
     out.set_item("loading", columns(py, &rs::loading_csv(&res.slide).map_err(to_py)?)?)?;
     out.set_item("events", columns(py, &rs::events_csv(&res.slide).map_err(to_py)?)?)?;
-    out.set_item("dyn_events", columns(py, &rd::events_csv(&res).map_err(to_py)?)?)?;
+    // dyn_events from the library's table itself (full precision, its types and units).
+    let dyn_events = rd::events_table(&res);
+    out.set_item("dyn_events", table(py, &dyn_events)?)?;
+    let units = PyDict::new(py);
+    units.set_item("dyn_events", dyn_events.columns.iter().map(|c| (c.name, c.unit)).collect::<Vec<_>>())?;
+    out.set_item("units", units)?;
     out.set_item("fronts", columns(py, &rd::fronts_csv(&res).map_err(to_py)?)?)?;
     out.set_item("summary", columns(py, &rd::summary_csv(&res).map_err(to_py)?)?)?;
     if res.slide.options.law.weakens() {

@@ -62,13 +62,18 @@ def defaults() -> Dict[str, Dict[str, Any]]:
     return _defaults()
 
 
-def _table(columns: Dict[str, Any]):
-    """A pandas DataFrame when pandas is installed, else the dict of arrays itself."""
+def _table(columns: Dict[str, Any], units: Optional[List[tuple]] = None):
+    """A pandas DataFrame when pandas is installed, else the dict of arrays itself. A table
+    the library defines with its units carries them as ``df.attrs["units"]`` (column -> unit:
+    SI, ``1`` dimensionless, ``-`` a count, code or label)."""
     try:
         import pandas as pd
     except ImportError:
         return columns
-    return pd.DataFrame(columns)
+    df = pd.DataFrame(columns)
+    if units is not None:
+        df.attrs["units"] = dict(units)
+    return df
 
 
 def _progress(progress, desc: str):
@@ -548,9 +553,10 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
 
             warnings.warn(f"tribofe: the run is incomplete: {raw['incomplete']}", stacklevel=2)
         summary = {k: (v[0] if len(v) else float("nan")) for k, v in raw.pop("summary").items()}
+        units = raw.pop("units")
         for k in ("loading", "events", "dyn_events", "fronts", "advances"):
             if k in raw:
-                raw[k] = _table(raw[k])
+                raw[k] = _table(raw[k], units.get(k))
         return DynamicSlideResult(summary=summary, **raw)
 
     @staticmethod
