@@ -434,7 +434,8 @@ class DynamicSlideResult:
     """A dynamic slide (``tribofe slide --dynamics``): the command's tables, each with every
     column of its CSV (``loading``, ``events``, ``dyn_events``, ``fronts``, ``summary``, and
     ``advances`` for a weakening law; DataFrames when pandas is installed, else dicts of
-    arrays; integer columns as integers, an empty cell as NaN), each dynamic event's samples
+    arrays; integer columns as integers, an empty cell as NaN; ``dyn_events`` is the library's
+    table at full precision, its units in ``attrs["units"]``), each dynamic event's samples
     (``samples[k]``: ``t_s``, ``F_N_per_m``, ``tip_m``, and ``slip_rate_m_per_s``, samples x
     base nodes at the times ``slip_rate_t_s``), the run's scales, and the notes on what the library chose (D_c, h, kappa).
     ``incomplete`` names the cap a run met (None when it reached its end)."""
