@@ -67,7 +67,8 @@ def test_default_calls_print_nothing(name, capfd):
 def test_progress_when_asked(capfd):
     seen = []
     tribofe.sweep(thickness=[0.002, 0.004], length=0.05, converged=False, progress=seen.append)
-    assert seen and seen[-1] == pytest.approx(1.0)
+    # The points run in parallel: their fractions may arrive out of order, all of them do.
+    assert seen and max(seen) == pytest.approx(1.0) and min(seen) >= 0.0
     assert capfd.readouterr() == ("", "")
 
 
