@@ -22,7 +22,6 @@ const KEYWORDS: &[(&str, &str)] = &[
     ("mu-d", "mu_d"),
     ("mu-s/mu-d", "mu_s/mu_d"),
     ("--mu-s/--mu-d", "mu_s/mu_d"),
-    ("--s", "s_ratio"),
     ("--plate-modulus", "plate_young"),
 ];
 
@@ -401,38 +400,41 @@ fn check<'py>(
 
 /// The frictional interface under N then the drive X at height H, event by event.
 #[pyfunction]
-#[pyo3(signature = (scene=None, law="coulomb", *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
-    rule="paper", dc=None, n_force=1.0, x_max=None, cycles=10, max_events=50_000, newton=false,
+#[pyo3(signature = (scene=None, law=None, *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
+    rule=None, dc=None, n_force=None, x_max=None, cycles=None, max_events=None, newton=false,
     keep_states=true, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn slide<'py>(
     py: Python<'py>,
     scene: Option<PyRef<'_, Scene>>,
-    law: &str,
+    law: Option<&str>,
     mu: Option<f64>,
     mu_s: Option<f64>,
     mu_d: Option<f64>,
     r: Option<f64>,
     g: Option<f64>,
-    rule: &str,
+    rule: Option<&str>,
     dc: Option<f64>,
-    n_force: f64,
+    n_force: Option<f64>,
     x_max: Option<f64>,
-    cycles: usize,
-    max_events: usize,
+    cycles: Option<usize>,
+    max_events: Option<usize>,
     newton: bool,
     keep_states: bool,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::slide as sl;
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
-    let choice = tribofe::studies::slide::LawChoice {
-        law: law.to_string(),
+    let (n_force, cycles) = (n_force.unwrap_or(sl::DEFAULT_N_FORCE), cycles.unwrap_or(sl::DEFAULT_CYCLES));
+    let max_events = max_events.unwrap_or(sl::DEFAULT_MAX_EVENTS);
+    let choice = sl::LawChoice {
+        law: law.unwrap_or(sl::DEFAULT_LAW).to_string(),
         mu,
         mu_s,
         mu_d,
         r,
         g,
-        rule: rule.to_string(),
+        rule: rule.unwrap_or(sl::DEFAULT_RULE).to_string(),
         dc,
     };
     let law = choice.law(&scene).map_err(to_py)?;
@@ -523,8 +525,26 @@ fn slide_result<'py>(
     states.set_item("t_force_N_per_m", grid(StateField::TangentialForce)?)?;
     states.set_item("slip_m", grid(StateField::Slip)?)?;
     states.set_item("gap_m", grid(StateField::Gap)?)?;
-    states.set_item("state_code", grid(StateField::Code)?)?;
+    // The codes are integers (0, 1, 2), as in states.csv.
+    let (codes, shape) = res.field(StateField::Code);
+    let codes: Vec<i64> = codes.iter().map(|&c| c as i64).collect();
+    states.set_item("state_code", PyArray1::from_vec(py, codes).reshape(shape)?)?;
     out.set_item("states", states)?;
+    Ok(out)
+}
+
+/// A library table as a dict of columns, in its order: int64 and float64 arrays (NaN where
+/// the CSV cell is empty), lists of strings.
+fn table<'py>(py: Python<'py>, t: &tribofe::report::table::Table) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::report::table::Values;
+    let out = PyDict::new(py);
+    for c in &t.columns {
+        match &c.values {
+            Values::Int(v) => out.set_item(c.name, PyArray1::from_slice(py, v))?,
+            Values::Float(v) => out.set_item(c.name, arr(py, v))?,
+            Values::Text(v) => out.set_item(c.name, v)?,
+        }
+    }
     Ok(out)
 }
 
@@ -554,14 +574,15 @@ fn columns<'py>(py: Python<'py>, csv: &str) -> PyResult<Bound<'py, PyDict>> {
 /// The paper's analytic event iteration for (r, g): a dict of columns (F, F^c and relaxed
 /// force in units of mu_s N, arrest x in units of L) plus n and F_max.
 #[pyfunction]
-#[pyo3(signature = (r=0.9, g=0.35, events=None))]
+#[pyo3(signature = (r=None, g=None, events=None))]
 fn precursors_model<'py>(
     py: Python<'py>,
-    r: f64,
-    g: f64,
+    r: Option<f64>,
+    g: Option<f64>,
     events: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::precursors as pm;
+    let (r, g) = (r.unwrap_or(pm::PAPER_R), g.unwrap_or(pm::PAPER_G));
     let p = pm::Params::new(r, g).map_err(to_py)?;
     let n = pm::n_precursors(&p).map_err(to_py)?;
     let count = events.unwrap_or(n + 1);
@@ -606,7 +627,7 @@ fn axis_values(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
 /// not parsed back from its text.
 #[pyfunction]
 #[pyo3(signature = (scene=None, *, length=None, thickness=None, height=None, young=None, poisson=None,
-    converged=true, friction=None, rule="paper", cycles=1, progress=None))]
+    converged=true, friction=None, rule=None, cycles=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -618,11 +639,13 @@ fn sweep<'py>(
     poisson: Option<Bound<'py, PyAny>>,
     converged: bool,
     friction: Option<(f64, f64)>,
-    rule: &str,
-    cycles: usize,
+    rule: Option<&str>,
+    cycles: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::studies::sweep::{self as sw, Axis, Param};
+    let rule = rule.unwrap_or(tribofe::studies::slide::DEFAULT_RULE);
+    let cycles = cycles.unwrap_or(sw::DEFAULT_FRICTION_CYCLES);
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let mut axes = Vec::new();
     for (param, v) in [
@@ -662,24 +685,32 @@ fn sweep<'py>(
 /// Mesh and element convergence of the check; returns the columns of `convergence.csv` and
 /// the printed summary under `"summary"`.
 #[pyfunction]
-#[pyo3(signature = (scene=None, *, elements=vec!["qua4".to_string()], families=vec!["uniform".to_string(), "graded".to_string()],
-    n_thick=vec![1, 2, 4, 8, 16, 32, 64], fn_ratio=0.82, parallel=true, target=None, progress=None))]
+#[pyo3(signature = (scene=None, *, elements=None, families=None, n_thick=None, fn_ratio=None, parallel=true,
+    target=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn converge<'py>(
     py: Python<'py>,
     scene: Option<PyRef<'_, Scene>>,
-    elements: Vec<String>,
-    families: Vec<String>,
-    n_thick: Vec<usize>,
-    fn_ratio: f64,
+    elements: Option<Vec<String>>,
+    families: Option<Vec<String>>,
+    n_thick: Option<Vec<usize>>,
+    fn_ratio: Option<f64>,
     parallel: bool,
     target: Option<f64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::studies::convergence as cv;
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
-    let families =
-        families.iter().map(|f| f.parse()).collect::<tribofe::Result<Vec<cv::Family>>>().map_err(to_py)?;
+    let base = cv::StudyOptions::default();
+    let families = match families {
+        Some(f) => {
+            f.iter().map(|f| f.parse()).collect::<tribofe::Result<Vec<cv::Family>>>().map_err(to_py)?
+        }
+        None => base.families.clone(),
+    };
+    let elements = elements.unwrap_or_else(|| base.elements.clone());
+    let n_thick = n_thick.unwrap_or_else(|| base.n_thick.clone());
+    let fn_ratio = fn_ratio.unwrap_or(base.fn_ratio);
     let (study, _) = run_detached(py, progress, |cancel, poll| {
         let o = cv::StudyOptions {
             elements,
@@ -727,16 +758,18 @@ fn comparison<'py>(
 /// overdamped): the comparison with the model (forces in units of mu_s N, x in units of L),
 /// the precursors' arrest positions, the peaks, and the whole run as `slide` returns it.
 #[pyfunction]
-#[pyo3(signature = (scene=None, r=0.9, g=0.35, cycles=1, progress=None))]
+#[pyo3(signature = (scene=None, r=None, g=None, cycles=None, progress=None))]
 fn precursors_fe_fig4<'py>(
     py: Python<'py>,
     scene: Option<PyRef<'_, Scene>>,
-    r: f64,
-    g: f64,
-    cycles: usize,
+    r: Option<f64>,
+    g: Option<f64>,
+    cycles: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyList>> {
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let (r, g) = (r.unwrap_or(tribofe::precursors::PAPER_R), g.unwrap_or(tribofe::precursors::PAPER_G));
+    let cycles = cycles.unwrap_or(tribofe::studies::precursors_fe::DEFAULT_FIG4_CYCLES);
     let (runs, _) = run_detached(py, progress, |cancel, poll| {
         tribofe::studies::precursors_fe::fig4(&scene, r, g, cycles, cancel, poll)
     })?;
@@ -759,18 +792,23 @@ fn precursors_fe_fig4<'py>(
 /// The paper's fig. 5 from the frictional FE: one row per (r, g) cell and rule with the
 /// model's n and F_max and the FE run's status and counts.
 #[pyfunction]
-#[pyo3(signature = (scene=None, resolution=20, rules=vec!["paper".to_string()], max_events=2000, progress=None))]
+#[pyo3(signature = (scene=None, resolution=None, rules=None, max_events=None, progress=None))]
 fn precursors_fe_fig5<'py>(
     py: Python<'py>,
     scene: Option<PyRef<'_, Scene>>,
-    resolution: usize,
-    rules: Vec<String>,
-    max_events: usize,
+    resolution: Option<usize>,
+    rules: Option<Vec<String>>,
+    max_events: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::studies::precursors_fe::{self as pfe, CellRun};
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
-    let rules = rules.iter().map(|r| r.parse()).collect::<tribofe::Result<Vec<Rule>>>().map_err(to_py)?;
+    let resolution = resolution.unwrap_or(pfe::DEFAULT_FIG5_RESOLUTION);
+    let max_events = max_events.unwrap_or(pfe::DEFAULT_FIG5_MAX_EVENTS);
+    let rules = match rules {
+        Some(v) => v.iter().map(|r| r.parse()).collect::<tribofe::Result<Vec<Rule>>>().map_err(to_py)?,
+        None => pfe::DEFAULT_FIG5_RULES.to_vec(),
+    };
     let (cells, _) = run_detached(py, progress, |cancel, poll| {
         pfe::fig5(&scene, resolution, &rules, max_events, cancel, poll)
     })?;
@@ -821,63 +859,80 @@ fn precursors_fe_fig5<'py>(
     Ok(out)
 }
 
+/// The spec `tribofe rupture` runs when no flag is given: the cross-check spec with the
+/// default normal-stress lag. Every keyword left at None keeps its value here.
+fn rupture_defaults() -> tribofe::dynamics::rupture::RuptureSpec {
+    use tribofe::dynamics::rupture as rp;
+    rp::RuptureSpec { normal_lag: rp::normal_lag(rp::DEFAULT_NORMAL_LAG), ..Default::default() }
+}
+
 /// The dynamic-rupture scene on a rigid flat (`tribofe rupture`, docs/dynamics.md): explicit
 /// elastodynamics with slip-weakening friction on the base. Arrays per base node (x >= any),
-/// NaN where the front never arrived; scalars in SI units.
+/// NaN where the front never arrived; scalars in SI units. `s` is the command's `--s`.
 #[pyfunction]
-#[pyo3(signature = (*, s_ratio=2.0, h=1e-3, dc=7.7e-7, t_end=0.1, length=0.2, height=0.1, mu_s=0.648,
-    mu_d=0.583, sigma0=2.5, young=2000.0, poisson=0.4, density=1000.0, courant=0.5, damping=0.0,
-    contact="bilateral", normal_lag=tribofe::dynamics::rupture::DEFAULT_NORMAL_LAG, patch_taper=0.0, progress=None))]
+#[pyo3(signature = (*, s=None, h=None, dc=None, t_end=None, length=None, height=None, mu_s=None,
+    mu_d=None, sigma0=None, young=None, poisson=None, density=None, courant=None, damping=None,
+    contact=None, normal_lag=None, patch_taper=None, max_steps=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn rupture<'py>(
     py: Python<'py>,
-    s_ratio: f64,
-    h: f64,
-    dc: f64,
-    t_end: f64,
-    length: f64,
-    height: f64,
-    mu_s: f64,
-    mu_d: f64,
-    sigma0: f64,
-    young: f64,
-    poisson: f64,
-    density: f64,
-    courant: f64,
-    damping: f64,
-    contact: &str,
-    normal_lag: f64,
-    patch_taper: f64,
+    s: Option<f64>,
+    h: Option<f64>,
+    dc: Option<f64>,
+    t_end: Option<f64>,
+    length: Option<f64>,
+    height: Option<f64>,
+    mu_s: Option<f64>,
+    mu_d: Option<f64>,
+    sigma0: Option<f64>,
+    young: Option<f64>,
+    poisson: Option<f64>,
+    density: Option<f64>,
+    courant: Option<f64>,
+    damping: Option<f64>,
+    contact: Option<&str>,
+    normal_lag: Option<f64>,
+    patch_taper: Option<f64>,
+    max_steps: Option<u64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use tribofe::dynamics::{friction::SlipWeakening, rupture as rp};
-    let spec = rp::RuptureSpec {
-        length,
-        height,
-        h,
-        young,
-        poisson,
-        density,
-        sigma0,
-        s_ratio,
-        friction: SlipWeakening { mu_s, mu_d, d_c: dc },
-        courant,
-        t_end,
-        damping,
-        contact: contact.parse().map_err(to_py)?,
-        normal_lag: rp::normal_lag(normal_lag),
-        patch_taper,
-        ..Default::default()
+    use tribofe::dynamics::rupture as rp;
+    let warn = |text: &str, class: &Bound<'py, pyo3::types::PyType>| {
+        PyErr::warn(py, class, &std::ffi::CString::new(text).unwrap_or_default(), 1)
     };
+    let mut spec = rupture_defaults();
+    let set = |v: Option<f64>, field: &mut f64| {
+        if let Some(v) = v {
+            *field = v;
+        }
+    };
+    set(s, &mut spec.s_ratio);
+    set(h, &mut spec.h);
+    set(dc, &mut spec.friction.d_c);
+    set(t_end, &mut spec.t_end);
+    set(length, &mut spec.length);
+    set(height, &mut spec.height);
+    set(mu_s, &mut spec.friction.mu_s);
+    set(mu_d, &mut spec.friction.mu_d);
+    set(sigma0, &mut spec.sigma0);
+    set(young, &mut spec.young);
+    set(poisson, &mut spec.poisson);
+    set(density, &mut spec.density);
+    set(courant, &mut spec.courant);
+    set(damping, &mut spec.damping);
+    set(patch_taper, &mut spec.patch_taper);
+    if let Some(c) = contact {
+        spec.contact = c.parse().map_err(to_py)?;
+    }
+    if let Some(t) = normal_lag {
+        spec.normal_lag = rp::normal_lag(t);
+    }
+    if let Some(n) = max_steps {
+        spec.max_steps = n;
+    }
     spec.validate().map_err(to_py)?;
     if let Some(w) = spec.instantaneous_normal_warning() {
-        let w = w.replace("--normal-lag", "normal_lag=");
-        PyErr::warn(
-            py,
-            &py.get_type::<pyo3::exceptions::PyUserWarning>(),
-            &std::ffi::CString::new(w).unwrap_or_default(),
-            1,
-        )?;
+        warn(&w.replace("--normal-lag", "normal_lag="), &py.get_type::<pyo3::exceptions::PyUserWarning>())?;
     }
     let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, poll))?;
     let opt = |v: &[Option<f64>]| v.iter().map(|t| t.unwrap_or(f64::NAN)).collect::<Vec<_>>();
@@ -916,9 +971,9 @@ fn rupture<'py>(
 /// is the library's (the command's): None means "the library's default".
 #[pyfunction]
 #[pyo3(signature = (scene=None, law="slip-weakening", *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
-    dc=None, h=None, n_force=1.0, x_max=None, cycles=None, cycle_end=None, max_events=50_000,
+    dc=None, h=None, n_force=None, x_max=None, cycles=None, cycle_end=None, max_events=None,
     operator=None, keep_states=false, damping=None, courant=None, drive_velocity=None,
-    plate_mass=0.0, plate_inertia=0.0, heal="all", weakening_steps=None, progress=None))]
+    plate_mass=None, plate_inertia=None, heal=None, weakening_steps=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn dynamic_slide<'py>(
     py: Python<'py>,
@@ -931,24 +986,27 @@ fn dynamic_slide<'py>(
     g: Option<f64>,
     dc: Option<f64>,
     h: Option<f64>,
-    n_force: f64,
+    n_force: Option<f64>,
     x_max: Option<f64>,
     cycles: Option<usize>,
     cycle_end: Option<&str>,
-    max_events: usize,
+    max_events: Option<usize>,
     operator: Option<&str>,
     keep_states: bool,
     damping: Option<f64>,
     courant: Option<f64>,
     drive_velocity: Option<f64>,
-    plate_mass: f64,
-    plate_inertia: f64,
-    heal: &str,
+    plate_mass: Option<f64>,
+    plate_inertia: Option<f64>,
+    heal: Option<&str>,
     weakening_steps: Option<f64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::interface::events::Operator;
     use tribofe::studies::dynamic_slide as ds;
+    let base = ds::DynamicOptions::default();
+    let n_force = n_force.unwrap_or(tribofe::studies::slide::DEFAULT_N_FORCE);
+    let max_events = max_events.unwrap_or(tribofe::studies::slide::DEFAULT_MAX_EVENTS);
     let mut scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     if let Some(h) = h {
         scene.mesh.h = h;
@@ -984,7 +1042,7 @@ fn dynamic_slide<'py>(
     };
     let end_at_crossing = choose("cycle_end", cycle_end, ["crossing", "whole-slip"])?;
     let banded = choose("operator", operator, ["banded", "dense"])?;
-    let heal_slipped_only = choose("heal", Some(heal), ["slipped", "all"])?.unwrap_or(false);
+    let heal_slipped_only = choose("heal", heal, ["slipped", "all"])?.unwrap_or(base.heal_slipped_only);
     let o = tribofe::studies::slide::SlideOptions {
         law: choice.law(&scene).map_err(to_py)?,
         n_force,
@@ -993,15 +1051,19 @@ fn dynamic_slide<'py>(
         end_at_crossing: end_at_crossing.unwrap_or(ds::DEFAULT_END_AT_CROSSING),
         max_events,
         keep_states,
-        operator: if banded.unwrap_or(true) { Operator::Banded } else { Operator::Dense },
+        operator: match banded {
+            None => ds::DEFAULT_OPERATOR,
+            Some(true) => Operator::Banded,
+            Some(false) => Operator::Dense,
+        },
         ..Default::default()
     };
     let d = ds::DynamicOptions {
         damping,
         courant: courant.unwrap_or(ds::DEFAULT_COURANT),
         drive_velocity,
-        plate_mass,
-        plate_inertia,
+        plate_mass: plate_mass.unwrap_or(base.plate_mass),
+        plate_inertia: plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only,
         weakening_steps: weakening_steps.unwrap_or(ds::DEFAULT_WEAKENING_STEPS),
         ..Default::default()
@@ -1016,7 +1078,12 @@ fn dynamic_slide<'py>(
     let out = PyDict::new(py);
     out.set_item("loading", columns(py, &rs::loading_csv(&res.slide).map_err(to_py)?)?)?;
     out.set_item("events", columns(py, &rs::events_csv(&res.slide).map_err(to_py)?)?)?;
-    out.set_item("dyn_events", columns(py, &rd::events_csv(&res).map_err(to_py)?)?)?;
+    // dyn_events from the library's table itself (full precision, its types and units).
+    let dyn_events = rd::events_table(&res);
+    out.set_item("dyn_events", table(py, &dyn_events)?)?;
+    let units = PyDict::new(py);
+    units.set_item("dyn_events", dyn_events.columns.iter().map(|c| (c.name, c.unit)).collect::<Vec<_>>())?;
+    out.set_item("units", units)?;
     out.set_item("fronts", columns(py, &rd::fronts_csv(&res).map_err(to_py)?)?)?;
     out.set_item("summary", columns(py, &rd::summary_csv(&res).map_err(to_py)?)?)?;
     if res.slide.options.law.weakens() {
@@ -1061,6 +1128,100 @@ fn dynamic_slide<'py>(
     Ok(out)
 }
 
+/// The library's default of every keyword whose Python default is None and that has one fixed
+/// value, per function (`"slide"`, `"dynamics.rupture"`...): what None means, read from the
+/// same constants the calls use and the command's `--help` shows.
+#[pyfunction]
+fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    use tribofe::studies::{
+        convergence as cv, dynamic_slide as ds, precursors_fe as pfe, slide as sl, sweep as sw,
+    };
+    let (pr, pg) = (tribofe::precursors::PAPER_R, tribofe::precursors::PAPER_G);
+    let conv = cv::StudyOptions::default();
+    let dyn_o = ds::DynamicOptions::default();
+    let rp = rupture_defaults();
+    let out = PyDict::new(py);
+    // One dict of keyword -> default per function.
+    macro_rules! put {
+        ($name:expr, [$(($k:expr, $v:expr)),* $(,)?] $(,)?) => {{
+            let d = PyDict::new(py);
+            $(d.set_item($k, $v)?;)*
+            out.set_item($name, d)?;
+        }};
+    }
+    put!(
+        "slide",
+        [
+            ("law", sl::DEFAULT_LAW),
+            ("rule", sl::DEFAULT_RULE),
+            ("n_force", sl::DEFAULT_N_FORCE),
+            ("cycles", sl::DEFAULT_CYCLES),
+            ("max_events", sl::DEFAULT_MAX_EVENTS),
+        ],
+    );
+    put!(
+        "dynamics.slide",
+        [
+            ("n_force", sl::DEFAULT_N_FORCE),
+            ("max_events", sl::DEFAULT_MAX_EVENTS),
+            ("cycles", ds::DEFAULT_CYCLES),
+            ("cycle_end", if ds::DEFAULT_END_AT_CROSSING { "crossing" } else { "whole-slip" }),
+            ("operator", ds::DEFAULT_OPERATOR.name()),
+            ("courant", ds::DEFAULT_COURANT),
+            ("weakening_steps", ds::DEFAULT_WEAKENING_STEPS),
+            ("plate_mass", dyn_o.plate_mass),
+            ("plate_inertia", dyn_o.plate_inertia),
+            ("heal", if dyn_o.heal_slipped_only { "slipped" } else { "all" }),
+        ],
+    );
+    put!("sweep", [("rule", sl::DEFAULT_RULE), ("cycles", sw::DEFAULT_FRICTION_CYCLES)]);
+    let families: Vec<String> = conv.families.iter().map(|f| f.name().to_string()).collect();
+    put!(
+        "converge",
+        [
+            ("elements", conv.elements),
+            ("families", families),
+            ("n_thick", conv.n_thick),
+            ("fn_ratio", conv.fn_ratio),
+        ],
+    );
+    put!("precursors.model", [("r", pr), ("g", pg)]);
+    put!("precursors.fe_fig4", [("r", pr), ("g", pg), ("cycles", pfe::DEFAULT_FIG4_CYCLES)]);
+    let rules: Vec<&str> = pfe::DEFAULT_FIG5_RULES.iter().map(|r| r.name()).collect();
+    put!(
+        "precursors.fe_fig5",
+        [
+            ("resolution", pfe::DEFAULT_FIG5_RESOLUTION),
+            ("rules", rules),
+            ("max_events", pfe::DEFAULT_FIG5_MAX_EVENTS),
+        ],
+    );
+    put!(
+        "dynamics.rupture",
+        [
+            ("s", rp.s_ratio),
+            ("h", rp.h),
+            ("dc", rp.friction.d_c),
+            ("t_end", rp.t_end),
+            ("length", rp.length),
+            ("height", rp.height),
+            ("mu_s", rp.friction.mu_s),
+            ("mu_d", rp.friction.mu_d),
+            ("sigma0", rp.sigma0),
+            ("young", rp.young),
+            ("poisson", rp.poisson),
+            ("density", rp.density),
+            ("courant", rp.courant),
+            ("damping", rp.damping),
+            ("contact", rp.contact.name()),
+            ("normal_lag", rp.normal_lag.unwrap_or(0.0)),
+            ("patch_taper", rp.patch_taper),
+            ("max_steps", rp.max_steps),
+        ],
+    );
+    Ok(out)
+}
+
 #[pymodule]
 fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // Malloc arenas that fit RLIMIT_AS (threads of other modules may already run: best effort).
@@ -1075,6 +1236,7 @@ fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(precursors_fe_fig5, m)?)?;
     m.add_function(wrap_pyfunction!(rupture, m)?)?;
     m.add_function(wrap_pyfunction!(dynamic_slide, m)?)?;
+    m.add_function(wrap_pyfunction!(defaults, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

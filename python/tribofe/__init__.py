@@ -20,6 +20,7 @@ from . import errors
 from ._tribofe import Scene, __version__
 from ._tribofe import check as _check
 from ._tribofe import converge as _converge
+from ._tribofe import defaults as _defaults
 from ._tribofe import dynamic_slide as _dynamic_slide
 from ._tribofe import precursors_fe_fig4 as _fe_fig4
 from ._tribofe import precursors_fe_fig5 as _fe_fig5
@@ -37,6 +38,7 @@ __all__ = [
     "dynamics",
     "sweep",
     "converge",
+    "defaults",
     "CheckResult",
     "CheckCase",
     "SlideResult",
@@ -51,13 +53,27 @@ __all__ = [
 ]
 
 
-def _table(columns: Dict[str, Any]):
-    """A pandas DataFrame when pandas is installed, else the dict of arrays itself."""
+def defaults() -> Dict[str, Dict[str, Any]]:
+    """What a keyword left at None means: the library's default per function and keyword
+    (``defaults()["slide"]["cycles"]``), the same constants the calls use and
+    ``tribofe <command> --help`` shows. Keywords whose default depends on the scene (``dc``,
+    ``h``, ``damping`` of :func:`dynamics.slide`, ``x_max``, the coefficients) are not listed:
+    their docstrings say how the library chooses them."""
+    return _defaults()
+
+
+def _table(columns: Dict[str, Any], units: Optional[List[tuple]] = None):
+    """A pandas DataFrame when pandas is installed, else the dict of arrays itself. A table
+    the library defines with its units carries them as ``df.attrs["units"]`` (column -> unit:
+    SI, ``1`` dimensionless, ``-`` a count, code or label)."""
     try:
         import pandas as pd
     except ImportError:
         return columns
-    return pd.DataFrame(columns)
+    df = pd.DataFrame(columns)
+    if units is not None:
+        df.attrs["units"] = dict(units)
+    return df
 
 
 def _progress(progress, desc: str):
@@ -210,33 +226,34 @@ class SlideResult:
 
 def slide(
     scene: Optional[Scene] = None,
-    law: str = "coulomb",
+    law: Optional[str] = None,
     *,
     mu: Optional[float] = None,
     mu_s: Optional[float] = None,
     mu_d: Optional[float] = None,
     r: Optional[float] = None,
     g: Optional[float] = None,
-    rule: str = "paper",
+    rule: Optional[str] = None,
     dc: Optional[float] = None,
-    n_force: float = 1.0,
+    n_force: Optional[float] = None,
     x_max: Optional[float] = None,
-    cycles: int = 10,
-    max_events: int = 50_000,
+    cycles: Optional[int] = None,
+    max_events: Optional[int] = None,
     newton: bool = False,
     keep_states: bool = True,
-    progress: Any = True,
+    progress: Any = False,
 ) -> SlideResult:
     """The frictional interface under the normal force ``n_force`` (N/m), then the plate's
     drive X (m) at height H, solved event by event (as ``tribofe slide``).
 
     ``law``: ``"coulomb"`` (``mu``), ``"static-kinetic"`` (``mu_s``, ``mu_d`` or the paper's
     ``r``, ``g``; ``rule`` ``"paper"`` or ``"overdamped"``) or ``"slip-weakening"`` (plus
-    ``dc``, m). The interrupt key stops the run within a second (:class:`KeyboardInterrupt`).
-    ``progress``: True for a tqdm bar (when tqdm is installed), a callable for the fraction
-    done, False for silence.
+    ``dc``, m). A keyword left at None takes the command's default (``defaults()["slide"]``:
+    law coulomb, rule paper, N = 1 N/m, 10 cycles, 50 000 events). The interrupt key stops
+    the run within a second (:class:`KeyboardInterrupt`). ``progress``: True for a tqdm bar
+    (when tqdm is installed), a callable for the fraction done, False (the default) for silence.
     """
-    cb, close = _progress(progress, f"slide {law}")
+    cb, close = _progress(progress, f"slide {law or _defaults()['slide']['law']}")
     try:
         raw = _slide(
             scene if scene is not None else Scene(),
@@ -273,15 +290,17 @@ def sweep(
     poisson: Any = None,
     converged: bool = True,
     friction: Optional[tuple] = None,
-    rule: str = "paper",
-    cycles: int = 1,
-    progress: Any = True,
+    rule: Optional[str] = None,
+    cycles: Optional[int] = None,
+    progress: Any = False,
 ):
     """The bonded check over the product of the given values (each a number, a list, or the
     command's text ``"a:b:n"`` / ``"a:b:ng"`` for n linear / geometric points), as
     ``tribofe sweep``: one row per point and F/N with the columns of ``sweep.csv``
     (a pandas DataFrame when pandas is installed, else a dict of arrays).
-    ``friction=(mu_s, mu_d)`` also runs the frictional interface at each point."""
+    ``friction=(mu_s, mu_d)`` also runs the frictional interface at each point (``rule``,
+    ``cycles``: None is the command's default, ``defaults()["sweep"]``). Silent unless
+    ``progress`` is True (a tqdm bar) or a callable."""
     cb, close = _progress(progress, "sweep")
     try:
         cols = _sweep(
@@ -305,24 +324,26 @@ def sweep(
 def converge(
     scene: Optional[Scene] = None,
     *,
-    elements: Any = ("qua4",),
-    families: Any = ("uniform", "graded"),
-    n_thick: Any = (1, 2, 4, 8, 16, 32, 64),
-    fn_ratio: float = 0.82,
+    elements: Any = None,
+    families: Any = None,
+    n_thick: Any = None,
+    fn_ratio: Optional[float] = None,
     parallel: bool = True,
     target: Optional[float] = None,
-    progress: Any = True,
+    progress: Any = False,
 ):
     """Mesh and element convergence of the check (``tribofe converge``): returns
     ``(table, summary)``, the rows of ``convergence.csv`` and the printed reading (orders,
-    edge widths, the cheapest run reaching ``target``, an edge-zone error in units of N/L)."""
+    edge widths, the cheapest run reaching ``target``, an edge-zone error in units of N/L).
+    None is the command's default (``defaults()["converge"]``: QUA4, uniform and graded,
+    t/1 to t/64, F/N = 0.82, the command's ``--case``). Silent unless ``progress`` is asked."""
     cb, close = _progress(progress, "converge")
     try:
         cols = _converge(
             scene if scene is not None else Scene(),
-            elements=list(elements),
-            families=list(families),
-            n_thick=list(n_thick),
+            elements=None if elements is None else list(elements),
+            families=None if families is None else list(families),
+            n_thick=None if n_thick is None else list(n_thick),
             fn_ratio=fn_ratio,
             parallel=parallel,
             target=target,
@@ -338,8 +359,9 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
     """The paper's 1D precursor model."""
 
     @staticmethod
-    def model(r: float = 0.9, g: float = 0.35, events: Optional[int] = None) -> Dict[str, Any]:
-        """The paper's analytic event iteration for r = mu_d/mu_s and g = 6 mu_d H/L: the
+    def model(r: Optional[float] = None, g: Optional[float] = None, events: Optional[int] = None) -> Dict[str, Any]:
+        """The paper's analytic event iteration for r = mu_d/mu_s and g = 6 mu_d H/L (None:
+        the paper's fig. 4 case, 0.9 and 0.35, as ``tribofe precursors model``): the
         events (forces in units of mu_s N, arrest x in units of L) as a table under
         ``"events"``, with ``n`` (precursors), ``F_1`` and ``F_max``. ``events`` defaults
         to n + 1 (the precursors and the first whole slip)."""
@@ -356,11 +378,19 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         return {**raw, "events": table}
 
     @staticmethod
-    def fe_fig4(scene: Optional[Scene] = None, r: float = 0.9, g: float = 0.35, cycles: int = 1, progress: Any = False):
-        """The paper's fig. 4 from the frictional FE on ``scene`` (``tribofe precursors
-        fig4``-like): one dict per static-kinetic rule (``"paper"``, ``"overdamped"``) with the
-        comparison against the model (n, F_1, x_1, F_max; forces in units of mu_s N, x in units
-        of L), the precursors' arrest positions and the whole run as a :class:`SlideResult`."""
+    def fe_fig4(
+        scene: Optional[Scene] = None,
+        r: Optional[float] = None,
+        g: Optional[float] = None,
+        cycles: Optional[int] = None,
+        progress: Any = False,
+    ):
+        """The paper's fig. 4 from the frictional FE on ``scene``, as ``tribofe precursors fe``
+        (the same runs and defaults: None is the paper's (r, g) = (0.9, 0.35) and the
+        command's 2 cycles, ``defaults()["precursors.fe_fig4"]``): one dict per static-kinetic
+        rule (``"paper"``, ``"overdamped"``) with the comparison against the model (n, F_1,
+        x_1, F_max; forces in units of mu_s N, x in units of L), the precursors' arrest
+        positions and the whole run as a :class:`SlideResult`."""
         cb, close = _progress(progress, "fig. 4 (FE)")
         try:
             runs = _fe_fig4(scene if scene is not None else Scene(), r, g, cycles, progress=cb)
@@ -376,18 +406,23 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
     @staticmethod
     def fe_fig5(
         scene: Optional[Scene] = None,
-        resolution: int = 20,
-        rules: Any = ("paper",),
-        max_events: int = 2000,
-        progress: Any = True,
+        resolution: Optional[int] = None,
+        rules: Any = None,
+        max_events: Optional[int] = None,
+        progress: Any = False,
     ):
         """The paper's fig. 5 from the frictional FE: one row per (r, g) cell centre of a
         ``resolution`` x ``resolution`` grid and rule, with the model's n and F_max and the FE
-        run's status (done, capped, refused) and counts. A DataFrame with pandas."""
+        run's status (done, capped, refused) and counts. A DataFrame with pandas. None is the
+        command's default (``tribofe precursors fe-map``: 20, the paper rule, 2000 events)."""
         cb, close = _progress(progress, "fig. 5 (FE)")
         try:
             cols = _fe_fig5(
-                scene if scene is not None else Scene(), resolution, list(rules), max_events, progress=cb
+                scene if scene is not None else Scene(),
+                resolution,
+                None if rules is None else list(rules),
+                max_events,
+                progress=cb,
             )
         finally:
             close()
@@ -399,7 +434,8 @@ class DynamicSlideResult:
     """A dynamic slide (``tribofe slide --dynamics``): the command's tables, each with every
     column of its CSV (``loading``, ``events``, ``dyn_events``, ``fronts``, ``summary``, and
     ``advances`` for a weakening law; DataFrames when pandas is installed, else dicts of
-    arrays; integer columns as integers, an empty cell as NaN), each dynamic event's samples
+    arrays; integer columns as integers, an empty cell as NaN; ``dyn_events`` is the library's
+    table at full precision, its units in ``attrs["units"]``), each dynamic event's samples
     (``samples[k]``: ``t_s``, ``F_N_per_m``, ``tip_m``, and ``slip_rate_m_per_s``, samples x
     base nodes at the times ``slip_rate_t_s``), the run's scales, and the notes on what the library chose (D_c, h, kappa).
     ``incomplete`` names the cap a run met (None when it reached its end)."""
@@ -452,19 +488,19 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         g: Optional[float] = None,
         dc: Optional[float] = None,
         h: Optional[float] = None,
-        n_force: float = 1.0,
+        n_force: Optional[float] = None,
         x_max: Optional[float] = None,
         cycles: Optional[int] = None,
         cycle_end: Optional[str] = None,
-        max_events: int = 50_000,
+        max_events: Optional[int] = None,
         operator: Optional[str] = None,
         keep_states: bool = False,
         damping: Optional[float] = None,
         courant: Optional[float] = None,
         drive_velocity: Optional[float] = None,
-        plate_mass: float = 0.0,
-        plate_inertia: float = 0.0,
-        heal: str = "all",
+        plate_mass: Optional[float] = None,
+        plate_inertia: Optional[float] = None,
+        heal: Optional[str] = None,
         weakening_steps: Optional[float] = None,
         progress: Any = False,
     ) -> DynamicSlideResult:
@@ -477,7 +513,8 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         ended at the first front crossing (``cycle_end``: ``"crossing"`` or ``"whole-slip"``),
         ``operator`` ``"banded"`` (or ``"dense"``), ``damping`` (Kelvin-Voigt eta, s) 10 % of
         critical at the thickness mode, ``courant`` 0.9 of the stable step, ``weakening_steps``
-        20. ``law``: ``"slip-weakening"`` (``mu_s``, ``mu_d`` or the paper's ``r``, ``g``) or
+        20, ``n_force`` 1 N/m, ``max_events`` 50 000, ``plate_mass`` and ``plate_inertia`` 0,
+        ``heal`` ``"all"`` (``defaults()["dynamics.slide"]``). ``law``: ``"slip-weakening"`` (``mu_s``, ``mu_d`` or the paper's ``r``, ``g``) or
         ``"coulomb"`` (``mu``). ``plate_mass`` (kg/m), ``plate_inertia`` (kg m^2/m), ``heal``
         (``"all"`` or ``"slipped"``). Silent unless ``progress`` is True (a tqdm bar) or a
         callable; the interrupt key stops the run (:class:`KeyboardInterrupt`). A run that
@@ -517,27 +554,82 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
 
             warnings.warn(f"tribofe: the run is incomplete: {raw['incomplete']}", stacklevel=2)
         summary = {k: (v[0] if len(v) else float("nan")) for k, v in raw.pop("summary").items()}
+        units = raw.pop("units")
         for k in ("loading", "events", "dyn_events", "fronts", "advances"):
             if k in raw:
-                raw[k] = _table(raw[k])
+                raw[k] = _table(raw[k], units.get(k))
         return DynamicSlideResult(summary=summary, **raw)
 
     @staticmethod
-    def rupture(progress: Any = True, **keys: Any) -> Dict[str, Any]:
-        """The dynamic-rupture scene on a rigid flat, as ``tribofe rupture`` (same defaults:
+    def rupture(
+        *,
+        s: Optional[float] = None,
+        h: Optional[float] = None,
+        dc: Optional[float] = None,
+        t_end: Optional[float] = None,
+        length: Optional[float] = None,
+        height: Optional[float] = None,
+        mu_s: Optional[float] = None,
+        mu_d: Optional[float] = None,
+        sigma0: Optional[float] = None,
+        young: Optional[float] = None,
+        poisson: Optional[float] = None,
+        density: Optional[float] = None,
+        courant: Optional[float] = None,
+        damping: Optional[float] = None,
+        contact: Optional[str] = None,
+        normal_lag: Optional[float] = None,
+        patch_taper: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        s_ratio: Optional[float] = None,
+        progress: Any = False,
+    ) -> Dict[str, Any]:
+        """The dynamic-rupture scene on a rigid flat, as ``tribofe rupture``: each keyword is
+        the command's flag (``s`` is ``--s``) and None its default (``defaults()["dynamics.rupture"]``:
         the cross-check spec's scene with the normal-stress lag ``normal_lag`` = 1e-3 s;
         ``normal_lag=0`` is the spec's instantaneous normal stress, warned on a rigid flat).
-        Keywords: ``s_ratio``, ``h`` (m), ``dc`` (m), ``t_end``
-        (s), ``length``, ``height`` (m), ``mu_s``, ``mu_d``, ``sigma0`` (Pa), ``young`` (Pa),
-        ``poisson``, ``density`` (kg/m^3), ``courant``, ``damping`` (s), ``contact``
-        (``"bilateral"``, ``"unilateral"``, ``"symmetric"``), ``normal_lag`` (s),
-        ``patch_taper`` (m: a cosine ramp of the initial shear across the patch edge).
+        ``s``: strength ratio S = (mu_s sigma0 - tau0) / (tau0 - mu_d sigma0) (``s_ratio`` is
+        its deprecated old name), ``h`` (m), ``dc`` (m), ``t_end`` (s), ``length``, ``height``
+        (m), ``mu_s``, ``mu_d``, ``sigma0`` (Pa), ``young`` (Pa), ``poisson``, ``density``
+        (kg/m^3), ``courant``, ``damping`` (s), ``contact`` (``"bilateral"``,
+        ``"unilateral"``, ``"symmetric"``), ``normal_lag`` (s), ``patch_taper`` (m: a cosine
+        ramp of the initial shear across the patch edge), ``max_steps`` (most explicit steps;
+        a run above it is refused before any work, naming the largest ``t_end`` that fits).
+        Silent unless ``progress`` is True (a tqdm bar) or a callable.
 
         Returns per base node ``x_m``, ``t_arrival_s`` (NaN where the front never arrived),
         ``slip_m``, ``peak_slip_rate_m_per_s``..., and the force drop, front speed, wave
         speeds, cohesive-zone size ``lambda0_m`` and the energy ledger."""
+        if s_ratio is not None:
+            # The old keyword, kept working: the command names it --s.
+            if s is not None:
+                raise InputError("s_ratio=: the old name of s=: give s= alone", 2)
+            import warnings
+
+            warnings.warn("tribofe.dynamics.rupture: s_ratio= is deprecated, use s= (the command's --s)", DeprecationWarning, stacklevel=2)
+            s = s_ratio
         cb, close = _progress(progress, "rupture")
         try:
-            return _rupture(progress=cb, **keys)
+            return _rupture(
+                s=s,
+                h=h,
+                dc=dc,
+                t_end=t_end,
+                length=length,
+                height=height,
+                mu_s=mu_s,
+                mu_d=mu_d,
+                sigma0=sigma0,
+                young=young,
+                poisson=poisson,
+                density=density,
+                courant=courant,
+                damping=damping,
+                contact=contact,
+                normal_lag=normal_lag,
+                patch_taper=patch_taper,
+                max_steps=max_steps,
+                progress=cb,
+            )
         finally:
             close()

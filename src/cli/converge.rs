@@ -16,7 +16,7 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', default_value = "uniform,graded")]
     pub families: Vec<String>,
     /// The load case compared, as F/N.
-    #[arg(long, default_value_t = 0.82)]
+    #[arg(long, default_value_t = tribofe::studies::convergence::DEFAULT_FN_RATIO)]
     pub case: f64,
     /// Target edge-zone error in units of N/L: name the cheapest run that reaches it (fewest
     /// unknowns; its time shown beside).
@@ -55,7 +55,7 @@ pub fn run(args: Args) -> tribofe::Result<()> {
                 .map(|&n| super::scene_args::count("n-thick", n))
                 .collect::<tribofe::Result<Vec<_>>>()?
         }
-        None => vec![1, 2, 4, 8, 16, 32, 64],
+        None => StudyOptions::default().n_thick,
     };
     let scene = super::check::scene(&flat)?;
     tribofe::io::outdir::check(&args.out, args.force)?;

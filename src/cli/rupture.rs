@@ -7,50 +7,52 @@ use std::path::PathBuf;
 use tribofe::dynamics::friction::SlipWeakening;
 use tribofe::dynamics::rupture::{Contact, RuptureSpec};
 
+// Every default is the library's RuptureSpec::default() (the cross-check spec), bar the
+// normal lag; the Python package reads the same.
 #[derive(ClapArgs, Debug)]
 pub struct Args {
     /// Strength ratio S = (mu_s sigma0 - tau0) / (tau0 - mu_d sigma0) outside the nucleation patch.
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, default_value_t = RuptureSpec::default().s_ratio)]
     pub s: f64,
     /// Element size, m (square QUA4; length and height must be whole multiples).
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = RuptureSpec::default().h)]
     pub h: f64,
     /// Slip-weakening distance D_c, m.
-    #[arg(long, default_value_t = 7.7e-7)]
+    #[arg(long, default_value_t = RuptureSpec::default().friction.d_c)]
     pub dc: f64,
     /// Run to this time, s (steps = round(t_end / dt)).
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = RuptureSpec::default().t_end)]
     pub t_end: f64,
     /// Block length (x in [-L/2, L/2]) and height, m.
-    #[arg(long, default_value_t = 0.2)]
+    #[arg(long, default_value_t = RuptureSpec::default().length)]
     pub length: f64,
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = RuptureSpec::default().height)]
     pub height: f64,
     /// Static and dynamic friction coefficients.
-    #[arg(long, default_value_t = 0.648)]
+    #[arg(long, default_value_t = RuptureSpec::default().friction.mu_s)]
     pub mu_s: f64,
-    #[arg(long, default_value_t = 0.583)]
+    #[arg(long, default_value_t = RuptureSpec::default().friction.mu_d)]
     pub mu_d: f64,
     /// Background normal stress on the base (compressive positive), Pa.
-    #[arg(long, default_value_t = 2.5)]
+    #[arg(long, default_value_t = RuptureSpec::default().sigma0)]
     pub sigma0: f64,
     /// Young's modulus (Pa), Poisson's ratio and density (kg/m^3) of the block.
-    #[arg(long, default_value_t = 2000.0)]
+    #[arg(long, default_value_t = RuptureSpec::default().young)]
     pub young: f64,
-    #[arg(long, default_value_t = 0.4)]
+    #[arg(long, default_value_t = RuptureSpec::default().poisson)]
     pub poisson: f64,
-    #[arg(long, default_value_t = 1000.0)]
+    #[arg(long, default_value_t = RuptureSpec::default().density)]
     pub density: f64,
     /// Time step dt = courant h / c_p (refused above the mesh's stable step).
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, default_value_t = RuptureSpec::default().courant)]
     pub courant: f64,
     /// Kelvin-Voigt (stiffness-proportional) damping coefficient eta, s.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = RuptureSpec::default().damping)]
     pub damping: f64,
     /// Base condition: bilateral (the spec: u_y = 0 on the rigid flat), unilateral (the flat
     /// cannot pull: nodes may open), symmetric (not a flat: the plane of a symmetric fault
     /// between two identical blocks, slip 2 u_x, the Andrews control case).
-    #[arg(long, default_value = "bilateral")]
+    #[arg(long, default_value = RuptureSpec::default().contact.name())]
     pub contact: String,
     /// Normal-stress regularisation time T, s: the strength follows the normal stress with
     /// d sigma*/dt = -(sigma* - sigma) / T (Prakash-Clifton). Default 1e-3 s, the time scale
@@ -60,7 +62,7 @@ pub struct Args {
     pub normal_lag: f64,
     /// Width of a cosine ramp of the initial shear centred on the nucleation patch's edge
     /// (|x| = 0.01 m), m (default 0, as the spec: a jump).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = RuptureSpec::default().patch_taper)]
     pub patch_taper: f64,
     /// Most explicit steps the run may take (t_end / dt, dt = courant h / c_p); a run above it
     /// is refused before any work. The default, 1e6 steps, is about 15 minutes on the default

@@ -15,7 +15,7 @@ pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Friction law: coulomb, static-kinetic or slip-weakening.
-    #[arg(long, default_value = "coulomb")]
+    #[arg(long, default_value = tribofe::studies::slide::DEFAULT_LAW)]
     pub law: String,
     /// Coulomb coefficient (coulomb; default 0.5).
     #[arg(long)]
@@ -32,7 +32,7 @@ pub struct Args {
     #[arg(long)]
     pub g: Option<f64>,
     /// Event rule of static-kinetic: paper or overdamped.
-    #[arg(long, default_value = "paper")]
+    #[arg(long, default_value = tribofe::studies::slide::DEFAULT_RULE)]
     pub rule: String,
     /// Rule paper: where the slipped region's residual shear mu_d p is taken, `relaxed` (p of
     /// the relaxed equilibrium) or `pre-event` (p before the event, the paper's mu_d p(x, F_i));
@@ -47,7 +47,7 @@ pub struct Args {
     #[arg(long)]
     pub dc: Option<f64>,
     /// Normal force N, N/m (results are reported per unit N where that makes them independent of it).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = tribofe::studies::slide::DEFAULT_N_FORCE)]
     pub n_force: f64,
     /// Largest plate displacement X at height H, m (default: 5 % past the first whole-interface
     /// slip for coulomb; the cycles for static-kinetic).
@@ -66,7 +66,7 @@ pub struct Args {
     /// Cap on events. Each event keeps in memory its row (~0.2 kB, plus 8 bytes per run of
     /// slipping nodes) and, unless `--states none`, the interface state after it (~48 bytes
     /// per node); the cap is refused up front if that cannot fit in half the memory.
-    #[arg(long, default_value_t = 50_000)]
+    #[arg(long, default_value_t = tribofe::studies::slide::DEFAULT_MAX_EVENTS)]
     pub max_events: usize,
     /// Slip weakening: each relaxation's coefficients by Newton where a stable equilibrium is
     /// near (the same equilibria, fewer updates; validation/friction/README.md). Default: fixed
@@ -317,10 +317,11 @@ fn run_checked(
         max_events: a.max_events,
         keep_states,
         newton: a.newton,
-        operator: if a.operator.as_deref().map_or(a.dynamics, |o| o == "banded") {
-            tribofe::interface::events::Operator::Banded
-        } else {
-            tribofe::interface::events::Operator::Dense
+        operator: match a.operator.as_deref() {
+            Some("banded") => tribofe::interface::events::Operator::Banded,
+            Some(_) => tribofe::interface::events::Operator::Dense,
+            None if a.dynamics => ds::DEFAULT_OPERATOR,
+            None => SlideOptions::default().operator,
         },
         ..Default::default()
     };
@@ -427,12 +428,13 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
             "acts only on the held mode's static loading under --law slip-weakening (not with --drive-velocity)",
         ));
     }
+    let base = ds::DynamicOptions::default();
     let d = ds::DynamicOptions {
         damping: a.damping,
         courant: a.courant,
         drive_velocity: a.drive_velocity,
-        plate_mass: a.plate_mass.unwrap_or(0.0),
-        plate_inertia: a.plate_inertia.unwrap_or(0.0),
+        plate_mass: a.plate_mass.unwrap_or(base.plate_mass),
+        plate_inertia: a.plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only: a.heal == "slipped",
         weakening_steps: a.weakening_steps.unwrap_or(ds::DEFAULT_WEAKENING_STEPS),
         ..Default::default()

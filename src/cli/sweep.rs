@@ -37,10 +37,10 @@ pub struct Args {
     #[arg(long, value_name = "MU_S,MU_D")]
     pub friction: Option<String>,
     /// Event rule of the frictional run: paper or overdamped.
-    #[arg(long, default_value = "paper")]
+    #[arg(long, default_value = tribofe::studies::slide::DEFAULT_RULE)]
     pub rule: String,
     /// Whole-interface slips of the frictional run (the last one's peak is F_max).
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = tribofe::studies::sweep::DEFAULT_FRICTION_CYCLES)]
     pub cycles: usize,
     /// Join shard tables instead of sweeping: folders holding sweep_IofN.csv files (or the
     /// files), written as OUT/sweep.csv (every shard 1..N required, one header).

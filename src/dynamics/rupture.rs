@@ -41,6 +41,17 @@ pub enum Contact {
     Symmetric,
 }
 
+impl Contact {
+    /// The name `--contact` takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Bilateral => "bilateral",
+            Self::Unilateral => "unilateral",
+            Self::Symmetric => "symmetric",
+        }
+    }
+}
+
 impl std::str::FromStr for Contact {
     type Err = Error;
     fn from_str(s: &str) -> Result<Self> {

@@ -21,6 +21,11 @@ pub mod fe;
 use crate::{Error, Result};
 use rayon::prelude::*;
 
+/// The paper's fig. 4 case (r, g): the default of every front end (`precursors --r/--g`,
+/// the Python package) and the default coefficients of the frictional laws.
+pub const PAPER_R: f64 = 0.9;
+pub const PAPER_G: f64 = 0.35;
+
 /// Upper bound on the number of precursors [`n_precursors`] will iterate through before
 /// giving up; n grows without bound as (r, g) -> (1, 1) (about 2500 at r = g = 0.9875).
 pub const MAX_PRECURSORS: usize = 10_000_000;

@@ -3,6 +3,7 @@
 //! against the drive force) and, on request, space-time pictures of the slip rate
 //! (`spacetime_<event>.svg`, [`Spacetime`]).
 
+use super::table::{Column, Table};
 use super::{finite, write_atomic};
 use crate::error::Result;
 use crate::studies::dynamic_slide::assumption5::Assumption5;
@@ -12,10 +13,6 @@ use std::path::{Path, PathBuf};
 
 fn num(what: &str, v: f64) -> Result<String> {
     Ok(format!("{:.9e}", finite(what, v)?))
-}
-
-fn opt(what: &str, v: Option<f64>) -> Result<String> {
-    v.map_or(Ok(String::new()), |v| num(what, v))
 }
 
 /// fronts_t.csv: one row per base node a dynamic event's front reached
@@ -71,48 +68,60 @@ pub fn fronts_csv(r: &DynamicResult) -> Result<String> {
 /// `force_drop_at_arrest_over_event_drop`: (F_onset - F(t_arrest)) / (F_onset - F_after), not
 /// a share (above 1: the force undershoots its final value at the arrest).
 pub fn events_csv(r: &DynamicResult) -> Result<String> {
+    events_table(r).csv()
+}
+
+/// dyn_events.csv's table ([`events_csv`]): the columns with their units and types, the one
+/// definition the CSV and the Python package's `dyn_events` are both made from.
+pub fn events_table(r: &DynamicResult) -> Table {
     let res = &r.slide;
     let (k, c) = (res.options.law.mu_s() * res.options.n_force, &res.condensed);
-    let mut s = String::from(
-        "event,kind,instability,X_m,F_onset_over_mu_s_N,F_after_over_mu_s_N,duration_s,steps,region_first_over_L,region_last_over_L,t_arrest_s,arrest_over_L,predicted_arrest_mu_d_over_L,predicted_arrest_griffith_over_L,dp_ahead_over_p_pre,dtau_ahead_over_strength_drop,dp_ahead_2_5t_over_p_pre,dtau_ahead_2_5t_over_strength_drop,force_drop_at_arrest_over_event_drop,peak_slip_rate_m_per_s,f_gap_over_mu_s_N,u_gap_over_max_slip,energy_residual_over_dissipated\n",
-    );
-    for e in &r.events {
-        let ev = &res.run.events[e.event];
-        let (a, b) = ev.region.map_or((f64::NAN, f64::NAN), |(a, b)| (c.x[a] / c.l, c.x[b] / c.l));
+    let ev = |f: &dyn Fn(&DynEvent) -> f64| r.events.iter().map(f).collect::<Vec<f64>>();
+    let region = |e: &DynEvent, end: usize| {
+        res.run.events[e.event].region.map_or(f64::NAN, |(a, b)| c.x[[a, b][end]] / c.l)
+    };
+    // The assumption-5 columns: held drive only, and only for an instability.
+    let a5 = |f: &dyn Fn(&Assumption5) -> f64| {
+        ev(&|e| e.assumption5.filter(|_| e.record.weakened).as_ref().map_or(f64::NAN, f))
+    };
+    let residual = |e: &DynEvent| {
         let en = &e.record.energy;
-        let diss = (en.friction + en.damping).max(f64::MIN_POSITIVE);
-        let a5 = e.assumption5.filter(|_| e.record.weakened);
-        let a5v = |f: &dyn Fn(&Assumption5) -> f64| a5.as_ref().map(f);
-        writeln!(
-            s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            e.event,
-            ev.kind,
-            u8::from(e.record.weakened),
-            num("X", e.x)?,
-            num("F", e.f_onset / k)?,
-            num("F", e.f_after / k)?,
-            num("duration", e.record.duration)?,
-            e.record.steps,
-            if a.is_finite() { num("x", a)? } else { String::new() },
-            if b.is_finite() { num("x", b)? } else { String::new() },
-            opt("t_arrest", e.t_arrest)?,
-            opt("arrest", a5v(&|a| a.arrest / c.l))?,
-            opt("predicted arrest", a5v(&|a| a.predicted_mu_d / c.l))?,
-            opt("predicted arrest", a5v(&|a| a.predicted_griffith / c.l))?,
-            opt("dp ahead", a5v(&|a| a.dp_ahead))?,
-            opt("dtau ahead", a5v(&|a| a.dtau_ahead))?,
-            opt("dp ahead", a5v(&|a| a.dp_far))?,
-            opt("dtau ahead", a5v(&|a| a.dtau_far))?,
-            opt("drop", e.force_drop_at_arrest)?,
-            num("rate", peak(e))?,
-            num("gap", e.f_gap)?,
-            num("gap", e.u_gap)?,
-            num("residual", en.residual / diss)?
-        )
-        .unwrap();
-    }
-    Ok(s)
+        en.residual / (en.friction + en.damping).max(f64::MIN_POSITIVE)
+    };
+    let columns = vec![
+        Column::int("event", "-", r.events.iter().map(|e| e.event as i64).collect()),
+        Column::text(
+            "kind",
+            "-",
+            r.events.iter().map(|e| res.run.events[e.event].kind.to_string()).collect(),
+        ),
+        Column::int("instability", "-", r.events.iter().map(|e| i64::from(e.record.weakened)).collect()),
+        Column::float("X_m", "m", ev(&|e| e.x)),
+        Column::float("F_onset_over_mu_s_N", "1", ev(&|e| e.f_onset / k)),
+        Column::float("F_after_over_mu_s_N", "1", ev(&|e| e.f_after / k)),
+        Column::float("duration_s", "s", ev(&|e| e.record.duration)),
+        Column::int("steps", "-", r.events.iter().map(|e| e.record.steps as i64).collect()),
+        Column::maybe("region_first_over_L", "1", ev(&|e| region(e, 0))),
+        Column::maybe("region_last_over_L", "1", ev(&|e| region(e, 1))),
+        Column::maybe("t_arrest_s", "s", ev(&|e| e.t_arrest.unwrap_or(f64::NAN))),
+        Column::maybe("arrest_over_L", "1", a5(&|a| a.arrest / c.l)),
+        Column::maybe("predicted_arrest_mu_d_over_L", "1", a5(&|a| a.predicted_mu_d / c.l)),
+        Column::maybe("predicted_arrest_griffith_over_L", "1", a5(&|a| a.predicted_griffith / c.l)),
+        Column::maybe("dp_ahead_over_p_pre", "1", a5(&|a| a.dp_ahead)),
+        Column::maybe("dtau_ahead_over_strength_drop", "1", a5(&|a| a.dtau_ahead)),
+        Column::maybe("dp_ahead_2_5t_over_p_pre", "1", a5(&|a| a.dp_far)),
+        Column::maybe("dtau_ahead_2_5t_over_strength_drop", "1", a5(&|a| a.dtau_far)),
+        Column::maybe(
+            "force_drop_at_arrest_over_event_drop",
+            "1",
+            ev(&|e| e.force_drop_at_arrest.unwrap_or(f64::NAN)),
+        ),
+        Column::float("peak_slip_rate_m_per_s", "m/s", ev(&peak)),
+        Column::float("f_gap_over_mu_s_N", "1", ev(&|e| e.f_gap)),
+        Column::float("u_gap_over_max_slip", "1", ev(&|e| e.u_gap)),
+        Column::float("energy_residual_over_dissipated", "1", ev(&residual)),
+    ];
+    Table { columns, digits: 10 }
 }
 
 fn peak(e: &DynEvent) -> f64 {

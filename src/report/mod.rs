@@ -16,6 +16,7 @@ pub mod rupture;
 pub mod slide;
 pub mod stability;
 pub mod sweep;
+pub mod table;
 
 use crate::{Error, Result};
 

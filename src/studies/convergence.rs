@@ -61,13 +61,16 @@ pub struct StudyOptions {
     pub cancel: crate::Cancel,
 }
 
+/// The load case (F/N) compared by default (`converge --case`).
+pub const DEFAULT_FN_RATIO: f64 = 0.82;
+
 impl Default for StudyOptions {
     fn default() -> Self {
         Self {
             elements: vec!["qua4".into()],
             families: vec![Family::Uniform, Family::Graded],
             n_thick: vec![1, 2, 4, 8, 16, 32, 64],
-            fn_ratio: 0.82,
+            fn_ratio: DEFAULT_FN_RATIO,
             grading_ratio: 1.15,
             graded_h_max_over_t: 4.0,
             parallel: true,

@@ -9,6 +9,7 @@ use crate::interface::events::{self, run_with, Operator, OperatorRef, Problem, R
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
 use crate::precursors::definition::{self, Precursors, Slip};
+use crate::precursors::{PAPER_G, PAPER_R};
 use crate::progress::Progress;
 use crate::scene::{Scene, SceneModel};
 use std::time::Instant;
@@ -53,6 +54,13 @@ pub const LC_MAX_OVER_LENGTH: f64 = 100.0;
 
 /// The default event cap ([`Problem`]'s).
 pub const DEFAULT_MAX_EVENTS: usize = 50_000;
+
+/// The defaults of `tribofe slide` and `tribofe.slide` ([`Problem`]'s where it has them):
+/// the law and rule by name, the normal force N (N/m) and the quasi-static run's cycles.
+pub const DEFAULT_LAW: &str = "coulomb";
+pub const DEFAULT_RULE: &str = "paper";
+pub const DEFAULT_N_FORCE: f64 = 1.0;
+pub const DEFAULT_CYCLES: usize = 10;
 
 /// Largest --cycles: each cycle is at least one event, and the event cap bounds the run.
 fn cycles_bound(o: &SlideOptions) -> usize {
@@ -399,9 +407,9 @@ pub fn default_coefficients(scene: &Scene) -> Result<(f64, f64)> {
     if scene.loading.height == 0.0 {
         let mut paper = scene.clone();
         paper.loading.height = 0.1 * scene.block.length;
-        return coefficients_from_rg(&paper, 0.9, 0.35);
+        return coefficients_from_rg(&paper, PAPER_R, PAPER_G);
     }
-    coefficients_from_rg(scene, 0.9, 0.35)
+    coefficients_from_rg(scene, PAPER_R, PAPER_G)
 }
 
 /// Front of the slip zone grown from the trailing edge (x = -L/2) of a state: x/L midway

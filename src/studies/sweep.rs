@@ -234,6 +234,9 @@ pub struct Point {
 /// points, not an allocator abort.
 pub const MAX_POINTS: usize = 100_000;
 
+/// Whole-interface slips of a sweep's frictional run by default (`sweep --cycles`).
+pub const DEFAULT_FRICTION_CYCLES: usize = 3;
+
 /// What makes two runs one sweep, for its shards' run files (`[results.sweep]`): the grid
 /// (each axis's parameter and values, in order) and every option that changes a row; the
 /// shard itself, the cancel token and the solver's defaults aside. `sweep --merge` joins only

@@ -70,10 +70,10 @@ for v in sys.argv[5:]:
 
 KEYS = {
     "rupture": ["s", "h", "dc", "t_end", "length", "height", "mu_s", "mu_d", "sigma0", "young",
-                "poisson", "density", "courant", "damping", "normal_lag", "patch_taper"],
+                "poisson", "density", "courant", "damping", "normal_lag", "patch_taper", "max_steps"],
     "slide": ["mu", "n_force", "x_max", "cycles", "max_events"],
 }
-INTS = {"cycles", "max_events"}
+INTS = {"cycles", "max_events", "max_steps"}
 
 
 def main():

@@ -12,7 +12,7 @@ pub struct FeArgs {
     pub rg: RgArgs,
     /// Stick-slip cycles per run, each ending when the slip has crossed the interface (a
     /// whole slip, or a front crossing over several events).
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = tribofe::studies::precursors_fe::DEFAULT_FIG4_CYCLES)]
     pub cycles: usize,
     /// The paper rule's residual shear mu_d p at the `relaxed` equilibrium or `pre-event`
     /// (the paper's mu_d p(x, F_i)); as `slide --residual`.
@@ -30,15 +30,15 @@ pub struct FeArgs {
 #[derive(clap::Args, Debug)]
 pub struct FeMapArgs {
     /// Grid points per axis (cell centres), 2..=400.
-    #[arg(long, default_value_t = 20)]
+    #[arg(long, default_value_t = tribofe::studies::precursors_fe::DEFAULT_FIG5_RESOLUTION)]
     pub resolution: usize,
     /// Event rules to run in every cell, comma separated: paper, overdamped (about 10 s for
     /// 20 x 20 on the paper's scene; overdamped adds about 4 minutes, and 164 of its 400 cells
     /// exceed the event cap).
-    #[arg(long, value_delimiter = ',', default_value = "paper")]
+    #[arg(long, value_delimiter = ',', default_value = tribofe::studies::precursors_fe::DEFAULT_FIG5_RULES[0].name())]
     pub rules: Vec<tribofe::interface::law::Rule>,
     /// Events per cell before the cell is reported as capped (grey).
-    #[arg(long, default_value_t = 2000)]
+    #[arg(long, default_value_t = tribofe::studies::precursors_fe::DEFAULT_FIG5_MAX_EVENTS)]
     pub max_events: usize,
     #[command(flatten)]
     pub scene: super::super::check::SceneArgs,
@@ -49,16 +49,6 @@ pub struct FeMapArgs {
 /// FE fig. 4: the frictional FE for each event rule next to the analytic iteration.
 pub fn fe(args: FeArgs) -> tribofe::Result<()> {
     let cycles = args.cycles;
-    if cycles == 0 {
-        return Err(Error::input("--cycles", "need at least one whole-interface slip"));
-    }
-    let cap = tribofe::studies::slide::SlideOptions::default().max_events;
-    if cycles > cap {
-        return Err(Error::input(
-            "--cycles",
-            format!("{cycles}: above the event cap of {cap} (each cycle takes at least one event)"),
-        ));
-    }
     let p = Params::new(args.rg.r, args.rg.g)?;
     let scene = fe_scene(&args.scene, &args.out)?;
     let bar = spinner("precursors fe: one run per event rule");

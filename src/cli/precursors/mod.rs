@@ -83,10 +83,10 @@ struct OutArgs {
 #[derive(clap::Args, Debug)]
 struct RgArgs {
     /// r = mu_d/mu_s, in (0, 1). Default: the paper's fig. 4 case.
-    #[arg(long, default_value_t = 0.9)]
+    #[arg(long, default_value_t = tribofe::precursors::PAPER_R)]
     r: f64,
     /// g = 6 mu_d H/L, in (0, 1). Default: the paper's fig. 4 case.
-    #[arg(long, default_value_t = 0.35)]
+    #[arg(long, default_value_t = tribofe::precursors::PAPER_G)]
     g: f64,
 }
 

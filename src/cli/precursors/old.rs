@@ -12,9 +12,9 @@ use tribofe::Error;
 
 #[derive(clap::Args, Debug)]
 pub struct Old {
-    #[arg(long, default_value_t = 0.9)]
+    #[arg(long, default_value_t = tribofe::precursors::PAPER_R)]
     r: f64,
-    #[arg(long, default_value_t = 0.35)]
+    #[arg(long, default_value_t = tribofe::precursors::PAPER_G)]
     g: f64,
     #[arg(long, default_value = "out/precursors")]
     out: PathBuf,
@@ -109,7 +109,7 @@ impl Old {
                 (_, _, Some(dc)) => Mode::Dc(DcArgs { dc, rg, max_events: self.max_events, scene, out }),
                 _ => Mode::Fe(FeArgs {
                     rg,
-                    cycles: self.cycles.unwrap_or(2),
+                    cycles: self.cycles.unwrap_or(tribofe::studies::precursors_fe::DEFAULT_FIG4_CYCLES),
                     residual: Default::default(),
                     backslip: "allowed".into(),
                     scene,

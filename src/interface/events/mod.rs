@@ -173,10 +173,10 @@ impl std::fmt::Debug for Observer {
 impl Default for Problem {
     fn default() -> Self {
         Self {
-            n_force: 1.0,
+            n_force: crate::studies::slide::DEFAULT_N_FORCE,
             law: Law::Coulomb { mu: 0.5 },
             x_max: None,
-            cycles: 10,
+            cycles: crate::studies::slide::DEFAULT_CYCLES,
             max_events: crate::studies::slide::DEFAULT_MAX_EVENTS,
             keep_states: true,
             creep_fraction: 1e-3,

@@ -135,6 +135,10 @@ pub const EVENT_CAP_FACTOR: f64 = 4.0;
 pub const DEFAULT_CYCLES: usize = 1;
 pub const DEFAULT_END_AT_CROSSING: bool = true;
 
+/// The operator of a dynamic slide's static loading by default: its runs have thousands of
+/// events on fine meshes, where the banded solve's cost per event grows like n, not n^2.
+pub const DEFAULT_OPERATOR: crate::interface::events::Operator = crate::interface::events::Operator::Banded;
+
 /// Default slip-weakening step of the static loading: D_c / this of slip (as the quasi-static
 /// solver).
 pub const DEFAULT_WEAKENING_STEPS: f64 = 20.0;

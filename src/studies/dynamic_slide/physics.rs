@@ -65,7 +65,11 @@ pub fn kappa(scene: &Scene, mu_s: f64, mu_d: f64, dc: f64, n_force: f64) -> f64 
 /// The paper's scene and law ((r, g) = (0.9, 0.35), N = 1 N/m): what [`PAPER_DC`] refers to.
 fn paper() -> Result<(Scene, f64, f64)> {
     let s = Scene::default();
-    let (mu_s, mu_d) = crate::studies::slide::coefficients_from_rg(&s, 0.9, 0.35)?;
+    let (mu_s, mu_d) = crate::studies::slide::coefficients_from_rg(
+        &s,
+        crate::precursors::PAPER_R,
+        crate::precursors::PAPER_G,
+    )?;
     Ok((s, mu_s, mu_d))
 }
 

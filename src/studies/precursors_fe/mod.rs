@@ -31,6 +31,15 @@ pub use series::*;
 /// The two event rules compared in both figures.
 pub const RULES: [Rule; 2] = [Rule::Paper, Rule::Overdamped];
 
+/// Stick-slip cycles of each fig. 4 run by default (`precursors fe`, `tribofe.precursors.fe_fig4`).
+pub const DEFAULT_FIG4_CYCLES: usize = 2;
+
+/// The fig. 5 map's default grid (cells per axis) and event cap per cell (`precursors fe-map`,
+/// `tribofe.precursors.fe_fig5`).
+pub const DEFAULT_FIG5_RESOLUTION: usize = 20;
+pub const DEFAULT_FIG5_MAX_EVENTS: usize = 2000;
+pub const DEFAULT_FIG5_RULES: [Rule; 1] = [Rule::Paper];
+
 /// One rule's FE fig. 4 next to the analytic iteration (forces in units of mu_s N, x in L).
 #[derive(Debug, Clone)]
 pub struct Fig4 {
@@ -178,6 +187,17 @@ pub fn fig4_with(
     cancel: &crate::Cancel,
     progress: Progress,
 ) -> Result<Vec<Result<Fig4>>> {
+    // Here, not in a front end: the command and the package refuse the same counts.
+    if cycles == 0 {
+        return Err(crate::Error::input("--cycles", "need at least one whole-interface slip"));
+    }
+    let cap = SlideOptions::default().max_events;
+    if cycles > cap {
+        return Err(crate::Error::input(
+            "--cycles",
+            format!("{cycles}: above the event cap of {cap} (each cycle takes at least one event)"),
+        ));
+    }
     let c = condense(scene, &SolverOptions::default())?;
     let mut out = Vec::with_capacity(RULES.len());
     for (k, &rule) in RULES.iter().enumerate() {

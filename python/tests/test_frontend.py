@@ -1,0 +1,212 @@
+"""The package as a scripting front end (issue 44): silent unless asked, the command's
+defaults from the library, integer codes as integers, errors naming the keyword, Ctrl-C in
+a dynamic slide, the rupture's step cap."""
+
+import csv
+import inspect
+import re
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+import warnings
+
+import numpy as np
+import pytest
+
+import tribofe
+from conftest import run_cli
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {k: [r[k] for r in rows] for k in rows[0]}
+
+
+def keyworded(stderr: str) -> str:
+    """The command's message as the package words it: `--x-y` -> `x_y=`."""
+    return re.sub(r"--([a-z][a-z0-9-]*)", lambda m: m.group(1).replace("-", "_") + "=", stderr.strip())
+
+
+# Every public call that can report progress, with cheap arguments (each well under a second
+# or two on the paper's machine).
+SMALL = tribofe.Scene(length=0.1)
+QUIET_CALLS = {
+    "slide": lambda: tribofe.slide(law="static-kinetic", cycles=1),
+    "sweep": lambda: tribofe.sweep(thickness=[0.002, 0.004], length=0.05, converged=False),
+    "converge": lambda: tribofe.converge(n_thick=[1, 2]),
+    "precursors.fe_fig4": lambda: tribofe.precursors.fe_fig4(SMALL, cycles=1),
+    "precursors.fe_fig5": lambda: tribofe.precursors.fe_fig5(resolution=2),
+    "dynamics.slide": lambda: tribofe.dynamics.slide(SMALL, law="coulomb", x_max=1e-6),
+    "dynamics.rupture": lambda: tribofe.dynamics.rupture(t_end=0.005),
+}
+
+
+def public(name):
+    obj = tribofe
+    for part in name.split("."):
+        obj = getattr(obj, part)
+    return obj
+
+
+@pytest.mark.parametrize("name", sorted(QUIET_CALLS))
+def test_default_calls_print_nothing(name, capfd):
+    # progress defaults to False everywhere: no tqdm bar, no text, on either stream.
+    assert inspect.signature(public(name)).parameters["progress"].default is False
+    capfd.readouterr()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a warning would be printed too
+        res = QUIET_CALLS[name]()
+    assert res is not None
+    out, err = capfd.readouterr()
+    assert out == "" and err == "", (name, out[-500:], err[-500:])
+
+
+def test_progress_when_asked(capfd):
+    seen = []
+    tribofe.sweep(thickness=[0.002, 0.004], length=0.05, converged=False, progress=seen.append)
+    # The points run in parallel: their fractions may arrive out of order, all of them do.
+    assert seen and max(seen) == pytest.approx(1.0) and min(seen) >= 0.0
+    assert capfd.readouterr() == ("", "")
+
+
+def test_state_code_is_integer(tribofe_bin, tmp_path):
+    # states.csv writes each node's state as a word; the package's codes are integers
+    # 0 stick, 1 slip, 2 open, node for node the same.
+    out = tmp_path / "sl"
+    assert run_cli(tribofe_bin, "slide", "--law", "static-kinetic", "--cycles", "1", "--out", str(out)).returncode == 0
+    res = tribofe.slide(law="static-kinetic", cycles=1)
+    code = res.states["state_code"]
+    assert code.dtype == np.int64
+    words = read_csv(out / "states.csv")["state"]
+    want = np.array([{"stick": 0, "slip": 1, "open": 2}[w] for w in words]).reshape(code.shape)
+    np.testing.assert_array_equal(code, want)
+    assert {0, 1} <= set(np.unique(code))
+
+
+def test_rupture_takes_the_commands_s(tribofe_bin, tmp_path):
+    out = tmp_path / "r"
+    assert run_cli(tribofe_bin, "rupture", "--s", "1.5", "--t-end", "0.02", "--out", str(out)).returncode == 0
+    res = tribofe.dynamics.rupture(s=1.5, t_end=0.02)
+    x, t = np.asarray(res["x_m"]), np.asarray(res["t_arrival_s"])
+    mask = (x >= -1e-12) & np.isfinite(t)
+    assert mask.sum() > 10
+    np.testing.assert_allclose(t[mask], [float(v) for v in read_csv(out / "arrival.csv")["t_arrival_s"]], rtol=1e-11)
+    # A different S is a different run: the keyword reaches the library.
+    other = tribofe.dynamics.rupture(t_end=0.02)
+    assert not np.array_equal(np.asarray(other["t_arrival_s"])[mask], t[mask])
+    # The old name still works, warned, and equals s=.
+    with pytest.warns(DeprecationWarning, match="s="):
+        old = tribofe.dynamics.rupture(s_ratio=1.5, t_end=0.02)
+    np.testing.assert_array_equal(np.asarray(old["t_arrival_s"]), np.asarray(res["t_arrival_s"]))
+    with pytest.raises(tribofe.InputError, match="s_ratio="):
+        tribofe.dynamics.rupture(s=1.5, s_ratio=1.5)
+
+
+def test_rupture_max_steps_is_the_commands(tribofe_bin, tmp_path):
+    # The default run's own step count fits; one step fewer is refused before any work with
+    # the command's message, the flags named as keywords.
+    n = tribofe.dynamics.rupture()["steps"]
+    assert n > 100
+    assert tribofe.dynamics.rupture(max_steps=n)["steps"] == n
+    r = run_cli(tribofe_bin, "rupture", "--max-steps", str(n - 1), "--out", str(tmp_path / "x"))
+    assert r.returncode == 2 and not (tmp_path / "x").exists()
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.dynamics.rupture(max_steps=n - 1)
+    assert keyworded(r.stderr) == f"error: {e.value}"
+    assert "max_steps=" in str(e.value) and "t_end=" in str(e.value) and "--" not in str(e.value)
+
+
+def test_fe_fig4_defaults_are_the_commands(tribofe_bin, tmp_path):
+    # `tribofe precursors fe` with no flag and precursors.fe_fig4() with no keyword are the
+    # same runs (2 cycles): every number of summary.csv, to its printed digits.
+    out = tmp_path / "pfe"
+    assert run_cli(tribofe_bin, "precursors", "fe", "--out", str(out)).returncode == 0
+    cli = {row["source"]: row for row in csv.DictReader(open(out / "summary.csv"))}
+    runs = {run["rule"]: run for run in tribofe.precursors.fe_fig4()}
+    for rule in ("paper", "overdamped"):
+        c, want = runs[rule]["comparison"], cli[rule]
+        assert c["n_fe"] == int(want["precursors"])
+        assert c["n_fe_long"] == int(want["precursors_longer_5t"])
+        assert c["n_fe_advancing"] == int(want["precursors_advancing_5t"])
+        for key, col in (("F_1_fe", "F1_over_mu_s_N"), ("x_1_fe", "x1_over_L"), ("F_max_fe", "Fmax_over_mu_s_N")):
+            assert abs(c[key] - float(want[col])) <= 1e-12 * abs(float(want[col])), (rule, key)
+    # The issue's case: the overdamped F_max of the command, 0.9430 (1 cycle gave 0.9214).
+    assert abs(runs["overdamped"]["comparison"]["F_max_fe"] - 0.9430) < 5e-5
+
+
+# Each call refused with the keyword it was given; the message never names a flag.
+BAD_CALLS = [
+    ("slide n_force", lambda: tribofe.slide(n_force=-1.0), "n_force="),
+    ("slide dc", lambda: tribofe.slide(law="slip-weakening", dc=1e-20), "dc="),
+    ("slide x_max", lambda: tribofe.slide(x_max=1.0), "x_max="),
+    ("slide max_events", lambda: tribofe.slide(max_events=0), "max_events="),
+    ("dynamics.slide x_max", lambda: tribofe.dynamics.slide(SMALL, x_max=-1.0), "x_max="),
+    ("dynamics.slide damping", lambda: tribofe.dynamics.slide(SMALL, x_max=1e-6, damping=1e200), "damping="),
+    ("dynamics.rupture courant", lambda: tribofe.dynamics.rupture(courant=1e-5), "courant="),
+    ("dynamics.rupture dc", lambda: tribofe.dynamics.rupture(dc=-1.0), "dc="),
+    ("dynamics.rupture s", lambda: tribofe.dynamics.rupture(s=-1.0), "s="),
+    ("precursors.fe_fig4 cycles", lambda: tribofe.precursors.fe_fig4(cycles=0), "cycles="),
+    ("scene thickness", lambda: tribofe.Scene(thickness=-1.0), "thickness="),
+    ("scene plate_young", lambda: tribofe.Scene(plate="elastic", plate_young=-1.0), "plate_young="),
+]
+
+
+@pytest.mark.parametrize("call, keyword", [(c, k) for _, c, k in BAD_CALLS], ids=[n for n, _, _ in BAD_CALLS])
+def test_errors_name_the_keyword(call, keyword):
+    with pytest.raises(tribofe.InputError) as e:
+        call()
+    msg = str(e.value)
+    assert keyword in msg, msg
+    assert not re.search(r"(?<![\w-])--[a-z]", msg), msg
+    assert e.value.status == 2
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: tribofe.slide(law="rub\x1b[31mber"),
+        lambda: tribofe.Scene(element="qua\x074"),
+        lambda: tribofe.dynamics.rupture(contact="\x1b]0;title\x07glue"),
+        lambda: tribofe.dynamics.slide(SMALL, x_max=1e-6, cycle_end="cross\x1b[2J"),
+    ],
+    ids=["law", "element", "contact", "cycle_end"],
+)
+def test_errors_carry_no_control_bytes(call):
+    with pytest.raises(tribofe.InputError) as e:
+        call()
+    msg = str(e.value)
+    assert not any(ord(c) < 32 or ord(c) == 127 for c in msg), repr(msg)
+
+
+def test_interrupt_stops_a_dynamic_slide_within_a_second(tmp_path):
+    # The paper's dynamic first cycle runs for tens of seconds; SIGINT 3 s into it must end
+    # it with KeyboardInterrupt within a second and leave no file.
+    script = textwrap.dedent(
+        """
+        import signal, time, tribofe
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        print("ready", flush=True)
+        t0 = time.monotonic()
+        try:
+            tribofe.dynamics.slide()
+            print("finished", time.monotonic() - t0)
+        except KeyboardInterrupt as e:
+            print("interrupted", type(e).__name__, time.monotonic() - t0, flush=True)
+        """
+    )
+    p = subprocess.Popen([sys.executable, "-c", script], cwd=tmp_path, stdout=subprocess.PIPE, text=True)
+    try:
+        assert p.stdout.readline().strip() == "ready"
+        time.sleep(3.0)
+        sent = time.monotonic()
+        p.send_signal(signal.SIGINT)
+        out, _ = p.communicate(timeout=30)
+    finally:
+        p.kill()
+    waited = time.monotonic() - sent
+    assert out.startswith("interrupted"), out
+    assert waited < 1.0 + 0.5, f"took {waited:.2f} s after SIGINT (1 s asked, 0.5 s for the interpreter to exit)"
+    assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,119 @@
+//! A table defined once: each column's name, unit and type with its values. The CSV writer
+//! prints it, and a front end (the Python package) takes its arrays at full precision, so
+//! the file and the arrays cannot differ in columns, order or types. dyn_events.csv is the
+//! first table built this way; the others follow the same pattern.
+
+use super::finite;
+use crate::error::Result;
+use std::fmt::Write as _;
+
+/// A column's values: whole numbers, numbers (NaN: no value, an empty CSV cell where the
+/// column allows it) or text.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Values {
+    Int(Vec<i64>),
+    Float(Vec<f64>),
+    Text(Vec<String>),
+}
+
+impl Values {
+    fn len(&self) -> usize {
+        match self {
+            Values::Int(v) => v.len(),
+            Values::Float(v) => v.len(),
+            Values::Text(v) => v.len(),
+        }
+    }
+}
+
+/// One column: its CSV name, its unit (SI, `1` for a dimensionless ratio, `-` for a count,
+/// code or label) and its values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Column {
+    pub name: &'static str,
+    pub unit: &'static str,
+    /// NaN is written as an empty cell (a quantity that does not exist for the row); where
+    /// false, a non-finite value is refused (a bug, never written).
+    pub may_be_empty: bool,
+    pub values: Values,
+}
+
+impl Column {
+    pub fn int(name: &'static str, unit: &'static str, v: Vec<i64>) -> Column {
+        Column { name, unit, may_be_empty: false, values: Values::Int(v) }
+    }
+    pub fn float(name: &'static str, unit: &'static str, v: Vec<f64>) -> Column {
+        Column { name, unit, may_be_empty: false, values: Values::Float(v) }
+    }
+    /// A number that may not exist for a row (NaN: an empty cell).
+    pub fn maybe(name: &'static str, unit: &'static str, v: Vec<f64>) -> Column {
+        Column { name, unit, may_be_empty: true, values: Values::Float(v) }
+    }
+    pub fn text(name: &'static str, unit: &'static str, v: Vec<String>) -> Column {
+        Column { name, unit, may_be_empty: false, values: Values::Text(v) }
+    }
+}
+
+/// A table: its columns, of equal length, and the significant digits its numbers are
+/// printed with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table {
+    pub columns: Vec<Column>,
+    pub digits: usize,
+}
+
+impl Table {
+    pub fn rows(&self) -> usize {
+        self.columns.first().map_or(0, |c| c.values.len())
+    }
+
+    /// The CSV text: the names, then one line per row; numbers in scientific notation with
+    /// [`Self::digits`] significant digits.
+    pub fn csv(&self) -> Result<String> {
+        let n = self.rows();
+        debug_assert!(self.columns.iter().all(|c| c.values.len() == n), "ragged table");
+        let mut s = self.columns.iter().map(|c| c.name).collect::<Vec<_>>().join(",");
+        s.push('\n');
+        let prec = self.digits.saturating_sub(1);
+        for i in 0..n {
+            for (j, c) in self.columns.iter().enumerate() {
+                if j > 0 {
+                    s.push(',');
+                }
+                match &c.values {
+                    Values::Int(v) => write!(s, "{}", v[i]).unwrap(),
+                    Values::Text(v) => s.push_str(&v[i]),
+                    Values::Float(v) if c.may_be_empty && !v[i].is_finite() => {}
+                    Values::Float(v) => write!(s, "{:.*e}", prec, finite(c.name, v[i])?).unwrap(),
+                }
+            }
+            s.push('\n');
+        }
+        Ok(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_prints_types_digits_and_empty_cells() {
+        let t = Table {
+            columns: vec![
+                Column::int("event", "-", vec![3, 7]),
+                Column::text("kind", "-", vec!["slip".into(), "open".into()]),
+                Column::float("X_m", "m", vec![1.0 / 3.0, -2.5e-7]),
+                Column::maybe("t_s", "s", vec![f64::NAN, 0.125]),
+            ],
+            digits: 10,
+        };
+        assert_eq!(
+            t.csv().unwrap(),
+            "event,kind,X_m,t_s\n3,slip,3.333333333e-1,\n7,open,-2.500000000e-7,1.250000000e-1\n"
+        );
+        // A column that must hold a number refuses NaN, naming itself.
+        let bad = Table { columns: vec![Column::float("X_m", "m", vec![f64::NAN])], digits: 10 };
+        assert!(bad.csv().unwrap_err().to_string().contains("X_m"));
+    }
+}
