@@ -1,7 +1,9 @@
 //! Rate-and-state friction (Dieterich 1979, Ruina 1983), in the regularised form the
 //! dynamic-rupture codes use near V = 0 (Lapusta et al. 2000; SEM2DPACK, SeisSol):
 //!
-//!     mu(V, theta) = a asinh( V / (2 V_0) exp(psi / a) ),   psi = f_0 + b ln(V_0 theta / L)
+//! ```text
+//! mu(V, theta) = a asinh( V / (2 V_0) exp(psi / a) ),   psi = f_0 + b ln(V_0 theta / L)
+//! ```
 //!
 //! with the aging law d(theta)/dt = 1 - V theta / L or the slip law
 //! d(theta)/dt = -(V theta / L) ln(V theta / L). For V >> V_0 exp(-psi / a) it is the classic
