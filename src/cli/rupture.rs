@@ -66,7 +66,7 @@ pub struct Args {
     pub patch_taper: f64,
     /// Most explicit steps the run may take (t_end / dt, dt = courant h / c_p); a run above it
     /// is refused before any work. The default, 1e6 steps, is about 15 minutes on the default
-    /// mesh (one step of 200 x 100 elements about 1 ms); the default run is 417 steps.
+    /// mesh (one step of 200 x 100 elements about 1 ms); the default run is 414 steps.
     #[arg(long, default_value_t = tribofe::dynamics::rupture::DEFAULT_MAX_STEPS)]
     pub max_steps: u64,
     /// Output directory.

@@ -136,7 +136,7 @@ impl Default for RuptureSpec {
 }
 
 /// Default cap on a run's explicit steps: one step of the default mesh (200 x 100 elements)
-/// takes about 1 ms here, so 1e6 steps are about 15 minutes; the spec's run is 417 steps.
+/// takes about 1 ms here, so 1e6 steps are about 15 minutes; the spec's run is 414 steps.
 /// The cost of a step grows with the elements (at most 2e7): the run's cost is printed first.
 pub const DEFAULT_MAX_STEPS: u64 = 1_000_000;
 

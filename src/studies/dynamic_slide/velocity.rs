@@ -80,7 +80,7 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<f64>
         ));
     }
     if o.law.weakens() {
-        let thr = super::physics::event_rate(scene, o.law.mu_s(), o.law.mu_d(), o.n_force)?;
+        let thr = event_threshold(scene, o, v)?;
         if RATE_FACTOR * v > thr {
             return Err(Error::input(
                 "--drive-velocity",
