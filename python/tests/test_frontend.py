@@ -5,18 +5,13 @@ a dynamic slide, the rupture's step cap."""
 import csv
 import inspect
 import re
-import signal
-import subprocess
-import sys
-import textwrap
-import time
 import warnings
 
 import numpy as np
 import pytest
 
 import tribofe
-from conftest import run_cli
+from conftest import assert_interrupt_stops, run_cli
 
 
 def read_csv(path):
@@ -184,29 +179,4 @@ def test_errors_carry_no_control_bytes(call):
 def test_interrupt_stops_a_dynamic_slide_within_a_second(tmp_path):
     # The paper's dynamic first cycle runs for tens of seconds; SIGINT 3 s into it must end
     # it with KeyboardInterrupt within a second and leave no file.
-    script = textwrap.dedent(
-        """
-        import signal, time, tribofe
-        signal.signal(signal.SIGINT, signal.default_int_handler)
-        print("ready", flush=True)
-        t0 = time.monotonic()
-        try:
-            tribofe.dynamics.slide()
-            print("finished", time.monotonic() - t0)
-        except KeyboardInterrupt as e:
-            print("interrupted", type(e).__name__, time.monotonic() - t0, flush=True)
-        """
-    )
-    p = subprocess.Popen([sys.executable, "-c", script], cwd=tmp_path, stdout=subprocess.PIPE, text=True)
-    try:
-        assert p.stdout.readline().strip() == "ready"
-        time.sleep(3.0)
-        sent = time.monotonic()
-        p.send_signal(signal.SIGINT)
-        out, _ = p.communicate(timeout=30)
-    finally:
-        p.kill()
-    waited = time.monotonic() - sent
-    assert out.startswith("interrupted"), out
-    assert waited < 1.0 + 0.5, f"took {waited:.2f} s after SIGINT (1 s asked, 0.5 s for the interpreter to exit)"
-    assert list(tmp_path.iterdir()) == []
+    assert_interrupt_stops(tmp_path, "tribofe.dynamics.slide()", 3.0)
