@@ -29,7 +29,7 @@
 //! energy + friction + damping - work of N - contact work - drive work is constant to
 //! round-off over an event.
 
-use super::explicit::{dot, Elastodynamic};
+use super::explicit::{Boundary, BoundaryStep, Elastodynamic, Explicit};
 use super::friction::SlipWeakening;
 use crate::error::{Error, Result};
 
@@ -49,8 +49,8 @@ pub struct Layout {
     pub plate_mass: f64,
     pub plate_inertia: f64,
     pub x_c: f64,
-    /// 0 interior, 1 base, 2 top, per node.
-    role: Vec<u8>,
+    /// The base nodes, then the top nodes: the nodes the stepper's boundary updates.
+    hooked: Vec<usize>,
     /// sum m, sum m x, sum m (x^2 + arm^2) over the top nodes.
     top_moments: [f64; 3],
     /// Inverse of the plate's 2x2 mass matrix over (V, theta).
@@ -68,9 +68,7 @@ impl Layout {
         top_x: Vec<f64>,
         arm: f64,
     ) -> Self {
-        let mut role = vec![0u8; model.n_nodes()];
-        base.iter().for_each(|&k| role[k] = 1);
-        top.iter().for_each(|&k| role[k] = 2);
+        let hooked = base.iter().chain(&top).copied().collect();
         let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
         for (&k, &xk) in top.iter().zip(&top_x) {
             let m = model.mass[k];
@@ -89,7 +87,7 @@ impl Layout {
             plate_mass: 0.0,
             plate_inertia: 0.0,
             x_c: 0.5 * (lo + hi),
-            role,
+            hooked,
             top_moments: [a, b, c],
             mp_inv: [[0.0; 2]; 2],
             m_top: a,
@@ -268,12 +266,9 @@ pub struct Driven<'a> {
     pub eta: f64,
 }
 
-/// Scratch of the step: K u, K v and u^{n-1}.
-#[derive(Debug, Clone)]
-pub struct Work {
-    ku: Vec<f64>,
-    kv: Vec<f64>,
-    u_prev: Vec<f64>,
+/// The run's stepper (the crate's one explicit integrator, [`Explicit`]) between steps.
+pub struct Work<'a> {
+    ex: Explicit<'a>,
 }
 
 /// A base node after a step: the flat's forces on it (T along x, P along y, N/m), the T*
@@ -308,19 +303,113 @@ impl EventRecord {
     }
 }
 
-impl Work {
+impl Work<'_> {
     /// After a [`Driven::step`] from level n: the displacements u^n it started from, m.
     pub fn u_before(&self) -> &[f64] {
-        &self.u_prev
+        self.ex.u_before()
     }
 }
 
-impl Driven<'_> {
-    /// Scratch for [`Self::step`] from the state's u and v (u^{n-1} = u^n - dt v^{n-1/2}).
-    pub fn work(&self, st: &DynState) -> Work {
+/// The block's boundary in one step: the base on the flat and the plate (see the module
+/// docs); the stepper updates every other node.
+struct PlateAndBase<'s> {
+    dr: &'s Driven<'s>,
+    q: &'s mut [f64; 2],
+    qdot: &'s mut [f64; 2],
+    u_h: &'s mut f64,
+    drive_velocity: f64,
+    d: &'s mut [f64],
+    contact: &'s mut [Contact],
+    e: &'s mut EventEnergy,
+    any_slip: bool,
+    f_drive: f64,
+}
+
+impl Boundary for PlateAndBase<'_> {
+    fn nodes(&self) -> &[usize] {
+        &self.dr.layout.hooked
+    }
+
+    fn own_kinetic(&self) -> f64 {
+        self.dr.layout.plate_kinetic(self.drive_velocity, *self.qdot)
+    }
+
+    fn apply(&mut self, s: BoundaryStep<'_>) -> f64 {
+        let (lay, dt) = (self.dr.layout, s.dt);
+        let (fr0, co0, wn0, dr0) = (self.e.friction, self.e.contact, self.e.work_n, self.e.drive);
+        // Base nodes: contact and friction.
+        for (b, &k) in lay.base.iter().enumerate() {
+            let mk = s.mass[k];
+            let (ix, iy) = (2 * k, 2 * k + 1);
+            let (fx, fy) = (s.force(ix), s.force(iy));
+            let (vxm, vym) = (s.v[ix], s.v[iy]);
+            let p_star = -fy - mk * vym / dt - mk * s.u[iy] / (dt * dt);
+            let mut slipping = false;
+            let (t, p, t_trial) = if p_star > 0.0 {
+                let strength = self.dr.friction.mu(self.d[b]) * p_star;
+                let t_star = -fx - mk * vxm / dt;
+                if t_star.abs() <= strength {
+                    (t_star, p_star, t_star)
+                } else {
+                    slipping = true;
+                    (strength * t_star.signum(), p_star, t_star)
+                }
+            } else {
+                (0.0, 0.0, 0.0)
+            };
+            self.any_slip |= slipping;
+            self.contact[b] = Contact { t, p, t_trial, slipping, open: p_star <= 0.0 };
+            let vx = vxm + dt * (fx + t) / mk;
+            let vy = if p_star > 0.0 { -s.u[iy] / dt } else { vym + dt * (fy + p) / mk };
+            let (vbx, vby) = (0.5 * (vxm + vx), 0.5 * (vym + vy));
+            self.e.friction -= dt * vbx * t;
+            self.e.contact += dt * vby * p;
+            s.v[ix] = vx;
+            s.v[iy] = vy;
+            s.u_next[ix] = s.u[ix] + dt * vx;
+            s.u_next[iy] = if p_star > 0.0 { 0.0 } else { s.u[iy] + dt * vy };
+            self.d[b] += dt * vx.abs();
+        }
+        // The plate: generalized forces on (V, theta) from the top nodes, and the drive's
+        // reaction F = (sum m + m_p) arm theta'' - sum f_x (U_H has no acceleration).
+        let (mut qv, mut qt, mut fx_sum) = (-self.dr.n_force, 0.0, 0.0);
+        for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
+            let (fx, fy) = (s.force(2 * k), s.force(2 * k + 1));
+            qv += fy;
+            qt += fx * lay.arm + fy * xk;
+            fx_sum += fx;
+        }
+        let acc =
+            [lay.mp_inv[0][0] * qv + lay.mp_inv[0][1] * qt, lay.mp_inv[1][0] * qv + lay.mp_inv[1][1] * qt];
+        let qd_old = *self.qdot;
+        for j in 0..2 {
+            self.qdot[j] += dt * acc[j];
+            self.q[j] += dt * self.qdot[j];
+        }
+        self.f_drive = (lay.m_top + lay.plate_mass) * lay.arm * acc[1] - fx_sum;
+        self.e.work_n -= dt * 0.5 * (qd_old[0] + self.qdot[0]) * self.dr.n_force;
+        self.e.drive += dt * self.drive_velocity * self.f_drive;
+        *self.u_h += dt * self.drive_velocity;
+        for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
+            let (ix, iy) = (2 * k, 2 * k + 1);
+            s.v[ix] = self.drive_velocity + lay.arm * self.qdot[1];
+            s.v[iy] = self.qdot[0] + xk * self.qdot[1];
+            s.u_next[ix] = *self.u_h + lay.arm * self.q[1];
+            s.u_next[iy] = self.q[0] + xk * self.q[1];
+        }
+        (self.e.work_n - wn0) + (self.e.contact - co0) + (self.e.drive - dr0) - (self.e.friction - fr0)
+    }
+}
+
+impl<'a> Driven<'a> {
+    /// The stepper for [`Self::step`] from the state's u and v (u^{n-1} = u^n - dt v^{n-1/2}).
+    pub fn work(&self, st: &DynState) -> Work<'a> {
         let nd = self.model.n_dofs();
-        let u_prev = (0..nd).map(|i| st.u[i] - self.dt * st.v[i]).collect();
-        Work { ku: vec![0.0; nd], kv: vec![0.0; nd], u_prev }
+        // dt and eta were checked against the stable step with the user's flags (Setup).
+        let mut ex = Explicit::checked_by_caller(self.model, self.dt, self.eta, vec![false; nd])
+            .with_boundary(&self.layout.hooked);
+        ex.set_state(&st.u, &st.v);
+        Work { ex }
     }
 
     /// One explicit step of the block, its base and the plate; the energies of `e` (kinetic
@@ -333,114 +422,32 @@ impl Driven<'_> {
         e: &mut EventEnergy,
         contact: &mut [Contact],
     ) -> StepOut {
-        let (m, lay, dt, eta) = (self.model, self.layout, self.dt, self.eta);
-        let Work { ku, kv, u_prev } = w;
-        m.apply_k(&st.u, ku);
-        if eta > 0.0 {
-            m.apply_k(&st.v, kv);
-        }
-        let kinetic = m.kinetic_energy(&st.v) + lay.plate_kinetic(st.drive_velocity, st.qdot);
-        let shadow = kinetic + 0.5 * dot(u_prev, ku);
-        let balance = shadow + e.friction + e.damping - e.work_n - e.contact - e.drive;
-        e.kinetic = kinetic;
-        e.strain = 0.5 * dot(u_prev, ku);
-        let force = |i: usize| -ku[i] - if eta > 0.0 { eta * kv[i] } else { 0.0 };
-        // Damping dissipation of this step over every DOF: sum dt vbar eta K v (vbar after
-        // the update, accumulated below per node).
-        let mut damp = 0.0;
-        // Interior nodes.
-        for k in 0..m.n_nodes() {
-            if lay.role[k] != 0 {
-                continue;
-            }
-            let mk = m.mass[k];
-            for c in 0..2 {
-                let i = 2 * k + c;
-                let vm = st.v[i];
-                let vp = vm + dt * force(i) / mk;
-                if eta > 0.0 {
-                    damp += dt * 0.5 * (vm + vp) * eta * kv[i];
-                }
-                st.v[i] = vp;
-                u_prev[i] = st.u[i];
-                st.u[i] += dt * vp;
-            }
-        }
-        // Base nodes: contact and friction.
-        let mut any_slip = false;
-        for (b, &k) in lay.base.iter().enumerate() {
-            let mk = m.mass[k];
-            let (ix, iy) = (2 * k, 2 * k + 1);
-            let (fx, fy) = (force(ix), force(iy));
-            let (vxm, vym) = (st.v[ix], st.v[iy]);
-            let p_star = -fy - mk * vym / dt - mk * st.u[iy] / (dt * dt);
-            let mut slipping = false;
-            let (t, p, t_trial) = if p_star > 0.0 {
-                let strength = self.friction.mu(st.d[b]) * p_star;
-                let t_star = -fx - mk * vxm / dt;
-                if t_star.abs() <= strength {
-                    (t_star, p_star, t_star)
-                } else {
-                    slipping = true;
-                    (strength * t_star.signum(), p_star, t_star)
-                }
-            } else {
-                (0.0, 0.0, 0.0)
-            };
-            any_slip |= slipping;
-            contact[b] = Contact { t, p, t_trial, slipping, open: p_star <= 0.0 };
-            let vx = vxm + dt * (fx + t) / mk;
-            let vy = if p_star > 0.0 { -st.u[iy] / dt } else { vym + dt * (fy + p) / mk };
-            let (vbx, vby) = (0.5 * (vxm + vx), 0.5 * (vym + vy));
-            e.friction -= dt * vbx * t;
-            e.contact += dt * vby * p;
-            if eta > 0.0 {
-                damp += dt * (vbx * eta * kv[ix] + vby * eta * kv[iy]);
-            }
-            st.v[ix] = vx;
-            st.v[iy] = vy;
-            u_prev[ix] = st.u[ix];
-            u_prev[iy] = st.u[iy];
-            st.u[ix] += dt * vx;
-            st.u[iy] = if p_star > 0.0 { 0.0 } else { st.u[iy] + dt * vy };
-            st.d[b] += dt * vx.abs();
-        }
-        // The plate: generalized forces on (V, theta) from the top nodes, and the drive's
-        // reaction F = (sum m + m_p) arm theta'' - sum f_x (U_H has no acceleration).
-        let (mut qv, mut qt, mut fx_sum) = (-self.n_force, 0.0, 0.0);
-        for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
-            let (fx, fy) = (force(2 * k), force(2 * k + 1));
-            qv += fy;
-            qt += fx * lay.arm + fy * xk;
-            fx_sum += fx;
-        }
-        let acc =
-            [lay.mp_inv[0][0] * qv + lay.mp_inv[0][1] * qt, lay.mp_inv[1][0] * qv + lay.mp_inv[1][1] * qt];
-        let qd_old = st.qdot;
-        for j in 0..2 {
-            st.qdot[j] += dt * acc[j];
-            st.q[j] += dt * st.qdot[j];
-        }
-        let f_drive = (lay.m_top + lay.plate_mass) * lay.arm * acc[1] - fx_sum;
-        e.work_n -= dt * 0.5 * (qd_old[0] + st.qdot[0]) * self.n_force;
-        e.drive += dt * st.drive_velocity * f_drive;
-        st.u_h += dt * st.drive_velocity;
-        for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
-            let (ix, iy) = (2 * k, 2 * k + 1);
-            let (vx, vy) = (st.drive_velocity + lay.arm * st.qdot[1], st.qdot[0] + xk * st.qdot[1]);
-            if eta > 0.0 {
-                damp += dt * (0.5 * (st.v[ix] + vx) * eta * kv[ix] + 0.5 * (st.v[iy] + vy) * eta * kv[iy]);
-            }
-            st.v[ix] = vx;
-            st.v[iy] = vy;
-            u_prev[ix] = st.u[ix];
-            u_prev[iy] = st.u[iy];
-            st.u[ix] = st.u_h + lay.arm * st.q[1];
-            st.u[iy] = st.q[0] + xk * st.q[1];
-        }
-        e.damping += damp;
-        st.time += dt;
-        StepOut { f_drive, any_slip, balance }
+        let ex = &mut w.ex;
+        // The state's arrays are the stepper's for the step (a swap of pointers).
+        std::mem::swap(&mut ex.u, &mut st.u);
+        std::mem::swap(&mut ex.v, &mut st.v);
+        let mut b = PlateAndBase {
+            dr: self,
+            q: &mut st.q,
+            qdot: &mut st.qdot,
+            u_h: &mut st.u_h,
+            drive_velocity: st.drive_velocity,
+            d: &mut st.d,
+            contact,
+            e,
+            any_slip: false,
+            f_drive: 0.0,
+        };
+        ex.step_with(&mut b, |_, _| {});
+        let (any_slip, f_drive) = (b.any_slip, b.f_drive);
+        std::mem::swap(&mut ex.u, &mut st.u);
+        std::mem::swap(&mut ex.v, &mut st.v);
+        let l = &ex.ledger;
+        e.kinetic = l.kinetic_half;
+        e.strain = l.shadow_half - l.kinetic_half;
+        e.damping += l.damping - l.damping_half;
+        st.time += self.dt;
+        StepOut { f_drive, any_slip, balance: ex.shadow_balance() }
     }
 
     /// Runs until the event settles (or the step cap); `slip_threshold` (m) marks a node as

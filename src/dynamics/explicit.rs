@@ -307,16 +307,23 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// the physical energies at the integer step, which differ from it by O(dt^2).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Ledger {
-    /// E^{n-1/2} = 0.5 v^{n-1/2} M v^{n-1/2} + 0.5 u^{n-1} K u^n for the last step n.
+    /// E^{n-1/2} = 0.5 v^{n-1/2} M v^{n-1/2} + 0.5 u^{n-1} K u^n for the last step n (plus
+    /// the kinetic energy a [`Boundary`] holds outside the mesh).
     pub shadow_half: f64,
+    /// Its kinetic part (the rest is the strain part 0.5 u^{n-1} K u^n).
+    pub kinetic_half: f64,
     /// Work of the external forces and damping dissipation through step n - 1 (the sums of
     /// dt vbar^k . f_ext^k and dt vbar^k . eta K v^{k-1/2}, vbar^k = (v^{k-1/2} + v^{k+1/2}) / 2):
     /// shadow_half + damping_half - work_half is the same at every step, to round-off.
     pub work_half: f64,
     pub damping_half: f64,
+    /// Net work the boundary hooks put in through step n - 1 (their forces' work less what
+    /// they dissipate, as each reports it).
+    pub boundary_half: f64,
     /// The same sums through step n (to set against the physical energies at step n + 1/2).
     pub work: f64,
     pub damping: f64,
+    pub boundary: f64,
     /// Physical energies at step n: 0.5 vbar M vbar and 0.5 u^n K u^n.
     pub kinetic: f64,
     pub strain: f64,
@@ -333,6 +340,8 @@ struct RowCtx<'a> {
     fixed: &'a [bool],
     mass: &'a [f64],
     u: &'a [f64],
+    /// Per DOF: updated by the boundary (empty without one).
+    owned: &'a [bool],
 }
 
 /// The update of node row j (see [`Explicit::step_grid`]): un holds u^{n-1} and receives
@@ -378,6 +387,52 @@ fn update_row<const DAMPED: bool>(
     RowSums { kin_old: s[0], shadow: s[1], strain: s[2], work: s[3], damp: s[4], kin: s[5], corr: s[6] }
 }
 
+/// [`update_row`] for a row holding boundary nodes: the others are updated as there; the
+/// boundary's DOFs only add their share of the sums over v^{n-1/2} and u^n (the rest is added
+/// after the boundary ran) and keep K u in `kus`, K v in `kvs` and v^{n-1/2} in `vout`
+/// (already there unless DAMPED); their fe is left for the boundary.
+#[inline(always)]
+fn update_hooked_row<const DAMPED: bool>(
+    c: &RowCtx,
+    j: usize,
+    ku: &[f64],
+    kv: &[f64],
+    vin: &[f64],
+    [un, fe, vout, kus, kvs]: [&mut [f64]; 5],
+) -> RowSums {
+    let (dt, eta, i0) = (c.dt, c.eta, j * c.row_len);
+    let mut s = RowSums::default();
+    for k in 0..c.row_len {
+        let i = i0 + k;
+        let mi = c.mass[i / 2];
+        let vm = if DAMPED { vin[i] } else { vout[k] };
+        s.kin_old += mi * vm * vm;
+        s.shadow += un[k] * ku[k];
+        s.strain += c.u[i] * ku[k];
+        if c.owned[i] {
+            kus[k] = ku[k];
+            if DAMPED {
+                kvs[k] = kv[k];
+            }
+            continue;
+        }
+        let inv = 1.0 / mi;
+        let fd = if DAMPED { eta * kv[k] } else { 0.0 };
+        let f = fe[k] - ku[k] - fd;
+        let fixed = c.fixed[i];
+        let vp = if fixed { 0.0 } else { vm + dt * f * inv };
+        let vbar = 0.5 * (vm + vp);
+        s.work += dt * vbar * fe[k];
+        s.damp += dt * vbar * fd;
+        s.kin += 0.5 * mi * vbar * vbar;
+        s.corr += if fixed { 0.0 } else { dt * dt / 8.0 * f * f * inv };
+        vout[k] = vp;
+        un[k] = c.u[i] + dt * vp;
+        fe[k] = 0.0;
+    }
+    s
+}
+
 /// One node row's share of the ledger sums of a grid step.
 #[derive(Debug, Clone, Copy, Default)]
 struct RowSums {
@@ -404,7 +459,67 @@ impl RowSums {
     }
 }
 
-/// A running explicit integration: displacements at step n, velocities at n - 1/2.
+/// A boundary condition of the one explicit stepper ([`Explicit::step_with`]): called once
+/// per step between the predictor (K u^n and K v^{n-1/2} known) and the update, it updates
+/// its own nodes' DOFs (the stepper leaves them alone) and reports the net work it put in.
+/// The frictional base (rigid flat or symmetric fault), the rigid plate with its drive, or
+/// any edge condition is one; the ledger's boundary term is the sum of what they report.
+pub trait Boundary {
+    /// The nodes it updates, each once (fixed for the run).
+    fn nodes(&self) -> &[usize];
+    /// Kinetic energy it holds outside the mesh (a rigid plate's own mass) at the half step
+    /// n - 1/2, J/m (read before [`Self::apply`]).
+    fn own_kinetic(&self) -> f64 {
+        0.0
+    }
+    /// Writes v^{n+1/2} into `s.v` (which holds v^{n-1/2} at its nodes) and u^{n+1} into
+    /// `s.u_next` for its nodes; returns the net work it put in over the step (its forces'
+    /// work less its dissipation), J/m.
+    fn apply(&mut self, s: BoundaryStep<'_>) -> f64;
+}
+
+/// What a [`Boundary`] reads and writes in one step (whole-mesh DOF arrays, DOF order u0, v0,
+/// u1, ...; only its own nodes' entries of `v` and `u_next` are its to write).
+pub struct BoundaryStep<'s> {
+    /// The step number n (time n dt), the step and the damping.
+    pub n: usize,
+    pub dt: f64,
+    pub eta: f64,
+    pub mass: &'s [f64],
+    /// K u^n, and K v^{n-1/2} (read only when eta > 0), at its nodes.
+    pub ku: &'s [f64],
+    pub kv: &'s [f64],
+    /// External forces at t = n dt.
+    pub fe: &'s [f64],
+    /// u^n.
+    pub u: &'s [f64],
+    pub v: &'s mut [f64],
+    pub u_next: &'s mut [f64],
+}
+
+impl BoundaryStep<'_> {
+    /// The mesh's force on DOF i at this step: f_ext - K (u^n + eta v^{n-1/2}).
+    #[inline]
+    pub fn force(&self, i: usize) -> f64 {
+        self.fe[i] - self.ku[i] - if self.eta > 0.0 { self.eta * self.kv[i] } else { 0.0 }
+    }
+}
+
+/// No boundary hook ([`Explicit::step`]).
+struct Free;
+
+impl Boundary for Free {
+    fn nodes(&self) -> &[usize] {
+        &[]
+    }
+    fn apply(&mut self, _: BoundaryStep<'_>) -> f64 {
+        0.0
+    }
+}
+
+/// A running explicit integration: displacements at step n, velocities at n - 1/2. The one
+/// central-difference loop of the crate: every dynamic command steps through it, its
+/// boundary conditions as [`Boundary`] hooks.
 pub struct Explicit<'a> {
     pub model: &'a Elastodynamic,
     pub dt: f64,
@@ -422,6 +537,14 @@ pub struct Explicit<'a> {
     ku: Vec<f64>,
     kv: Vec<f64>,
     fe: Vec<f64>,
+    /// The boundary's DOFs (sorted), a flag per DOF, and on a grid a flag per node row that
+    /// holds one; empty without a boundary.
+    hook_dofs: Vec<usize>,
+    owned: Vec<bool>,
+    hook_rows: Vec<bool>,
+    /// K v at the boundary's DOFs on the grid path (whole-mesh array), and v^{n-1/2} there.
+    kv_hook: Vec<f64>,
+    v_hook: Vec<f64>,
 }
 
 impl<'a> Explicit<'a> {
@@ -439,9 +562,14 @@ impl<'a> Explicit<'a> {
                 ),
             ));
         }
+        Ok(Self::checked_by_caller(model, dt, eta, fixed))
+    }
+
+    /// [`Self::new`] for a caller that has checked dt and eta itself (with the flags to name).
+    pub(crate) fn checked_by_caller(model: &'a Elastodynamic, dt: f64, eta: f64, fixed: Vec<bool>) -> Self {
         let n = model.n_dofs();
         assert_eq!(fixed.len(), n, "one flag per DOF");
-        Ok(Self {
+        Self {
             model,
             dt,
             eta,
@@ -454,7 +582,30 @@ impl<'a> Explicit<'a> {
             ku: vec![0.0; n],
             kv: vec![0.0; n],
             fe: vec![0.0; n],
-        })
+            hook_dofs: vec![],
+            owned: vec![],
+            hook_rows: vec![],
+            kv_hook: vec![],
+            v_hook: vec![],
+        }
+    }
+
+    /// The same, with the nodes a [`Boundary`] will update (see [`Self::step_with`]).
+    pub fn with_boundary(mut self, nodes: &[usize]) -> Self {
+        let n = self.model.n_dofs();
+        self.owned = vec![false; n];
+        for &k in nodes {
+            self.owned[2 * k] = true;
+            self.owned[2 * k + 1] = true;
+        }
+        self.hook_dofs = (0..n).filter(|&i| self.owned[i]).collect();
+        if let Some(g) = &self.model.grid {
+            let rl = g.row_len();
+            self.hook_rows = self.owned.chunks(rl).map(|r| r.iter().any(|&o| o)).collect();
+            self.kv_hook = vec![0.0; n];
+        }
+        self.v_hook = vec![0.0; self.hook_dofs.len()];
+        self
     }
 
     /// Sets the initial displacement (fixed DOFs must be zero) and keeps v^{-1/2}.
@@ -468,23 +619,56 @@ impl<'a> Explicit<'a> {
         }
     }
 
+    /// Sets u^n and v^{n-1/2} together (u^{n-1} = u^n - dt v^{n-1/2}), e.g. a dynamic event
+    /// starting from a static field.
+    pub fn set_state(&mut self, u: &[f64], v: &[f64]) {
+        self.v.copy_from_slice(v);
+        self.set_displacement(u);
+    }
+
+    /// u^{n-1}: after a step from level n, the displacements it started from.
+    pub fn u_before(&self) -> &[f64] {
+        &self.u_prev
+    }
+
+    /// The current level n without a step (a run that reads its boundary at the level it ends
+    /// on): K u^n and the mesh's shadow energy there, 0.5 v^{n-1/2} M v^{n-1/2} and
+    /// 0.5 u^{n-1} K u^n (J/m).
+    pub fn level(&mut self) -> (&[f64], f64, f64) {
+        self.model.apply_k(&self.u, &mut self.ku);
+        let kinetic = self.model.kinetic_energy(&self.v);
+        (&self.ku, kinetic, 0.5 * dot(&self.u_prev, &self.ku))
+    }
+
     /// One step; `f_ext(t, f)` adds the external nodal forces at t = n dt into `f` (zeroed).
-    pub fn step(&mut self, mut f_ext: impl FnMut(f64, &mut [f64])) {
-        let (m, dt, eta) = (self.model, self.dt, self.eta);
-        if let Some(g) = &m.grid {
+    pub fn step(&mut self, f_ext: impl FnMut(f64, &mut [f64])) {
+        self.step_with(&mut Free, f_ext)
+    }
+
+    /// One step with boundary hooks (built with [`Self::with_boundary`] on its nodes).
+    pub fn step_with(&mut self, b: &mut dyn Boundary, mut f_ext: impl FnMut(f64, &mut [f64])) {
+        debug_assert_eq!(b.nodes().len() * 2, self.hook_dofs.len(), "the boundary's nodes");
+        let own_kinetic = b.own_kinetic();
+        if let Some(g) = &self.model.grid {
             // fe is zero here: new() makes it so and every grid step leaves it so.
-            f_ext(self.n as f64 * dt, &mut self.fe);
-            return self.step_grid(g);
+            f_ext(self.n as f64 * self.dt, &mut self.fe);
+            return self.step_grid(g, b, own_kinetic);
         }
+        let (m, dt, eta) = (self.model, self.dt, self.eta);
         m.apply_k(&self.u, &mut self.ku);
         if eta > 0.0 {
             m.apply_k(&self.v, &mut self.kv);
         }
         self.fe.fill(0.0);
         f_ext(self.n as f64 * dt, &mut self.fe);
-        let shadow_half = m.kinetic_energy(&self.v) + 0.5 * dot(&self.u_prev, &self.ku);
-        let (mut work, mut damp, mut kin, mut corr) = (0.0, 0.0, 0.0, 0.0);
+        let kinetic_half = m.kinetic_energy(&self.v) + own_kinetic;
+        let shadow_half = kinetic_half + 0.5 * dot(&self.u_prev, &self.ku);
+        let mut s = RowSums::default();
+        let hooked = !self.owned.is_empty();
         for i in 0..self.u.len() {
+            if hooked && self.owned[i] {
+                continue;
+            }
             let vm = self.v[i];
             let fd = if eta > 0.0 { eta * self.kv[i] } else { 0.0 };
             let f = self.fe[i] - self.ku[i] - fd;
@@ -493,25 +677,74 @@ impl<'a> Explicit<'a> {
             let inv = 1.0 / mi;
             let vp = if self.fixed[i] { 0.0 } else { vm + dt * f * inv };
             let vbar = 0.5 * (vm + vp);
-            work += dt * vbar * self.fe[i];
-            damp += dt * vbar * fd;
-            kin += 0.5 * mi * vbar * vbar;
+            s.work += dt * vbar * self.fe[i];
+            s.damp += dt * vbar * fd;
+            s.kin += 0.5 * mi * vbar * vbar;
             if !self.fixed[i] {
-                corr += dt * dt / 8.0 * f * f * inv;
+                s.corr += dt * dt / 8.0 * f * f * inv;
             }
             self.v[i] = vp;
-            self.u_prev[i] = self.u[i];
-            self.u[i] += dt * vp;
+            self.u_prev[i] = self.u[i] + dt * vp;
         }
-        self.ledger.shadow_half = shadow_half;
-        self.ledger.strain = 0.5 * dot(&self.u_prev, &self.ku);
-        self.ledger.kinetic = kin;
-        self.ledger.correction = corr;
+        let strain = 0.5 * dot(&self.u, &self.ku);
+        let boundary = self.apply_boundary(b, &mut s, false);
+        std::mem::swap(&mut self.u, &mut self.u_prev);
+        self.close_step(s, shadow_half, kinetic_half, strain, boundary);
+    }
+
+    /// The boundary's update (after every other DOF's) and its DOFs' ledger terms; on the
+    /// grid path K v there was kept in `kv_hook`.
+    fn apply_boundary(&mut self, b: &mut dyn Boundary, s: &mut RowSums, grid: bool) -> f64 {
+        if self.hook_dofs.is_empty() {
+            return 0.0;
+        }
+        let (m, dt, eta) = (self.model, self.dt, self.eta);
+        let damped = eta > 0.0;
+        // v^{n+1/2} lands where the step keeps it: in place, or kv's array on a damped grid.
+        let into_kv = grid && damped;
+        for (j, &i) in self.hook_dofs.iter().enumerate() {
+            self.v_hook[j] = self.v[i];
+            if into_kv {
+                self.kv[i] = self.v[i];
+            }
+        }
+        let Self { kv: kv_all, kv_hook, v: v_all, ku, fe, u, u_prev, n, .. } = self;
+        let (kv, v): (&[f64], &mut [f64]) = match (grid, into_kv) {
+            (true, true) => (kv_hook, kv_all),
+            (true, false) => (kv_hook, v_all),
+            _ => (kv_all, v_all),
+        };
+        let net = b.apply(BoundaryStep { n: *n, dt, eta, mass: &m.mass, ku, kv, fe, u, v, u_next: u_prev });
+        let kv: &[f64] = if grid { &self.kv_hook } else { &self.kv };
+        let vnew: &[f64] = if into_kv { &self.kv } else { &self.v };
+        for (j, &i) in self.hook_dofs.iter().enumerate() {
+            let (vm, vp, mi) = (self.v_hook[j], vnew[i], m.mass[i / 2]);
+            let fd = if damped { eta * kv[i] } else { 0.0 };
+            let vbar = 0.5 * (vm + vp);
+            s.work += dt * vbar * self.fe[i];
+            s.damp += dt * vbar * fd;
+            s.kin += 0.5 * mi * vbar * vbar;
+            s.corr += 0.125 * mi * (vp - vm) * (vp - vm);
+            self.fe[i] = 0.0;
+        }
+        net
+    }
+
+    /// The ledger after a step with sums `s` (work, damping, kinetic, correction).
+    fn close_step(&mut self, s: RowSums, shadow_half: f64, kinetic_half: f64, strain: f64, boundary: f64) {
+        let l = &mut self.ledger;
+        l.shadow_half = shadow_half;
+        l.kinetic_half = kinetic_half;
+        l.strain = strain;
+        l.kinetic = s.kin;
+        l.correction = s.corr;
         // shadow_half is E^{n-1/2}: it matches the sums through step n - 1.
-        self.ledger.work_half = self.ledger.work;
-        self.ledger.damping_half = self.ledger.damping;
-        self.ledger.work += work;
-        self.ledger.damping += damp;
+        l.work_half = l.work;
+        l.damping_half = l.damping;
+        l.boundary_half = l.boundary;
+        l.work += s.work;
+        l.damping += s.damp;
+        l.boundary += boundary;
         self.n += 1;
     }
 
@@ -520,41 +753,68 @@ impl<'a> Explicit<'a> {
     /// into u_prev's array after u^{n-1} is read from it (then the two swap), v^{n+1/2} in
     /// place (into kv's array when damped, as K v reads v^{n-1/2} of the next row), f_ext
     /// zeroed as it is read. Same arithmetic per DOF as the general path; the energy sums are
-    /// per row, added in row order, so the result is the same for any thread count.
-    fn step_grid(&mut self, g: &Grid) {
+    /// per row, added in row order, so the result is the same for any thread count. A row
+    /// holding boundary nodes keeps their K u (in ku's array) and K v for the boundary, which
+    /// runs after the pass.
+    fn step_grid(&mut self, g: &Grid, b: &mut dyn Boundary, own_kinetic: f64) {
         let (m, dt, eta) = (self.model, self.dt, self.eta);
         let row_len = g.row_len();
         let (fixed, mass, u) = (&self.fixed, &m.mass, &self.u);
-        let ctx = RowCtx { row_len, dt, eta, fixed, mass, u };
-        let rows = if eta > 0.0 {
-            let v = &self.v;
-            g.sweep(u, Some(v), [&mut self.u_prev, &mut self.fe, &mut self.kv], m.threads, |j, ku, kv, o| {
-                update_row::<true>(&ctx, j, ku, kv, v, o)
-            })
-        } else {
-            g.sweep(u, None, [&mut self.u_prev, &mut self.fe, &mut self.v], m.threads, |j, ku, kv, o| {
-                update_row::<false>(&ctx, j, ku, kv, &[], o)
-            })
-        };
-        let s = rows.iter().fold(RowSums::default(), |a, b| a.add(b));
+        let ctx = RowCtx { row_len, dt, eta, fixed, mass, u, owned: &self.owned };
+        let rows =
+            match (self.hook_dofs.is_empty(), eta > 0.0) {
+                (true, true) => {
+                    let v = &self.v;
+                    g.sweep(
+                        u,
+                        Some(v),
+                        [&mut self.u_prev, &mut self.fe, &mut self.kv],
+                        m.threads,
+                        |j, ku, kv, o| update_row::<true>(&ctx, j, ku, kv, v, o),
+                    )
+                }
+                (true, false) => g.sweep(
+                    u,
+                    None,
+                    [&mut self.u_prev, &mut self.fe, &mut self.v],
+                    m.threads,
+                    |j, ku, kv, o| update_row::<false>(&ctx, j, ku, kv, &[], o),
+                ),
+                (false, damped) => {
+                    let hook_rows = &self.hook_rows;
+                    let v = &self.v;
+                    let (vout, vin): (&mut [f64], &[f64]) =
+                        if damped { (&mut self.kv, v) } else { (&mut self.v, &[]) };
+                    let outs = [&mut self.u_prev[..], &mut self.fe, vout, &mut self.ku, &mut self.kv_hook];
+                    g.sweep(u, damped.then_some(vin), outs, m.threads, |j, ku, kv, [un, fe, vo, kus, kvs]| {
+                        match (hook_rows[j], damped) {
+                            (false, true) => update_row::<true>(&ctx, j, ku, kv, vin, [un, fe, vo]),
+                            (false, false) => update_row::<false>(&ctx, j, ku, kv, &[], [un, fe, vo]),
+                            (true, true) => {
+                                update_hooked_row::<true>(&ctx, j, ku, kv, vin, [un, fe, vo, kus, kvs])
+                            }
+                            (true, false) => {
+                                update_hooked_row::<false>(&ctx, j, ku, kv, &[], [un, fe, vo, kus, kvs])
+                            }
+                        }
+                    })
+                }
+            };
+        let mut s = rows.iter().fold(RowSums::default(), |a, b| a.add(b));
+        let boundary = self.apply_boundary(b, &mut s, true);
         std::mem::swap(&mut self.u, &mut self.u_prev);
         if eta > 0.0 {
             std::mem::swap(&mut self.v, &mut self.kv);
         }
-        self.ledger.shadow_half = 0.5 * s.kin_old + 0.5 * s.shadow;
-        self.ledger.strain = 0.5 * s.strain;
-        self.ledger.kinetic = s.kin;
-        self.ledger.correction = s.corr;
-        self.ledger.work_half = self.ledger.work;
-        self.ledger.damping_half = self.ledger.damping;
-        self.ledger.work += s.work;
-        self.ledger.damping += s.damp;
-        self.n += 1;
+        let kinetic_half = 0.5 * s.kin_old + own_kinetic;
+        self.close_step(s, kinetic_half + 0.5 * s.shadow, kinetic_half, 0.5 * s.strain, boundary);
     }
 
-    /// E^{n-1/2} + D - W (sums through step n - 1) as of the last step: constant to round-off.
+    /// E^{n-1/2} + D - W - B (sums through step n - 1) as of the last step: constant to
+    /// round-off.
     pub fn shadow_balance(&self) -> f64 {
-        self.ledger.shadow_half + self.ledger.damping_half - self.ledger.work_half
+        let l = &self.ledger;
+        l.shadow_half + l.damping_half - l.work_half - l.boundary_half
     }
 }
 

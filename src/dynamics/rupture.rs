@@ -19,7 +19,7 @@
 //! [`Contact::Symmetric`] replaces the flat by the mirror half of a symmetric fault (slip
 //! 2 u_x, sigma = sigma0), the geometry Andrews' supershear threshold S ~ 1.77 is for.
 
-use super::explicit::{dot, Elastodynamic};
+use super::explicit::{Boundary, BoundaryStep, Elastodynamic, Explicit};
 use super::friction::SlipWeakening;
 use super::waves::WaveSpeeds;
 use crate::error::{Error, Result};
@@ -446,7 +446,9 @@ pub struct RuptureEnergy {
     pub friction_path: f64,
     /// Work of the flat's normal reaction (zero for bilateral contact).
     pub contact: f64,
-    /// kinetic + strain + friction - background_work - contact: zero up to round-off.
+    /// Kelvin-Voigt dissipation (0 undamped, the spec).
+    pub damping: f64,
+    /// kinetic + strain + friction + damping - background_work - contact: zero up to round-off.
     pub residual: f64,
 }
 
@@ -499,139 +501,43 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
     let width: Vec<f64> = (0..=nx).map(|i| if i == 0 || i == nx { spec.h / 2.0 } else { spec.h }).collect();
     let tau0: Vec<f64> = x.iter().map(|&xi| spec.prestress(xi)).collect();
 
-    let n = model.n_dofs();
-    let (mut u, mut v, mut ku, mut u_prev) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let nb = base.len();
-    let (mut d, mut t_arr, mut t_wk, mut peak) =
-        (vec![0.0; nb], vec![None; nb], vec![None; nb], vec![0.0; nb]);
-    // Forces of the flat on the base nodes at this step (perturbation), and their traction T.
-    let (mut fbx, mut fby, mut tr) = (vec![0.0; nb], vec![0.0; nb], vec![0.0; nb]);
-    let mut seff = vec![spec.sigma0; nb];
-    let mut base_dof = vec![false; n];
-    for &k in &base {
-        base_dof[2 * k] = true;
-        base_dof[2 * k + 1] = true;
-    }
-    let mut e = RuptureEnergy::default();
-    let mut min_sigma = f64::INFINITY;
-    let thr = spec.friction.d_c / 100.0;
-    let slip_factor = if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 };
-    let mut beat = cancel.beat();
-    // The base rule at the current step: fills fbx, fby, tr from ku (= K u^n) and v^{n-1/2}.
-    // seff: the regularised normal stress sigma* (advanced here, once per call).
-    let base_rule = |u: &[f64],
-                     v: &[f64],
-                     ku: &[f64],
-                     d: &[f64],
-                     seff: &mut [f64],
-                     fbx: &mut [f64],
-                     fby: &mut [f64],
-                     tr: &mut [f64]| {
-        let mut smin = f64::INFINITY;
-        for (b, &k) in base.iter().enumerate() {
-            let (m, w) = (model.mass[k], width[b]);
-            let (fx, fy) = (-ku[2 * k], -ku[2 * k + 1]);
-            let mut sigma = spec.sigma0 - (fy + m * v[2 * k + 1] / dt) / w;
-            if spec.contact == Contact::Symmetric {
-                sigma = spec.sigma0;
-            }
-            if spec.contact == Contact::Unilateral {
-                // The stress keeping u_y^{n+1} = 0; tensile means the node leaves the flat.
-                sigma -= m * u[2 * k + 1] / (dt * dt * w);
-                if sigma < 0.0 {
-                    sigma = 0.0;
-                }
-            }
-            smin = smin.min(sigma);
-            let open = spec.contact == Contact::Unilateral && sigma == 0.0;
-            let s_eff = match spec.normal_lag {
-                Some(lag) => {
-                    let a = dt / lag;
-                    seff[b] = (seff[b] + a * sigma) / (1.0 + a);
-                    if open {
-                        0.0
-                    } else {
-                        seff[b]
-                    }
-                }
-                None => sigma,
-            };
-            // Not clamped at sigma < 0 (possible under bilateral contact only): the spec's
-            // rule as written, T = mu sigma sign(T*); the run reports min sigma to show it.
-            let strength = spec.friction.mu(d[b]) * s_eff;
-            let t_star = tau0[b] + (m * v[2 * k] / dt + fx) / w;
-            let t = if t_star.abs() <= strength { t_star } else { strength * sign(t_star) };
-            tr[b] = t;
-            fbx[b] = (tau0[b] - t) * w;
-            fby[b] = (sigma - spec.sigma0) * w;
-        }
-        smin
+    let mut fl = Flat {
+        spec,
+        base: &base,
+        width: &width,
+        tau0: &tau0,
+        d: vec![0.0; nb],
+        t_arrival: vec![None; nb],
+        t_weakened: vec![None; nb],
+        peak: vec![0.0; nb],
+        fbx: vec![0.0; nb],
+        fby: vec![0.0; nb],
+        tr: vec![0.0; nb],
+        seff: vec![spec.sigma0; nb],
+        min_sigma: f64::INFINITY,
+        e: RuptureEnergy::default(),
     };
+    let mut ex = Explicit::checked_by_caller(&model, dt, spec.damping, vec![false; model.n_dofs()])
+        .with_boundary(&base);
+    let mut beat = cancel.beat();
     for step in 0..steps {
-        model.apply_k(&u, &mut ku);
-        min_sigma = min_sigma.min(base_rule(&u, &v, &ku, &d, &mut seff, &mut fbx, &mut fby, &mut tr));
-        // Shadow energy E^{n-1/2}, before this step's work (see explicit::Ledger).
-        e.kinetic = model.kinetic_energy(&v);
-        e.strain = 0.5 * dot(&u_prev, &ku);
-        e.residual = e.kinetic + e.strain + e.friction - e.background_work - e.contact;
-        for i in 0..n {
-            if !base_dof[i] {
-                let vp = v[i] - dt * ku[i] / model.mass[i / 2];
-                v[i] = vp;
-                u_prev[i] = u[i];
-                u[i] += dt * vp;
-            }
-        }
-        for (b, &k) in base.iter().enumerate() {
-            let m = model.mass[k];
-            let (vxm, vym) = (v[2 * k], v[2 * k + 1]);
-            let vx = vxm + dt * (-ku[2 * k] + fbx[b]) / m;
-            let vy = vym + dt * (-ku[2 * k + 1] + fby[b]) / m;
-            // In contact the flat holds u_y^{n+1} = 0 exactly (not to round-off), so a
-            // unilateral run that never opens is the bilateral run bit for bit.
-            let vy = match spec.contact {
-                Contact::Bilateral => 0.0,
-                Contact::Unilateral if fby[b] > -spec.sigma0 * width[b] => -u[2 * k + 1] / dt,
-                _ => vy,
-            };
-            let (vbx, vby) = (0.5 * (vxm + vx), 0.5 * (vym + vy));
-            e.background_work += dt * width[b] * (vbx * tau0[b] - vby * spec.sigma0);
-            e.friction += dt * vbx * tr[b] * width[b];
-            e.contact += dt * vby * (fby[b] + spec.sigma0 * width[b]);
-            // (per half of a symmetric fault: the work on this block's face)
-            e.friction_path += tr[b].abs() * width[b] * dt * vx.abs();
-            v[2 * k] = vx;
-            v[2 * k + 1] = vy;
-            u_prev[2 * k] = u[2 * k];
-            u_prev[2 * k + 1] = u[2 * k + 1];
-            u[2 * k] += dt * vx;
-            u[2 * k + 1] = if spec.contact == Contact::Unilateral && fby[b] > -spec.sigma0 * width[b] {
-                0.0
-            } else {
-                u[2 * k + 1] + dt * vy
-            };
-            let d_new = d[b] + slip_factor * dt * vx.abs();
-            let t0 = step as f64 * dt;
-            if t_arr[b].is_none() && d_new >= thr {
-                t_arr[b] = Some(t0 + dt * (thr - d[b]) / (d_new - d[b]));
-            }
-            if t_wk[b].is_none() && d_new >= spec.friction.d_c {
-                t_wk[b] = Some(t0 + dt * (spec.friction.d_c - d[b]) / (d_new - d[b]));
-            }
-            peak[b] = f64::max(peak[b], vx.abs());
-            d[b] = d_new;
-        }
+        ex.step_with(&mut fl, |_, _| {});
         if beat.due()? {
             progress.fraction(step as f64 / steps as f64);
         }
     }
-    // The friction at t_end itself (step N), as the spec's force drop asks.
-    model.apply_k(&u, &mut ku);
-    let mut seff_end = seff.clone();
-    min_sigma = min_sigma.min(base_rule(&u, &v, &ku, &d, &mut seff_end, &mut fbx, &mut fby, &mut tr));
-    e.kinetic = model.kinetic_energy(&v);
-    e.strain = 0.5 * dot(&u_prev, &ku);
-    e.residual = e.kinetic + e.strain + e.friction - e.background_work - e.contact;
+    // The friction at t_end itself (step N), as the spec's force drop asks: the base rule on
+    // K u^N (without damping forces) with sigma* advanced on a copy.
+    let (u, v) = (ex.u.clone(), ex.v.clone());
+    let (damping, mass) = (ex.ledger.damping, &model.mass);
+    let (ku, kinetic, strain) = ex.level();
+    let mut fl_end = fl.clone();
+    fl.min_sigma = fl.min_sigma.min(fl_end.rule(&u, &v, &|i| -ku[i], dt, mass));
+    let tr = fl_end.tr;
+    let mut e = RuptureEnergy { kinetic, strain, damping, ..fl.e };
+    e.residual = e.kinetic + e.strain + e.friction + e.damping - e.background_work - e.contact;
+    let (min_sigma, d, t_arr, t_wk, peak) = (fl.min_sigma, fl.d, fl.t_arrival, fl.t_weakened, fl.peak);
     let force_drop: f64 = (0..nb).map(|b| (tau0[b] - tr[b]) * width[b]).sum();
     if !(force_drop.is_finite() && min_sigma.is_finite() && e.residual.is_finite()) {
         return Err(Error::Untrustworthy {
@@ -660,6 +566,127 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
     r.front_speed = r.front_speed_between(spec.speed_window.0, spec.speed_window.1);
     progress.fraction(1.0);
     Ok(r)
+}
+
+/// The base on the rigid flat (or the symmetric fault's plane) as the stepper's boundary:
+/// the split-node rule of the module docs, per base node per step.
+#[derive(Clone)]
+struct Flat<'s> {
+    spec: &'s RuptureSpec,
+    base: &'s [usize],
+    width: &'s [f64],
+    tau0: &'s [f64],
+    /// Slip path length, first times d >= D_c / 100 and d >= D_c, peak |v_x|.
+    d: Vec<f64>,
+    t_arrival: Vec<Option<f64>>,
+    t_weakened: Vec<Option<f64>>,
+    peak: Vec<f64>,
+    /// The flat's forces on the base nodes at this step (perturbation), and their traction T.
+    fbx: Vec<f64>,
+    fby: Vec<f64>,
+    tr: Vec<f64>,
+    /// The regularised normal stress sigma*.
+    seff: Vec<f64>,
+    min_sigma: f64,
+    e: RuptureEnergy,
+}
+
+impl Flat<'_> {
+    /// The base rule at the current step: fills fbx, fby, tr from the mesh's force `f` on each
+    /// DOF and v^{n-1/2}, advancing sigma* once; returns the smallest normal stress.
+    fn rule(&mut self, u: &[f64], v: &[f64], f: &dyn Fn(usize) -> f64, dt: f64, mass: &[f64]) -> f64 {
+        let spec = self.spec;
+        let mut smin = f64::INFINITY;
+        for (b, &k) in self.base.iter().enumerate() {
+            let (m, w) = (mass[k], self.width[b]);
+            let (fx, fy) = (f(2 * k), f(2 * k + 1));
+            let mut sigma = spec.sigma0 - (fy + m * v[2 * k + 1] / dt) / w;
+            if spec.contact == Contact::Symmetric {
+                sigma = spec.sigma0;
+            }
+            if spec.contact == Contact::Unilateral {
+                // The stress keeping u_y^{n+1} = 0; tensile means the node leaves the flat.
+                sigma -= m * u[2 * k + 1] / (dt * dt * w);
+                if sigma < 0.0 {
+                    sigma = 0.0;
+                }
+            }
+            smin = smin.min(sigma);
+            let open = spec.contact == Contact::Unilateral && sigma == 0.0;
+            let s_eff = match spec.normal_lag {
+                Some(lag) => {
+                    let a = dt / lag;
+                    self.seff[b] = (self.seff[b] + a * sigma) / (1.0 + a);
+                    if open {
+                        0.0
+                    } else {
+                        self.seff[b]
+                    }
+                }
+                None => sigma,
+            };
+            // Not clamped at sigma < 0 (possible under bilateral contact only): the spec's
+            // rule as written, T = mu sigma sign(T*); the run reports min sigma to show it.
+            let strength = spec.friction.mu(self.d[b]) * s_eff;
+            let t_star = self.tau0[b] + (m * v[2 * k] / dt + fx) / w;
+            let t = if t_star.abs() <= strength { t_star } else { strength * sign(t_star) };
+            self.tr[b] = t;
+            self.fbx[b] = (self.tau0[b] - t) * w;
+            self.fby[b] = (sigma - spec.sigma0) * w;
+        }
+        smin
+    }
+}
+
+impl Boundary for Flat<'_> {
+    fn nodes(&self) -> &[usize] {
+        self.base
+    }
+
+    fn apply(&mut self, s: BoundaryStep<'_>) -> f64 {
+        let (spec, dt) = (self.spec, s.dt);
+        let smin = self.rule(s.u, s.v, &|i| s.force(i), dt, s.mass);
+        self.min_sigma = self.min_sigma.min(smin);
+        let e0 = self.e;
+        let thr = spec.friction.d_c / 100.0;
+        let slip_factor = if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 };
+        for (b, &k) in self.base.iter().enumerate() {
+            let (m, w) = (s.mass[k], self.width[b]);
+            let (vxm, vym) = (s.v[2 * k], s.v[2 * k + 1]);
+            let vx = vxm + dt * (s.force(2 * k) + self.fbx[b]) / m;
+            let vy = vym + dt * (s.force(2 * k + 1) + self.fby[b]) / m;
+            // In contact the flat holds u_y^{n+1} = 0 exactly (not to round-off), so a
+            // unilateral run that never opens is the bilateral run bit for bit.
+            let held = spec.contact == Contact::Unilateral && self.fby[b] > -spec.sigma0 * w;
+            let vy = match spec.contact {
+                Contact::Bilateral => 0.0,
+                Contact::Unilateral if held => -s.u[2 * k + 1] / dt,
+                _ => vy,
+            };
+            let (vbx, vby) = (0.5 * (vxm + vx), 0.5 * (vym + vy));
+            self.e.background_work += dt * w * (vbx * self.tau0[b] - vby * spec.sigma0);
+            self.e.friction += dt * vbx * self.tr[b] * w;
+            self.e.contact += dt * vby * (self.fby[b] + spec.sigma0 * w);
+            // (per half of a symmetric fault: the work on this block's face)
+            self.e.friction_path += self.tr[b].abs() * w * dt * vx.abs();
+            s.v[2 * k] = vx;
+            s.v[2 * k + 1] = vy;
+            s.u_next[2 * k] = s.u[2 * k] + dt * vx;
+            s.u_next[2 * k + 1] = if held { 0.0 } else { s.u[2 * k + 1] + dt * vy };
+            let d_new = self.d[b] + slip_factor * dt * vx.abs();
+            let t0 = s.n as f64 * dt;
+            if self.t_arrival[b].is_none() && d_new >= thr {
+                self.t_arrival[b] = Some(t0 + dt * (thr - self.d[b]) / (d_new - self.d[b]));
+            }
+            if self.t_weakened[b].is_none() && d_new >= spec.friction.d_c {
+                self.t_weakened[b] = Some(t0 + dt * (spec.friction.d_c - self.d[b]) / (d_new - self.d[b]));
+            }
+            self.peak[b] = f64::max(self.peak[b], vx.abs());
+            self.d[b] = d_new;
+        }
+        let e = &self.e;
+        (e.background_work - e0.background_work) + (e.contact - e0.contact) - (e.friction - e0.friction)
+    }
 }
 
 /// sign as numpy's: 0 at 0.

@@ -18,8 +18,8 @@ pub fn write(r: &RuptureResult, dir: &Path) -> Result<()> {
     write_atomic(&dir.join("summary.csv"), summary.as_bytes())?;
     let e = &r.energy;
     let energy = csv(
-        "kinetic_j_per_m,strain_j_per_m,background_work_j_per_m,friction_dissipation_j_per_m,friction_path_j_per_m,contact_work_j_per_m,balance_residual_j_per_m",
-        &[vec![e.kinetic, e.strain, e.background_work, e.friction, e.friction_path, e.contact, e.residual]],
+        "kinetic_j_per_m,strain_j_per_m,background_work_j_per_m,friction_dissipation_j_per_m,friction_path_j_per_m,contact_work_j_per_m,damping_dissipation_j_per_m,balance_residual_j_per_m",
+        &[vec![e.kinetic, e.strain, e.background_work, e.friction, e.friction_path, e.contact, e.damping, e.residual]],
     )?;
     write_atomic(&dir.join("energy.csv"), energy.as_bytes())?;
     let zone: Vec<Vec<f64>> = r.cohesive_zone().into_iter().map(|(x, z)| vec![x, z, z / r.lambda0]).collect();

@@ -164,3 +164,35 @@ fn the_checker_sees_plain_and_listed_imports() {
     assert_eq!(code.len(), 1);
     assert_eq!(uses(&code[0].1), vec!["io", "report"]);
 }
+
+/// The files of src/ whose code calls K u (`apply_k`): the one explicit integrator
+/// (src/dynamics/explicit.rs and its unit tests, issue 46) and the dynamic slide's static
+/// field (one product per event start, no time loop). A second central-difference loop needs
+/// K u at every step, so it would show here.
+fn k_u_callers(src: &Path) -> Vec<String> {
+    let mut files = Vec::new();
+    walk(src, &mut files);
+    let mut out: Vec<String> = files
+        .iter()
+        .filter(|f| {
+            let text = std::fs::read_to_string(f).unwrap();
+            code_of(&text).iter().any(|(_, l)| l.contains(".apply_k(") || l.contains(".apply_k_by_elements("))
+        })
+        .map(|f| f.strip_prefix(src).unwrap().to_string_lossy().replace('\\', "/"))
+        .collect();
+    out.sort();
+    out
+}
+
+#[test]
+fn every_dynamic_path_steps_through_the_one_integrator() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let callers = k_u_callers(&src);
+    let allowed = ["dynamics/explicit.rs", "dynamics/explicit/tests.rs", "studies/dynamic_slide/setup.rs"];
+    let extra: Vec<&String> = callers.iter().filter(|c| !allowed.contains(&c.as_str())).collect();
+    assert!(
+        extra.is_empty(),
+        "K u is computed outside the one explicit integrator (a second time loop?): {extra:?}"
+    );
+    assert!(callers.iter().any(|c| c == "dynamics/explicit.rs"), "{callers:?}");
+}
