@@ -8,7 +8,12 @@
 //! - `K u alone`: the grid's 9-point stencil (`Elastodynamic::apply_k`);
 //! - `stencil+upd`: the stencil, then the same update;
 //! - `step`, `step damped`: a whole `Explicit::step` (fixed base, external-force hook,
-//!   energy ledger), fused into one pass on a grid.
+//!   energy ledger), fused into one pass on a grid;
+//! - `rupture`: the command's own stepping (`tribofe rupture`, the spec scene at the element
+//!   size giving about as many DOFs, its base as the stepper's boundary hook): a run of 201
+//!   steps less one of 1 step, over 200, so the set-up is left out;
+//! - `step general`: `Explicit::step` on the same mesh with its nodes moved by 10 % of h (so
+//!   not a grid: the element-by-element path every graded or Gmsh mesh takes).
 //!
 //! The reference is a STREAM-like triad a = b + s c over as many doubles as the mesh has DOFs,
 //! on as many threads (contiguous shares), plus one out of cache. Each time is the median of
@@ -21,6 +26,8 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 use tribofe::dynamics::explicit::{Elastodynamic, Explicit};
+use tribofe::dynamics::friction::SlipWeakening;
+use tribofe::dynamics::rupture::{self, RuptureSpec};
 use tribofe::fem::material::Material;
 use tribofe::fem::mesher::Rectangle;
 
@@ -174,6 +181,52 @@ fn main() {
                 let mut run = Explicit::new(&model, dt, eta, fixed).unwrap();
                 run.set_displacement(&vec![1e-9; n]);
                 report(name, STEP_BYTES, time(|| run.step(|_, _| {})));
+            }
+            // The spec scene (2:1) with about n DOFs: h = 0.2 / nx, 2 (nx + 1)(nx / 2 + 1) ~ n.
+            let nx = 2 * ((n as f64 / 2.0).sqrt() / 2.0).round() as usize;
+            // D_c scaled with h so that the cohesive zone spans the spec's 5 elements (the cost of a
+            // step does not depend on it).
+            let h = 0.2 / nx as f64;
+            let d = RuptureSpec::default();
+            let spec = RuptureSpec {
+                h,
+                friction: SlipWeakening { d_c: d.friction.d_c * h / d.h, ..d.friction },
+                ..d
+            };
+            let dt = spec.dt().unwrap();
+            let pool = &rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let steps = |k: f64| {
+                let s = RuptureSpec { t_end: k * dt, ..spec.clone() };
+                move || {
+                    pool.install(|| {
+                        rupture::run(&s, &tribofe::Cancel::new(), tribofe::Progress::none()).unwrap()
+                    });
+                }
+            };
+            let (long, short) = (time(steps(201.0)), time(steps(1.0)));
+            let per = ((long.0 - short.0) / 200.0, (long.1 - short.1) / 200.0);
+            let nr = 2 * (nx + 1) * (nx / 2 + 1);
+            let (rate, rate_cpu) = (nr as f64 / per.0, nr as f64 / (per.1 / threads as f64));
+            println!(
+                "{:>13} {nr:>8} {threads:>3} {:>10.3e} {rate:>10.3e} {rate_cpu:>10.3e} {:>5.0} {:>8.2} {:>8.2} {:>10.3e} {:>5.2} {:>5.2}",
+                "rupture",
+                per.0,
+                STEP_BYTES,
+                bw / 1e9,
+                bw_cpu / 1e9,
+                bw_cpu / STEP_BYTES,
+                rate / (bw / STEP_BYTES),
+                rate_cpu / (bw_cpu / STEP_BYTES)
+            );
+            if threads == 1 {
+                let mut moved = mesh.clone();
+                moved.distort(0.1 * 0.1 / side as f64, 3).unwrap();
+                let general = Elastodynamic::new(&moved, mat, 1000.0).unwrap();
+                assert!(!general.is_grid());
+                let fixed: Vec<bool> = (0..n).map(|i| mesh.nodes[i / 2][1] == 0.0).collect();
+                let mut run = Explicit::new(&general, 0.5 * general.critical_dt(0.0), 0.0, fixed).unwrap();
+                run.set_displacement(&vec![1e-9; n]);
+                report("step general", ELEMENT_BYTES, time(|| run.step(|_, _| {})));
             }
         }
     }

@@ -131,7 +131,8 @@ impl Elastodynamic {
         let lambda_bound =
             kmats.iter().zip(&emass).map(|(k, m)| element_lambda_max(k, m)).fold(0.0, f64::max);
         let grid = Grid::detect(&conn, mesh.n_nodes(), &kmats);
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        // The rayon pool's size (RAYON_NUM_THREADS, or a host's pool): one thread setting.
+        let threads = rayon::current_num_threads();
         Ok(Self {
             n_nodes: mesh.n_nodes(),
             conn,
@@ -163,7 +164,8 @@ impl Elastodynamic {
         self.grid.is_some()
     }
 
-    /// Threads K u may use (default: the machine's; the results are the same bits for any).
+    /// Threads K u may use (default: the current rayon pool's, i.e. RAYON_NUM_THREADS or the
+    /// machine's; the results are the same bits for any).
     pub fn threads(&self) -> usize {
         self.threads
     }
