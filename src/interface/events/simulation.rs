@@ -41,11 +41,26 @@ pub(crate) fn run_on(
     progress: &dyn Fn(f64),
 ) -> Result<Run> {
     check(pb)?;
+    let (mut sv, rec) = start_drive(op, n, pb)?;
+    if let Law::SlipWeakening { dc, .. } = pb.law {
+        let mut resolver = weakening::Runaway { dc, end_at_crossing: pb.end_at_crossing };
+        return weakening::drive(&mut sv, rec, dc, &mut resolver, progress);
+    }
+    drive_phase(&mut sv, rec, progress)
+}
+
+/// The start of every drive on `op` (n interface nodes), quasi-static or dynamic: the
+/// active set ([`start`]), the normal phase, then the drive phase's start at X = 0 with N
+/// held. The one re-stick rule: under a law that weakens (static-kinetic, slip weakening)
+/// the normal loading stops, so every pre-slipped node sticks where it is and re-arms
+/// (keeping the slip it made); under Coulomb a pre-slipped node slips on.
+pub(crate) fn start_drive<'a, 'p>(
+    op: Box<dyn Operator + 'a>,
+    n: usize,
+    pb: &'p Problem,
+) -> Result<(Solver<'a>, Recorder<'p>)> {
     let (mut sv, mut rec) = start(op, n, pb)?;
     normal_phase(&mut sv, &mut rec)?;
-
-    // X from 0 with N held. Static-kinetic: the normal loading stops, so every pre-slipped
-    // node sticks and re-arms to mu_s.
     sv.set_phase(Phase::Drive);
     if pb.law.weakens() {
         for i in 0..n {
@@ -54,10 +69,7 @@ pub(crate) fn run_on(
             }
         }
     }
-    if let Law::SlipWeakening { dc, .. } = pb.law {
-        return weakening::drive(&mut sv, rec, dc, progress);
-    }
-    drive_phase(&mut sv, rec, progress)
+    Ok((sv, rec))
 }
 
 /// The problem's own inputs, refused before any work (also by
@@ -79,7 +91,7 @@ pub(crate) fn check(pb: &Problem) -> Result<()> {
 
 /// The active set on `op`, all stuck, its bonded stiffness and displacement scale (|V| under
 /// N) read off the all-stuck solution, set for the normal phase; and an empty recorder.
-pub(crate) fn start<'a, 'p>(
+fn start<'a, 'p>(
     op: Box<dyn Operator + 'a>,
     n: usize,
     pb: &'p Problem,
@@ -102,7 +114,7 @@ pub(crate) fn start<'a, 'p>(
 /// N from 0 to its value (lambda = N reached / N); proportional loading, so the rate problem
 /// at 0 decides and nodes slip continuously. Ends with the `normal-load` (or `edge-preslip`)
 /// event.
-pub(crate) fn normal_phase(sv: &mut Solver, rec: &mut Recorder) -> Result<()> {
+fn normal_phase(sv: &mut Solver, rec: &mut Recorder) -> Result<()> {
     let max_fix = tolerances::max_changes(sv.n());
     let mut lam = 0.0;
     let mut pending: Option<(EventKind, usize)> = None;
@@ -330,7 +342,7 @@ pub(crate) fn settle_continuous(
     Err(stuck_err(what, lam))
 }
 
-pub(crate) fn hit_kind(h: Hit) -> EventKind {
+pub(super) fn hit_kind(h: Hit) -> EventKind {
     match h {
         Hit::Open => EventKind::Open,
         Hit::Close => EventKind::Close,
@@ -338,7 +350,7 @@ pub(crate) fn hit_kind(h: Hit) -> EventKind {
     }
 }
 
-pub(crate) fn stuck_err(phase: &str, lam: f64) -> Error {
+pub(super) fn stuck_err(phase: &str, lam: f64) -> Error {
     Error::Untrustworthy {
         detail: format!("the state update at {phase} parameter {lam:.6e} cycles without settling"),
         hint: "report this case; try another mesh or friction coefficient".into(),
@@ -346,7 +358,7 @@ pub(crate) fn stuck_err(phase: &str, lam: f64) -> Error {
 }
 
 /// Applies the transition that reached equality at lam.
-pub(crate) fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<()> {
+pub(super) fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<()> {
     let u = a.b(i, lam);
     match h {
         Hit::Open => sv.set_state(i, NodeState::Open, 0.0),
@@ -390,7 +402,9 @@ impl Recorder<'_> {
         self.record(sv, a, lam, |st| Event::simple(kind, st, node))
     }
 
-    fn push(&mut self, ev: Event, st: State) -> Result<()> {
+    /// Records an event and the state after it, built by the caller (the constant-velocity
+    /// drive's samples and events): the cancel check, the cap and the observer's call.
+    pub(crate) fn push(&mut self, ev: Event, st: State) -> Result<()> {
         let (out, pb) = (&mut self.out, self.pb);
         pb.cancel.check()?;
         if out.events.len() >= pb.max_events {
