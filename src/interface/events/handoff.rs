@@ -5,9 +5,10 @@
 //!   re-stick rule), as [`super::run`] does them;
 //! - [`Recorder`]: every recorded event goes through it, so [`super::Problem::observer`] is
 //!   called and [`super::Problem::max_events`] caps alike in every mode;
-//! - [`Resolver`]: what happens where a slip-weakening drive meets an instability. The
-//!   quasi-static drive (`weakening`) resolves it by its fixed-point relaxation; the held
-//!   dynamic mode by an explicit event (`studies::dynamic_slide`);
+//! - [`Resolver`]: what happens where a drive meets an instability. The quasi-static drives
+//!   resolve it by the static-kinetic rules (`relax`: the paper's, overdamped) or the
+//!   slip-weakening fixed-point relaxation (`weakening`); the held dynamic mode by an
+//!   explicit event (`studies::dynamic_slide`);
 //! - [`drive_stepped`]: the drive loop at a fixed slip step per node (D_c / N), the held
 //!   mode's static loading, which calls a [`Resolver`] at each instability.
 
@@ -23,19 +24,25 @@ use crate::error::Result;
 pub(crate) struct Onset<'x> {
     /// X (m).
     pub lam: f64,
-    /// The unstable solution: the last iterate of the relaxation that ran away.
+    /// The solution where it was found (see [`Found`]).
     pub a: &'x Affine,
-    /// At the start of the drive step: each node's u, state and coefficient, and F (N/m).
-    pub u_pre: &'x [f64],
+    /// The states and F (N/m) before it: at the start of the drive step.
     pub states_pre: &'x [NodeState],
-    pub mu_pre: &'x [f64],
     pub f_pre: f64,
-    /// Nodes that slipped at some iterate of the relaxation.
-    pub touched: &'x [bool],
+    pub found: Found<'x>,
     /// Nodes slipped by instabilities since the last cycle end (the resolver updates it).
     pub slipped: &'x mut [bool],
     /// The drive's progress fraction, for a resolver's heartbeat.
     pub shown: f64,
+}
+
+/// How the drive found the instability.
+pub(crate) enum Found<'x> {
+    /// A stuck node past its static threshold, `a` the consistent solution (static-kinetic).
+    Threshold { node: usize },
+    /// The slip-weakening fixed point ran away, `a` its last iterate; at the step's start each
+    /// node's u and coefficient, and the nodes slipping at some iterate.
+    Runaway { u_pre: &'x [f64], mu_pre: &'x [f64], touched: &'x [bool] },
 }
 
 /// What the drive does after a resolved instability.
@@ -43,6 +50,9 @@ pub(crate) struct Onset<'x> {
 pub(crate) enum Resolved {
     /// Loading goes on from the static state the resolver left.
     Go,
+    /// The nucleating node slides on at mu_d instead (static-kinetic's Zeno guard): nothing
+    /// recorded yet, the drive records the creep once the contact around it is consistent.
+    Creep(usize),
     /// The run ends here with what is recorded (the resolver says why, to its caller).
     Stop,
 }

@@ -165,7 +165,7 @@ impl Observer {
         Observer(Arc::new(f))
     }
 
-    pub(crate) fn call(&self, index: usize, ev: &Event, st: &State) {
+    pub(super) fn call(&self, index: usize, ev: &Event, st: &State) {
         (self.0)(index, ev, st)
     }
 }
@@ -377,7 +377,7 @@ pub struct Run {
 
 impl Run {
     /// An empty run (no event yet) of bonded stiffness `k_bonded`.
-    pub(crate) fn new(k_bonded: f64) -> Run {
+    pub(super) fn new(k_bonded: f64) -> Run {
         Run {
             events: vec![],
             states: vec![],

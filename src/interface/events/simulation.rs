@@ -2,9 +2,9 @@
 //! N held), each advancing from event to event, and the [`Recorder`] that writes the run.
 
 use super::active::Solver;
-use super::classify::classify;
+use super::handoff::{Found, Onset, Resolved, Resolver};
 use super::operator::{Affine, Dense, Operator};
-use super::relax::instability;
+use super::relax::Rules;
 use super::search::{Fix, Hit};
 use super::{tolerances, weakening, Event, EventKind, NodeState, OperatorRef, Phase, Problem, Run, State};
 use crate::error::{Error, Result};
@@ -34,7 +34,7 @@ pub fn run_with(op: OperatorRef, n: usize, pb: &Problem, progress: &dyn Fn(f64))
 }
 
 /// [`run`] on any representation of the condensed operator (n interface nodes).
-pub(crate) fn run_on(
+pub(super) fn run_on(
     op: Box<dyn Operator + '_>,
     n: usize,
     pb: &Problem,
@@ -46,7 +46,7 @@ pub(crate) fn run_on(
         let mut resolver = weakening::Runaway { dc, end_at_crossing: pb.end_at_crossing };
         return weakening::drive(&mut sv, rec, dc, &mut resolver, progress);
     }
-    drive_phase(&mut sv, rec, progress)
+    drive_phase(&mut sv, rec, &mut Rules::default(), progress)
 }
 
 /// The start of every drive on `op` (n interface nodes), quasi-static or dynamic: the
@@ -152,7 +152,6 @@ struct Drive {
     max_fix: usize,
     /// A continuous event waiting for the settle at its X to be recorded.
     pending: Option<(EventKind, usize)>,
-    last_region: Option<(usize, usize)>,
     /// Nodes slipped in an instability since the last whole-interface slip: an event nucleating
     /// next to this set's run from the trailing edge is the tip advance of an arrested front.
     slipped: Vec<bool>,
@@ -169,14 +168,18 @@ impl Drive {
 
 /// X from 0 with N held (coulomb, static-kinetic): at each X the states are made consistent
 /// (rate fixes, instabilities), then X advances to the next event.
-fn drive_phase(sv: &mut Solver, mut rec: Recorder, progress: &dyn Fn(f64)) -> Result<Run> {
+fn drive_phase(
+    sv: &mut Solver,
+    mut rec: Recorder,
+    resolver: &mut dyn Resolver,
+    progress: &dyn Fn(f64),
+) -> Result<Run> {
     let (n, pb) = (sv.n(), rec.pb);
     let mut dr = Drive {
         is_sk: pb.law.weakens(),
         x_end: pb.x_max.unwrap_or(f64::INFINITY),
         max_fix: tolerances::max_changes(n),
         pending: None,
-        last_region: None,
         slipped: vec![false; n],
         sliding_seen: false,
     };
@@ -185,7 +188,7 @@ fn drive_phase(sv: &mut Solver, mut rec: Recorder, progress: &dyn Fn(f64)) -> Re
     loop {
         // Also here: a drive step without a state change reuses the last solve.
         rec.pb.cancel.check()?;
-        let Some(a) = settle_drive(sv, &mut rec, &mut dr, lam, progress)? else {
+        let Some(a) = settle_drive(sv, &mut rec, &mut dr, resolver, lam, progress)? else {
             return Ok(rec.finish(sv));
         };
         if let Some((kind, i)) = dr.pending.take() {
@@ -250,12 +253,13 @@ fn drive_phase(sv: &mut Solver, mut rec: Recorder, progress: &dyn Fn(f64)) -> Re
 }
 
 /// Makes the states consistent at this X: rate fixes, and (static-kinetic) instabilities,
-/// each recorded as an event. Returns the consistent solution, or None when the cycles asked
+/// each resolved by `resolver` and recorded as an event. Returns the consistent solution, or None when the cycles asked
 /// for are done.
 fn settle_drive(
     sv: &mut Solver,
     rec: &mut Recorder,
     dr: &mut Drive,
+    resolver: &mut dyn Resolver,
     lam: f64,
     progress: &dyn Fn(f64),
 ) -> Result<Option<Affine>> {
@@ -284,36 +288,25 @@ fn settle_drive(
                 if let Some((kind, i)) = dr.pending.take() {
                     rec.simple(sv, &a, lam, kind, i)?;
                 }
-                let f_before = a.f(sv.iu(), lam);
                 let before = sv.states().to_vec();
-                let (region, backslip, all_slip) = instability(sv, &a, lam, i0)?;
-                // Zeno guard: a node that relaxes alone twice in a row (the trailing corner as
-                // p -> 0) slides on continuously at mu_d (creep) until its slip rate reverses
-                // or it opens. It is recorded once the contact around it is consistent again
-                // (its pressure may fall below zero as it slides).
-                if region == (i0, i0) && dr.last_region == Some((i0, i0)) {
-                    let b = sv.solve()?;
-                    let sg = if b.f(i0, lam) > 0.0 { -1.0 } else { 1.0 };
-                    sv.set_state(i0, NodeState::Slip(sg), 0.0)?;
-                    dr.pending = Some((EventKind::Creep, i0));
-                    continue;
+                let shown = dr.frac(&rec.out, pb.cycles, lam);
+                let at = Onset {
+                    lam,
+                    a: &a,
+                    states_pre: &before,
+                    f_pre: a.f(sv.iu(), lam),
+                    found: Found::Threshold { node: i0 },
+                    slipped: &mut dr.slipped,
+                    shown,
+                };
+                match resolver.resolve(sv, rec, at)? {
+                    Resolved::Creep(i) => {
+                        dr.pending = Some((EventKind::Creep, i));
+                        continue;
+                    }
+                    Resolved::Stop => return Ok(None),
+                    Resolved::Go => {}
                 }
-                let a2 = sv.solve()?;
-                let kind = classify(&before, sv.states(), region, &mut dr.slipped, pb.end_at_crossing);
-                if kind.ends_cycle() {
-                    rec.out.sliding_events += 1;
-                }
-                dr.last_region = Some(region);
-                rec.record(sv, &a2, lam, |st| Event {
-                    kind,
-                    f: f_before,
-                    x: lam,
-                    node: i0,
-                    region: Some(region),
-                    f_relaxed: st.f,
-                    backslip,
-                    all_slipping: all_slip,
-                })?;
                 progress(dr.frac(&rec.out, pb.cycles, lam));
                 if dr.is_sk && rec.out.sliding_events >= pb.cycles {
                     return Ok(None);
@@ -372,7 +365,7 @@ pub(super) fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit)
 pub(crate) struct Recorder<'p> {
     pub(crate) out: Run,
     pub(crate) prev_u: Vec<f64>,
-    pub(crate) pb: &'p Problem,
+    pub(super) pb: &'p Problem,
 }
 
 impl Recorder<'_> {

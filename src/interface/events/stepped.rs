@@ -11,7 +11,7 @@
 //! loadings are validated separately, and merging them would move both sets of outputs.
 
 use super::active::Solver;
-use super::handoff::{Onset, Resolved, Resolver};
+use super::handoff::{Found, Onset, Resolved, Resolver};
 use super::search::Hit;
 use super::simulation::{apply_hit, hit_kind, settle_continuous, stuck_err, Recorder};
 use super::{tolerances, EventKind, NodeState};
@@ -159,14 +159,13 @@ fn stepped(
         let at = Onset {
             lam,
             a: &a_cur,
-            u_pre: &u_pre,
             states_pre: &states_pre,
-            mu_pre: &mu_pre,
             f_pre: a.f(sv.iu(), lam),
-            touched: &touched,
+            found: Found::Runaway { u_pre: &u_pre, mu_pre: &mu_pre, touched: &touched },
             slipped: &mut slipped,
             shown,
         };
+        // A creep (static-kinetic's) cannot follow a runaway: loading goes on.
         if resolver.resolve(sv, rec, at)? == Resolved::Stop {
             return Ok(Ended::Stopped);
         }

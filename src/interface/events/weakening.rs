@@ -16,7 +16,7 @@
 
 use super::active::Solver;
 use super::classify::classify;
-use super::handoff::{Onset, Resolved, Resolver};
+use super::handoff::{Found, Onset, Resolved, Resolver};
 use super::operator::Affine;
 use super::search::Fix;
 use super::simulation::{stuck_err, Recorder};
@@ -58,11 +58,9 @@ pub(super) fn drive(
             let at = Onset {
                 lam,
                 a: &a,
-                u_pre: &u_pre,
                 states_pre: &states_pre,
-                mu_pre: &mu_pre,
                 f_pre,
-                touched: &touched,
+                found: Found::Runaway { u_pre: &u_pre, mu_pre: &mu_pre, touched: &touched },
                 slipped: &mut slipped,
                 shown: frac(&rec.out, lam),
             };
@@ -142,12 +140,16 @@ pub(super) struct Runaway {
 impl Resolver for Runaway {
     fn resolve(&mut self, sv: &mut Solver, rec: &mut Recorder, at: Onset) -> Result<Resolved> {
         let (n, lam, dc) = (sv.n(), at.lam, self.dc);
-        let moved: Vec<f64> = (0..n).map(|i| (at.a.b(i, lam) - at.u_pre[i]).abs()).collect();
+        let Found::Runaway { u_pre, mu_pre, touched } = at.found else {
+            // A node past its threshold: the paper's rule, as the other laws.
+            return super::relax::Rules::default().resolve(sv, rec, at);
+        };
+        let moved: Vec<f64> = (0..n).map(|i| (at.a.b(i, lam) - u_pre[i]).abs()).collect();
         let i0 = moved.iter().enumerate().fold((0, 0.0), |b, (i, &m)| if m > b.1 { (i, m) } else { b }).0;
         // The region is the connected run around the largest jump of nodes that slipped in
         // the relaxation by more than 1 % of D_c (a corner that crept a little at the other
         // end is not part of it).
-        let went = |i: usize| at.touched[i] && moved[i] > 0.01 * dc;
+        let went = |i: usize| touched[i] && moved[i] > 0.01 * dc;
         let mut first = i0;
         while first > 0 && went(first - 1) {
             first -= 1;
@@ -160,7 +162,7 @@ impl Resolver for Runaway {
         // Nucleation: the most weakened node slipping when the step began.
         let node = (first..=last)
             .filter(|&i| matches!(at.states_pre[i], NodeState::Slip(_)))
-            .min_by(|&i, &j| at.mu_pre[i].total_cmp(&at.mu_pre[j]))
+            .min_by(|&i, &j| mu_pre[i].total_cmp(&mu_pre[j]))
             .unwrap_or(i0);
         let kind = classify(at.states_pre, sv.states(), (first, last), at.slipped, self.end_at_crossing);
         heal(sv, at.a, lam)?;

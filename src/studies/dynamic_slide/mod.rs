@@ -1,14 +1,15 @@
 //! `slide --dynamics`: the paper's plate-driven block, loaded quasi-statically and exactly
 //! between events, each instability run dynamically with the drive held (issue 33, part 3).
 //!
-//! 1. Loading: the event solver's own active set ([`crate::interface::events`]'s `Solver` on
-//!    the dense condensed S or, with `--operator banded`, the banded block: O(n) a solve):
-//!    its normal phase, then U_H with nodes sticking, slipping (at a frozen coefficient) or
-//!    opening, every change found exactly. Under slip weakening a slipping node's coefficient
-//!    is brought to its slip every D_c/20 of slip (`DynamicOptions::weakening_steps`; a fixed
-//!    point at fixed U_H, each iterate one solve); when that fixed point diverges (a change
-//!    above D_c/2 in one iterate, or 30 iterates without settling to 1e-3 D_c) the patch is
-//!    unstable and the event is run dynamically (`steps.rs`).
+//! 1. Loading: the event solver's own start-up and stepped drive loop
+//!    ([`crate::interface::events`]' `handoff`, on the dense condensed S or, with
+//!    `--operator banded`, the banded block: O(n) a solve): its normal phase, then U_H with
+//!    nodes sticking, slipping (at a frozen coefficient) or opening, every change found
+//!    exactly. Under slip weakening a slipping node's coefficient is brought to its slip every
+//!    D_c/20 of slip (`DynamicOptions::weakening_steps`; a fixed point at fixed U_H, each
+//!    iterate one solve); when that fixed point diverges (a change above D_c/2 in one iterate,
+//!    or 30 iterates without settling to 1e-3 D_c) the patch is unstable and the loop hands
+//!    the event to this mode's resolver (`resolve.rs`), which runs it dynamically.
 //! 2. The event ([`crate::dynamics::driven`]): from the static field (v = 0), U_H held, until
 //!    no node slips and the kinetic energy is below 1e-6 of what the event dissipated, both
 //!    for one period of the block's thickness mode.

@@ -2,7 +2,9 @@
 //! velocity, U_H = V t, for comparison with the held-drive mode (issue 33).
 //!
 //! 1. The normal phase is the held mode's: N ramped quasi-statically and exactly at U_H = 0
-//!    (the event solver's normal phase, `interface::events`); slipping nodes stick where they are as the drive starts.
+//!    (the event solver's start-up, `interface::events`' `handoff`); under a weakening law
+//!    slipping nodes stick where they are as the drive starts, under Coulomb they slip on
+//!    (the event solver's one rule). Every event goes through the event solver's recorder.
 //! 2. From that equilibrium the whole drive phase is one explicit run
 //!    ([`crate::dynamics::driven::Driven::step`]) to --x-max, started on the quasi-static
 //!    path (u from the static field, v = V du/dU_H of the static path with the states of the
