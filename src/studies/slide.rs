@@ -75,7 +75,7 @@ fn cycles_bound(o: &SlideOptions) -> usize {
 pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
     // N, X_max: the event solver's own checks, here so that every mode (quasi-static,
     // --dynamics, the constant-velocity drive) refuses them before any work.
-    events::simulation::check(o)?;
+    events::check(o)?;
     // Every mode stops once `cycles` cycles have ended (the dynamic one under Coulomb too):
     // 0 would end the run at its first event, whatever X_max.
     if o.cycles == 0 {

@@ -24,6 +24,7 @@ mod engine;
 mod folder_safety;
 mod friction;
 mod gmsh_io;
+mod handoff;
 mod inputs;
 mod inputs_dynamic;
 mod layering;

@@ -29,7 +29,7 @@ pub(crate) struct Solver<'a> {
     pub(super) hold_open: Vec<bool>,
     /// Force and displacement scales of the state tolerances: N/n and |V| under N bonded.
     pub(super) fscale: f64,
-    pub(crate) dscale: f64,
+    pub(super) dscale: f64,
     pub(super) creep: f64,
     /// The last solve's result, until the states, anchors, coefficients or phase change.
     last: Option<Affine>,
@@ -40,7 +40,7 @@ pub(crate) struct Solver<'a> {
 
 impl<'a> Solver<'a> {
     /// Every node stuck at 0 in the drive phase, the operator's free system formed.
-    pub(crate) fn new(op: Box<dyn Operator + 'a>, n: usize, pb: &Problem) -> Result<Solver<'a>> {
+    pub(super) fn new(op: Box<dyn Operator + 'a>, n: usize, pb: &Problem) -> Result<Solver<'a>> {
         let set = ActiveSet {
             n,
             states: vec![NodeState::Stick; n],
@@ -81,21 +81,21 @@ impl<'a> Solver<'a> {
     }
 
     /// Displacement scale of the state tolerances, m.
-    pub(crate) fn dscale(&self) -> f64 {
+    pub(super) fn dscale(&self) -> f64 {
         self.dscale
     }
-    pub(crate) fn law(&self) -> Law {
+    pub(super) fn law(&self) -> Law {
         self.law
     }
     /// Node i's slip coefficient (its magnitude, when slipping) and Newton spring.
-    pub(crate) fn mu_slip(&self, i: usize) -> f64 {
+    pub(super) fn mu_slip(&self, i: usize) -> f64 {
         self.set.mu_slip[i]
     }
     pub(super) fn spring(&self, i: usize) -> f64 {
         self.set.spring[i]
     }
     /// Where a stuck node is held, m.
-    pub(crate) fn anchor(&self, i: usize) -> f64 {
+    pub(super) fn anchor(&self, i: usize) -> f64 {
         self.set.anchor[i]
     }
 
@@ -119,18 +119,18 @@ impl<'a> Solver<'a> {
     }
 
     /// Node i's slip since the last heal if it is at u now (slipping in direction s).
-    pub(crate) fn slip_at(&self, i: usize, s: f64, u: f64) -> f64 {
+    pub(super) fn slip_at(&self, i: usize, s: f64, u: f64) -> f64 {
         self.slip_acc[i] + s * (u - self.slip0[i])
     }
 
     /// Every node in contact slipping, and at least one in contact (a whole slip).
-    pub(crate) fn all_contact_slipping(&self) -> bool {
+    pub(super) fn all_contact_slipping(&self) -> bool {
         let st = &self.set.states;
         st.iter().all(|s| *s != NodeState::Stick) && st.iter().any(|s| matches!(s, NodeState::Slip(_)))
     }
 
     /// Switches the loading phase (the prescribed values change).
-    pub(crate) fn set_phase(&mut self, phase: Phase) {
+    pub(super) fn set_phase(&mut self, phase: Phase) {
         self.set.phase = phase;
         self.op.pins_moved();
         self.last = None;
@@ -144,7 +144,7 @@ impl<'a> Solver<'a> {
     }
 
     /// Changes node i's state, updating the operator.
-    pub(crate) fn set_state(&mut self, i: usize, new: NodeState, anchor: f64) -> Result<()> {
+    pub(super) fn set_state(&mut self, i: usize, new: NodeState, anchor: f64) -> Result<()> {
         let (old, old_anchor) = (self.set.states[i], self.set.anchor[i]);
         self.enter(i, new, anchor);
         self.op.change(&self.set, i, old, old_anchor)
@@ -167,7 +167,7 @@ impl<'a> Solver<'a> {
 
     /// New coefficients of slipping nodes' rows (slip weakening): (node, mu, spring, the slip
     /// the spring is centred on).
-    pub(crate) fn set_coefficients(&mut self, changes: &[(usize, f64, f64, f64)]) -> Result<()> {
+    pub(super) fn set_coefficients(&mut self, changes: &[(usize, f64, f64, f64)]) -> Result<()> {
         self.last = None;
         let small = changes.len() < tolerances::BATCH;
         for &(i, mu, k, u) in changes {
@@ -231,7 +231,7 @@ impl<'a> Solver<'a> {
     }
 
     /// The affine solution of the current state set.
-    pub(crate) fn solve(&mut self) -> Result<Affine> {
+    pub(super) fn solve(&mut self) -> Result<Affine> {
         if let Some(a) = &self.last {
             return Ok(a.clone());
         }
@@ -247,7 +247,7 @@ impl<'a> Solver<'a> {
     }
 
     /// Incremental updates and full factorisations of the operator so far.
-    pub(crate) fn counts(&self) -> (usize, usize) {
+    pub(super) fn counts(&self) -> (usize, usize) {
         self.op.counts()
     }
 }

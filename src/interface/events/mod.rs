@@ -24,26 +24,32 @@
 //! - `relax`: the instabilities of the static-kinetic law (the paper's rule, overdamped);
 //! - `classify`: what an instability was (precursor, nucleation, tip advance, sliding...);
 //! - `simulation`: [`run`], the normal phase then the drive phase; `weakening`: the drive
-//!   phase under slip weakening.
+//!   phase under slip weakening;
+//! - `handoff`: the door for a drive that is not the solver's own (`slide --dynamics`): the
+//!   start-up, the recorder, the instability resolver (the quasi-static relaxation or a
+//!   dynamic event) and `stepped`, the held mode's drive loop that calls it.
 
 use crate::interface::law::Law;
 use crate::precursors::definition::Slip;
 use std::sync::Arc;
 
-pub(crate) mod active;
-pub(crate) mod classify;
+mod active;
+mod classify;
+pub(crate) mod handoff;
 mod inverse;
 mod kind;
 pub(crate) mod operator;
 mod relax;
-pub(crate) mod search;
-pub(crate) mod simulation;
+mod search;
+mod simulation;
 #[cfg(test)]
 mod springs;
+mod stepped;
 pub mod tolerances;
 mod weakening;
 
 pub use kind::EventKind;
+pub(crate) use simulation::check;
 pub use simulation::{run, run_with};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -159,7 +165,7 @@ impl Observer {
         Observer(Arc::new(f))
     }
 
-    pub(crate) fn call(&self, index: usize, ev: &Event, st: &State) {
+    pub(super) fn call(&self, index: usize, ev: &Event, st: &State) {
         (self.0)(index, ev, st)
     }
 }
@@ -371,7 +377,7 @@ pub struct Run {
 
 impl Run {
     /// An empty run (no event yet) of bonded stiffness `k_bonded`.
-    pub(crate) fn new(k_bonded: f64) -> Run {
+    pub(super) fn new(k_bonded: f64) -> Run {
         Run {
             events: vec![],
             states: vec![],
@@ -423,7 +429,7 @@ impl Event {
         })
     }
 
-    fn simple(kind: EventKind, st: &State, node: usize) -> Event {
+    pub(crate) fn simple(kind: EventKind, st: &State, node: usize) -> Event {
         Event {
             kind,
             f: st.f,

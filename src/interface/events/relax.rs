@@ -1,13 +1,66 @@
 //! The instability of a static-kinetic node at fixed X: the event rules ([`Rule`]: the paper's
 //! region relaxed at once, or the overdamped cascade), each ending with every node in contact
-//! stuck again.
+//! stuck again; [`Rules`], the quasi-static drive's resolver that applies them.
 
 use super::active::Solver;
+use super::classify::classify;
+use super::handoff::{Found, Onset, Resolved, Resolver};
 use super::operator::Affine;
-use super::simulation::stuck_err;
-use super::{tolerances, NodeState};
+use super::simulation::{stuck_err, Recorder};
+use super::{tolerances, Event, NodeState};
 use crate::error::Result;
 use crate::interface::law::{Law, Residual, Rule};
+
+/// The quasi-static rules as the drive's [`Resolver`]: the law's rule ([`instability`]), then
+/// the event classified and recorded. Keeps the last region for the Zeno guard.
+#[derive(Default)]
+pub(super) struct Rules {
+    last_region: Option<(usize, usize)>,
+}
+
+impl Resolver for Rules {
+    fn resolve(&mut self, sv: &mut Solver, rec: &mut Recorder, at: Onset) -> Result<Resolved> {
+        let lam = at.lam;
+        // A runaway has no single node past its threshold: the largest jump nucleates.
+        let i0 = match at.found {
+            Found::Threshold { node } => node,
+            Found::Runaway { u_pre, .. } => {
+                (0..sv.n())
+                    .map(|i| (i, (at.a.b(i, lam) - u_pre[i]).abs()))
+                    .fold((0, 0.0), |b, (i, m)| if m > b.1 { (i, m) } else { b })
+                    .0
+            }
+        };
+        let (region, backslip, all_slip) = instability(sv, at.a, lam, i0)?;
+        // Zeno guard: a node that relaxes alone twice in a row (the trailing corner as
+        // p -> 0) slides on continuously at mu_d (creep) until its slip rate reverses or it
+        // opens. It is recorded once the contact around it is consistent again (its pressure
+        // may fall below zero as it slides).
+        if region == (i0, i0) && self.last_region == Some((i0, i0)) {
+            let b = sv.solve()?;
+            let sg = if b.f(i0, lam) > 0.0 { -1.0 } else { 1.0 };
+            sv.set_state(i0, NodeState::Slip(sg), 0.0)?;
+            return Ok(Resolved::Creep(i0));
+        }
+        let a2 = sv.solve()?;
+        let kind = classify(at.states_pre, sv.states(), region, at.slipped, rec.pb.end_at_crossing);
+        if kind.ends_cycle() {
+            rec.out.sliding_events += 1;
+        }
+        self.last_region = Some(region);
+        rec.record(sv, &a2, lam, |st| Event {
+            kind,
+            f: at.f_pre,
+            x: lam,
+            node: i0,
+            region: Some(region),
+            f_relaxed: st.f,
+            backslip,
+            all_slipping: all_slip,
+        })?;
+        Ok(Resolved::Go)
+    }
+}
 
 /// Static-kinetic instability nucleated at i0 at fixed X = lam: applies the rule, relaxes,
 /// re-sticks everything in contact. Returns the slipped region (first, last node), the

@@ -10,7 +10,7 @@ use crate::error::Result;
 
 /// What one rate-consistency check did.
 #[derive(Debug, Clone, Copy)]
-pub(crate) enum Fix {
+pub(super) enum Fix {
     None,
     Changed(usize, EventKind),
     /// A stuck node must start an instability (static-kinetic).
@@ -19,7 +19,7 @@ pub(crate) enum Fix {
 
 /// Which inequality an event reaches.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Hit {
+pub(super) enum Hit {
     Open,
     Close,
     /// Slip direction s that the threshold implies.
@@ -31,7 +31,7 @@ impl Solver<'_> {
     /// contact before friction); returns what it did. [`Fix::Instability`] names a stuck node
     /// past its threshold when continuous slip is not allowed (static-kinetic): it is returned
     /// only once no other change is needed.
-    pub(crate) fn rate_fix(&mut self, a: &Affine, lam: f64, allow_continuous_slip: bool) -> Result<Fix> {
+    pub(super) fn rate_fix(&mut self, a: &Affine, lam: f64, allow_continuous_slip: bool) -> Result<Fix> {
         let n = self.set.n;
         let (tf, td) = (tolerances::STATE * self.fscale, tolerances::STATE * self.dscale);
         let (rate_f, rate_d) = self.rate_tols(a);
@@ -195,7 +195,7 @@ impl Solver<'_> {
 
     /// Smallest lam increment at which an inequality of the current states reaches equality:
     /// (increment, node, what).
-    pub(crate) fn next_event(&self, a: &Affine, lam: f64) -> Option<(f64, usize, Hit)> {
+    pub(super) fn next_event(&self, a: &Affine, lam: f64) -> Option<(f64, usize, Hit)> {
         let n = self.set.n;
         let (rf, rd) = self.rate_tols(a);
         let mut best: Option<(f64, usize, Hit)> = None;

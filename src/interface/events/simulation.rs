@@ -2,9 +2,9 @@
 //! N held), each advancing from event to event, and the [`Recorder`] that writes the run.
 
 use super::active::Solver;
-use super::classify::classify;
+use super::handoff::{Found, Onset, Resolved, Resolver};
 use super::operator::{Affine, Dense, Operator};
-use super::relax::instability;
+use super::relax::Rules;
 use super::search::{Fix, Hit};
 use super::{tolerances, weakening, Event, EventKind, NodeState, OperatorRef, Phase, Problem, Run, State};
 use crate::error::{Error, Result};
@@ -34,18 +34,33 @@ pub fn run_with(op: OperatorRef, n: usize, pb: &Problem, progress: &dyn Fn(f64))
 }
 
 /// [`run`] on any representation of the condensed operator (n interface nodes).
-pub(crate) fn run_on(
+pub(super) fn run_on(
     op: Box<dyn Operator + '_>,
     n: usize,
     pb: &Problem,
     progress: &dyn Fn(f64),
 ) -> Result<Run> {
     check(pb)?;
+    let (mut sv, rec) = start_drive(op, n, pb)?;
+    if let Law::SlipWeakening { dc, .. } = pb.law {
+        let mut resolver = weakening::Runaway { dc, end_at_crossing: pb.end_at_crossing };
+        return weakening::drive(&mut sv, rec, dc, &mut resolver, progress);
+    }
+    drive_phase(&mut sv, rec, &mut Rules::default(), progress)
+}
+
+/// The start of every drive on `op` (n interface nodes), quasi-static or dynamic: the
+/// active set ([`start`]), the normal phase, then the drive phase's start at X = 0 with N
+/// held. The one re-stick rule: under a law that weakens (static-kinetic, slip weakening)
+/// the normal loading stops, so every pre-slipped node sticks where it is and re-arms
+/// (keeping the slip it made); under Coulomb a pre-slipped node slips on.
+pub(crate) fn start_drive<'a, 'p>(
+    op: Box<dyn Operator + 'a>,
+    n: usize,
+    pb: &'p Problem,
+) -> Result<(Solver<'a>, Recorder<'p>)> {
     let (mut sv, mut rec) = start(op, n, pb)?;
     normal_phase(&mut sv, &mut rec)?;
-
-    // X from 0 with N held. Static-kinetic: the normal loading stops, so every pre-slipped
-    // node sticks and re-arms to mu_s.
     sv.set_phase(Phase::Drive);
     if pb.law.weakens() {
         for i in 0..n {
@@ -54,10 +69,7 @@ pub(crate) fn run_on(
             }
         }
     }
-    if let Law::SlipWeakening { dc, .. } = pb.law {
-        return weakening::drive(&mut sv, rec, dc, progress);
-    }
-    drive_phase(&mut sv, rec, progress)
+    Ok((sv, rec))
 }
 
 /// The problem's own inputs, refused before any work (also by
@@ -79,7 +91,7 @@ pub(crate) fn check(pb: &Problem) -> Result<()> {
 
 /// The active set on `op`, all stuck, its bonded stiffness and displacement scale (|V| under
 /// N) read off the all-stuck solution, set for the normal phase; and an empty recorder.
-pub(crate) fn start<'a, 'p>(
+fn start<'a, 'p>(
     op: Box<dyn Operator + 'a>,
     n: usize,
     pb: &'p Problem,
@@ -102,7 +114,7 @@ pub(crate) fn start<'a, 'p>(
 /// N from 0 to its value (lambda = N reached / N); proportional loading, so the rate problem
 /// at 0 decides and nodes slip continuously. Ends with the `normal-load` (or `edge-preslip`)
 /// event.
-pub(crate) fn normal_phase(sv: &mut Solver, rec: &mut Recorder) -> Result<()> {
+fn normal_phase(sv: &mut Solver, rec: &mut Recorder) -> Result<()> {
     let max_fix = tolerances::max_changes(sv.n());
     let mut lam = 0.0;
     let mut pending: Option<(EventKind, usize)> = None;
@@ -140,7 +152,6 @@ struct Drive {
     max_fix: usize,
     /// A continuous event waiting for the settle at its X to be recorded.
     pending: Option<(EventKind, usize)>,
-    last_region: Option<(usize, usize)>,
     /// Nodes slipped in an instability since the last whole-interface slip: an event nucleating
     /// next to this set's run from the trailing edge is the tip advance of an arrested front.
     slipped: Vec<bool>,
@@ -157,14 +168,18 @@ impl Drive {
 
 /// X from 0 with N held (coulomb, static-kinetic): at each X the states are made consistent
 /// (rate fixes, instabilities), then X advances to the next event.
-fn drive_phase(sv: &mut Solver, mut rec: Recorder, progress: &dyn Fn(f64)) -> Result<Run> {
+fn drive_phase(
+    sv: &mut Solver,
+    mut rec: Recorder,
+    resolver: &mut dyn Resolver,
+    progress: &dyn Fn(f64),
+) -> Result<Run> {
     let (n, pb) = (sv.n(), rec.pb);
     let mut dr = Drive {
         is_sk: pb.law.weakens(),
         x_end: pb.x_max.unwrap_or(f64::INFINITY),
         max_fix: tolerances::max_changes(n),
         pending: None,
-        last_region: None,
         slipped: vec![false; n],
         sliding_seen: false,
     };
@@ -173,7 +188,7 @@ fn drive_phase(sv: &mut Solver, mut rec: Recorder, progress: &dyn Fn(f64)) -> Re
     loop {
         // Also here: a drive step without a state change reuses the last solve.
         rec.pb.cancel.check()?;
-        let Some(a) = settle_drive(sv, &mut rec, &mut dr, lam, progress)? else {
+        let Some(a) = settle_drive(sv, &mut rec, &mut dr, resolver, lam, progress)? else {
             return Ok(rec.finish(sv));
         };
         if let Some((kind, i)) = dr.pending.take() {
@@ -238,12 +253,13 @@ fn drive_phase(sv: &mut Solver, mut rec: Recorder, progress: &dyn Fn(f64)) -> Re
 }
 
 /// Makes the states consistent at this X: rate fixes, and (static-kinetic) instabilities,
-/// each recorded as an event. Returns the consistent solution, or None when the cycles asked
+/// each resolved by `resolver` and recorded as an event. Returns the consistent solution, or None when the cycles asked
 /// for are done.
 fn settle_drive(
     sv: &mut Solver,
     rec: &mut Recorder,
     dr: &mut Drive,
+    resolver: &mut dyn Resolver,
     lam: f64,
     progress: &dyn Fn(f64),
 ) -> Result<Option<Affine>> {
@@ -272,36 +288,25 @@ fn settle_drive(
                 if let Some((kind, i)) = dr.pending.take() {
                     rec.simple(sv, &a, lam, kind, i)?;
                 }
-                let f_before = a.f(sv.iu(), lam);
                 let before = sv.states().to_vec();
-                let (region, backslip, all_slip) = instability(sv, &a, lam, i0)?;
-                // Zeno guard: a node that relaxes alone twice in a row (the trailing corner as
-                // p -> 0) slides on continuously at mu_d (creep) until its slip rate reverses
-                // or it opens. It is recorded once the contact around it is consistent again
-                // (its pressure may fall below zero as it slides).
-                if region == (i0, i0) && dr.last_region == Some((i0, i0)) {
-                    let b = sv.solve()?;
-                    let sg = if b.f(i0, lam) > 0.0 { -1.0 } else { 1.0 };
-                    sv.set_state(i0, NodeState::Slip(sg), 0.0)?;
-                    dr.pending = Some((EventKind::Creep, i0));
-                    continue;
+                let shown = dr.frac(&rec.out, pb.cycles, lam);
+                let at = Onset {
+                    lam,
+                    a: &a,
+                    states_pre: &before,
+                    f_pre: a.f(sv.iu(), lam),
+                    found: Found::Threshold { node: i0 },
+                    slipped: &mut dr.slipped,
+                    shown,
+                };
+                match resolver.resolve(sv, rec, at)? {
+                    Resolved::Creep(i) => {
+                        dr.pending = Some((EventKind::Creep, i));
+                        continue;
+                    }
+                    Resolved::Stop => return Ok(None),
+                    Resolved::Go => {}
                 }
-                let a2 = sv.solve()?;
-                let kind = classify(&before, sv.states(), region, &mut dr.slipped, pb.end_at_crossing);
-                if kind.ends_cycle() {
-                    rec.out.sliding_events += 1;
-                }
-                dr.last_region = Some(region);
-                rec.record(sv, &a2, lam, |st| Event {
-                    kind,
-                    f: f_before,
-                    x: lam,
-                    node: i0,
-                    region: Some(region),
-                    f_relaxed: st.f,
-                    backslip,
-                    all_slipping: all_slip,
-                })?;
                 progress(dr.frac(&rec.out, pb.cycles, lam));
                 if dr.is_sk && rec.out.sliding_events >= pb.cycles {
                     return Ok(None);
@@ -330,7 +335,7 @@ pub(crate) fn settle_continuous(
     Err(stuck_err(what, lam))
 }
 
-pub(crate) fn hit_kind(h: Hit) -> EventKind {
+pub(super) fn hit_kind(h: Hit) -> EventKind {
     match h {
         Hit::Open => EventKind::Open,
         Hit::Close => EventKind::Close,
@@ -338,7 +343,7 @@ pub(crate) fn hit_kind(h: Hit) -> EventKind {
     }
 }
 
-pub(crate) fn stuck_err(phase: &str, lam: f64) -> Error {
+pub(super) fn stuck_err(phase: &str, lam: f64) -> Error {
     Error::Untrustworthy {
         detail: format!("the state update at {phase} parameter {lam:.6e} cycles without settling"),
         hint: "report this case; try another mesh or friction coefficient".into(),
@@ -346,7 +351,7 @@ pub(crate) fn stuck_err(phase: &str, lam: f64) -> Error {
 }
 
 /// Applies the transition that reached equality at lam.
-pub(crate) fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<()> {
+pub(super) fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit) -> Result<()> {
     let u = a.b(i, lam);
     match h {
         Hit::Open => sv.set_state(i, NodeState::Open, 0.0),
@@ -360,7 +365,7 @@ pub(crate) fn apply_hit(sv: &mut Solver, a: &Affine, lam: f64, i: usize, h: Hit)
 pub(crate) struct Recorder<'p> {
     pub(crate) out: Run,
     pub(crate) prev_u: Vec<f64>,
-    pub(crate) pb: &'p Problem,
+    pub(super) pb: &'p Problem,
 }
 
 impl Recorder<'_> {
@@ -390,7 +395,9 @@ impl Recorder<'_> {
         self.record(sv, a, lam, |st| Event::simple(kind, st, node))
     }
 
-    fn push(&mut self, ev: Event, st: State) -> Result<()> {
+    /// Records an event and the state after it, built by the caller (the constant-velocity
+    /// drive's samples and events): the cancel check, the cap and the observer's call.
+    pub(crate) fn push(&mut self, ev: Event, st: State) -> Result<()> {
         let (out, pb) = (&mut self.out, self.pb);
         pb.cancel.check()?;
         if out.events.len() >= pb.max_events {

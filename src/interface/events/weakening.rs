@@ -16,6 +16,7 @@
 
 use super::active::Solver;
 use super::classify::classify;
+use super::handoff::{Found, Onset, Resolved, Resolver};
 use super::operator::Affine;
 use super::search::Fix;
 use super::simulation::{stuck_err, Recorder};
@@ -25,7 +26,13 @@ use crate::error::Result;
 /// Steps per D_c of slip of the fastest slipping node (step control).
 const STEPS_PER_DC: f64 = 20.0;
 
-pub(super) fn drive(sv: &mut Solver, mut rec: Recorder, dc: f64, progress: &dyn Fn(f64)) -> Result<Run> {
+pub(super) fn drive(
+    sv: &mut Solver,
+    mut rec: Recorder,
+    dc: f64,
+    resolver: &mut dyn Resolver,
+    progress: &dyn Fn(f64),
+) -> Result<Run> {
     let (n, pb) = (sv.n(), rec.pb);
     let x_end = pb.x_max.unwrap_or(f64::INFINITY);
     let mut lam = 0.0;
@@ -46,46 +53,20 @@ pub(super) fn drive(sv: &mut Solver, mut rec: Recorder, dc: f64, progress: &dyn 
         let states_pre = sv.states().to_vec();
         let mu_pre = (0..n).map(|i| sv.mu_slip(i)).collect::<Vec<_>>();
         let (a, touched) = settle(sv, lam, cap, &u_pre, dc, pb.newton)?;
-        let moved: Vec<f64> = (0..n).map(|i| (a.b(i, lam) - u_pre[i]).abs()).collect();
-        let (i0, jump) =
-            moved.iter().enumerate().fold((0, 0.0), |b, (i, &m)| if m > b.1 { (i, m) } else { b });
+        let jump = (0..n).map(|i| (a.b(i, lam) - u_pre[i]).abs()).fold(0.0, f64::max);
         if jump > 0.5 * dc {
-            // Instability: the region is the connected run around the largest jump of nodes
-            // that slipped in the relaxation by more than 1 % of D_c (a corner that crept a
-            // little at the other end is not part of it).
-            let went = |i: usize| touched[i] && moved[i] > 0.01 * dc;
-            let mut first = i0;
-            while first > 0 && went(first - 1) {
-                first -= 1;
-            }
-            let mut last = i0;
-            while last + 1 < n && went(last + 1) {
-                last += 1;
-            }
-            let all_slipping = sv.all_contact_slipping();
-            // Nucleation: the most weakened node slipping when the step began.
-            let node = (first..=last)
-                .filter(|&i| matches!(states_pre[i], NodeState::Slip(_)))
-                .min_by(|&i, &j| mu_pre[i].total_cmp(&mu_pre[j]))
-                .unwrap_or(i0);
-            let kind = classify(&states_pre, sv.states(), (first, last), &mut slipped, pb.end_at_crossing);
-            heal(sv, &a, lam)?;
-            let b = sv.solve()?;
-            if kind.ends_cycle() {
-                rec.out.sliding_events += 1;
-            }
-            rec.record(sv, &b, lam, |st| Event {
-                kind,
-                f: f_pre,
-                x: lam,
-                node,
-                region: Some((first, last)),
-                f_relaxed: st.f,
-                backslip: 0,
-                all_slipping,
-            })?;
+            let at = Onset {
+                lam,
+                a: &a,
+                states_pre: &states_pre,
+                f_pre,
+                found: Found::Runaway { u_pre: &u_pre, mu_pre: &mu_pre, touched: &touched },
+                slipped: &mut slipped,
+                shown: frac(&rec.out, lam),
+            };
+            let go = resolver.resolve(sv, &mut rec, at)?;
             progress(frac(&rec.out, lam));
-            if rec.out.sliding_events >= pb.cycles {
+            if go == Resolved::Stop || rec.out.sliding_events >= pb.cycles {
                 return Ok(rec.finish(sv));
             }
             continue;
@@ -148,6 +129,61 @@ pub(super) fn drive(sv: &mut Solver, mut rec: Recorder, dc: f64, progress: &dyn 
     }
 }
 
+/// The quasi-static resolution of a slip-weakening instability: the fixed-point relaxation
+/// has run away to where the nodes reach mu_d or the front arrests (in [`settle`]); the
+/// event is classified like a static-kinetic one and every node sticks and heals to mu_s.
+pub(super) struct Runaway {
+    pub(super) dc: f64,
+    pub(super) end_at_crossing: bool,
+}
+
+impl Resolver for Runaway {
+    fn resolve(&mut self, sv: &mut Solver, rec: &mut Recorder, at: Onset) -> Result<Resolved> {
+        let (n, lam, dc) = (sv.n(), at.lam, self.dc);
+        let Found::Runaway { u_pre, mu_pre, touched } = at.found else {
+            // A node past its threshold: the paper's rule, as the other laws.
+            return super::relax::Rules::default().resolve(sv, rec, at);
+        };
+        let moved: Vec<f64> = (0..n).map(|i| (at.a.b(i, lam) - u_pre[i]).abs()).collect();
+        let i0 = moved.iter().enumerate().fold((0, 0.0), |b, (i, &m)| if m > b.1 { (i, m) } else { b }).0;
+        // The region is the connected run around the largest jump of nodes that slipped in
+        // the relaxation by more than 1 % of D_c (a corner that crept a little at the other
+        // end is not part of it).
+        let went = |i: usize| touched[i] && moved[i] > 0.01 * dc;
+        let mut first = i0;
+        while first > 0 && went(first - 1) {
+            first -= 1;
+        }
+        let mut last = i0;
+        while last + 1 < n && went(last + 1) {
+            last += 1;
+        }
+        let all_slipping = sv.all_contact_slipping();
+        // Nucleation: the most weakened node slipping when the step began.
+        let node = (first..=last)
+            .filter(|&i| matches!(at.states_pre[i], NodeState::Slip(_)))
+            .min_by(|&i, &j| mu_pre[i].total_cmp(&mu_pre[j]))
+            .unwrap_or(i0);
+        let kind = classify(at.states_pre, sv.states(), (first, last), at.slipped, self.end_at_crossing);
+        heal(sv, at.a, lam)?;
+        let b = sv.solve()?;
+        if kind.ends_cycle() {
+            rec.out.sliding_events += 1;
+        }
+        rec.record(sv, &b, lam, |st| Event {
+            kind,
+            f: at.f_pre,
+            x: lam,
+            node,
+            region: Some((first, last)),
+            f_relaxed: st.f,
+            backslip: 0,
+            all_slipping,
+        })?;
+        Ok(Resolved::Go)
+    }
+}
+
 /// Equilibrium at fixed X with every slipping node's coefficient at its slip: state changes
 /// first (one at a time, as for the other laws), then the coefficients. Returns the solution
 /// and the nodes that slipped at some iterate.
@@ -206,7 +242,7 @@ fn settle(
             sv.set_state(i, NodeState::Stick, u_pre[i])?;
             continue;
         }
-        let change = coefficients(sv, &a, lam, false);
+        let change = coefficients(sv, &a, lam, false, tolerances::COEFFICIENT * sv.law().mu_s());
         if change.is_empty() {
             sv.release();
             return Ok((a, touched));
@@ -225,8 +261,13 @@ fn settle(
 
 /// The slipping nodes' coefficients at their slips in `a` where they differ by more than
 /// [`tolerances::COEFFICIENT`] mu_s from their rows', with Newton springs (d mu/d slip) p centred there if asked.
-fn coefficients(sv: &Solver, a: &Affine, lam: f64, springs: bool) -> Vec<(usize, f64, f64, f64)> {
-    let tol = tolerances::COEFFICIENT * sv.law().mu_s();
+pub(super) fn coefficients(
+    sv: &Solver,
+    a: &Affine,
+    lam: f64,
+    springs: bool,
+    tol: f64,
+) -> Vec<(usize, f64, f64, f64)> {
     let mut change = Vec::new();
     for i in 0..sv.n() {
         if let NodeState::Slip(s) = sv.states()[i] {
@@ -281,7 +322,7 @@ fn newton_coefficients(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f6
     let mut a = sv.solve()?;
     let u0: Vec<f64> = (0..n).map(|i| a.b(i, lam)).collect();
     for _ in 0..NEWTON_MAX {
-        let change = coefficients(sv, &a, lam, true);
+        let change = coefficients(sv, &a, lam, true, tolerances::COEFFICIENT * sv.law().mu_s());
         if change.iter().all(|c| (c.1 - sv.mu_slip(c.0)).abs() <= tolerances::COEFFICIENT * sv.law().mu_s()) {
             // Converged: the spring-free rows at these coefficients, if the equilibrium is
             // one that fixed point would reach (stable).

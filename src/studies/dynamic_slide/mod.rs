@@ -1,14 +1,15 @@
 //! `slide --dynamics`: the paper's plate-driven block, loaded quasi-statically and exactly
 //! between events, each instability run dynamically with the drive held (issue 33, part 3).
 //!
-//! 1. Loading: the event solver's own active set ([`crate::interface::events`]'s `Solver` on
-//!    the dense condensed S or, with `--operator banded`, the banded block: O(n) a solve):
-//!    its normal phase, then U_H with nodes sticking, slipping (at a frozen coefficient) or
-//!    opening, every change found exactly. Under slip weakening a slipping node's coefficient
-//!    is brought to its slip every D_c/20 of slip (`DynamicOptions::weakening_steps`; a fixed
-//!    point at fixed U_H, each iterate one solve); when that fixed point diverges (a change
-//!    above D_c/2 in one iterate, or 30 iterates without settling to 1e-3 D_c) the patch is
-//!    unstable and the event is run dynamically (`steps.rs`).
+//! 1. Loading: the event solver's own start-up and stepped drive loop
+//!    ([`crate::interface::events`]' `handoff`, on the dense condensed S or, with
+//!    `--operator banded`, the banded block: O(n) a solve): its normal phase, then U_H with
+//!    nodes sticking, slipping (at a frozen coefficient) or opening, every change found
+//!    exactly. Under slip weakening a slipping node's coefficient is brought to its slip every
+//!    D_c/20 of slip (`DynamicOptions::weakening_steps`; a fixed point at fixed U_H, each
+//!    iterate one solve); when that fixed point diverges (a change above D_c/2 in one iterate,
+//!    or 30 iterates without settling to 1e-3 D_c) the patch is unstable and the loop hands
+//!    the event to this mode's resolver (`resolve.rs`), which runs it dynamically.
 //! 2. The event ([`crate::dynamics::driven`]): from the static field (v = 0), U_H held, until
 //!    no node slips and the kinetic energy is below 1e-6 of what the event dissipated, both
 //!    for one period of the block's thickness mode.
@@ -20,33 +21,31 @@
 //! Coulomb friction never becomes unstable, so a Coulomb run is the static loading alone:
 //! the same events as `slide` (tests/it/dynamics.rs).
 
-use crate::dynamics::driven::{DynState, EventLimits, EventRecord};
+use crate::dynamics::driven::{EventLimits, EventRecord};
 use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
 use crate::interface::banded::{BandedOperator, Solving};
 use crate::interface::condense::{condense, Condensed};
-use crate::interface::events::{self, tolerances, Event, EventKind, NodeState, Operator, Phase};
+use crate::interface::events::{self, Operator};
 use crate::interface::law::Law;
 use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{SlideOptions, SlideResult};
-use events::operator::Affine;
-use events::search::Hit;
-use events::simulation::{apply_hit, hit_kind, normal_phase, settle_continuous, start, stuck_err};
+use events::handoff::{drive_stepped, start_drive, Affine, Ended};
 use std::time::Instant;
 
 pub mod assumption5;
 pub mod fronts;
 pub mod physics;
 pub mod refine;
+mod resolve;
 mod setup;
 mod steps;
 pub mod summary;
 pub use physics::{default_dc, smallest_resolved_dc};
 pub mod velocity;
 use setup::Setup;
-use steps::{anchor_after, arrest, classify_event, crossing, relax};
 
 /// The dynamic options beside the slide options.
 #[derive(Debug, Clone)]
@@ -332,217 +331,44 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         o.operator.name()
     ));
 
-    // The event solver's active set on that operator; the normal phase is the event solver's.
-    let (mut sv, mut rec) = start(op, n, o)?;
+    // The event solver's start-up and its drive loop, each instability run dynamically.
+    let (mut sv, mut rec) = start_drive(op, n, o)?;
     let setup_s = clock.elapsed().as_secs_f64();
-    let mut dynamic_s = 0.0;
-    normal_phase(&mut sv, &mut rec)?;
-    // Drive phase: under slip weakening every pre-slipped node sticks where it is as the
-    // drive starts (the event solver's rule), keeping the slip it made.
-    sv.set_phase(Phase::Drive);
-    if weakens {
-        for i in 0..n {
-            if let NodeState::Slip(_) = sv.states()[i] {
-                sv.set_state(i, NodeState::Stick, rec.prev_u[i])?;
-            }
-        }
-    }
-    let cap = tolerances::max_changes(n);
-    let x_end = o.x_max.unwrap_or(f64::INFINITY);
-    let mut x_stop = x_end;
-    let mut sliding_seen = false;
-    let mut lam = 0.0;
-    let mut idle = 0;
-    let mut done = vec![0.0f64; n]; // slip since each coefficient was frozen
-    let mut slipped = vec![false; n]; // by instabilities since the last cycle end
-    let mut dyn_events: Vec<DynEvent> = Vec::new();
-    let mut steps = 0usize;
-    let mut incomplete = None;
-    // A cap met after the run started ends it with what it computed (exit status 5 in the
-    // command), not with an error that would discard the work.
-    macro_rules! capped {
-        ($e:expr, $drive:lifetime) => {
-            match $e {
-                Err(Error::EventCap { cap, x, f_over_n, .. }) => {
-                    incomplete = Some(format!(
-                        "--max-events = {cap} met at X = {x:.6e} m, F/N = {f_over_n:.6}; raise --max-events or lower --cycles/--x-max"
-                    ));
-                    break $drive;
-                }
-                r => r?,
-            }
-        };
-    }
-    'drive: loop {
-        o.cancel.check()?;
-        let a = settle_continuous(&mut sv, lam, true, cap, "drive")?;
-        let frac = if x_end.is_finite() { lam / x_end } else { 0.0 };
-        // Cycles done, and of the current one the share of the interface its instabilities
-        // have slipped (the crossing ends it at 1).
-        let share = slipped.iter().filter(|&&s| s).count() as f64 / n as f64;
-        let shown = frac.max((rec.out.sliding_events as f64 + share) / o.cycles.max(1) as f64).min(1.0);
-        progress.fraction(shown);
-        if !weakens && !sliding_seen && lam > 0.0 && sv.all_contact_slipping() {
-            // Coulomb's first whole-interface slip; by default the run ends 5 % further (`slide`).
-            sliding_seen = true;
-            rec.out.sliding_events += 1;
-            capped!(rec.simple(&sv, &a, lam, EventKind::Sliding, 0), 'drive);
-            if o.x_max.is_none() {
-                x_stop = lam + 0.05 * lam.max(o.n_force / rec.out.k_bonded);
-            }
-        }
-        if weakens && x_end.is_infinite() && sv.all_contact_slipping() {
-            let weak =
-                (0..n).all(|k| sv.states()[k] == NodeState::Open || sv.slip_memory(k, a.b(k, lam)) >= dc);
-            if weak {
-                // Steady sliding at mu_d, reached stably: nothing sticks again with the drive
-                // advancing; the run ends here.
-                rec.out.sliding_events += 1;
-                capped!(rec.simple(&sv, &a, lam, EventKind::Sliding, 0), 'drive);
-                progress.message(&format!(
-                    "steady sliding at mu_d reached stably at X = {lam:.6e} m (no instability): the run ends"
-                ));
-                break 'drive;
-            }
-        }
-        // Next X: the next threshold, or a slipping node's next D_c / weakening_steps of slip.
-        let mut next: Option<(f64, Option<(usize, Hit)>)> =
-            sv.next_event(&a, lam).map(|(dl, i, h)| (dl, Some((i, h))));
-        if weakens {
-            for k in 0..n {
-                let rate = a.b1[k].abs();
-                if matches!(sv.states()[k], NodeState::Slip(_))
-                    && rate > 0.0
-                    && sv.slip_memory(k, a.b(k, lam)) < dc
-                {
-                    let dl = (dc / d.weakening_steps - done[k]).max(0.0) / rate;
-                    if next.is_none_or(|b| dl < b.0) {
-                        next = Some((dl, None));
-                    }
-                }
-            }
-        }
-        let Some((dl, hit)) = next.filter(|b| lam + b.0 < x_stop) else {
-            if !x_stop.is_finite() {
-                return Err(Error::Untrustworthy {
-                    detail: format!("the static loading has no further event at X = {lam:e} m"),
-                    hint: "give --x-max".into(),
-                });
-            }
-            capped!(rec.simple(&sv, &a, x_stop, EventKind::End, 0), 'drive);
-            break;
-        };
-        idle = if dl == 0.0 { idle + 1 } else { 0 };
-        if idle > cap {
-            return Err(stuck_err("dynamic slide's drive", lam));
-        }
-        for k in 0..n {
-            if matches!(sv.states()[k], NodeState::Slip(_)) {
-                done[k] += a.b1[k].abs() * dl;
-            }
-        }
-        lam += dl;
-        if let Some((i, h)) = hit {
-            apply_hit(&mut sv, &a, lam, i, h)?;
-            if let Hit::Friction(_) = h {
-                done[i] = 0.0;
-            }
-            let a = settle_continuous(&mut sv, lam, true, cap, "drive")?;
-            capped!(rec.simple(&sv, &a, lam, hit_kind(h), i), 'drive);
-            continue;
-        }
-        // Slip weakening: bring the slipping coefficients to their slips at fixed U_H.
-        let Some(a_cur) = relax(&mut sv, &a, lam, dc, cap, &mut done)? else {
-            continue;
-        };
-        // The instability, dynamically, from this static equilibrium.
-        let dclock = Instant::now();
-        let before = sv.record(&a_cur, lam, Some(&rec.prev_u));
-        let mut ds = DynState {
-            u: full_field(&a_cur, lam),
-            v: vec![0.0; model.n_dofs()],
-            u_h: lam,
-            drive_velocity: 0.0,
-            q: [before.v, before.tilt],
-            qdot: [0.0; 2],
-            d: (0..n).map(|k| sv.slip_memory(k, a_cur.b(k, lam))).collect(),
-            time: 0.0,
-        };
-        let ev = driven.run_event(&mut ds, &lim, dc / 100.0, &o.cancel, &|| progress.fraction(shown))?;
-        steps += ev.steps;
-        if !ev.settled {
-            // Where it still moves: the fastest base node of the last sample, and how many move.
-            let last = ev.rates.last().cloned().unwrap_or_default();
-            let (kmax, vmax) =
-                last.iter().enumerate().fold((0, 0.0f32), |b, (k, &v)| if v > b.1 { (k, v) } else { b });
-            let moving = last.iter().filter(|&&v| v > 1e-3 * vmax).count();
-            let en = &ev.energy;
+    let mut resolver = resolve::Held {
+        full_field: &full_field,
+        driven: &driven,
+        lim: &lim,
+        base: &layout.base,
+        x: &c.x,
+        w: &c.w,
+        friction: &friction,
+        shear_modulus: mat.shear_modulus(),
+        thickness: t,
+        length: c.l,
+        max_periods,
+        heal_slipped_only: d.heal_slipped_only,
+        o,
+        progress: &progress,
+        events: Vec::new(),
+        steps: 0,
+        dynamic_s: 0.0,
+        incomplete: None,
+    };
+    let ended =
+        drive_stepped(&mut sv, &mut rec, &mut resolver, d.weakening_steps, &|f| progress.fraction(f))?;
+    let (dyn_events, steps, dynamic_s) = (resolver.events, resolver.steps, resolver.dynamic_s);
+    let mut incomplete = resolver.incomplete;
+    match ended {
+        Ended::Cap(Error::EventCap { cap, x, f_over_n, .. }) => {
             incomplete = Some(format!(
-                "a dynamic event at X = {lam:.6e} m did not settle within its cap of {} steps ({max_periods:.0} thickness-mode periods): at the end the base node at x/L = {:.4} moves at {vmax:.3e} m/s ({moving} nodes above 1e-3 of that, {} open), kinetic energy {:.3e} of the dissipated {:.3e} J/m; the tables end before it; raise --damping",
-                lim.max_steps,
-                c.x.get(kmax).copied().unwrap_or(0.0) / c.l,
-                ev.open.iter().filter(|&&o| o).count(),
-                en.kinetic_end / (en.friction + en.damping).max(f64::MIN_POSITIVE),
-                en.friction + en.damping
-            ));
-            break 'drive;
-        }
-        // Back to statics: every contact node anchored where the event left it.
-        let a_after =
-            anchor_after(&mut sv, &layout.base, &ds, &ev, d.heal_slipped_only, lam, cap, &mut done)?;
-        let u_static = full_field(&a_after, lam);
-        let max_slip = ev.slip.iter().cloned().fold(0.0, f64::max).max(f64::MIN_POSITIVE);
-        let u_gap = ds.u.iter().zip(&u_static).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / max_slip;
-        let f_after = a_after.f(sv.iu(), lam);
-        let f_gap = (ev.force.last().copied().unwrap_or(f_after) - f_after).abs() / (mu_s * o.n_force);
-        let (kind, node, region) = classify_event(&ev, dc, n);
-        let kind = crossing(kind, region, &ev.open[..n], &mut slipped, o.end_at_crossing);
-        if kind.ends_cycle() {
-            rec.out.sliding_events += 1;
-        }
-        capped!(rec.record(&sv, &a_after, lam, |st| Event {
-            kind,
-            f: before.f,
-            x: lam,
-            node,
-            region: ev.nucleation.map(|_| region),
-            f_relaxed: st.f,
-            backslip: 0,
-            all_slipping: kind == EventKind::Sliding,
-        }), 'drive);
-        let (t_arrest, force_drop_at_arrest) =
-            arrest(&ev, before.f, f_after).map_or((None, None), |(t, f)| (Some(t), f));
-        let assumption5 = assumption5::measure(&ev, &c.x, &c.w, &friction, mat.shear_modulus(), t);
-        dyn_events.push(DynEvent {
-            event: rec.out.events.len() - 1,
-            x: lam,
-            f_onset: before.f,
-            f_after,
-            record: ev,
-            t_arrest,
-            force_drop_at_arrest,
-            assumption5,
-            f_gap,
-            u_gap,
-        });
-        let e = dyn_events.last().expect("event");
-        if e.record.weakened {
-            progress.message(&format!(
-                "event {} ({kind}) at X = {lam:.5e} m: F/(mu_s N) {:.5} -> {:.5}, slipped {:.4}..{:.4} L, {} steps ({:.3} s), peak slip rate {:.3e} m/s",
-                e.event,
-                e.f_onset / (mu_s * o.n_force),
-                e.f_after / (mu_s * o.n_force),
-                c.x[region.0] / c.l,
-                c.x[region.1] / c.l,
-                e.record.steps,
-                e.record.duration,
-                e.record.peak_rate.iter().cloned().fold(0.0, f64::max)
+                "--max-events = {cap} met at X = {x:.6e} m, F/N = {f_over_n:.6}; raise --max-events or lower --cycles/--x-max"
             ));
         }
-        dynamic_s += dclock.elapsed().as_secs_f64();
-        if rec.out.sliding_events >= o.cycles {
-            break 'drive;
-        }
+        Ended::Cap(e) => return Err(e),
+        Ended::Steady(x) => progress.message(&format!(
+            "steady sliding at mu_d reached stably at X = {x:.6e} m (no instability): the run ends"
+        )),
+        Ended::Done | Ended::Stopped => {}
     }
     let run = rec.finish(&sv);
     let resting = dyn_events.iter().filter(|e| e.record.at_strength > 0).count();

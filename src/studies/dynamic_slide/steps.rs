@@ -1,66 +1,15 @@
-//! The run's steps on the event solver's active set: the slip-weakening relaxation at a fixed
-//! drive (stable, or the onset of a dynamic event), the static state after an event, what an
-//! event was, and its arrest.
+//! The held mode's steps on the event solver's active set: the static state after a dynamic
+//! event, what an event was, and its arrest.
 
 use crate::dynamics::driven::{arrest_sample, DynState, EventRecord};
 use crate::error::Result;
-use crate::interface::events::active::Solver;
-use crate::interface::events::operator::Affine;
-use crate::interface::events::simulation::settle_continuous;
+use crate::interface::events::handoff::{crossed, settle_continuous, Affine, Solver};
 use crate::interface::events::{EventKind, NodeState};
-
-/// Fixed-point iterates of one relaxation before it counts as unstable.
-const FIXED_POINT_ITERATES: usize = 30;
-
-/// Brings the slipping coefficients to their slips at fixed U_H = lam by fixed point (each
-/// iterate one solve with the coefficients frozen, the states made consistent after it).
-/// None: it settled (an iterate moved no slipping node by 1e-3 D_c); Some(the last iterate):
-/// it diverged (an iterate moved a node by more than D_c/2, or 30 iterates did not settle),
-/// so the patch is unstable and the event runs dynamically from there. `done`: slip since
-/// each coefficient was last brought to its slip (reset for the slipping nodes).
-pub(super) fn relax(
-    sv: &mut Solver,
-    a: &Affine,
-    lam: f64,
-    dc: f64,
-    cap: usize,
-    done: &mut [f64],
-) -> Result<Option<Affine>> {
-    let (n, law) = (sv.n(), sv.law());
-    let mut a_cur = a.clone();
-    for _ in 0..FIXED_POINT_ITERATES {
-        let mut change = Vec::new();
-        for k in 0..n {
-            if let NodeState::Slip(_) = sv.states()[k] {
-                done[k] = 0.0;
-                let mu = law.kinetic(sv.slip_memory(k, a_cur.b(k, lam)));
-                if mu != sv.mu_slip(k) {
-                    change.push((k, mu, 0.0, 0.0));
-                }
-            }
-        }
-        sv.set_coefficients(&change)?;
-        let a_new = settle_continuous(sv, lam, true, cap, "slip-weakening relaxation")?;
-        let jump = (0..n)
-            .filter(|&k| matches!(sv.states()[k], NodeState::Slip(_)))
-            .map(|k| (a_new.b(k, lam) - a_cur.b(k, lam)).abs())
-            .fold(0.0, f64::max);
-        a_cur = a_new;
-        if jump < 1e-3 * dc {
-            return Ok(None);
-        }
-        if jump > 0.5 * dc {
-            break;
-        }
-    }
-    Ok(Some(a_cur))
-}
 
 /// The static state after a dynamic event at U_H = lam: every base node anchored where the
 /// event left it (or open), its slip memory the event's (healed to 0 when some node weakened
 /// fully, an instability: every node, or with `slipped_only` those whose event slip passed
 /// the event's threshold), the states made consistent.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn anchor_after(
     sv: &mut Solver,
     base: &[usize],
@@ -69,7 +18,6 @@ pub(super) fn anchor_after(
     slipped_only: bool,
     lam: f64,
     cap: usize,
-    done: &mut [f64],
 ) -> Result<Affine> {
     let change: Vec<(usize, NodeState, f64)> = base
         .iter()
@@ -90,7 +38,6 @@ pub(super) fn anchor_after(
             sv.set_slip_memory(b, d);
         }
     }
-    done.iter_mut().for_each(|v| *v = 0.0);
     settle_continuous(sv, lam, true, cap, "drive after a dynamic event")
 }
 
@@ -143,7 +90,7 @@ pub(super) fn crossing(
     if matches!(kind, EventKind::Precursor | EventKind::Nucleation) {
         (region.0..=region.1).for_each(|k| slipped[k] = true);
     }
-    let crossed = crate::interface::events::classify::crossed(slipped, |k| open[k]);
+    let crossed = crossed(slipped, |k| open[k]);
     let kind = if on && matches!(kind, EventKind::Precursor | EventKind::Nucleation) && crossed {
         EventKind::Crossing
     } else {

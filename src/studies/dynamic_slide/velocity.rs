@@ -2,7 +2,9 @@
 //! velocity, U_H = V t, for comparison with the held-drive mode (issue 33).
 //!
 //! 1. The normal phase is the held mode's: N ramped quasi-statically and exactly at U_H = 0
-//!    (the event solver's normal phase, `interface::events`); slipping nodes stick where they are as the drive starts.
+//!    (the event solver's start-up, `interface::events`' `handoff`); under a weakening law
+//!    slipping nodes stick where they are as the drive starts, under Coulomb they slip on
+//!    (the event solver's one rule). Every event goes through the event solver's recorder.
 //! 2. From that equilibrium the whole drive phase is one explicit run
 //!    ([`crate::dynamics::driven::Driven::step`]) to --x-max, started on the quasi-static
 //!    path (u from the static field, v = V du/dU_H of the static path with the states of the
@@ -31,10 +33,8 @@ use super::{check as check_held, DynEvent, DynamicOptions, DynamicResult};
 use crate::dynamics::driven::{Contact, DynState, EventEnergy, EventRecord};
 use crate::error::{Error, Result};
 use crate::interface::condense::condense;
-use crate::interface::events::simulation::{normal_phase, settle_continuous, start};
-use crate::interface::events::{
-    operator, tolerances, Event, EventKind, NodeState, Phase, Run, State, Violations,
-};
+use crate::interface::events::handoff::{settle_continuous, start_drive, Recorder};
+use crate::interface::events::{operator, tolerances, Event, EventKind, NodeState, Phase, State, Violations};
 use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;
@@ -183,45 +183,14 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     ));
     let setup_s = clock.elapsed().as_secs_f64();
 
-    // Normal phase, quasi-static and exact: the event solver's (as the held mode).
-    let (mut sv, mut rec) = start(Box::new(operator::Dense::new(&s_h, 2 * n + 3)), n, o)?;
-    normal_phase(&mut sv, &mut rec)?;
-    // Every pre-slipped node sticks where it is as the drive starts, keeping its slip.
-    sv.set_phase(Phase::Drive);
-    for i in 0..n {
-        if let NodeState::Slip(_) = sv.states()[i] {
-            sv.set_state(i, NodeState::Stick, rec.prev_u[i])?;
-        }
-    }
+    // Normal phase, quasi-static and exact, and the drive's start: the event solver's (as the
+    // held mode), and its recorder for every event (the observer, the cap).
+    let (mut sv, mut rec) = start_drive(Box::new(operator::Dense::new(&s_h, 2 * n + 3)), n, o)?;
     let cap = tolerances::max_changes(n);
     // The start on the quasi-static path: u of the static field at U_H = 0, v = V du/dU_H.
     let p = settle_continuous(&mut sv, 0.0, true, cap, "drive")?;
     let start = sv.record(&p, 0.0, None);
     let slip: Vec<f64> = (0..n).map(|k| sv.slip_memory(k, p.b(k, 0.0))).collect();
-    let mut run = rec.out;
-    let push = |run: &mut Run, ev: Event, s: State| -> Result<()> {
-        run.push(ev, s, o.keep_states);
-        if run.events.len() > o.max_events {
-            let last = run.summaries.last().expect("summary");
-            return Err(Error::EventCap {
-                cap: o.max_events,
-                x: last.x,
-                f_over_n: last.f / o.n_force,
-                f_peak_over_n: run.summaries.iter().map(|s| s.f).fold(0.0, f64::max) / o.n_force,
-            });
-        }
-        Ok(())
-    };
-    let simple = |kind: EventKind, s: &State, i: usize| Event {
-        kind,
-        f: s.f,
-        x: s.x,
-        node: i,
-        region: None,
-        f_relaxed: s.f,
-        backslip: 0,
-        all_slipping: false,
-    };
     let u0 = full_field(&p.b0);
     let du = full_field(&p.b1);
     let mut ds = DynState {
@@ -371,14 +340,13 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             let ev = open.take().expect("open event");
             let s = sample_state(&ds, &at, w.u_before(), &contact, &window, out.f_drive);
             let weakened = ev.rec.weakened;
-            let kind =
-                close(&mut run, ev, s, out, &e, closed, dt, &layout.x, &mut dyn_events, &mut slipped, &push)?;
+            let kind = close(&mut rec, ev, s, out, &e, closed, dt, &layout.x, &mut dyn_events, &mut slipped)?;
             if weakened && closed {
                 // An instability: every node heals to mu_s (slip memory 0), as the held mode.
                 ds.d.iter_mut().for_each(|d| *d = 0.0);
             }
             if kind.ends_cycle() {
-                run.sliding_events += 1;
+                rec.out.sliding_events += 1;
             }
             let last = dyn_events.last().expect("event");
             if last.record.weakened {
@@ -393,13 +361,13 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                     last.record.peak_rate.iter().cloned().fold(0.0, f64::max)
                 ));
             }
-            if weakens && run.sliding_events >= o.cycles {
+            if weakens && rec.out.sliding_events >= o.cycles {
                 break;
             }
         }
         if (steps as u64).is_multiple_of(row_every) && !at_end {
             let s = sample_state(&ds, &at, w.u_before(), &contact, &window, out.f_drive);
-            push(&mut run, simple(EventKind::Sample, &s, 0), s)?;
+            rec.push(Event::simple(EventKind::Sample, &s, 0), s)?;
             window.iter_mut().for_each(|v| *v = false);
         }
         if beat.due()? {
@@ -409,9 +377,10 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     // The last level the drive reached (the start if it took no step).
     let u_end = if steps == 0 { &ds.u[..] } else { w.u_before() };
     let s = sample_state(&ds, &at, u_end, &contact, &window, f_prev);
-    push(&mut run, simple(EventKind::End, &s, 0), s)?;
+    rec.push(Event::simple(EventKind::End, &s, 0), s)?;
     let dynamic_s = dclock.elapsed().as_secs_f64();
     let total = clock.elapsed().as_secs_f64();
+    let run = rec.finish(&sv);
     Ok(su.result(scene, o, c, run, dyn_events, steps, [setup_s, total - setup_s - dynamic_s, dynamic_s]))
 }
 
@@ -419,7 +388,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
 /// record.
 #[allow(clippy::too_many_arguments)]
 fn close(
-    run: &mut Run,
+    recorder: &mut Recorder,
     ev: Open,
     s: State,
     out: crate::dynamics::driven::StepOut,
@@ -429,7 +398,6 @@ fn close(
     x: &[f64],
     dyn_events: &mut Vec<DynEvent>,
     slipped: &mut (Vec<bool>, bool),
-    push: &dyn Fn(&mut Run, Event, State) -> Result<()>,
 ) -> Result<EventKind> {
     let Open { x0, f0, went, e0, balance0, mut rec, .. } = ev;
     let (kind, node, (a, b)) = kind_of(&rec, &went);
@@ -452,8 +420,7 @@ fn close(
     rec.force.push(out.f_drive);
     rec.tip.push(tip(rec.nucleation, &went, x));
     let f_after = s.f;
-    push(
-        run,
+    recorder.push(
         Event {
             kind,
             f: f0,
@@ -469,7 +436,7 @@ fn close(
     let (t_arrest, force_drop_at_arrest) =
         arrest(&rec, f0, f_after).map_or((None, None), |(t, f)| (Some(t), f));
     dyn_events.push(DynEvent {
-        event: run.events.len() - 1,
+        event: recorder.out.events.len() - 1,
         x: x0,
         f_onset: f0,
         f_after,
