@@ -2,8 +2,10 @@
 //!
 //! - [`waves`]: the body-wave and Rayleigh speeds the solver is judged against;
 //! - [`explicit`]: lumped-mass central differences (Newmark beta = 0, gamma = 1/2) on QUA4
-//!   meshes, Kelvin-Voigt damping, the stable time step, energies;
+//!   meshes, Kelvin-Voigt damping, the stable time step, energies: the crate's one time loop,
+//!   with boundary conditions as [`explicit::Boundary`] hooks;
 //! - [`friction`]: slip-weakening friction and the cohesive-zone estimate Lambda_0;
+//! - [`driven`]: one dynamic event of the plate-driven block (the plate and base as a hook);
 //! - [`rupture`]: the base on a rigid flat with friction imposed per node per step (the
 //!   traction-at-split-node rule of Day et al. 2005) and the shared cross-check scene
 //!   "rupture" (arrival times, force drop, front speed).
