@@ -720,10 +720,7 @@ fn sweep<'py>(
             axes.push(Axis { param, values: axis_values(param.flag(), &v)? });
         }
     }
-    let friction = match friction {
-        Some((mu_s, mu_d)) => Some(sw::FrictionSweep { mu_s, mu_d, rule, cycles }),
-        None => None,
-    };
+    let friction = friction.map(|(mu_s, mu_d)| sw::FrictionSweep { mu_s, mu_d, rule, cycles });
     let (points, _) = run_detached(py, progress, |cancel, poll| {
         let o = sw::SweepOptions { converged, friction, cancel: cancel.clone(), ..Default::default() };
         let forward = poll.forward::<sw::Point>();
