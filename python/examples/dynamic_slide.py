@@ -1,6 +1,7 @@
 """A dynamic slide from Python: the paper's scene to its first front crossing with the
-command's defaults (about a minute), plotted as the paper's fig. 4 (the drive force against
-the drive, each instability a drop) beside the space-time picture of the first precursor
+command's defaults for `slide --dynamics --law slip-weakening` (about a minute), plotted as
+the paper's fig. 4 (the friction force F against F^c, both in units of mu_s N, each
+instability a drop) beside the space-time picture of the first precursor
 (log10 of the slip rate along the interface against the time since its onset).
 
     python3 python/examples/dynamic_slide.py [--out dynamic_slide.png] [--length L]
@@ -21,15 +22,16 @@ ap.add_argument("--length", type=float, default=None, help="block length L, m (d
 args = ap.parse_args()
 
 scene = tribofe.Scene() if args.length is None else tribofe.Scene(length=args.length)
-run = tribofe.dynamics.slide(scene, progress=True)
+run = tribofe.dynamics.slide(scene, law="slip-weakening", progress=True)
 for note in run.notes:
     print(note)
 s = run.summary
-mu_s_n = run.mu_s * 1.0  # N = 1 N/m, the default n_force
 loading = run.loading
+mu_s_n = run.mu_s * np.asarray(loading["N_N_per_m"])[-1]  # mu_s N, N/m
+drive = np.asarray(loading["phase"]) == "drive"
 fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4))
-a.plot(np.asarray(loading["X_m"]) * 1e6, np.asarray(loading["F_N_per_m"]) / mu_s_n, lw=0.8)
-a.set_xlabel("drive X (um)")
+a.plot(np.asarray(loading["Fc_N_per_m"])[drive] / mu_s_n, np.asarray(loading["F_N_per_m"])[drive] / mu_s_n, lw=0.8)
+a.set_xlabel("F^c / (mu_s N)")
 a.set_ylabel("F / (mu_s N)")
 a.set_title(f"F_1 = {s['first_advance_F_over_mu_s_N']:.4f} mu_s N, x_1 = {s['first_advance_front_over_L']:.4f} L")
 first = next((e for e in run.samples if e["instability"]), None)

@@ -57,9 +57,19 @@ fn keywords(e: Error) -> Error {
     };
     match e {
         Error::Input { what, why } => {
+            // A bare name (`dc`, `rule`) or the scene file's `r = 1.5` is the keyword `dc=`,
+            // `r=1.5`.
+            let ident = |w: &str| {
+                w.starts_with(|c: char| c.is_ascii_lowercase())
+                    && w.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            };
             let what = match KEYWORDS.iter().find(|(name, _)| *name == what) {
                 Some((_, key)) => format!("{key}="),
-                None => rename(&what),
+                None if ident(&what) => format!("{what}="),
+                None => match what.split_once(" = ") {
+                    Some((name, value)) if ident(name) => format!("{name}={value}"),
+                    _ => rename(&what),
+                },
             };
             Error::Input { what, why: rename(&why) }
         }
@@ -143,6 +153,43 @@ fn run_detached<T: Send>(
 
 /// How often the waiting main thread looks for a signal (the interrupt key's latency).
 const SIGNAL_POLL: std::time::Duration = std::time::Duration::from_millis(20);
+
+/// A choice keyword parsed once into the library's value (`accepted`: each name with its
+/// value); a wrong value is refused naming the keyword and listing the accepted names.
+fn choice<T: Copy>(key: &str, v: Option<&str>, accepted: &[(&str, T)]) -> PyResult<Option<T>> {
+    let Some(v) = v else { return Ok(None) };
+    match accepted.iter().find(|(name, _)| *name == v) {
+        Some(&(_, t)) => Ok(Some(t)),
+        None => {
+            let names: Vec<String> = accepted.iter().map(|(n, _)| format!("{n:?}")).collect();
+            Err(to_py(Error::input(format!("{key}="), format!("{v:?}: give one of {}", names.join(", ")))))
+        }
+    }
+}
+
+/// The library's event operators by name (`--operator`).
+const OPERATORS: &[(&str, tribofe::interface::events::Operator)] = &[
+    ("dense", tribofe::interface::events::Operator::Dense),
+    ("banded", tribofe::interface::events::Operator::Banded),
+];
+/// `--states`: whether every event's state is kept.
+const STATES: &[(&str, bool)] = &[("all", true), ("none", false)];
+/// `--cycle-end`: whether a front crossing also ends a cycle.
+const CYCLE_ENDS: &[(&str, bool)] = &[("whole-slip", false), ("crossing", true)];
+/// The static-kinetic rules and the paper rule's conventions.
+const RULES: &[(&str, Rule)] = &[("paper", Rule::Paper), ("overdamped", Rule::Overdamped)];
+const RESIDUALS: &[(&str, tribofe::interface::law::Residual)] = &[
+    ("relaxed", tribofe::interface::law::Residual::Relaxed),
+    ("pre-event", tribofe::interface::law::Residual::PreEvent),
+];
+const BACKSLIPS: &[(&str, bool)] = &[("allowed", true), ("forbidden", false)];
+/// `--heal`: whether only the nodes that slipped heal.
+const HEALS: &[(&str, bool)] = &[("all", false), ("slipped", true)];
+
+/// The name of `value` among `accepted` (a default shown by [`defaults`]).
+fn name_of<T: PartialEq>(accepted: &[(&'static str, T)], value: T) -> &'static str {
+    accepted.iter().find(|(_, t)| *t == value).map_or("", |(n, _)| n)
+}
 
 fn f64_arg(v: &Bound<'_, PyAny>, key: &str) -> PyResult<f64> {
     v.extract::<f64>().map_err(|_| PyTypeError::new_err(format!("{key}: expected a number (SI units)")))
@@ -398,11 +445,14 @@ fn check<'py>(
     Ok(out)
 }
 
-/// The frictional interface under N then the drive X at height H, event by event.
+/// The frictional interface under N then the drive X at height H, event by event (`tribofe
+/// slide`: every option of it but the files'; a choice is parsed here into the library's
+/// value, refused with the accepted names).
 #[pyfunction]
 #[pyo3(signature = (scene=None, law=None, *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
-    rule=None, dc=None, n_force=None, x_max=None, cycles=None, max_events=None, newton=false,
-    keep_states=true, progress=None))]
+    rule=None, residual=None, backslip=None, dc=None, n_force=None, x_max=None, cycles=None,
+    cycle_end=None, max_events=None, newton=false, operator=None, states=None, keep_states=None,
+    progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn slide<'py>(
     py: Python<'py>,
@@ -414,46 +464,69 @@ fn slide<'py>(
     r: Option<f64>,
     g: Option<f64>,
     rule: Option<&str>,
+    residual: Option<&str>,
+    backslip: Option<&str>,
     dc: Option<f64>,
     n_force: Option<f64>,
     x_max: Option<f64>,
     cycles: Option<usize>,
+    cycle_end: Option<&str>,
     max_events: Option<usize>,
     newton: bool,
-    keep_states: bool,
+    operator: Option<&str>,
+    states: Option<&str>,
+    keep_states: Option<bool>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::studies::slide as sl;
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let (n_force, cycles) = (n_force.unwrap_or(sl::DEFAULT_N_FORCE), cycles.unwrap_or(sl::DEFAULT_CYCLES));
     let max_events = max_events.unwrap_or(sl::DEFAULT_MAX_EVENTS);
-    let choice = sl::LawChoice {
+    let rule = choice("rule", rule, RULES)?.unwrap_or(sl::DEFAULT_RULE.parse().map_err(to_py)?);
+    let paper = tribofe::interface::law::PaperOptions {
+        residual: choice("residual", residual, RESIDUALS)?
+            .unwrap_or(tribofe::interface::law::PaperOptions::default().residual),
+        backslip: choice("backslip", backslip, BACKSLIPS)?
+            .unwrap_or(tribofe::interface::law::PaperOptions::default().backslip),
+    };
+    let choice_law = sl::LawChoice {
         law: law.unwrap_or(sl::DEFAULT_LAW).to_string(),
         mu,
         mu_s,
         mu_d,
         r,
         g,
-        rule: rule.unwrap_or(sl::DEFAULT_RULE).to_string(),
+        rule: name_of(RULES, rule).to_string(),
         dc,
     };
-    let law = choice.law(&scene).map_err(to_py)?;
+    let law = choice_law.law(&scene).and_then(|l| l.with_paper_options(paper)).map_err(to_py)?;
     if newton && !law.weakens() {
         return Err(to_py(Error::input("newton", "newton cannot act without law='slip-weakening'")));
     }
+    let keep_states = match (choice("states", states, STATES)?, keep_states) {
+        (Some(_), Some(_)) => {
+            return Err(to_py(Error::input("keep_states", "the old spelling of states=: give states= alone")))
+        }
+        (Some(k), None) | (None, Some(k)) => k,
+        (None, None) => true,
+    };
+    let base = sl::SlideOptions::default();
+    let o = sl::SlideOptions {
+        law,
+        n_force,
+        x_max,
+        cycles,
+        end_at_crossing: choice("cycle_end", cycle_end, CYCLE_ENDS)?.unwrap_or(base.end_at_crossing),
+        max_events,
+        newton,
+        keep_states,
+        operator: choice("operator", operator, OPERATORS)?.unwrap_or(base.operator),
+        ..Default::default()
+    };
+    sl::check_options(&scene, &o).map_err(to_py)?;
     let (res, core_s) = run_detached(py, progress, |cancel, poll| {
-        let o = tribofe::studies::slide::SlideOptions {
-            law,
-            n_force,
-            x_max,
-            cycles,
-            max_events,
-            newton,
-            keep_states,
-            cancel: cancel.clone(),
-            ..Default::default()
-        };
-        tribofe::studies::slide::run(&scene, &o, poll)
+        let o = sl::SlideOptions { cancel: cancel.clone(), ..o };
+        sl::run(&scene, &o, poll)
     })?;
     let out = slide_result(py, &res)?;
     out.set_item("core_s", core_s)?;
@@ -466,36 +539,9 @@ fn slide_result<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let run = &res.run;
     let c = &res.condensed;
-    // The loading columns from every event's summary (kept whether or not the states are).
-    let col = |f: &dyn Fn(&tribofe::interface::events::Summary) -> f64| {
-        run.summaries.iter().map(f).collect::<Vec<_>>()
-    };
-    let loading = PyDict::new(py);
-    loading.set_item("X_m", arr(py, &col(&|s| s.x)))?;
-    loading.set_item("F_N_per_m", arr(py, &col(&|s| s.f)))?;
-    loading.set_item("N_N_per_m", arr(py, &col(&|s| s.n_force)))?;
-    loading.set_item("Fc_N_per_m", arr(py, &col(&|s| res.f_c(s.x))))?;
-    loading.set_item("tilt_rad", arr(py, &col(&|s| s.tilt)))?;
-    loading.set_item("V_m", arr(py, &col(&|s| s.v)))?;
-    // The events as columns, from the library (the numbers of the command's events.csv).
-    let ev = res.event_columns();
-    let events = PyDict::new(py);
-    let ints = |v: &[usize]| PyArray1::from_vec(py, v.iter().map(|&k| k as i64).collect::<Vec<i64>>());
-    events.set_item("event", ints(&(0..ev.kind.len()).collect::<Vec<_>>()))?;
-    events.set_item("kind", ev.kind.clone())?;
-    events.set_item("X_m", arr(py, &ev.x_m))?;
-    events.set_item("F_N_per_m", arr(py, &ev.f_n_per_m))?;
-    events.set_item("F_over_mu_s_N", arr(py, &ev.f_over_mu_s_n))?;
-    events.set_item("Fc_over_mu_s_N", arr(py, &ev.fc_over_mu_s_n))?;
-    events.set_item("x_nucleation_over_L", arr(py, &ev.x_nucleation_over_l))?;
-    events.set_item("x_arrest_over_L", arr(py, &ev.x_arrest_over_l))?;
-    events.set_item("region_first_over_L", arr(py, &ev.region_first_over_l))?;
-    events.set_item("region_last_over_L", arr(py, &ev.region_last_over_l))?;
-    events.set_item("slipped_length_over_L", arr(py, &ev.slipped_length_over_l))?;
-    events.set_item("F_relaxed_over_mu_s_N", arr(py, &ev.f_relaxed_over_mu_s_n))?;
-    events.set_item("backslip_nodes", ints(&ev.backslip_nodes))?;
-    events.set_item("max_violation", arr(py, &ev.max_violation))?;
-    events.set_item("overload", arr(py, &ev.overload))?;
+    // loading.csv's and events.csv's tables (report::table), every column, with their units.
+    use tribofe::report::slide as rs;
+    let (loading, events) = (rs::loading_table(res), rs::events_table(res));
     let out = PyDict::new(py);
     out.set_item("law", res.options.law.name())?;
     out.set_item("mu_s", res.options.law.mu_s())?;
@@ -503,12 +549,16 @@ fn slide_result<'py>(
     out.set_item("n_force_N_per_m", res.options.n_force)?;
     out.set_item("x_over_L", arr(py, &c.x.iter().map(|x| x / c.l).collect::<Vec<_>>()))?;
     out.set_item("width_m", arr(py, &c.w))?;
-    out.set_item("loading", loading)?;
+    out.set_item("loading", table(py, &loading)?)?;
+    let units = PyDict::new(py);
+    units.set_item("loading", table_units(&loading))?;
+    units.set_item("events", table_units(&events))?;
+    out.set_item("units", units)?;
     // The drive phase as the paper's fig. 4: (F^c, F) / (mu_s N), each instability a drop.
     let (fc, f): (Vec<f64>, Vec<f64>) = tribofe::report::slide::fe_curve(res).into_iter().unzip();
     out.set_item("curve_Fc_over_mu_s_N", arr(py, &fc))?;
     out.set_item("curve_F_over_mu_s_N", arr(py, &f))?;
-    out.set_item("events", events)?;
+    out.set_item("events", table(py, &events)?)?;
     out.set_item("sliding_events", run.sliding_events)?;
     out.set_item("max_violation", run.max_violation)?;
     out.set_item("condense_s", res.condense_s)?;
@@ -546,6 +596,11 @@ fn table<'py>(py: Python<'py>, t: &tribofe::report::table::Table) -> PyResult<Bo
         }
     }
     Ok(out)
+}
+
+/// A library table's units as (column, unit) pairs, in its order.
+fn table_units(t: &tribofe::report::table::Table) -> Vec<(&'static str, &'static str)> {
+    t.columns.iter().map(|c| (c.name, c.unit)).collect()
 }
 
 /// A CSV table (header line, then rows) as a dict of columns: whole numbers as int arrays,
@@ -644,7 +699,13 @@ fn sweep<'py>(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::studies::sweep::{self as sw, Axis, Param};
-    let rule = rule.unwrap_or(tribofe::studies::slide::DEFAULT_RULE);
+    sw::check_friction_settings(
+        friction.is_some(),
+        &[("rule=", rule.is_some()), ("cycles=", cycles.is_some())],
+    )
+    .map_err(to_py)?;
+    let rule =
+        choice("rule", rule, RULES)?.unwrap_or(tribofe::studies::slide::DEFAULT_RULE.parse().map_err(to_py)?);
     let cycles = cycles.unwrap_or(sw::DEFAULT_FRICTION_CYCLES);
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let mut axes = Vec::new();
@@ -659,12 +720,7 @@ fn sweep<'py>(
             axes.push(Axis { param, values: axis_values(param.flag(), &v)? });
         }
     }
-    let friction = match friction {
-        Some((mu_s, mu_d)) => {
-            Some(sw::FrictionSweep { mu_s, mu_d, rule: rule.parse().map_err(to_py)?, cycles })
-        }
-        None => None,
-    };
+    let friction = friction.map(|(mu_s, mu_d)| sw::FrictionSweep { mu_s, mu_d, rule, cycles });
     let (points, _) = run_detached(py, progress, |cancel, poll| {
         let o = sw::SweepOptions { converged, friction, cancel: cancel.clone(), ..Default::default() };
         let forward = poll.forward::<sw::Point>();
@@ -970,15 +1026,15 @@ fn rupture<'py>(
 /// instability run in elastodynamics (or the whole drive at `drive_velocity`). Every default
 /// is the library's (the command's): None means "the library's default".
 #[pyfunction]
-#[pyo3(signature = (scene=None, law="slip-weakening", *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
+#[pyo3(signature = (scene=None, law=None, *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
     dc=None, h=None, n_force=None, x_max=None, cycles=None, cycle_end=None, max_events=None,
-    operator=None, keep_states=false, damping=None, courant=None, drive_velocity=None,
-    plate_mass=None, plate_inertia=None, heal=None, weakening_steps=None, progress=None))]
+    operator=None, states=None, keep_states=None, damping=None, courant=None, drive_velocity=None,
+    plate_mass=None, plate_inertia=None, heal=None, weakening_steps=None, density=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn dynamic_slide<'py>(
     py: Python<'py>,
     scene: Option<PyRef<'_, Scene>>,
-    law: &str,
+    law: Option<&str>,
     mu: Option<f64>,
     mu_s: Option<f64>,
     mu_d: Option<f64>,
@@ -992,7 +1048,8 @@ fn dynamic_slide<'py>(
     cycle_end: Option<&str>,
     max_events: Option<usize>,
     operator: Option<&str>,
-    keep_states: bool,
+    states: Option<&str>,
+    keep_states: Option<bool>,
     damping: Option<f64>,
     courant: Option<f64>,
     drive_velocity: Option<f64>,
@@ -1000,9 +1057,9 @@ fn dynamic_slide<'py>(
     plate_inertia: Option<f64>,
     heal: Option<&str>,
     weakening_steps: Option<f64>,
+    density: Option<f64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use tribofe::interface::events::Operator;
     use tribofe::studies::dynamic_slide as ds;
     let base = ds::DynamicOptions::default();
     let n_force = n_force.unwrap_or(tribofe::studies::slide::DEFAULT_N_FORCE);
@@ -1012,50 +1069,51 @@ fn dynamic_slide<'py>(
         scene.mesh.h = h;
         scene.validate().map_err(to_py)?;
     }
-    let mut choice = tribofe::studies::slide::LawChoice {
+    // The command's default law (`slide --dynamics` takes slide's `--law`).
+    let law = law.unwrap_or(tribofe::studies::slide::DEFAULT_LAW);
+    let mut law_choice = tribofe::studies::slide::LawChoice {
         law: law.to_string(),
         mu,
         mu_s,
         mu_d,
         r,
         g,
-        rule: "paper".to_string(),
+        rule: tribofe::studies::slide::DEFAULT_RULE.to_string(),
         dc,
     };
     let mut notes = Vec::new();
     if law == "slip-weakening" {
-        let res =
-            ds::physics::resolve(&mut scene, &choice, n_force, h.is_some(), ["dc=", "h="]).map_err(to_py)?;
-        choice.dc = res.law.dc();
+        let res = ds::physics::resolve(&mut scene, &law_choice, n_force, h.is_some(), ["dc=", "h="])
+            .map_err(to_py)?;
+        law_choice.dc = res.law.dc();
         notes = res.notes;
     }
-    let choose = |key: &str, v: Option<&str>, accepted: [&str; 2]| -> PyResult<Option<bool>> {
-        match v {
-            None => Ok(None),
-            Some(v) if v == accepted[0] => Ok(Some(true)),
-            Some(v) if v == accepted[1] => Ok(Some(false)),
-            Some(v) => Err(to_py(Error::input(
-                format!("{key}="),
-                format!("{v:?}: give {:?} or {:?}", accepted[0], accepted[1]),
-            ))),
+    // The block's density, as the command's --density (after D_c and h, which do not use it).
+    if let Some(rho) = density {
+        scene.block.density = rho;
+        scene.validate().map_err(to_py)?;
+    }
+    // Every choice parsed here, once, before any work (refused with the accepted names).
+    let end_at_crossing = choice("cycle_end", cycle_end, CYCLE_ENDS)?;
+    let operator = choice("operator", operator, OPERATORS)?;
+    let heal_slipped_only = choice("heal", heal, HEALS)?.unwrap_or(base.heal_slipped_only);
+    let keep_states = match (choice("states", states, STATES)?, keep_states) {
+        (Some(_), Some(_)) => {
+            return Err(to_py(Error::input("keep_states", "the old spelling of states=: give states= alone")))
         }
+        (Some(k), None) | (None, Some(k)) => k,
+        // `--states none` with --dynamics.
+        (None, None) => false,
     };
-    let end_at_crossing = choose("cycle_end", cycle_end, ["crossing", "whole-slip"])?;
-    let banded = choose("operator", operator, ["banded", "dense"])?;
-    let heal_slipped_only = choose("heal", heal, ["slipped", "all"])?.unwrap_or(base.heal_slipped_only);
     let o = tribofe::studies::slide::SlideOptions {
-        law: choice.law(&scene).map_err(to_py)?,
+        law: law_choice.law(&scene).map_err(to_py)?,
         n_force,
         x_max,
         cycles: cycles.unwrap_or(ds::DEFAULT_CYCLES),
         end_at_crossing: end_at_crossing.unwrap_or(ds::DEFAULT_END_AT_CROSSING),
         max_events,
         keep_states,
-        operator: match banded {
-            None => ds::DEFAULT_OPERATOR,
-            Some(true) => Operator::Banded,
-            Some(false) => Operator::Dense,
-        },
+        operator: operator.unwrap_or(ds::DEFAULT_OPERATOR),
         ..Default::default()
     };
     let d = ds::DynamicOptions {
@@ -1065,7 +1123,7 @@ fn dynamic_slide<'py>(
         plate_mass: plate_mass.unwrap_or(base.plate_mass),
         plate_inertia: plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only,
-        weakening_steps: weakening_steps.unwrap_or(ds::DEFAULT_WEAKENING_STEPS),
+        weakening_steps: ds::weakening_steps(weakening_steps, &o, drive_velocity).map_err(to_py)?,
         ..Default::default()
     };
     tribofe::studies::slide::check_options(&scene, &o).map_err(to_py)?;
@@ -1073,22 +1131,26 @@ fn dynamic_slide<'py>(
         let o = tribofe::studies::slide::SlideOptions { cancel: cancel.clone(), ..o };
         ds::run(&scene, &o, &d, poll)
     })?;
-    // The tables from the command's own writers: every column of each CSV, as written.
+    // Every table from the library's schema (report::table), the one the CSV is printed from:
+    // every column of each file at full precision, with its type and unit.
     use tribofe::report::{dynamic_slide as rd, slide as rs};
     let out = PyDict::new(py);
-    out.set_item("loading", columns(py, &rs::loading_csv(&res.slide).map_err(to_py)?)?)?;
-    out.set_item("events", columns(py, &rs::events_csv(&res.slide).map_err(to_py)?)?)?;
-    // dyn_events from the library's table itself (full precision, its types and units).
-    let dyn_events = rd::events_table(&res);
-    out.set_item("dyn_events", table(py, &dyn_events)?)?;
     let units = PyDict::new(py);
-    units.set_item("dyn_events", dyn_events.columns.iter().map(|c| (c.name, c.unit)).collect::<Vec<_>>())?;
-    out.set_item("units", units)?;
-    out.set_item("fronts", columns(py, &rd::fronts_csv(&res).map_err(to_py)?)?)?;
-    out.set_item("summary", columns(py, &rd::summary_csv(&res).map_err(to_py)?)?)?;
+    let mut tables = vec![
+        ("loading", rs::loading_table(&res.slide)),
+        ("events", rs::events_table(&res.slide)),
+        ("dyn_events", rd::events_table(&res)),
+        ("fronts", rd::fronts_table(&res)),
+        ("summary", rd::summary_table(&res)),
+    ];
     if res.slide.options.law.weakens() {
-        out.set_item("advances", columns(py, &rs::advances_csv(&res.slide).map_err(to_py)?)?)?;
+        tables.push(("advances", rs::advances_table(&res.slide)));
     }
+    for (name, t) in &tables {
+        out.set_item(*name, table(py, t)?)?;
+        units.set_item(*name, table_units(t))?;
+    }
+    out.set_item("units", units)?;
     // Each dynamic event's samples: time since onset (s), drive force (N/m), tip x (m, NaN
     // before nucleation), and |v_x| of every base node (samples x nodes, m/s) at slip_rate_t_s.
     let samples = PyList::empty(py);
@@ -1154,6 +1216,8 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         [
             ("law", sl::DEFAULT_LAW),
             ("rule", sl::DEFAULT_RULE),
+            ("residual", name_of(RESIDUALS, tribofe::interface::law::PaperOptions::default().residual)),
+            ("backslip", name_of(BACKSLIPS, tribofe::interface::law::PaperOptions::default().backslip)),
             ("n_force", sl::DEFAULT_N_FORCE),
             ("cycles", sl::DEFAULT_CYCLES),
             ("max_events", sl::DEFAULT_MAX_EVENTS),
@@ -1162,16 +1226,17 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     put!(
         "dynamics.slide",
         [
+            ("law", sl::DEFAULT_LAW),
             ("n_force", sl::DEFAULT_N_FORCE),
             ("max_events", sl::DEFAULT_MAX_EVENTS),
             ("cycles", ds::DEFAULT_CYCLES),
-            ("cycle_end", if ds::DEFAULT_END_AT_CROSSING { "crossing" } else { "whole-slip" }),
+            ("cycle_end", name_of(CYCLE_ENDS, ds::DEFAULT_END_AT_CROSSING)),
             ("operator", ds::DEFAULT_OPERATOR.name()),
             ("courant", ds::DEFAULT_COURANT),
             ("weakening_steps", ds::DEFAULT_WEAKENING_STEPS),
             ("plate_mass", dyn_o.plate_mass),
             ("plate_inertia", dyn_o.plate_inertia),
-            ("heal", if dyn_o.heal_slipped_only { "slipped" } else { "all" }),
+            ("heal", name_of(HEALS, dyn_o.heal_slipped_only)),
         ],
     );
     put!("sweep", [("rule", sl::DEFAULT_RULE), ("cycles", sw::DEFAULT_FRICTION_CYCLES)]);

@@ -179,4 +179,4 @@ def test_errors_carry_no_control_bytes(call):
 def test_interrupt_stops_a_dynamic_slide_within_a_second(tmp_path):
     # The paper's dynamic first cycle runs for tens of seconds; SIGINT 3 s into it must end
     # it with KeyboardInterrupt within a second and leave no file.
-    assert_interrupt_stops(tmp_path, "tribofe.dynamics.slide()", 3.0)
+    assert_interrupt_stops(tmp_path, "tribofe.dynamics.slide(law='slip-weakening')", 3.0)

@@ -27,6 +27,28 @@ def floats(col):
     return np.array([float(v) for v in col])
 
 
+def assert_table_is_the_csv(name, table, path, digits, units=None):
+    """`table` (a DataFrame or dict of arrays) has every column of the CSV at `path`, in its
+    order; integer cells are int64 and equal; numbers, rounded to the CSV's `digits`
+    significant digits, equal the cells to 1e-10 relative (an empty cell is NaN); text equal.
+    With `units`, every column has one."""
+    cli = read_csv(path)
+    assert list(table.keys()) == list(cli.keys()), name
+    for col, cells in cli.items():
+        got = np.asarray(table[col])
+        if cells and all(c.lstrip("-").isdigit() for c in cells):
+            assert got.dtype == np.int64, (name, col, got.dtype)
+            np.testing.assert_array_equal(got, [int(c) for c in cells], err_msg=f"{name}.{col}")
+        elif got.dtype.kind == "f":
+            want = np.array([float(c) if c else np.nan for c in cells])
+            printed = np.array([float(f"{v:.{digits - 1}e}") if np.isfinite(v) else v for v in got])
+            np.testing.assert_allclose(printed, want, rtol=1e-10, atol=0, equal_nan=True, err_msg=f"{name}.{col}")
+        else:
+            assert list(got) == cells, (name, col)
+    if units is not None:
+        assert [c for c, _ in units] == list(cli.keys()), name
+
+
 def test_check_equals_the_command(tribofe_bin, tmp_path):
     out = tmp_path / "check"
     r = run_cli(tribofe_bin, "check", "--out", str(out), "--no-converged", "--no-fields")
@@ -49,12 +71,11 @@ def test_slide_equals_the_command(tribofe_bin, tmp_path):
     r = run_cli(tribofe_bin, "slide", *args, "--out", str(out))
     assert r.returncode == 0, r.stderr
     res = tribofe.slide(law="static-kinetic", r=0.9, g=0.35, cycles=1, progress=False)
-    loading = read_csv(out / "loading.csv")
-    for col in ("X_m", "F_N_per_m", "N_N_per_m", "Fc_N_per_m", "tilt_rad"):
-        np.testing.assert_allclose(np.asarray(res.loading[col]), floats(loading[col]), rtol=1e-10, atol=1e-18, err_msg=col)
+    # Every column of loading.csv and events.csv (13 significant digits), codes as int64.
+    assert_table_is_the_csv("loading", res.loading, out / "loading.csv", 13, res.units["loading"])
+    assert_table_is_the_csv("events", res.events, out / "events.csv", 13, res.units["events"])
+    assert res.loading.attrs["units"]["X_m"] == "m" and res.loading["n_slip"].dtype == np.int64
     events = read_csv(out / "events.csv")
-    assert list(res.events["kind"]) == events["kind"]
-    np.testing.assert_allclose(np.asarray(res.events["F_over_mu_s_N"]), floats(events["F_over_mu_s_N"]), rtol=1e-12)
     # States as (states x nodes) arrays: every state balances the normal force N = 1 N/m.
     p = res.states["p_force_N_per_m"]
     assert p.shape == (len(events["kind"]), len(res.x_over_L))
@@ -203,6 +224,8 @@ def test_bad_input_raises_the_commands_message(tribofe_bin, tmp_path, kwargs, fl
     assert e.value.status == 2
     # The command's message, each flag named by its Python keyword (`--thickness` -> `thickness=`).
     keyworded = re.sub(r"--([a-z][a-z0-9-]*)", lambda m: m.group(1).replace("-", "_") + "=", r.stderr.strip())
+    # A parameter the command names bare (`invalid element:`) is the keyword too.
+    keyworded = re.sub(r"^error: invalid ([a-z_]+):", r"error: invalid \1=:", keyworded)
     assert keyworded == f"error: {e.value}"
 
 
@@ -263,35 +286,19 @@ def test_dynamic_slide_equals_the_command_table_by_table(tribofe_bin, tmp_path):
     out = tmp_path / "dyn"
     r = run_cli(tribofe_bin, "slide", *DYN_ARGS, "--out", str(out))
     assert r.returncode == 0, r.stderr
-    res = tribofe.dynamics.slide(tribofe.Scene(length=0.1), x_max=6e-6)
+    res = tribofe.dynamics.slide(tribofe.Scene(length=0.1), law="slip-weakening", x_max=6e-6)
     assert res.incomplete is None
     assert sum(1 for s in res.samples if s["instability"]) >= 1
-    # The command writes each table with 10 significant digits (12 in loading.csv): equal to
-    # the printed digits, every column of every CSV, integers as integers.
-    for name, table in [("loading", res.loading), ("events", res.events), ("dyn_events", res.dyn_events),
-                        ("fronts_t", res.fronts), ("advances", res.advances)]:
-        cli = read_csv(out / f"{name}.csv")
-        assert list(table.keys()) == list(cli.keys()), name
-        for col, cells in cli.items():
-            got = np.asarray(table[col])
-            if all(c.lstrip("-").isdigit() for c in cells):
-                assert got.dtype.kind == "i", (name, col, got.dtype)
-                np.testing.assert_array_equal(got, [int(c) for c in cells], err_msg=f"{name}.{col}")
-            elif got.dtype.kind == "f":
-                want = np.array([float(c) if c else np.nan for c in cells])
-                # dyn_events comes from the library's table at full precision: within half a
-                # unit of the CSV's 10th digit. The others are parsed from the CSV text.
-                rtol = 5e-10 if name == "dyn_events" else 1e-10
-                np.testing.assert_allclose(got, want, rtol=rtol, atol=0, equal_nan=True, err_msg=f"{name}.{col}")
-            else:
-                assert list(got) == cells, (name, col)
-    summary = read_csv(out / "summary.csv")
-    assert list(res.summary) == list(summary)
-    for k, (v,) in summary.items():
-        if v:
-            assert abs(float(res.summary[k]) - float(v)) <= 1e-10 * abs(float(v)), k
-        else:
-            assert np.isnan(res.summary[k]), k
+    # Every table from the library's schema: every column of its CSV, integers as int64, the
+    # numbers equal to the CSV's printed digits (10 significant, 13 in slide's own files).
+    for name, table, digits in [("loading", res.loading, 13), ("events", res.events, 13),
+                                ("advances", res.advances, 13), ("dyn_events", res.dyn_events, 10),
+                                ("fronts_t", res.fronts, 10)]:
+        key = "fronts" if name == "fronts_t" else name
+        assert_table_is_the_csv(name, table, out / f"{name}.csv", digits, res.units[key])
+        assert table.attrs["units"] == dict(res.units[key]), name
+    assert_table_is_the_csv("summary", {k: np.array([v]) for k, v in res.summary.items()}, out / "summary.csv",
+                            10, res.units["summary"])
     # dyn_events is the library's table, not its text: full precision and its units.
     x = np.asarray(res.dyn_events["X_m"])
     assert any(float(f"{v:.9e}") != v for v in x), "dyn_events looks parsed from 10-digit text"
@@ -334,9 +341,8 @@ COMMANDS = {
     "precursors.fe_fig5": (["precursors", "fe-map"], {}),
     "dynamics.rupture": (["rupture"], {}),
 }
-# The one deliberate difference: dynamics.slide is the dynamic engine's call and defaults to
-# its law; `slide --dynamics` takes slide's coulomb.
-DIFFERENT = {("dynamics.slide", "law")}
+# Options the package deliberately defaults otherwise (none: every default is the library's).
+DIFFERENT = set()
 
 
 def help_defaults(text):
@@ -389,8 +395,9 @@ def test_defaults_equal_the_commands_help(tribofe_bin):
             compared.setdefault(name, set()).add(key)
     # The comparison reached the options it must (a help layout change would empty it).
     must = {
-        "slide": {"law", "rule", "n_force", "max_events"},
-        "dynamics.slide": {"n_force", "max_events", "courant", "heal"},
+        "slide": {"law", "rule", "residual", "backslip", "n_force", "max_events"},
+        # law: `slide --dynamics` takes slide's --law default, and so does dynamics.slide.
+        "dynamics.slide": {"law", "n_force", "max_events", "courant", "heal"},
         "sweep": {"rule", "cycles"},
         "converge": {"elements", "families", "fn_ratio"},
         "precursors.model": {"r", "g"},
@@ -410,3 +417,65 @@ def test_defaults_equal_the_commands_help(tribofe_bin):
         params = inspect.signature(func).parameters
         for key in keys:
             assert params[key].default is None, (name, key, params[key].default)
+
+
+def test_slide_takes_every_choice_of_the_command(tribofe_bin, tmp_path):
+    # The paper rule's conventions, the operator, the states kept and the cycle end, as the
+    # command takes them: every column of loading.csv and events.csv equal.
+    out = tmp_path / "slide"
+    args = ["--law", "static-kinetic", "--rule", "paper", "--residual", "pre-event", "--backslip", "forbidden",
+            "--cycles", "1", "--cycle-end", "crossing", "--operator", "banded", "--states", "none"]
+    r = run_cli(tribofe_bin, "slide", *args, "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    res = tribofe.slide(law="static-kinetic", rule="paper", residual="pre-event", backslip="forbidden", cycles=1,
+                        cycle_end="crossing", operator="banded", states="none")
+    assert_table_is_the_csv("loading", res.loading, out / "loading.csv", 13, res.units["loading"])
+    assert_table_is_the_csv("events", res.events, out / "events.csv", 13, res.units["events"])
+    # states="none": the last state only.
+    assert res.states["p_force_N_per_m"].shape[0] == 1
+    # The conventions act: the default convention gives other events.
+    default = tribofe.slide(law="static-kinetic", cycles=1, cycle_end="crossing")
+    assert len(default.events) != len(res.events) or not np.allclose(
+        np.asarray(default.events["F_over_mu_s_N"]), np.asarray(res.events["F_over_mu_s_N"]), rtol=1e-9)
+
+
+@pytest.mark.parametrize(
+    "kwargs, keyword, accepted",
+    [
+        ({"operator": "sparse"}, "operator=", ['"dense"', '"banded"']),
+        ({"states": "some"}, "states=", ['"all"', '"none"']),
+        ({"cycle_end": "cross"}, "cycle_end=", ['"whole-slip"', '"crossing"']),
+        ({"law": "static-kinetic", "rule": "damped"}, "rule=", ['"paper"', '"overdamped"']),
+        ({"law": "static-kinetic", "residual": "after"}, "residual=", ['"relaxed"', '"pre-event"']),
+        ({"law": "static-kinetic", "backslip": "yes"}, "backslip=", ['"allowed"', '"forbidden"']),
+    ],
+)
+def test_slide_refuses_a_wrong_choice_with_the_accepted_values(kwargs, keyword, accepted):
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.slide(cycles=1, **kwargs)
+    msg = str(e.value)
+    assert keyword in msg and all(a in msg for a in accepted), msg
+
+
+def test_options_that_cannot_act_are_refused_by_keyword(tribofe_bin, tmp_path):
+    small = tribofe.Scene(length=0.1)
+    # weakening_steps has no meaning under a drive velocity (updated every explicit step).
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.dynamics.slide(small, law="slip-weakening", drive_velocity=1e-5, x_max=1e-6, weakening_steps=40)
+    assert "weakening_steps=" in str(e.value) and "drive_velocity=" in str(e.value), str(e.value)
+    r = run_cli(tribofe_bin, "slide", "--dynamics", "--law", "slip-weakening", "--length", "0.1", "--drive-velocity",
+                "1e-5", "--x-max", "1e-6", "--weakening-steps", "40", "--out", str(tmp_path / "x"))
+    assert r.returncode == 2 and "--weakening-steps" in r.stderr, r.stderr
+    # The sweep's frictional settings without its frictional run.
+    for kw in ({"rule": "overdamped"}, {"cycles": 3}):
+        with pytest.raises(tribofe.InputError) as e:
+            tribofe.sweep(thickness=0.002, converged=False, **kw)
+        key = next(iter(kw))
+        assert f"{key}=" in str(e.value) and "friction=" in str(e.value), str(e.value)
+        r = run_cli(tribofe_bin, "sweep", "--thickness", "0.002", f"--{key}", str(kw[key]), "--out", str(tmp_path / "y"))
+        assert r.returncode == 2 and f"--{key}" in r.stderr, r.stderr
+    # The paper model's parameters by keyword, not the scene file's `r = 1.5`.
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.precursors.model(r=1.5)
+    assert str(e.value).startswith("invalid r=1.5:"), str(e.value)
+    assert " = 1.5" not in str(e.value)

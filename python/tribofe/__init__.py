@@ -209,6 +209,7 @@ class SlideResult:
     curve_F_over_mu_s_N: np.ndarray
     events: Any
     states: Dict[str, np.ndarray]
+    units: Dict[str, List[tuple]]
     sliding_events: int
     max_violation: float
     condense_s: float
@@ -234,13 +235,18 @@ def slide(
     r: Optional[float] = None,
     g: Optional[float] = None,
     rule: Optional[str] = None,
+    residual: Optional[str] = None,
+    backslip: Optional[str] = None,
     dc: Optional[float] = None,
     n_force: Optional[float] = None,
     x_max: Optional[float] = None,
     cycles: Optional[int] = None,
+    cycle_end: Optional[str] = None,
     max_events: Optional[int] = None,
     newton: bool = False,
-    keep_states: bool = True,
+    operator: Optional[str] = None,
+    states: Optional[str] = None,
+    keep_states: Optional[bool] = None,
     progress: Any = False,
 ) -> SlideResult:
     """The frictional interface under the normal force ``n_force`` (N/m), then the plate's
@@ -248,8 +254,14 @@ def slide(
 
     ``law``: ``"coulomb"`` (``mu``), ``"static-kinetic"`` (``mu_s``, ``mu_d`` or the paper's
     ``r``, ``g``; ``rule`` ``"paper"`` or ``"overdamped"``) or ``"slip-weakening"`` (plus
-    ``dc``, m). A keyword left at None takes the command's default (``defaults()["slide"]``:
-    law coulomb, rule paper, N = 1 N/m, 10 cycles, 50 000 events). The interrupt key stops
+    ``dc``, m). The paper rule's conventions: ``residual`` (``"relaxed"`` or ``"pre-event"``)
+    and ``backslip`` (``"allowed"`` or ``"forbidden"``). ``cycle_end``: ``"whole-slip"`` or
+    ``"crossing"``; ``operator``: ``"dense"`` or ``"banded"``; ``states``: ``"all"`` (every
+    event's interface state kept) or ``"none"`` (the last one only; ``keep_states`` is its old
+    boolean spelling). A choice outside its list raises :class:`InputError` naming the keyword
+    and the accepted values. A keyword left at None takes the command's default
+    (``defaults()["slide"]``: law coulomb, rule paper, N = 1 N/m, 10 cycles, 50 000 events,
+    whole-slip, dense, all states). The interrupt key stops
     the run within a second (:class:`KeyboardInterrupt`). ``progress``: True for a tqdm bar
     (when tqdm is installed), a callable for the fraction done, False (the default) for silence.
     """
@@ -264,19 +276,29 @@ def slide(
             r=r,
             g=g,
             rule=rule,
+            residual=residual,
+            backslip=backslip,
             dc=dc,
             n_force=n_force,
             x_max=x_max,
             cycles=cycles,
+            cycle_end=cycle_end,
             max_events=max_events,
             newton=newton,
+            operator=operator,
+            states=states,
             keep_states=keep_states,
             progress=cb,
         )
     finally:
         close()
-    raw["loading"] = _table(raw["loading"])
-    raw["events"] = _table(raw["events"])
+    return _slide_result(raw)
+
+
+def _slide_result(raw: Dict[str, Any]) -> SlideResult:
+    """The extension's dict as a :class:`SlideResult`, each table with its units."""
+    for k in ("loading", "events"):
+        raw[k] = _table(raw[k], raw["units"][k])
     return SlideResult(**raw)
 
 
@@ -397,10 +419,7 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         finally:
             close()
         for run in runs:
-            raw = run["run"]
-            raw["loading"] = _table(raw["loading"])
-            raw["events"] = _table(raw["events"])
-            run["run"] = SlideResult(**raw)
+            run["run"] = _slide_result(run["run"])
         return runs
 
     @staticmethod
@@ -462,6 +481,7 @@ class DynamicSlideResult:
     notes: List[str]
     incomplete: Optional[str] = None
     advances: Any = None
+    units: Dict[str, List[tuple]] = field(default_factory=dict)
     core_s: float = field(default=0.0, compare=False)
 
     def __repr__(self) -> str:
@@ -479,7 +499,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
     @staticmethod
     def slide(
         scene: Optional[Scene] = None,
-        law: str = "slip-weakening",
+        law: Optional[str] = None,
         *,
         mu: Optional[float] = None,
         mu_s: Optional[float] = None,
@@ -494,7 +514,8 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         cycle_end: Optional[str] = None,
         max_events: Optional[int] = None,
         operator: Optional[str] = None,
-        keep_states: bool = False,
+        states: Optional[str] = None,
+        keep_states: Optional[bool] = None,
         damping: Optional[float] = None,
         courant: Optional[float] = None,
         drive_velocity: Optional[float] = None,
@@ -502,6 +523,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         plate_inertia: Optional[float] = None,
         heal: Optional[str] = None,
         weakening_steps: Optional[float] = None,
+        density: Optional[float] = None,
         progress: Any = False,
     ) -> DynamicSlideResult:
         """``tribofe slide --dynamics``: the paper's plate-driven block, loaded quasi-statically,
@@ -513,10 +535,15 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         ended at the first front crossing (``cycle_end``: ``"crossing"`` or ``"whole-slip"``),
         ``operator`` ``"banded"`` (or ``"dense"``), ``damping`` (Kelvin-Voigt eta, s) 10 % of
         critical at the thickness mode, ``courant`` 0.9 of the stable step, ``weakening_steps``
-        20, ``n_force`` 1 N/m, ``max_events`` 50 000, ``plate_mass`` and ``plate_inertia`` 0,
-        ``heal`` ``"all"`` (``defaults()["dynamics.slide"]``). ``law``: ``"slip-weakening"`` (``mu_s``, ``mu_d`` or the paper's ``r``, ``g``) or
-        ``"coulomb"`` (``mu``). ``plate_mass`` (kg/m), ``plate_inertia`` (kg m^2/m), ``heal``
-        (``"all"`` or ``"slipped"``). Silent unless ``progress`` is True (a tqdm bar) or a
+        20 (held drive under slip weakening only: refused with ``drive_velocity``, which updates
+        the coefficient every explicit step), ``n_force`` 1 N/m, ``max_events`` 50 000,
+        ``plate_mass`` and ``plate_inertia`` 0, ``heal`` ``"all"``, ``states`` ``"none"`` (only
+        the last interface state kept; ``"all"``: every event's), ``density`` (kg/m^3) the
+        scene's, ``law`` the command's ``"coulomb"`` (``defaults()["dynamics.slide"]``; the
+        paper's dynamic run is ``law="slip-weakening"``, with ``mu_s``, ``mu_d`` or the paper's
+        ``r``, ``g``; ``"coulomb"`` takes ``mu``). ``plate_mass`` (kg/m), ``plate_inertia``
+        (kg m^2/m), ``heal`` (``"all"`` or ``"slipped"``). A choice outside its list raises
+        :class:`InputError` naming the keyword and the accepted values. Silent unless ``progress`` is True (a tqdm bar) or a
         callable; the interrupt key stops the run (:class:`KeyboardInterrupt`). A run that
         meets a cap returns what it computed with ``incomplete`` naming the cap, and warns."""
         cb, close = _progress(progress, "slide --dynamics")
@@ -537,6 +564,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
                 cycle_end=cycle_end,
                 max_events=max_events,
                 operator=operator,
+                states=states,
                 keep_states=keep_states,
                 damping=damping,
                 courant=courant,
@@ -545,6 +573,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
                 plate_inertia=plate_inertia,
                 heal=heal,
                 weakening_steps=weakening_steps,
+                density=density,
                 progress=cb,
             )
         finally:
@@ -554,7 +583,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
 
             warnings.warn(f"tribofe: the run is incomplete: {raw['incomplete']}", stacklevel=2)
         summary = {k: (v[0] if len(v) else float("nan")) for k, v in raw.pop("summary").items()}
-        units = raw.pop("units")
+        units = raw["units"]
         for k in ("loading", "events", "dyn_events", "fronts", "advances"):
             if k in raw:
                 raw[k] = _table(raw[k], units.get(k))

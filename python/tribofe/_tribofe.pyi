@@ -67,13 +67,18 @@ def slide(
     r: Optional[float] = None,
     g: Optional[float] = None,
     rule: Optional[str] = None,
+    residual: Optional[str] = None,
+    backslip: Optional[str] = None,
     dc: Optional[float] = None,
     n_force: Optional[float] = None,
     x_max: Optional[float] = None,
     cycles: Optional[int] = None,
+    cycle_end: Optional[str] = None,
     max_events: Optional[int] = None,
     newton: bool = False,
-    keep_states: bool = True,
+    operator: Optional[str] = None,
+    states: Optional[str] = None,
+    keep_states: Optional[bool] = None,
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
 def sweep(
@@ -134,7 +139,7 @@ def rupture(
 ) -> Dict[str, Any]: ...
 def dynamic_slide(
     scene: Optional[Scene] = None,
-    law: str = "slip-weakening",
+    law: Optional[str] = None,
     *,
     mu: Optional[float] = None,
     mu_s: Optional[float] = None,
@@ -149,7 +154,8 @@ def dynamic_slide(
     cycle_end: Optional[str] = None,
     max_events: Optional[int] = None,
     operator: Optional[str] = None,
-    keep_states: bool = False,
+    states: Optional[str] = None,
+    keep_states: Optional[bool] = None,
     damping: Optional[float] = None,
     courant: Optional[float] = None,
     drive_velocity: Optional[float] = None,
@@ -157,6 +163,7 @@ def dynamic_slide(
     plate_inertia: Optional[float] = None,
     heal: Optional[str] = None,
     weakening_steps: Optional[float] = None,
+    density: Optional[float] = None,
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
 def defaults() -> Dict[str, Dict[str, Any]]: ...

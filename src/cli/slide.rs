@@ -422,12 +422,6 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     if a.fields > 0 {
         return Err(Error::input("--fields", "not written by --dynamics yet"));
     }
-    if a.weakening_steps.is_some() && (a.drive_velocity.is_some() || a.law != "slip-weakening") {
-        return Err(Error::input(
-            "--weakening-steps",
-            "acts only on the held mode's static loading under --law slip-weakening (not with --drive-velocity)",
-        ));
-    }
     let base = ds::DynamicOptions::default();
     let d = ds::DynamicOptions {
         damping: a.damping,
@@ -436,7 +430,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         plate_mass: a.plate_mass.unwrap_or(base.plate_mass),
         plate_inertia: a.plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only: a.heal == "slipped",
-        weakening_steps: a.weakening_steps.unwrap_or(ds::DEFAULT_WEAKENING_STEPS),
+        weakening_steps: ds::weakening_steps(a.weakening_steps, &o, a.drive_velocity)?,
         ..Default::default()
     };
     if let Some(levels) = a.refine {

@@ -84,16 +84,10 @@ pub fn run(args: Args) -> tribofe::Result<()> {
             "each point is solved on the converged model (graded QUA8, t/16 at the ends); add --as-meshed to use the scene's mesh settings",
         )?;
     }
-    if args.friction.is_none() {
-        for (id, flag) in [("rule", "--rule"), ("cycles", "--cycles")] {
-            if super::given(id) {
-                return Err(tribofe::Error::input(
-                    flag,
-                    "cannot act without --friction MU_S,MU_D (the frictional run it sets up)",
-                ));
-            }
-        }
-    }
+    tribofe::studies::sweep::check_friction_settings(
+        args.friction.is_some(),
+        &[("--rule", super::given("rule")), ("--cycles", super::given("cycles"))],
+    )?;
     if let Some(v) = args.tension_fn {
         if !(v.is_finite() && v > 0.0) {
             return Err(tribofe::Error::input(

@@ -32,31 +32,39 @@ fn num(what: &str, v: f64) -> Result<String> {
 /// load: the rigid plate or the threshold running ahead of a growing front,
 /// [`crate::studies::dynamic_slide::fronts::Cause::AboveCp`]); empty otherwise.
 pub fn fronts_csv(r: &DynamicResult) -> Result<String> {
+    fronts_table(r).csv()
+}
+
+/// fronts_t.csv's table ([`fronts_csv`]): an empty speed (NaN) for the first node or a window
+/// reached at once (a jump; flagged).
+pub fn fronts_table(r: &DynamicResult) -> Table {
     use crate::studies::dynamic_slide::fronts::arrivals;
     let (c, t) = (&r.slide.condensed, r.slide.scene.block.thickness);
-    let mut s = String::from(
-        "event,side,x_over_L,arrival_s,front_time_s,front_speed_m_per_s,front_speed_over_c_s,flag\n",
-    );
-    // Empty: the first node (no speed) or a window reached at once (a jump; flagged).
-    let speed = |v: f64| if v.is_finite() { num("speed", v) } else { Ok(String::new()) };
+    let (mut event, mut side, mut x, mut own, mut front, mut speed, mut cause) =
+        (vec![], vec![], vec![], vec![], vec![], vec![], vec![]);
     for e in &r.events {
         for a in arrivals(&e.record, &c.x, t, r.speeds.c_p) {
-            writeln!(
-                s,
-                "{},{},{},{},{},{},{},{}",
-                e.event,
-                a.side,
-                num("x", c.x[a.node] / c.l)?,
-                num("arrival", a.own)?,
-                num("front time", a.front)?,
-                speed(a.speed)?,
-                speed(a.speed / r.speeds.c_s)?,
-                a.cause.name()
-            )
-            .unwrap();
+            event.push(e.event as i64);
+            side.push(i64::from(a.side));
+            x.push(c.x[a.node] / c.l);
+            own.push(a.own);
+            front.push(a.front);
+            speed.push(a.speed);
+            cause.push(a.cause.name().to_string());
         }
     }
-    Ok(s)
+    let over_c_s = speed.iter().map(|v| v / r.speeds.c_s).collect();
+    let columns = vec![
+        Column::int("event", "-", event),
+        Column::int("side", "-", side),
+        Column::float("x_over_L", "1", x),
+        Column::float("arrival_s", "s", own),
+        Column::float("front_time_s", "s", front),
+        Column::maybe("front_speed_m_per_s", "m/s", speed),
+        Column::maybe("front_speed_over_c_s", "1", over_c_s),
+        Column::text("flag", "-", cause),
+    ];
+    Table { columns, digits: 10 }
 }
 
 /// dyn_events.csv: one row per dynamic event. The assumption-5 columns (held drive only,
@@ -546,18 +554,30 @@ pub fn cycle_svg(r: &DynamicResult) -> String {
 /// summary.csv: the run's one row ([`crate::studies::dynamic_slide::summary::COLUMNS`]);
 /// an empty cell where a quantity does not exist in the run (no crossing reached...).
 pub fn summary_csv(r: &DynamicResult) -> Result<String> {
+    summary_table(r).csv()
+}
+
+/// summary.csv's table ([`summary_csv`]): one row; every column a number that may not exist
+/// (the counts and flags too, as the CSV has always printed them).
+pub fn summary_table(r: &DynamicResult) -> Table {
     use crate::studies::dynamic_slide::summary;
-    let cols = summary::COLUMNS;
-    let mut s = cols.iter().map(|c| c.0).collect::<Vec<_>>().join(",");
-    s.push('\n');
-    let row: Vec<String> = summary::values(r)
+    let columns = summary::COLUMNS
         .iter()
-        .zip(cols)
-        .map(|(&v, c)| if v.is_finite() { num(c.0, v) } else { Ok(String::new()) })
-        .collect::<Result<_>>()?;
-    s.push_str(&row.join(","));
-    s.push('\n');
-    Ok(s)
+        .zip(summary::values(r))
+        .map(|(&(name, _), v)| Column::maybe(name, summary_unit(name), vec![v]))
+        .collect();
+    Table { columns, digits: 10 }
+}
+
+/// A summary column's unit, read off its name (SI suffix, `over`: a ratio, else a count or flag).
+fn summary_unit(name: &str) -> &'static str {
+    match name {
+        "kappa" | "damping_ratio_thickness_mode" => "1",
+        n if n.contains("over") => "1",
+        n if n.ends_with("_m") => "m",
+        n if n.ends_with("_s") => "s",
+        _ => "-",
+    }
 }
 
 /// Writes slide's files, summary.csv, fronts_t.csv, dyn_events.csv, cycle.svg and the

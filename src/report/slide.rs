@@ -3,8 +3,9 @@
 //! iteration for the same r, g), fronts.svg (slip extents x/L against F/N) and, on request,
 //! a ParaView series of the whole block's fields.
 
+use super::table::{Column, Table};
 use crate::error::Result;
-use crate::interface::events::{NodeState, Phase};
+use crate::interface::events::{NodeState, Phase, Summary};
 use crate::io::{vtu, Field};
 use crate::linalg::solve::SolverOptions;
 #[cfg(feature = "plots")]
@@ -15,95 +16,101 @@ use crate::studies::slide::{model_curve, ModelCurve};
 use crate::studies::slide::{state_displacements, SlideResult};
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 #[cfg(feature = "plots")]
 const FONT: &str = "sans-serif";
 
-fn num(what: &str, v: f64) -> Result<String> {
-    Ok(crate::io::csv::e12(finite(what, v)?))
-}
-
+/// loading.csv: one row per recorded state (every event's summary, kept states or not).
 pub fn loading_csv(r: &SlideResult) -> Result<String> {
-    let mut s = String::from(
-        "event,phase,X_m,F_N_per_m,N_N_per_m,Fc_N_per_m,F_over_N,tilt_rad,V_m,n_stick,n_slip,n_open,max_violation\n",
-    );
-    for (k, st) in r.run.summaries.iter().enumerate() {
-        let [a, b, c] = st.counts;
-        let phase = if st.phase == Phase::Normal { "normal" } else { "drive" };
-        writeln!(
-            s,
-            "{k},{phase},{},{},{},{},{},{},{},{a},{b},{c},{}",
-            num("X", st.x)?,
-            num("F", st.f)?,
-            num("N", st.n_force)?,
-            num("Fc", r.f_c(st.x))?,
-            num("F/N", if st.n_force > 0.0 { st.f / st.n_force } else { 0.0 })?,
-            num("tilt", st.tilt)?,
-            num("V", st.v)?,
-            num("violation", st.max_violation)?
-        )
-        .unwrap();
-    }
-    Ok(s)
+    loading_table(r).csv()
 }
 
+/// loading.csv's table: the one definition the CSV and the Python package's `loading` are
+/// both made from (names, units, types).
+pub fn loading_table(r: &SlideResult) -> Table {
+    let s = &r.run.summaries;
+    let f = |g: &dyn Fn(&Summary) -> f64| s.iter().map(g).collect::<Vec<f64>>();
+    let count = |j: usize| s.iter().map(|st| i64::from(st.counts[j])).collect();
+    let phase = |st: &Summary| if st.phase == Phase::Normal { "normal" } else { "drive" }.to_string();
+    let columns = vec![
+        Column::int("event", "-", (0..s.len() as i64).collect()),
+        Column::text("phase", "-", s.iter().map(phase).collect()),
+        Column::float("X_m", "m", f(&|st| st.x)),
+        Column::float("F_N_per_m", "N/m", f(&|st| st.f)),
+        Column::float("N_N_per_m", "N/m", f(&|st| st.n_force)),
+        Column::float("Fc_N_per_m", "N/m", f(&|st| r.f_c(st.x))),
+        Column::float("F_over_N", "1", f(&|st| if st.n_force > 0.0 { st.f / st.n_force } else { 0.0 })),
+        Column::float("tilt_rad", "rad", f(&|st| st.tilt)),
+        Column::float("V_m", "m", f(&|st| st.v)),
+        Column::int("n_stick", "-", count(0)),
+        Column::int("n_slip", "-", count(1)),
+        Column::int("n_open", "-", count(2)),
+        Column::float("max_violation", "1", f(&|st| st.max_violation)),
+    ];
+    Table { columns, digits: CSV_DIGITS }
+}
+
+/// slide's CSVs print 13 significant digits (`{:.12e}`, [`crate::io::csv::e12`]).
+const CSV_DIGITS: usize = 13;
+
+/// events.csv: one row per event.
 pub fn events_csv(r: &SlideResult) -> Result<String> {
-    let mu_s = r.options.law.mu_s().max(f64::MIN_POSITIVE);
-    let n = r.options.n_force;
-    let c = &r.condensed;
-    let mut s = String::from("event,kind,X_m,F_N_per_m,F_over_mu_s_N,Fc_over_mu_s_N,x_nucleation_over_L,x_arrest_over_L,region_first_over_L,region_last_over_L,slipped_length_over_L,F_relaxed_over_mu_s_N,backslip_nodes,max_violation,overload\n");
-    for (k, (e, st)) in r.run.events.iter().zip(&r.run.summaries).enumerate() {
-        let (first, last, len) = match e.region {
-            Some((a, b)) => (c.x[a] / c.l, c.x[b] / c.l, c.w[a..=b].iter().sum::<f64>() / c.l),
-            None => (c.x[e.node] / c.l, c.x[e.node] / c.l, 0.0),
-        };
-        writeln!(
-            s,
-            "{k},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            e.kind,
-            num("X", e.x)?,
-            num("F", e.f)?,
-            num("F", e.f / (mu_s * n))?,
-            num("Fc", r.f_c(e.x) / (mu_s * n))?,
-            num("x", c.x[e.node] / c.l)?,
-            num("x", r.arrest_over_l(e.node, e.region))?,
-            num("x", first)?,
-            num("x", last)?,
-            num("length", len)?,
-            num("F*", e.f_relaxed / (mu_s * n))?,
-            e.backslip,
-            num("violation", st.max_violation)?,
-            num("overload", st.overload)?
-        )
-        .unwrap();
-    }
-    Ok(s)
+    events_table(r).csv()
+}
+
+/// events.csv's table, from [`SlideResult::event_columns`] (forces in units of mu_s N where
+/// the name says so; violation and overload in units of N/n).
+pub fn events_table(r: &SlideResult) -> Table {
+    let ev = r.event_columns();
+    let columns = vec![
+        Column::int("event", "-", (0..ev.kind.len() as i64).collect()),
+        Column::text("kind", "-", ev.kind.iter().map(|k| k.to_string()).collect()),
+        Column::float("X_m", "m", ev.x_m),
+        Column::float("F_N_per_m", "N/m", ev.f_n_per_m),
+        Column::float("F_over_mu_s_N", "1", ev.f_over_mu_s_n),
+        Column::float("Fc_over_mu_s_N", "1", ev.fc_over_mu_s_n),
+        Column::float("x_nucleation_over_L", "1", ev.x_nucleation_over_l),
+        Column::float("x_arrest_over_L", "1", ev.x_arrest_over_l),
+        Column::float("region_first_over_L", "1", ev.region_first_over_l),
+        Column::float("region_last_over_L", "1", ev.region_last_over_l),
+        Column::float("slipped_length_over_L", "1", ev.slipped_length_over_l),
+        Column::float("F_relaxed_over_mu_s_N", "1", ev.f_relaxed_over_mu_s_n),
+        Column::int("backslip_nodes", "-", ev.backslip_nodes.iter().map(|&n| n as i64).collect()),
+        Column::float("max_violation", "1", ev.max_violation),
+        Column::float("overload", "1", ev.overload),
+    ];
+    Table { columns, digits: CSV_DIGITS }
 }
 
 /// The first cycle's front advances ([`crate::precursors::definition::advances`]), one row
 /// each; `precursor` is 1 where the same cascade is a counted precursor of the one definition.
 pub fn advances_csv(r: &SlideResult) -> Result<String> {
+    advances_table(r).csv()
+}
+
+/// advances.csv's table ([`advances_csv`]).
+pub fn advances_table(r: &SlideResult) -> Table {
     let k = r.options.law.mu_s() * r.options.n_force;
     let c = &r.condensed;
     let counted: Vec<usize> = crate::studies::slide::precursors(r).counted().map(|p| p.first_event).collect();
-    let mut s = String::from("advance,event,X_m,F_over_mu_s_N,front_over_L,x_nucleation_over_L,precursor\n");
-    for (i, a) in crate::studies::slide::front_advances(r).iter().enumerate() {
-        writeln!(
-            s,
-            "{},{},{},{},{},{},{}",
-            i + 1,
-            a.first_event,
-            num("X", r.run.events[a.first_event].x)?,
-            num("F", a.f / k)?,
-            num("x", c.x[a.front] / c.l)?,
-            num("x", c.x[a.node] / c.l)?,
-            u8::from(counted.contains(&a.first_event))
-        )
-        .unwrap();
-    }
-    Ok(s)
+    let adv = crate::studies::slide::front_advances(r);
+    let f =
+        |g: &dyn Fn(&crate::precursors::definition::Advance) -> f64| adv.iter().map(g).collect::<Vec<f64>>();
+    let columns = vec![
+        Column::int("advance", "-", (1..=adv.len() as i64).collect()),
+        Column::int("event", "-", adv.iter().map(|a| a.first_event as i64).collect()),
+        Column::float("X_m", "m", f(&|a| r.run.events[a.first_event].x)),
+        Column::float("F_over_mu_s_N", "1", f(&|a| a.f / k)),
+        Column::float("front_over_L", "1", f(&|a| c.x[a.front] / c.l)),
+        Column::float("x_nucleation_over_L", "1", f(&|a| c.x[a.node] / c.l)),
+        Column::int(
+            "precursor",
+            "-",
+            adv.iter().map(|a| i64::from(counted.contains(&a.first_event))).collect(),
+        ),
+    ];
+    Table { columns, digits: CSV_DIGITS }
 }
 
 /// One row per state and interface node. The bytes are those `{:.12e}` gives

@@ -1,7 +1,8 @@
 //! A table defined once: each column's name, unit and type with its values. The CSV writer
 //! prints it, and a front end (the Python package) takes its arrays at full precision, so
-//! the file and the arrays cannot differ in columns, order or types. dyn_events.csv is the
-//! first table built this way; the others follow the same pattern.
+//! the file and the arrays cannot differ in columns, order or types: slide's loading.csv,
+//! events.csv and advances.csv, and slide --dynamics' dyn_events.csv, fronts_t.csv and
+//! summary.csv are built this way.
 
 use super::finite;
 use crate::error::Result;

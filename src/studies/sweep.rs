@@ -149,6 +149,18 @@ pub struct FrictionSweep {
     pub cycles: usize,
 }
 
+/// Refuses a frictional run's setting given without the frictional run (`given`: each
+/// setting as the front end spells it, `--rule`, `--cycles`, and whether it was given).
+pub fn check_friction_settings(friction: bool, given: &[(&str, bool)]) -> crate::error::Result<()> {
+    match given.iter().find(|(_, on)| *on) {
+        Some((key, _)) if !friction => Err(crate::error::Error::input(
+            *key,
+            "cannot act without --friction (the static and kinetic coefficients of the frictional run it sets up)",
+        )),
+        _ => Ok(()),
+    }
+}
+
 impl FrictionSweep {
     /// The frictional scene of a point: its geometry and material on the QUA4 interface mesh.
     pub fn scene(base: &Scene) -> Scene {

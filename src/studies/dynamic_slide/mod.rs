@@ -254,6 +254,20 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<()> 
     Ok(())
 }
 
+/// [`DynamicOptions::weakening_steps`] from the value a front end was given (None: the
+/// default), refused where it cannot act: under the constant-velocity drive (which updates the
+/// coefficient every explicit step) or without a weakening law.
+pub fn weakening_steps(given: Option<f64>, o: &SlideOptions, drive_velocity: Option<f64>) -> Result<f64> {
+    match given {
+        Some(_) if drive_velocity.is_some() || !o.law.weakens() => Err(Error::input(
+            "--weakening-steps",
+            "acts only on the held mode's static loading under --law slip-weakening: --drive-velocity updates the coefficient every explicit step",
+        )),
+        Some(n) => Ok(n),
+        None => Ok(DEFAULT_WEAKENING_STEPS),
+    }
+}
+
 /// The run: quasi-static loading, dynamic instabilities.
 pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progress) -> Result<DynamicResult> {
     if d.drive_velocity.is_some() {
