@@ -350,8 +350,11 @@ struct RowCtx<'a> {
 /// u^{n+1}, vout receives v^{n+1/2} (and holds v^{n-1/2} unless DAMPED, when that is read
 /// from `vin`), fe is read and zeroed. Per DOF the arithmetic of the general path; the sums
 /// run in two lanes (x and y DOFs) added at the row's end, so no sum waits on the one before.
+/// Without FULL the physical energies at step n (strain, kinetic, correction) are not summed:
+/// a run that reads only the conserved ledger saves three of the seven sums. Without EXT there
+/// are no external forces: fe is neither read nor zeroed (it stays zero).
 #[inline(always)]
-fn update_row<const DAMPED: bool>(
+fn update_row<const DAMPED: bool, const FULL: bool, const EXT: bool>(
     c: &RowCtx,
     j: usize,
     ku: &[f64],
@@ -369,20 +372,27 @@ fn update_row<const DAMPED: bool>(
             let (k, i) = (2 * node + a, i0 + 2 * node + a);
             let vm = if DAMPED { vin[i] } else { vout[k] };
             let fd = if DAMPED { eta * kv[k] } else { 0.0 };
-            let f = fe[k] - ku[k] - fd;
+            // Without external forces f = 0 - K u - fd: the same bits as with fe = 0.
+            let f = if EXT { fe[k] } else { 0.0 } - ku[k] - fd;
             let fixed = c.fixed[i];
             let vp = if fixed { 0.0 } else { vm + dt * f * inv };
             let vbar = 0.5 * (vm + vp);
             l[0][a] += mi * vm * vm;
             l[1][a] += un[k] * ku[k];
-            l[2][a] += c.u[i] * ku[k];
-            l[3][a] += dt * vbar * fe[k];
+            if EXT {
+                l[3][a] += dt * vbar * fe[k];
+            }
             l[4][a] += dt * vbar * fd;
-            l[5][a] += 0.5 * mi * vbar * vbar;
-            l[6][a] += if fixed { 0.0 } else { dt * dt / 8.0 * f * f * inv };
+            if FULL {
+                l[2][a] += c.u[i] * ku[k];
+                l[5][a] += 0.5 * mi * vbar * vbar;
+                l[6][a] += if fixed { 0.0 } else { dt * dt / 8.0 * f * f * inv };
+            }
             vout[k] = vp;
             un[k] = c.u[i] + dt * vp;
-            fe[k] = 0.0;
+            if EXT {
+                fe[k] = 0.0;
+            }
         }
     }
     let s = l.map(|p| p[0] + p[1]);
@@ -547,6 +557,11 @@ pub struct Explicit<'a> {
     /// K v at the boundary's DOFs on the grid path (whole-mesh array), and v^{n-1/2} there.
     kv_hook: Vec<f64>,
     v_hook: Vec<f64>,
+    /// Whether the grid pass sums the ledger's physical energies at step n (`strain`,
+    /// `kinetic`, `correction`; default true). A run that reads only the conserved ledger
+    /// (its energies at the half step and the work and dissipation sums) turns it off: those
+    /// three fields then hold only the boundary rows' share and mean nothing.
+    pub physical_energies: bool,
 }
 
 impl<'a> Explicit<'a> {
@@ -589,6 +604,7 @@ impl<'a> Explicit<'a> {
             hook_rows: vec![],
             kv_hook: vec![],
             v_hook: vec![],
+            physical_energies: true,
         }
     }
 
@@ -648,21 +664,37 @@ impl<'a> Explicit<'a> {
     }
 
     /// One step with boundary hooks (built with [`Self::with_boundary`] on its nodes).
-    pub fn step_with(&mut self, b: &mut dyn Boundary, mut f_ext: impl FnMut(f64, &mut [f64])) {
+    pub fn step_with(&mut self, b: &mut dyn Boundary, f_ext: impl FnMut(f64, &mut [f64])) {
+        self.step_inner(b, Some(f_ext))
+    }
+
+    /// One step with boundary hooks and no external forces (the grid pass then neither reads
+    /// nor zeroes them: the commands' path).
+    pub fn step_boundary(&mut self, b: &mut dyn Boundary) {
+        self.step_inner(b, None::<fn(f64, &mut [f64])>)
+    }
+
+    fn step_inner(&mut self, b: &mut dyn Boundary, f_ext: Option<impl FnMut(f64, &mut [f64])>) {
         debug_assert_eq!(b.nodes().len() * 2, self.hook_dofs.len(), "the boundary's nodes");
         let own_kinetic = b.own_kinetic();
+        let ext = f_ext.is_some();
         if let Some(g) = &self.model.grid {
             // fe is zero here: new() makes it so and every grid step leaves it so.
-            f_ext(self.n as f64 * self.dt, &mut self.fe);
-            return self.step_grid(g, b, own_kinetic);
+            if let Some(mut f) = f_ext {
+                f(self.n as f64 * self.dt, &mut self.fe);
+            }
+            return self.step_grid(g, b, own_kinetic, ext);
         }
+        let mut f_ext = f_ext;
         let (m, dt, eta) = (self.model, self.dt, self.eta);
         m.apply_k(&self.u, &mut self.ku);
         if eta > 0.0 {
             m.apply_k(&self.v, &mut self.kv);
         }
         self.fe.fill(0.0);
-        f_ext(self.n as f64 * dt, &mut self.fe);
+        if let Some(f) = f_ext.as_mut() {
+            f(self.n as f64 * dt, &mut self.fe);
+        }
         let kinetic_half = m.kinetic_energy(&self.v) + own_kinetic;
         let shadow_half = kinetic_half + 0.5 * dot(&self.u_prev, &self.ku);
         let mut s = RowSums::default();
@@ -758,50 +790,14 @@ impl<'a> Explicit<'a> {
     /// per row, added in row order, so the result is the same for any thread count. A row
     /// holding boundary nodes keeps their K u (in ku's array) and K v for the boundary, which
     /// runs after the pass.
-    fn step_grid(&mut self, g: &Grid, b: &mut dyn Boundary, own_kinetic: f64) {
-        let (m, dt, eta) = (self.model, self.dt, self.eta);
-        let row_len = g.row_len();
-        let (fixed, mass, u) = (&self.fixed, &m.mass, &self.u);
-        let ctx = RowCtx { row_len, dt, eta, fixed, mass, u, owned: &self.owned };
-        let rows =
-            match (self.hook_dofs.is_empty(), eta > 0.0) {
-                (true, true) => {
-                    let v = &self.v;
-                    g.sweep(
-                        u,
-                        Some(v),
-                        [&mut self.u_prev, &mut self.fe, &mut self.kv],
-                        m.threads,
-                        |j, ku, kv, o| update_row::<true>(&ctx, j, ku, kv, v, o),
-                    )
-                }
-                (true, false) => g.sweep(
-                    u,
-                    None,
-                    [&mut self.u_prev, &mut self.fe, &mut self.v],
-                    m.threads,
-                    |j, ku, kv, o| update_row::<false>(&ctx, j, ku, kv, &[], o),
-                ),
-                (false, damped) => {
-                    let hook_rows = &self.hook_rows;
-                    let v = &self.v;
-                    let (vout, vin): (&mut [f64], &[f64]) =
-                        if damped { (&mut self.kv, v) } else { (&mut self.v, &[]) };
-                    let outs = [&mut self.u_prev[..], &mut self.fe, vout, &mut self.ku, &mut self.kv_hook];
-                    g.sweep(u, damped.then_some(vin), outs, m.threads, |j, ku, kv, [un, fe, vo, kus, kvs]| {
-                        match (hook_rows[j], damped) {
-                            (false, true) => update_row::<true>(&ctx, j, ku, kv, vin, [un, fe, vo]),
-                            (false, false) => update_row::<false>(&ctx, j, ku, kv, &[], [un, fe, vo]),
-                            (true, true) => {
-                                update_hooked_row::<true>(&ctx, j, ku, kv, vin, [un, fe, vo, kus, kvs])
-                            }
-                            (true, false) => {
-                                update_hooked_row::<false>(&ctx, j, ku, kv, &[], [un, fe, vo, kus, kvs])
-                            }
-                        }
-                    })
-                }
-            };
+    fn step_grid(&mut self, g: &Grid, b: &mut dyn Boundary, own_kinetic: f64, ext: bool) {
+        let eta = self.eta;
+        let rows = match (self.physical_energies, ext) {
+            (true, true) => self.sweep::<true, true>(g),
+            (true, false) => self.sweep::<true, false>(g),
+            (false, true) => self.sweep::<false, true>(g),
+            (false, false) => self.sweep::<false, false>(g),
+        };
         let mut s = rows.iter().fold(RowSums::default(), |a, b| a.add(b));
         let boundary = self.apply_boundary(b, &mut s, true);
         std::mem::swap(&mut self.u, &mut self.u_prev);
@@ -810,6 +806,54 @@ impl<'a> Explicit<'a> {
         }
         let kinetic_half = 0.5 * s.kin_old + own_kinetic;
         self.close_step(s, kinetic_half + 0.5 * s.shadow, kinetic_half, 0.5 * s.strain, boundary);
+    }
+
+    /// The pass of [`Self::step_grid`] over the node rows; FULL: see [`update_row`].
+    fn sweep<const FULL: bool, const EXT: bool>(&mut self, g: &Grid) -> Vec<RowSums> {
+        let (m, dt, eta) = (self.model, self.dt, self.eta);
+        let row_len = g.row_len();
+        let (fixed, mass, u) = (&self.fixed, &m.mass, &self.u);
+        let ctx = RowCtx { row_len, dt, eta, fixed, mass, u, owned: &self.owned };
+        match (self.hook_dofs.is_empty(), eta > 0.0) {
+            (true, true) => {
+                let v = &self.v;
+                g.sweep(
+                    u,
+                    Some(v),
+                    [&mut self.u_prev, &mut self.fe, &mut self.kv],
+                    m.threads,
+                    |j, ku, kv, o| update_row::<true, FULL, EXT>(&ctx, j, ku, kv, v, o),
+                )
+            }
+            (true, false) => {
+                g.sweep(u, None, [&mut self.u_prev, &mut self.fe, &mut self.v], m.threads, |j, ku, kv, o| {
+                    update_row::<false, FULL, EXT>(&ctx, j, ku, kv, &[], o)
+                })
+            }
+            (false, damped) => {
+                let hook_rows = &self.hook_rows;
+                let v = &self.v;
+                let (vout, vin): (&mut [f64], &[f64]) =
+                    if damped { (&mut self.kv, v) } else { (&mut self.v, &[]) };
+                let outs = [&mut self.u_prev[..], &mut self.fe, vout, &mut self.ku, &mut self.kv_hook];
+                g.sweep(
+                    u,
+                    damped.then_some(vin),
+                    outs,
+                    m.threads,
+                    |j, ku, kv, [un, fe, vo, kus, kvs]| match (hook_rows[j], damped) {
+                        (false, true) => update_row::<true, FULL, EXT>(&ctx, j, ku, kv, vin, [un, fe, vo]),
+                        (false, false) => update_row::<false, FULL, EXT>(&ctx, j, ku, kv, &[], [un, fe, vo]),
+                        (true, true) => {
+                            update_hooked_row::<true>(&ctx, j, ku, kv, vin, [un, fe, vo, kus, kvs])
+                        }
+                        (true, false) => {
+                            update_hooked_row::<false>(&ctx, j, ku, kv, &[], [un, fe, vo, kus, kvs])
+                        }
+                    },
+                )
+            }
+        }
     }
 
     /// E^{n-1/2} + D - W - B (sums through step n - 1) as of the last step: constant to
