@@ -268,6 +268,17 @@ pub fn weakening_steps(given: Option<f64>, o: &SlideOptions, drive_velocity: Opt
     }
 }
 
+/// The event cap met after the run started, as the run's `incomplete` note (the run then ends
+/// with what it computed, exit status 5 in the command); any other error stays one.
+pub(crate) fn cap_met(e: Error) -> Result<String> {
+    match e {
+        Error::EventCap { cap, x, f_over_n, .. } => Ok(format!(
+            "--max-events = {cap} met at X = {x:.6e} m, F/N = {f_over_n:.6}; raise --max-events or lower --cycles/--x-max"
+        )),
+        e => Err(e),
+    }
+}
+
 /// The run: quasi-static loading, dynamic instabilities.
 pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progress) -> Result<DynamicResult> {
     if d.drive_velocity.is_some() {
@@ -373,12 +384,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let (dyn_events, steps, dynamic_s) = (resolver.events, resolver.steps, resolver.dynamic_s);
     let mut incomplete = resolver.incomplete;
     match ended {
-        Ended::Cap(Error::EventCap { cap, x, f_over_n, .. }) => {
-            incomplete = Some(format!(
-                "--max-events = {cap} met at X = {x:.6e} m, F/N = {f_over_n:.6}; raise --max-events or lower --cycles/--x-max"
-            ));
-        }
-        Ended::Cap(e) => return Err(e),
+        Ended::Cap(e) => incomplete = Some(cap_met(e)?),
         Ended::Steady(x) => progress.message(&format!(
             "steady sliding at mu_d reached stably at X = {x:.6e} m (no instability): the run ends"
         )),

@@ -216,6 +216,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let mut steps = 0usize;
     let mut open: Option<Open> = None;
     let mut dyn_events: Vec<DynEvent> = Vec::new();
+    // A cap met once the drive runs ends it with what it computed (the held mode's rule).
+    let mut incomplete: Option<String> = None;
     let mut beat = o.cancel.beat();
     // Nodes slipped by instabilities since the last cycle end, and whether a crossing ends one.
     let mut slipped = (vec![false; layout.x.len()], o.end_at_crossing);
@@ -340,7 +342,14 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             let ev = open.take().expect("open event");
             let s = sample_state(&ds, &at, w.u_before(), &contact, &window, out.f_drive);
             let weakened = ev.rec.weakened;
-            let kind = close(&mut rec, ev, s, out, &e, closed, dt, &layout.x, &mut dyn_events, &mut slipped)?;
+            let kind =
+                match close(&mut rec, ev, s, out, &e, closed, dt, &layout.x, &mut dyn_events, &mut slipped) {
+                    Ok(kind) => kind,
+                    Err(e) => {
+                        incomplete = Some(super::cap_met(e)?);
+                        break;
+                    }
+                };
             if weakened && closed {
                 // An instability: every node heals to mu_s (slip memory 0), as the held mode.
                 ds.d.iter_mut().for_each(|d| *d = 0.0);
@@ -367,21 +376,31 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         }
         if (steps as u64).is_multiple_of(row_every) && !at_end {
             let s = sample_state(&ds, &at, w.u_before(), &contact, &window, out.f_drive);
-            rec.push(Event::simple(EventKind::Sample, &s, 0), s)?;
+            if let Err(e) = rec.push(Event::simple(EventKind::Sample, &s, 0), s) {
+                incomplete = Some(super::cap_met(e)?);
+                break;
+            }
             window.iter_mut().for_each(|v| *v = false);
         }
         if beat.due()? {
             progress.fraction((ds.u_h / x_max).min(1.0));
         }
     }
-    // The last level the drive reached (the start if it took no step).
-    let u_end = if steps == 0 { &ds.u[..] } else { w.u_before() };
-    let s = sample_state(&ds, &at, u_end, &contact, &window, f_prev);
-    rec.push(Event::simple(EventKind::End, &s, 0), s)?;
+    if incomplete.is_none() {
+        // The last level the drive reached (the start if it took no step).
+        let u_end = if steps == 0 { &ds.u[..] } else { w.u_before() };
+        let s = sample_state(&ds, &at, u_end, &contact, &window, f_prev);
+        if let Err(e) = rec.push(Event::simple(EventKind::End, &s, 0), s) {
+            incomplete = Some(super::cap_met(e)?);
+        }
+    }
     let dynamic_s = dclock.elapsed().as_secs_f64();
     let total = clock.elapsed().as_secs_f64();
     let run = rec.finish(&sv);
-    Ok(su.result(scene, o, c, run, dyn_events, steps, [setup_s, total - setup_s - dynamic_s, dynamic_s]))
+    let mut res =
+        su.result(scene, o, c, run, dyn_events, steps, [setup_s, total - setup_s - dynamic_s, dynamic_s]);
+    res.incomplete = incomplete;
+    Ok(res)
 }
 
 /// Ends an event: its kind, its row of events.csv (onset X and F, region, relaxed F) and its
