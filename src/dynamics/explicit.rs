@@ -352,15 +352,19 @@ struct RowCtx<'a> {
 /// run in two lanes (x and y DOFs) added at the row's end, so no sum waits on the one before.
 /// Without FULL the physical energies at step n (strain, kinetic, correction) are not summed:
 /// a run that reads only the conserved ledger saves three of the seven sums. Without EXT there
-/// are no external forces: fe is neither read nor zeroed (it stays zero).
+/// are no external forces: fe is neither read nor zeroed (it stays zero). HOOKED: the row holds
+/// boundary nodes; their DOFs add only their share of the sums over v^{n-1/2} and u^n (the
+/// rest is added after the boundary ran), keep K u in `kus` and K v in `kvs`, and are left
+/// for the boundary (v^{n-1/2} in `vout` unless DAMPED, their fe unread).
 #[inline(always)]
-fn update_row<const DAMPED: bool, const FULL: bool, const EXT: bool>(
+fn update_row<const DAMPED: bool, const FULL: bool, const EXT: bool, const HOOKED: bool>(
     c: &RowCtx,
     j: usize,
     ku: &[f64],
     kv: &[f64],
     vin: &[f64],
     [un, fe, vout]: [&mut [f64]; 3],
+    [kus, kvs]: [&mut [f64]; 2],
 ) -> RowSums {
     let (dt, eta, i0) = (c.dt, c.eta, j * c.row_len);
     let mut l = [[0.0f64; 2]; 7];
@@ -371,14 +375,24 @@ fn update_row<const DAMPED: bool, const FULL: bool, const EXT: bool>(
         for a in 0..2 {
             let (k, i) = (2 * node + a, i0 + 2 * node + a);
             let vm = if DAMPED { vin[i] } else { vout[k] };
+            l[0][a] += mi * vm * vm;
+            l[1][a] += un[k] * ku[k];
+            if HOOKED && c.owned[i] {
+                if FULL {
+                    l[2][a] += c.u[i] * ku[k];
+                }
+                kus[k] = ku[k];
+                if DAMPED {
+                    kvs[k] = kv[k];
+                }
+                continue;
+            }
             let fd = if DAMPED { eta * kv[k] } else { 0.0 };
             // Without external forces f = 0 - K u - fd: the same bits as with fe = 0.
             let f = if EXT { fe[k] } else { 0.0 } - ku[k] - fd;
             let fixed = c.fixed[i];
             let vp = if fixed { 0.0 } else { vm + dt * f * inv };
             let vbar = 0.5 * (vm + vp);
-            l[0][a] += mi * vm * vm;
-            l[1][a] += un[k] * ku[k];
             if EXT {
                 l[3][a] += dt * vbar * fe[k];
             }
@@ -397,52 +411,6 @@ fn update_row<const DAMPED: bool, const FULL: bool, const EXT: bool>(
     }
     let s = l.map(|p| p[0] + p[1]);
     RowSums { kin_old: s[0], shadow: s[1], strain: s[2], work: s[3], damp: s[4], kin: s[5], corr: s[6] }
-}
-
-/// [`update_row`] for a row holding boundary nodes: the others are updated as there; the
-/// boundary's DOFs only add their share of the sums over v^{n-1/2} and u^n (the rest is added
-/// after the boundary ran) and keep K u in `kus`, K v in `kvs` and v^{n-1/2} in `vout`
-/// (already there unless DAMPED); their fe is left for the boundary.
-#[inline(always)]
-fn update_hooked_row<const DAMPED: bool>(
-    c: &RowCtx,
-    j: usize,
-    ku: &[f64],
-    kv: &[f64],
-    vin: &[f64],
-    [un, fe, vout, kus, kvs]: [&mut [f64]; 5],
-) -> RowSums {
-    let (dt, eta, i0) = (c.dt, c.eta, j * c.row_len);
-    let mut s = RowSums::default();
-    for k in 0..c.row_len {
-        let i = i0 + k;
-        let mi = c.mass[i / 2];
-        let vm = if DAMPED { vin[i] } else { vout[k] };
-        s.kin_old += mi * vm * vm;
-        s.shadow += un[k] * ku[k];
-        s.strain += c.u[i] * ku[k];
-        if c.owned[i] {
-            kus[k] = ku[k];
-            if DAMPED {
-                kvs[k] = kv[k];
-            }
-            continue;
-        }
-        let inv = 1.0 / mi;
-        let fd = if DAMPED { eta * kv[k] } else { 0.0 };
-        let f = fe[k] - ku[k] - fd;
-        let fixed = c.fixed[i];
-        let vp = if fixed { 0.0 } else { vm + dt * f * inv };
-        let vbar = 0.5 * (vm + vp);
-        s.work += dt * vbar * fe[k];
-        s.damp += dt * vbar * fd;
-        s.kin += 0.5 * mi * vbar * vbar;
-        s.corr += if fixed { 0.0 } else { dt * dt / 8.0 * f * f * inv };
-        vout[k] = vp;
-        un[k] = c.u[i] + dt * vp;
-        fe[k] = 0.0;
-    }
-    s
 }
 
 /// One node row's share of the ledger sums of a grid step.
@@ -560,7 +528,7 @@ pub struct Explicit<'a> {
     /// Whether the grid pass sums the ledger's physical energies at step n (`strain`,
     /// `kinetic`, `correction`; default true). A run that reads only the conserved ledger
     /// (its energies at the half step and the work and dissipation sums) turns it off: those
-    /// three fields then hold only the boundary rows' share and mean nothing.
+    /// three fields then hold only the boundary's share and mean nothing.
     pub physical_energies: bool,
 }
 
@@ -822,12 +790,14 @@ impl<'a> Explicit<'a> {
                     Some(v),
                     [&mut self.u_prev, &mut self.fe, &mut self.kv],
                     m.threads,
-                    |j, ku, kv, o| update_row::<true, FULL, EXT>(&ctx, j, ku, kv, v, o),
+                    |j, ku, kv, o| {
+                        update_row::<true, FULL, EXT, false>(&ctx, j, ku, kv, v, o, [&mut [], &mut []])
+                    },
                 )
             }
             (true, false) => {
                 g.sweep(u, None, [&mut self.u_prev, &mut self.fe, &mut self.v], m.threads, |j, ku, kv, o| {
-                    update_row::<false, FULL, EXT>(&ctx, j, ku, kv, &[], o)
+                    update_row::<false, FULL, EXT, false>(&ctx, j, ku, kv, &[], o, [&mut [], &mut []])
                 })
             }
             (false, damped) => {
@@ -836,22 +806,15 @@ impl<'a> Explicit<'a> {
                 let (vout, vin): (&mut [f64], &[f64]) =
                     if damped { (&mut self.kv, v) } else { (&mut self.v, &[]) };
                 let outs = [&mut self.u_prev[..], &mut self.fe, vout, &mut self.ku, &mut self.kv_hook];
-                g.sweep(
-                    u,
-                    damped.then_some(vin),
-                    outs,
-                    m.threads,
-                    |j, ku, kv, [un, fe, vo, kus, kvs]| match (hook_rows[j], damped) {
-                        (false, true) => update_row::<true, FULL, EXT>(&ctx, j, ku, kv, vin, [un, fe, vo]),
-                        (false, false) => update_row::<false, FULL, EXT>(&ctx, j, ku, kv, &[], [un, fe, vo]),
-                        (true, true) => {
-                            update_hooked_row::<true>(&ctx, j, ku, kv, vin, [un, fe, vo, kus, kvs])
-                        }
-                        (true, false) => {
-                            update_hooked_row::<false>(&ctx, j, ku, kv, &[], [un, fe, vo, kus, kvs])
-                        }
-                    },
-                )
+                g.sweep(u, damped.then_some(vin), outs, m.threads, |j, ku, kv, [un, fe, vo, kus, kvs]| {
+                    let (o, st) = ([un, fe, vo], [kus, kvs]);
+                    match (hook_rows[j], damped) {
+                        (false, true) => update_row::<true, FULL, EXT, false>(&ctx, j, ku, kv, vin, o, st),
+                        (false, false) => update_row::<false, FULL, EXT, false>(&ctx, j, ku, kv, &[], o, st),
+                        (true, true) => update_row::<true, FULL, EXT, true>(&ctx, j, ku, kv, vin, o, st),
+                        (true, false) => update_row::<false, FULL, EXT, true>(&ctx, j, ku, kv, &[], o, st),
+                    }
+                })
             }
         }
     }
