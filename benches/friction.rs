@@ -5,7 +5,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use tribofe::interface::condense::condense;
 use tribofe::interface::events::Operator;
-use tribofe::interface::law::{Law, Rule};
+use tribofe::law::{Law, Rule};
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::Scene;
 use tribofe::studies::slide::{coefficients_from_rg, run, run_condensed, SlideOptions};

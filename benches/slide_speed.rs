@@ -14,7 +14,7 @@
 use std::process::Command;
 use std::time::Instant;
 use tribofe::interface::events::Operator;
-use tribofe::interface::law::{Law, Rule};
+use tribofe::law::{Law, Rule};
 use tribofe::scene::Scene;
 use tribofe::studies::slide::{coefficients_from_rg, run, SlideOptions};
 

@@ -5,7 +5,7 @@
 //! `cargo run --release --example slide_cancel`
 
 use std::sync::atomic::{AtomicU64, Ordering};
-use tribofe::interface::law::{Law, Rule};
+use tribofe::law::{Law, Rule};
 use tribofe::scene::Scene;
 use tribofe::studies::slide::{self, SlideOptions, StateField};
 use tribofe::{Cancel, Error, Progress, Tick};

@@ -40,7 +40,7 @@
 //! The same block on a Coulomb interface (mu = 0.5) under N = 1 N/m, driven until it
 //! slides: the friction force reaches mu N.
 //! ```
-//! use tribofe::{interface::law::Law, scene::Scene, studies::slide};
+//! use tribofe::{law::Law, scene::Scene, studies::slide};
 //!
 //! let opts = slide::SlideOptions { law: Law::coulomb(0.5)?, ..Default::default() };
 //! let r = slide::run(&Scene::default(), &opts, tribofe::Progress::none())?;
@@ -57,6 +57,7 @@ pub mod error;
 pub mod fem;
 pub mod interface;
 pub mod io;
+pub mod law;
 pub mod linalg;
 pub mod memory;
 pub mod numeric;

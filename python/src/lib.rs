@@ -9,7 +9,7 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::PathBuf;
-use tribofe::interface::law::Rule;
+use tribofe::law::Rule;
 use tribofe::scene::{MeshGeometry, Overrides, PlateModel, Scene as RsScene};
 use tribofe::{Cancel, Error, Progress, Tick};
 
@@ -178,9 +178,9 @@ const STATES: &[(&str, bool)] = &[("all", true), ("none", false)];
 const CYCLE_ENDS: &[(&str, bool)] = &[("whole-slip", false), ("crossing", true)];
 /// The static-kinetic rules and the paper rule's conventions.
 const RULES: &[(&str, Rule)] = &[("paper", Rule::Paper), ("overdamped", Rule::Overdamped)];
-const RESIDUALS: &[(&str, tribofe::interface::law::Residual)] = &[
-    ("relaxed", tribofe::interface::law::Residual::Relaxed),
-    ("pre-event", tribofe::interface::law::Residual::PreEvent),
+const RESIDUALS: &[(&str, tribofe::law::Residual)] = &[
+    ("relaxed", tribofe::law::Residual::Relaxed),
+    ("pre-event", tribofe::law::Residual::PreEvent),
 ];
 const BACKSLIPS: &[(&str, bool)] = &[("allowed", true), ("forbidden", false)];
 /// `--heal`: whether only the nodes that slipped heal.
@@ -483,11 +483,11 @@ fn slide<'py>(
     let (n_force, cycles) = (n_force.unwrap_or(sl::DEFAULT_N_FORCE), cycles.unwrap_or(sl::DEFAULT_CYCLES));
     let max_events = max_events.unwrap_or(sl::DEFAULT_MAX_EVENTS);
     let rule = choice("rule", rule, RULES)?.unwrap_or(sl::DEFAULT_RULE.parse().map_err(to_py)?);
-    let paper = tribofe::interface::law::PaperOptions {
+    let paper = tribofe::law::PaperOptions {
         residual: choice("residual", residual, RESIDUALS)?
-            .unwrap_or(tribofe::interface::law::PaperOptions::default().residual),
+            .unwrap_or(tribofe::law::PaperOptions::default().residual),
         backslip: choice("backslip", backslip, BACKSLIPS)?
-            .unwrap_or(tribofe::interface::law::PaperOptions::default().backslip),
+            .unwrap_or(tribofe::law::PaperOptions::default().backslip),
     };
     let choice_law = sl::LawChoice {
         law: law.unwrap_or(sl::DEFAULT_LAW).to_string(),
@@ -1216,8 +1216,8 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         [
             ("law", sl::DEFAULT_LAW),
             ("rule", sl::DEFAULT_RULE),
-            ("residual", name_of(RESIDUALS, tribofe::interface::law::PaperOptions::default().residual)),
-            ("backslip", name_of(BACKSLIPS, tribofe::interface::law::PaperOptions::default().backslip)),
+            ("residual", name_of(RESIDUALS, tribofe::law::PaperOptions::default().residual)),
+            ("backslip", name_of(BACKSLIPS, tribofe::law::PaperOptions::default().backslip)),
             ("n_force", sl::DEFAULT_N_FORCE),
             ("cycles", sl::DEFAULT_CYCLES),
             ("max_events", sl::DEFAULT_MAX_EVENTS),

@@ -5,7 +5,7 @@ use super::scene_args::{scene as scene_from, SceneArgs};
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use tribofe::interface::law::Rule;
+use tribofe::law::Rule;
 use tribofe::studies::edges::{opening_graded, preslip_graded};
 
 /// Most values of a list flag (or opening runs): each is a mesh or a run of seconds.

@@ -4,7 +4,7 @@ use super::scene_args::{scene as scene_from, SceneArgs};
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use tribofe::interface::law::Law;
+use tribofe::law::Law;
 use tribofe::report::dynamic_slide::Spacetime;
 use tribofe::studies::dynamic_slide as ds;
 use tribofe::studies::slide::{LawChoice, SlideOptions};
@@ -162,8 +162,8 @@ fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
 }
 
 /// The `paper` rule's conventions as flagged (the defaults unless --residual/--backslip given).
-fn paper_options(a: &Args) -> tribofe::Result<tribofe::interface::law::PaperOptions> {
-    Ok(tribofe::interface::law::PaperOptions {
+fn paper_options(a: &Args) -> tribofe::Result<tribofe::law::PaperOptions> {
+    Ok(tribofe::law::PaperOptions {
         residual: a.residual.parse()?,
         backslip: a.backslip == "allowed",
     })

@@ -5,7 +5,6 @@
 
 use crate::error::{Error, Result};
 
-pub mod rate_state;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlipWeakening {

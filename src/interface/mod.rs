@@ -7,4 +7,3 @@
 pub mod banded;
 pub mod condense;
 pub mod events;
-pub mod law;

@@ -6,7 +6,7 @@ use crate::error::{Error, Result};
 use crate::interface::condense::condense;
 use crate::interface::events::EventKind;
 use crate::interface::events::{NodeState, Phase};
-use crate::interface::law::{Law, Rule};
+use crate::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;

@@ -6,7 +6,7 @@ use crate::fem::problem::{solve, LoadCase};
 use crate::interface::banded::BandedOperator;
 use crate::interface::condense::{boundary_model, condense, Condensed};
 use crate::interface::events::{self, run_with, Operator, OperatorRef, Problem, Run};
-use crate::interface::law::Law;
+use crate::law::Law;
 use crate::linalg::solve::SolverOptions;
 use crate::precursors::definition::{self, Precursors, Slip};
 use crate::precursors::{PAPER_G, PAPER_R};
@@ -605,7 +605,7 @@ impl LawChoice {
     /// The law on `scene` (g and r need its L and H), or the refusal naming what to give.
     /// Defaults: coulomb mu = 0.5; the other laws the paper's (r, g) = (0.9, 0.35).
     pub fn law(&self, scene: &Scene) -> Result<Law> {
-        let rule: crate::interface::law::Rule = self.rule.parse()?;
+        let rule: crate::law::Rule = self.rule.parse()?;
         match self.law.as_str() {
             "coulomb" => {
                 if self.mu_s.is_some() || self.mu_d.is_some() || self.r.is_some() {

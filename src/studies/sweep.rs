@@ -144,7 +144,7 @@ pub struct SweepOptions {
 pub struct FrictionSweep {
     pub mu_s: f64,
     pub mu_d: f64,
-    pub rule: crate::interface::law::Rule,
+    pub rule: crate::law::Rule,
     /// Whole-interface slips to run (the last one's peak is reported as F_max).
     pub cycles: usize,
 }
@@ -370,7 +370,7 @@ pub fn run(base: &Scene, axes: &[Axis], o: &SweepOptions, progress: Progress<Poi
                     "0: at least one whole-interface slip is needed for F_max",
                 ));
             }
-            Some(crate::interface::law::Law::static_kinetic(f.mu_s, f.mu_d, f.rule)?)
+            Some(crate::law::Law::static_kinetic(f.mu_s, f.mu_d, f.rule)?)
         }
         None => None,
     };

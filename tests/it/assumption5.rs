@@ -13,7 +13,7 @@ fn assumption5_measures_match_an_independent_recomputation() {
     let c = &r.slide.condensed;
     let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
     let dc = match o.law {
-        tribofe::interface::law::Law::SlipWeakening { dc, .. } => dc,
+        tribofe::law::Law::SlipWeakening { dc, .. } => dc,
         _ => unreachable!(),
     };
     let b = &scene.block;

@@ -498,7 +498,7 @@ fn density_is_a_scene_key() {
 // ---- slide --dynamics (issue 33, part 3): the plate-driven block ----
 
 use tribofe::interface::events::{EventKind, NodeState, Operator, Phase};
-use tribofe::interface::law::Law;
+use tribofe::law::Law;
 use tribofe::scene::Scene;
 use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};
 use tribofe::studies::slide::{self, SlideOptions};
@@ -664,7 +664,7 @@ fn dynamic_slide_refuses_what_it_cannot_run() {
     let scene = block(0.1, 0.0005, None);
     let d = DynamicOptions::default();
     let sk = SlideOptions {
-        law: Law::static_kinetic(0.648, 0.583, tribofe::interface::law::Rule::Paper).unwrap(),
+        law: Law::static_kinetic(0.648, 0.583, tribofe::law::Rule::Paper).unwrap(),
         ..Default::default()
     };
     let e = ds::check(&scene, &sk, &d).unwrap_err().to_string();

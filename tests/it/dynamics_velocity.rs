@@ -8,7 +8,7 @@ use tribofe::dynamics::friction::SlipWeakening;
 use tribofe::fem::material::Material;
 use tribofe::interface::condense::{boundary_model, condense};
 use tribofe::interface::events::{EventKind, NodeState, Operator, Phase};
-use tribofe::interface::law::Law;
+use tribofe::law::Law;
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::Scene;
 use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};

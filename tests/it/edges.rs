@@ -4,7 +4,7 @@
 //! element; above the corner's own traction ratio the ends stay stuck. Under the drive the
 //! trailing end opens before the first precursor, at a force that converges with refinement.
 
-use tribofe::interface::law::Rule;
+use tribofe::law::Rule;
 use tribofe::scene::Scene;
 use tribofe::studies::edges::{opening, preslip};
 

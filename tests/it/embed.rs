@@ -2,7 +2,7 @@
 //! returns `Error::Interrupted` at its next progress point, whatever thread cancels.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
-use tribofe::interface::law::{Law, Rule};
+use tribofe::law::{Law, Rule};
 use tribofe::scene::Scene;
 use tribofe::studies::slide::{self, SlideOptions};
 use tribofe::{Cancel, Error};

@@ -7,7 +7,7 @@ use tribofe::analytical::partial_slip;
 use tribofe::interface::condense::condense;
 use tribofe::interface::events::EventKind;
 use tribofe::interface::events::Phase;
-use tribofe::interface::law::{Law, Rule};
+use tribofe::law::{Law, Rule};
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::Scene;
 use tribofe::studies::slide::{coefficients_from_rg, run, trailing_front, SlideOptions, SlideResult};

@@ -5,7 +5,7 @@
 
 use std::sync::{Arc, Mutex};
 use tribofe::interface::events::{EventKind, Observer, Operator};
-use tribofe::interface::law::Law;
+use tribofe::law::Law;
 use tribofe::scene::Scene;
 use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};
 use tribofe::studies::slide::{self, SlideOptions};

@@ -15,6 +15,7 @@ const RANKS: &[(&str, u32)] = &[
     ("progress", 1),
     ("numeric", 1),
     ("memory", 1),
+    ("law", 1),
     ("precursors", 1),
     ("linalg", 2),
     ("fem", 3),

@@ -9,7 +9,7 @@ use common::process::run;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 use tribofe::interface::events::{bytes_per_event, State, Summary};
-use tribofe::interface::law::Law;
+use tribofe::law::Law;
 use tribofe::scene::Scene;
 use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};
 use tribofe::studies::slide::{self, SlideOptions, SlideResult};
@@ -152,7 +152,7 @@ fn keep_states_false_holds_one_state_and_the_same_summaries() {
     // the equalities are exact.
     let scene = block(0.1, 0.001);
     let sk = SlideOptions {
-        law: Law::static_kinetic(0.648, 0.583, tribofe::interface::law::Rule::Paper).unwrap(),
+        law: Law::static_kinetic(0.648, 0.583, tribofe::law::Rule::Paper).unwrap(),
         cycles: 1,
         ..Default::default()
     };

@@ -5,7 +5,7 @@
 use std::sync::{Arc, Mutex};
 use tribofe::interface::condense::condense;
 use tribofe::interface::events::{Event, Observer};
-use tribofe::interface::law::{Law, Rule};
+use tribofe::law::{Law, Rule};
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::precursors::definition::{self, Slip};
 use tribofe::scene::Scene;

@@ -4,7 +4,7 @@
 use tribofe::interface::banded::{BandedOperator, Rows, Solution, RANK_CAP};
 use tribofe::interface::condense::condense;
 use tribofe::interface::events::Operator;
-use tribofe::interface::law::{Law, Rule};
+use tribofe::law::{Law, Rule};
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::Scene;
 use tribofe::studies::slide::{coefficients_from_rg, run, run_condensed, SlideOptions};

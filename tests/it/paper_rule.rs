@@ -8,7 +8,7 @@
 #[allow(dead_code)] // the shared patch-test helpers are not used here
 use crate::common;
 
-use tribofe::interface::law::{Law, PaperOptions, Residual, Rule};
+use tribofe::law::{Law, PaperOptions, Residual, Rule};
 use tribofe::scene::Scene;
 use tribofe::studies::slide::{coefficients_from_rg, run, SlideOptions, SlideResult};
 

@@ -7,7 +7,7 @@
 
 use tribofe::interface::events::EventKind;
 use tribofe::interface::events::NodeState;
-use tribofe::interface::law::{Law, Rule};
+use tribofe::law::{Law, Rule};
 use tribofe::scene::Scene;
 use tribofe::studies::precursors_fe::{fig4, fig5, CellRun};
 use tribofe::studies::slide::{coefficients_from_rg, run, SlideOptions};

@@ -4,7 +4,7 @@
 //! two differ only by round-off (S is symmetrised at ~1e-17 of its largest entry).
 
 use tribofe::fem::recovery::{elements_touching, internal_forces};
-use tribofe::interface::law::Law;
+use tribofe::law::Law;
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::Scene;
 use tribofe::studies::slide::{run, state_displacements, SlideOptions};

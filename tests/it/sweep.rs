@@ -223,7 +223,7 @@ fn scene_flags_override_and_validate_like_the_file() {
 /// singular trailing corner nucleates slightly early, validation/friction/README.md).
 #[test]
 fn friction_columns_equal_single_slide_runs() {
-    use tribofe::interface::law::{Law, Rule};
+    use tribofe::law::{Law, Rule};
     use tribofe::studies::slide::{compare_paper, run as slide, SlideOptions};
     let (mu_s, mu_d) = (0.648, 0.583);
     let axes = vec![Axis { param: Param::Height, values: vec![0.02, 0.04] }];
@@ -262,7 +262,7 @@ fn friction_columns_equal_single_slide_runs() {
 /// row as many cells as the header.
 #[test]
 fn columns_are_the_csv_table() {
-    use tribofe::interface::law::Rule;
+    use tribofe::law::Rule;
     use tribofe::report::sweep::{columns, Column};
     let axes = vec![Axis { param: Param::Height, values: vec![0.02, 0.12] }];
     let mut base = Scene::default();

@@ -17,7 +17,7 @@ pub struct FeArgs {
     /// The paper rule's residual shear mu_d p at the `relaxed` equilibrium or `pre-event`
     /// (the paper's mu_d p(x, F_i)); as `slide --residual`.
     #[arg(long, default_value = "relaxed")]
-    pub residual: tribofe::interface::law::Residual,
+    pub residual: tribofe::law::Residual,
     /// The paper rule's back-slip: `allowed` or `forbidden`; as `slide --backslip`.
     #[arg(long, default_value = "allowed", value_parser = ["allowed", "forbidden"])]
     pub backslip: String,
@@ -36,7 +36,7 @@ pub struct FeMapArgs {
     /// 20 x 20 on the paper's scene; overdamped adds about 4 minutes, and 164 of its 400 cells
     /// exceed the event cap).
     #[arg(long, value_delimiter = ',', default_value = tribofe::studies::precursors_fe::DEFAULT_FIG5_RULES[0].name())]
-    pub rules: Vec<tribofe::interface::law::Rule>,
+    pub rules: Vec<tribofe::law::Rule>,
     /// Events per cell before the cell is reported as capped (grey).
     #[arg(long, default_value_t = tribofe::studies::precursors_fe::DEFAULT_FIG5_MAX_EVENTS)]
     pub max_events: usize,
@@ -53,7 +53,7 @@ pub fn fe(args: FeArgs) -> tribofe::Result<()> {
     let scene = fe_scene(&args.scene, &args.out)?;
     let bar = spinner("precursors fe: one run per event rule");
     let cancel = tribofe::Cancel::new();
-    let paper = tribofe::interface::law::PaperOptions {
+    let paper = tribofe::law::PaperOptions {
         residual: args.residual,
         backslip: args.backslip == "allowed",
     };
@@ -118,7 +118,7 @@ pub fn fe(args: FeArgs) -> tribofe::Result<()> {
             Err(e) => outln!("{:>12} refused: {e}", rule.name()),
         }
     }
-    if paper != tribofe::interface::law::PaperOptions::default() {
+    if paper != tribofe::law::PaperOptions::default() {
         outln!(
             "rule paper with residual {} and back-slip {} (docs/precursors.md)",
             paper.residual.name(),

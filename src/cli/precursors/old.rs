@@ -35,7 +35,7 @@ pub struct Old {
     #[arg(long, value_delimiter = ',', requires = "fe", conflicts_with_all = ["map", "cycles", "thin_layer", "heights"])]
     dc: Option<Vec<f64>>,
     #[arg(long, value_delimiter = ',', default_value = "paper", requires = "fe")]
-    rules: Vec<tribofe::interface::law::Rule>,
+    rules: Vec<tribofe::law::Rule>,
     #[arg(long, default_value_t = 2000, requires = "fe")]
     max_events: usize,
     #[arg(long, conflicts_with_all = ["map", "fe"])]

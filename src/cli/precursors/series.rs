@@ -228,7 +228,7 @@ pub fn dc(args: DcArgs) -> tribofe::Result<()> {
     // Every D_c and the cap checked before the condensation, as the runs will see them.
     for &d in &dcs {
         let o = tribofe::studies::slide::SlideOptions {
-            law: tribofe::interface::law::Law::slip_weakening(ms, md, d)?,
+            law: tribofe::law::Law::slip_weakening(ms, md, d)?,
             cycles: 1,
             max_events: args.max_events,
             ..Default::default()

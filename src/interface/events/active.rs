@@ -5,7 +5,7 @@
 use super::operator::{ActiveSet, Affine, Operator};
 use super::{tolerances, NodeState, Phase, Problem};
 use crate::error::Result;
-use crate::interface::law::Law;
+use crate::law::Law;
 
 pub(crate) struct Solver<'a> {
     law: Law,

@@ -29,7 +29,7 @@
 //!   start-up, the recorder, the instability resolver (the quasi-static relaxation or a
 //!   dynamic event) and `stepped`, the held mode's drive loop that calls it.
 
-use crate::interface::law::Law;
+use crate::law::Law;
 use crate::precursors::definition::Slip;
 use std::sync::Arc;
 

@@ -9,7 +9,7 @@ use super::operator::Affine;
 use super::simulation::{stuck_err, Recorder};
 use super::{tolerances, Event, NodeState};
 use crate::error::Result;
-use crate::interface::law::{Law, Residual, Rule};
+use crate::law::{Law, Residual, Rule};
 
 /// The quasi-static rules as the drive's [`Resolver`]: the law's rule ([`instability`]), then
 /// the event classified and recorded. Keeps the last region for the Zeno guard.
@@ -121,7 +121,7 @@ fn dir(t: f64) -> f64 {
 }
 
 /// The paper's rule: the connected region around i0 where the pre-event |T| >= mu_d P slips at
-/// once, then contact is made consistent. With [`crate::interface::law::PaperOptions`] off
+/// once, then contact is made consistent. With [`crate::law::PaperOptions`] off
 /// their defaults, by turns after contact: a region node that would end behind where it
 /// started sticks there (the worst first), and the slipping rows' coefficients are moved
 /// to mu_d P(before)/P so that T = -s mu_d P(before) (the paper's mu_d p(x, F_i)). Returns the

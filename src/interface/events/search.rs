@@ -231,7 +231,7 @@ mod tests {
     use super::super::springs;
     use super::*;
     use crate::interface::events::Problem;
-    use crate::interface::law::{Law, Rule};
+    use crate::law::{Law, Rule};
 
     // Two nodes at x = -a, +a; kt = 1, kn = 2 N/m per m, a = 1, h = 0.5, N = 1 (any units).
     // The drive's moment tilts the plate (theta < 0), unloading the trailing node 0.

@@ -8,7 +8,7 @@ use super::relax::Rules;
 use super::search::{Fix, Hit};
 use super::{tolerances, weakening, Event, EventKind, NodeState, OperatorRef, Phase, Problem, Run, State};
 use crate::error::{Error, Result};
-use crate::interface::law::Law;
+use crate::law::Law;
 
 /// Runs the loading history on the condensed S (at the drive height, see
 /// [`crate::interface::condense::Condensed::at_height`]); `progress` gets a fraction in [0, 1].

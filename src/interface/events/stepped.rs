@@ -16,7 +16,7 @@ use super::search::Hit;
 use super::simulation::{apply_hit, hit_kind, settle_continuous, stuck_err, Recorder};
 use super::{tolerances, EventKind, NodeState};
 use crate::error::{Error, Result};
-use crate::interface::law::Law;
+use crate::law::Law;
 
 /// How a stepped drive ended (the run so far is the recorder's either way).
 #[derive(Debug)]

@@ -365,7 +365,7 @@ fn heal(sv: &mut Solver, a: &Affine, lam: f64) -> Result<()> {
 mod tests {
     use super::super::{springs, NodeState, Problem};
     use super::*;
-    use crate::interface::law::Law;
+    use crate::law::Law;
 
     /// A slow relaxation settles, at a cost set by the iterate caps, not by round-off. Six
     /// nodes, drive at the interface (no tilt, P = N/6 each); node 0's shear spring k0 = 2 is

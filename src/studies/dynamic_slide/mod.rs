@@ -27,7 +27,7 @@ use crate::error::{Error, Result};
 use crate::interface::banded::{BandedOperator, Solving};
 use crate::interface::condense::{condense, Condensed};
 use crate::interface::events::{self, Operator};
-use crate::interface::law::Law;
+use crate::law::Law;
 use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;

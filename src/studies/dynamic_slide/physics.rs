@@ -149,7 +149,7 @@ pub fn check_resolved(
 #[derive(Debug, Clone)]
 pub struct Resolved {
     /// The slip-weakening law with its D_c.
-    pub law: crate::interface::law::Law,
+    pub law: crate::law::Law,
     /// kappa and the regime it suggests.
     pub kappa: f64,
     pub notes: Vec<String>,

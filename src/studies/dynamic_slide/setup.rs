@@ -13,7 +13,7 @@ use crate::fem::constraints::Reduction;
 use crate::fem::material::Material;
 use crate::interface::condense::{boundary_model, Condensed};
 use crate::interface::events::Run;
-use crate::interface::law::Law;
+use crate::law::Law;
 use crate::linalg::solve::{Factor, Solver, SolverOptions};
 use crate::scene::{Scene, SceneModel};
 use crate::studies::slide::{SlideOptions, SlideResult};

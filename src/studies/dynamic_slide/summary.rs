@@ -4,7 +4,7 @@
 //! the front envelope and the largest force do; the two counts do not.
 
 use super::{physics, DynamicResult};
-use crate::interface::law::Law;
+use crate::law::Law;
 use crate::precursors::definition::Edge;
 
 /// Forces (units of mu_s N) at which the front envelope is read.

@@ -12,7 +12,7 @@
 use crate::error::Result;
 use crate::interface::condense::{condense, Condensed};
 use crate::interface::events::{EventKind, NodeState, Observer};
-use crate::interface::law::{Law, Rule};
+use crate::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
 use crate::precursors::definition::{self, Precursors, Slip, ZONE_T};
 use crate::progress::Progress;
@@ -174,7 +174,7 @@ pub fn fig4(
     cancel: &crate::Cancel,
     progress: Progress,
 ) -> Result<Vec<Result<Fig4>>> {
-    fig4_with(scene, r, g, cycles, crate::interface::law::PaperOptions::default(), cancel, progress)
+    fig4_with(scene, r, g, cycles, crate::law::PaperOptions::default(), cancel, progress)
 }
 
 /// [`fig4`] with the `paper` rule's conventions `paper` (the overdamped run is unchanged).
@@ -183,7 +183,7 @@ pub fn fig4_with(
     r: f64,
     g: f64,
     cycles: usize,
-    paper: crate::interface::law::PaperOptions,
+    paper: crate::law::PaperOptions,
     cancel: &crate::Cancel,
     progress: Progress,
 ) -> Result<Vec<Result<Fig4>>> {

@@ -6,7 +6,7 @@
 use super::{fig4_on, sk, Fig4};
 use crate::error::Result;
 use crate::interface::condense::condense;
-use crate::interface::law::{Law, Rule};
+use crate::law::{Law, Rule};
 use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;

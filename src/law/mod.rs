@@ -1,5 +1,9 @@
 //! Friction laws of the interface. Each is named in the outputs by [`Law::name`].
 
+pub mod rate_state;
+
+pub use rate_state::{RateState, StateLaw};
+
 use crate::error::{Error, Result};
 
 /// What a static-kinetic instability does once a node reaches mu_s p.
