@@ -26,10 +26,10 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 use tribofe::dynamics::explicit::{Elastodynamic, Explicit};
-use tribofe::dynamics::friction::SlipWeakening;
 use tribofe::dynamics::rupture::{self, RuptureSpec};
 use tribofe::fem::material::Material;
 use tribofe::fem::mesher::Rectangle;
+use tribofe::law::Law;
 
 /// Process CPU seconds (all threads).
 fn cpu_seconds() -> f64 {
@@ -190,7 +190,11 @@ fn main() {
             let d = RuptureSpec::default();
             let spec = RuptureSpec {
                 h,
-                friction: SlipWeakening { d_c: d.friction.d_c * h / d.h, ..d.friction },
+                friction: Law::SlipWeakening {
+                    mu_s: d.friction.mu_s(),
+                    mu_d: d.friction.mu_d(),
+                    dc: d.dc() * h / d.h,
+                },
                 ..d
             };
             let dt = spec.dt().unwrap();

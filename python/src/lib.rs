@@ -178,10 +178,8 @@ const STATES: &[(&str, bool)] = &[("all", true), ("none", false)];
 const CYCLE_ENDS: &[(&str, bool)] = &[("whole-slip", false), ("crossing", true)];
 /// The static-kinetic rules and the paper rule's conventions.
 const RULES: &[(&str, Rule)] = &[("paper", Rule::Paper), ("overdamped", Rule::Overdamped)];
-const RESIDUALS: &[(&str, tribofe::law::Residual)] = &[
-    ("relaxed", tribofe::law::Residual::Relaxed),
-    ("pre-event", tribofe::law::Residual::PreEvent),
-];
+const RESIDUALS: &[(&str, tribofe::law::Residual)] =
+    &[("relaxed", tribofe::law::Residual::Relaxed), ("pre-event", tribofe::law::Residual::PreEvent)];
 const BACKSLIPS: &[(&str, bool)] = &[("allowed", true), ("forbidden", false)];
 /// `--heal`: whether only the nodes that slipped heal.
 const HEALS: &[(&str, bool)] = &[("all", false), ("slipped", true)];
@@ -919,7 +917,7 @@ fn precursors_fe_fig5<'py>(
 /// default normal-stress lag. Every keyword left at None keeps its value here.
 fn rupture_defaults() -> tribofe::dynamics::rupture::RuptureSpec {
     use tribofe::dynamics::rupture as rp;
-    rp::RuptureSpec { normal_lag: rp::normal_lag(rp::DEFAULT_NORMAL_LAG), ..Default::default() }
+    rp::RuptureSpec { normal: rp::normal_lag(rp::DEFAULT_NORMAL_LAG), ..Default::default() }
 }
 
 /// The dynamic-rupture scene on a rigid flat (`tribofe rupture`, docs/dynamics.md): explicit
@@ -928,7 +926,8 @@ fn rupture_defaults() -> tribofe::dynamics::rupture::RuptureSpec {
 #[pyfunction]
 #[pyo3(signature = (*, s=None, h=None, dc=None, t_end=None, length=None, height=None, mu_s=None,
     mu_d=None, sigma0=None, young=None, poisson=None, density=None, courant=None, damping=None,
-    contact=None, normal_lag=None, patch_taper=None, max_steps=None, progress=None))]
+    contact=None, normal_lag=None, normal_lag_length=None, normal_lag_v_star=None, patch_taper=None,
+    max_steps=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn rupture<'py>(
     py: Python<'py>,
@@ -948,6 +947,8 @@ fn rupture<'py>(
     damping: Option<f64>,
     contact: Option<&str>,
     normal_lag: Option<f64>,
+    normal_lag_length: Option<f64>,
+    normal_lag_v_star: Option<f64>,
     patch_taper: Option<f64>,
     max_steps: Option<u64>,
     progress: Option<Py<PyAny>>,
@@ -964,12 +965,17 @@ fn rupture<'py>(
     };
     set(s, &mut spec.s_ratio);
     set(h, &mut spec.h);
-    set(dc, &mut spec.friction.d_c);
+    if let tribofe::law::Law::SlipWeakening { mu_s: s0, mu_d: d0, dc: c0 } = spec.friction {
+        let law = tribofe::law::Law::SlipWeakening {
+            mu_s: mu_s.unwrap_or(s0),
+            mu_d: mu_d.unwrap_or(d0),
+            dc: dc.unwrap_or(c0),
+        };
+        spec.friction = law;
+    }
     set(t_end, &mut spec.t_end);
     set(length, &mut spec.length);
     set(height, &mut spec.height);
-    set(mu_s, &mut spec.friction.mu_s);
-    set(mu_d, &mut spec.friction.mu_d);
     set(sigma0, &mut spec.sigma0);
     set(young, &mut spec.young);
     set(poisson, &mut spec.poisson);
@@ -980,9 +986,18 @@ fn rupture<'py>(
     if let Some(c) = contact {
         spec.contact = c.parse().map_err(to_py)?;
     }
-    if let Some(t) = normal_lag {
-        spec.normal_lag = rp::normal_lag(t);
+    if normal_lag.is_some() && normal_lag_length.is_some() {
+        return Err(pyo3::exceptions::PyValueError::new_err(
+            "normal_lag= and normal_lag_length=: give one (the time or the length form of the normal-stress lag)",
+        ));
     }
+    spec.normal = rp::normal_response(
+        normal_lag.unwrap_or(rp::DEFAULT_NORMAL_LAG),
+        normal_lag_length,
+        normal_lag_v_star,
+        ["normal_lag=", "normal_lag_length=", "normal_lag_v_star="],
+    )
+    .map_err(to_py)?;
     if let Some(n) = max_steps {
         spec.max_steps = n;
     }
@@ -1266,12 +1281,12 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
         [
             ("s", rp.s_ratio),
             ("h", rp.h),
-            ("dc", rp.friction.d_c),
+            ("dc", rp.dc()),
             ("t_end", rp.t_end),
             ("length", rp.length),
             ("height", rp.height),
-            ("mu_s", rp.friction.mu_s),
-            ("mu_d", rp.friction.mu_d),
+            ("mu_s", rp.friction.mu_s()),
+            ("mu_d", rp.friction.mu_d()),
             ("sigma0", rp.sigma0),
             ("young", rp.young),
             ("poisson", rp.poisson),
@@ -1279,7 +1294,7 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
             ("courant", rp.courant),
             ("damping", rp.damping),
             ("contact", rp.contact.name()),
-            ("normal_lag", rp.normal_lag.unwrap_or(0.0)),
+            ("normal_lag", if let tribofe::law::Normal::Time { t } = rp.normal { t } else { 0.0 }),
             ("patch_taper", rp.patch_taper),
             ("max_steps", rp.max_steps),
         ],

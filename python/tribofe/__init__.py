@@ -608,6 +608,8 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         damping: Optional[float] = None,
         contact: Optional[str] = None,
         normal_lag: Optional[float] = None,
+        normal_lag_length: Optional[float] = None,
+        normal_lag_v_star: Optional[float] = None,
         patch_taper: Optional[float] = None,
         max_steps: Optional[int] = None,
         s_ratio: Optional[float] = None,
@@ -621,7 +623,9 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         its deprecated old name), ``h`` (m), ``dc`` (m), ``t_end`` (s), ``length``, ``height``
         (m), ``mu_s``, ``mu_d``, ``sigma0`` (Pa), ``young`` (Pa), ``poisson``, ``density``
         (kg/m^3), ``courant``, ``damping`` (s), ``contact`` (``"bilateral"``,
-        ``"unilateral"``, ``"symmetric"``), ``normal_lag`` (s), ``patch_taper`` (m: a cosine
+        ``"unilateral"``, ``"symmetric"``), ``normal_lag`` (s), ``normal_lag_length`` (m: the
+        Prakash-Clifton length form in place of the time form) with ``normal_lag_v_star``
+        (m/s, default 0), ``patch_taper`` (m: a cosine
         ramp of the initial shear across the patch edge), ``max_steps`` (most explicit steps;
         a run above it is refused before any work, naming the largest ``t_end`` that fits).
         Silent unless ``progress`` is True (a tqdm bar) or a callable.
@@ -656,6 +660,8 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
                 damping=damping,
                 contact=contact,
                 normal_lag=normal_lag,
+                normal_lag_length=normal_lag_length,
+                normal_lag_v_star=normal_lag_v_star,
                 patch_taper=patch_taper,
                 max_steps=max_steps,
                 progress=cb,

@@ -133,6 +133,8 @@ def rupture(
     damping: Optional[float] = None,
     contact: Optional[str] = None,
     normal_lag: Optional[float] = None,
+    normal_lag_length: Optional[float] = None,
+    normal_lag_v_star: Optional[float] = None,
     patch_taper: Optional[float] = None,
     max_steps: Optional[int] = None,
     progress: Optional[Callable[[float], None]] = None,

@@ -4,8 +4,8 @@
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use tribofe::dynamics::friction::SlipWeakening;
 use tribofe::dynamics::rupture::{Contact, RuptureSpec};
+use tribofe::law::Law;
 
 // Every default is the library's RuptureSpec::default() (the cross-check spec), bar the
 // normal lag; the Python package reads the same.
@@ -18,7 +18,7 @@ pub struct Args {
     #[arg(long, default_value_t = RuptureSpec::default().h)]
     pub h: f64,
     /// Slip-weakening distance D_c, m.
-    #[arg(long, default_value_t = RuptureSpec::default().friction.d_c)]
+    #[arg(long, default_value_t = RuptureSpec::default().dc())]
     pub dc: f64,
     /// Run to this time, s (steps = round(t_end / dt)).
     #[arg(long, default_value_t = RuptureSpec::default().t_end)]
@@ -29,9 +29,9 @@ pub struct Args {
     #[arg(long, default_value_t = RuptureSpec::default().height)]
     pub height: f64,
     /// Static and dynamic friction coefficients.
-    #[arg(long, default_value_t = RuptureSpec::default().friction.mu_s)]
+    #[arg(long, default_value_t = RuptureSpec::default().friction.mu_s())]
     pub mu_s: f64,
-    #[arg(long, default_value_t = RuptureSpec::default().friction.mu_d)]
+    #[arg(long, default_value_t = RuptureSpec::default().friction.mu_d())]
     pub mu_d: f64,
     /// Background normal stress on the base (compressive positive), Pa.
     #[arg(long, default_value_t = RuptureSpec::default().sigma0)]
@@ -60,6 +60,14 @@ pub struct Args {
     /// stress of the cross-check spec (warned on a rigid flat: ill-posed above a threshold).
     #[arg(long, default_value_t = tribofe::dynamics::rupture::DEFAULT_NORMAL_LAG)]
     pub normal_lag: f64,
+    /// Prakash-Clifton with a slip length instead of a time: d sigma*/dt = -(sigma* - sigma)
+    /// (|V| + V*) / L, L in m (in place of --normal-lag; docs/dynamics-findings.md compares
+    /// the two forms' convergence).
+    #[arg(long, conflicts_with = "normal_lag")]
+    pub normal_lag_length: Option<f64>,
+    /// The length form's reference slip rate V*, m/s (default 0: sigma* moves only with slip).
+    #[arg(long)]
+    pub normal_lag_v_star: Option<f64>,
     /// Width of a cosine ramp of the initial shear centred on the nucleation patch's edge
     /// (|x| = 0.01 m), m (default 0, as the spec: a jump).
     #[arg(long, default_value_t = RuptureSpec::default().patch_taper)]
@@ -88,12 +96,17 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         density: a.density,
         sigma0: a.sigma0,
         s_ratio: a.s,
-        friction: SlipWeakening { mu_s: a.mu_s, mu_d: a.mu_d, d_c: a.dc },
+        friction: Law::SlipWeakening { mu_s: a.mu_s, mu_d: a.mu_d, dc: a.dc },
         courant: a.courant,
         t_end: a.t_end,
         damping: a.damping,
         contact: a.contact.parse::<Contact>()?,
-        normal_lag: tribofe::dynamics::rupture::normal_lag(a.normal_lag),
+        normal: tribofe::dynamics::rupture::normal_response(
+            a.normal_lag,
+            a.normal_lag_length,
+            a.normal_lag_v_star,
+            ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
+        )?,
         patch_taper: a.patch_taper,
         max_steps: a.max_steps,
         ..Default::default()
@@ -112,7 +125,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         spec.patch_half_width,
         if spec.patch_taper > 0.0 { format!("edge ramp {} m", spec.patch_taper) } else { "edge: a jump".to_string() },
         spec.h,
-        spec.friction.d_c,
+        spec.dc(),
         lambda0,
         lambda0 / spec.h,
         spec.max_steps
@@ -135,6 +148,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         ("lambda0_m", toml::Value::from(lambda0)),
         ("force_drop_N_per_m", toml::Value::from(r.force_drop)),
         ("min_sigma_Pa", toml::Value::from(r.min_sigma)),
+        ("normal_response", toml::Value::from(spec.normal.name())),
         ("wall_seconds", toml::Value::from(secs)),
     ]
     .into_iter()

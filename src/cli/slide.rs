@@ -163,10 +163,7 @@ fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
 
 /// The `paper` rule's conventions as flagged (the defaults unless --residual/--backslip given).
 fn paper_options(a: &Args) -> tribofe::Result<tribofe::law::PaperOptions> {
-    Ok(tribofe::law::PaperOptions {
-        residual: a.residual.parse()?,
-        backslip: a.backslip == "allowed",
-    })
+    Ok(tribofe::law::PaperOptions { residual: a.residual.parse()?, backslip: a.backslip == "allowed" })
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {

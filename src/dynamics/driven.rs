@@ -30,8 +30,8 @@
 //! round-off over an event.
 
 use super::explicit::{Boundary, BoundaryStep, Elastodynamic, Explicit};
-use super::friction::SlipWeakening;
 use crate::error::{Error, Result};
+use crate::law::{Law, Normal, Trial};
 
 /// The mesh's parts as the event loop reads them.
 #[derive(Debug, Clone)]
@@ -149,7 +149,7 @@ fn inverse(m: [[f64; 2]; 2]) -> [[f64; 2]; 2] {
 }
 
 /// The moving state: displacements at step n, velocities at n - 1/2, the plate, the slips.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct DynState {
     pub u: Vec<f64>,
     pub v: Vec<f64>,
@@ -161,6 +161,11 @@ pub struct DynState {
     pub qdot: [f64; 2],
     /// Slip path length of each base node since the last healing, m.
     pub d: Vec<f64>,
+    /// Rate-and-state state of each base node, s (empty for the rate-free laws).
+    pub theta: Vec<f64>,
+    /// The normal force each base node's strength is taken on under a lagging normal response,
+    /// N/m (empty: taken from the first step's contact force).
+    pub p_lagged: Vec<f64>,
     /// Time, s.
     pub time: f64,
 }
@@ -256,11 +261,13 @@ pub struct EventRecord {
     pub open: Vec<bool>,
 }
 
-/// The dynamic problem: model, layout, friction, N, step and damping.
+/// The dynamic problem: model, layout, friction law and normal response, N, step and damping.
 pub struct Driven<'a> {
     pub model: &'a Elastodynamic,
     pub layout: &'a Layout,
-    pub friction: SlipWeakening,
+    /// Coulomb, slip weakening or rate-and-state ([`Law::split_node`]).
+    pub law: Law,
+    pub normal: Normal,
     pub n_force: f64,
     pub dt: f64,
     pub eta: f64,
@@ -319,6 +326,8 @@ struct PlateAndBase<'s> {
     u_h: &'s mut f64,
     drive_velocity: f64,
     d: &'s mut [f64],
+    theta: &'s mut [f64],
+    p_lagged: &'s mut [f64],
     contact: &'s mut [Contact],
     e: &'s mut EventEnergy,
     any_slip: bool,
@@ -345,15 +354,25 @@ impl Boundary for PlateAndBase<'_> {
             let (vxm, vym) = (s.v[ix], s.v[iy]);
             let p_star = -fy - mk * vym / dt - mk * s.u[iy] / (dt * dt);
             let mut slipping = false;
+            let p_strength = if self.dr.normal.lags() {
+                let lagged = if self.p_lagged[b].is_nan() { p_star } else { self.p_lagged[b] };
+                self.p_lagged[b] = self.dr.normal.relax(lagged, p_star.max(0.0), dt, vxm);
+                self.p_lagged[b]
+            } else {
+                p_star
+            };
             let (t, p, t_trial) = if p_star > 0.0 {
-                let strength = self.dr.friction.mu(self.d[b]) * p_star;
                 let t_star = -fx - mk * vxm / dt;
-                if t_star.abs() <= strength {
-                    (t_star, p_star, t_star)
-                } else {
-                    slipping = true;
-                    (strength * t_star.signum(), p_star, t_star)
-                }
+                let trial =
+                    Trial { t_star, p: p_strength, z: mk / dt, dt, slip: self.d[b], v_old: vxm.abs() };
+                let mut rate_free = 0.0;
+                let theta = match self.theta.get_mut(b) {
+                    Some(th) => th,
+                    None => &mut rate_free,
+                };
+                let (t, slips) = self.dr.law.split_node(trial, theta);
+                slipping = slips;
+                (t, p_star, t_star)
             } else {
                 (0.0, 0.0, 0.0)
             };
@@ -424,6 +443,11 @@ impl<'a> Driven<'a> {
         e: &mut EventEnergy,
         contact: &mut [Contact],
     ) -> StepOut {
+        let nb = self.layout.base.len();
+        if self.normal.lags() && st.p_lagged.len() != nb {
+            // NaN: the first step takes its contact force (the state at rest is at equilibrium).
+            st.p_lagged = vec![f64::NAN; nb];
+        }
         let ex = &mut w.ex;
         // The state's arrays are the stepper's for the step (a swap of pointers).
         std::mem::swap(&mut ex.u, &mut st.u);
@@ -435,6 +459,8 @@ impl<'a> Driven<'a> {
             u_h: &mut st.u_h,
             drive_velocity: st.drive_velocity,
             d: &mut st.d,
+            theta: &mut st.theta,
+            p_lagged: &mut st.p_lagged,
             contact,
             e,
             any_slip: false,
@@ -504,11 +530,10 @@ impl<'a> Driven<'a> {
                 if rec.nucleation.is_none() && rec.slip[b] > slip_threshold {
                     rec.nucleation = Some(b);
                 }
-                if st.d[b] >= self.friction.d_c
-                    && d0[b] < self.friction.d_c
-                    && self.friction.mu_s > self.friction.mu_d
-                {
-                    rec.weakened = true;
+                if let Law::SlipWeakening { mu_s, mu_d, dc } = self.law {
+                    if st.d[b] >= dc && d0[b] < dc && mu_s > mu_d {
+                        rec.weakened = true;
+                    }
                 }
             }
             rec.steps = step + 1;
@@ -588,8 +613,13 @@ pub fn arrest_sample(tip: &[f64]) -> Option<usize> {
 /// test (1e-6 of the dissipation). Round-off rates of a node at rest are ~1e-17 m/s, a
 /// slipping node's at the end of an event (kinetic energy 1e-6 of the dissipation) 1e-9 to
 /// 1e-7 m/s, against 4.9e-11 m/s on the paper's scene (D_c = 4.6e-7 m, period 9.5 ms).
-pub fn rest_rate(friction: &SlipWeakening, elastic_slip: f64, period: f64) -> f64 {
-    let scale = if friction.mu_s > friction.mu_d { friction.d_c.min(elastic_slip) } else { elastic_slip };
+/// Rate-and-state: its state distance L in place of D_c.
+pub fn rest_rate(law: &Law, elastic_slip: f64, period: f64) -> f64 {
+    let scale = match *law {
+        Law::SlipWeakening { mu_s, mu_d, dc } if mu_s > mu_d => dc.min(elastic_slip),
+        Law::RateState(r) => r.l.min(elastic_slip),
+        _ => elastic_slip,
+    };
     REST_SLIP * scale / period
 }
 

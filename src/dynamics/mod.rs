@@ -4,7 +4,7 @@
 //! - [`explicit`]: lumped-mass central differences (Newmark beta = 0, gamma = 1/2) on QUA4
 //!   meshes, Kelvin-Voigt damping, the stable time step, energies: the crate's one time loop,
 //!   with boundary conditions as [`explicit::Boundary`] hooks;
-//! - [`friction`]: slip-weakening friction and the cohesive-zone estimate Lambda_0;
+//! - the friction laws and the split-node rule are the law layer's ([`crate::law`]);
 //! - [`driven`]: one dynamic event of the plate-driven block (the plate and base as a hook);
 //! - [`rupture`]: the base on a rigid flat with friction imposed per node per step (the
 //!   traction-at-split-node rule of Day et al. 2005) and the shared cross-check scene
@@ -15,6 +15,5 @@
 
 pub mod driven;
 pub mod explicit;
-pub mod friction;
 pub mod rupture;
 pub mod waves;

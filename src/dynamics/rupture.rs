@@ -20,11 +20,11 @@
 //! 2 u_x, sigma = sigma0), the geometry Andrews' supershear threshold S ~ 1.77 is for.
 
 use super::explicit::{Boundary, BoundaryStep, Elastodynamic, Explicit};
-use super::friction::SlipWeakening;
 use super::waves::WaveSpeeds;
 use crate::error::{Error, Result};
 use crate::fem::material::Material;
 use crate::fem::mesher::Rectangle;
+use crate::law::{Law, Normal, Trial};
 
 /// How the base meets the rigid flat.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -83,7 +83,8 @@ pub struct RuptureSpec {
     pub sigma0: f64,
     /// Strength ratio S = (mu_s sigma0 - tau0) / (tau0 - mu_d sigma0) outside the patch.
     pub s_ratio: f64,
-    pub friction: SlipWeakening,
+    /// Slip weakening (mu_s > mu_d), the one law this scene runs.
+    pub friction: Law,
     /// Nucleation patch |x| <= this, m, where tau0 = overstress * mu_s sigma0.
     pub patch_half_width: f64,
     pub overstress: f64,
@@ -99,11 +100,10 @@ pub struct RuptureSpec {
     pub contact: Contact,
     /// Front speed: least-squares slope of x against arrival time over this x range, m.
     pub speed_window: (f64, f64),
-    /// Normal-stress regularisation (Prakash-Clifton with a fixed time scale, as in
-    /// SEM2DPACK; Rubin & Ampuero 2007): the strength is mu(d) sigma*, with sigma* relaxing
-    /// towards sigma as d sigma*/dt = -(sigma* - sigma) / T, implicit in each step. None
-    /// (the spec): the strength follows sigma at once.
-    pub normal_lag: Option<f64>,
+    /// The normal response: the strength is mu(d) sigma*, sigma* relaxing towards sigma by
+    /// Prakash-Clifton's law with a time or a length scale ([`Normal`]), implicit in each
+    /// step. Instantaneous (the spec): the strength follows sigma at once.
+    pub normal: Normal,
     /// Most explicit steps a run may take ([`DEFAULT_MAX_STEPS`]): t_end / dt above it is
     /// refused before any work ([`RuptureSpec::steps`]).
     pub max_steps: u64,
@@ -120,7 +120,7 @@ impl Default for RuptureSpec {
             density: 1000.0,
             sigma0: 2.5,
             s_ratio: 2.0,
-            friction: SlipWeakening { mu_s: 0.648, mu_d: 0.583, d_c: 7.7e-7 },
+            friction: Law::SlipWeakening { mu_s: 0.648, mu_d: 0.583, dc: 7.7e-7 },
             patch_half_width: 0.01,
             overstress: 1.005,
             patch_taper: 0.0,
@@ -129,7 +129,7 @@ impl Default for RuptureSpec {
             damping: 0.0,
             contact: Contact::Bilateral,
             speed_window: (0.03, 0.08),
-            normal_lag: None,
+            normal: Normal::Instantaneous,
             max_steps: DEFAULT_MAX_STEPS,
         }
     }
@@ -148,9 +148,32 @@ pub const DEFAULT_MAX_STEPS: u64 = 1_000_000;
 /// cross-check spec, without it.
 pub const DEFAULT_NORMAL_LAG: f64 = 1e-3;
 
-/// A lag as a user gives it: 0 is the instantaneous normal stress (the spec's), otherwise T.
-pub fn normal_lag(t: f64) -> Option<f64> {
-    (t != 0.0).then_some(t)
+/// The normal response as `--normal-lag T` gives it: 0 is the instantaneous normal stress
+/// (the spec's), otherwise Prakash-Clifton with the time scale T.
+pub fn normal_lag(t: f64) -> Normal {
+    if t == 0.0 {
+        Normal::Instantaneous
+    } else {
+        Normal::Time { t }
+    }
+}
+
+/// The normal response as the command takes it: `--normal-lag-length L` (with
+/// `--normal-lag-v-star V*`) for the length form, else [`normal_lag`] of `--normal-lag T`.
+/// `keys` name the three as the user typed them (flags or keywords).
+pub fn normal_response(
+    lag: f64,
+    length: Option<f64>,
+    v_star: Option<f64>,
+    keys: [&str; 3],
+) -> Result<Normal> {
+    match (length, v_star) {
+        (Some(l), v) => Normal::length(l, v.unwrap_or(0.0), (keys[1], keys[2])),
+        (None, Some(_)) => {
+            Err(Error::input(keys[2], format!("belongs to the length form: give {} too", keys[1])))
+        }
+        (None, None) => Ok(normal_lag(lag)),
+    }
 }
 
 /// Fewest elements across Lambda_0 a run accepts.
@@ -164,13 +187,18 @@ impl RuptureSpec {
     /// Background shear outside the patch, Pa: tau0 = sigma0 (mu_s + S mu_d) / (1 + S).
     pub fn tau0(&self) -> f64 {
         let f = &self.friction;
-        self.sigma0 * (f.mu_s + self.s_ratio * f.mu_d) / (1.0 + self.s_ratio)
+        self.sigma0 * (f.mu_s() + self.s_ratio * f.mu_d()) / (1.0 + self.s_ratio)
+    }
+
+    /// D_c, m (the law is slip weakening once validated).
+    pub fn dc(&self) -> f64 {
+        self.friction.dc().unwrap_or(f64::INFINITY)
     }
 
     /// The initial shear at x, Pa: overstress mu_s sigma0 on the patch, [`Self::tau0`] outside,
     /// across its edge a jump or the cosine ramp of [`Self::patch_taper`].
     pub fn prestress(&self, x: f64) -> f64 {
-        let (tau_in, tau_out) = (self.overstress * self.friction.mu_s * self.sigma0, self.tau0());
+        let (tau_in, tau_out) = (self.overstress * self.friction.mu_s() * self.sigma0, self.tau0());
         let (a, w) = (self.patch_half_width, self.patch_taper);
         if w == 0.0 {
             // The patch edge is a node: include it whatever the rounding of its coordinate.
@@ -180,7 +208,7 @@ impl RuptureSpec {
         tau_out + (tau_in - tau_out) * 0.5 * (1.0 + (std::f64::consts::PI * s).cos())
     }
 
-    /// Lambda_0 of [`SlipWeakening::cohesive_zone`] at sigma0, m.
+    /// Lambda_0 of [`Law::cohesive_zone`] at sigma0, m.
     pub fn lambda0(&self) -> Result<f64> {
         let m = self.material()?;
         Ok(self.friction.cohesive_zone(m.shear_modulus(), m.nu, self.sigma0))
@@ -192,7 +220,7 @@ impl RuptureSpec {
     /// Simoes 1995), which the lag regularises (Prakash & Clifton 1993; Cochard & Rice 2000).
     /// None on the symmetric fault, whose normal stress does not change with slip.
     pub fn instantaneous_normal_warning(&self) -> Option<String> {
-        (self.normal_lag.is_none() && self.contact != Contact::Symmetric).then(|| {
+        (self.normal == Normal::Instantaneous && self.contact != Contact::Symmetric).then(|| {
             format!(
                 "the instantaneous normal stress on a rigid flat (--normal-lag 0): above a friction threshold the problem is ill-posed and the fronts depend on the mesh; the regularised default is --normal-lag {DEFAULT_NORMAL_LAG}"
             )
@@ -253,8 +281,22 @@ impl RuptureSpec {
             Error::Input { what, why } => Error::Input { what: format!("{what} (--poisson)"), why },
             e => e,
         })?;
-        SlipWeakening::new(self.friction.mu_s, self.friction.mu_d, self.friction.d_c)?;
-        if !(self.friction.mu_s > self.friction.mu_d) {
+        let Law::SlipWeakening { mu_s, mu_d, dc } = self.friction else {
+            return Err(Error::input(
+                "friction law (RuptureSpec::friction)",
+                format!("{}: the rupture scene runs slip weakening", self.friction.name()),
+            ));
+        };
+        if !(mu_s.is_finite() && mu_d.is_finite() && 0.0 <= mu_d && mu_d <= mu_s) {
+            return Err(Error::input(
+                "friction coefficients (--mu-s, --mu-d)",
+                format!("mu_s = {mu_s}, mu_d = {mu_d}: need 0 <= mu_d <= mu_s (mu_d = mu_s is Coulomb)"),
+            ));
+        }
+        if !(dc.is_finite() && dc > 0.0) {
+            return Err(Error::input("D_c (m, --dc)", format!("{dc} must be a positive slip distance")));
+        }
+        if !(mu_s > mu_d) {
             return Err(Error::input(
                 "friction coefficients (--mu-s, --mu-d)",
                 "the rupture scene needs mu_s > mu_d (S is defined by the strength drop)",
@@ -269,8 +311,16 @@ impl RuptureSpec {
                 ),
             ));
         }
-        if let Some(t) = self.normal_lag {
-            pos("normal-stress lag T (s, --normal-lag)", t)?;
+        match self.normal {
+            Normal::Time { t } => pos("normal-stress lag T (s, --normal-lag)", t)?,
+            Normal::Length { l, v_star } => {
+                Normal::length(
+                    l,
+                    v_star,
+                    ("normal-stress lag length L (m, --normal-lag-length)", "--normal-lag-v-star"),
+                )?;
+            }
+            Normal::Instantaneous => {}
         }
         if !(self.patch_taper >= 0.0 && self.patch_taper <= 2.0 * self.patch_half_width) {
             return Err(Error::input(
@@ -347,7 +397,7 @@ impl RuptureSpec {
         // Lambda_0 per metre of D_c (finite where Lambda_0 itself overflows).
         let m = self.material()?;
         let per_dc =
-            SlipWeakening { d_c: 1.0, ..self.friction }.cohesive_zone(m.shear_modulus(), m.nu, self.sigma0);
+            Law::SlipWeakening { mu_s, mu_d, dc: 1.0 }.cohesive_zone(m.shear_modulus(), m.nu, self.sigma0);
         if !(lambda0 <= self.length / 2.0) {
             return Err(Error::input(
                 "D_c (m, --dc)",
@@ -367,7 +417,7 @@ impl RuptureSpec {
                      lower --h to at most {:.3e} m",
                     lambda0 / self.h,
                     self.h,
-                    self.friction.d_c * MIN_ZONE_ELEMENTS * self.h / lambda0,
+                    dc * MIN_ZONE_ELEMENTS * self.h / lambda0,
                     lambda0 / MIN_ZONE_ELEMENTS
                 ),
             ));
@@ -515,6 +565,8 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
         fby: vec![0.0; nb],
         tr: vec![0.0; nb],
         seff: vec![spec.sigma0; nb],
+        theta: vec![0.0; nb],
+        slip_factor: if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 },
         min_sigma: f64::INFINITY,
         e: RuptureEnergy::default(),
     };
@@ -587,8 +639,12 @@ struct Flat<'s> {
     fbx: Vec<f64>,
     fby: Vec<f64>,
     tr: Vec<f64>,
-    /// The regularised normal stress sigma*.
+    /// The regularised normal stress sigma*, and the rate-and-state state (unused by slip
+    /// weakening; the split-node rule's one signature).
     seff: Vec<f64>,
+    theta: Vec<f64>,
+    /// Slip per unit displacement along x: 2 on a symmetric fault, else 1.
+    slip_factor: f64,
     min_sigma: f64,
     e: RuptureEnergy,
 }
@@ -615,23 +671,30 @@ impl Flat<'_> {
             }
             smin = smin.min(sigma);
             let open = spec.contact == Contact::Unilateral && sigma == 0.0;
-            let s_eff = match spec.normal_lag {
-                Some(lag) => {
-                    let a = dt / lag;
-                    self.seff[b] = (self.seff[b] + a * sigma) / (1.0 + a);
-                    if open {
-                        0.0
-                    } else {
-                        self.seff[b]
-                    }
+            let s_eff = if spec.normal.lags() {
+                // The slip rate of the half step before: the explicit rate the length form reads.
+                let rate = self.slip_factor * v[2 * k].abs();
+                self.seff[b] = spec.normal.relax(self.seff[b], sigma, dt, rate);
+                if open {
+                    0.0
+                } else {
+                    self.seff[b]
                 }
-                None => sigma,
+            } else {
+                sigma
             };
             // Not clamped at sigma < 0 (possible under bilateral contact only): the spec's
             // rule as written, T = mu sigma sign(T*); the run reports min sigma to show it.
-            let strength = spec.friction.mu(self.d[b]) * s_eff;
             let t_star = self.tau0[b] + (m * v[2 * k] / dt + fx) / w;
-            let t = if t_star.abs() <= strength { t_star } else { strength * sign(t_star) };
+            let trial = Trial {
+                t_star,
+                p: s_eff,
+                z: m / (dt * w * self.slip_factor),
+                dt,
+                slip: self.d[b],
+                v_old: self.slip_factor * v[2 * k].abs(),
+            };
+            let (t, _) = spec.friction.split_node(trial, &mut self.theta[b]);
             self.tr[b] = t;
             self.fbx[b] = (self.tau0[b] - t) * w;
             self.fby[b] = (sigma - spec.sigma0) * w;
@@ -650,8 +713,8 @@ impl Boundary for Flat<'_> {
         let smin = self.rule(s.u, s.v, &|i| s.force(i), dt, s.mass);
         self.min_sigma = self.min_sigma.min(smin);
         let e0 = self.e;
-        let thr = spec.friction.d_c / 100.0;
-        let slip_factor = if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 };
+        let (dc, slip_factor) = (spec.dc(), self.slip_factor);
+        let thr = dc / 100.0;
         for (b, &k) in self.base.iter().enumerate() {
             let (m, w) = (s.mass[k], self.width[b]);
             let (vxm, vym) = (s.v[2 * k], s.v[2 * k + 1]);
@@ -680,25 +743,14 @@ impl Boundary for Flat<'_> {
             if self.t_arrival[b].is_none() && d_new >= thr {
                 self.t_arrival[b] = Some(t0 + dt * (thr - self.d[b]) / (d_new - self.d[b]));
             }
-            if self.t_weakened[b].is_none() && d_new >= spec.friction.d_c {
-                self.t_weakened[b] = Some(t0 + dt * (spec.friction.d_c - self.d[b]) / (d_new - self.d[b]));
+            if self.t_weakened[b].is_none() && d_new >= dc {
+                self.t_weakened[b] = Some(t0 + dt * (dc - self.d[b]) / (d_new - self.d[b]));
             }
             self.peak[b] = f64::max(self.peak[b], vx.abs());
             self.d[b] = d_new;
         }
         let e = &self.e;
         (e.background_work - e0.background_work) + (e.contact - e0.contact) - (e.friction - e0.friction)
-    }
-}
-
-/// sign as numpy's: 0 at 0.
-fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }
 

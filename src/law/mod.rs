@@ -1,7 +1,13 @@
-//! Friction laws of the interface. Each is named in the outputs by [`Law::name`].
+//! The friction laws: one type, [`Law`], for the quasi-static event solver and the explicit
+//! solver alike, named in the outputs by [`Law::name`]. The quasi-static solver is
+//! rate-independent and takes the rate-free laws; the explicit solver takes every law but
+//! static-kinetic (whose jump has no dynamic meaning) through one split-node rule,
+//! [`Law::split_node`], with the normal response ([`Normal`]) as its own piece.
 
+pub mod normal;
 pub mod rate_state;
 
+pub use normal::Normal;
 pub use rate_state::{RateState, StateLaw};
 
 use crate::error::{Error, Result};
@@ -95,6 +101,25 @@ impl std::str::FromStr for Rule {
     }
 }
 
+/// One node's step in the split-node rule ([`Law::split_node`]), in consistent units: forces
+/// per unit width (N/m) with nodal masses, or tractions (Pa) with masses per unit area.
+#[derive(Debug, Clone, Copy)]
+pub struct Trial {
+    /// The tangential force that would stop the node.
+    pub t_star: f64,
+    /// The compressive normal force the strength is taken on (after the normal response).
+    pub p: f64,
+    /// The force per unit slip rate the step's inertia opposes: m / dt per unit slip rate
+    /// (m / (2 dt) on a symmetric fault, whose slip is twice the node's displacement).
+    pub z: f64,
+    /// s.
+    pub dt: f64,
+    /// The node's slip since it last healed, m.
+    pub slip: f64,
+    /// Its slip rate at the half step before, m/s.
+    pub v_old: f64,
+}
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Law {
     /// mu_s = mu_d = mu.
@@ -103,10 +128,14 @@ pub enum Law {
     /// `paper`: the rule's conventions (ignored by `overdamped`; [`Law::with_paper_options`]
     /// refuses them there).
     StaticKinetic { mu_s: f64, mu_d: f64, rule: Rule, paper: PaperOptions },
-    /// Linear slip weakening: a slipping node's coefficient falls from mu_s to mu_d over the
-    /// slip distance dc (m) accumulated since it last stuck; a node heals to mu_s when it
-    /// sticks again.
+    /// Linear slip weakening (Ida 1972, Andrews 1976): a slipping node's coefficient falls
+    /// from mu_s to mu_d over the slip distance dc (m) accumulated since it last healed. The
+    /// healing rule is the solver's: the quasi-static solver heals a node when it sticks
+    /// again, the dynamic commands every node after an event in which one weakened fully.
     SlipWeakening { mu_s: f64, mu_d: f64, dc: f64 },
+    /// Rate-and-state friction (explicit solver only: the quasi-static solver is
+    /// rate-independent).
+    RateState(RateState),
 }
 
 impl Law {
@@ -191,22 +220,109 @@ impl Law {
 
     /// Whether the law has a static peak above the kinetic level (stick-slip instabilities).
     pub fn weakens(&self) -> bool {
-        !matches!(self, Law::Coulomb { .. })
+        !matches!(self, Law::Coulomb { .. } | Law::RateState(_))
     }
 
-    /// Static threshold (stuck nodes).
+    /// The quasi-static event rule: static-kinetic's own, else the `paper` rule (the others
+    /// have no jump to resolve).
+    pub fn rule(&self) -> Rule {
+        match *self {
+            Law::StaticKinetic { rule, .. } => rule,
+            _ => Rule::Paper,
+        }
+    }
+
+    /// Refuses rate-and-state for the quasi-static event solver, which is rate-independent;
+    /// `key` names the law as the user gave it.
+    pub fn rate_free(&self, key: &str) -> Result<()> {
+        match self {
+            Law::RateState(_) => Err(Error::input(
+                key,
+                "rate-and-state has no rate-free limit for the quasi-static event solver (it creeps at any load): run it explicitly, with slide --dynamics --drive-velocity V (Python: dynamics.slide(drive_velocity=V))",
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// The rate-and-state parameters, if the law is one.
+    pub fn rate_state(&self) -> Option<&RateState> {
+        match self {
+            Law::RateState(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// Cohesive-zone size of a slowly moving mode-II crack under slip weakening (Day et al.
+    /// 2005, BSSA 95, eq. 5; Palmer & Rice 1973), m: Lambda_0 = (9 pi / 32) G D_c /
+    /// ((1 - nu)(tau_p - tau_r)), tau_p = mu_s sigma, tau_r = mu_d sigma, for shear modulus G
+    /// (Pa), Poisson's ratio nu and normal stress sigma (Pa). Infinite without weakening.
+    pub fn cohesive_zone(&self, shear_modulus: f64, poisson: f64, sigma: f64) -> f64 {
+        match *self {
+            Law::SlipWeakening { mu_s, mu_d, dc } => {
+                9.0 * std::f64::consts::PI / 32.0 * shear_modulus * dc
+                    / ((1.0 - poisson) * (mu_s - mu_d) * sigma)
+            }
+            _ => f64::INFINITY,
+        }
+    }
+
+    /// The length the mesh must resolve, m: slip weakening's [`Self::cohesive_zone`];
+    /// rate-and-state's L_b = G L / ((1 - nu) b sigma) (Dieterich 1992; Rubin & Ampuero
+    /// 2005), the process zone of its fronts; infinite for the rate-free laws without
+    /// weakening.
+    pub fn process_zone(&self, shear_modulus: f64, poisson: f64, sigma: f64) -> f64 {
+        match self {
+            Law::RateState(r) if r.b > 0.0 => shear_modulus * r.l / ((1.0 - poisson) * r.b * sigma),
+            _ => self.cohesive_zone(shear_modulus, poisson, sigma),
+        }
+    }
+
+    /// The traction-at-split-node rule (Day et al. 2005, BSSA 95) for one node in one explicit
+    /// step ([`Trial`]), with the node's rate-and-state state `theta` (s; the other laws leave
+    /// it). Returns the friction force T, of the sign of `t_star` (the node's new slip rate is
+    /// (|t_star| - |T|) / z), and whether the node slips.
+    ///
+    /// Rate-free laws: stick if |t_star| <= mu(slip) p, else T = mu(slip) p sign(t_star).
+    /// Rate-and-state: |t_star| - z V = p mu(V, theta) solved for V, the state advanced
+    /// exactly at constant V over the step, V the mean of the old rate and a predicted one
+    /// (the two-pass update of SEM2DPACK and SeisSol); it never sticks.
+    #[inline]
+    pub fn split_node(&self, s: Trial, theta: &mut f64) -> (f64, bool) {
+        if let Law::RateState(r) = self {
+            let tau = s.t_star.abs();
+            if !(s.p > 0.0) || tau == 0.0 {
+                return (0.0, false);
+            }
+            // z > 0 and p > 0: the solve is bracketed and cannot fail.
+            let v_pred = r.solve_rate(tau, s.z, s.p, r.evolve(*theta, s.v_old, s.dt)).unwrap_or(0.0);
+            *theta = r.evolve(*theta, 0.5 * (s.v_old + v_pred), s.dt);
+            let v = r.solve_rate(tau, s.z, s.p, *theta).unwrap_or(0.0);
+            return (sign(s.t_star) * (tau - s.z * v), v > 0.0);
+        }
+        let strength = self.kinetic(s.slip) * s.p;
+        if s.t_star.abs() <= strength {
+            (s.t_star, false)
+        } else {
+            (strength * sign(s.t_star), true)
+        }
+    }
+
+    /// Static threshold (stuck nodes). Rate-and-state: f_0, its steady-state coefficient at
+    /// V_0 (the scale F / (mu_s N) is read on).
     pub fn mu_s(&self) -> f64 {
         match *self {
             Law::Coulomb { mu } => mu,
             Law::StaticKinetic { mu_s, .. } | Law::SlipWeakening { mu_s, .. } => mu_s,
+            Law::RateState(r) => r.f0,
         }
     }
 
-    /// Kinetic coefficient (slipping nodes).
+    /// Kinetic coefficient (slipping nodes). Rate-and-state: f_0.
     pub fn mu_d(&self) -> f64 {
         match *self {
             Law::Coulomb { mu } => mu,
             Law::StaticKinetic { mu_d, .. } | Law::SlipWeakening { mu_d, .. } => mu_d,
+            Law::RateState(r) => r.f0,
         }
     }
 
@@ -233,7 +349,21 @@ impl Law {
             }
             Law::StaticKinetic { rule: Rule::Overdamped, .. } => "static-kinetic (rule overdamped)".into(),
             Law::SlipWeakening { dc, .. } => format!("slip-weakening (D_c = {dc:e} m)"),
+            Law::RateState(r) => r.name(),
         }
+    }
+}
+
+/// sign as numpy's: 0 at 0 (the split-node rule's T at t_star = 0 under a negative strength,
+/// possible under the rupture scene's bilateral contact, is 0).
+#[inline]
+pub fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
     }
 }
 

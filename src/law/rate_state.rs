@@ -38,6 +38,9 @@ pub struct RateState {
     /// Steady-state coefficient at V_0 (dimensionless).
     pub f0: f64,
     pub law: StateLaw,
+    /// The state every node starts from, s (default L / V_0: steady sliding at V_0; after a
+    /// hold of t_h at rest from there, about t_h under the aging law).
+    pub theta0: f64,
 }
 
 impl RateState {
@@ -59,7 +62,30 @@ impl RateState {
         if !f0.is_finite() {
             return bad("[law] f0", f0, "give a finite reference coefficient f_0");
         }
-        Ok(Self { a, b, l, v0, f0, law })
+        Ok(Self { a, b, l, v0, f0, law, theta0: l / v0 })
+    }
+
+    /// The same law started from state `theta0` (s, > 0).
+    pub fn with_theta0(self, theta0: f64) -> Result<Self> {
+        if !(theta0.is_finite() && theta0 > 0.0) {
+            return Err(Error::input(
+                "[law] theta0",
+                format!("{theta0}: give the initial state theta_0 > 0 (s)"),
+            ));
+        }
+        Ok(Self { theta0, ..self })
+    }
+
+    /// How the outputs name it.
+    pub fn name(&self) -> String {
+        let kind = match self.law {
+            StateLaw::Aging => "aging",
+            StateLaw::Slip => "slip",
+        };
+        format!(
+            "rate-and-state ({kind} law, a = {}, b = {}, L = {:e} m, V_0 = {:e} m/s, f_0 = {}, theta_0 = {:e} s)",
+            self.a, self.b, self.l, self.v0, self.f0, self.theta0
+        )
     }
 
     /// psi = f_0 + b ln(V_0 theta / L).

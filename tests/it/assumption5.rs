@@ -190,7 +190,7 @@ fn assumption5_measures_match_an_independent_recomputation() {
     // (Lambda_0 = 3 h here) and the tip is read to a node, so the median arrest lies within
     // Lambda_0 + h of it (measured: 1 h); the zero-fracture-energy rule, which kappa = 0.51
     // makes wrong by a fair part of the run, is farther (measured: 18 h).
-    let zone = tribofe::dynamics::friction::SlipWeakening::new(mu_s, mu_d, dc).unwrap().cohesive_zone(
+    let zone = tribofe::law::Law::slip_weakening(mu_s, mu_d, dc).unwrap().cohesive_zone(
         g,
         b.poisson,
         o.n_force / b.length,

@@ -388,7 +388,7 @@ fn arrival_times_converge_under_refinement() {
 #[test]
 fn on_the_regularised_flat_arrival_times_converge_once_the_patch_edge_is_smooth() {
     let sizes = [5e-4, 2.5e-4, 1.25e-4];
-    let lag = RuptureSpec { normal_lag: Some(1e-3), ..Default::default() };
+    let lag = RuptureSpec { normal: Normal::Time { t: 1e-3 }, ..Default::default() };
     for (taper, converges) in [(0.0, false), (0.004, true)] {
         let runs = small_block_runs(sizes, RuptureSpec { patch_taper: taper, ..lag.clone() });
         let (e1, e2, n) = arrival_differences(&runs, 0.015);
@@ -454,7 +454,7 @@ fn rupture_command_writes_the_spec_files_and_refuses_bad_input() {
 /// measured) and the normal stress stays near sigma0.
 #[test]
 fn rigid_flat_needs_the_normal_stress_lag_to_converge() {
-    let drops = |lag: Option<f64>| -> Vec<(f64, f64)> {
+    let drops = |lag: Normal| -> Vec<(f64, f64)> {
         [1e-3, 5e-4, 2.5e-4]
             .iter()
             .map(|&h| {
@@ -463,15 +463,15 @@ fn rigid_flat_needs_the_normal_stress_lag_to_converge() {
                     length: 0.1,
                     height: 0.05,
                     t_end: 0.04,
-                    normal_lag: lag,
+                    normal: lag,
                     ..Default::default()
                 });
                 (r.force_drop, r.min_sigma)
             })
             .collect()
     };
-    let raw = drops(None);
-    let lag = drops(Some(1e-3));
+    let raw = drops(Normal::Instantaneous);
+    let lag = drops(Normal::Time { t: 1e-3 });
     eprintln!("force drop, min sigma: spec rule {raw:?}; lag 1 ms {lag:?}");
     assert!(raw[1].0 > 2.0 * raw[0].0 && raw[2].0 > 2.0 * raw[1].0, "{raw:?}");
     assert!(raw[2].1 < 0.0, "{raw:?}");
@@ -691,7 +691,7 @@ fn dynamic_slide_refuses_what_it_cannot_run() {
 }
 
 use tribofe::dynamics::driven::{self, Driven, DynState, EventLimits, Layout};
-use tribofe::dynamics::friction::SlipWeakening;
+use tribofe::law::Normal;
 
 /// The event of `arrest_at_strength` with a given rest rate (m/s) and step cap; also the
 /// default rest rate and the quiet window and cap (steps) of [`ds::event_cap_periods`].
@@ -726,7 +726,7 @@ fn arrest_at_strength_with(
     let eta = 2.0 * xi / omega_t;
     let dt = 0.9 * model.critical_dt(eta);
     let (mu, n_force) = (0.5, 2.5 * l);
-    let friction = SlipWeakening::coulomb(mu).unwrap();
+    let friction = Law::coulomb(mu).unwrap();
     let elastic_slip = mu * (n_force / l) * t / mat().shear_modulus();
     let default_rate = driven::rest_rate(&friction, elastic_slip, period);
     let quiet_steps = (period / dt).ceil() as usize;
@@ -739,7 +739,15 @@ fn arrest_at_strength_with(
         sample_every: quiet_steps / 16,
         arrival_rate: f64::INFINITY,
     };
-    let dr = Driven { model: &model, layout: &layout, friction, n_force, dt, eta };
+    let dr = Driven {
+        model: &model,
+        layout: &layout,
+        law: friction,
+        normal: Normal::Instantaneous,
+        n_force,
+        dt,
+        eta,
+    };
     let nb = layout.base.len();
     let mut st = DynState {
         u: vec![0.0; model.n_dofs()],
@@ -749,7 +757,7 @@ fn arrest_at_strength_with(
         q: [0.0; 2],
         qdot: [0.0; 2],
         d: vec![0.0; nb],
-        time: 0.0,
+        ..Default::default()
     };
     let rec = dr.run_event(&mut st, &lim, 1e-3 * elastic_slip, cancel, tick);
     (rec, default_rate, quiet_steps, cap)

@@ -4,11 +4,10 @@
 
 use tribofe::dynamics::driven::{Contact, Driven, DynState, EventEnergy, Layout};
 use tribofe::dynamics::explicit::Elastodynamic;
-use tribofe::dynamics::friction::SlipWeakening;
 use tribofe::fem::material::Material;
 use tribofe::interface::condense::{boundary_model, condense};
 use tribofe::interface::events::{EventKind, NodeState, Operator, Phase};
-use tribofe::law::Law;
+use tribofe::law::{Law, Normal};
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::scene::Scene;
 use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};
@@ -231,7 +230,8 @@ fn heavy_plate_rings_at_the_rigid_body_frequencies() {
     let driven = Driven {
         model: &model,
         layout: &layout,
-        friction: SlipWeakening::coulomb(100.0).unwrap(),
+        law: Law::coulomb(100.0).unwrap(),
+        normal: Normal::Instantaneous,
         n_force,
         dt,
         eta,
@@ -271,8 +271,16 @@ fn heavy_plate_rings_at_the_rigid_body_frequencies() {
             v[2 * k] = arm * qdot[1];
             v[2 * k + 1] = qdot[0] + x * qdot[1];
         }
-        let mut st =
-            DynState { u, v, u_h: 0.0, drive_velocity: 0.0, q: qs, qdot, d: vec![0.0; c.n], time: 0.0 };
+        let mut st = DynState {
+            u,
+            v,
+            u_h: 0.0,
+            drive_velocity: 0.0,
+            q: qs,
+            qdot,
+            d: vec![0.0; c.n],
+            ..Default::default()
+        };
         let mut wk = driven.work(&st);
         let mut e = EventEnergy::default();
         let mut contact = vec![Contact::default(); c.n];

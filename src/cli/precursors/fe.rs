@@ -53,10 +53,7 @@ pub fn fe(args: FeArgs) -> tribofe::Result<()> {
     let scene = fe_scene(&args.scene, &args.out)?;
     let bar = spinner("precursors fe: one run per event rule");
     let cancel = tribofe::Cancel::new();
-    let paper = tribofe::law::PaperOptions {
-        residual: args.residual,
-        backslip: args.backslip == "allowed",
-    };
+    let paper = tribofe::law::PaperOptions { residual: args.residual, backslip: args.backslip == "allowed" };
     let runs = tribofe::studies::precursors_fe::fig4_with(
         &scene,
         p.r(),

@@ -9,7 +9,7 @@ use super::operator::Affine;
 use super::simulation::{stuck_err, Recorder};
 use super::{tolerances, Event, NodeState};
 use crate::error::Result;
-use crate::law::{Law, Residual, Rule};
+use crate::law::{Residual, Rule};
 
 /// The quasi-static rules as the drive's [`Resolver`]: the law's rule ([`instability`]), then
 /// the event classified and recorded. Keeps the last region for the Zeno guard.
@@ -82,10 +82,7 @@ pub(super) fn instability(
             sv.move_anchor(i, u_start[i]);
         }
     }
-    let rule = match sv.law() {
-        Law::StaticKinetic { rule, .. } => rule,
-        Law::Coulomb { .. } | Law::SlipWeakening { .. } => Rule::Paper,
-    };
+    let rule = sv.law().rule();
     let in_region = match rule {
         Rule::Paper => paper(sv, a, lam, i0, &u_start)?,
         Rule::Overdamped => overdamped(sv, a, lam, i0, &u_start)?,
@@ -345,6 +342,7 @@ fn contact(sv: &mut Solver, b: &Affine, lam: f64) -> Result<Option<Landed>> {
 mod tests {
     use super::super::{springs, NodeState, Problem};
     use super::*;
+    use crate::law::Law;
 
     /// Two identical nodes with the drive at the interface (h = 0, no tilt): both stuck at 0
     /// carry T = -kt lam, P = N/2 and reach mu_s P together at lam* = mu_s N/(2 kt).

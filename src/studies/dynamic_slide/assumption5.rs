@@ -6,7 +6,7 @@
 //! Griffith balance, beside where it stopped (docs/dynamics-findings.md, "Assumption 5").
 
 use crate::dynamics::driven::EventRecord;
-use crate::dynamics::friction::SlipWeakening;
+use crate::law::Law;
 
 /// The stated distance ahead of the tip, in block thicknesses t: the stress concentration
 /// of a front in a thin layer decays over a few t (shear lag), so beyond it the field the
@@ -54,7 +54,7 @@ pub fn predicted_arrest(
     tau: &[f64],
     start: usize,
     direction: i32,
-    f: &SlipWeakening,
+    (mu_s, mu_d): (f64, f64),
     d_c: f64,
     shear_modulus: f64,
     thickness: f64,
@@ -63,9 +63,9 @@ pub fn predicted_arrest(
     let mut i = start;
     loop {
         if p[i] > 0.0 {
-            let excess = tau[i] - f.mu_d * p[i];
+            let excess = tau[i] - mu_d * p[i];
             let released = thickness * excess * excess / (2.0 * shear_modulus);
-            let gamma = (f.mu_s - f.mu_d) * p[i] * d_c / 2.0;
+            let gamma = (mu_s - mu_d) * p[i] * d_c / 2.0;
             if excess < 0.0 || released < gamma {
                 return i;
             }
@@ -99,13 +99,14 @@ pub fn measure(
     rec: &EventRecord,
     x: &[f64],
     w: &[f64],
-    f: &SlipWeakening,
+    law: &Law,
     shear_modulus: f64,
     thickness: f64,
 ) -> Option<Assumption5> {
+    let Law::SlipWeakening { mu_s, mu_d, dc } = *law else { return None };
     let c = rec.nucleation?;
     let n = x.len();
-    if rec.p_pre.len() != n || rec.d_pre.len() != n || f.mu_s <= f.mu_d {
+    if rec.p_pre.len() != n || rec.d_pre.len() != n || mu_s <= mu_d {
         return None;
     }
     let arrest = *rec.tip.iter().rev().find(|v| v.is_finite())?;
@@ -118,9 +119,10 @@ pub fn measure(
     // memory past the threshold at the onset) is the crack already there, weakened below
     // what the balance asks of fresh interface.
     let start = patch_edge(&rec.d_pre, c, direction, rec.threshold);
-    let at = |d_c| x[predicted_arrest(&p, &tau, start, direction, f, d_c, shear_modulus, thickness)];
-    let (predicted_mu_d, predicted_griffith) = (at(0.0), at(f.d_c));
-    let drop = f.mu_s - f.mu_d;
+    let at =
+        |d_c| x[predicted_arrest(&p, &tau, start, direction, (mu_s, mu_d), d_c, shear_modulus, thickness)];
+    let (predicted_mu_d, predicted_griffith) = (at(0.0), at(dc));
+    let drop = mu_s - mu_d;
     let far = AHEAD_THICKNESSES * thickness;
     // Positions are whole node spacings apart: 1e-9 of an element is round-off.
     let eps = 1e-9 * (x[n - 1] - x[0]) / n as f64;

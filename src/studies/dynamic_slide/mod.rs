@@ -27,7 +27,7 @@ use crate::error::{Error, Result};
 use crate::interface::banded::{BandedOperator, Solving};
 use crate::interface::condense::{condense, Condensed};
 use crate::interface::events::{self, Operator};
-use crate::law::Law;
+use crate::law::{Law, Normal};
 use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;
@@ -77,6 +77,9 @@ pub struct DynamicOptions {
     /// (mu_s - mu_d) / this (validation/dynamics/converge/README.md, "The static loading's
     /// weakening step"). The constant-velocity drive updates it every explicit step instead.
     pub weakening_steps: f64,
+    /// The normal response of the explicit solver's base ([`Normal`]; the quasi-static phase's
+    /// normal force is its own equilibrium's).
+    pub normal: Normal,
 }
 
 impl Default for DynamicOptions {
@@ -92,6 +95,7 @@ impl Default for DynamicOptions {
             plate_inertia: 0.0,
             heal_slipped_only: false,
             weakening_steps: DEFAULT_WEAKENING_STEPS,
+            normal: Normal::Instantaneous,
         }
     }
 }
@@ -319,17 +323,17 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let full = su.full_field()?;
     let full_field =
         |a: &Affine, lam: f64| full.field(&(0..2 * n + 3).map(|j| a.b(j, lam)).collect::<Vec<_>>());
-    let (model, mat, friction, weakens) = (&su.model, su.mat, su.friction, su.weakens);
+    let (model, mat, law, weakens) = (&su.model, su.mat, su.law, su.weakens);
     let (dt, dt_stable, eta, omega_t, period, lambda0) =
         (su.dt, su.dt_stable, su.eta, su.omega_t, su.period, su.lambda0);
-    let dc = friction.d_c;
+    let dc = su.slip_scale();
     let t = scene.block.thickness;
     let max_periods = d.max_periods.unwrap_or_else(|| event_cap_periods(c.l, t, su.xi(), d.ke_fraction));
     let elastic_slip = mu_s * (o.n_force / c.l) * t / mat.shear_modulus();
     let lim = EventLimits {
         ke_fraction: d.ke_fraction,
         quiet_steps: su.quiet_steps,
-        rest_rate: crate::dynamics::driven::rest_rate(&friction, elastic_slip, period),
+        rest_rate: crate::dynamics::driven::rest_rate(&law, elastic_slip, period),
         max_steps: (max_periods * period / dt).ceil() as usize,
         sample_every: su.sample_every,
         arrival_rate: su.arrival_rate,
@@ -366,7 +370,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         base: &layout.base,
         x: &c.x,
         w: &c.w,
-        friction: &friction,
+        law: &law,
         shear_modulus: mat.shear_modulus(),
         thickness: t,
         length: c.l,

@@ -2,8 +2,8 @@
 //! stated stability number and never from the mesh; the mesh is then chosen (or a given one
 //! checked) so that the cohesive zone spans at least [`MIN_ZONE_ELEMENTS`] elements.
 
-use crate::dynamics::friction::SlipWeakening;
 use crate::error::{Error, Result};
+use crate::law::Law;
 use crate::scene::Scene;
 
 pub use crate::dynamics::rupture::MIN_ZONE_ELEMENTS;
@@ -20,8 +20,8 @@ pub const ARRIVAL_FRACTION: f64 = 0.01;
 /// pressure (mu_s N/L without a drop); the scale is 1.92e-4 m/s on the paper's scene (the
 /// threshold 1.92e-6 m/s), whose fronts slip at up to 3.7e-4 m/s. Set by the law, the load
 /// and the material, never by the mesh.
-pub fn arrival_rate(f: &SlipWeakening, n_over_l: f64, density: f64, c_s: f64) -> f64 {
-    ARRIVAL_FRACTION * rate_scale(f.mu_s, f.mu_d, n_over_l, density, c_s)
+pub fn arrival_rate(f: &Law, n_over_l: f64, density: f64, c_s: f64) -> f64 {
+    ARRIVAL_FRACTION * rate_scale(f.mu_s(), f.mu_d(), n_over_l, density, c_s)
 }
 
 /// dtau / (rho c_s), m/s: the particle velocity of a shear wave carrying the strength drop
@@ -99,7 +99,7 @@ pub fn lambda0(scene: &Scene, mu_s: f64, mu_d: f64, dc: f64, n_force: f64) -> Re
     crate::studies::slide::check_n_force(scene, n_force)?;
     let b = &scene.block;
     let g = b.young / (2.0 * (1.0 + b.poisson));
-    Ok(SlipWeakening::new(mu_s, mu_d, dc)?.cohesive_zone(g, b.poisson, n_force / b.length))
+    Ok(Law::SlipWeakening { mu_s, mu_d, dc }.cohesive_zone(g, b.poisson, n_force / b.length))
 }
 
 /// The smallest D_c whose cohesive zone spans [`MIN_ZONE_ELEMENTS`] elements of the scene's

@@ -6,10 +6,10 @@
 use super::steps::{anchor_after, arrest, classify_event, crossing};
 use super::{assumption5, DynEvent};
 use crate::dynamics::driven::{DynState, EventLimits};
-use crate::dynamics::friction::SlipWeakening;
 use crate::error::Result;
 use crate::interface::events::handoff::{Affine, Onset, Recorder, Resolved, Resolver, Solver};
 use crate::interface::events::{tolerances, Event, EventKind};
+use crate::law::Law;
 use crate::progress::Progress;
 use crate::studies::slide::SlideOptions;
 use std::time::Instant;
@@ -24,7 +24,7 @@ pub(super) struct Held<'r, 'a> {
     pub base: &'r [usize],
     pub x: &'r [f64],
     pub w: &'r [f64],
-    pub friction: &'r SlipWeakening,
+    pub law: &'r Law,
     pub shear_modulus: f64,
     pub thickness: f64,
     pub length: f64,
@@ -43,8 +43,8 @@ pub(super) struct Held<'r, 'a> {
 
 impl Resolver for Held<'_, '_> {
     fn resolve(&mut self, sv: &mut Solver, rec: &mut Recorder, at: Onset) -> Result<Resolved> {
-        let (o, lim, friction) = (self.o, self.lim, self.friction);
-        let (n, lam, a_cur, dc) = (sv.n(), at.lam, at.a, friction.d_c);
+        let (o, lim, law) = (self.o, self.lim, self.law);
+        let (n, lam, a_cur, dc) = (sv.n(), at.lam, at.a, law.dc().unwrap_or(1.0));
         let mu_s = o.law.mu_s();
         let dclock = Instant::now();
         let before = sv.record(a_cur, lam, Some(&rec.prev_u));
@@ -56,6 +56,8 @@ impl Resolver for Held<'_, '_> {
             q: [before.v, before.tilt],
             qdot: [0.0; 2],
             d: (0..n).map(|k| sv.slip_memory(k, a_cur.b(k, lam))).collect(),
+            theta: vec![],
+            p_lagged: vec![],
             time: 0.0,
         };
         let shown = at.shown;
@@ -105,8 +107,7 @@ impl Resolver for Held<'_, '_> {
         })?;
         let (t_arrest, force_drop_at_arrest) =
             arrest(&ev, before.f, f_after).map_or((None, None), |(t, f)| (Some(t), f));
-        let assumption5 =
-            assumption5::measure(&ev, self.x, self.w, friction, self.shear_modulus, self.thickness);
+        let assumption5 = assumption5::measure(&ev, self.x, self.w, law, self.shear_modulus, self.thickness);
         self.events.push(DynEvent {
             event: rec.out.events.len() - 1,
             x: lam,

@@ -5,7 +5,6 @@
 use super::{DynEvent, DynamicOptions, DynamicResult, DEFAULT_DAMPING_RATIO};
 use crate::dynamics::driven::{Driven, Layout};
 use crate::dynamics::explicit::Elastodynamic;
-use crate::dynamics::friction::SlipWeakening;
 use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
 use crate::fem::assembly::Assembler;
@@ -13,7 +12,7 @@ use crate::fem::constraints::Reduction;
 use crate::fem::material::Material;
 use crate::interface::condense::{boundary_model, Condensed};
 use crate::interface::events::Run;
-use crate::law::Law;
+use crate::law::{Law, Normal};
 use crate::linalg::solve::{Factor, Solver, SolverOptions};
 use crate::scene::{Scene, SceneModel};
 use crate::studies::slide::{SlideOptions, SlideResult};
@@ -39,7 +38,9 @@ pub(super) struct Setup {
     /// One thickness period in steps (at least 10), and the event's sampling stride (16 a period).
     pub quiet_steps: usize,
     pub sample_every: usize,
-    pub friction: SlipWeakening,
+    /// The law the explicit events run (the quasi-static phase's own, as given).
+    pub law: Law,
+    pub normal: Normal,
     pub weakens: bool,
     /// H - t, m.
     pub arm: f64,
@@ -69,17 +70,9 @@ impl Setup {
         let eta = d.damping.unwrap_or(2.0 * DEFAULT_DAMPING_RATIO / omega_t);
         let dt_stable = model.critical_dt(eta);
         let dt = d.courant * dt_stable;
-        let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
-        let friction = match o.law {
-            Law::SlipWeakening { dc, .. } => SlipWeakening::new(mu_s, mu_d, dc)?,
-            _ => SlipWeakening::coulomb(mu_s)?,
-        };
-        let weakens = o.law.weakens();
-        let lambda0 = if weakens {
-            friction.cohesive_zone(mat.shear_modulus(), mat.nu, o.n_force / b.length)
-        } else {
-            f64::INFINITY
-        };
+        let (law, normal) = (o.law, d.normal);
+        let weakens = law.weakens();
+        let lambda0 = law.cohesive_zone(mat.shear_modulus(), mat.nu, o.n_force / b.length);
         Ok(Self {
             sm,
             slots,
@@ -97,16 +90,12 @@ impl Setup {
             dt,
             quiet_steps: ((period / dt).ceil() as usize).max(10),
             sample_every: ((period / dt / 16.0).floor() as usize).max(1),
-            friction,
+            law,
+            normal,
             weakens,
             arm: scene.loading.height - b.thickness,
             lambda0,
-            arrival_rate: super::physics::arrival_rate(
-                &friction,
-                o.n_force / b.length,
-                b.density,
-                speeds.c_s,
-            ),
+            arrival_rate: super::physics::arrival_rate(&law, o.n_force / b.length, b.density, speeds.c_s),
         })
     }
 
@@ -189,6 +178,17 @@ impl Setup {
     }
 
     /// The event loop's view of the mesh (`x`: the interface nodes' x) with the options' plate.
+    /// The slip that marks a node as slipped in an event, times 100: D_c under slip weakening,
+    /// L under rate-and-state, and 1 m under Coulomb (no slip scale of its own; its events
+    /// are read off the slip rates, this only sets the recorded tip's threshold, 1 cm).
+    pub fn slip_scale(&self) -> f64 {
+        match self.law {
+            Law::SlipWeakening { dc, .. } => dc,
+            Law::RateState(r) => r.l,
+            _ => 1.0,
+        }
+    }
+
     pub fn layout(&self, x: Vec<f64>, d: &DynamicOptions) -> Result<Layout> {
         let top: Vec<usize> = self.sm.mesh.set_nodes(&self.sm.top_set)?;
         let top_x: Vec<f64> = top.iter().map(|&k| self.sm.mesh.nodes[k][0]).collect();
@@ -237,7 +237,15 @@ impl Setup {
     }
 
     pub fn driven<'a>(&'a self, layout: &'a Layout, n_force: f64) -> Driven<'a> {
-        Driven { model: &self.model, layout, friction: self.friction, n_force, dt: self.dt, eta: self.eta }
+        Driven {
+            model: &self.model,
+            layout,
+            law: self.law,
+            normal: self.normal,
+            n_force,
+            dt: self.dt,
+            eta: self.eta,
+        }
     }
 }
 

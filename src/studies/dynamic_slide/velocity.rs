@@ -163,7 +163,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let c = condense(scene, &SolverOptions::default())?;
     let layout = su.layout(c.x.clone(), d)?;
     let n = c.n;
-    let (mu_s, friction, weakens, lambda0) = (o.law.mu_s(), su.friction, su.weakens, su.lambda0);
+    let (mu_s, law, weakens, lambda0) = (o.law.mu_s(), su.law, su.weakens, su.lambda0);
     let s_h = c.at_height(scene.loading.height);
     // Full fields from boundary values (as the held mode): the block with its boundary held.
     let full = su.full_field()?;
@@ -201,6 +201,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         q: [start.v, start.tilt],
         qdot: [vel * p.b1[2 * n + 1], vel * p.b1[2 * n + 2]],
         d: slip,
+        theta: law.rate_state().map_or(vec![], |r| vec![r.theta0; n]),
+        p_lagged: vec![],
         time: 0.0,
     };
 
@@ -221,7 +223,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let mut beat = o.cancel.beat();
     // Nodes slipped by instabilities since the last cycle end, and whether a crossing ends one.
     let mut slipped = (vec![false; layout.x.len()], o.end_at_crossing);
-    let dc = friction.d_c;
+    let dc = su.slip_scale();
     // The state at level n after the step from n: X^n, u^n, the plate's q^n and the
     // forces at n (F^n, P, T), all of one time level (loading.csv's rows).
     let sample_state =
@@ -316,7 +318,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                 ev.went[b] |= r > thr;
                 rec.slip[b] = ds.d[b] - ev.d0[b];
                 rec.open[b] = contact[b].open;
-                if ds.d[b] >= dc && ev.d0[b] < dc && friction.mu_s > friction.mu_d {
+                if ds.d[b] >= dc && ev.d0[b] < dc && law.weakens() {
                     rec.weakened = true;
                 }
             }

@@ -75,10 +75,7 @@ fn fig4_on(
     o: SlideOptions,
     progress: Progress,
 ) -> Result<Fig4> {
-    let rule = match o.law {
-        Law::StaticKinetic { rule, .. } => rule,
-        Law::Coulomb { .. } | Law::SlipWeakening { .. } => Rule::Paper,
-    };
+    let rule = o.law.rule();
     // Cycles end as the model's do, when the slip has crossed the interface.
     let o = SlideOptions { end_at_crossing: true, ..o };
     let res = run_condensed(scene, c.clone(), 0.0, &o, progress)?;
