@@ -986,16 +986,12 @@ fn rupture<'py>(
     if let Some(c) = contact {
         spec.contact = c.parse().map_err(to_py)?;
     }
-    if normal_lag.is_some() && normal_lag_length.is_some() {
-        return Err(pyo3::exceptions::PyValueError::new_err(
-            "normal_lag= and normal_lag_length=: give one (the time or the length form of the normal-stress lag)",
-        ));
-    }
-    spec.normal = rp::normal_response(
-        normal_lag.unwrap_or(rp::DEFAULT_NORMAL_LAG),
+    spec.normal = tribofe::law::Normal::from_inputs(
+        normal_lag,
         normal_lag_length,
         normal_lag_v_star,
-        ["normal_lag=", "normal_lag_length=", "normal_lag_v_star="],
+        spec.normal,
+        ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
     )
     .map_err(to_py)?;
     if let Some(n) = max_steps {

@@ -101,10 +101,12 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         t_end: a.t_end,
         damping: a.damping,
         contact: a.contact.parse::<Contact>()?,
-        normal: tribofe::dynamics::rupture::normal_response(
-            a.normal_lag,
+        // --normal-lag has a default (clap refuses it given with --normal-lag-length).
+        normal: tribofe::law::Normal::from_inputs(
+            a.normal_lag_length.is_none().then_some(a.normal_lag),
             a.normal_lag_length,
             a.normal_lag_v_star,
+            tribofe::law::Normal::Instantaneous,
             ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
         )?,
         patch_taper: a.patch_taper,

@@ -14,7 +14,8 @@ use tribofe::Error;
 pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Friction law: coulomb, static-kinetic or slip-weakening.
+    /// Friction law: coulomb, static-kinetic, slip-weakening or rate-state (rate-and-state:
+    /// --dynamics --drive-velocity only; the quasi-static solver is rate-independent).
     #[arg(long, default_value = tribofe::studies::slide::DEFAULT_LAW)]
     pub law: String,
     /// Coulomb coefficient (coulomb; default 0.5).
@@ -46,6 +47,39 @@ pub struct Args {
     /// Slip-weakening distance D_c, m (slip-weakening; the coefficients as for static-kinetic).
     #[arg(long)]
     pub dc: Option<f64>,
+    /// Rate-and-state (rate-state): the direct effect a, the evolution effect b (b > a: rate
+    /// weakening at steady state), the state-evolution distance L (m) and the steady-state
+    /// coefficient f_0 at V_0; mu = a asinh(V / (2 V_0) exp((f_0 + b ln(V_0 theta / L)) / a)).
+    #[arg(long)]
+    pub a: Option<f64>,
+    #[arg(long)]
+    pub b: Option<f64>,
+    #[arg(long)]
+    pub l_rs: Option<f64>,
+    #[arg(long)]
+    pub f0: Option<f64>,
+    /// Rate-and-state's reference slip rate V_0, m/s (default 1e-6).
+    #[arg(long)]
+    pub v0: Option<f64>,
+    /// Rate-and-state's state evolution: aging (d theta/dt = 1 - V theta / L; heals at rest)
+    /// or slip (-(V theta / L) ln(V theta / L)). Default aging.
+    #[arg(long)]
+    pub state_law: Option<String>,
+    /// Rate-and-state's initial state theta_0 on every node, s (default L / V_0: steady
+    /// sliding at V_0; a hold of t_h at rest under the aging law gives about t_h).
+    #[arg(long)]
+    pub theta0: Option<f64>,
+    /// The explicit base's normal response (--dynamics): Prakash-Clifton with a time scale T,
+    /// s (d p*/dt = -(p* - p) / T). Default: instantaneous.
+    #[arg(long)]
+    pub normal_lag: Option<f64>,
+    /// Prakash-Clifton with a slip length L, m (d p*/dt = -(p* - p)(|V| + V*) / L), in place
+    /// of --normal-lag (--dynamics).
+    #[arg(long, conflicts_with = "normal_lag")]
+    pub normal_lag_length: Option<f64>,
+    /// The length form's reference slip rate V*, m/s (default 0).
+    #[arg(long)]
+    pub normal_lag_v_star: Option<f64>,
     /// Normal force N, N/m (results are reported per unit N where that makes them independent of it).
     #[arg(long, default_value_t = tribofe::studies::slide::DEFAULT_N_FORCE)]
     pub n_force: f64,
@@ -190,6 +224,9 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             ("--plate-mass", a.plate_mass.is_some()),
             ("--plate-inertia", a.plate_inertia.is_some()),
             ("--heal", super::given("heal")),
+            ("--normal-lag", a.normal_lag.is_some()),
+            ("--normal-lag-length", a.normal_lag_length.is_some()),
+            ("--normal-lag-v-star", a.normal_lag_v_star.is_some()),
             ("--weakening-steps", a.weakening_steps.is_some()),
             ("--refine", a.refine.is_some()),
             ("--spacetime", a.spacetime.is_some()),
@@ -249,6 +286,15 @@ fn law_choice(a: &Args) -> LawChoice {
         g: a.g,
         rule: a.rule.clone(),
         dc: a.dc,
+        rate_state: tribofe::studies::slide::RateStateChoice {
+            a: a.a,
+            b: a.b,
+            l_rs: a.l_rs,
+            v0: a.v0,
+            f0: a.f0,
+            state_law: a.state_law.clone(),
+            theta0: a.theta0,
+        },
     }
 }
 
@@ -322,10 +368,12 @@ fn run_checked(
         },
         ..Default::default()
     };
-    tribofe::studies::slide::check_options(&scene, &o)?;
     if a.dynamics {
+        // Its own checks (the quasi-static ones on the law's rate-free stand-in under the
+        // constant-velocity drive) come first in the run.
         return run_dynamic(&a, &scene, o);
     }
+    tribofe::studies::slide::check_options(&scene, &o)?;
     let bar = ProgressBar::new(1000).with_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {percent}% {elapsed}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
@@ -428,6 +476,13 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         plate_inertia: a.plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only: a.heal == "slipped",
         weakening_steps: ds::weakening_steps(a.weakening_steps, &o, a.drive_velocity)?,
+        normal: tribofe::law::Normal::from_inputs(
+            a.normal_lag,
+            a.normal_lag_length,
+            a.normal_lag_v_star,
+            tribofe::law::Normal::Instantaneous,
+            ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
+        )?,
         ..Default::default()
     };
     if let Some(levels) = a.refine {
@@ -469,6 +524,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         ("drive_velocity_m_per_s", toml::Value::from(a.drive_velocity.unwrap_or(0.0))),
         ("plate_mass_kg_per_m", toml::Value::from(d.plate_mass)),
         ("plate_inertia_kg_m2_per_m", toml::Value::from(d.plate_inertia)),
+        ("normal_response", toml::Value::from(d.normal.name())),
     ];
     // summary.csv's row, NaN (a quantity the run does not have) left out, and the cap if met.
     let summary = ds::summary::COLUMNS.iter().zip(ds::summary::values(&res));

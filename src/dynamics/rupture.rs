@@ -158,24 +158,6 @@ pub fn normal_lag(t: f64) -> Normal {
     }
 }
 
-/// The normal response as the command takes it: `--normal-lag-length L` (with
-/// `--normal-lag-v-star V*`) for the length form, else [`normal_lag`] of `--normal-lag T`.
-/// `keys` name the three as the user typed them (flags or keywords).
-pub fn normal_response(
-    lag: f64,
-    length: Option<f64>,
-    v_star: Option<f64>,
-    keys: [&str; 3],
-) -> Result<Normal> {
-    match (length, v_star) {
-        (Some(l), v) => Normal::length(l, v.unwrap_or(0.0), (keys[1], keys[2])),
-        (None, Some(_)) => {
-            Err(Error::input(keys[2], format!("belongs to the length form: give {} too", keys[1])))
-        }
-        (None, None) => Ok(normal_lag(lag)),
-    }
-}
-
 /// Fewest elements across Lambda_0 a run accepts.
 pub const MIN_ZONE_ELEMENTS: f64 = 3.0;
 

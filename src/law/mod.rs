@@ -244,6 +244,16 @@ impl Law {
         }
     }
 
+    /// The rate-free law the quasi-static event solver takes in this law's place for what it
+    /// does before an explicit run (the normal load): Coulomb at f_0 for rate-and-state (at
+    /// rest under the normal load a node holds up to about f_0 p), else the law itself.
+    pub fn rate_free_stand_in(&self) -> Law {
+        match *self {
+            Law::RateState(r) => Law::Coulomb { mu: r.f0.max(0.0) },
+            l => l,
+        }
+    }
+
     /// The rate-and-state parameters, if the law is one.
     pub fn rate_state(&self) -> Option<&RateState> {
         match self {
@@ -383,4 +393,90 @@ pub const MU_MIN: f64 = 1e-100;
 
 fn too_low(what: &str, mu: f64) -> Error {
     Error::input(what, format!("{mu:e} is below {MU_MIN:e}, 0 to every digit kept"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A slider of mass m on the split-node rule, pulled through a stiff spring k whose far end
+    /// moves at V1 and then at V2 = 10 V1: the rate-and-state velocity step (Dieterich 1979)
+    /// through [`Law::split_node`] as the explicit solvers call it. Returns (slip since the
+    /// step / L, mu) after the step.
+    fn velocity_step(kind: StateLaw) -> (RateState, Vec<(f64, f64)>) {
+        // a sigma / k = 1e-4 L: the spring's stretch changes V by 1e-4 of itself over the
+        // decay, so the slider moves at the drive's rate (the stiff-drive limit). The friction's
+        // viscosity a sigma / V2 = 1e9 N s/m is 5x the critical 2 sqrt(k m): no ringing.
+        let r = RateState::new(0.01, 0.015, 1e-5, 1e-6, 0.6, kind).unwrap();
+        let law = Law::RateState(r);
+        let (sigma, k, m): (f64, f64, f64) = (1e6, 1e13, 1e3);
+        let (v1, v2) = (1e-6, 1e-5);
+        let dt = 0.5 * (m / k).sqrt();
+        // Steady sliding at V1: theta = L / V1, the spring stretched to mu_ss(V1) sigma / k.
+        let mut theta = r.l / v1;
+        let (mut x, mut v) = (0.0, v1);
+        let mut drive = r.mu_steady(v1) * sigma / k;
+        let mut out = vec![];
+        let steps = (6.0 * r.l / v2 / dt) as usize;
+        for _ in 0..steps {
+            drive += v2 * dt;
+            let fx = k * (drive - x);
+            let trial =
+                Trial { t_star: -fx - m * v / dt, p: sigma, z: m / dt, dt, slip: 0.0, v_old: v.abs() };
+            let (t, slips) = law.split_node(trial, &mut theta);
+            assert!(slips);
+            v += dt * (fx + t) / m;
+            x += dt * v;
+            out.push((x / r.l, -t / sigma));
+        }
+        (r, out)
+    }
+
+    #[test]
+    fn the_split_node_rule_gives_the_velocity_step_of_rate_and_state() {
+        // Closed forms at slip delta after the step (constant V2): slip law mu - mu_ss(V2) =
+        // b ln(V2/V1) e^(-delta/L); aging law b ln(1 + (V2/V1 - 1) e^(-delta/L)). The direct
+        // effect: mu jumps by a ln(V2/V1) at once. Deviations: the spring's stretch (1e-4 of
+        // V, a 1e-4 change of mu's direct part: 1e-6) and the step's state update, exact at
+        // constant V and second order in dt V2 / L = 1.6e-6: far below the 1e-5 allowed.
+        for kind in [StateLaw::Aging, StateLaw::Slip] {
+            let (r, out) = velocity_step(kind);
+            let ratio: f64 = 10.0;
+            let (at, peak) = out.iter().copied().fold((0.0, f64::MIN), |m, p| if p.1 > m.1 { p } else { m });
+            let before = r.mu_steady(1e-6);
+            let direct = peak - before;
+            // The slider reaches V2 over a few a sigma / (k V2) = 1e-4 s: by the peak it has
+            // slipped `at` L, over which the state part can fall by at most b ln(V2/V1) `at`.
+            let bound = r.b * ratio.ln() * at + 1e-6;
+            assert!(
+                at < 0.01 && (direct - r.a * ratio.ln()).abs() < bound,
+                "{kind:?}: direct effect {direct} at {at} L"
+            );
+            for &(delta, mu) in out.iter().filter(|p| p.0 > 0.05) {
+                let want = r.mu_steady(1e-5)
+                    + match kind {
+                        StateLaw::Slip => r.b * ratio.ln() * (-delta).exp(),
+                        StateLaw::Aging => r.b * (1.0 + 9.0 * (-delta).exp()).ln(),
+                    };
+                assert!((mu - want).abs() < 1e-5, "{kind:?} at slip {delta} L: mu {mu} vs {want}");
+            }
+            // The new steady state, (a - b) ln(V2/V1) from the old, reached over a few L.
+            let last = out.last().unwrap().1;
+            assert!((last - before - (r.a - r.b) * ratio.ln()).abs() < 0.01 * r.b * ratio.ln(), "{kind:?}");
+        }
+    }
+
+    #[test]
+    fn the_split_node_rule_is_the_stick_slip_rule_for_the_rate_free_laws() {
+        let sw = Law::slip_weakening(0.6, 0.5, 1e-6).unwrap();
+        let mut theta = 7.0;
+        let trial = |t_star: f64, slip: f64| Trial { t_star, p: 2.0, z: 1.0, dt: 1e-3, slip, v_old: 0.0 };
+        assert_eq!(sw.split_node(trial(1.1, 0.0), &mut theta), (1.1, false));
+        assert_eq!(sw.split_node(trial(-1.3, 0.0), &mut theta), (-1.2, true));
+        assert_eq!(sw.split_node(trial(1.3, 5e-7), &mut theta), (1.1, true));
+        assert_eq!(sw.split_node(trial(1.3, 2e-6), &mut theta), (1.0, true));
+        assert_eq!(theta, 7.0, "the rate-free laws leave the state alone");
+        // A negative strength (a tensile bilateral contact) at t_star = 0: T = 0.
+        assert_eq!(sw.split_node(Trial { p: -1.0, ..trial(0.0, 0.0) }, &mut theta), (0.0, true));
+    }
 }

@@ -42,6 +42,30 @@ impl Normal {
         Ok(Normal::Length { l, v_star })
     }
 
+    /// The response as a front end takes it: the length form if `length` L (m) is given (with
+    /// `v_star` V*, m/s, default 0), else the time form of `lag` T (s; 0: instantaneous),
+    /// else `default`. `keys` name the three as the user typed them.
+    pub fn from_inputs(
+        lag: Option<f64>,
+        length: Option<f64>,
+        v_star: Option<f64>,
+        default: Normal,
+        keys: [&str; 3],
+    ) -> Result<Normal> {
+        match (lag, length, v_star) {
+            (Some(_), Some(_), _) => {
+                Err(Error::input(keys[1], format!("give {} or {}, not both", keys[0], keys[1])))
+            }
+            (None, Some(l), v) => Normal::length(l, v.unwrap_or(0.0), (keys[1], keys[2])),
+            (_, None, Some(_)) => {
+                Err(Error::input(keys[2], format!("belongs to the length form: give {} too", keys[1])))
+            }
+            (Some(0.0), None, None) => Ok(Normal::Instantaneous),
+            (Some(t), None, None) => Normal::time(t, keys[0]),
+            (None, None, None) => Ok(default),
+        }
+    }
+
     /// sigma* after a step of `dt` (s) from `s_star` towards `sigma`, at slip rate `v` (m/s).
     #[inline]
     pub fn relax(&self, s_star: f64, sigma: f64, dt: f64, v: f64) -> f64 {

@@ -44,23 +44,23 @@ pub struct RateState {
 }
 
 impl RateState {
-    /// Checks a > 0, b >= 0, L > 0, V_0 > 0 and f_0 finite, naming the scene's keys.
+    /// Checks a > 0, b >= 0, L > 0, V_0 > 0 and f_0 finite, naming the flags.
     pub fn new(a: f64, b: f64, l: f64, v0: f64, f0: f64, law: StateLaw) -> Result<Self> {
         let bad = |key: &str, v: f64, need: &str| Err(Error::input(key, format!("{v}: {need}")));
         if !(a.is_finite() && a > 0.0) {
-            return bad("[law] a", a, "give the direct effect a > 0");
+            return bad("--a", a, "give the direct effect a > 0");
         }
         if !(b.is_finite() && b >= 0.0) {
-            return bad("[law] b", b, "give the evolution effect b >= 0");
+            return bad("--b", b, "give the evolution effect b >= 0");
         }
         if !(l.is_finite() && l > 0.0) {
-            return bad("[law] l_rs", l, "give the state-evolution distance L > 0 (m)");
+            return bad("--l-rs", l, "give the state-evolution distance L > 0 (m)");
         }
         if !(v0.is_finite() && v0 > 0.0) {
-            return bad("[law] v0", v0, "give the reference slip rate V_0 > 0 (m/s)");
+            return bad("--v0", v0, "give the reference slip rate V_0 > 0 (m/s)");
         }
         if !f0.is_finite() {
-            return bad("[law] f0", f0, "give a finite reference coefficient f_0");
+            return bad("--f0", f0, "give a finite reference coefficient f_0");
         }
         Ok(Self { a, b, l, v0, f0, law, theta0: l / v0 })
     }

@@ -599,6 +599,69 @@ pub struct LawChoice {
     pub rule: String,
     /// Weakening slip, m (slip-weakening only).
     pub dc: Option<f64>,
+    /// Rate-and-state's parameters (rate-state only).
+    pub rate_state: RateStateChoice,
+}
+
+/// Rate-and-state as a user gives it (`--a --b --l-rs --f0 [--v0 --state-law --theta0]`):
+/// a, b, L (m) and f_0 are physics and must be given; V_0 defaults to
+/// [`DEFAULT_RS_V0`], the state law to aging, theta_0 to L / V_0 (steady sliding at V_0).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RateStateChoice {
+    pub a: Option<f64>,
+    pub b: Option<f64>,
+    pub l_rs: Option<f64>,
+    pub v0: Option<f64>,
+    pub f0: Option<f64>,
+    /// aging or slip.
+    pub state_law: Option<String>,
+    pub theta0: Option<f64>,
+}
+
+/// Rate-and-state's reference slip rate when none is given, m/s (a laboratory scale: the
+/// coefficients a, b, f_0 are quoted at about 1 um/s; Dieterich 1979, Marone 1998).
+pub const DEFAULT_RS_V0: f64 = 1e-6;
+
+impl RateStateChoice {
+    fn given(&self) -> Option<&'static str> {
+        [
+            (self.a.is_some(), "--a"),
+            (self.b.is_some(), "--b"),
+            (self.l_rs.is_some(), "--l-rs"),
+            (self.v0.is_some(), "--v0"),
+            (self.f0.is_some(), "--f0"),
+            (self.state_law.is_some(), "--state-law"),
+            (self.theta0.is_some(), "--theta0"),
+        ]
+        .into_iter()
+        .find(|g| g.0)
+        .map(|g| g.1)
+    }
+
+    fn law(&self) -> Result<Law> {
+        let need = |v: Option<f64>, flag: &str, what: &str| {
+            v.ok_or_else(|| Error::input(flag, format!("rate-state needs {flag}, {what}")))
+        };
+        let a = need(self.a, "--a", "the direct effect a")?;
+        let b = need(self.b, "--b", "the evolution effect b (b > a: rate weakening)")?;
+        let l = need(self.l_rs, "--l-rs", "the state-evolution distance L in m")?;
+        let f0 = need(self.f0, "--f0", "the steady-state coefficient f_0 at V_0")?;
+        let kind = match self.state_law.as_deref().unwrap_or("aging") {
+            "aging" => crate::law::StateLaw::Aging,
+            "slip" => crate::law::StateLaw::Slip,
+            other => {
+                return Err(Error::input(
+                    "--state-law",
+                    format!("'{}': use aging or slip", crate::error::quote(other)),
+                ))
+            }
+        };
+        let mut r = crate::law::RateState::new(a, b, l, self.v0.unwrap_or(DEFAULT_RS_V0), f0, kind)?;
+        if let Some(t) = self.theta0 {
+            r = r.with_theta0(t)?;
+        }
+        Ok(Law::RateState(r))
+    }
 }
 
 impl LawChoice {
@@ -606,6 +669,23 @@ impl LawChoice {
     /// Defaults: coulomb mu = 0.5; the other laws the paper's (r, g) = (0.9, 0.35).
     pub fn law(&self, scene: &Scene) -> Result<Law> {
         let rule: crate::law::Rule = self.rule.parse()?;
+        if self.law == "rate-state" {
+            let other = [
+                (self.mu.is_some(), "--mu"),
+                (self.mu_s.is_some(), "--mu-s"),
+                (self.mu_d.is_some(), "--mu-d"),
+            ]
+            .into_iter()
+            .chain([(self.r.is_some(), "--r"), (self.g.is_some(), "--g"), (self.dc.is_some(), "--dc")])
+            .find(|g| g.0);
+            if let Some((_, flag)) = other {
+                return Err(Error::input(flag, "belongs to the rate-free laws: rate-state takes --a --b --l-rs --f0 [--v0 --state-law --theta0]"));
+            }
+            return self.rate_state.law();
+        }
+        if let Some(flag) = self.rate_state.given() {
+            return Err(Error::input(flag, "belongs to --law rate-state"));
+        }
         match self.law.as_str() {
             "coulomb" => {
                 if self.mu_s.is_some() || self.mu_d.is_some() || self.r.is_some() {
@@ -661,7 +741,10 @@ impl LawChoice {
             }
             other => Err(Error::input(
                 "law",
-                format!("'{}': use coulomb, static-kinetic or slip-weakening", crate::error::quote(other)),
+                format!(
+                    "'{}': use coulomb, static-kinetic, slip-weakening or rate-state",
+                    crate::error::quote(other)
+                ),
             )),
         }
     }

@@ -36,6 +36,7 @@ mod paper_rule;
 mod parallel;
 mod precursors;
 mod precursors_fe;
+mod rate_state;
 mod run_bounds;
 mod slide_fields;
 mod stability;

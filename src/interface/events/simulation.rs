@@ -75,6 +75,7 @@ pub(crate) fn start_drive<'a, 'p>(
 /// The problem's own inputs, refused before any work (also by
 /// [`crate::studies::slide::check_options`], which every frictional run calls up front).
 pub(crate) fn check(pb: &Problem) -> Result<()> {
+    pb.law.rate_free("--law")?;
     if !(pb.n_force.is_finite() && pb.n_force > 0.0) {
         return Err(Error::input("N", format!("{} N/m must be a positive number", pb.n_force)));
     }

@@ -144,6 +144,29 @@ pub fn check_resolved(
     Ok(())
 }
 
+/// Refuses a mesh that cannot resolve rate-and-state's process zone L_b = G L / ((1 - nu) b
+/// sigma) at the mean pressure ([`Law::process_zone`]) with [`MIN_ZONE_ELEMENTS`] elements,
+/// naming the h and the L that would (a rate-strengthening law, b = 0, has none to resolve).
+pub fn check_rate_state_resolved(scene: &Scene, r: &crate::law::RateState, n_force: f64) -> Result<()> {
+    crate::studies::slide::check_n_force(scene, n_force)?;
+    let b = &scene.block;
+    let g = b.young / (2.0 * (1.0 + b.poisson));
+    let lb = Law::RateState(*r).process_zone(g, b.poisson, n_force / b.length);
+    let h = scene.mesh.h;
+    if lb < MIN_ZONE_ELEMENTS * h {
+        return Err(Error::input(
+            "--h",
+            format!(
+                "{h} m: rate-and-state's process zone L_b = G L / ((1 - nu) b sigma) = {lb:.3e} m at the mean pressure spans {:.2} elements, fewer than {MIN_ZONE_ELEMENTS}, so the fronts would be set by the mesh: use --h <= {:.4e} m, or --l-rs >= {:.3e} m",
+                lb / h,
+                lb / MIN_ZONE_ELEMENTS,
+                r.l * MIN_ZONE_ELEMENTS * h / lb
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// What [`resolve`] chose, with the lines that say so (printed by the command, returned to
 /// Python).
 #[derive(Debug, Clone)]

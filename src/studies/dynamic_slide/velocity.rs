@@ -61,7 +61,11 @@ const EVENT_SAMPLES: usize = 4096;
 /// Refusals of the constant-velocity mode that need no mesh: V > 0 and slow against the
 /// waves, --x-max given.
 pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<f64> {
-    check_held(scene, o, d)?;
+    // The quasi-static normal phase takes a rate-free law (rate-and-state's stand-in).
+    check_held(scene, &SlideOptions { law: o.law.rate_free_stand_in(), ..o.clone() }, d)?;
+    if let Some(r) = o.law.rate_state() {
+        super::physics::check_rate_state_resolved(scene, r, o.n_force)?;
+    }
     let v = d.drive_velocity.unwrap_or(f64::NAN);
     if !(v.is_finite() && v > 0.0) {
         return Err(Error::input(
@@ -185,7 +189,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
 
     // Normal phase, quasi-static and exact, and the drive's start: the event solver's (as the
     // held mode), and its recorder for every event (the observer, the cap).
-    let (mut sv, mut rec) = start_drive(Box::new(operator::Dense::new(&s_h, 2 * n + 3)), n, o)?;
+    let o_qs = SlideOptions { law: o.law.rate_free_stand_in(), ..o.clone() };
+    let (mut sv, mut rec) = start_drive(Box::new(operator::Dense::new(&s_h, 2 * n + 3)), n, &o_qs)?;
     let cap = tolerances::max_changes(n);
     // The start on the quasi-static path: u of the static field at U_H = 0, v = V du/dU_H.
     let p = settle_continuous(&mut sv, 0.0, true, cap, "drive")?;
