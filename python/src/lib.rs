@@ -496,6 +496,7 @@ fn slide<'py>(
         g,
         rule: name_of(RULES, rule).to_string(),
         dc,
+        ..Default::default()
     };
     let law = choice_law.law(&scene).and_then(|l| l.with_paper_options(paper)).map_err(to_py)?;
     if newton && !law.weakens() {
@@ -1040,7 +1041,9 @@ fn rupture<'py>(
 #[pyo3(signature = (scene=None, law=None, *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
     dc=None, h=None, n_force=None, x_max=None, cycles=None, cycle_end=None, max_events=None,
     operator=None, states=None, keep_states=None, damping=None, courant=None, drive_velocity=None,
-    plate_mass=None, plate_inertia=None, heal=None, weakening_steps=None, density=None, progress=None))]
+    plate_mass=None, plate_inertia=None, heal=None, weakening_steps=None, density=None, a=None, b=None,
+    l_rs=None, f0=None, v0=None, state_law=None, theta0=None, normal_lag=None, normal_lag_length=None,
+    normal_lag_v_star=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn dynamic_slide<'py>(
     py: Python<'py>,
@@ -1069,6 +1072,16 @@ fn dynamic_slide<'py>(
     heal: Option<&str>,
     weakening_steps: Option<f64>,
     density: Option<f64>,
+    a: Option<f64>,
+    b: Option<f64>,
+    l_rs: Option<f64>,
+    f0: Option<f64>,
+    v0: Option<f64>,
+    state_law: Option<&str>,
+    theta0: Option<f64>,
+    normal_lag: Option<f64>,
+    normal_lag_length: Option<f64>,
+    normal_lag_v_star: Option<f64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::studies::dynamic_slide as ds;
@@ -1091,6 +1104,15 @@ fn dynamic_slide<'py>(
         g,
         rule: tribofe::studies::slide::DEFAULT_RULE.to_string(),
         dc,
+        rate_state: tribofe::studies::slide::RateStateChoice {
+            a,
+            b,
+            l_rs,
+            v0,
+            f0,
+            state_law: state_law.map(str::to_string),
+            theta0,
+        },
     };
     let mut notes = Vec::new();
     if law == "slip-weakening" {
@@ -1135,9 +1157,17 @@ fn dynamic_slide<'py>(
         plate_inertia: plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only,
         weakening_steps: ds::weakening_steps(weakening_steps, &o, drive_velocity).map_err(to_py)?,
+        normal: tribofe::law::Normal::from_inputs(
+            normal_lag,
+            normal_lag_length,
+            normal_lag_v_star,
+            tribofe::law::Normal::Instantaneous,
+            ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
+        )
+        .map_err(to_py)?,
         ..Default::default()
     };
-    tribofe::studies::slide::check_options(&scene, &o).map_err(to_py)?;
+    // ds::run makes every check before any work (the quasi-static ones on a rate-free law).
     let (res, core_s) = run_detached(py, progress, |cancel, poll| {
         let o = tribofe::studies::slide::SlideOptions { cancel: cancel.clone(), ..o };
         ds::run(&scene, &o, &d, poll)

@@ -479,3 +479,18 @@ def test_options_that_cannot_act_are_refused_by_keyword(tribofe_bin, tmp_path):
         tribofe.precursors.model(r=1.5)
     assert str(e.value).startswith("invalid r=1.5:"), str(e.value)
     assert " = 1.5" not in str(e.value)
+
+
+def test_dynamics_slide_takes_rate_and_state():
+    # Rate strengthening at V = 2e-5 m/s on a block driven at its top: F/N settles at the
+    # steady state mu_ss(V) = f0 + (a - b) ln(V / v0) (tests/it/rate_state.rs, the same run).
+    res = tribofe.dynamics.slide(law="rate-state", a=0.01, b=0.005, l_rs=4e-7, f0=0.6,
+                                 scene=tribofe.Scene(length=0.1, height=0.002, h=1e-3),
+                                 drive_velocity=2e-5, x_max=4e-5)
+    want = 0.6 + 0.005 * np.log(20.0)
+    assert abs(float(np.asarray(res.loading["F_over_N"])[-1]) - want) < 1e-9
+    # The held mode's quasi-static phase refuses it, naming the keyword that runs it.
+    with pytest.raises(tribofe.InputError, match="drive_velocity="):
+        tribofe.dynamics.slide(law="rate-state", a=0.01, b=0.005, l_rs=4e-7, f0=0.6)
+    with pytest.raises(tribofe.InputError, match="l_rs="):
+        tribofe.dynamics.slide(law="rate-state", a=0.01, b=0.005, f0=0.6, drive_velocity=2e-5, x_max=1e-5)

@@ -524,6 +524,16 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         heal: Optional[str] = None,
         weakening_steps: Optional[float] = None,
         density: Optional[float] = None,
+        a: Optional[float] = None,
+        b: Optional[float] = None,
+        l_rs: Optional[float] = None,
+        f0: Optional[float] = None,
+        v0: Optional[float] = None,
+        state_law: Optional[str] = None,
+        theta0: Optional[float] = None,
+        normal_lag: Optional[float] = None,
+        normal_lag_length: Optional[float] = None,
+        normal_lag_v_star: Optional[float] = None,
         progress: Any = False,
     ) -> DynamicSlideResult:
         """``tribofe slide --dynamics``: the paper's plate-driven block, loaded quasi-statically,
@@ -543,7 +553,13 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         paper's dynamic run is ``law="slip-weakening"``, with ``mu_s``, ``mu_d`` or the paper's
         ``r``, ``g``; ``"coulomb"`` takes ``mu``). ``plate_mass`` (kg/m), ``plate_inertia``
         (kg m^2/m), ``heal`` (``"all"`` or ``"slipped"``). A choice outside its list raises
-        :class:`InputError` naming the keyword and the accepted values. Silent unless ``progress`` is True (a tqdm bar) or a
+        :class:`InputError` naming the keyword and the accepted values. ``law="rate-state"``
+        (rate-and-state, with ``drive_velocity`` only: the held mode's static phase is
+        rate-independent) takes ``a``, ``b``, ``l_rs`` (m) and ``f0``, and optionally ``v0``
+        (m/s, default 1e-6), ``state_law`` (``"aging"`` or ``"slip"``) and ``theta0`` (s,
+        default ``l_rs / v0``). The base's normal response: ``normal_lag`` (s, Prakash-Clifton
+        with a time scale) or ``normal_lag_length`` (m, with a slip length; ``normal_lag_v_star``
+        m/s); default instantaneous. Silent unless ``progress`` is True (a tqdm bar) or a
         callable; the interrupt key stops the run (:class:`KeyboardInterrupt`). A run that
         meets a cap returns what it computed with ``incomplete`` naming the cap, and warns."""
         cb, close = _progress(progress, "slide --dynamics")
@@ -574,6 +590,16 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
                 heal=heal,
                 weakening_steps=weakening_steps,
                 density=density,
+                a=a,
+                b=b,
+                l_rs=l_rs,
+                f0=f0,
+                v0=v0,
+                state_law=state_law,
+                theta0=theta0,
+                normal_lag=normal_lag,
+                normal_lag_length=normal_lag_length,
+                normal_lag_v_star=normal_lag_v_star,
                 progress=cb,
             )
         finally:

@@ -166,6 +166,16 @@ def dynamic_slide(
     heal: Optional[str] = None,
     weakening_steps: Optional[float] = None,
     density: Optional[float] = None,
+    a: Optional[float] = None,
+    b: Optional[float] = None,
+    l_rs: Optional[float] = None,
+    f0: Optional[float] = None,
+    v0: Optional[float] = None,
+    state_law: Optional[str] = None,
+    theta0: Optional[float] = None,
+    normal_lag: Optional[float] = None,
+    normal_lag_length: Optional[float] = None,
+    normal_lag_v_star: Optional[float] = None,
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
 def defaults() -> Dict[str, Dict[str, Any]]: ...

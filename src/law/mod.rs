@@ -238,7 +238,7 @@ impl Law {
         match self {
             Law::RateState(_) => Err(Error::input(
                 key,
-                "rate-and-state has no rate-free limit for the quasi-static event solver (it creeps at any load): run it explicitly, with slide --dynamics --drive-velocity V (Python: dynamics.slide(drive_velocity=V))",
+                "rate-and-state has no rate-free limit for the quasi-static event solver (it creeps at any load): run the dynamic slide under a constant drive velocity, --drive-velocity V",
             )),
             _ => Ok(()),
         }
