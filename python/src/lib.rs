@@ -480,13 +480,16 @@ fn slide<'py>(
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let (n_force, cycles) = (n_force.unwrap_or(sl::DEFAULT_N_FORCE), cycles.unwrap_or(sl::DEFAULT_CYCLES));
     let max_events = max_events.unwrap_or(sl::DEFAULT_MAX_EVENTS);
-    let rule = choice("rule", rule, RULES)?.unwrap_or(sl::DEFAULT_RULE.parse().map_err(to_py)?);
+    let rule = choice("rule", rule, RULES)?;
+    let rule_given = rule.is_some();
+    let rule = rule.unwrap_or(sl::DEFAULT_RULE.parse().map_err(to_py)?);
     let paper = tribofe::law::PaperOptions {
         residual: choice("residual", residual, RESIDUALS)?
             .unwrap_or(tribofe::law::PaperOptions::default().residual),
         backslip: choice("backslip", backslip, BACKSLIPS)?
             .unwrap_or(tribofe::law::PaperOptions::default().backslip),
     };
+    let law_given = law.is_some();
     let choice_law = sl::LawChoice {
         law: law.unwrap_or(sl::DEFAULT_LAW).to_string(),
         mu,
@@ -497,7 +500,8 @@ fn slide<'py>(
         rule: name_of(RULES, rule).to_string(),
         dc,
         ..Default::default()
-    };
+    }
+    .with_scene(&scene.law, law_given, rule_given);
     let law = choice_law.law(&scene).and_then(|l| l.with_paper_options(paper)).map_err(to_py)?;
     if newton && !law.weakens() {
         return Err(to_py(Error::input("newton", "newton cannot act without law='slip-weakening'")));
@@ -1093,8 +1097,11 @@ fn dynamic_slide<'py>(
         scene.mesh.h = h;
         scene.validate().map_err(to_py)?;
     }
-    // The command's default law (`slide --dynamics` takes slide's `--law`).
-    let law = law.unwrap_or(tribofe::studies::slide::DEFAULT_LAW);
+    // The command's default law (`slide --dynamics` takes slide's `--law`), unless the scene's
+    // [law] names one.
+    let law_given = law.is_some();
+    let law = law.or(scene.law.kind.as_deref()).unwrap_or(tribofe::studies::slide::DEFAULT_LAW).to_string();
+    let law = law.as_str();
     let mut law_choice = tribofe::studies::slide::LawChoice {
         law: law.to_string(),
         mu,
@@ -1113,7 +1120,9 @@ fn dynamic_slide<'py>(
             state_law: state_law.map(str::to_string),
             theta0,
         },
-    };
+        ..Default::default()
+    }
+    .with_scene(&scene.law, law_given, false);
     let mut notes = Vec::new();
     if law == "slip-weakening" {
         let res = ds::physics::resolve(&mut scene, &law_choice, n_force, h.is_some(), ["dc=", "h="])
@@ -1157,13 +1166,24 @@ fn dynamic_slide<'py>(
         plate_inertia: plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only,
         weakening_steps: ds::weakening_steps(weakening_steps, &o, drive_velocity).map_err(to_py)?,
-        normal: tribofe::law::Normal::from_inputs(
-            normal_lag,
-            normal_lag_length,
-            normal_lag_v_star,
-            tribofe::law::Normal::Instantaneous,
-            ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
-        )
+        normal: if normal_lag.is_some() || normal_lag_length.is_some() || normal_lag_v_star.is_some() {
+            tribofe::law::Normal::from_inputs(
+                normal_lag,
+                normal_lag_length,
+                normal_lag_v_star,
+                tribofe::law::Normal::Instantaneous,
+                ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
+            )
+        } else {
+            let t = &scene.law;
+            tribofe::law::Normal::from_inputs(
+                t.normal_lag,
+                t.normal_lag_length,
+                t.normal_lag_v_star,
+                tribofe::law::Normal::Instantaneous,
+                ["[law] normal_lag", "[law] normal_lag_length", "[law] normal_lag_v_star"],
+            )
+        }
         .map_err(to_py)?,
         ..Default::default()
     };

@@ -192,7 +192,7 @@ pub struct Args {
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
-    law_choice(a).law(scene)?.with_paper_options(paper_options(a)?)
+    law_choice(a, scene).law(scene)?.with_paper_options(paper_options(a)?)
 }
 
 /// The `paper` rule's conventions as flagged (the defaults unless --residual/--backslip given).
@@ -209,6 +209,15 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         "`slide` loads N then X until the interface slides (--n-force, --x-max); the load ratios and the edge-zone tolerance belong to `check`",
     )?;
     let scene = scene_from(&a.scene)?;
+    // The scene's [law] kind and rule where the flags (which have defaults) were not given;
+    // its numbers join in law_choice.
+    let mut a = a;
+    if let (false, Some(k)) = (super::given("law"), &scene.law.kind) {
+        a.law = k.clone();
+    }
+    if let (false, Some(r)) = (super::given("rule"), &scene.law.rule) {
+        a.rule = r.clone();
+    }
     let field_format: tribofe::io::FieldFormat = a.field_format.parse()?;
     if a.fields == 0 && field_format != tribofe::io::FieldFormat::Vtu {
         return Err(Error::input("--field-format", "acts only with --fields N (N > 0 states to write)"));
@@ -252,7 +261,7 @@ fn resolve_physics(a: &mut Args, scene: &mut tribofe::scene::Scene) -> tribofe::
     let given = a.scene.has("--h") || super::scene_args::file_sets(&a.scene, "mesh", "h")?;
     let r = tribofe::studies::dynamic_slide::physics::resolve(
         scene,
-        &law_choice(a),
+        &law_choice(a, scene),
         a.n_force,
         given,
         ["--dc", "--h"],
@@ -276,7 +285,25 @@ fn spacetime(a: &Args) -> tribofe::Result<Spacetime> {
     Ok(s)
 }
 
-fn law_choice(a: &Args) -> LawChoice {
+/// The normal response of the flags, or else of the scene's [law] (never a mix of the two).
+fn normal_response(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<tribofe::law::Normal> {
+    let t = &scene.law;
+    let (values, keys) =
+        if a.normal_lag.is_some() || a.normal_lag_length.is_some() || a.normal_lag_v_star.is_some() {
+            (
+                (a.normal_lag, a.normal_lag_length, a.normal_lag_v_star),
+                ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
+            )
+        } else {
+            (
+                (t.normal_lag, t.normal_lag_length, t.normal_lag_v_star),
+                ["[law] normal_lag", "[law] normal_lag_length", "[law] normal_lag_v_star"],
+            )
+        };
+    tribofe::law::Normal::from_inputs(values.0, values.1, values.2, tribofe::law::Normal::Instantaneous, keys)
+}
+
+fn law_choice(a: &Args, scene: &tribofe::scene::Scene) -> LawChoice {
     LawChoice {
         law: a.law.clone(),
         mu: a.mu,
@@ -295,7 +322,9 @@ fn law_choice(a: &Args) -> LawChoice {
             state_law: a.state_law.clone(),
             theta0: a.theta0,
         },
+        ..Default::default()
     }
+    .with_scene(&scene.law, true, true)
 }
 
 fn run_checked(
@@ -476,13 +505,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         plate_inertia: a.plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only: a.heal == "slipped",
         weakening_steps: ds::weakening_steps(a.weakening_steps, &o, a.drive_velocity)?,
-        normal: tribofe::law::Normal::from_inputs(
-            a.normal_lag,
-            a.normal_lag_length,
-            a.normal_lag_v_star,
-            tribofe::law::Normal::Instantaneous,
-            ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
-        )?,
+        normal: normal_response(a, scene)?,
         ..Default::default()
     };
     if let Some(levels) = a.refine {

@@ -124,6 +124,47 @@ pub struct Report {
     pub tol: f64,
 }
 
+/// The interface's friction law and normal response as scene values (`[law]`), each the
+/// flag of the same name without `--` (`kind` is `--law`); a flag or Python keyword given
+/// overrides the key. Read by `slide` (and `slide --dynamics`); the values are checked where
+/// the law is built (`studies::slide::LawChoice`), naming the key.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LawTable {
+    /// coulomb, static-kinetic, slip-weakening or rate-state.
+    pub kind: Option<String>,
+    pub mu: Option<f64>,
+    pub mu_s: Option<f64>,
+    pub mu_d: Option<f64>,
+    pub r: Option<f64>,
+    pub g: Option<f64>,
+    pub rule: Option<String>,
+    /// m.
+    pub dc: Option<f64>,
+    pub a: Option<f64>,
+    pub b: Option<f64>,
+    /// m.
+    pub l_rs: Option<f64>,
+    /// m/s.
+    pub v0: Option<f64>,
+    pub f0: Option<f64>,
+    pub state_law: Option<String>,
+    /// s.
+    pub theta0: Option<f64>,
+    /// s.
+    pub normal_lag: Option<f64>,
+    /// m.
+    pub normal_lag_length: Option<f64>,
+    /// m/s.
+    pub normal_lag_v_star: Option<f64>,
+}
+
+impl LawTable {
+    pub fn is_empty(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Scene {
@@ -132,6 +173,8 @@ pub struct Scene {
     pub loading: Loading,
     pub mesh: MeshSpec,
     pub report: Report,
+    #[serde(skip_serializing_if = "LawTable::is_empty")]
+    pub law: LawTable,
 }
 
 impl Default for Block {

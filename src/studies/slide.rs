@@ -584,8 +584,9 @@ pub fn model_curve(res: &SlideResult) -> ModelCurve {
 }
 
 /// A friction law as a user names it (the `slide` command's flags, the Python package's
-/// keywords): the law's name and whichever coefficients were given.
-#[derive(Debug, Clone, Default)]
+/// keywords): the law's name and whichever coefficients were given. Default: the commands'
+/// law and rule ([`DEFAULT_LAW`], [`DEFAULT_RULE`]), no value given.
+#[derive(Debug, Clone)]
 pub struct LawChoice {
     /// coulomb, static-kinetic or slip-weakening.
     pub law: String,
@@ -601,6 +602,25 @@ pub struct LawChoice {
     pub dc: Option<f64>,
     /// Rate-and-state's parameters (rate-state only).
     pub rate_state: RateStateChoice,
+    /// The `[law]` keys [`Self::with_scene`] filled in (for the refusals' names).
+    pub from_scene: Vec<&'static str>,
+}
+
+impl Default for LawChoice {
+    fn default() -> Self {
+        Self {
+            law: DEFAULT_LAW.into(),
+            rule: DEFAULT_RULE.into(),
+            mu: None,
+            mu_s: None,
+            mu_d: None,
+            r: None,
+            g: None,
+            dc: None,
+            rate_state: RateStateChoice::default(),
+            from_scene: vec![],
+        }
+    }
 }
 
 /// Rate-and-state as a user gives it (`--a --b --l-rs --f0 [--v0 --state-law --theta0]`):
@@ -665,9 +685,73 @@ impl RateStateChoice {
 }
 
 impl LawChoice {
+    /// This choice with the scene's `[law]` values wherever the front end gave none;
+    /// `law_given`, `rule_given`: whether `--law`/`--rule` (which have defaults) were given.
+    /// A refusal of a value taken from the scene names its key (`[law] dc`).
+    pub fn with_scene(mut self, t: &crate::scene::LawTable, law_given: bool, rule_given: bool) -> Self {
+        let mut from = vec![];
+        let mut take = |mine: &mut Option<f64>, theirs: Option<f64>, key: &'static str| {
+            if mine.is_none() && theirs.is_some() {
+                *mine = theirs;
+                from.push(key);
+            }
+        };
+        take(&mut self.mu, t.mu, "mu");
+        take(&mut self.mu_s, t.mu_s, "mu_s");
+        take(&mut self.mu_d, t.mu_d, "mu_d");
+        take(&mut self.r, t.r, "r");
+        take(&mut self.g, t.g, "g");
+        take(&mut self.dc, t.dc, "dc");
+        let rs = &mut self.rate_state;
+        take(&mut rs.a, t.a, "a");
+        take(&mut rs.b, t.b, "b");
+        take(&mut rs.l_rs, t.l_rs, "l_rs");
+        take(&mut rs.v0, t.v0, "v0");
+        take(&mut rs.f0, t.f0, "f0");
+        take(&mut rs.theta0, t.theta0, "theta0");
+        if rs.state_law.is_none() && t.state_law.is_some() {
+            rs.state_law = t.state_law.clone();
+            from.push("state_law");
+        }
+        if let (false, Some(k)) = (law_given, &t.kind) {
+            self.law = k.clone();
+            from.push("kind");
+        }
+        if let (false, Some(r)) = (rule_given, &t.rule) {
+            self.rule = r.clone();
+            from.push("rule");
+        }
+        self.from_scene = from;
+        self
+    }
+
+    /// The law on `scene`, a refusal of a scene value naming its `[law]` key.
+    pub fn law(&self, scene: &Scene) -> Result<Law> {
+        self.build(scene).map_err(|e| match e {
+            Error::Input { what, why } => {
+                let flag = |k: &str| {
+                    if k == "kind" {
+                        "--law".to_string()
+                    } else {
+                        format!("--{}", k.replace('_', "-"))
+                    }
+                };
+                match self
+                    .from_scene
+                    .iter()
+                    .find(|k| what == flag(k) || what == k.replace('_', "-") || what == **k)
+                {
+                    Some(k) => Error::Input { what: format!("[law] {k}"), why },
+                    None => Error::Input { what, why },
+                }
+            }
+            e => e,
+        })
+    }
+
     /// The law on `scene` (g and r need its L and H), or the refusal naming what to give.
     /// Defaults: coulomb mu = 0.5; the other laws the paper's (r, g) = (0.9, 0.35).
-    pub fn law(&self, scene: &Scene) -> Result<Law> {
+    fn build(&self, scene: &Scene) -> Result<Law> {
         let rule: crate::law::Rule = self.rule.parse()?;
         if self.law == "rate-state" {
             let other = [

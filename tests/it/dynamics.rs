@@ -510,8 +510,7 @@ fn both_prakash_clifton_forms_converge_in_h() {
         let at = |r: &RuptureResult, x: f64| {
             r.x.iter().position(|&xi| (xi - x).abs() < 1e-9).and_then(|i| r.t_arrival[i])
         };
-        let mut d: Vec<f64> =
-            a.x.iter().filter_map(|&x| Some((at(a, x)? - at(b, x)?).abs())).collect();
+        let mut d: Vec<f64> = a.x.iter().filter_map(|&x| Some((at(a, x)? - at(b, x)?).abs())).collect();
         assert!(d.len() >= 25, "{} common arrivals", d.len());
         d.sort_by(f64::total_cmp);
         d[d.len() / 2]
@@ -520,7 +519,10 @@ fn both_prakash_clifton_forms_converge_in_h() {
         let r = runs(normal);
         let drop = [(r[0].force_drop - r[1].force_drop).abs(), (r[1].force_drop - r[2].force_drop).abs()];
         let arr = [arrivals(&r[0], &r[1]), arrivals(&r[1], &r[2])];
-        eprintln!("{}: force-drop differences {drop:?} N/m, median arrival differences {arr:?} s", normal.name());
+        eprintln!(
+            "{}: force-drop differences {drop:?} N/m, median arrival differences {arr:?} s",
+            normal.name()
+        );
         assert!(drop[1] < drop[0] / 2.5 && drop[1] < 0.01 * r[2].force_drop, "{normal:?}: {drop:?}");
         assert!(arr[1] < arr[0] / 2.5, "{normal:?}: {arr:?}");
         assert!(r.iter().all(|x| x.min_sigma > 2.0), "{normal:?}");

@@ -89,3 +89,51 @@ fn the_quasi_static_solver_refuses_rate_and_state() {
     let e = ds::run(&s, &o, &d, tribofe::Progress::none()).unwrap_err();
     assert!(e.to_string().contains("--h <= 7.9365e-4"), "{e}");
 }
+
+#[test]
+fn the_law_is_a_scene_table() {
+    use tribofe::studies::slide::{LawChoice, RateStateChoice};
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("s.toml");
+    let text = "[law]\nkind = \"rate-state\"\na = 0.01\nb = 0.005\nl_rs = 4e-7\nf0 = 0.6\nstate_law = \"slip\"\nnormal_lag_length = 1e-6\n";
+    std::fs::write(&p, text).unwrap();
+    let scene = Scene::from_file(&p).unwrap();
+    // The scene's values give the law the flags give.
+    let from_scene =
+        LawChoice { law: "coulomb".into(), ..Default::default() }.with_scene(&scene.law, false, false);
+    let flags = LawChoice {
+        law: "rate-state".into(),
+        rate_state: RateStateChoice {
+            a: Some(0.01),
+            b: Some(0.005),
+            l_rs: Some(4e-7),
+            f0: Some(0.6),
+            state_law: Some("slip".into()),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    assert_eq!(from_scene.law(&scene).unwrap(), flags.law(&scene).unwrap());
+    // A flag given overrides the key.
+    let over = LawChoice {
+        rate_state: RateStateChoice { a: Some(0.02), ..Default::default() },
+        ..Default::default()
+    }
+    .with_scene(&scene.law, false, false);
+    assert_eq!(over.law(&scene).unwrap().rate_state().unwrap().a, 0.02);
+    // A bad value from the scene is refused naming its key; an unknown key at its line.
+    std::fs::write(&p, text.replace("b = 0.005", "b = -1.0")).unwrap();
+    let scene = Scene::from_file(&p).unwrap();
+    let e = LawChoice::default().with_scene(&scene.law, false, false).law(&scene).unwrap_err();
+    assert!(e.to_string().contains("[law] b"), "{e}");
+    std::fs::write(&p, text.replace("a = 0.01", "aa = 0.01")).unwrap();
+    let e = Scene::from_file(&p).unwrap_err().to_string();
+    assert!(e.contains("aa") && e.contains("line"), "{e}");
+    // The scene round-trips with its [law].
+    std::fs::write(&p, text).unwrap();
+    let scene = Scene::from_file(&p).unwrap();
+    let q = dir.path().join("t.toml");
+    std::fs::write(&q, toml::to_string(&scene).unwrap()).unwrap();
+    assert_eq!(Scene::from_file(&q).unwrap(), scene);
+    assert!(!toml::to_string(&Scene::default()).unwrap().contains("[law]"));
+}
