@@ -44,35 +44,29 @@ pub struct RateState {
 }
 
 impl RateState {
-    /// Checks a > 0, b >= 0, L > 0, V_0 > 0 and f_0 finite, naming the flags.
+    /// Checks 0 < a, 0 <= b, |f_0| (friction coefficients, at most [`super::MU_MAX`]) and L,
+    /// V_0 in [1e-100, 1e100] (so that theta_0 = L / V_0 and every state stays finite),
+    /// naming the flags.
     pub fn new(a: f64, b: f64, l: f64, v0: f64, f0: f64, law: StateLaw) -> Result<Self> {
         let bad = |key: &str, v: f64, need: &str| Err(Error::input(key, format!("{v}: {need}")));
-        if !(a.is_finite() && a > 0.0) {
-            return bad("--a", a, "give the direct effect a > 0");
+        let max = super::MU_MAX;
+        if !(a.is_finite() && a > 0.0 && a <= max) {
+            return bad("--a", a, &format!("give the direct effect 0 < a <= {max:e}"));
         }
-        if !(b.is_finite() && b >= 0.0) {
-            return bad("--b", b, "give the evolution effect b >= 0");
+        if !(b.is_finite() && b >= 0.0 && b <= max) {
+            return bad("--b", b, &format!("give the evolution effect 0 <= b <= {max:e}"));
         }
-        if !(l.is_finite() && l > 0.0) {
-            return bad("--l-rs", l, "give the state-evolution distance L > 0 (m)");
-        }
-        if !(v0.is_finite() && v0 > 0.0) {
-            return bad("--v0", v0, "give the reference slip rate V_0 > 0 (m/s)");
-        }
-        if !f0.is_finite() {
-            return bad("--f0", f0, "give a finite reference coefficient f_0");
+        crate::error::scaled("--l-rs", l, "m")?;
+        crate::error::scaled("--v0", v0, "m/s")?;
+        if !(f0.is_finite() && f0.abs() <= max) {
+            return bad("--f0", f0, &format!("give a reference coefficient |f_0| <= {max:e}"));
         }
         Ok(Self { a, b, l, v0, f0, law, theta0: l / v0 })
     }
 
-    /// The same law started from state `theta0` (s, > 0).
+    /// The same law started from state `theta0` (s, in [1e-100, 1e100]).
     pub fn with_theta0(self, theta0: f64) -> Result<Self> {
-        if !(theta0.is_finite() && theta0 > 0.0) {
-            return Err(Error::input(
-                "[law] theta0",
-                format!("{theta0}: give the initial state theta_0 > 0 (s)"),
-            ));
-        }
+        crate::error::scaled("--theta0", theta0, "s")?;
         Ok(Self { theta0, ..self })
     }
 

@@ -91,10 +91,18 @@ done
 sweep_flag "slide --dynamics --drive-velocity" --drive-velocity -- "${DYN[@]}" --x-max 2e-7
 sweep_flag "slide --dynamics --drive-velocity 1.9e-7" --x-max -- "${DYN[@]}" --drive-velocity 1.9e-7
 sweep_flag "slide --dynamics --law coulomb" --x-max -- slide --dynamics --law coulomb --length 0.1
+# Rate-and-state under the constant-velocity drive (a block driven at its top, 620 steps), each
+# of its flags and the normal response's swept with the others at accepted values.
+declare -A RS=([--a]=0.01 [--b]=0.005 [--l-rs]=4e-7 [--f0]=0.6)
+for f in --a --b --l-rs --f0 --v0 --theta0 --normal-lag --normal-lag-length; do
+    base=(slide --dynamics --law rate-state --length 0.1 --height 0.002 --drive-velocity 2e-5 --x-max 2e-6)
+    for k in "${!RS[@]}"; do [ "$k" = "$f" ] || base+=("$k" "${RS[$k]}"); done
+    sweep_flag "slide --dynamics --law rate-state" "$f" -- "${base[@]}"
+done
 
 # rupture at a short end time.
 for f in --s --h --dc --t-end --length --height --mu-s --mu-d --sigma0 --young --poisson \
-    --density --courant --damping --normal-lag --patch-taper; do
+    --density --courant --damping --normal-lag --normal-lag-length --patch-taper; do
     sweep_flag rupture "$f" -- rupture --t-end 0.02
 done
 
