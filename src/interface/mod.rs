@@ -1,6 +1,6 @@
 //! The frictional interface between the block's base and a rigid flat: unilateral contact
 //! and friction laws acting on the interface DOFs only. The block and plate are condensed
-//! once onto those DOFs ([`condense`]); the laws ([`law`]) and the event-driven quasi-static
+//! once onto those DOFs ([`condense`]); the laws ([`crate::law`]) and the event-driven quasi-static
 //! solver ([`events`]) then work on that small dense system. This layer knows nothing of
 //! the CLI, reports or files.
 
