@@ -588,7 +588,7 @@ pub fn model_curve(res: &SlideResult) -> ModelCurve {
 /// law and rule ([`DEFAULT_LAW`], [`DEFAULT_RULE`]), no value given.
 #[derive(Debug, Clone)]
 pub struct LawChoice {
-    /// coulomb, static-kinetic or slip-weakening.
+    /// coulomb, static-kinetic, slip-weakening or rate-state.
     pub law: String,
     pub mu: Option<f64>,
     pub mu_s: Option<f64>,
