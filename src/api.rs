@@ -33,8 +33,9 @@ pub use crate::studies::check::{run as check, CheckResult};
 
 /// What an event was (precursor, sliding, crossing...) and its CSV name.
 pub use crate::interface::events::EventKind;
-/// The friction laws and the static-kinetic relaxation rules.
-pub use crate::law::{Law, Rule};
+/// The friction laws (rate-and-state among them), the normal response and the static-kinetic
+/// relaxation rules.
+pub use crate::law::{Law, Normal, RateState, Rule, StateLaw};
 /// The frictional run: the scene condensed onto its base, then N, then the drive X at height
 /// H, event by event. [`SlideOptions`] holds the law (coulomb mu; static-kinetic mu_s, mu_d and
 /// the relaxation [`Rule`]; slip-weakening with D_c in m), N in N/m, the end (cycles or X_max
