@@ -922,7 +922,7 @@ fn precursors_fe_fig5<'py>(
 /// default normal-stress lag. Every keyword left at None keeps its value here.
 fn rupture_defaults() -> tribofe::dynamics::rupture::RuptureSpec {
     use tribofe::dynamics::rupture as rp;
-    rp::RuptureSpec { normal: rp::normal_lag(rp::DEFAULT_NORMAL_LAG), ..Default::default() }
+    rp::RuptureSpec { normal: tribofe::law::Normal::Time { t: rp::DEFAULT_NORMAL_LAG }, ..Default::default() }
 }
 
 /// The dynamic-rupture scene on a rigid flat (`tribofe rupture`, docs/dynamics.md): explicit
@@ -1166,25 +1166,7 @@ fn dynamic_slide<'py>(
         plate_inertia: plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only,
         weakening_steps: ds::weakening_steps(weakening_steps, &o, drive_velocity).map_err(to_py)?,
-        normal: if normal_lag.is_some() || normal_lag_length.is_some() || normal_lag_v_star.is_some() {
-            tribofe::law::Normal::from_inputs(
-                normal_lag,
-                normal_lag_length,
-                normal_lag_v_star,
-                tribofe::law::Normal::Instantaneous,
-                ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
-            )
-        } else {
-            let t = &scene.law;
-            tribofe::law::Normal::from_inputs(
-                t.normal_lag,
-                t.normal_lag_length,
-                t.normal_lag_v_star,
-                tribofe::law::Normal::Instantaneous,
-                ["[law] normal_lag", "[law] normal_lag_length", "[law] normal_lag_v_star"],
-            )
-        }
-        .map_err(to_py)?,
+        normal: scene.law.normal([normal_lag, normal_lag_length, normal_lag_v_star]).map_err(to_py)?,
         ..Default::default()
     };
     // ds::run makes every check before any work (the quasi-static ones on a rate-free law).

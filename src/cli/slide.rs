@@ -285,24 +285,6 @@ fn spacetime(a: &Args) -> tribofe::Result<Spacetime> {
     Ok(s)
 }
 
-/// The normal response of the flags, or else of the scene's [law] (never a mix of the two).
-fn normal_response(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<tribofe::law::Normal> {
-    let t = &scene.law;
-    let (values, keys) =
-        if a.normal_lag.is_some() || a.normal_lag_length.is_some() || a.normal_lag_v_star.is_some() {
-            (
-                (a.normal_lag, a.normal_lag_length, a.normal_lag_v_star),
-                ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
-            )
-        } else {
-            (
-                (t.normal_lag, t.normal_lag_length, t.normal_lag_v_star),
-                ["[law] normal_lag", "[law] normal_lag_length", "[law] normal_lag_v_star"],
-            )
-        };
-    tribofe::law::Normal::from_inputs(values.0, values.1, values.2, tribofe::law::Normal::Instantaneous, keys)
-}
-
 fn law_choice(a: &Args, scene: &tribofe::scene::Scene) -> LawChoice {
     LawChoice {
         law: a.law.clone(),
@@ -505,7 +487,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         plate_inertia: a.plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only: a.heal == "slipped",
         weakening_steps: ds::weakening_steps(a.weakening_steps, &o, a.drive_velocity)?,
-        normal: normal_response(a, scene)?,
+        normal: scene.law.normal([a.normal_lag, a.normal_lag_length, a.normal_lag_v_star])?,
         ..Default::default()
     };
     if let Some(levels) = a.refine {

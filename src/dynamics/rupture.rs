@@ -148,16 +148,6 @@ pub const DEFAULT_MAX_STEPS: u64 = 1_000_000;
 /// cross-check spec, without it.
 pub const DEFAULT_NORMAL_LAG: f64 = 1e-3;
 
-/// The normal response as `--normal-lag T` gives it: 0 is the instantaneous normal stress
-/// (the spec's), otherwise Prakash-Clifton with the time scale T.
-pub fn normal_lag(t: f64) -> Normal {
-    if t == 0.0 {
-        Normal::Instantaneous
-    } else {
-        Normal::Time { t }
-    }
-}
-
 /// Fewest elements across Lambda_0 a run accepts.
 pub const MIN_ZONE_ELEMENTS: f64 = 3.0;
 
@@ -653,10 +643,10 @@ impl Flat<'_> {
             }
             smin = smin.min(sigma);
             let open = spec.contact == Contact::Unilateral && sigma == 0.0;
+            // The slip rate of the half step before: the explicit rate the lag and the law read.
+            let v_old = self.slip_factor * v[2 * k].abs();
             let s_eff = if spec.normal.lags() {
-                // The slip rate of the half step before: the explicit rate the length form reads.
-                let rate = self.slip_factor * v[2 * k].abs();
-                self.seff[b] = spec.normal.relax(self.seff[b], sigma, dt, rate);
+                self.seff[b] = spec.normal.relax(self.seff[b], sigma, dt, v_old);
                 if open {
                     0.0
                 } else {
@@ -668,14 +658,8 @@ impl Flat<'_> {
             // Not clamped at sigma < 0 (possible under bilateral contact only): the spec's
             // rule as written, T = mu sigma sign(T*); the run reports min sigma to show it.
             let t_star = self.tau0[b] + (m * v[2 * k] / dt + fx) / w;
-            let trial = Trial {
-                t_star,
-                p: s_eff,
-                z: m / (dt * w * self.slip_factor),
-                dt,
-                slip: self.d[b],
-                v_old: self.slip_factor * v[2 * k].abs(),
-            };
+            let trial =
+                Trial { t_star, p: s_eff, z: m / (dt * w * self.slip_factor), dt, slip: self.d[b], v_old };
             let (t, _) = spec.friction.split_node(trial, &mut self.theta[b]);
             self.tr[b] = t;
             self.fbx[b] = (self.tau0[b] - t) * w;

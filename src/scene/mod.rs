@@ -163,6 +163,28 @@ impl LawTable {
     pub fn is_empty(&self) -> bool {
         *self == Self::default()
     }
+
+    /// The explicit base's normal response: of `given` (a front end's normal_lag,
+    /// normal_lag_length, normal_lag_v_star) if any is given, else of this table (never a mix);
+    /// instantaneous if neither says. A refusal names the flag (`--normal-lag`; a front end
+    /// renders its own keyword) or the key (`[law] normal_lag`).
+    pub fn normal(&self, given: [Option<f64>; 3]) -> Result<crate::law::Normal> {
+        let (values, keys) = if given.iter().any(Option::is_some) {
+            (given, ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"])
+        } else {
+            (
+                [self.normal_lag, self.normal_lag_length, self.normal_lag_v_star],
+                ["[law] normal_lag", "[law] normal_lag_length", "[law] normal_lag_v_star"],
+            )
+        };
+        crate::law::Normal::from_inputs(
+            values[0],
+            values[1],
+            values[2],
+            crate::law::Normal::Instantaneous,
+            keys,
+        )
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
