@@ -452,6 +452,11 @@ add(cells(R, "A refinement series at fixed physics", [
 add(cells(R, "The control case H = 0", [
     csv_("validation/dynamics/control_h0/summary.csv", "largest_F_before_crossing_over_mu_s_N"),
     rx("validation/dynamics/control_h0/h0.txt", r"F_max = ([0-9.]+)")]))
+T205 = "validation/dynamics/tpv205_2d/table.csv"
+add(cells(R, "TPV205-2D, the field's 2D rupture benchmark", [
+    csv_(T205, None, agg="max", value=lambda r: abs(float(r["arrival_h100_minus_ref_s"]))),
+    csv_(T205, None, {"x_m": lambda x: abs(float(x)) <= 4500}, "max",
+         value=lambda r: 100 * abs(float(r["slip_h100_over_ref_minus_1"])))]))
 A5 = "validation/dynamics/assumption5/table.csv"
 a5 = lambda r: {"r": r}  # noqa: E731
 add(cells(R, "Assumption 5 (the field ahead", [

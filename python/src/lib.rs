@@ -929,13 +929,14 @@ fn rupture_defaults() -> tribofe::dynamics::rupture::RuptureSpec {
 /// elastodynamics with slip-weakening friction on the base. Arrays per base node (x >= any),
 /// NaN where the front never arrived; scalars in SI units. `s` is the command's `--s`.
 #[pyfunction]
-#[pyo3(signature = (*, s=None, h=None, dc=None, t_end=None, length=None, height=None, mu_s=None,
+#[pyo3(signature = (*, scene=None, s=None, h=None, dc=None, t_end=None, length=None, height=None, mu_s=None,
     mu_d=None, sigma0=None, young=None, poisson=None, density=None, courant=None, damping=None,
     contact=None, normal_lag=None, normal_lag_length=None, normal_lag_v_star=None, patch_taper=None,
     max_steps=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
 fn rupture<'py>(
     py: Python<'py>,
+    scene: Option<std::path::PathBuf>,
     s: Option<f64>,
     h: Option<f64>,
     dc: Option<f64>,
@@ -962,6 +963,87 @@ fn rupture<'py>(
     let warn = |text: &str, class: &Bound<'py, pyo3::types::PyType>| {
         PyErr::warn(py, class, &std::ffi::CString::new(text).unwrap_or_default(), 1)
     };
+    let spec = match &scene {
+        // A rupture scene file, the keywords on top (as the command's `--scene` and flags).
+        Some(path) => {
+            let inputs = rp::SceneInputs {
+                s,
+                h,
+                dc,
+                t_end,
+                length,
+                height,
+                mu_s,
+                mu_d,
+                sigma0,
+                young,
+                poisson,
+                density,
+                courant,
+                damping,
+                contact: contact.map(str::to_string),
+                normal_lag,
+                normal_lag_length,
+                normal_lag_v_star,
+                patch_taper,
+                max_steps,
+            };
+            inputs.spec(path).map_err(to_py)?.0
+        }
+        None => rupture_flags_spec(
+            s,
+            h,
+            dc,
+            t_end,
+            length,
+            height,
+            mu_s,
+            mu_d,
+            sigma0,
+            young,
+            poisson,
+            density,
+            courant,
+            damping,
+            contact,
+            normal_lag,
+            normal_lag_length,
+            normal_lag_v_star,
+            patch_taper,
+            max_steps,
+        )?,
+    };
+    if let Some(w) = spec.instantaneous_normal_warning() {
+        warn(&w.replace("--normal-lag", "normal_lag="), &py.get_type::<pyo3::exceptions::PyUserWarning>())?;
+    }
+    let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, poll))?;
+    rupture_dict(py, &r, core_s)
+}
+
+/// The flag-driven scene of `rupture`'s keywords, checked.
+#[allow(clippy::too_many_arguments)]
+fn rupture_flags_spec(
+    s: Option<f64>,
+    h: Option<f64>,
+    dc: Option<f64>,
+    t_end: Option<f64>,
+    length: Option<f64>,
+    height: Option<f64>,
+    mu_s: Option<f64>,
+    mu_d: Option<f64>,
+    sigma0: Option<f64>,
+    young: Option<f64>,
+    poisson: Option<f64>,
+    density: Option<f64>,
+    courant: Option<f64>,
+    damping: Option<f64>,
+    contact: Option<&str>,
+    normal_lag: Option<f64>,
+    normal_lag_length: Option<f64>,
+    normal_lag_v_star: Option<f64>,
+    patch_taper: Option<f64>,
+    max_steps: Option<u64>,
+) -> PyResult<tribofe::dynamics::rupture::RuptureSpec> {
     let mut spec = rupture_defaults();
     let set = |v: Option<f64>, field: &mut f64| {
         if let Some(v) = v {
@@ -1003,10 +1085,15 @@ fn rupture<'py>(
         spec.max_steps = n;
     }
     spec.validate().map_err(to_py)?;
-    if let Some(w) = spec.instantaneous_normal_warning() {
-        warn(&w.replace("--normal-lag", "normal_lag="), &py.get_type::<pyo3::exceptions::PyUserWarning>())?;
-    }
-    let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, poll))?;
+    Ok(spec)
+}
+
+/// A rupture run as the dict `rupture` returns.
+fn rupture_dict<'py>(
+    py: Python<'py>,
+    r: &tribofe::dynamics::rupture::RuptureResult,
+    core_s: f64,
+) -> PyResult<Bound<'py, PyDict>> {
     let opt = |v: &[Option<f64>]| v.iter().map(|t| t.unwrap_or(f64::NAN)).collect::<Vec<_>>();
     let out = PyDict::new(py);
     out.set_item("x_m", arr(py, &r.x))?;
@@ -1034,6 +1121,20 @@ fn rupture<'py>(
     energy.set_item("friction_J_per_m", e.friction)?;
     energy.set_item("residual_J_per_m", e.residual)?;
     out.set_item("energy", energy)?;
+    out.set_item("rupture_time_s", arr(py, &opt(&r.rupture_time)))?;
+    out.set_item("rate_threshold_m_per_s", r.rate_threshold)?;
+    // One dict per station, keyed by its x (m), with the columns of station_x<x>.csv.
+    let stations = PyDict::new(py);
+    for st in &r.stations {
+        let d = PyDict::new(py);
+        d.set_item("t_s", arr(py, &st.t))?;
+        d.set_item("slip_m", arr(py, &st.slip))?;
+        d.set_item("slip_rate_m_per_s", arr(py, &st.slip_rate))?;
+        d.set_item("shear_stress_Pa", arr(py, &st.shear))?;
+        d.set_item("normal_stress_Pa", arr(py, &st.normal))?;
+        stations.set_item(st.x, d)?;
+    }
+    out.set_item("stations", stations)?;
     out.set_item("core_s", core_s)?;
     Ok(out)
 }

@@ -114,6 +114,33 @@ def test_rupture_max_steps_is_the_commands(tribofe_bin, tmp_path):
     assert "max_steps=" in str(e.value) and "t_end=" in str(e.value) and "--" not in str(e.value)
 
 
+def test_rupture_takes_a_scene_file(tribofe_bin, tmp_path):
+    # TPV205-2D at 200 m from Python equals the command's station file, and a keyword given
+    # overrides the file's key and is named as a keyword when refused.
+    import pathlib
+
+    scene = pathlib.Path(__file__).resolve().parents[2] / "validation/dynamics/tpv205_2d/tpv205_2d.toml"
+    out = tmp_path / "t"
+    assert run_cli(tribofe_bin, "rupture", "--scene", str(scene), "--h", "200", "--out", str(out)).returncode == 0
+    res = tribofe.dynamics.rupture(scene=scene, h=200)
+    st = res["stations"][4500.0]
+    cli = read_csv(out / "station_x4500.csv")
+    for key in ("t_s", "slip_m", "slip_rate_m_per_s", "shear_stress_Pa", "normal_stress_Pa"):
+        np.testing.assert_allclose(st[key], [float(v) for v in cli[key]], rtol=1e-11, atol=1e-300)
+    # The rupture time at 4.5 km (a node midway: the field's 1.5 s, PyLith's 1.500).
+    x, t = np.asarray(res["x_m"]), np.asarray(res["rupture_time_s"])
+    assert abs(np.interp(4500.0, x, t) - 1.55) < 0.01
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.dynamics.rupture(scene=scene, h=200, dc=0.12)
+    assert "h=" in str(e.value) and "dc=" in str(e.value) and "--" not in str(e.value)
+    # A key of the file named as such when the keyword is not given.
+    small_dc = tmp_path / "small_dc.toml"
+    small_dc.write_text(scene.read_text().replace("dc = 0.40 ", "dc = 0.12 "))
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.dynamics.rupture(scene=small_dc, h=200)
+    assert "[law] dc" in str(e.value) and "h=" in str(e.value)
+
+
 def test_fe_fig4_defaults_are_the_commands(tribofe_bin, tmp_path):
     # `tribofe precursors fe` with no flag and precursors.fe_fig4() with no keyword are the
     # same runs (2 cycles): every number of summary.csv, to its printed digits.

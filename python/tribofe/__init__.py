@@ -11,8 +11,9 @@ their names (``x_over_L``, ``p_over_pmean``, ``F_over_mu_s_N``).
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Optional
+from typing import Any, Callable, Dict, List, Optional, Union
 
 import numpy as np
 
@@ -618,6 +619,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
     @staticmethod
     def rupture(
         *,
+        scene: Optional[Union[str, "os.PathLike[str]"]] = None,
         s: Optional[float] = None,
         h: Optional[float] = None,
         dc: Optional[float] = None,
@@ -654,11 +656,17 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         (m/s, default 0), ``patch_taper`` (m: a cosine
         ramp of the initial shear across the patch edge), ``max_steps`` (most explicit steps;
         a run above it is refused before any work, naming the largest ``t_end`` that fits).
-        Silent unless ``progress`` is True (a tqdm bar) or a callable.
+        Silent unless ``progress`` is True (a tqdm bar) or a callable. ``scene``: a rupture
+        scene file (``tribofe rupture --scene``: the block, ``[law]``, ``[interface]`` with
+        values piecewise in x and a nucleation patch, ``[rupture]`` with stations), the
+        keywords given on top of its keys.
 
         Returns per base node ``x_m``, ``t_arrival_s`` (NaN where the front never arrived),
-        ``slip_m``, ``peak_slip_rate_m_per_s``..., and the force drop, front speed, wave
-        speeds, cohesive-zone size ``lambda0_m`` and the energy ledger."""
+        ``slip_m``, ``peak_slip_rate_m_per_s``, ``rupture_time_s`` (the first slip rate above
+        ``rate_threshold_m_per_s``; NaN where never)..., the force drop, front speed, wave
+        speeds, cohesive-zone size ``lambda0_m``, the energy ledger, and ``stations``: one dict
+        per station keyed by its x (m) with the columns of ``station_x<x>.csv`` (``t_s``,
+        ``slip_m``, ``slip_rate_m_per_s``, ``shear_stress_Pa``, ``normal_stress_Pa``)."""
         if s_ratio is not None:
             # The old keyword, kept working: the command names it --s.
             if s is not None:
@@ -670,6 +678,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         cb, close = _progress(progress, "rupture")
         try:
             return _rupture(
+                scene=None if scene is None else os.fspath(scene),
                 s=s,
                 h=h,
                 dc=dc,

@@ -117,6 +117,7 @@ def precursors_fe_fig5(
 ) -> Dict[str, Any]: ...
 def rupture(
     *,
+    scene: Optional[str] = None,
     s: Optional[float] = None,
     h: Optional[float] = None,
     dc: Optional[float] = None,

@@ -4,8 +4,9 @@
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use tribofe::dynamics::rupture::{Contact, RuptureSpec};
+use tribofe::dynamics::rupture::{Contact, RuptureSpec, SceneInputs};
 use tribofe::law::Law;
+use tribofe::scene::Scene;
 
 // Every default is the library's RuptureSpec::default() (the cross-check spec), bar the
 // normal lag; the Python package reads the same.
@@ -77,6 +78,13 @@ pub struct Args {
     /// mesh (one step of 200 x 100 elements about 1 ms); the default run is 414 steps.
     #[arg(long, default_value_t = tribofe::dynamics::rupture::DEFAULT_MAX_STEPS)]
     pub max_steps: u64,
+    /// A rupture scene file (TOML; docs/dynamics.md, "Rupture scenes"): the block, the
+    /// material (young, poisson or c_p, c_s, with density), [law], [interface] (kind, sigma0,
+    /// tau0, a nucleation patch, values piecewise in x) and [rupture] (t_end, stations,
+    /// dt_out, ...). A flag given overrides the file's key; a key the file does not give takes
+    /// the scene's default (the block's and mesh's) or this command's.
+    #[arg(long)]
+    pub scene: Option<PathBuf>,
     /// Output directory.
     #[arg(long, default_value = "out/rupture")]
     pub out: PathBuf,
@@ -86,7 +94,39 @@ pub struct Args {
     pub force: bool,
 }
 
+/// The flags given, on top of a `--scene` file.
+fn scene_inputs(a: &Args) -> SceneInputs {
+    use super::given;
+    let f = |id: &str, v: f64| given(id).then_some(v);
+    SceneInputs {
+        s: f("s", a.s),
+        h: f("h", a.h),
+        dc: f("dc", a.dc),
+        t_end: f("t_end", a.t_end),
+        length: f("length", a.length),
+        height: f("height", a.height),
+        mu_s: f("mu_s", a.mu_s),
+        mu_d: f("mu_d", a.mu_d),
+        sigma0: f("sigma0", a.sigma0),
+        young: f("young", a.young),
+        poisson: f("poisson", a.poisson),
+        density: f("density", a.density),
+        courant: f("courant", a.courant),
+        damping: f("damping", a.damping),
+        contact: given("contact").then(|| a.contact.clone()),
+        normal_lag: f("normal_lag", a.normal_lag),
+        normal_lag_length: a.normal_lag_length,
+        normal_lag_v_star: a.normal_lag_v_star,
+        patch_taper: f("patch_taper", a.patch_taper),
+        max_steps: given("max_steps").then_some(a.max_steps),
+    }
+}
+
 pub fn run(a: Args) -> tribofe::Result<()> {
+    if let Some(path) = &a.scene {
+        let (spec, scene) = scene_inputs(&a).spec(path)?;
+        return run_spec(&a, &spec, Some(&scene));
+    }
     let spec = RuptureSpec {
         length: a.length,
         height: a.height,
@@ -114,24 +154,53 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         ..Default::default()
     };
     spec.validate()?;
+    run_spec(&a, &spec, None)
+}
+
+fn run_spec(a: &Args, spec: &RuptureSpec, scene: Option<&Scene>) -> tribofe::Result<()> {
     tribofe::io::outdir::check(&a.out, a.force)?;
     if let Some(w) = spec.instantaneous_normal_warning() {
         errln!("warning: {w}");
     }
     let lambda0 = spec.lambda0()?;
     let (dt, steps) = spec.steps()?;
-    outln!(
-        "rupture: S = {}, tau0 = {:.6} Pa outside |x| <= {} m ({}), h = {} m, D_c = {:e} m; Lambda_0 = {:.4e} m = {:.2} elements; {steps:.0} steps of dt = {dt:.4e} s (--max-steps {})",
-        spec.s_ratio,
-        spec.tau0(),
-        spec.patch_half_width,
-        if spec.patch_taper > 0.0 { format!("edge ramp {} m", spec.patch_taper) } else { "edge: a jump".to_string() },
-        spec.h,
-        spec.dc(),
-        lambda0,
-        lambda0 / spec.h,
-        spec.max_steps
-    );
+    if let Some(path) = &a.scene {
+        let p = spec.patch();
+        let (t_back, from) = spec.clean_time()?;
+        outln!(
+            "rupture scene {}: {} x {} m block, h = {} m ({} x {} elements), {} interface; tau0 = {:.6e} Pa, sigma0 = {:.6e} Pa in the background, {} interval(s); nucleation {} <= x <= {} m at {:.6e} Pa; Lambda_0 >= {:.4e} m = {:.2} elements; {steps:.0} steps of dt = {dt:.4e} s; {} station(s); the first reflection ({from}) returns at {t_back:.4} s{}",
+            tribofe::error::quote(&path.display().to_string()),
+            spec.length,
+            spec.height,
+            spec.h,
+            (spec.length / spec.h).round(),
+            (spec.height / spec.h).round(),
+            spec.contact.name(),
+            spec.tau0(),
+            spec.sigma0,
+            spec.pieces.len(),
+            p.x_min,
+            p.x_max,
+            p.tau0,
+            lambda0,
+            lambda0 / spec.h,
+            spec.stations.len(),
+            if t_back < spec.t_end { " (before t_end: allowed by the scene)" } else { "" }
+        );
+    } else {
+        outln!(
+            "rupture: S = {}, tau0 = {:.6} Pa outside |x| <= {} m ({}), h = {} m, D_c = {:e} m; Lambda_0 = {:.4e} m = {:.2} elements; {steps:.0} steps of dt = {dt:.4e} s (--max-steps {})",
+            spec.s_ratio,
+            spec.tau0(),
+            spec.patch_half_width,
+            if spec.patch_taper > 0.0 { format!("edge ramp {} m", spec.patch_taper) } else { "edge: a jump".to_string() },
+            spec.h,
+            spec.dc(),
+            lambda0,
+            lambda0 / spec.h,
+            spec.max_steps
+        );
+    }
     let bar = ProgressBar::new(1000).with_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {percent}% {elapsed}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
@@ -139,7 +208,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
     bar.set_message("rupture");
     let t0 = std::time::Instant::now();
     let tick = |t: &tribofe::Tick| bar.set_position((t.fraction.unwrap_or(0.0) * 1000.0) as u64);
-    let r = tribofe::dynamics::rupture::run(&spec, &tribofe::Cancel::new(), tribofe::Progress::new(&tick))?;
+    let r = tribofe::dynamics::rupture::run(spec, &tribofe::Cancel::new(), tribofe::Progress::new(&tick))?;
     let secs = t0.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let dir = super::begin_out(&a.out, a.force)?;
@@ -151,13 +220,14 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         ("force_drop_N_per_m", toml::Value::from(r.force_drop)),
         ("min_sigma_Pa", toml::Value::from(r.min_sigma)),
         ("normal_response", toml::Value::from(spec.normal.name())),
+        ("rate_threshold_m_per_s", toml::Value::from(r.rate_threshold)),
         ("wall_seconds", toml::Value::from(secs)),
     ]
     .into_iter()
     .map(|(k, v)| (k.to_string(), v))
     .chain(r.front_speed.map(|v| ("front_speed_m_per_s".to_string(), toml::Value::from(v))))
     .collect();
-    super::write_run_file(dir.path(), None, &results)?;
+    super::write_run_file(dir.path(), scene, &results)?;
     dir.commit()?;
     let w = &r.speeds;
     outln!(
@@ -206,11 +276,25 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             z / spec.h
         );
     }
+    if !r.barrier_slipped.is_empty() {
+        errln!(
+            "warning: {} barrier node(s) (static strength over {} times the largest initial shear) slipped past D_c / 100, from x = {} to {} m: the barrier did not hold",
+            r.barrier_slipped.len(),
+            tribofe::dynamics::rupture::BARRIER_FACTOR,
+            r.barrier_slipped[0],
+            r.barrier_slipped[r.barrier_slipped.len() - 1]
+        );
+    }
     outln!(
-        "{:.2} s ({:.3e} DOF-updates/s); wrote {}/{{arrival.csv, summary.csv, energy.csv, zone.csv}}",
+        "{:.2} s ({:.3e} DOF-updates/s); wrote {}/{{{}}}",
         secs,
-        (r.steps as f64) * 2.0 * ((a.length / a.h).round() + 1.0) * ((a.height / a.h).round() + 1.0) / secs,
-        a.out.display()
+        (r.steps as f64)
+            * 2.0
+            * ((spec.length / spec.h).round() + 1.0)
+            * ((spec.height / spec.h).round() + 1.0)
+            / secs,
+        a.out.display(),
+        tribofe::report::rupture::files(&r).join(", ")
     );
     Ok(())
 }

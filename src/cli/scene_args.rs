@@ -256,6 +256,14 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
         None => Scene::default(),
     };
     let s = base.apply(&args.overrides()?)?;
+    for (table, there) in [("[interface]", s.interface.is_some()), ("[rupture]", s.rupture.is_some())] {
+        if there {
+            return Err(tribofe::Error::input(
+                format!("{table} in {}", tribofe::error::quote(&args.scene.clone().unwrap_or_default().display().to_string())),
+                "describes a rupture scene, read by `tribofe rupture --scene` only: remove the table for this command",
+            ));
+        }
+    }
     if let Some(mesh) = &s.mesh.file {
         // The structured mesher's flags cannot act on a mesh read from a file.
         let given = [

@@ -107,7 +107,89 @@ pub struct RuptureSpec {
     /// Most explicit steps a run may take ([`DEFAULT_MAX_STEPS`]): t_end / dt above it is
     /// refused before any work ([`RuptureSpec::steps`]).
     pub max_steps: u64,
+    /// The background shear outside the patch and the pieces, Pa; None: from [`Self::s_ratio`].
+    pub tau0_background: Option<f64>,
+    /// A nucleation patch anywhere on the interface; None: the centred patch of
+    /// [`Self::patch_half_width`], [`Self::overstress`] and [`Self::patch_taper`].
+    pub nucleation: Option<Patch>,
+    /// Values that differ from the background over intervals of x (a scene's `[interface]
+    /// intervals`): no two setting the same value overlap.
+    pub pieces: Vec<Piece>,
+    /// Stations along the interface, m: one time series each ([`Station`]).
+    pub stations: Vec<f64>,
+    /// Station output interval, s; None: every step.
+    pub dt_out: Option<f64>,
+    /// The slip rate whose first crossing is a node's rupture time, m/s; None: the project's
+    /// arrival rate 0.01 (mu_s - mu_d) sigma0 / (rho c_s) of the background.
+    pub rate_threshold: Option<f64>,
+    /// Whether waves may come back from the block's far edges to the stations (or the patch)
+    /// before t_end: the spec's small block is such a domain by design; a scene file must say so.
+    pub reflections_allowed: bool,
 }
+
+/// A nucleation patch x_min <= x <= x_max with initial shear tau0 (Pa) and a cosine ramp of
+/// width `taper` (m) centred on each edge (0: a jump).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Patch {
+    pub x_min: f64,
+    pub x_max: f64,
+    pub tau0: f64,
+    pub taper: f64,
+}
+
+/// Values over x_min <= x <= x_max that replace the background's (None: the background's),
+/// with a cosine ramp of width `taper` (m) centred on each edge.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Piece {
+    pub x_min: f64,
+    pub x_max: f64,
+    pub taper: f64,
+    /// Pa.
+    pub sigma0: Option<f64>,
+    /// Pa.
+    pub tau0: Option<f64>,
+    pub mu_s: Option<f64>,
+    pub mu_d: Option<f64>,
+    /// m.
+    pub dc: Option<f64>,
+}
+
+/// The names of a [`Piece`]'s values, in its order (the scene keys).
+pub const PIECE_KEYS: [&str; 5] = ["sigma0", "tau0", "mu_s", "mu_d", "dc"];
+
+impl Piece {
+    /// Its values in [`PIECE_KEYS`] order.
+    pub fn values(&self) -> [Option<f64>; 5] {
+        [self.sigma0, self.tau0, self.mu_s, self.mu_d, self.dc]
+    }
+}
+
+/// `inside` over [x_min, x_max], `outside` beyond, across each edge a jump (the edge node
+/// inside whatever the rounding of its coordinate) or a cosine ramp of width `taper` centred
+/// on it. Written about the interval's centre so a centred patch gives the same bits as |x|.
+fn ramp(x: f64, (x_min, x_max, taper): (f64, f64, f64), h: f64, inside: f64, outside: f64) -> f64 {
+    let (c, a) = (0.5 * (x_min + x_max), 0.5 * (x_max - x_min));
+    let r = (x - c).abs();
+    if taper == 0.0 {
+        return if r <= a + 1e-6 * h { inside } else { outside };
+    }
+    let s = ((r - (a - taper / 2.0)) / taper).clamp(0.0, 1.0);
+    outside + (inside - outside) * 0.5 * (1.0 + (std::f64::consts::PI * s).cos())
+}
+
+/// The interface's values at each base node.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layout {
+    pub sigma0: Vec<f64>,
+    pub tau0: Vec<f64>,
+    pub law: Vec<Law>,
+    /// Nodes whose static strength is over [`BARRIER_FACTOR`] times the largest initial shear:
+    /// no front breaks them, so no cohesive zone there needs resolving.
+    pub barrier: Vec<bool>,
+}
+
+/// A node is a barrier when mu_s sigma0 exceeds this many times the largest initial shear.
+pub const BARRIER_FACTOR: f64 = 10.0;
 
 impl Default for RuptureSpec {
     fn default() -> Self {
@@ -131,6 +213,13 @@ impl Default for RuptureSpec {
             speed_window: (0.03, 0.08),
             normal: Normal::Instantaneous,
             max_steps: DEFAULT_MAX_STEPS,
+            tau0_background: None,
+            nucleation: None,
+            pieces: Vec::new(),
+            stations: Vec::new(),
+            dt_out: None,
+            rate_threshold: None,
+            reflections_allowed: true,
         }
     }
 }
@@ -156,10 +245,59 @@ impl RuptureSpec {
         Material::plane_strain(self.young, self.poisson)
     }
 
-    /// Background shear outside the patch, Pa: tau0 = sigma0 (mu_s + S mu_d) / (1 + S).
+    /// Background shear outside the patch, Pa: given, or tau0 = sigma0 (mu_s + S mu_d) / (1 + S).
     pub fn tau0(&self) -> f64 {
         let f = &self.friction;
-        self.sigma0 * (f.mu_s() + self.s_ratio * f.mu_d()) / (1.0 + self.s_ratio)
+        self.tau0_background
+            .unwrap_or_else(|| self.sigma0 * (f.mu_s() + self.s_ratio * f.mu_d()) / (1.0 + self.s_ratio))
+    }
+
+    /// The nucleation patch: [`Self::nucleation`], or the centred one of the flags.
+    pub fn patch(&self) -> Patch {
+        self.nucleation.unwrap_or(Patch {
+            x_min: -self.patch_half_width,
+            x_max: self.patch_half_width,
+            tau0: self.overstress * self.friction.mu_s() * self.sigma0,
+            taper: self.patch_taper,
+        })
+    }
+
+    /// The base nodes' x, m (the mesher numbers row by row: the first nx + 1 nodes).
+    pub fn base_x(&self) -> Vec<f64> {
+        let nx = (self.length / self.h).round() as usize;
+        let x0 = -self.length / 2.0;
+        (0..=nx).map(|i| x0 + (self.length / 2.0 - x0) * (i as f64) / (nx as f64)).collect()
+    }
+
+    /// The background with the pieces, then the patch, at each of `x`.
+    pub fn layout(&self, x: &[f64]) -> Layout {
+        let Law::SlipWeakening { mu_s, mu_d, dc } = self.friction else {
+            unreachable!("validated: slip weakening")
+        };
+        let background = [self.sigma0, self.tau0(), mu_s, mu_d, dc];
+        let patch = self.patch();
+        let vals: Vec<[f64; 5]> = x
+            .iter()
+            .map(|&xi| {
+                let mut v = background;
+                for p in &self.pieces {
+                    for (k, pv) in p.values().into_iter().enumerate() {
+                        if let Some(pv) = pv {
+                            v[k] = ramp(xi, (p.x_min, p.x_max, p.taper), self.h, pv, v[k]);
+                        }
+                    }
+                }
+                v[1] = ramp(xi, (patch.x_min, patch.x_max, patch.taper), self.h, patch.tau0, v[1]);
+                v
+            })
+            .collect();
+        let tau_max = vals.iter().map(|v| v[1]).fold(0.0, f64::max);
+        Layout {
+            sigma0: vals.iter().map(|v| v[0]).collect(),
+            tau0: vals.iter().map(|v| v[1]).collect(),
+            law: vals.iter().map(|v| Law::SlipWeakening { mu_s: v[2], mu_d: v[3], dc: v[4] }).collect(),
+            barrier: vals.iter().map(|v| v[2] * v[0] > BARRIER_FACTOR * tau_max).collect(),
+        }
     }
 
     /// D_c, m (the law is slip weakening once validated).
@@ -167,23 +305,44 @@ impl RuptureSpec {
         self.friction.dc().unwrap_or(f64::INFINITY)
     }
 
-    /// The initial shear at x, Pa: overstress mu_s sigma0 on the patch, [`Self::tau0`] outside,
-    /// across its edge a jump or the cosine ramp of [`Self::patch_taper`].
+    /// The initial shear at x, Pa ([`Self::layout`] at one point).
     pub fn prestress(&self, x: f64) -> f64 {
-        let (tau_in, tau_out) = (self.overstress * self.friction.mu_s() * self.sigma0, self.tau0());
-        let (a, w) = (self.patch_half_width, self.patch_taper);
-        if w == 0.0 {
-            // The patch edge is a node: include it whatever the rounding of its coordinate.
-            return if x.abs() <= a + 1e-6 * self.h { tau_in } else { tau_out };
-        }
-        let s = ((x.abs() - (a - w / 2.0)) / w).clamp(0.0, 1.0);
-        tau_out + (tau_in - tau_out) * 0.5 * (1.0 + (std::f64::consts::PI * s).cos())
+        self.layout(&[x]).tau0[0]
     }
 
-    /// Lambda_0 of [`Law::cohesive_zone`] at sigma0, m.
+    /// The project's arrival rate of the background, m/s: 0.01 (mu_s - mu_d) sigma0 / (rho c_s),
+    /// the slip rate a front's arrival is read at (as `slide --dynamics`).
+    pub fn arrival_rate(&self, speeds: &WaveSpeeds) -> f64 {
+        0.01 * (self.friction.mu_s() - self.friction.mu_d()) * self.sigma0 / (self.density * speeds.c_s)
+    }
+
+    /// Lambda_0 of [`Law::cohesive_zone`], m: the shortest over the base nodes that are not
+    /// barriers (the background's at sigma0 when the interface is uniform).
     pub fn lambda0(&self) -> Result<f64> {
+        Ok(self.zones()?[0].0)
+    }
+
+    /// The shortest and the longest Lambda_0 over the non-barrier base nodes, each with the
+    /// node's D_c (m) and x (m).
+    fn zones(&self) -> Result<[(f64, f64, f64); 2]> {
         let m = self.material()?;
-        Ok(self.friction.cohesive_zone(m.shear_modulus(), m.nu, self.sigma0))
+        let x = self.base_x();
+        let lay = self.layout(&x);
+        let mut z = [(f64::INFINITY, 0.0, 0.0), (0.0, 0.0, 0.0)];
+        for (i, law) in lay.law.iter().enumerate() {
+            if lay.barrier[i] {
+                continue;
+            }
+            let l = law.cohesive_zone(m.shear_modulus(), m.nu, lay.sigma0[i]);
+            let dc = law.dc().unwrap_or(f64::INFINITY);
+            if l < z[0].0 {
+                z[0] = (l, dc, x[i]);
+            }
+            if l > z[1].0 {
+                z[1] = (l, dc, x[i]);
+            }
+        }
+        Ok(z)
     }
 
     /// The warning for a run on a rigid flat with the instantaneous normal stress: there the
@@ -294,6 +453,8 @@ impl RuptureSpec {
             }
             Normal::Instantaneous => {}
         }
+        // The scene file's values (before the checks that read the patch and the window).
+        self.check_interface()?;
         if !(self.patch_taper >= 0.0 && self.patch_taper <= 2.0 * self.patch_half_width) {
             return Err(Error::input(
                 "nucleation ramp width (m, --patch-taper)",
@@ -365,26 +526,23 @@ impl RuptureSpec {
                 ),
             ));
         }
-        let lambda0 = self.lambda0()?;
-        // Lambda_0 per metre of D_c (finite where Lambda_0 itself overflows).
-        let m = self.material()?;
-        let per_dc =
-            Law::SlipWeakening { mu_s, mu_d, dc: 1.0 }.cohesive_zone(m.shear_modulus(), m.nu, self.sigma0);
-        if !(lambda0 <= self.length / 2.0) {
+        let [(lambda0, dc, x_at), (longest, dc_long, _)] = self.zones()?;
+        if !(longest <= self.length / 2.0) {
             return Err(Error::input(
                 "D_c (m, --dc)",
                 format!(
-                    "the cohesive zone Lambda_0 = {lambda0:.3e} m is longer than the half block L/2 = {} m the front runs over from the patch: no front can form; lower --dc to at most {:.3e} m",
+                    "the cohesive zone Lambda_0 = {longest:.3e} m is longer than the half block L/2 = {} m the front runs over from the patch: no front can form; lower --dc to at most {:.3e} m",
                     self.length / 2.0,
-                    self.length / 2.0 / per_dc
+                    dc_long * (self.length / 2.0) / longest
                 ),
             ));
         }
         if lambda0 < MIN_ZONE_ELEMENTS * self.h {
+            let at = if self.pieces.is_empty() { String::new() } else { format!(" (at x = {x_at} m)") };
             return Err(Error::input(
                 "D_c (m, --dc) or element size (m, --h)",
                 format!(
-                    "the cohesive zone Lambda_0 = {lambda0:.3e} m spans {:.2} elements of h = {} m, fewer than \
+                    "the cohesive zone Lambda_0 = {lambda0:.3e} m{at} spans {:.2} elements of h = {} m, fewer than \
                      {MIN_ZONE_ELEMENTS}: the front would be mesh dependent; raise --dc to at least {:.3e} m or \
                      lower --h to at most {:.3e} m",
                     lambda0 / self.h,
@@ -398,6 +556,183 @@ impl RuptureSpec {
             return Err(Error::input("--max-steps", "0: give at least 1 step"));
         }
         self.check_steps()
+    }
+}
+
+impl RuptureSpec {
+    /// The scene-file values: the background shear, the pieces, the patch, the stations, the
+    /// output interval and threshold, and the reflections' timing. Each message names the
+    /// scene key.
+    fn check_interface(&self) -> Result<()> {
+        let half = self.length / 2.0;
+        let inside = |x: f64| x.is_finite() && (-half..=half).contains(&x);
+        if let Some(t) = self.tau0_background {
+            crate::error::scaled("background shear ([interface] tau0, Pa)", t, "Pa")?;
+        }
+        for (i, p) in self.pieces.iter().enumerate() {
+            let key = format!("[interface] intervals[{i}]");
+            if !(inside(p.x_min) && inside(p.x_max) && p.x_min < p.x_max) {
+                return Err(Error::input(
+                    format!("{key}.x_min, x_max (m)"),
+                    format!(
+                        "[{}, {}] must be an interval x_min < x_max inside the block [-{half}, {half}] m",
+                        p.x_min, p.x_max
+                    ),
+                ));
+            }
+            if !(p.taper.is_finite() && p.taper >= 0.0 && p.taper <= p.x_max - p.x_min) {
+                return Err(Error::input(
+                    format!("{key}.taper (m)"),
+                    format!("{} must be between 0 and the interval's width {} m", p.taper, p.x_max - p.x_min),
+                ));
+            }
+            if p.values().iter().all(Option::is_none) {
+                return Err(Error::input(
+                    key,
+                    format!(
+                        "sets none of {}: give at least one, or remove the interval",
+                        PIECE_KEYS.join(", ")
+                    ),
+                ));
+            }
+            for (k, v) in p.values().into_iter().enumerate() {
+                if let Some(v) = v {
+                    if !(v.is_finite() && (v > 0.0 || (k >= 2 && k <= 3 && v == 0.0))) {
+                        return Err(Error::input(
+                            format!("{key}.{}", PIECE_KEYS[k]),
+                            format!("{v} must be finite and positive"),
+                        ));
+                    }
+                }
+            }
+            // Intervals (with their ramps) setting the same value must not overlap.
+            for (j, q) in self.pieces[..i].iter().enumerate() {
+                let shared: Vec<&str> = (0..5)
+                    .filter(|&k| p.values()[k].is_some() && q.values()[k].is_some())
+                    .map(|k| PIECE_KEYS[k])
+                    .collect();
+                let (a0, a1) = (p.x_min - p.taper / 2.0, p.x_max + p.taper / 2.0);
+                let (b0, b1) = (q.x_min - q.taper / 2.0, q.x_max + q.taper / 2.0);
+                if !shared.is_empty() && a0.max(b0) < a1.min(b1) {
+                    return Err(Error::input(
+                        format!("[interface] intervals[{j}] and intervals[{i}]"),
+                        format!(
+                            "[{}, {}] and [{}, {}] m overlap (ramps included) and both set {}: each point takes one value",
+                            q.x_min, q.x_max, p.x_min, p.x_max, shared.join(", ")
+                        ),
+                    ));
+                }
+            }
+        }
+        let lay = self.layout(&self.base_x());
+        for (i, law) in lay.law.iter().enumerate() {
+            let (mu_s, mu_d) = (law.mu_s(), law.mu_d());
+            if !(mu_d <= mu_s) {
+                return Err(Error::input(
+                    "[interface] intervals mu_s, mu_d",
+                    format!("at x = {} m mu_s = {mu_s} < mu_d = {mu_d}: need mu_d <= mu_s", self.base_x()[i]),
+                ));
+            }
+        }
+        if let Some(p) = self.nucleation {
+            if !(inside(p.x_min) && inside(p.x_max) && p.x_min < p.x_max && p.x_min > -half && p.x_max < half)
+            {
+                return Err(Error::input(
+                    "[interface.nucleation] x_min, x_max (m)",
+                    format!(
+                        "[{}, {}] must lie inside the block (-{half}, {half}) m with unbroken interface beyond it for the rupture to run into",
+                        p.x_min, p.x_max
+                    ),
+                ));
+            }
+            if !(p.taper.is_finite() && p.taper >= 0.0 && p.taper <= p.x_max - p.x_min) {
+                return Err(Error::input(
+                    "[interface.nucleation] taper (m)",
+                    format!("{} must be between 0 and the patch width {} m", p.taper, p.x_max - p.x_min),
+                ));
+            }
+            crate::error::scaled("[interface.nucleation] tau0 (Pa)", p.tau0, "Pa")?;
+            for p2 in self.pieces.iter().filter(|q| q.tau0.is_some()) {
+                if (p.x_min - p.taper / 2.0).max(p2.x_min - p2.taper / 2.0)
+                    < (p.x_max + p.taper / 2.0).min(p2.x_max + p2.taper / 2.0)
+                {
+                    return Err(Error::input(
+                        "[interface.nucleation] x_min, x_max (m)",
+                        format!(
+                            "the patch [{}, {}] m overlaps an interval setting tau0 ([{}, {}] m): each point takes one initial shear",
+                            p.x_min, p.x_max, p2.x_min, p2.x_max
+                        ),
+                    ));
+                }
+            }
+            let x = self.base_x();
+            if !x.iter().enumerate().any(|(i, &xi)| {
+                xi >= p.x_min - 1e-6 * self.h
+                    && xi <= p.x_max + 1e-6 * self.h
+                    && lay.tau0[i] > lay.law[i].mu_s() * lay.sigma0[i]
+            }) {
+                return Err(Error::input(
+                    "[interface.nucleation] tau0 (Pa)",
+                    format!(
+                        "{} Pa is nowhere above the static strength mu_s sigma0 on the patch's nodes: nothing would start; give tau0 above it",
+                        p.tau0
+                    ),
+                ));
+            }
+        }
+        for (i, &x) in self.stations.iter().enumerate() {
+            if !inside(x) {
+                return Err(Error::input(
+                    format!("[rupture] stations[{i}] (m)"),
+                    format!("x = {x} m is off the interface [-{half}, {half}] m"),
+                ));
+            }
+            if self.stations[..i].contains(&x) {
+                return Err(Error::input(
+                    format!("[rupture] stations[{i}] (m)"),
+                    format!("x = {x} m is given twice"),
+                ));
+            }
+        }
+        if let Some(d) = self.dt_out {
+            crate::error::scaled("[rupture] dt_out (s)", d, "s")?;
+        }
+        if let Some(r) = self.rate_threshold {
+            crate::error::scaled("[rupture] rate_threshold (m/s)", r, "m/s")?;
+        }
+        if !self.reflections_allowed {
+            let (t_back, from) = self.clean_time()?;
+            if t_back < self.t_end {
+                return Err(Error::input(
+                    "[rupture] reflections",
+                    format!(
+                        "waves from the nucleation patch come back from the block's {from} to the {} at t = {t_back:.4} s, before t_end = {} s: \
+                         enlarge the block (block.length, block.thickness), shorten t_end, or say reflections = \"allowed\"",
+                        if self.stations.is_empty() { "patch" } else { "stations" },
+                        self.t_end
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The earliest time a wave leaving the patch at t = 0 (at most c_p) comes back from the
+    /// block's top or sides to the stations' span (the patch without stations), s, and which
+    /// edge sends it.
+    pub fn clean_time(&self) -> Result<(f64, &'static str)> {
+        let c_p = WaveSpeeds::new(&self.material()?, self.density).c_p;
+        let p = self.patch();
+        let (r0, r1) = match (
+            self.stations.iter().copied().reduce(f64::min),
+            self.stations.iter().copied().reduce(f64::max),
+        ) {
+            (Some(a), Some(b)) => (a.min(p.x_min), b.max(p.x_max)),
+            _ => (p.x_min, p.x_max),
+        };
+        let half = self.length / 2.0;
+        let sides = f64::min((half - p.x_max) + (half - r1), (p.x_min + half) + (r0 + half));
+        Ok(if 2.0 * self.height <= sides { (2.0 * self.height / c_p, "top") } else { (sides / c_p, "sides") })
     }
 }
 
@@ -501,6 +836,116 @@ pub struct RuptureResult {
     pub speeds: WaveSpeeds,
     pub lambda0: f64,
     pub energy: RuptureEnergy,
+    /// One time series per station of [`RuptureSpec::stations`], in their order.
+    pub stations: Vec<Station>,
+    /// Each base node's first time its slip rate exceeds [`Self::rate_threshold`], s.
+    pub rupture_time: Vec<Option<f64>>,
+    /// m/s.
+    pub rate_threshold: f64,
+    /// The slip rate of every base node at about [`MAP_ROWS`] times: the space-time picture.
+    pub map: RateMap,
+    /// x of the barrier nodes that slipped past D_c / 100 (m): a barrier the run broke.
+    pub barrier_slipped: Vec<f64>,
+    /// Slip per unit displacement along x: 2 on a symmetric fault, else 1.
+    pub slip_factor: f64,
+}
+
+/// A station's time series in the field's conventions: slip (the jump across the interface,
+/// 2 u_x on a symmetric fault), slip rate, shear and normal traction (Pa, the normal one
+/// negative in compression as SCEC's) at each output time: every `dt_out` from t = 0 and at
+/// t_end (whose slip rate is the last half step's).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Station {
+    pub x: f64,
+    pub t: Vec<f64>,
+    pub slip: Vec<f64>,
+    pub slip_rate: Vec<f64>,
+    pub shear: Vec<f64>,
+    pub normal: Vec<f64>,
+}
+
+/// Slip rates (m/s, as f32: a picture) of every base node at the times `t` (s).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RateMap {
+    pub t: Vec<f64>,
+    pub rates: Vec<Vec<f32>>,
+}
+
+/// Rows the space-time picture keeps at most.
+pub const MAP_ROWS: usize = 600;
+
+/// What a run writes down as it goes: the stations (linear between the two base nodes about
+/// each), the rupture times, the space-time map.
+#[derive(Clone)]
+struct Recorder {
+    stride: usize,
+    stations: Vec<Probe>,
+    map_stride: usize,
+    map: RateMap,
+    threshold: f64,
+    rupture_time: Vec<Option<f64>>,
+    /// Each base node's slip rate at t_n on a recorded step.
+    mid: Vec<f64>,
+}
+
+#[derive(Clone)]
+struct Probe {
+    /// Base node index left of the station and the weight of the right one.
+    left: usize,
+    w: f64,
+    series: Station,
+}
+
+impl Recorder {
+    fn new(spec: &RuptureSpec, x: &[f64], dt: f64, steps: usize, threshold: f64) -> Self {
+        let n = x.len();
+        let stations = spec
+            .stations
+            .iter()
+            .map(|&xs| {
+                let left = x.partition_point(|&xi| xi <= xs).saturating_sub(1).min(n - 2);
+                let w = ((xs - x[left]) / (x[left + 1] - x[left])).clamp(0.0, 1.0);
+                Probe { left, w, series: Station { x: xs, ..Default::default() } }
+            })
+            .collect();
+        Self {
+            stride: spec.dt_out.map_or(1, |d| ((d / dt).round() as usize).max(1)),
+            stations,
+            map_stride: steps.div_ceil(MAP_ROWS).max(1),
+            map: RateMap::default(),
+            threshold,
+            rupture_time: vec![None; n],
+            mid: vec![0.0; n],
+        }
+    }
+    /// One row of every station at time t (s) from the base's displacements `u`, tractions
+    /// `tr` and normal forces `fby` (perturbation) and the slip rates in `mid`.
+    #[allow(clippy::too_many_arguments)]
+    fn stations(
+        &mut self,
+        t: f64,
+        u: &[f64],
+        base: &[usize],
+        tr: &[f64],
+        fby: &[f64],
+        width: &[f64],
+        sigma0: &[f64],
+        slip_factor: f64,
+    ) {
+        let mid = &self.mid;
+        for p in &mut self.stations {
+            let (b0, b1, w) = (p.left, p.left + 1, p.w);
+            let at = |a: f64, b: f64| (1.0 - w) * a + w * b;
+            // The normal stress (compressive positive here): sigma0 + fby / w.
+            let sig = |b: usize| sigma0[b] + fby[b] / width[b];
+            let st = &mut p.series;
+            st.t.push(t);
+            st.slip_rate.push(at(mid[b0], mid[b1]));
+            st.slip.push(slip_factor * at(u[2 * base[b0]], u[2 * base[b1]]));
+            st.shear.push(at(tr[b0], tr[b1]));
+            st.normal.push(-at(sig(b0), sig(b1)));
+        }
+    }
 }
 
 /// Runs the scene; `progress` gets the fraction of the steps done and `cancel` is checked
@@ -521,7 +966,10 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
     debug_assert!(base.iter().all(|&k| mesh.nodes[k][1] == 0.0));
     let x: Vec<f64> = base.iter().map(|&k| mesh.nodes[k][0]).collect();
     let width: Vec<f64> = (0..=nx).map(|i| if i == 0 || i == nx { spec.h / 2.0 } else { spec.h }).collect();
-    let tau0: Vec<f64> = x.iter().map(|&xi| spec.prestress(xi)).collect();
+    let Layout { sigma0, tau0, law, barrier } = spec.layout(&x);
+    let slip_factor = if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 };
+    let threshold = spec.rate_threshold.unwrap_or_else(|| spec.arrival_rate(&speeds));
+    let rec = Recorder::new(spec, &x, dt, steps, threshold);
 
     let nb = base.len();
     let mut fl = Flat {
@@ -529,6 +977,9 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
         base: &base,
         width: &width,
         tau0: &tau0,
+        sigma0: &sigma0,
+        law: &law,
+        rec,
         d: vec![0.0; nb],
         t_arrival: vec![None; nb],
         t_weakened: vec![None; nb],
@@ -536,9 +987,9 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
         fbx: vec![0.0; nb],
         fby: vec![0.0; nb],
         tr: vec![0.0; nb],
-        seff: vec![spec.sigma0; nb],
+        seff: sigma0.clone(),
         theta: vec![0.0; nb],
-        slip_factor: if spec.contact == Contact::Symmetric { 2.0 } else { 1.0 },
+        slip_factor,
         min_sigma: f64::INFINITY,
         e: RuptureEnergy::default(),
     };
@@ -560,10 +1011,18 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
     let (ku, kinetic, strain) = ex.level();
     let mut fl_end = fl.clone();
     fl.min_sigma = fl.min_sigma.min(fl_end.rule(&u, &v, &|i| -ku[i], dt, mass));
+    // The stations' last row at t_end (its slip rate the last half step's).
+    for (b, &k) in base.iter().enumerate() {
+        fl.rec.mid[b] = fl.slip_factor * v[2 * k];
+    }
+    fl.rec.stations(steps as f64 * dt, &u, &base, &fl_end.tr, &fl_end.fby, &width, &sigma0, fl.slip_factor);
     let tr = fl_end.tr;
     let mut e = RuptureEnergy { kinetic, strain, damping, ..fl.e };
     e.residual = e.kinetic + e.strain + e.friction + e.damping - e.background_work - e.contact;
-    let (min_sigma, d, t_arr, t_wk, peak) = (fl.min_sigma, fl.d, fl.t_arrival, fl.t_weakened, fl.peak);
+    let barrier_slipped =
+        (0..nb).filter(|&b| barrier[b] && fl.t_arrival[b].is_some()).map(|b| x[b]).collect();
+    let (min_sigma, d, t_arr, t_wk, peak, rec) =
+        (fl.min_sigma, fl.d, fl.t_arrival, fl.t_weakened, fl.peak, fl.rec);
     let force_drop: f64 = (0..nb).map(|b| (tau0[b] - tr[b]) * width[b]).sum();
     if !(force_drop.is_finite() && min_sigma.is_finite() && e.residual.is_finite()) {
         return Err(Error::Untrustworthy {
@@ -588,6 +1047,12 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
         speeds,
         lambda0: spec.lambda0()?,
         energy: e,
+        stations: rec.stations.into_iter().map(|st| st.series).collect(),
+        rupture_time: rec.rupture_time,
+        rate_threshold: threshold,
+        map: rec.map,
+        barrier_slipped,
+        slip_factor,
     };
     r.front_speed = r.front_speed_between(spec.speed_window.0, spec.speed_window.1);
     progress.fraction(1.0);
@@ -602,6 +1067,9 @@ struct Flat<'s> {
     base: &'s [usize],
     width: &'s [f64],
     tau0: &'s [f64],
+    sigma0: &'s [f64],
+    law: &'s [Law],
+    rec: Recorder,
     /// Slip path length, first times d >= D_c / 100 and d >= D_c, peak |v_x|.
     d: Vec<f64>,
     t_arrival: Vec<Option<f64>>,
@@ -630,9 +1098,10 @@ impl Flat<'_> {
         for (b, &k) in self.base.iter().enumerate() {
             let (m, w) = (mass[k], self.width[b]);
             let (fx, fy) = (f(2 * k), f(2 * k + 1));
-            let mut sigma = spec.sigma0 - (fy + m * v[2 * k + 1] / dt) / w;
+            let sigma0 = self.sigma0[b];
+            let mut sigma = sigma0 - (fy + m * v[2 * k + 1] / dt) / w;
             if spec.contact == Contact::Symmetric {
-                sigma = spec.sigma0;
+                sigma = sigma0;
             }
             if spec.contact == Contact::Unilateral {
                 // The stress keeping u_y^{n+1} = 0; tensile means the node leaves the flat.
@@ -660,10 +1129,10 @@ impl Flat<'_> {
             let t_star = self.tau0[b] + (m * v[2 * k] / dt + fx) / w;
             let trial =
                 Trial { t_star, p: s_eff, z: m / (dt * w * self.slip_factor), dt, slip: self.d[b], v_old };
-            let (t, _) = spec.friction.split_node(trial, &mut self.theta[b]);
+            let (t, _) = self.law[b].split_node(trial, &mut self.theta[b]);
             self.tr[b] = t;
             self.fbx[b] = (self.tau0[b] - t) * w;
-            self.fby[b] = (sigma - spec.sigma0) * w;
+            self.fby[b] = (sigma - sigma0) * w;
         }
         smin
     }
@@ -679,25 +1148,32 @@ impl Boundary for Flat<'_> {
         let smin = self.rule(s.u, s.v, &|i| s.force(i), dt, s.mass);
         self.min_sigma = self.min_sigma.min(smin);
         let e0 = self.e;
-        let (dc, slip_factor) = (spec.dc(), self.slip_factor);
-        let thr = dc / 100.0;
+        let slip_factor = self.slip_factor;
+        let t0 = s.n as f64 * dt;
+        let (record, mapped) = (s.n % self.rec.stride == 0, s.n % self.rec.map_stride == 0);
+        if mapped {
+            self.rec.map.t.push(t0);
+            self.rec.map.rates.push(Vec::with_capacity(self.base.len()));
+        }
         for (b, &k) in self.base.iter().enumerate() {
             let (m, w) = (s.mass[k], self.width[b]);
+            let law = self.law[b];
+            let (dc, thr) = (law.dc().unwrap_or(f64::INFINITY), law.dc().unwrap_or(f64::INFINITY) / 100.0);
             let (vxm, vym) = (s.v[2 * k], s.v[2 * k + 1]);
             let vx = vxm + dt * (s.force(2 * k) + self.fbx[b]) / m;
             let vy = vym + dt * (s.force(2 * k + 1) + self.fby[b]) / m;
             // In contact the flat holds u_y^{n+1} = 0 exactly (not to round-off), so a
             // unilateral run that never opens is the bilateral run bit for bit.
-            let held = spec.contact == Contact::Unilateral && self.fby[b] > -spec.sigma0 * w;
+            let held = spec.contact == Contact::Unilateral && self.fby[b] > -self.sigma0[b] * w;
             let vy = match spec.contact {
                 Contact::Bilateral => 0.0,
                 Contact::Unilateral if held => -s.u[2 * k + 1] / dt,
                 _ => vy,
             };
             let (vbx, vby) = (0.5 * (vxm + vx), 0.5 * (vym + vy));
-            self.e.background_work += dt * w * (vbx * self.tau0[b] - vby * spec.sigma0);
+            self.e.background_work += dt * w * (vbx * self.tau0[b] - vby * self.sigma0[b]);
             self.e.friction += dt * vbx * self.tr[b] * w;
-            self.e.contact += dt * vby * (self.fby[b] + spec.sigma0 * w);
+            self.e.contact += dt * vby * (self.fby[b] + self.sigma0[b] * w);
             // (per half of a symmetric fault: the work on this block's face)
             self.e.friction_path += self.tr[b].abs() * w * dt * vx.abs();
             s.v[2 * k] = vx;
@@ -705,7 +1181,20 @@ impl Boundary for Flat<'_> {
             s.u_next[2 * k] = s.u[2 * k] + dt * vx;
             s.u_next[2 * k + 1] = if held { 0.0 } else { s.u[2 * k + 1] + dt * vy };
             let d_new = self.d[b] + slip_factor * dt * vx.abs();
-            let t0 = s.n as f64 * dt;
+            // The rate at t_{n+1/2} against the one at t_{n-1/2}.
+            let (r_old, r_new) = (slip_factor * vxm.abs(), slip_factor * vx.abs());
+            if self.rec.rupture_time[b].is_none() && r_new > self.rec.threshold {
+                let f = ((self.rec.threshold - r_old) / (r_new - r_old)).clamp(0.0, 1.0);
+                // Not before the start: the patch's first half step starts from rest at t = 0.
+                self.rec.rupture_time[b] = Some((t0 - 0.5 * dt + f * dt).max(0.0));
+            }
+            if mapped {
+                self.rec.map.rates.last_mut().expect("row pushed").push(r_new as f32);
+            }
+            if record {
+                // The slip rate at t_n, the mean of the two half steps'.
+                self.rec.mid[b] = slip_factor * 0.5 * (vxm + vx);
+            }
             if self.t_arrival[b].is_none() && d_new >= thr {
                 self.t_arrival[b] = Some(t0 + dt * (thr - self.d[b]) / (d_new - self.d[b]));
             }
@@ -714,6 +1203,9 @@ impl Boundary for Flat<'_> {
             }
             self.peak[b] = f64::max(self.peak[b], vx.abs());
             self.d[b] = d_new;
+        }
+        if record {
+            self.rec.stations(t0, s.u, self.base, &self.tr, &self.fby, self.width, self.sigma0, slip_factor);
         }
         let e = &self.e;
         (e.background_work - e0.background_work) + (e.contact - e0.contact) - (e.friction - e0.friction)
@@ -773,5 +1265,377 @@ impl RuptureResult {
             }
         }
         out
+    }
+}
+
+/// A `rupture` scene read from a scene file: the spec, and for each value the file set, the
+/// flag that would set it and the file's key (to name the key when a check refuses it).
+#[derive(Debug, Clone)]
+pub struct SceneSpec {
+    pub spec: RuptureSpec,
+    pub keys: Vec<(&'static str, &'static str)>,
+}
+
+impl SceneSpec {
+    /// The spec of `scene` ([block] length and thickness as the block, [mesh] h, [law] the
+    /// background law and normal response, [interface], [rupture]); a value the file does not
+    /// give is [`RuptureSpec::default`]'s (the normal response: `tribofe rupture`'s default
+    /// lag, [`DEFAULT_NORMAL_LAG`]), the block's and the mesh's are the scene's.
+    pub fn from_scene(scene: &crate::scene::Scene) -> Result<Self> {
+        use crate::scene::{InterfaceTable, RuptureTable};
+        let d = RuptureSpec::default();
+        let mut keys = vec![
+            ("--length", "block.length"),
+            ("--height", "block.thickness"),
+            ("--h", "mesh.h"),
+            ("--young", "block.young"),
+            ("--poisson", "block.poisson"),
+            ("--density", "block.density"),
+        ];
+        let law = &scene.law;
+        if let Some(k) = &law.kind {
+            if k != "slip-weakening" {
+                return Err(Error::input(
+                    "[law] kind",
+                    format!("'{}': a rupture scene runs slip-weakening", crate::error::quote(k)),
+                ));
+            }
+        }
+        for (flag, key, v) in [
+            ("--mu-s", "[law] mu_s", law.mu_s),
+            ("--mu-d", "[law] mu_d", law.mu_d),
+            ("--dc", "[law] dc", law.dc),
+        ] {
+            if v.is_some() {
+                keys.push((flag, key));
+            }
+        }
+        let unused = [
+            ("mu", law.mu.is_some()),
+            ("r", law.r.is_some()),
+            ("g", law.g.is_some()),
+            ("rule", law.rule.is_some()),
+            ("a", law.a.is_some()),
+            ("b", law.b.is_some()),
+            ("l_rs", law.l_rs.is_some()),
+            ("v0", law.v0.is_some()),
+            ("f0", law.f0.is_some()),
+            ("state_law", law.state_law.is_some()),
+            ("theta0", law.theta0.is_some()),
+        ];
+        if let Some((k, _)) = unused.iter().find(|u| u.1) {
+            return Err(Error::input(
+                format!("[law] {k}"),
+                "cannot act in a rupture scene (slip weakening: mu_s, mu_d, dc, and the normal_lag keys)",
+            ));
+        }
+        let f = (
+            law.mu_s.unwrap_or(d.friction.mu_s()),
+            law.mu_d.unwrap_or(d.friction.mu_d()),
+            law.dc.unwrap_or(d.dc()),
+        );
+        let it = scene.interface.clone().unwrap_or_default();
+        let InterfaceTable { kind, sigma0, tau0, s, nucleation, intervals } = it;
+        if tau0.is_some() && s.is_some() {
+            return Err(Error::input(
+                "[interface] tau0",
+                "give the background shear as tau0 or as s, not both",
+            ));
+        }
+        for (flag, key, given) in [
+            ("--contact", "[interface] kind", kind.is_some()),
+            ("--sigma0", "[interface] sigma0", sigma0.is_some()),
+            ("--s", "[interface] s", s.is_some()),
+            ("--normal-lag", "[law] normal_lag", law.normal_lag.is_some()),
+            ("--normal-lag-length", "[law] normal_lag_length", law.normal_lag_length.is_some()),
+            ("--normal-lag-v-star", "[law] normal_lag_v_star", law.normal_lag_v_star.is_some()),
+        ] {
+            if given {
+                keys.push((flag, key));
+            }
+        }
+        let r = scene.rupture.clone().unwrap_or_default();
+        let RuptureTable {
+            t_end,
+            courant,
+            damping,
+            max_steps,
+            stations,
+            dt_out,
+            rate_threshold,
+            reflections,
+            speed_window,
+        } = r;
+        for (flag, key, given) in [
+            ("--t-end", "[rupture] t_end", t_end.is_some()),
+            ("--courant", "[rupture] courant", courant.is_some()),
+            ("--damping", "[rupture] damping", damping.is_some()),
+            ("--max-steps", "[rupture] max_steps", max_steps.is_some()),
+        ] {
+            if given {
+                keys.push((flag, key));
+            }
+        }
+        let reflections_allowed = match reflections.as_deref() {
+            None | Some("refused") => false,
+            Some("allowed") => true,
+            Some(o) => {
+                return Err(Error::input(
+                    "[rupture] reflections",
+                    format!("'{}': use refused or allowed", crate::error::quote(o)),
+                ))
+            }
+        };
+        // A value with no background must be set everywhere by the intervals.
+        let backgrounds = [
+            ("[interface] sigma0", sigma0.is_some()),
+            ("[interface] tau0 (or s)", tau0.is_some() || s.is_some()),
+            ("[law] mu_s", law.mu_s.is_some()),
+            ("[law] mu_d", law.mu_d.is_some()),
+            ("[law] dc", law.dc.is_some()),
+        ];
+        let half = scene.block.length / 2.0;
+        for (k, (key, given)) in backgrounds.iter().enumerate() {
+            if *given {
+                continue;
+            }
+            let mut spans: Vec<(f64, f64)> = intervals
+                .iter()
+                .filter(|p| [p.sigma0, p.tau0, p.mu_s, p.mu_d, p.dc][k].is_some())
+                .map(|p| (p.x_min, p.x_max))
+                .collect();
+            spans.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let mut reached = -half;
+            for (a, b) in &spans {
+                if *a > reached {
+                    break;
+                }
+                reached = reached.max(*b);
+            }
+            if reached < half {
+                let next = spans.iter().map(|s| s.0).find(|&a| a > reached).unwrap_or(half);
+                return Err(Error::input(
+                    *key,
+                    format!(
+                        "is not given, and the intervals setting {} leave {reached} < x < {next} m uncovered: give the background value or cover the block [-{half}, {half}] m",
+                        PIECE_KEYS[k]
+                    ),
+                ));
+            }
+        }
+        let nucleation =
+            nucleation.map(|p| Patch { x_min: p.x_min, x_max: p.x_max, tau0: p.tau0, taper: p.taper });
+        let speed_window = match (speed_window, nucleation) {
+            (Some([a, b]), _) => (a, b),
+            // From the patch's right edge to halfway to the block's end.
+            (None, Some(p)) => (p.x_max.max(0.0), 0.5 * (p.x_max.max(0.0) + half)),
+            (None, None) => d.speed_window,
+        };
+        let spec = RuptureSpec {
+            length: scene.block.length,
+            height: scene.block.thickness,
+            h: scene.mesh.h,
+            young: scene.block.young,
+            poisson: scene.block.poisson,
+            density: scene.block.density,
+            sigma0: sigma0.unwrap_or(d.sigma0),
+            s_ratio: s.unwrap_or(d.s_ratio),
+            friction: Law::SlipWeakening { mu_s: f.0, mu_d: f.1, dc: f.2 },
+            courant: courant.unwrap_or(d.courant),
+            t_end: t_end.unwrap_or(d.t_end),
+            damping: damping.unwrap_or(d.damping),
+            contact: kind.as_deref().map_or(Ok(d.contact), str::parse)?,
+            speed_window,
+            // As the command's flags: the regularised lag unless the file says.
+            normal: if [law.normal_lag, law.normal_lag_length, law.normal_lag_v_star]
+                .iter()
+                .all(Option::is_none)
+            {
+                Normal::Time { t: DEFAULT_NORMAL_LAG }
+            } else {
+                law.normal([None; 3])?
+            },
+            max_steps: max_steps.unwrap_or(d.max_steps),
+            tau0_background: tau0,
+            nucleation,
+            pieces: intervals
+                .iter()
+                .map(|p| Piece {
+                    x_min: p.x_min,
+                    x_max: p.x_max,
+                    taper: p.taper,
+                    sigma0: p.sigma0,
+                    tau0: p.tau0,
+                    mu_s: p.mu_s,
+                    mu_d: p.mu_d,
+                    dc: p.dc,
+                })
+                .collect(),
+            stations,
+            dt_out,
+            rate_threshold,
+            reflections_allowed,
+            ..d
+        };
+        Ok(Self { spec, keys })
+    }
+
+    /// `e` with each flag of [`Self::keys`] not in `given` replaced by the file's key.
+    pub fn name_keys(&self, e: Error, given: &dyn Fn(&str) -> bool) -> Error {
+        let Error::Input { mut what, mut why } = e else { return e };
+        for (flag, key) in &self.keys {
+            if !given(flag) {
+                // A flag followed by a letter or '-' is another flag (--normal-lag-length).
+                let swap = |s: &str| {
+                    let mut out = String::new();
+                    let mut rest = s;
+                    while let Some(i) = rest.find(flag) {
+                        let after = rest[i + flag.len()..].chars().next();
+                        out.push_str(&rest[..i]);
+                        if after.is_some_and(|c| c.is_ascii_alphanumeric() || c == '-') {
+                            out.push_str(flag);
+                        } else {
+                            out.push_str(key);
+                        }
+                        rest = &rest[i + flag.len()..];
+                    }
+                    out.push_str(rest);
+                    out
+                };
+                what = swap(&what);
+                why = swap(&why);
+            }
+        }
+        Error::Input { what, why }
+    }
+}
+
+/// The values a front end (the command's flags, the Python keywords) gives on top of a scene
+/// file: each `Some` replaces the file's key (the normal-response ones the file's normal
+/// response as a whole).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SceneInputs {
+    pub s: Option<f64>,
+    pub h: Option<f64>,
+    pub dc: Option<f64>,
+    pub t_end: Option<f64>,
+    pub length: Option<f64>,
+    pub height: Option<f64>,
+    pub mu_s: Option<f64>,
+    pub mu_d: Option<f64>,
+    pub sigma0: Option<f64>,
+    pub young: Option<f64>,
+    pub poisson: Option<f64>,
+    pub density: Option<f64>,
+    pub courant: Option<f64>,
+    pub damping: Option<f64>,
+    pub contact: Option<String>,
+    pub normal_lag: Option<f64>,
+    pub normal_lag_length: Option<f64>,
+    pub normal_lag_v_star: Option<f64>,
+    pub patch_taper: Option<f64>,
+    pub max_steps: Option<u64>,
+}
+
+impl SceneInputs {
+    /// Whether the front end gave the value of flag `flag` (`--normal-lag`).
+    pub fn gives(&self, flag: &str) -> bool {
+        match flag {
+            "--s" => self.s.is_some(),
+            "--h" => self.h.is_some(),
+            "--dc" => self.dc.is_some(),
+            "--t-end" => self.t_end.is_some(),
+            "--length" => self.length.is_some(),
+            "--height" => self.height.is_some(),
+            "--mu-s" => self.mu_s.is_some(),
+            "--mu-d" => self.mu_d.is_some(),
+            "--sigma0" => self.sigma0.is_some(),
+            "--young" => self.young.is_some(),
+            "--poisson" => self.poisson.is_some(),
+            "--density" => self.density.is_some(),
+            "--courant" => self.courant.is_some(),
+            "--damping" => self.damping.is_some(),
+            "--contact" => self.contact.is_some(),
+            "--normal-lag" => self.normal_lag.is_some(),
+            "--normal-lag-length" => self.normal_lag_length.is_some(),
+            "--normal-lag-v-star" => self.normal_lag_v_star.is_some(),
+            "--patch-taper" => self.patch_taper.is_some(),
+            "--max-steps" => self.max_steps.is_some(),
+            _ => false,
+        }
+    }
+
+    /// The spec of the scene file at `path` with these values on top, checked, and that
+    /// effective scene (for run.toml): a refusal names the file's key where the file set the
+    /// value, the flag where the front end did.
+    pub fn spec(&self, path: &std::path::Path) -> Result<(RuptureSpec, crate::scene::Scene)> {
+        let mut sc = crate::scene::Scene::from_file(path)?;
+        let b = &mut sc.block;
+        for (v, slot) in [
+            (self.length, &mut b.length),
+            (self.height, &mut b.thickness),
+            (self.young, &mut b.young),
+            (self.poisson, &mut b.poisson),
+            (self.density, &mut b.density),
+            (self.h, &mut sc.mesh.h),
+        ] {
+            if let Some(v) = v {
+                *slot = v;
+            }
+        }
+        let law = &mut sc.law;
+        for (v, slot) in [(self.mu_s, &mut law.mu_s), (self.mu_d, &mut law.mu_d), (self.dc, &mut law.dc)] {
+            if v.is_some() {
+                *slot = v;
+            }
+        }
+        if self.normal_lag.is_some() || self.normal_lag_length.is_some() || self.normal_lag_v_star.is_some() {
+            (law.normal_lag, law.normal_lag_length, law.normal_lag_v_star) =
+                (self.normal_lag, self.normal_lag_length, self.normal_lag_v_star);
+        }
+        let it = sc.interface.get_or_insert_with(Default::default);
+        for (v, slot) in [(self.sigma0, &mut it.sigma0), (self.s, &mut it.s)] {
+            if v.is_some() {
+                *slot = v;
+            }
+        }
+        if self.contact.is_some() {
+            it.kind.clone_from(&self.contact);
+        }
+        let r = sc.rupture.get_or_insert_with(Default::default);
+        for (v, slot) in
+            [(self.t_end, &mut r.t_end), (self.courant, &mut r.courant), (self.damping, &mut r.damping)]
+        {
+            if v.is_some() {
+                *slot = v;
+            }
+        }
+        if self.max_steps.is_some() {
+            r.max_steps = self.max_steps;
+        }
+        let named = |e: Error| match e {
+            // A key of the file (not a flag): say which file.
+            Error::Input { what, why } if !what.contains("--") => Error::Input {
+                what: format!("{what} in {}", crate::error::quote(&path.display().to_string())),
+                why,
+            },
+            e => e,
+        };
+        sc.validate().map_err(named)?;
+        let ss = SceneSpec::from_scene(&sc).map_err(named)?;
+        let mut spec = ss.spec.clone();
+        if let Some(w) = self.patch_taper {
+            match (&mut spec.nucleation, &mut sc.interface) {
+                (Some(p), Some(it)) => {
+                    p.taper = w;
+                    if let Some(n) = &mut it.nucleation {
+                        n.taper = w;
+                    }
+                }
+                _ => spec.patch_taper = w,
+            }
+        }
+        spec.validate().map_err(|e| named(ss.name_keys(e, &|f| self.gives(f))))?;
+        Ok((spec, sc))
     }
 }

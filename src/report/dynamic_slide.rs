@@ -3,6 +3,8 @@
 //! against the drive force) and, on request, space-time pictures of the slip rate
 //! (`spacetime_<event>.svg`, [`Spacetime`]).
 
+pub use super::spacetime::SPACETIME_DECADES;
+use super::spacetime::{frame, heat_map, sig4, HeatMap};
 use super::table::{Column, Table};
 use super::{finite, write_atomic};
 use crate::error::Result;
@@ -188,79 +190,6 @@ impl Spacetime {
     }
 }
 
-/// `v` to 4 significant digits (titles and labels).
-fn sig4(v: f64) -> String {
-    if v == 0.0 {
-        return "0".into();
-    }
-    let d = v.abs().log10().floor() as i32;
-    if (-3..4).contains(&d) {
-        format!("{:.*}", (3 - d).max(0) as usize, v)
-    } else {
-        format!("{v:.3e}")
-    }
-}
-
-/// Tick values in [a, b]: a step of 1, 2 or 5 times a power of ten giving 4 to 10 ticks,
-/// An axis: its value range and where a value is drawn (pixels).
-type Axis<'a> = ((f64, f64), &'a dyn Fn(f64) -> f64);
-
-/// A plot's frame at [left, top, width, height], ticks on both axes and their labels.
-fn frame(s: &mut String, [ml, mt, w, h]: [f64; 4], x: Axis, y: Axis, xlabel: &str, ylabel: &str) {
-    let _ = writeln!(
-        s,
-        "<rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
-    );
-    let (xt, xd) = ticks(x.0 .0, x.0 .1);
-    for v in xt {
-        let px = x.1(v);
-        let _ = writeln!(
-            s,
-            "<line x1=\"{px:.1}\" y1=\"{}\" x2=\"{px:.1}\" y2=\"{}\" stroke=\"black\"/><text x=\"{px:.1}\" y=\"{}\" text-anchor=\"middle\">{v:.xd$}</text>",
-            mt + h,
-            mt + h + 6.0,
-            mt + h + 22.0
-        );
-    }
-    let (yt, yd) = ticks(y.0 .0, y.0 .1);
-    for v in yt {
-        let py = y.1(v);
-        let _ = writeln!(
-            s,
-            "<line x1=\"{}\" y1=\"{py:.1}\" x2=\"{ml}\" y2=\"{py:.1}\" stroke=\"black\"/><text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{v:.yd$}</text>",
-            ml - 6.0,
-            ml - 9.0,
-            py + 5.0
-        );
-    }
-    let _ = writeln!(
-        s,
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{xlabel}</text>",
-        ml + w / 2.0,
-        mt + h + 48.0
-    );
-    let _ = writeln!(
-        s,
-        "<text x=\"18\" y=\"{0}\" transform=\"rotate(-90 18 {0})\" text-anchor=\"middle\">{ylabel}</text>",
-        mt + h / 2.0
-    );
-}
-
-/// and the decimals that show the step.
-fn ticks(a: f64, b: f64) -> (Vec<f64>, usize) {
-    let span = (b - a).max(f64::MIN_POSITIVE);
-    let p = 10f64.powf((span / 5.0).log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0].iter().map(|m| m * p).find(|s| span / s <= 10.0).unwrap_or(10.0 * p);
-    let first = (a / step).ceil() as i64;
-    let v = (first..).map(|k| k as f64 * step).take_while(|v| *v <= b + 1e-9 * span).collect();
-    (v, (-step.log10().floor()).max(0.0) as usize)
-}
-
-/// `10^k` as SVG text (a superscript tspan).
-fn decade(k: i32) -> String {
-    format!("10<tspan dy=\"-7\" font-size=\"11\">{k}</tspan>")
-}
-
 /// The end of a space-time picture's time axis, s since the onset: 5 % past the last sample
 /// with a node above the arrival rate (the whole event if none is).
 pub fn spacetime_end(rec: &crate::dynamics::driven::EventRecord) -> f64 {
@@ -268,9 +197,6 @@ pub fn spacetime_end(rec: &crate::dynamics::driven::EventRecord) -> f64 {
     let last = (0..rec.rates.len()).rev().find(|&k| active(k));
     last.map_or(rec.duration, |k| (1.05 * rec.t[k]).min(rec.duration)).max(f64::MIN_POSITIVE)
 }
-
-/// Decades shown by the space-time colour scale, below the event's peak rate.
-pub const SPACETIME_DECADES: i32 = 4;
 
 /// A space-time picture of one dynamic event: log10 |v_x| over x/L (across) and time since
 /// the onset (down), as plain SVG. Cropped to the activity: x to the nodes the front reached
@@ -292,151 +218,30 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
         (Some(&i), Some(&j)) => ((c.x[i] - margin).max(c.x[0]), (c.x[j] + margin).min(c.x[nx - 1])),
         _ => (c.x[0], c.x[nx - 1]),
     };
-    let cols: Vec<usize> = (0..nx).filter(|&i| c.x[i] >= xa && c.x[i] <= xb).collect();
     let peak = peak(e).max(f64::MIN_POSITIVE);
-    let top = peak.log10().ceil() as i32;
-    let bottom = top - SPACETIME_DECADES;
-    let (w, h, ml, mt, mb, mr) = (720.0, 480.0, 80.0, 50.0, 60.0, 150.0);
-    let px = |x: f64| ml + (x - xa) / (xb - xa).max(f64::MIN_POSITIVE) * w;
-    let py = |t: f64| mt + t / t_end * h;
-    let mut s = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"14\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<defs><clipPath id=\"plot\"><rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\"/></clipPath></defs>\n",
-        ml + w + mr,
-        mt + h + mb
-    );
     let k_onset = e.f_onset / (r.slide.options.law.mu_s() * r.slide.options.n_force);
-    let _ = writeln!(
-        s,
-        "<text class=\"title\" x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"16\">event {} ({}), F = {} mu_s N: slip rate, peak {} m/s</text>",
-        ml + w / 2.0,
-        e.event,
-        r.slide.run.events[e.event].kind,
-        sig4(k_onset),
-        sig4(peak)
-    );
-    // The heat map: at most 360 columns and 320 rows, the largest rate of each block.
-    let (cx, ct) = (cols.len().div_ceil(360).max(1), rows_shown.div_ceil(320).max(1));
-    let mut g = String::from("<g clip-path=\"url(#plot)\">\n");
-    for j0 in (0..rows_shown).step_by(ct) {
-        let j1 = (j0 + ct).min(rows_shown);
-        let (ya, yb) = (py(if j0 == 0 { 0.0 } else { t_of(j0 - 1) }), py(t_of(j1 - 1)));
-        for block in cols.chunks(cx) {
-            let v = (j0..j1)
-                .flat_map(|k| block.iter().map(move |&i| (k, i)))
-                .fold(0.0f64, |m, (k, i)| m.max(f64::from(rec.rates[k][i])));
-            if v <= 10f64.powi(bottom) {
-                continue;
-            }
-            let (i0, i1) = (block[0], block[block.len() - 1]);
-            let half = |i: usize, d: isize| {
-                let k = (i as isize + d).clamp(0, nx as isize - 1) as usize;
-                0.5 * (c.x[i] + c.x[k])
-            };
-            let (x0, x1) = (px(half(i0, -1)), px(half(i1, 1)));
-            let f = (v.log10() - f64::from(bottom)) / f64::from(SPACETIME_DECADES);
-            let _ = writeln!(
-                g,
-                "<rect x=\"{:.2}\" y=\"{:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{}\"/>",
-                x0,
-                ya,
-                (x1 - x0).max(0.3) + 0.3,
-                (yb - ya).max(0.3) + 0.3,
-                colour(f as f32)
-            );
-        }
-    }
-    // Guides at c_s and c_R from the first node reached.
-    if let Some(&first) = reached.iter().min_by(|&&i, &&j| rec.arrival[i].total_cmp(&rec.arrival[j])) {
-        let (x0, t0) = (c.x[first], rec.arrival[first]);
-        for (name, v, dash) in [("c_s", r.speeds.c_s, "8 4"), ("c_R", r.speeds.c_r, "3 3")] {
-            for side in [-1.0, 1.0] {
-                let x1 = x0 + side * v * (t_end - t0);
-                let _ = writeln!(
-                    g,
-                    "<line class=\"guide\" x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\" stroke=\"#1f4e9c\" stroke-width=\"1.5\" stroke-dasharray=\"{dash}\"/>",
-                    px(x0),
-                    py(t0),
-                    px(x1),
-                    py(t_end)
-                );
-            }
-            // Labelled where the right-going line leaves the box.
-            let (xe, te) = if x0 + v * (t_end - t0) <= xb {
-                (x0 + v * (t_end - t0), t_end)
-            } else {
-                (xb, t0 + (xb - x0) / v)
-            };
-            let _ = writeln!(
-                g,
-                "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"#1f4e9c\" text-anchor=\"end\">{name}</text>",
-                px(xe) - 4.0,
-                py(te) - 4.0
-            );
-        }
-    }
-    g.push_str("</g>\n");
-    s.push_str(&g);
-    frame(
-        &mut s,
-        [ml, mt, w, h],
-        ((xa / c.l, xb / c.l), &|v| px(v * c.l)),
-        ((0.0, t_end), &py),
-        "position x / L (dimensionless)",
-        "time since onset (s)",
-    );
-    // The colour bar: one band per tenth of a decade, a labelled tick at each decade.
-    let (bx, bw) = (ml + w + 24.0, 22.0);
-    let steps = 10 * SPACETIME_DECADES;
-    for k in 0..steps {
-        let f = (k as f64 + 0.5) / steps as f64;
-        let _ = writeln!(
-            s,
-            "<rect x=\"{bx}\" y=\"{:.2}\" width=\"{bw}\" height=\"{:.2}\" fill=\"{}\"/>",
-            mt + h * (1.0 - (k + 1) as f64 / steps as f64),
-            h / steps as f64 + 0.3,
-            colour(f as f32)
-        );
-    }
-    let _ = writeln!(
-        s,
-        "<rect x=\"{bx}\" y=\"{mt}\" width=\"{bw}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
-    );
-    for k in 0..=SPACETIME_DECADES {
-        let y = mt + h * (1.0 - f64::from(k) / f64::from(SPACETIME_DECADES));
-        let _ = writeln!(
-            s,
-            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{}\" y2=\"{y:.1}\" stroke=\"black\"/><text class=\"cbar-tick\" x=\"{}\" y=\"{:.1}\">{}</text>",
-            bx + bw,
-            bx + bw + 5.0,
-            bx + bw + 8.0,
-            y + 5.0,
-            decade(bottom + k)
-        );
-    }
-    let lx = bx + bw + 62.0;
-    let _ = writeln!(
-        s,
-        "<text x=\"{lx}\" y=\"{0}\" transform=\"rotate(-90 {lx} {0})\" text-anchor=\"middle\">slip rate |v_x| (m/s)</text>",
-        mt + h / 2.0
-    );
-    s.push_str("</svg>\n");
-    s
-}
-
-/// White through yellow and red to black, for a value in [0, 1].
-fn colour(v: f32) -> String {
-    let v = v.clamp(0.0, 1.0);
-    let (r, g, b) = if v < 0.33 {
-        let f = v / 0.33;
-        (255.0, 255.0, 255.0 * (1.0 - f))
-    } else if v < 0.66 {
-        let f = (v - 0.33) / 0.33;
-        (255.0, 255.0 * (1.0 - f), 0.0)
-    } else {
-        let f = (v - 0.66) / 0.34;
-        (255.0 * (1.0 - 0.7 * f), 0.0, 0.0)
-    };
-    format!("#{:02x}{:02x}{:02x}", r as u8, g as u8, b as u8)
+    let first = reached.iter().min_by(|&&i, &&j| rec.arrival[i].total_cmp(&rec.arrival[j]));
+    heat_map(&HeatMap {
+        title: format!(
+            "event {} ({}), F = {} mu_s N: slip rate, peak {} m/s",
+            e.event,
+            r.slide.run.events[e.event].kind,
+            sig4(k_onset),
+            sig4(peak)
+        ),
+        x: &c.x,
+        x_range: (xa, xb),
+        x_unit: (c.l, "position x / L (dimensionless)"),
+        t: &t_of,
+        rows: rows_shown,
+        t_end,
+        t_label: "time since onset (s)",
+        rate: &|k, i| f64::from(rec.rates[k][i]),
+        peak,
+        origin: first.map(|&i| (c.x[i], rec.arrival[i])),
+        speeds: [r.speeds.c_s, r.speeds.c_r],
+        rate_label: "slip rate |v_x| (m/s)",
+    })
 }
 
 /// cycle.svg: the run's instabilities as experiments image precursors (Rubinstein et al.,

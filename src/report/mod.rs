@@ -14,6 +14,7 @@ pub mod precursors;
 pub mod run_file;
 pub mod rupture;
 pub mod slide;
+pub mod spacetime;
 pub mod stability;
 pub mod sweep;
 pub mod table;

@@ -1,5 +1,6 @@
 //! The files of `tribofe rupture` (docs/dynamics.md): arrival.csv and summary.csv with the
-//! shared spec's columns, energy.csv and zone.csv.
+//! shared spec's columns, energy.csv and zone.csv; the field's station files
+//! (`station_x<x>.csv`), rupture_time.csv and the space-time picture spacetime.svg.
 
 use super::{csv, write_atomic};
 use crate::dynamics::rupture::RuptureResult;
@@ -24,5 +25,71 @@ pub fn write(r: &RuptureResult, dir: &Path) -> Result<()> {
     write_atomic(&dir.join("energy.csv"), energy.as_bytes())?;
     let zone: Vec<Vec<f64>> = r.cohesive_zone().into_iter().map(|(x, z)| vec![x, z, z / r.lambda0]).collect();
     write_atomic(&dir.join("zone.csv"), csv("x_m,zone_m,zone_over_lambda0", &zone)?.as_bytes())?;
+    for st in &r.stations {
+        let rows: Vec<Vec<f64>> = (0..st.t.len())
+            .map(|k| vec![st.t[k], st.slip[k], st.slip_rate[k], st.shear[k], st.normal[k]])
+            .collect();
+        let text = csv("t_s,slip_m,slip_rate_m_per_s,shear_stress_Pa,normal_stress_Pa", &rows)?;
+        write_atomic(&dir.join(station_file(st.x)), text.as_bytes())?;
+    }
+    let rows: Vec<Vec<f64>> =
+        r.x.iter().zip(&r.rupture_time).filter_map(|(&x, t)| t.map(|t| vec![x, t])).collect();
+    write_atomic(&dir.join("rupture_time.csv"), csv("x_m,t_s", &rows)?.as_bytes())?;
+    write_atomic(&dir.join("spacetime.svg"), spacetime(r).as_bytes())?;
     Ok(())
+}
+
+/// `station_x<x in m>.csv`, x as written in the scene (`station_x-4500.csv`).
+pub fn station_file(x: f64) -> String {
+    format!("station_x{}.csv", if x == 0.0 { 0.0 } else { x })
+}
+
+/// The files [`write`] writes for `r`, for the command's closing line.
+pub fn files(r: &RuptureResult) -> Vec<String> {
+    let mut f: Vec<String> =
+        ["arrival.csv", "summary.csv", "energy.csv", "zone.csv", "rupture_time.csv", "spacetime.svg"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+    f.extend(r.stations.iter().map(|s| station_file(s.x)));
+    f
+}
+
+/// The run's space-time picture: the slip rate of every base node (log10, 4 decades below the
+/// peak) over x (km on a block of a kilometre or more, else m) and time, cropped to the nodes
+/// that ruptured, with the c_s and c_R guides from the first of them.
+pub fn spacetime(r: &RuptureResult) -> String {
+    use super::spacetime::{heat_map, sig4, HeatMap};
+    let map = &r.map;
+    let (x0, x1) = (r.x[0], r.x[r.x.len() - 1]);
+    let ruptured: Vec<usize> = (0..r.x.len()).filter(|&i| r.rupture_time[i].is_some()).collect();
+    let (xa, xb) = match (ruptured.first(), ruptured.last()) {
+        (Some(&i), Some(&j)) => {
+            let m = 0.05 * (r.x[j] - r.x[i]).max(x1 - x0);
+            ((r.x[i] - m).max(x0), (r.x[j] + m).min(x1))
+        }
+        _ => (x0, x1),
+    };
+    let peak = map.rates.iter().flatten().fold(0.0f64, |a, &v| a.max(f64::from(v))).max(f64::MIN_POSITIVE);
+    let first = ruptured.iter().copied().min_by(|&i, &j| {
+        r.rupture_time[i].unwrap_or(f64::INFINITY).total_cmp(&r.rupture_time[j].unwrap_or(f64::INFINITY))
+    });
+    let km = x1 - x0 >= 1e3;
+    let t_end = r.steps as f64 * r.dt;
+    let t_of = |k: usize| map.t.get(k).copied().unwrap_or(t_end);
+    heat_map(&HeatMap {
+        title: format!("rupture: slip rate, peak {} m/s", sig4(peak)),
+        x: &r.x,
+        x_range: (xa, xb),
+        x_unit: if km { (1e3, "position x (km)") } else { (1.0, "position x (m)") },
+        t: &t_of,
+        rows: map.t.len().max(1),
+        t_end: t_end.max(f64::MIN_POSITIVE),
+        t_label: "time (s)",
+        rate: &|k, i| map.rates.get(k).and_then(|row| row.get(i)).map_or(0.0, |&v| f64::from(v)),
+        peak,
+        origin: first.map(|i| (r.x[i], r.rupture_time[i].unwrap_or(0.0))),
+        speeds: [r.speeds.c_s, r.speeds.c_r],
+        rate_label: "slip rate (m/s)",
+    })
 }

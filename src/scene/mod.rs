@@ -52,6 +52,12 @@ pub struct Block {
     /// kg/m^3, for the dynamic solver only (default 1000: a soft gel of this modulus is
     /// mostly water; the paper, being quasi-static, gives none). Sets the time scale only.
     pub density: f64,
+    /// The material by its wave speeds instead of young and poisson (m/s, plane strain, with
+    /// density): read from the file and turned into young and poisson there.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub c_p: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub c_s: Option<f64>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -197,13 +203,138 @@ pub struct Scene {
     pub report: Report,
     #[serde(skip_serializing_if = "LawTable::is_empty")]
     pub law: LawTable,
+    /// The interface of a `rupture` scene: its kind, background stresses, pieces and patch.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interface: Option<InterfaceTable>,
+    /// A `rupture` run's time, step, stations and outputs.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rupture: Option<RuptureTable>,
+}
+
+/// `[interface]` of a `rupture` scene (docs/dynamics.md, "Rupture scenes"): the friction law's
+/// background values are the `[law]` table's.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct InterfaceTable {
+    /// bilateral, unilateral (a rigid flat) or symmetric (a symmetric fault), as `--contact`.
+    pub kind: Option<String>,
+    /// Background normal stress, compressive positive, Pa.
+    pub sigma0: Option<f64>,
+    /// Background shear, Pa; or `s`, the strength ratio that sets it.
+    pub tau0: Option<f64>,
+    pub s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nucleation: Option<PatchTable>,
+    /// Values replacing the background's over intervals of x.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub intervals: Vec<IntervalTable>,
+}
+
+/// `[interface.nucleation]`: initial shear tau0 (Pa) over x_min <= x <= x_max (m), a cosine
+/// ramp of width taper (m) centred on each edge.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PatchTable {
+    pub x_min: f64,
+    pub x_max: f64,
+    pub tau0: f64,
+    pub taper: f64,
+}
+
+/// One of `[[interface.intervals]]`: x_min, x_max (m), taper (m), and any of sigma0, tau0
+/// (Pa), mu_s, mu_d, dc (m).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct IntervalTable {
+    pub x_min: f64,
+    pub x_max: f64,
+    pub taper: f64,
+    pub sigma0: Option<f64>,
+    pub tau0: Option<f64>,
+    pub mu_s: Option<f64>,
+    pub mu_d: Option<f64>,
+    pub dc: Option<f64>,
+}
+
+/// `[rupture]`: the run and its outputs.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RuptureTable {
+    /// s.
+    pub t_end: Option<f64>,
+    pub courant: Option<f64>,
+    /// Kelvin-Voigt coefficient, s.
+    pub damping: Option<f64>,
+    pub max_steps: Option<u64>,
+    /// Station positions along the interface, m.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub stations: Vec<f64>,
+    /// Station output interval, s (default: every step).
+    pub dt_out: Option<f64>,
+    /// The slip rate of a node's rupture time, m/s (default: the arrival rate).
+    pub rate_threshold: Option<f64>,
+    /// "refused" (the default: a block that lets waves back to the stations before t_end is
+    /// refused) or "allowed".
+    pub reflections: Option<String>,
+    /// The front-speed fit's x range [a, b], m.
+    pub speed_window: Option<[f64; 2]>,
 }
 
 impl Default for Block {
     fn default() -> Self {
-        Self { length: 0.4, thickness: 0.002, young: 2e3, poisson: 0.4, density: 1000.0 }
+        Self {
+            length: 0.4,
+            thickness: 0.002,
+            young: 2e3,
+            poisson: 0.4,
+            density: 1000.0,
+            c_p: None,
+            c_s: None,
+        }
     }
 }
+impl Block {
+    /// Sets young and poisson from c_p, c_s and density when the file gives the wave speeds
+    /// (`text`: the file, to tell given keys from defaults), and clears them: the effective
+    /// scene says E and nu.
+    fn from_wave_speeds(&mut self, text: &str) -> Result<()> {
+        let (Some(c_p), Some(c_s)) = (self.c_p, self.c_s) else {
+            return match (self.c_p, self.c_s) {
+                (None, None) => Ok(()),
+                _ => Err(Error::input(
+                    "block.c_p (m/s)",
+                    "give c_p and c_s together (with density), or young and poisson",
+                )),
+            };
+        };
+        let raw: toml::Table = toml::from_str(text).unwrap_or_default();
+        let given = |k: &str| raw.get("block").and_then(|b| b.get(k)).is_some();
+        if given("young") || given("poisson") {
+            return Err(Error::input(
+                "block.c_p (m/s)",
+                "the material is given twice: give c_p, c_s and density, or young, poisson and density",
+            ));
+        }
+        crate::error::scaled("block.c_p (m/s)", c_p, "m/s")?;
+        crate::error::scaled("block.c_s (m/s)", c_s, "m/s")?;
+        // Plane strain: G = rho c_s^2, lambda = rho c_p^2 - 2 G, nu = lambda / (2 (lambda + G)).
+        let g = self.density * c_s * c_s;
+        let lambda = self.density * c_p * c_p - 2.0 * g;
+        // nu > -1 is lambda > -2 G / 3, that is c_p > sqrt(4/3) c_s.
+        let least = c_s * (4.0f64 / 3.0).sqrt();
+        if !(c_p > least && lambda + g > 0.0) {
+            return Err(Error::input(
+                "block.c_s (m/s)",
+                format!("c_p = {c_p} m/s, c_s = {c_s} m/s: an isotropic solid (nu > -1) needs c_p > sqrt(4/3) c_s = {least:.6} m/s"),
+            ));
+        }
+        self.poisson = lambda / (2.0 * (lambda + g));
+        self.young = 2.0 * g * (1.0 + self.poisson);
+        (self.c_p, self.c_s) = (None, None);
+        Ok(())
+    }
+}
+
 impl Default for Plate {
     fn default() -> Self {
         Self { model: PlateModel::Rigid, thickness: 0.048, young: 2e15, poisson: 0.4 }
@@ -297,6 +428,14 @@ impl Scene {
             }
         })?;
         let mut scene = scene;
+        scene.block.from_wave_speeds(&text).map_err(|e| match e {
+            Error::Input { what, why } => Error::Parse {
+                file: path.to_path_buf(),
+                at: key_line(&text, &what).map_or("[block]".into(), |l| format!("line {l}")),
+                msg: format!("{what}: {why}"),
+            },
+            e => e,
+        })?;
         if let (Some(f), Some(dir)) = (&scene.mesh.file, path.parent()) {
             if f.is_relative() {
                 scene.mesh.file = Some(dir.join(f));

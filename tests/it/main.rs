@@ -38,6 +38,7 @@ mod precursors;
 mod precursors_fe;
 mod rate_state;
 mod run_bounds;
+mod rupture_scene;
 mod slide_fields;
 mod stability;
 mod sweep;
