@@ -204,8 +204,8 @@ md.append(
 (D / "table.md").write_text("\n".join(md) + "\n")
 print("\n".join(md))
 
-# envelope.svg: every instability's onset force (up) against the far end of its slipped run
-# from the trailing edge (across), one colour per run: the front envelope as the fronts draw it.
+# envelope.svg: every event's onset force (up) against the far end of its slipped run (across),
+# circles, and the front advances joined (the envelope), one colour per run.
 W, H, M = 640, 420, 60
 COL = {"rw": "#d62728", "rs_control": "#2ca02c", "sw": "#1f77b4"}
 
@@ -226,15 +226,20 @@ for i in range(5):
 for i in range(5):
     f = 0.6 + 0.1 * i
     svg.append(f'<text x="{M - 6}" y="{py(f) + 4:.1f}" text-anchor="end">{f:.1f}</text>')
-svg.append(f'<text x="{W / 2}" y="{H - 16}" text-anchor="middle">far end of the slipped run from the trailing edge, x / L</text>')
+svg.append(f'<text x="{W / 2}" y="{H - 16}" text-anchor="middle">far end of the slipped run (toward +x), x / L</text>')
 svg.append(f'<text x="16" y="{H / 2}" transform="rotate(-90 16 {H / 2})" text-anchor="middle">F_onset / (mu_s N)</text>')
 for j, (name, label) in enumerate(RUNS):
-    inst = [e for e in rows(OUT / name / "dyn_events.csv") if e["instability"] == "1"]
-    pts = [(num(e["region_last_over_L"]), num(e["F_onset_over_mu_s_N"])) for e in inst
-           if num(e["region_first_over_L"]) <= -0.49]
-    for x, f in pts:
+    dyn = rows(OUT / name / "dyn_events.csv")
+    inst = [e for e in dyn if num(e["X_m"]) > 0.0]
+    # Every event (open circle: far end of its slipped run) and the advances (the envelope: line).
+    for e in inst:
+        x, f = num(e["region_last_over_L"]), num(e["F_onset_over_mu_s_N"])
         if 0.6 <= f <= 1.0:
-            svg.append(f'<circle cx="{px(x):.1f}" cy="{py(f):.1f}" r="3" fill="{COL[name]}" fill-opacity="0.7"/>')
-    svg.append(f'<text x="{M + 10}" y="{M + 18 + 16 * j}" fill="{COL[name]}">{label}: {len(pts)} from the trailing edge</text>')
+            svg.append(f'<circle cx="{px(x):.1f}" cy="{py(f):.1f}" r="2.5" fill="none" stroke="{COL[name]}" stroke-opacity="0.6"/>')
+    adv, _ = advances(dyn)
+    if adv:
+        path = " ".join(f"{px(x):.1f},{py(f):.1f}" for f, x, _ in adv)
+        svg.append(f'<polyline points="{path}" fill="none" stroke="{COL[name]}" stroke-width="2"/>')
+    svg.append(f'<text x="{M + 10}" y="{M + 18 + 16 * j}" fill="{COL[name]}">{label}: {len(inst)} events, {len(adv)} advances (line)</text>')
 svg.append("</svg>")
 (D / "envelope.svg").write_text("\n".join(svg) + "\n")
