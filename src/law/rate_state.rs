@@ -116,7 +116,11 @@ impl RateState {
 
     /// The state after `dt` (s) at constant slip rate `v` >= 0, exactly: aging,
     /// theta = L/V + (theta_0 - L/V) exp(-V dt / L) (theta_0 + dt at rest); slip,
-    /// ln(V theta / L) decays as exp(-V dt / L) (unchanged at rest).
+    /// ln(V theta / L) decays as exp(-V dt / L) (unchanged at rest). Written without L/V, which
+    /// overflows at the subnormal slip rates of deep creep (V < L / 1.8e308; a small a puts
+    /// stuck nodes there: V ~ exp(-(tau_pk - tau) / (sigma a))): aging theta e^-x + dt (1 -
+    /// e^-x) / x, slip ln theta e^-x + (1 - e^-x) ln(L / V), x = V dt / L. Until 2026-11-29
+    /// L/V + (theta - L/V) e^-x made theta NaN there, and the node's friction 0 from then on.
     pub fn evolve(&self, theta: f64, v: f64, dt: f64) -> f64 {
         if v <= 0.0 {
             return match self.law {
@@ -124,11 +128,12 @@ impl RateState {
                 StateLaw::Slip => theta,
             };
         }
-        let decay = (-v * dt / self.l).exp();
-        let ss = self.l / v;
+        let x = v * dt / self.l;
+        let decay = (-x).exp();
+        let gone = -(-x).exp_m1();
         match self.law {
-            StateLaw::Aging => ss + (theta - ss) * decay,
-            StateLaw::Slip => ss * ((theta / ss).ln() * decay).exp(),
+            StateLaw::Aging => theta * decay + dt * if x > 0.0 { gone / x } else { 1.0 },
+            StateLaw::Slip => (theta.ln() * decay + gone * (self.l.ln() - v.ln())).exp(),
         }
     }
 
@@ -144,8 +149,13 @@ impl RateState {
     /// tau_lock - z V = sigma mu(V, theta), for a locking traction magnitude tau_lock >= 0
     /// (Pa), an impedance z >= 0 (Pa s/m) and a compressive sigma > 0 (Pa). g(V) = sigma mu + z V
     /// - tau_lock increases in V; the root is bracketed and found by Newton steps in ln V kept
-    ///   inside the bracket (bisection when a step leaves it), to a relative 1e-14.
+    ///   inside the bracket (bisection when a step leaves it), to the round-off of g's terms.
     pub fn solve_rate(&self, tau_lock: f64, z: f64, sigma: f64, theta: f64) -> Result<f64> {
+        self.solve_rate_steps(tau_lock, z, sigma, theta).map(|(v, _)| v)
+    }
+
+    /// [`Self::solve_rate`] with the count of Newton or bisection steps it took.
+    fn solve_rate_steps(&self, tau_lock: f64, z: f64, sigma: f64, theta: f64) -> Result<(f64, usize)> {
         if !(tau_lock >= 0.0 && z >= 0.0 && sigma > 0.0 && tau_lock.is_finite() && z.is_finite()) {
             return Err(Error::input(
                 "rate-and-state solve",
@@ -153,7 +163,7 @@ impl RateState {
             ));
         }
         if tau_lock == 0.0 {
-            return Ok(0.0);
+            return Ok((0.0, 0));
         }
         // Without z the root is closed-form: sigma mu(V*) = tau_lock, ln V* = ln(2 V_0) - psi/a
         // + ln sinh(tau_lock / (sigma a)). With z > 0 the root lies below V* and below tau_lock/z.
@@ -163,7 +173,7 @@ impl RateState {
         if z == 0.0 {
             let v = ln_vstar.exp();
             return if v.is_finite() {
-                Ok(v)
+                Ok((v, 0))
             } else {
                 Err(Error::Untrustworthy {
                     detail: format!("rate-and-state: slip rate e^{ln_vstar:.1} m/s overflows"),
@@ -183,12 +193,23 @@ impl RateState {
             lo -= 7.0;
             tries += 1;
             if tries > 200 {
-                return Ok(0.0);
+                return Ok((0.0, 0));
             }
         }
-        let mut w = 0.5 * (lo + hi);
-        for _ in 0..200 {
+        // g is increasing and convex in w = ln V (sigma a asinh(e^(w + c)) and z e^w are), and
+        // g(hi) >= 0: Newton from hi falls monotonically onto the root, in a few steps where the
+        // inertial term is small (creep: the root is then ln V* itself). The bracket's middle,
+        // the start until 2026-11-29, is up to 3.5 in w off, which Newton on an exponential
+        // walks back one unit a step.
+        let mut w = hi;
+        for k in 0..200 {
             let (gw, dg) = g(w);
+            // The root to the round-off of the equation's own terms (sigma mu and z V are each
+            // at most tau_lock there). Below it a step in w is noise, and for |w| > 8 (one ulp
+            // of w above 1e-15) the step test below is met only by a step that rounds to 0.
+            if gw.abs() <= 4.0 * f64::EPSILON * tau_lock {
+                return Ok((w.exp(), k));
+            }
             if gw > 0.0 {
                 hi = w;
             } else {
@@ -200,11 +221,11 @@ impl RateState {
                 next = 0.5 * (lo + hi);
             }
             if (next - w).abs() < 1e-15 || hi - lo < 1e-15 {
-                return Ok(next.exp());
+                return Ok((next.exp(), k + 1));
             }
             w = next;
         }
-        Ok(w.exp())
+        Ok((w.exp(), 200))
     }
 }
 
@@ -243,6 +264,97 @@ mod tests {
             theta += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
         }
         theta
+    }
+
+    #[test]
+    fn the_state_stays_finite_at_the_subnormal_rates_of_deep_creep() {
+        // The study's law (validation/dynamics/rate_state, a = 4.8e-4): a stuck node's rate
+        // falls as exp(-(tau_pk - tau) / (sigma a)) and passes through the subnormal floats on
+        // its way to 0; there L/V overflowed and made the state NaN (friction 0 after it).
+        let study =
+            RateState::new(4.79753e-4, 4.79753e-3, 1.53842e-8, 5.79986e-11, 0.648, StateLaw::Aging).unwrap();
+        let (sigma, z, dt) = (2.5, 5.2e3, 4.8e-5);
+        let mut subnormal = 0;
+        for k in 0..4000 {
+            let tau = sigma * (0.25 + 0.35 * k as f64 / 4000.0);
+            let v = study.solve_rate(tau, z, sigma, 100.0).unwrap();
+            subnormal += usize::from(v > 0.0 && v < f64::MIN_POSITIVE);
+            let th = study.evolve(100.0, v, dt);
+            // At creep V dt / L << 1 the aging law is theta + dt (1 - V theta / L) to first order.
+            let expect = 100.0 + dt * (1.0 - v * 100.0 / study.l);
+            assert!((th - expect).abs() <= 1e-12 * expect, "tau {tau}: V {v:e}, theta {th} vs {expect}");
+        }
+        assert!(subnormal > 0, "the sweep crosses the subnormal rates");
+        for kind in [StateLaw::Aging, StateLaw::Slip] {
+            let f = law(kind);
+            for v in [1e-300, 1e-310, 1e-317, 1e-320, 5e-324] {
+                let th = f.evolve(3.0, v, dt);
+                let expect = if kind == StateLaw::Aging { 3.0 + dt } else { 3.0 };
+                assert!((th / expect - 1.0).abs() < 1e-15, "{kind:?} at V = {v:e}: {th}");
+            }
+            // At ordinary rates the closed form of before, to round-off.
+            for (theta, v) in [(10.0, 1e-6), (0.1, 1e-4), (50.0, 1e-5), (1e-3, 1.0)] {
+                let ss = f.l / v;
+                let decay = (-v * 0.3 / f.l).exp();
+                let before = match kind {
+                    StateLaw::Aging => ss + (theta - ss) * decay,
+                    StateLaw::Slip => ss * ((theta / ss).ln() * decay).exp(),
+                };
+                assert!((f.evolve(theta, v, 0.3) / before - 1.0).abs() < 1e-13, "{kind:?} {theta} {v}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_rate_solve_meets_its_equation_to_round_off_in_a_few_steps() {
+        // g(w) = sigma mu(e^w, theta) + z e^w - tau_lock, w = ln V, increasing: the reference is
+        // 400 bisections in w. The solve stops at |g| <= 4 eps tau_lock and g's own round-off
+        // is a few eps tau_lock, so |w - w_ref| <= ~8 eps tau_lock / g'(w) (g' = V (sigma
+        // dmu/dV + z)); asserted at 64 eps tau_lock / g'. Laws: the laboratory one and the
+        // study's (validation/dynamics/rate_state: a = 4.8e-4, creep rates down to 1e-300 m/s);
+        // z = rho h / (2 dt) at h = 0.5 mm (5.2e3 Pa s/m); tau_lock from creep to sliding.
+        let study =
+            RateState::new(4.79753e-4, 4.79753e-3, 1.53842e-8, 5.79986e-11, 0.648, StateLaw::Aging).unwrap();
+        let (sigma, z) = (2.5, 5.2e3);
+        for f in [law(StateLaw::Aging), study] {
+            for theta in [100.0, 1.0, 1e-4] {
+                for k in 1..=40 {
+                    let tau = sigma * (0.3 + 0.02 * k as f64);
+                    let (v, steps) = f.solve_rate_steps(tau, z, sigma, theta).unwrap();
+                    let g = |w: f64| sigma * f.mu(w.exp(), theta) + z * w.exp() - tau;
+                    let (mut lo, mut hi) = (-745.0_f64, (tau / z).ln());
+                    for _ in 0..400 {
+                        let mid = 0.5 * (lo + hi);
+                        if g(mid) > 0.0 {
+                            hi = mid;
+                        } else {
+                            lo = mid;
+                        }
+                    }
+                    let w_ref = 0.5 * (lo + hi);
+                    let v_ref = w_ref.exp();
+                    if v_ref < 1e-300 {
+                        continue;
+                    }
+                    let slope = v_ref * (sigma * f.dmu_dv(v_ref, theta) + z);
+                    let tol = 64.0 * f64::EPSILON * tau / slope;
+                    assert!(
+                        (v.ln() - w_ref).abs() <= tol,
+                        "a = {}, theta {theta}, tau {tau}: ln V {} vs {w_ref} (tol {tol:e})",
+                        f.a,
+                        v.ln()
+                    );
+                    // Creep (z V << tau_lock: the root is the closed-form V* of z = 0): Newton from
+                    // V* in at most 3 steps; sliding in at most 30 (monotone, g convex in w).
+                    let creep = z * v_ref < 1e-6 * tau;
+                    assert!(
+                        steps <= if creep { 3 } else { 30 },
+                        "a = {}, theta {theta}, tau {tau}: {steps} steps (creep {creep})",
+                        f.a
+                    );
+                }
+            }
+        }
     }
 
     #[test]
