@@ -597,7 +597,7 @@ impl RuptureSpec {
             }
             for (k, v) in p.values().into_iter().enumerate() {
                 if let Some(v) = v {
-                    if !(v.is_finite() && (v > 0.0 || (k >= 2 && k <= 3 && v == 0.0))) {
+                    if !(v.is_finite() && (v > 0.0 || ((2..=3).contains(&k) && v == 0.0))) {
                         return Err(Error::input(
                             format!("{key}.{}", PIECE_KEYS[k]),
                             format!("{v} must be finite and positive"),
@@ -1150,7 +1150,7 @@ impl Boundary for Flat<'_> {
         let e0 = self.e;
         let slip_factor = self.slip_factor;
         let t0 = s.n as f64 * dt;
-        let (record, mapped) = (s.n % self.rec.stride == 0, s.n % self.rec.map_stride == 0);
+        let (record, mapped) = (s.n.is_multiple_of(self.rec.stride), s.n.is_multiple_of(self.rec.map_stride));
         if mapped {
             self.rec.map.t.push(t0);
             self.rec.map.rates.push(Vec::with_capacity(self.base.len()));
@@ -1277,8 +1277,8 @@ pub struct SceneSpec {
 }
 
 impl SceneSpec {
-    /// The spec of `scene` ([block] length and thickness as the block, [mesh] h, [law] the
-    /// background law and normal response, [interface], [rupture]); a value the file does not
+    /// The spec of `scene` (`[block]` length and thickness as the block, `[mesh]` h, `[law]` the
+    /// background law and normal response, `[interface]`, `[rupture]`); a value the file does not
     /// give is [`RuptureSpec::default`]'s (the normal response: `tribofe rupture`'s default
     /// lag, [`DEFAULT_NORMAL_LAG`]), the block's and the mesh's are the scene's.
     pub fn from_scene(scene: &crate::scene::Scene) -> Result<Self> {

@@ -44,7 +44,7 @@ pub fn station_file(x: f64) -> String {
     format!("station_x{}.csv", if x == 0.0 { 0.0 } else { x })
 }
 
-/// The files [`write`] writes for `r`, for the command's closing line.
+/// The files [`write()`] writes for `r`, for the command's closing line.
 pub fn files(r: &RuptureResult) -> Vec<String> {
     let mut f: Vec<String> =
         ["arrival.csv", "summary.csv", "energy.csv", "zone.csv", "rupture_time.csv", "spacetime.svg"]

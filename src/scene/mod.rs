@@ -297,7 +297,7 @@ impl Block {
     /// Sets young and poisson from c_p, c_s and density when the file gives the wave speeds
     /// (`text`: the file, to tell given keys from defaults), and clears them: the effective
     /// scene says E and nu.
-    fn from_wave_speeds(&mut self, text: &str) -> Result<()> {
+    fn set_from_wave_speeds(&mut self, text: &str) -> Result<()> {
         let (Some(c_p), Some(c_s)) = (self.c_p, self.c_s) else {
             return match (self.c_p, self.c_s) {
                 (None, None) => Ok(()),
@@ -428,7 +428,7 @@ impl Scene {
             }
         })?;
         let mut scene = scene;
-        scene.block.from_wave_speeds(&text).map_err(|e| match e {
+        scene.block.set_from_wave_speeds(&text).map_err(|e| match e {
             Error::Input { what, why } => Error::Parse {
                 file: path.to_path_buf(),
                 at: key_line(&text, &what).map_or("[block]".into(), |l| format!("line {l}")),
