@@ -377,6 +377,12 @@ fn run_checked(
             None if a.dynamics => ds::DEFAULT_OPERATOR,
             None => SlideOptions::default().operator,
         },
+        // --weakening-steps N asks for the held mode's old stepped coefficients (comparison).
+        weakening: if a.weakening_steps.is_some() {
+            tribofe::interface::events::Weakening::Steps
+        } else {
+            tribofe::interface::events::Weakening::Exact
+        },
         ..Default::default()
     };
     if a.dynamics {
@@ -530,11 +536,18 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         ("plate_mass_kg_per_m", toml::Value::from(d.plate_mass)),
         ("plate_inertia_kg_m2_per_m", toml::Value::from(d.plate_inertia)),
         ("normal_response", toml::Value::from(d.normal.name())),
+        ("weakening_path", toml::Value::from(if law.weakens() && a.drive_velocity.is_none() { o.weakening.name() } else { "none" })),
     ];
     // summary.csv's row, NaN (a quantity the run does not have) left out, and the cap if met.
     let summary = ds::summary::COLUMNS.iter().zip(ds::summary::values(&res));
     let mut results: Vec<(&str, toml::Value)> = results.into_iter().collect();
-    results.extend(summary.filter(|(_, v)| v.is_finite()).map(|(c, v)| (c.0, toml::Value::from(v))));
+    // The exact path has no weakening step (summary.csv keeps the option's value).
+    let stepped = o.weakening == tribofe::interface::events::Weakening::Steps;
+    results.extend(
+        summary
+            .filter(|(c, v)| v.is_finite() && (stepped || c.0 != "weakening_steps"))
+            .map(|(c, v)| (c.0, toml::Value::from(v))),
+    );
     if let Some(why) = &res.incomplete {
         results.push(("incomplete", toml::Value::from(why.as_str())));
     }
@@ -609,6 +622,13 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         );
     }
     print_summary(&res)?;
+    if let Some(&(x, f)) = run.folds.first() {
+        outln!(
+            "exact weakening path: {} onsets at the end of their equilibrium branch; the first at X = {x:.8e} m, F/(mu_s N) = {:.8} (its dynamic event starts just past it)",
+            run.folds.len(),
+            f / (law.mu_s() * a.n_force)
+        );
+    }
     outln!(
         "wrote {}/{{summary.csv, loading.csv, events.csv, {}{}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, cycle.svg, {}run.toml}}",
         a.out.display(),

@@ -506,6 +506,14 @@ impl Factored {
         self.lu
     }
 
+    /// Sign of the bordered system's determinant, det A det S.
+    pub(crate) fn det_sign(&self) -> f64 {
+        let s = &self.s;
+        let d3 = s[0][0] * (s[1][1] * s[2][2] - s[1][2] * s[2][1]) - s[0][1] * (s[1][0] * s[2][2] - s[1][2] * s[2][0])
+            + s[0][2] * (s[1][0] * s[2][1] - s[1][1] * s[2][0]);
+        self.lu.det_sign() * d3.signum()
+    }
+
     /// Adds to `full` (m + 3) the solution for a band right-hand side z (solved in place) and a
     /// border one t: y = S^{-1} (t - C A^{-1} z), x = A^{-1} z - A^{-1} B y.
     pub(crate) fn apply(&self, z: &mut [f64], t: [f64; 3], full: &mut [f64]) -> Result<()> {
@@ -577,4 +585,4 @@ fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
 
 mod reuse;
 pub(crate) use reuse::Solving;
-pub use reuse::{RANK_CAP, REFINE};
+pub use reuse::{rank_cap, RANK_CAP, REFINE, Z_BYTES};

@@ -546,7 +546,7 @@ fn density_is_a_scene_key() {
 
 // ---- slide --dynamics (issue 33, part 3): the plate-driven block ----
 
-use tribofe::interface::events::{EventKind, NodeState, Operator, Phase};
+use tribofe::interface::events::{EventKind, NodeState, Operator, Phase, Weakening};
 use tribofe::law::Law;
 use tribofe::scene::Scene;
 use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};
@@ -623,9 +623,12 @@ fn dynamic_slide_is_the_same_on_the_dense_and_the_banded_operator() {
     // round-off (~1e-12 of the scale, tests/operator.rs), and the slip-weakening fixed point
     // near a patch's critical length amplifies a difference by up to 1/(1 - its contraction),
     // ~1e3 here: the same events (kind, node, dynamic or not), X and F within 1e-7 of their
-    // scales (X at the end, mu_s N).
+    // scales (X at the end, mu_s N). On the stepped weakening path (`--weakening-steps`):
+    // the exact path's onsets are compared below, its marginal snaps (no node weakening
+    // fully) being decided by the sign of a determinant near zero.
     let run = |op| {
         let (scene, o) = short_weakening(op, 6.0e-6);
+        let o = SlideOptions { weakening: Weakening::Steps, ..o };
         ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap()
     };
     let mu_s = short_weakening(Operator::Dense, 6.0e-6).1.law.mu_s();
@@ -643,6 +646,15 @@ fn dynamic_slide_is_the_same_on_the_dense_and_the_banded_operator() {
         assert!((p.x - q.x).abs() < 1e-7 * x_end, "X {} vs {}", p.x, q.x);
         assert!((p.f - q.f).abs() < 1e-7 * mu_s, "F {} vs {}", p.f, q.f);
     }
+    // The exact path: the first fold (its X and F) the same on both operators, to the
+    // fold's extrapolation error (~1e-8 mu_s N, src/interface/events/stepped.rs's test).
+    let fold = |op| {
+        let (scene, o) = short_weakening(op, 4.9e-6);
+        ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap().slide.run.folds[0]
+    };
+    let (p, q) = (fold(Operator::Dense), fold(Operator::Banded));
+    assert!((p.0 - q.0).abs() < 1e-9 * p.0, "fold X {} vs {}", p.0, q.0);
+    assert!((p.1 - q.1).abs() < 1e-7 * mu_s, "fold F {} vs {}", p.1, q.1);
 }
 
 #[test]

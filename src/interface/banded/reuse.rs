@@ -2,7 +2,7 @@
 //!
 //! A coulomb event changes one node, so one or two rows of the free system M. Instead of a
 //! factorisation per solve, the factor of a reference system M0 is kept and the rows replaced
-//! since (the set R, at most [`Solving::rank_cap`]) enter through the capacitance (Woodbury):
+//! since (the set R, at most [`Solving::rank_cap`], refactored when cheaper: `spent`) enter through the capacitance (Woodbury):
 //! M = M0 + E W (E the unit columns of R, W the row differences), so
 //!   M^{-1} = M0^{-1} - Z C^{-1} W M0^{-1},  Z = M0^{-1} E,  C = I + W Z (|R| x |R|),
 //! one band solve per row when it enters R. The previous solution x makes the usual solve
@@ -22,11 +22,18 @@ use crate::interface::events::operator::{ActiveSet, Affine, Operator};
 use crate::interface::events::{NodeState, Phase};
 use crate::linalg::banded::Banded;
 
-/// Rows replaced since the factorisation past which the band is refactored: a solve costs
-/// O(|R| m) in Z C^{-1}, a factorisation O(m kl (kl + ku)) plus a band solve per row of Z
-/// rebuilt; their balance at m = 6,411, kl = ku = 11 (coulomb at 801 nodes, ~1.2 rows an
-/// event) is near |R| ~ 20. Caps of 8 to 48 timed the same within the noise of the loaded
-/// machine (docs/speed.md).
+/// Memory Z may take (|R| columns of m + 3 values), bytes: the hard cap on R. Below it the
+/// band is refactored only when that is cheaper ([`Solving::spent`]).
+pub const Z_BYTES: f64 = 256.0 * 1024.0 * 1024.0;
+
+/// The rank cap of a band of m rows: as many rows of R as [`Z_BYTES`] holds (at least 24, the
+/// cap this rule replaced).
+pub fn rank_cap(m: usize) -> usize {
+    ((Z_BYTES / (8.0 * (m + 3) as f64)) as usize).max(RANK_CAP)
+}
+
+/// The fixed cap before the cost rule (kept as the floor of [`rank_cap`]): caps of 8 to 48
+/// timed the same on coulomb at 801 nodes (docs/speed.md).
 pub const RANK_CAP: usize = 24;
 
 /// Componentwise backward error accepted for a solution: every equation's residual within
@@ -63,13 +70,19 @@ pub(crate) struct Solving<'a> {
     last: Option<Last>,
     /// Rows allowed in R before a refactorisation (0: refactor for every changed set).
     pub rank_cap: usize,
+    /// Flops the low-rank path has added since the factorisation (new columns of Z, the
+    /// steps Z C^{-1} and the capacitance's LU): once past a factorisation's own, the band
+    /// is refactored at the next change (the rent-or-buy rule: at most twice the cost of the
+    /// best schedule in hindsight). Coefficient changes of rows already in R (slip
+    /// weakening's iterates) cost no band solve, so a process zone's rows stay in R.
+    spent: f64,
     pub row_updates: usize,
     pub factorisations: usize,
 }
 
 impl<'a> Solving<'a> {
     pub fn new(op: &'a BandedOperator) -> Solving<'a> {
-        Solving::with_rank_cap(op, RANK_CAP)
+        Solving::with_rank_cap(op, rank_cap(op.m))
     }
 
     pub fn with_rank_cap(op: &'a BandedOperator, rank_cap: usize) -> Solving<'a> {
@@ -88,6 +101,7 @@ impl<'a> Solving<'a> {
             wz: vec![],
             last: None,
             rank_cap,
+            spent: 0.0,
             row_updates: 0,
             factorisations: 0,
         }
@@ -158,7 +172,20 @@ impl<'a> Solving<'a> {
         self.z.clear();
         self.wz.clear();
         self.factorisations += 1;
+        self.spent = 0.0;
         Ok(())
+    }
+
+    /// Flops of one factorisation: the band's LU and its three border solves.
+    fn factor_flops(&self) -> f64 {
+        let (m, kl, ku) = (self.op.m as f64, self.op.kl as f64, self.op.ku as f64);
+        2.0 * m * kl * (kl + ku) + 3.0 * self.band_solve_flops()
+    }
+
+    /// Flops of one band solve (forward and back substitution).
+    fn band_solve_flops(&self) -> f64 {
+        let (m, kl, ku) = (self.op.m as f64, self.op.kl as f64, self.op.ku as f64);
+        2.0 * m * (2.0 * kl + ku + 1.0)
     }
 
     /// Brings R up to the current rows, refactoring when it would pass the cap.
@@ -171,7 +198,7 @@ impl<'a> Solving<'a> {
         }
         let keys: Vec<Key> = (0..2 * n).map(|d| Self::key(rows, n, d)).collect();
         let fresh = (0..2 * n).filter(|&d| self.in_r[d] == usize::MAX && keys[d] != self.ref_key[d]).count();
-        if self.r_dofs.len() + fresh > self.rank_cap {
+        if fresh > 0 && (self.r_dofs.len() + fresh > self.rank_cap || self.spent > self.factor_flops()) {
             return self.refactor(rows);
         }
         for d in 0..2 * n {
@@ -211,6 +238,7 @@ impl<'a> Solving<'a> {
         self.w.push(w);
         self.z.push(z);
         self.row_updates += 1;
+        self.spent += self.band_solve_flops();
         Ok(())
     }
 
@@ -596,6 +624,17 @@ impl Lu {
         Some(Lu { a, piv, k })
     }
 
+    /// Sign of det C: the diagonal of U and the row interchanges.
+    fn det_sign(&self) -> f64 {
+        let k = self.k;
+        let neg = (0..k).filter(|&i| self.a[i * k + i] < 0.0).count() + (0..k).filter(|&i| self.piv[i] != i).count();
+        if neg % 2 == 0 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+
     fn solve(&self, mut b: Vec<f64>) -> Vec<f64> {
         let (a, k) = (&self.a, self.k);
         for i in 0..k {
@@ -653,6 +692,8 @@ impl Operator for Solving<'_> {
         });
         let vals = [rows.b0, rows.b1];
         let (x, res) = self.solve_full(&rows, &b, &vals, guess.as_ref().map(|l| &l.g[..]))?;
+        let r = self.z.len() as f64;
+        self.spent += 4.0 * r * (self.op.m + 3) as f64 + r * r * r / 3.0;
         let mut full: [Vec<f64>; 2] = x.try_into().map_err(|_| super::singular())?;
         let [(r0, d0, k0), (r1, d1, k1)]: [Checked; 2] = res.try_into().map_err(|_| super::singular())?;
         let sol = self.op.finish(&rows, &mut full, Some([&k0, &k1]));
@@ -686,6 +727,23 @@ impl Operator for Solving<'_> {
 
     fn counts(&self) -> (usize, usize) {
         (self.row_updates, self.factorisations)
+    }
+
+    /// det M = det M0 det C (matrix determinant lemma): the factor's sign and the
+    /// capacitance's, no extra solve; a capacitance too ill-conditioned to trust refactors.
+    fn det_sign(&mut self, set: &ActiveSet) -> Result<Option<f64>> {
+        let bufs = RowBufs::new(set, true);
+        let rows = Self::rows_of(set, &bufs, &[], true);
+        self.update(&rows)?;
+        let cap = match self.capacitance() {
+            Some(c) => c.det_sign(),
+            None if self.z.is_empty() => 1.0,
+            None => {
+                self.refactor(&rows)?;
+                1.0
+            }
+        };
+        Ok(Some(self.base.as_ref().expect("factored").det_sign() * cap))
     }
 }
 

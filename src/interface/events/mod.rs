@@ -145,6 +145,28 @@ pub struct Problem {
     pub operator: Operator,
     /// Called once per recorded event (see [`Observer`]); None: no call.
     pub observer: Option<Observer>,
+    /// How the held mode's static loading (`slide --dynamics`) follows slip weakening.
+    pub weakening: Weakening,
+}
+
+/// How the held mode's static loading follows slip weakening between dynamic events
+/// (`stepped`): exactly, by continuation in X (the default), or with each slipping node's
+/// coefficient brought to its slip every D_c/N of slip (`--weakening-steps N`, kept to compare
+/// with the runs made that way before; its onsets lag by up to (mu_s - mu_d)/N of strength).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Weakening {
+    #[default]
+    Exact,
+    Steps,
+}
+
+impl Weakening {
+    pub fn name(&self) -> &'static str {
+        match self {
+            Weakening::Exact => "exact",
+            Weakening::Steps => "steps",
+        }
+    }
 }
 
 /// A host's view of a run while it is recorded: called once per recorded event, in order, with
@@ -191,6 +213,7 @@ impl Default for Problem {
             cancel: crate::Cancel::new(),
             operator: Operator::Dense,
             observer: None,
+            weakening: Weakening::Exact,
         }
     }
 }
@@ -373,6 +396,9 @@ pub struct Run {
     /// low-rank row updates and band factorisations.
     pub updates: usize,
     pub refreshes: usize,
+    /// The exact weakening path's onsets (held mode): per instability, X (m) and F (N/m) at
+    /// the fold where its equilibrium branch ends (the dynamic event starts just past it).
+    pub folds: Vec<(f64, f64)>,
 }
 
 impl Run {
@@ -387,6 +413,7 @@ impl Run {
             sliding_events: 0,
             updates: 0,
             refreshes: 0,
+            folds: vec![],
         }
     }
 
