@@ -108,9 +108,10 @@ pub struct Args {
     #[arg(long)]
     pub newton: bool,
     /// How each state set is solved: `dense` (the condensed S with a bordered inverse, the
-    /// reference) or `banded` (the block's sparse stiffness in x order, one banded LU per solve:
-    /// cost per event grows like n, not n^2; equal results to round-off). Default dense;
-    /// banded with --dynamics, whose runs have thousands of events on fine meshes.
+    /// reference) or `banded` (the block's sparse stiffness in x order, one reused banded LU:
+    /// cost per event grows like n, not n^2; equal results to round-off). Default: banded above
+    /// 200 interface nodes (a mesh file: dense), dense at or below (docs/speed.md); banded
+    /// with --dynamics. The choice and its reason are printed and written to run.toml.
     #[arg(long, value_parser = ["dense", "banded"])]
     pub operator: Option<String>,
     /// Write the whole block's fields for this many states spread evenly over the drive X, one
@@ -189,6 +190,24 @@ pub struct Args {
     /// always written. Default none.
     #[arg(long, value_name = "all|none|N,M,...")]
     pub spacetime: Option<String>,
+}
+
+/// Interface nodes of a structured mesh (None for a mesh file: known once it is read).
+fn interface_estimate(scene: &tribofe::scene::Scene) -> Option<usize> {
+    scene.mesh.file.is_none().then(|| scene.estimate_nx() as usize + 1)
+}
+
+/// Why the run is on its operator: given, or the size rule.
+fn operator_reason(a: &Args, scene: &tribofe::scene::Scene) -> String {
+    match (&a.operator, interface_estimate(scene)) {
+        (Some(_), _) => "given".into(),
+        (None, _) if a.dynamics => "the --dynamics default".into(),
+        (None, Some(n)) => format!(
+            "default for {n} interface nodes (banded above {})",
+            tribofe::interface::events::AUTO_BANDED_ABOVE
+        ),
+        (None, None) => "default for a mesh file (dense)".into(),
+    }
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
@@ -375,7 +394,7 @@ fn run_checked(
             Some("banded") => tribofe::interface::events::Operator::Banded,
             Some(_) => tribofe::interface::events::Operator::Dense,
             None if a.dynamics => ds::DEFAULT_OPERATOR,
-            None => SlideOptions::default().operator,
+            None => tribofe::interface::events::Operator::for_interface(interface_estimate(&scene)),
         },
         // --weakening-steps N asks for the held mode's old stepped coefficients (comparison).
         weakening: if a.weakening_steps.is_some() {
@@ -406,6 +425,8 @@ fn run_checked(
         ("n_force_N_per_m", toml::Value::from(a.n_force)),
         ("interface_nodes", toml::Value::from(res.condensed.n as i64)),
         ("k_bonded_N_per_m_per_m", toml::Value::from(res.run.k_bonded)),
+        ("operator", toml::Value::from(o.operator.name())),
+        ("operator_reason", toml::Value::from(operator_reason(&a, &scene))),
     ];
     let header = tribofe::report::run_toml(super::invocation(), &results, &scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
@@ -436,6 +457,7 @@ fn run_checked(
         last.x,
         worst
     );
+    outln!("operator: {} ({})", res.options.operator.name(), operator_reason(&a, &scene));
     if res.options.operator == tribofe::interface::events::Operator::Banded {
         outln!(
             "banded operator {:.3} s (K symmetric to {:.1e}, rigid motions to {:.1e}); events {:.3} s ({} banded factorisations, {} low-rank row updates)",
@@ -525,6 +547,8 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         ("n_force_N_per_m", toml::Value::from(a.n_force)),
         ("interface_nodes", toml::Value::from(res.slide.condensed.n as i64)),
         ("k_bonded_N_per_m_per_m", toml::Value::from(res.slide.run.k_bonded)),
+        ("operator", toml::Value::from(o.operator.name())),
+        ("operator_reason", toml::Value::from(operator_reason(a, scene))),
         ("dynamics", toml::Value::from(true)),
         ("density_kg_per_m3", toml::Value::from(scene.block.density)),
         ("damping_eta_s", toml::Value::from(res.eta)),

@@ -2,7 +2,7 @@
 //!
 //! A coulomb event changes one node, so one or two rows of the free system M. Instead of a
 //! factorisation per solve, the factor of a reference system M0 is kept and the rows replaced
-//! since (the set R, at most [`Solving::rank_cap`], refactored when cheaper: `spent`) enter through the capacitance (Woodbury):
+//! since (the set R, at most [`Solving::rank_cap`]) enter through the capacitance (Woodbury):
 //! M = M0 + E W (E the unit columns of R, W the row differences), so
 //!   M^{-1} = M0^{-1} - Z C^{-1} W M0^{-1},  Z = M0^{-1} E,  C = I + W Z (|R| x |R|),
 //! one band solve per row when it enters R. The previous solution x makes the usual solve
@@ -22,14 +22,20 @@ use crate::interface::events::operator::{ActiveSet, Affine, Operator};
 use crate::interface::events::{NodeState, Phase};
 use crate::linalg::banded::Banded;
 
-/// Memory Z may take (|R| columns of m + 3 values), bytes: the hard cap on R. Below it the
-/// band is refactored only when that is cheaper ([`Solving::spent`]).
+/// Memory Z may take (|R| columns of m + 3 values), bytes: the hard cap on R.
 pub const Z_BYTES: f64 = 256.0 * 1024.0 * 1024.0;
 
-/// The rank cap of a band of m rows: as many rows of R as [`Z_BYTES`] holds (at least 24, the
-/// cap this rule replaced).
-pub fn rank_cap(m: usize) -> usize {
-    ((Z_BYTES / (8.0 * (m + 3) as f64)) as usize).max(RANK_CAP)
+/// The rank cap of a band of m rows and half-widths kl, ku: four factorisations' worth of
+/// Z's columns (each a band solve), at least [`RANK_CAP`], at most what [`Z_BYTES`] holds.
+/// A wider band (finer mesh through the thickness) makes a factorisation dearer against a
+/// solve (kl (kl + ku) / (2 kl + ku) of them), so more rows pay: 24 at kl = ku = 11, ~200
+/// at the paper's scene's h = 0.125 mm (kl = ku ~ 75), where the process zone's rows change
+/// at every iterate.
+pub fn rank_cap(m: usize, kl: usize, ku: usize) -> usize {
+    let (kl, ku) = (kl as f64, ku as f64);
+    let per_factor = kl * (kl + ku) / (2.0 * kl + ku + 1.0);
+    let by_cost = (4.0 * per_factor) as usize;
+    by_cost.max(RANK_CAP).min(((Z_BYTES / (8.0 * (m + 3) as f64)) as usize).max(RANK_CAP))
 }
 
 /// The fixed cap before the cost rule (kept as the floor of [`rank_cap`]): caps of 8 to 48
@@ -70,19 +76,13 @@ pub(crate) struct Solving<'a> {
     last: Option<Last>,
     /// Rows allowed in R before a refactorisation (0: refactor for every changed set).
     pub rank_cap: usize,
-    /// Flops the low-rank path has added since the factorisation (new columns of Z, the
-    /// steps Z C^{-1} and the capacitance's LU): once past a factorisation's own, the band
-    /// is refactored at the next change (the rent-or-buy rule: at most twice the cost of the
-    /// best schedule in hindsight). Coefficient changes of rows already in R (slip
-    /// weakening's iterates) cost no band solve, so a process zone's rows stay in R.
-    spent: f64,
     pub row_updates: usize,
     pub factorisations: usize,
 }
 
 impl<'a> Solving<'a> {
     pub fn new(op: &'a BandedOperator) -> Solving<'a> {
-        Solving::with_rank_cap(op, rank_cap(op.m))
+        Solving::with_rank_cap(op, rank_cap(op.m, op.kl, op.ku))
     }
 
     pub fn with_rank_cap(op: &'a BandedOperator, rank_cap: usize) -> Solving<'a> {
@@ -101,7 +101,6 @@ impl<'a> Solving<'a> {
             wz: vec![],
             last: None,
             rank_cap,
-            spent: 0.0,
             row_updates: 0,
             factorisations: 0,
         }
@@ -172,7 +171,6 @@ impl<'a> Solving<'a> {
         self.z.clear();
         self.wz.clear();
         self.factorisations += 1;
-        self.spent = 0.0;
         Ok(())
     }
 
@@ -197,8 +195,20 @@ impl<'a> Solving<'a> {
             return self.refactor(rows);
         }
         let keys: Vec<Key> = (0..2 * n).map(|d| Self::key(rows, n, d)).collect();
-        let fresh = (0..2 * n).filter(|&d| self.in_r[d] == usize::MAX && keys[d] != self.ref_key[d]).count();
-        if fresh > 0 && (self.r_dofs.len() + fresh > self.rank_cap || self.spent > self.factor_flops()) {
+        let fresh: Vec<usize> =
+            (0..2 * n).filter(|&d| self.in_r[d] == usize::MAX && keys[d] != self.ref_key[d]).collect();
+        // A slipping row whose coefficient or spring moved (slip weakening's iterates) will
+        // move again: it enters R, where its next changes cost no band solve. State flips
+        // enter R only while their band solves cost less than a factorisation.
+        let coefficient_only = |d: usize| {
+            let (k, r) = (keys[d], self.ref_key[d]);
+            k.0 && r.0 && k.1 != 0.0 && k.1.signum() == r.1.signum()
+        };
+        let flips = fresh.iter().filter(|&&d| !coefficient_only(d)).count() as f64;
+        if !fresh.is_empty()
+            && (self.r_dofs.len() + fresh.len() > self.rank_cap
+                || flips * self.band_solve_flops() > self.factor_flops())
+        {
             return self.refactor(rows);
         }
         for d in 0..2 * n {
@@ -238,7 +248,6 @@ impl<'a> Solving<'a> {
         self.w.push(w);
         self.z.push(z);
         self.row_updates += 1;
-        self.spent += self.band_solve_flops();
         Ok(())
     }
 
@@ -692,8 +701,6 @@ impl Operator for Solving<'_> {
         });
         let vals = [rows.b0, rows.b1];
         let (x, res) = self.solve_full(&rows, &b, &vals, guess.as_ref().map(|l| &l.g[..]))?;
-        let r = self.z.len() as f64;
-        self.spent += 4.0 * r * (self.op.m + 3) as f64 + r * r * r / 3.0;
         let mut full: [Vec<f64>; 2] = x.try_into().map_err(|_| super::singular())?;
         let [(r0, d0, k0), (r1, d1, k1)]: [Checked; 2] = res.try_into().map_err(|_| super::singular())?;
         let sol = self.op.finish(&rows, &mut full, Some([&k0, &k1]));

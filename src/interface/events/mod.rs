@@ -89,7 +89,23 @@ pub enum Operator {
     Banded,
 }
 
+/// `slide` without `--operator`: the banded operator above this many interface nodes, the
+/// dense reference at or below. Measured (docs/speed.md, `tribofe slide --mu 0.5 --states
+/// none`, whole process): 401 nodes dense 0.61 s, banded 0.10 s; 801 nodes 2.55 s, 0.80 s;
+/// the thin block t/L = 1/1600 (3,201 nodes) 49 s, 0.46 s; at 51 and 101 nodes both
+/// 0.02 s or less, where the reference costs nothing and keeps its bytes.
+pub const AUTO_BANDED_ABOVE: usize = 200;
+
 impl Operator {
+    /// The default for an interface of `n` nodes (None: not known before the mesh is read,
+    /// a mesh file: the reference); see [`AUTO_BANDED_ABOVE`].
+    pub fn for_interface(n: Option<usize>) -> Operator {
+        match n {
+            Some(n) if n > AUTO_BANDED_ABOVE => Operator::Banded,
+            _ => Operator::Dense,
+        }
+    }
+
     pub fn name(&self) -> &'static str {
         match self {
             Operator::Dense => "dense",
