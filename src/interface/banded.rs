@@ -509,7 +509,8 @@ impl Factored {
     /// Sign of the bordered system's determinant, det A det S.
     pub(crate) fn det_sign(&self) -> f64 {
         let s = &self.s;
-        let d3 = s[0][0] * (s[1][1] * s[2][2] - s[1][2] * s[2][1]) - s[0][1] * (s[1][0] * s[2][2] - s[1][2] * s[2][0])
+        let d3 = s[0][0] * (s[1][1] * s[2][2] - s[1][2] * s[2][1])
+            - s[0][1] * (s[1][0] * s[2][2] - s[1][2] * s[2][0])
             + s[0][2] * (s[1][0] * s[2][1] - s[1][1] * s[2][0]);
         self.lu.det_sign() * d3.signum()
     }

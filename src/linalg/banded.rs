@@ -118,7 +118,8 @@ impl Banded {
     /// Sign of det A (+1 or -1) from the factor: U's diagonal and the row interchanges.
     pub fn det_sign(&self) -> f64 {
         assert!(self.factored, "det_sign before factor");
-        let neg = self.dinv.iter().filter(|&&d| d < 0.0).count() + (0..self.m).filter(|&i| self.piv[i] != i).count();
+        let neg = self.dinv.iter().filter(|&&d| d < 0.0).count()
+            + (0..self.m).filter(|&i| self.piv[i] != i).count();
         if neg % 2 == 0 {
             1.0
         } else {

@@ -636,7 +636,8 @@ impl Lu {
     /// Sign of det C: the diagonal of U and the row interchanges.
     fn det_sign(&self) -> f64 {
         let k = self.k;
-        let neg = (0..k).filter(|&i| self.a[i * k + i] < 0.0).count() + (0..k).filter(|&i| self.piv[i] != i).count();
+        let neg = (0..k).filter(|&i| self.a[i * k + i] < 0.0).count()
+            + (0..k).filter(|&i| self.piv[i] != i).count();
         if neg % 2 == 0 {
             1.0
         } else {

@@ -362,8 +362,11 @@ pub(super) fn tangent_stable(sv: &mut Solver) -> Result<bool> {
     Ok(ok)
 }
 
-/// The slipping rows as they are: (node, coefficient, spring, its centre).
-pub(super) fn snapshot(sv: &Solver) -> Vec<(usize, f64, f64, f64)> {
+/// Slipping rows: (node, coefficient, spring, its centre).
+pub(super) type Rows = Vec<(usize, f64, f64, f64)>;
+
+/// The slipping rows as they are.
+pub(super) fn snapshot(sv: &Solver) -> Rows {
     (0..sv.n())
         .filter(|&i| matches!(sv.states()[i], NodeState::Slip(_)))
         .map(|i| (i, sv.mu_slip(i), sv.spring(i), sv.set.spring_u[i]))
@@ -375,13 +378,7 @@ pub(super) fn snapshot(sv: &Solver) -> Vec<(usize, f64, f64, f64)> {
 /// slips, with the springs centred there), not yet applied. None, with the rows back where it
 /// started, when an iterate moves a node by more than D_c/2 from where Newton started or back
 /// past `u_pre` by more than `td`, or it does not converge in [`NEWTON_MAX`] iterates.
-fn newton(
-    sv: &mut Solver,
-    lam: f64,
-    u_pre: &[f64],
-    dc: f64,
-    td: f64,
-) -> Result<Option<Vec<(usize, f64, f64, f64)>>> {
+fn newton(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f64) -> Result<Option<Rows>> {
     let start = snapshot(sv);
     let mut a = sv.solve()?;
     let u0: Vec<f64> = (0..sv.n()).map(|i| a.b(i, lam)).collect();

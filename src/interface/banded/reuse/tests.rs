@@ -113,7 +113,9 @@ fn coefficient_iterates_are_low_rank_updates_of_one_factor() {
     let zone = 20..40;
     let mut set = ActiveSet {
         n,
-        states: (0..n).map(|i| if zone.contains(&i) { NodeState::Slip(1.0) } else { NodeState::Stick }).collect(),
+        states: (0..n)
+            .map(|i| if zone.contains(&i) { NodeState::Slip(1.0) } else { NodeState::Stick })
+            .collect(),
         anchor: vec![0.0; n],
         mu_slip: vec![0.45; n],
         spring: vec![0.0; n],
