@@ -173,11 +173,19 @@ pub struct Args {
     #[arg(long, default_value = "all", value_parser = ["all", "slipped"])]
     pub heal: String,
     /// Slip-weakening coefficient updates per D_c of slip in the static loading (--dynamics;
-    /// default 20). Onsets lag by up to (mu_s - mu_d) / N of the strength: on the paper's
-    /// scene N = 20 to 1280 move the first onset by 4e-4 mu_s N; where a weakened zone is
-    /// marginally stable much more (validation/dynamics/converge/README.md).
-    #[arg(long)]
+    /// default 20, the default path). Onsets lag by up to (mu_s - mu_d) / N of the strength:
+    /// on the paper's scene N = 20 to 1280 move the first onset by 4e-4 mu_s N; where a
+    /// weakened zone is marginally stable much more (validation/dynamics/converge/README.md).
+    /// --exact-weakening follows the weakening exactly instead.
+    #[arg(long, conflicts_with = "exact_weakening")]
     pub weakening_steps: Option<f64>,
+    /// The held mode's static loading follows slip weakening exactly (--dynamics --law
+    /// slip-weakening): continuation in X, each onset at the fold of its equilibrium branch,
+    /// no lag in N. Not the default: ~10x slower than the stepped path on the paper's scene,
+    /// and it fails on (r, g) = (0.7, 0.5) (docs/speed.md). run.toml's weakening_path and
+    /// summary.csv's weakening_steps (0) say it ran.
+    #[arg(long)]
+    pub exact_weakening: bool,
     /// A refinement series at fixed physics (--dynamics): run N meshes (2 to 4), h, h/2...,
     /// D_c fixed; writes refinement.csv (each summary quantity per mesh, its spread and a
     /// converged yes/no: the two finest meshes within 0.01 mu_s N for forces, 0.02 L for
@@ -256,6 +264,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             ("--normal-lag-length", a.normal_lag_length.is_some()),
             ("--normal-lag-v-star", a.normal_lag_v_star.is_some()),
             ("--weakening-steps", a.weakening_steps.is_some()),
+            ("--exact-weakening", a.exact_weakening),
             ("--refine", a.refine.is_some()),
             ("--spacetime", a.spacetime.is_some()),
         ] {
@@ -396,12 +405,6 @@ fn run_checked(
             None if a.dynamics => ds::DEFAULT_OPERATOR,
             None => tribofe::interface::events::Operator::for_interface(interface_estimate(&scene)),
         },
-        // --weakening-steps N asks for the held mode's old stepped coefficients (comparison).
-        weakening: if a.weakening_steps.is_some() {
-            tribofe::interface::events::Weakening::Steps
-        } else {
-            tribofe::interface::events::Weakening::Exact
-        },
         ..Default::default()
     };
     if a.dynamics {
@@ -507,6 +510,11 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         return Err(Error::input("--fields", "not written by --dynamics yet"));
     }
     let base = ds::DynamicOptions::default();
+    // The held mode's stepped coefficients unless --exact-weakening (docs/speed.md).
+    let o = SlideOptions {
+        weakening: ds::weakening(a.exact_weakening, a.weakening_steps.is_some(), &o, a.drive_velocity)?,
+        ..o
+    };
     let d = ds::DynamicOptions {
         damping: a.damping,
         courant: a.courant,
@@ -560,18 +568,12 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         ("plate_mass_kg_per_m", toml::Value::from(d.plate_mass)),
         ("plate_inertia_kg_m2_per_m", toml::Value::from(d.plate_inertia)),
         ("normal_response", toml::Value::from(d.normal.name())),
-        ("weakening_path", toml::Value::from(if law.weakens() && a.drive_velocity.is_none() { o.weakening.name() } else { "none" })),
+        ("weakening_path", toml::Value::from(ds::held_weakening(&o, &d).map_or("none", |w| w.name()))),
     ];
     // summary.csv's row, NaN (a quantity the run does not have) left out, and the cap if met.
     let summary = ds::summary::COLUMNS.iter().zip(ds::summary::values(&res));
     let mut results: Vec<(&str, toml::Value)> = results.into_iter().collect();
-    // The exact path has no weakening step (summary.csv keeps the option's value).
-    let stepped = o.weakening == tribofe::interface::events::Weakening::Steps;
-    results.extend(
-        summary
-            .filter(|(c, v)| v.is_finite() && (stepped || c.0 != "weakening_steps"))
-            .map(|(c, v)| (c.0, toml::Value::from(v))),
-    );
+    results.extend(summary.filter(|(_, v)| v.is_finite()).map(|(c, v)| (c.0, toml::Value::from(v))));
     if let Some(why) = &res.incomplete {
         results.push(("incomplete", toml::Value::from(why.as_str())));
     }

@@ -223,6 +223,14 @@ impl BandedOperator {
                 widen(pu[i], c);
             }
         }
+        // The band's storage (a, L, U: m (4 kl + 2 ku + 2) doubles), held twice (the factor and
+        // a workspace): refused before it is allocated, as the dense condensation is.
+        crate::scene::limits::check_bytes(
+            2.0 * 8.0 * m as f64 * (4 * kl + 2 * ku + 2) as f64,
+            "--thickness / --h (block.thickness, mesh.h)",
+            &format!("the banded operator's band ({m} unknowns, half-bandwidths {kl}, {ku})"),
+            "make the block thinner or h larger (the band grows with the nodes through the thickness)",
+        )?;
         let diag = |r: usize| (ptr[r]..ptr[r + 1]).find(|&k| col[k] == r).map_or(0.0, |k| val[k]);
         let scale = (0..n).map(|i| diag(pu[i]).abs() + diag(pv[i]).abs()).sum::<f64>() / (2 * n) as f64;
         if !(scale > 0.0 && scale.is_finite()) {
@@ -586,4 +594,4 @@ fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
 
 mod reuse;
 pub(crate) use reuse::Solving;
-pub use reuse::{rank_cap, RANK_CAP, REFINE, Z_BYTES};
+pub use reuse::{RANK_CAP, REFINE};

@@ -22,24 +22,12 @@ use crate::interface::events::operator::{ActiveSet, Affine, Operator};
 use crate::interface::events::{NodeState, Phase};
 use crate::linalg::banded::Banded;
 
-/// Memory Z may take (|R| columns of m + 3 values), bytes: the hard cap on R.
-pub const Z_BYTES: f64 = 256.0 * 1024.0 * 1024.0;
-
-/// The rank cap of a band of m rows and half-widths kl, ku: four factorisations' worth of
-/// Z's columns (each a band solve), at least [`RANK_CAP`], at most what [`Z_BYTES`] holds.
-/// A wider band (finer mesh through the thickness) makes a factorisation dearer against a
-/// solve (kl (kl + ku) / (2 kl + ku) of them), so more rows pay: 24 at kl = ku = 11, ~200
-/// at the paper's scene's h = 0.125 mm (kl = ku ~ 75), where the process zone's rows change
-/// at every iterate.
-pub fn rank_cap(m: usize, kl: usize, ku: usize) -> usize {
-    let (kl, ku) = (kl as f64, ku as f64);
-    let per_factor = kl * (kl + ku) / (2.0 * kl + ku + 1.0);
-    let by_cost = (4.0 * per_factor) as usize;
-    by_cost.max(RANK_CAP).min(((Z_BYTES / (8.0 * (m + 3) as f64)) as usize).max(RANK_CAP))
-}
-
-/// The fixed cap before the cost rule (kept as the floor of [`rank_cap`]): caps of 8 to 48
-/// timed the same on coulomb at 801 nodes (docs/speed.md).
+/// Rows replaced since the factorisation past which the band is refactored: a solve costs
+/// O(|R| m) in Z C^{-1}, a factorisation O(m kl (kl + ku)) plus a band solve per row of Z
+/// rebuilt; their balance at m = 6,411, kl = ku = 11 (coulomb at 801 nodes, ~1.2 rows an
+/// event) is near |R| ~ 20. Caps of 8 to 48 timed the same within the noise of the loaded
+/// machine (docs/speed.md). (A cost-based cap and a rule for state flips were tried for the
+/// exact weakening path and dropped: they moved the stepped default's event sequence.)
 pub const RANK_CAP: usize = 24;
 
 /// Componentwise backward error accepted for a solution: every equation's residual within
@@ -82,7 +70,7 @@ pub(crate) struct Solving<'a> {
 
 impl<'a> Solving<'a> {
     pub fn new(op: &'a BandedOperator) -> Solving<'a> {
-        Solving::with_rank_cap(op, rank_cap(op.m, op.kl, op.ku))
+        Solving::with_rank_cap(op, RANK_CAP)
     }
 
     pub fn with_rank_cap(op: &'a BandedOperator, rank_cap: usize) -> Solving<'a> {
@@ -174,18 +162,6 @@ impl<'a> Solving<'a> {
         Ok(())
     }
 
-    /// Flops of one factorisation: the band's LU and its three border solves.
-    fn factor_flops(&self) -> f64 {
-        let (m, kl, ku) = (self.op.m as f64, self.op.kl as f64, self.op.ku as f64);
-        2.0 * m * kl * (kl + ku) + 3.0 * self.band_solve_flops()
-    }
-
-    /// Flops of one band solve (forward and back substitution).
-    fn band_solve_flops(&self) -> f64 {
-        let (m, kl, ku) = (self.op.m as f64, self.op.kl as f64, self.op.ku as f64);
-        2.0 * m * (2.0 * kl + ku + 1.0)
-    }
-
     /// Brings R up to the current rows, refactoring when it would pass the cap.
     fn update(&mut self, rows: &Rows) -> Result<()> {
         self.op.check_sizes(rows)?;
@@ -195,20 +171,8 @@ impl<'a> Solving<'a> {
             return self.refactor(rows);
         }
         let keys: Vec<Key> = (0..2 * n).map(|d| Self::key(rows, n, d)).collect();
-        let fresh: Vec<usize> =
-            (0..2 * n).filter(|&d| self.in_r[d] == usize::MAX && keys[d] != self.ref_key[d]).collect();
-        // A slipping row whose coefficient or spring moved (slip weakening's iterates) will
-        // move again: it enters R, where its next changes cost no band solve. State flips
-        // enter R only while their band solves cost less than a factorisation.
-        let coefficient_only = |d: usize| {
-            let (k, r) = (keys[d], self.ref_key[d]);
-            k.0 && r.0 && k.1 != 0.0 && k.1.signum() == r.1.signum()
-        };
-        let flips = fresh.iter().filter(|&&d| !coefficient_only(d)).count() as f64;
-        if !fresh.is_empty()
-            && (self.r_dofs.len() + fresh.len() > self.rank_cap
-                || flips * self.band_solve_flops() > self.factor_flops())
-        {
+        let fresh = (0..2 * n).filter(|&d| self.in_r[d] == usize::MAX && keys[d] != self.ref_key[d]).count();
+        if self.r_dofs.len() + fresh > self.rank_cap {
             return self.refactor(rows);
         }
         for d in 0..2 * n {

@@ -12,9 +12,9 @@
 
 use super::active::Solver;
 use super::handoff::{Found, Onset, Resolved, Resolver};
+use super::operator::Affine;
 use super::search::Hit;
 use super::simulation::{apply_hit, hit_kind, settle_continuous, stuck_err, Recorder};
-use super::operator::Affine;
 use super::{tolerances, EventKind, NodeState, Weakening};
 use crate::error::{Error, Result};
 use crate::law::Law;
@@ -92,7 +92,8 @@ fn stepped(
                 Err(a) => {
                     // No stable equilibrium continues the branch past this X.
                     let fold = (lam, a.f(sv.iu(), lam));
-                    let (lam_on, go) = onset(sv, rec, resolver, &mut path, &a, lam, &mut slipped, 0.0, dc, fold)?;
+                    let (lam_on, go) =
+                        onset(sv, rec, resolver, &mut path, &a, lam, &mut slipped, 0.0, dc, fold)?;
                     if go == Resolved::Stop {
                         return Ok(Ended::Stopped);
                     }
@@ -136,7 +137,8 @@ fn stepped(
             path.track(sv, &a, lam);
             if path.at_fold(sv, &a, lam, pb.n_force) {
                 let fold = path.fold_at(sv, &a, lam);
-                let (lam_on, go) = onset(sv, rec, resolver, &mut path, &a, lam, &mut slipped, shown, dc, fold)?;
+                let (lam_on, go) =
+                    onset(sv, rec, resolver, &mut path, &a, lam, &mut slipped, shown, dc, fold)?;
                 if go == Resolved::Stop {
                     return Ok(Ended::Stopped);
                 }
@@ -171,11 +173,17 @@ fn stepped(
                 }
             }
         }
-        if exact && x_stop.is_finite() && next.is_none_or(|b| lam + b.0 >= x_stop) && x_stop - lam > path.tol(lam) {
+        if exact
+            && x_stop.is_finite()
+            && next.is_none_or(|b| lam + b.0 >= x_stop)
+            && x_stop - lam > path.tol(lam)
+        {
             // The exact path reaches the end by its corrector, not along a tangent.
             next = Some((x_stop - lam, None));
         }
-        let Some((dl, hit)) = next.filter(|b| lam + b.0 < x_stop || (exact && b.1.is_none() && lam + b.0 <= x_stop && b.0 > path.tol(lam))) else {
+        let Some((dl, hit)) = next.filter(|b| {
+            lam + b.0 < x_stop || (exact && b.1.is_none() && lam + b.0 <= x_stop && b.0 > path.tol(lam))
+        }) else {
             if !x_stop.is_finite() {
                 return Err(Error::Untrustworthy {
                     detail: format!("the static loading has no further event at X = {lam:e} m"),
@@ -315,7 +323,9 @@ impl Path {
         let Some(lf) = self.fold else { return false };
         let gap = lf - lam;
         let df = a.f1[sv.iu()].abs();
-        2.0 * gap * df <= FOLD_F_TOL * sv.law().mu_s() * n_force || gap <= self.tol(lam) || self.approach > 200
+        2.0 * gap * df <= FOLD_F_TOL * sv.law().mu_s() * n_force
+            || gap <= self.tol(lam)
+            || self.approach > 200
     }
 
     /// The fold's X and F from the point (lam, `a`) before it: X_f the estimate, and, as near
@@ -569,13 +579,17 @@ mod tests {
     /// O((X_f - X)^(3/2)): 1e-10 relative.
     #[test]
     fn the_exact_path_finds_the_hand_derived_fold_of_two_nodes() {
-        let (a, n_force, mu_s, mu_d, kt0, kt1, kn, h, dc): (f64, f64, f64, f64, f64, f64, f64, f64, f64) = (1.0, 1.0, 0.6, 0.3, 2.0, 1.0, 100.0, 0.5, 0.058);
+        let (a, n_force, mu_s, mu_d, kt0, kt1, kn, h, dc): (f64, f64, f64, f64, f64, f64, f64, f64, f64) =
+            (1.0, 1.0, 0.6, 0.3, 2.0, 1.0, 100.0, 0.5, 0.058);
         let (k, c, e, w) = (kt0 + kt1, h / (2.0 * a), h / (2.0 * a * a * kn), (mu_s - mu_d) / dc);
         let (a0, a1, a2) = (mu_s * n_force / 2.0, kt0 + mu_s * c * kt0 - w * n_force / 2.0, -w * c * kt0);
         let (b0, b1) = (kt0 + c * k * mu_s, -c * k * w);
         let (g, d) = (1.0 + h * e * k, h * e * kt0);
-        let (q2, q1, q0) =
-            (g * a2 * b1 - d * b1 * b1, 2.0 * g * a2 * b0 - 2.0 * d * b0 * b1, g * (a1 * b0 - a0 * b1) - d * b0 * b0);
+        let (q2, q1, q0) = (
+            g * a2 * b1 - d * b1 * b1,
+            2.0 * g * a2 * b0 - 2.0 * d * b0 * b1,
+            g * (a1 * b0 - a0 * b1) - d * b0 * b0,
+        );
         let disc = (q1 * q1 - 4.0 * q2 * q0).sqrt();
         let u = [(-q1 - disc) / (2.0 * q2), (-q1 + disc) / (2.0 * q2)]
             .into_iter()
@@ -587,7 +601,14 @@ mod tests {
 
         let s = springs::operator(&[-a, a], &[kt0, kt1], kn, h);
         let law = Law::slip_weakening(mu_s, mu_d, dc).unwrap();
-        let pb = Problem { n_force, law, x_max: Some(0.2), cycles: 1, ..Default::default() };
+        let pb = Problem {
+            n_force,
+            law,
+            x_max: Some(0.2),
+            cycles: 1,
+            weakening: Weakening::Exact,
+            ..Default::default()
+        };
         let (mut sv, mut rec) = start_drive(Box::new(Dense::new(&s, 7)), 2, &pb).unwrap();
         let mut first = First(None);
         let ended = drive(&mut sv, &mut rec, &mut first, 20.0, &|_| {}).unwrap();
