@@ -1146,7 +1146,7 @@ fn rupture_dict<'py>(
 #[pyo3(signature = (scene=None, law=None, *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
     dc=None, h=None, n_force=None, x_max=None, cycles=None, cycle_end=None, max_events=None,
     operator=None, states=None, keep_states=None, damping=None, courant=None, drive_velocity=None,
-    plate_mass=None, plate_inertia=None, heal=None, weakening_steps=None, density=None, a=None, b=None,
+    plate_mass=None, plate_inertia=None, heal=None, weakening_steps=None, exact_weakening=None, density=None, a=None, b=None,
     l_rs=None, f0=None, v0=None, state_law=None, theta0=None, normal_lag=None, normal_lag_length=None,
     normal_lag_v_star=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
@@ -1176,6 +1176,7 @@ fn dynamic_slide<'py>(
     plate_inertia: Option<f64>,
     heal: Option<&str>,
     weakening_steps: Option<f64>,
+    exact_weakening: Option<bool>,
     density: Option<f64>,
     a: Option<f64>,
     b: Option<f64>,
@@ -1258,6 +1259,12 @@ fn dynamic_slide<'py>(
         keep_states,
         operator: operator.unwrap_or(ds::DEFAULT_OPERATOR),
         ..Default::default()
+    };
+    // The stepped path (weakening_steps= or the default) unless exact_weakening=True.
+    let exact = exact_weakening.unwrap_or(false);
+    let o = tribofe::studies::slide::SlideOptions {
+        weakening: ds::weakening(exact, weakening_steps.is_some(), &o, drive_velocity).map_err(to_py)?,
+        ..o
     };
     let d = ds::DynamicOptions {
         damping,

@@ -316,6 +316,20 @@ def test_dynamic_slide_equals_the_command_table_by_table(tribofe_bin, tmp_path):
     np.testing.assert_array_equal(s["slip_rate_t_s"], s["t_s"][: len(s["slip_rate_t_s"])])
 
 
+def test_dynamic_slide_passes_the_weakening_path():
+    # The small scene (L = 0.1 m, h = 0.5 mm) to just past its first instability (4.8e-6 m).
+    kw = dict(law="slip-weakening", h=5e-4, x_max=4.9e-6)
+    stepped = tribofe.dynamics.slide(tribofe.Scene(length=0.1), weakening_steps=40, **kw)
+    exact = tribofe.dynamics.slide(tribofe.Scene(length=0.1), exact_weakening=True, **kw)
+    assert stepped.summary["weakening_steps"] == 40 and exact.summary["weakening_steps"] == 0
+    # The exact onset's branch force is the command's fold, 0.77187062 mu_s N (printed to 8
+    # digits: 1e-8); the stepped onset lags it by less than 1/N of the strength.
+    f_exact = float(exact.dyn_events["F_pre_over_mu_s_N"][0])
+    assert abs(f_exact - 0.77187062) < 1e-8, f_exact
+    f_stepped = float(stepped.dyn_events["F_onset_over_mu_s_N"][0])
+    assert 0 < f_exact - f_stepped < 1 / 40, (f_exact, f_stepped)
+
+
 def test_dynamic_slide_is_silent_and_refuses_a_wrong_choice(capfd):
     res = tribofe.dynamics.slide(tribofe.Scene(length=0.1), law="coulomb", x_max=1e-6)
     assert res.law.startswith("coulomb")
@@ -466,6 +480,13 @@ def test_options_that_cannot_act_are_refused_by_keyword(tribofe_bin, tmp_path):
     r = run_cli(tribofe_bin, "slide", "--dynamics", "--law", "slip-weakening", "--length", "0.1", "--drive-velocity",
                 "1e-5", "--x-max", "1e-6", "--weakening-steps", "40", "--out", str(tmp_path / "x"))
     assert r.returncode == 2 and "--weakening-steps" in r.stderr, r.stderr
+    # exact_weakening is the other path: refused beside a step count, and under a drive velocity.
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.dynamics.slide(small, law="slip-weakening", x_max=1e-6, exact_weakening=True, weakening_steps=40)
+    assert "exact_weakening=" in str(e.value) and "weakening_steps=" in str(e.value), str(e.value)
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.dynamics.slide(small, law="slip-weakening", drive_velocity=1e-5, x_max=1e-6, exact_weakening=True)
+    assert "exact_weakening=" in str(e.value) and "drive_velocity=" in str(e.value), str(e.value)
     # The sweep's frictional settings without its frictional run.
     for kw in ({"rule": "overdamped"}, {"cycles": 3}):
         with pytest.raises(tribofe.InputError) as e:

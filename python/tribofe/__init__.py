@@ -524,6 +524,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         plate_inertia: Optional[float] = None,
         heal: Optional[str] = None,
         weakening_steps: Optional[float] = None,
+        exact_weakening: Optional[bool] = None,
         density: Optional[float] = None,
         a: Optional[float] = None,
         b: Optional[float] = None,
@@ -547,7 +548,9 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         ``operator`` ``"banded"`` (or ``"dense"``), ``damping`` (Kelvin-Voigt eta, s) 10 % of
         critical at the thickness mode, ``courant`` 0.9 of the stable step, ``weakening_steps``
         20 (held drive under slip weakening only: refused with ``drive_velocity``, which updates
-        the coefficient every explicit step), ``n_force`` 1 N/m, ``max_events`` 50 000,
+        the coefficient every explicit step), ``exact_weakening`` False (True: the static
+        loading follows slip weakening exactly, each onset at its fold, ``--exact-weakening``;
+        ~10x slower on the paper's scene, docs/speed.md; refused beside ``weakening_steps``), ``n_force`` 1 N/m, ``max_events`` 50 000,
         ``plate_mass`` and ``plate_inertia`` 0, ``heal`` ``"all"``, ``states`` ``"none"`` (only
         the last interface state kept; ``"all"``: every event's), ``density`` (kg/m^3) the
         scene's, ``law`` the command's ``"coulomb"`` (``defaults()["dynamics.slide"]``; the
@@ -590,6 +593,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
                 plate_inertia=plate_inertia,
                 heal=heal,
                 weakening_steps=weakening_steps,
+                exact_weakening=exact_weakening,
                 density=density,
                 a=a,
                 b=b,

@@ -166,6 +166,7 @@ def dynamic_slide(
     plate_inertia: Optional[float] = None,
     heal: Optional[str] = None,
     weakening_steps: Optional[float] = None,
+    exact_weakening: Optional[bool] = None,
     density: Optional[float] = None,
     a: Optional[float] = None,
     b: Optional[float] = None,

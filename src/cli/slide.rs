@@ -108,9 +108,10 @@ pub struct Args {
     #[arg(long)]
     pub newton: bool,
     /// How each state set is solved: `dense` (the condensed S with a bordered inverse, the
-    /// reference) or `banded` (the block's sparse stiffness in x order, one banded LU per solve:
-    /// cost per event grows like n, not n^2; equal results to round-off). Default dense;
-    /// banded with --dynamics, whose runs have thousands of events on fine meshes.
+    /// reference) or `banded` (the block's sparse stiffness in x order, one reused banded LU:
+    /// cost per event grows like n, not n^2; equal results to round-off). Default: banded above
+    /// 200 interface nodes (a mesh file: dense), dense at or below (docs/speed.md); banded
+    /// with --dynamics. The choice and its reason are printed and written to run.toml.
     #[arg(long, value_parser = ["dense", "banded"])]
     pub operator: Option<String>,
     /// Write the whole block's fields for this many states spread evenly over the drive X, one
@@ -172,11 +173,19 @@ pub struct Args {
     #[arg(long, default_value = "all", value_parser = ["all", "slipped"])]
     pub heal: String,
     /// Slip-weakening coefficient updates per D_c of slip in the static loading (--dynamics;
-    /// default 20). Onsets lag by up to (mu_s - mu_d) / N of the strength: on the paper's
-    /// scene N = 20 to 1280 move the first onset by 4e-4 mu_s N; where a weakened zone is
-    /// marginally stable much more (validation/dynamics/converge/README.md).
-    #[arg(long)]
+    /// default 20, the default path). Onsets lag by up to (mu_s - mu_d) / N of the strength:
+    /// on the paper's scene N = 20 to 1280 move the first onset by 4e-4 mu_s N; where a
+    /// weakened zone is marginally stable much more (validation/dynamics/converge/README.md).
+    /// --exact-weakening follows the weakening exactly instead.
+    #[arg(long, conflicts_with = "exact_weakening")]
     pub weakening_steps: Option<f64>,
+    /// The held mode's static loading follows slip weakening exactly (--dynamics --law
+    /// slip-weakening): continuation in X, each onset at the fold of its equilibrium branch,
+    /// no lag in N. Not the default: ~10x slower than the stepped path on the paper's scene,
+    /// and it fails on (r, g) = (0.7, 0.5) (docs/speed.md). run.toml's weakening_path and
+    /// summary.csv's weakening_steps (0) say it ran.
+    #[arg(long)]
+    pub exact_weakening: bool,
     /// A refinement series at fixed physics (--dynamics): run N meshes (2 to 4), h, h/2...,
     /// D_c fixed; writes refinement.csv (each summary quantity per mesh, its spread and a
     /// converged yes/no: the two finest meshes within 0.01 mu_s N for forces, 0.02 L for
@@ -189,6 +198,24 @@ pub struct Args {
     /// always written. Default none.
     #[arg(long, value_name = "all|none|N,M,...")]
     pub spacetime: Option<String>,
+}
+
+/// Interface nodes of a structured mesh (None for a mesh file: known once it is read).
+fn interface_estimate(scene: &tribofe::scene::Scene) -> Option<usize> {
+    scene.mesh.file.is_none().then(|| scene.estimate_nx() as usize + 1)
+}
+
+/// Why the run is on its operator: given, or the size rule.
+fn operator_reason(a: &Args, scene: &tribofe::scene::Scene) -> String {
+    match (&a.operator, interface_estimate(scene)) {
+        (Some(_), _) => "given".into(),
+        (None, _) if a.dynamics => "the --dynamics default".into(),
+        (None, Some(n)) => format!(
+            "default for {n} interface nodes (banded above {})",
+            tribofe::interface::events::AUTO_BANDED_ABOVE
+        ),
+        (None, None) => "default for a mesh file (dense)".into(),
+    }
 }
 
 fn law(a: &Args, scene: &tribofe::scene::Scene) -> tribofe::Result<Law> {
@@ -237,6 +264,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             ("--normal-lag-length", a.normal_lag_length.is_some()),
             ("--normal-lag-v-star", a.normal_lag_v_star.is_some()),
             ("--weakening-steps", a.weakening_steps.is_some()),
+            ("--exact-weakening", a.exact_weakening),
             ("--refine", a.refine.is_some()),
             ("--spacetime", a.spacetime.is_some()),
         ] {
@@ -375,7 +403,7 @@ fn run_checked(
             Some("banded") => tribofe::interface::events::Operator::Banded,
             Some(_) => tribofe::interface::events::Operator::Dense,
             None if a.dynamics => ds::DEFAULT_OPERATOR,
-            None => SlideOptions::default().operator,
+            None => tribofe::interface::events::Operator::for_interface(interface_estimate(&scene)),
         },
         ..Default::default()
     };
@@ -400,6 +428,8 @@ fn run_checked(
         ("n_force_N_per_m", toml::Value::from(a.n_force)),
         ("interface_nodes", toml::Value::from(res.condensed.n as i64)),
         ("k_bonded_N_per_m_per_m", toml::Value::from(res.run.k_bonded)),
+        ("operator", toml::Value::from(o.operator.name())),
+        ("operator_reason", toml::Value::from(operator_reason(&a, &scene))),
     ];
     let header = tribofe::report::run_toml(super::invocation(), &results, &scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
@@ -430,6 +460,7 @@ fn run_checked(
         last.x,
         worst
     );
+    outln!("operator: {} ({})", res.options.operator.name(), operator_reason(&a, &scene));
     if res.options.operator == tribofe::interface::events::Operator::Banded {
         outln!(
             "banded operator {:.3} s (K symmetric to {:.1e}, rigid motions to {:.1e}); events {:.3} s ({} banded factorisations, {} low-rank row updates)",
@@ -479,6 +510,11 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         return Err(Error::input("--fields", "not written by --dynamics yet"));
     }
     let base = ds::DynamicOptions::default();
+    // The held mode's stepped coefficients unless --exact-weakening (docs/speed.md).
+    let o = SlideOptions {
+        weakening: ds::weakening(a.exact_weakening, a.weakening_steps.is_some(), &o, a.drive_velocity)?,
+        ..o
+    };
     let d = ds::DynamicOptions {
         damping: a.damping,
         courant: a.courant,
@@ -519,6 +555,8 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         ("n_force_N_per_m", toml::Value::from(a.n_force)),
         ("interface_nodes", toml::Value::from(res.slide.condensed.n as i64)),
         ("k_bonded_N_per_m_per_m", toml::Value::from(res.slide.run.k_bonded)),
+        ("operator", toml::Value::from(o.operator.name())),
+        ("operator_reason", toml::Value::from(operator_reason(a, scene))),
         ("dynamics", toml::Value::from(true)),
         ("density_kg_per_m3", toml::Value::from(scene.block.density)),
         ("damping_eta_s", toml::Value::from(res.eta)),
@@ -530,6 +568,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         ("plate_mass_kg_per_m", toml::Value::from(d.plate_mass)),
         ("plate_inertia_kg_m2_per_m", toml::Value::from(d.plate_inertia)),
         ("normal_response", toml::Value::from(d.normal.name())),
+        ("weakening_path", toml::Value::from(ds::held_weakening(&o, &d).map_or("none", |w| w.name()))),
     ];
     // summary.csv's row, NaN (a quantity the run does not have) left out, and the cap if met.
     let summary = ds::summary::COLUMNS.iter().zip(ds::summary::values(&res));
@@ -609,6 +648,13 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         );
     }
     print_summary(&res)?;
+    if let Some(&(x, f)) = run.folds.first() {
+        outln!(
+            "exact weakening path: {} onsets at the end of their equilibrium branch; the first at X = {x:.8e} m, F/(mu_s N) = {:.8} (its dynamic event starts just past it)",
+            run.folds.len(),
+            f / (law.mu_s() * a.n_force)
+        );
+    }
     outln!(
         "wrote {}/{{summary.csv, loading.csv, events.csv, {}{}fig4_fe.svg, fronts.svg, fronts_t.csv, dyn_events.csv, cycle.svg, {}run.toml}}",
         a.out.display(),

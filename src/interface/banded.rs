@@ -223,6 +223,14 @@ impl BandedOperator {
                 widen(pu[i], c);
             }
         }
+        // The band's storage (a, L, U: m (4 kl + 2 ku + 2) doubles), held twice (the factor and
+        // a workspace): refused before it is allocated, as the dense condensation is.
+        crate::scene::limits::check_bytes(
+            2.0 * 8.0 * m as f64 * (4 * kl + 2 * ku + 2) as f64,
+            "--thickness / --h (block.thickness, mesh.h)",
+            &format!("the banded operator's band ({m} unknowns, half-bandwidths {kl}, {ku})"),
+            "make the block thinner or h larger (the band grows with the nodes through the thickness)",
+        )?;
         let diag = |r: usize| (ptr[r]..ptr[r + 1]).find(|&k| col[k] == r).map_or(0.0, |k| val[k]);
         let scale = (0..n).map(|i| diag(pu[i]).abs() + diag(pv[i]).abs()).sum::<f64>() / (2 * n) as f64;
         if !(scale > 0.0 && scale.is_finite()) {
@@ -504,6 +512,15 @@ impl Factored {
     /// The band's storage, for the next factorisation.
     pub(crate) fn into_band(self) -> Banded {
         self.lu
+    }
+
+    /// Sign of the bordered system's determinant, det A det S.
+    pub(crate) fn det_sign(&self) -> f64 {
+        let s = &self.s;
+        let d3 = s[0][0] * (s[1][1] * s[2][2] - s[1][2] * s[2][1])
+            - s[0][1] * (s[1][0] * s[2][2] - s[1][2] * s[2][0])
+            + s[0][2] * (s[1][0] * s[2][1] - s[1][1] * s[2][0]);
+        self.lu.det_sign() * d3.signum()
     }
 
     /// Adds to `full` (m + 3) the solution for a band right-hand side z (solved in place) and a

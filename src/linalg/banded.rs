@@ -115,6 +115,18 @@ impl Banded {
         Ok(())
     }
 
+    /// Sign of det A (+1 or -1) from the factor: U's diagonal and the row interchanges.
+    pub fn det_sign(&self) -> f64 {
+        assert!(self.factored, "det_sign before factor");
+        let neg = self.dinv.iter().filter(|&&d| d < 0.0).count()
+            + (0..self.m).filter(|&i| self.piv[i] != i).count();
+        if neg % 2 == 0 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+
     /// Solves A x = b in place for `k` right-hand sides stored one after another (m each).
     pub fn solve_in_place(&self, b: &mut [f64], k: usize) {
         assert!(self.factored, "solve before factor");

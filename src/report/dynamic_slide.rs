@@ -130,6 +130,7 @@ pub fn events_table(r: &DynamicResult) -> Table {
         Column::float("f_gap_over_mu_s_N", "1", ev(&|e| e.f_gap)),
         Column::float("u_gap_over_max_slip", "1", ev(&|e| e.u_gap)),
         Column::float("energy_residual_over_dissipated", "1", ev(&residual)),
+        Column::float("F_pre_over_mu_s_N", "1", ev(&|e| e.f_pre / k)),
     ];
     Table { columns, digits: 10 }
 }

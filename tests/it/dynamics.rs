@@ -546,7 +546,7 @@ fn density_is_a_scene_key() {
 
 // ---- slide --dynamics (issue 33, part 3): the plate-driven block ----
 
-use tribofe::interface::events::{EventKind, NodeState, Operator, Phase};
+use tribofe::interface::events::{EventKind, NodeState, Operator, Phase, Weakening};
 use tribofe::law::Law;
 use tribofe::scene::Scene;
 use tribofe::studies::dynamic_slide::{self as ds, DynamicOptions};
@@ -581,6 +581,43 @@ fn weakening_on(scene: Scene, op: Operator, x_max: f64) -> (Scene, SlideOptions)
         ..Default::default()
     };
     (scene, o)
+}
+
+#[test]
+fn the_weakening_path_is_recorded_with_the_branch_force_before_each_onset() {
+    // The small scene to just past its first instability (4.8e-6 m), on each path.
+    let (scene, o) = short_weakening(Operator::Banded, 4.9e-6);
+    let (mu_s, mu_d, n_force) = (o.law.mu_s(), o.law.mu_d(), o.n_force);
+    let k = mu_s * n_force;
+    let run =
+        |o: &SlideOptions| ds::run(&scene, o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
+    // The default: stepped, N = 20 recorded. Its onset's relaxation weakens at fixed X, so F
+    // falls from the step's start, by at most the lag of every node, (mu_s - mu_d) N / 20.
+    let stepped = run(&o);
+    assert_eq!(o.weakening, Weakening::Steps);
+    assert_eq!(stepped.weakening_steps, ds::DEFAULT_WEAKENING_STEPS);
+    let e = &stepped.events[0];
+    let drop = e.f_pre - e.f_onset;
+    assert!(
+        drop >= 0.0 && drop <= (mu_s - mu_d) * n_force / 20.0,
+        "F_pre {} F_onset {}",
+        e.f_pre / k,
+        e.f_onset / k
+    );
+    // The exact path: 0 steps recorded; the onset's branch force is the last stable point, at
+    // most the fold's extrapolation step (1e-4 mu_s N, stepped.rs's FOLD_F_TOL) below the
+    // fold's F, and equal to it when a node's joining ends the branch (round-off: 1e-12).
+    let exact = run(&SlideOptions { weakening: Weakening::Exact, ..o.clone() });
+    assert_eq!(exact.weakening_steps, 0.0);
+    let (_, f_fold) = exact.slide.run.folds[0];
+    let e = &exact.events[0];
+    let below = f_fold - e.f_pre;
+    assert!(below >= -1e-12 * k && below <= 1e-4 * k, "fold F {} F_pre {}", f_fold / k, e.f_pre / k);
+    // The exact onset is above the stepped one (the steps' lag), by less than that lag.
+    assert!(
+        e.f_pre > stepped.events[0].f_onset
+            && e.f_pre - stepped.events[0].f_onset < (mu_s - mu_d) * n_force / 20.0
+    );
 }
 
 #[test]
@@ -623,9 +660,12 @@ fn dynamic_slide_is_the_same_on_the_dense_and_the_banded_operator() {
     // round-off (~1e-12 of the scale, tests/operator.rs), and the slip-weakening fixed point
     // near a patch's critical length amplifies a difference by up to 1/(1 - its contraction),
     // ~1e3 here: the same events (kind, node, dynamic or not), X and F within 1e-7 of their
-    // scales (X at the end, mu_s N).
+    // scales (X at the end, mu_s N). On the stepped weakening path (the default): the exact
+    // path's (`--exact-weakening`) onsets are compared below, its marginal snaps (no node weakening
+    // fully) being decided by the sign of a determinant near zero.
     let run = |op| {
         let (scene, o) = short_weakening(op, 6.0e-6);
+        let o = SlideOptions { weakening: Weakening::Steps, ..o };
         ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap()
     };
     let mu_s = short_weakening(Operator::Dense, 6.0e-6).1.law.mu_s();
@@ -643,6 +683,16 @@ fn dynamic_slide_is_the_same_on_the_dense_and_the_banded_operator() {
         assert!((p.x - q.x).abs() < 1e-7 * x_end, "X {} vs {}", p.x, q.x);
         assert!((p.f - q.f).abs() < 1e-7 * mu_s, "F {} vs {}", p.f, q.f);
     }
+    // The exact path: the first fold (its X and F) the same on both operators, to the
+    // fold's extrapolation error (~1e-8 mu_s N, src/interface/events/stepped.rs's test).
+    let fold = |op| {
+        let (scene, o) = short_weakening(op, 4.9e-6);
+        let o = SlideOptions { weakening: Weakening::Exact, ..o };
+        ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap().slide.run.folds[0]
+    };
+    let (p, q) = (fold(Operator::Dense), fold(Operator::Banded));
+    assert!((p.0 - q.0).abs() < 1e-9 * p.0, "fold X {} vs {}", p.0, q.0);
+    assert!((p.1 - q.1).abs() < 1e-7 * mu_s, "fold F {} vs {}", p.1, q.1);
 }
 
 #[test]

@@ -205,6 +205,38 @@ fn the_control_case_h_0_runs_and_its_slip_nucleates_at_the_leading_edge() {
 }
 
 #[test]
+fn the_weakening_path_is_in_run_toml_and_summary_csv() {
+    // The stepped path by default (weakening_steps = 20), --exact-weakening the exact one
+    // (weakening_steps = 0); the small scene to just past its first instability (4.8e-6 m).
+    let dir = tempfile::tempdir().unwrap();
+    for (extra, path, steps) in [(None, "steps", 20.0), (Some("--exact-weakening"), "exact", 0.0)] {
+        let out = dir.path().join(path);
+        let mut args = SHORT.to_vec();
+        args.extend(["--h", "0.0005", "--x-max", "4.9e-6"]);
+        args.extend(extra);
+        let r = tribofe(&args, &out, 300);
+        assert_eq!(r.code, 0, "{}", r.stderr);
+        assert_eq!(summary(&out)["weakening_steps"], steps);
+        let toml = std::fs::read_to_string(out.join("run.toml")).unwrap();
+        assert!(toml.contains(&format!("weakening_path = \"{path}\"")), "{toml}");
+        let said =
+            if extra.is_some() { "followed exactly (--exact-weakening)" } else { "in steps of D_c/20" };
+        assert!(r.stderr.contains(said), "{}", r.stderr);
+    }
+    // Refused where it cannot act, naming the flags.
+    let mut args = SHORT.to_vec();
+    args.extend(["--exact-weakening", "--weakening-steps", "40"]);
+    let r = tribofe(&args, &dir.path().join("both"), 60);
+    assert_eq!(r.code, 2);
+    assert!(r.stderr.contains("--exact-weakening") && r.stderr.contains("--weakening-steps"), "{}", r.stderr);
+    let mut args = SHORT.to_vec();
+    args.extend(["--exact-weakening", "--drive-velocity", "1e-5", "--x-max", "1e-6"]);
+    let r = tribofe(&args, &dir.path().join("velocity"), 60);
+    assert_eq!(r.code, 2);
+    assert!(r.stderr.contains("--exact-weakening") && r.stderr.contains("--drive-velocity"), "{}", r.stderr);
+}
+
+#[test]
 fn a_run_that_meets_a_cap_writes_what_it_computed_and_exits_incomplete() {
     // The event cap met midway: exit 5, the tables up to there, the cap in run.toml and on
     // stderr; the summary says complete = 0.

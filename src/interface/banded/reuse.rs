@@ -26,7 +26,8 @@ use crate::linalg::banded::Banded;
 /// O(|R| m) in Z C^{-1}, a factorisation O(m kl (kl + ku)) plus a band solve per row of Z
 /// rebuilt; their balance at m = 6,411, kl = ku = 11 (coulomb at 801 nodes, ~1.2 rows an
 /// event) is near |R| ~ 20. Caps of 8 to 48 timed the same within the noise of the loaded
-/// machine (docs/speed.md).
+/// machine (docs/speed.md). (A cost-based cap and a rule for state flips were tried for the
+/// exact weakening path and dropped: they moved the stepped default's event sequence.)
 pub const RANK_CAP: usize = 24;
 
 /// Componentwise backward error accepted for a solution: every equation's residual within
@@ -596,6 +597,18 @@ impl Lu {
         Some(Lu { a, piv, k })
     }
 
+    /// Sign of det C: the diagonal of U and the row interchanges.
+    fn det_sign(&self) -> f64 {
+        let k = self.k;
+        let neg = (0..k).filter(|&i| self.a[i * k + i] < 0.0).count()
+            + (0..k).filter(|&i| self.piv[i] != i).count();
+        if neg % 2 == 0 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+
     fn solve(&self, mut b: Vec<f64>) -> Vec<f64> {
         let (a, k) = (&self.a, self.k);
         for i in 0..k {
@@ -686,6 +699,23 @@ impl Operator for Solving<'_> {
 
     fn counts(&self) -> (usize, usize) {
         (self.row_updates, self.factorisations)
+    }
+
+    /// det M = det M0 det C (matrix determinant lemma): the factor's sign and the
+    /// capacitance's, no extra solve; a capacitance too ill-conditioned to trust refactors.
+    fn det_sign(&mut self, set: &ActiveSet) -> Result<Option<f64>> {
+        let bufs = RowBufs::new(set, true);
+        let rows = Self::rows_of(set, &bufs, &[], true);
+        self.update(&rows)?;
+        let cap = match self.capacitance() {
+            Some(c) => c.det_sign(),
+            None if self.z.is_empty() => 1.0,
+            None => {
+                self.refactor(&rows)?;
+                1.0
+            }
+        };
+        Ok(Some(self.base.as_ref().expect("factored").det_sign() * cap))
     }
 }
 

@@ -23,6 +23,11 @@ pub(crate) struct Solver<'a> {
     /// slipping neighbour, sticks first (lower index) and slips again, where sticking the
     /// neighbour would have settled it.
     pub(super) stick_fastest_first: bool,
+    /// The exact weakening path is being followed: a node that starts slipping gets its
+    /// row's tangent spring at once ([`super::simulation::settle_continuous`]).
+    pub(super) tangent: bool,
+    /// Set by that settle where a node's joining leaves no stable branch (cleared by the path).
+    pub(super) lost: bool,
     /// Open nodes that close only by penetrating while not separating: a corner at zero
     /// pressure can cycle stick, slip, open (its pressure falls) and close (its gap closes, or
     /// it penetrates by round-off while separating).
@@ -59,6 +64,8 @@ impl<'a> Solver<'a> {
             slip0: vec![0.0; n],
             slip_acc: vec![0.0; n],
             stick_fastest_first: false,
+            tangent: false,
+            lost: false,
             hold_open: vec![false; n],
             fscale: pb.n_force / n as f64,
             dscale: 1.0,
@@ -244,6 +251,12 @@ impl<'a> Solver<'a> {
     /// Entries of the free system's inverse at these free DOFs (row-major).
     pub(super) fn inverse_block(&mut self, dofs: &[usize]) -> Result<Vec<f64>> {
         self.op.inverse_block(&self.set, dofs)
+    }
+
+    /// Sign of the free system's determinant, where the operator keeps it (see
+    /// [`Operator::det_sign`]).
+    pub(super) fn det_sign(&mut self) -> Result<Option<f64>> {
+        self.op.det_sign(&self.set)
     }
 
     /// Incremental updates and full factorisations of the operator so far.

@@ -89,7 +89,23 @@ pub enum Operator {
     Banded,
 }
 
+/// `slide` without `--operator`: the banded operator above this many interface nodes, the
+/// dense reference at or below. Measured (docs/speed.md, `tribofe slide --mu 0.5 --states
+/// none`, whole process): 401 nodes dense 0.61 s, banded 0.10 s; 801 nodes 2.55 s, 0.80 s;
+/// the thin block t/L = 1/1600 (3,201 nodes) 49 s, 0.46 s; at 51 and 101 nodes both
+/// 0.02 s or less, where the reference costs nothing and keeps its bytes.
+pub const AUTO_BANDED_ABOVE: usize = 200;
+
 impl Operator {
+    /// The default for an interface of `n` nodes (None: not known before the mesh is read,
+    /// a mesh file: the reference); see [`AUTO_BANDED_ABOVE`].
+    pub fn for_interface(n: Option<usize>) -> Operator {
+        match n {
+            Some(n) if n > AUTO_BANDED_ABOVE => Operator::Banded,
+            _ => Operator::Dense,
+        }
+    }
+
     pub fn name(&self) -> &'static str {
         match self {
             Operator::Dense => "dense",
@@ -145,6 +161,30 @@ pub struct Problem {
     pub operator: Operator,
     /// Called once per recorded event (see [`Observer`]); None: no call.
     pub observer: Option<Observer>,
+    /// How the held mode's static loading (`slide --dynamics`) follows slip weakening.
+    pub weakening: Weakening,
+}
+
+/// How the held mode's static loading follows slip weakening between dynamic events
+/// (`stepped`): each slipping node's coefficient brought to its slip every D_c/N of slip (the
+/// default, `--weakening-steps N`; its onsets lag by up to (mu_s - mu_d)/N of strength), or
+/// exactly, by continuation in X (`--exact-weakening`). Steps is the default because the exact
+/// path measured ~10x slower on the paper's scene (its onsets start creeping dynamic events
+/// from the fold) and fails on (0.7, 0.5) (docs/speed.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Weakening {
+    Exact,
+    #[default]
+    Steps,
+}
+
+impl Weakening {
+    pub fn name(&self) -> &'static str {
+        match self {
+            Weakening::Exact => "exact",
+            Weakening::Steps => "steps",
+        }
+    }
 }
 
 /// A host's view of a run while it is recorded: called once per recorded event, in order, with
@@ -191,6 +231,7 @@ impl Default for Problem {
             cancel: crate::Cancel::new(),
             operator: Operator::Dense,
             observer: None,
+            weakening: Weakening::Steps,
         }
     }
 }
@@ -373,6 +414,9 @@ pub struct Run {
     /// low-rank row updates and band factorisations.
     pub updates: usize,
     pub refreshes: usize,
+    /// The exact weakening path's onsets (held mode): per instability, X (m) and F (N/m) at
+    /// the fold where its equilibrium branch ends (the dynamic event starts just past it).
+    pub folds: Vec<(f64, f64)>,
 }
 
 impl Run {
@@ -387,6 +431,7 @@ impl Run {
             sliding_events: 0,
             updates: 0,
             refreshes: 0,
+            folds: vec![],
         }
     }
 

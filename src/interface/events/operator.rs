@@ -138,6 +138,12 @@ pub(crate) trait Operator {
     fn inverse_block(&mut self, set: &ActiveSet, dofs: &[usize]) -> Result<Vec<f64>>;
     /// Incremental updates and full factorisations so far (reported in [`super::Run`]).
     fn counts(&self) -> (usize, usize);
+    /// Sign of the free system's determinant where the representation has it for the cost of
+    /// a solve (the banded factor and its capacitance); None: not kept (the caller tests
+    /// stability another way). The exact weakening path's test of a tangent's stability.
+    fn det_sign(&mut self, _set: &ActiveSet) -> Result<Option<f64>> {
+        Ok(None)
+    }
 }
 
 /// The dense reference: S row-major, the bordered inverse of the free block, and g = S b_c,

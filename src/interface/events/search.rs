@@ -193,6 +193,22 @@ impl Solver<'_> {
         }
     }
 
+    /// Whether an inequality of the current states is violated at lam beyond the state
+    /// tolerances (a stuck node past its threshold, a node in contact pulled, an open node
+    /// penetrating): the load step that led here passed an event.
+    pub(super) fn overshoots(&self, a: &Affine, lam: f64) -> bool {
+        let n = self.set.n;
+        let (tf, td) = (tolerances::STATE * self.fscale, tolerances::STATE * self.dscale);
+        (0..n).any(|i| {
+            let (t, p, g) = (a.f(i, lam), a.f(n + i, lam), a.b(n + i, lam));
+            match self.set.states[i] {
+                NodeState::Stick => p < -tf || t.abs() - self.mu_stick(i) * p > tf,
+                NodeState::Slip(_) => p < -tf,
+                NodeState::Open => g < -td,
+            }
+        })
+    }
+
     /// Smallest lam increment at which an inequality of the current states reaches equality:
     /// (increment, node, what).
     pub(super) fn next_event(&self, a: &Affine, lam: f64) -> Option<(f64, usize, Hit)> {

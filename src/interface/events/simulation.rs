@@ -329,6 +329,19 @@ pub(crate) fn settle_continuous(
         let a = sv.solve()?;
         match sv.rate_fix(&a, lam, cont)? {
             Fix::None => return Ok(a),
+            Fix::Changed(i, _) if sv.tangent => {
+                // The exact weakening path: a node that starts slipping takes its row's
+                // linearisation at once, so that the rates are the branch's; if that makes
+                // the linearised system unstable, no stable branch goes on (its onset).
+                if matches!(sv.states()[i], NodeState::Slip(_)) && sv.law().weakens() {
+                    let k = sv.law().kinetic_slope(sv.slip_memory(i, a.b(i, lam))) * a.f(sv.n() + i, lam);
+                    sv.set_coefficients(&[(i, sv.mu_slip(i), k, a.b(i, lam))])?;
+                    if !super::weakening::tangent_stable(sv)? {
+                        sv.lost = true;
+                        return sv.solve();
+                    }
+                }
+            }
             Fix::Changed(..) => {}
             Fix::Instability(_) => return Err(stuck_err(what, lam)),
         }

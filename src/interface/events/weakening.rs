@@ -71,24 +71,7 @@ pub(super) fn drive(
             }
             continue;
         }
-        if sv.states() != states_pre {
-            // A stable change: nodes starting or stopping to slip, opening or closing.
-            let i = (0..n).find(|&i| sv.states()[i] != states_pre[i]).unwrap_or(0);
-            let kind = match (states_pre[i], sv.states()[i]) {
-                (NodeState::Stick, NodeState::Slip(_)) => {
-                    let next_to =
-                        |k: Option<usize>| k.is_some_and(|k| matches!(sv.states()[k], NodeState::Slip(_)));
-                    let neighbour = next_to(i.checked_sub(1)) || next_to((i + 1 < n).then_some(i + 1));
-                    if neighbour {
-                        EventKind::TipAdvance
-                    } else {
-                        EventKind::Nucleation
-                    }
-                }
-                (NodeState::Slip(_), NodeState::Stick) => EventKind::Stick,
-                (_, NodeState::Open) => EventKind::Open,
-                _ => EventKind::Close,
-            };
+        if let Some((i, kind)) = stable_change(sv.states(), &states_pre) {
             rec.simple(sv, &a, lam, kind, i)?;
         }
         // Steady sliding: every contact node slipping at mu_d; nothing re-sticks any more.
@@ -127,6 +110,27 @@ pub(super) fn drive(
         lam += d;
         progress(frac(&rec.out, lam));
     }
+}
+
+/// A stable change of the states from `pre` (nodes starting or stopping to slip, opening or
+/// closing), as the event its first changed node makes; None if nothing changed.
+pub(super) fn stable_change(states: &[NodeState], pre: &[NodeState]) -> Option<(usize, EventKind)> {
+    let n = states.len();
+    let i = (0..n).find(|&i| states[i] != pre[i])?;
+    let kind = match (pre[i], states[i]) {
+        (NodeState::Stick, NodeState::Slip(_)) => {
+            let next_to = |k: Option<usize>| k.is_some_and(|k| matches!(states[k], NodeState::Slip(_)));
+            if next_to(i.checked_sub(1)) || next_to((i + 1 < n).then_some(i + 1)) {
+                EventKind::TipAdvance
+            } else {
+                EventKind::Nucleation
+            }
+        }
+        (NodeState::Slip(_), NodeState::Stick) => EventKind::Stick,
+        (_, NodeState::Open) => EventKind::Open,
+        _ => EventKind::Close,
+    };
+    Some((i, kind))
 }
 
 /// The quasi-static resolution of a slip-weakening instability: the fixed-point relaxation
@@ -309,31 +313,79 @@ const NEWTON_MAX: usize = 30;
 /// a few iterates where fixed point (each iterate a solve with the coefficients frozen) needs
 /// hundreds near a patch's critical length, and to the same equilibrium (checked against
 /// fixed point to 1e-4 D_c on validation/friction's sw_nt4). Returns false, with the
-/// coefficients back where Newton started, when an iterate moves a node by more than D_c/2
-/// from where Newton started or back past `u_pre`, does not converge, or converges to an
-/// unstable equilibrium: past the critical length there is no stable equilibrium nearby and
-/// the relaxation must run away by fixed point. Leaves no spring.
+/// coefficients back where Newton started, when [`newton`] fails or converges to an unstable
+/// equilibrium: past the critical length there is no stable equilibrium nearby and the
+/// relaxation must run away by fixed point. Leaves no spring.
 fn newton_coefficients(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f64) -> Result<bool> {
-    let n = sv.n();
-    let start: Vec<(usize, f64, f64, f64)> = (0..n)
+    let start = snapshot(sv);
+    let Some(change) = newton(sv, lam, u_pre, dc, td)? else { return Ok(false) };
+    // Converged: the spring-free rows at these coefficients, if the equilibrium is one that
+    // fixed point would reach (stable).
+    let keep: Vec<_> = change.iter().map(|&(i, mu, _, _)| (i, mu, 0.0, 0.0)).collect();
+    let springs: Vec<(usize, f64)> = change.iter().filter(|c| c.2 != 0.0).map(|c| (c.0, c.2)).collect();
+    sv.set_coefficients(&keep)?;
+    if stable(sv, &springs)? {
+        return Ok(true);
+    }
+    sv.set_coefficients(&start)?;
+    Ok(false)
+}
+
+/// The exact weakening path's corrector at X = lam (`stepped`): the slipping coefficients at
+/// their slips by [`newton`], then the rows left linearised at that equilibrium (springs
+/// (d mu/d slip) p centred on it), so that the solve returned is the path's tangent line:
+/// b(lam) the equilibrium, b1 = db/dX along the branch. None: no equilibrium near (see
+/// [`newton`]), the rows back where it started.
+pub(super) fn tangent(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f64) -> Result<Option<Affine>> {
+    let Some(change) = newton(sv, lam, u_pre, dc, td)? else { return Ok(None) };
+    sv.set_coefficients(&change)?;
+    Ok(Some(sv.solve()?))
+}
+
+/// Whether the system linearised at the current equilibrium (the tangent springs on) is
+/// stable: det > 0 of its free system (the banded factor keeps the sign; the frozen system's
+/// is positive, as for any friction small enough for the frozen problem to be well posed),
+/// or else [`stable`] on the springs' rows with the springs lifted for the test.
+pub(super) fn tangent_stable(sv: &mut Solver) -> Result<bool> {
+    if let Some(sign) = sv.det_sign()? {
+        return Ok(sign > 0.0);
+    }
+    let on = snapshot(sv);
+    let springs: Vec<(usize, f64)> = on.iter().filter(|c| c.2 != 0.0).map(|c| (c.0, c.2)).collect();
+    if springs.is_empty() {
+        return Ok(true);
+    }
+    let off: Vec<_> = on.iter().map(|&(i, mu, _, _)| (i, mu, 0.0, 0.0)).collect();
+    sv.set_coefficients(&off)?;
+    let ok = stable(sv, &springs)?;
+    sv.set_coefficients(&on)?;
+    Ok(ok)
+}
+
+/// Slipping rows: (node, coefficient, spring, its centre).
+pub(super) type Rows = Vec<(usize, f64, f64, f64)>;
+
+/// The slipping rows as they are.
+pub(super) fn snapshot(sv: &Solver) -> Rows {
+    (0..sv.n())
         .filter(|&i| matches!(sv.states()[i], NodeState::Slip(_)))
-        .map(|i| (i, sv.mu_slip(i), 0.0, 0.0))
-        .collect();
+        .map(|i| (i, sv.mu_slip(i), sv.spring(i), sv.set.spring_u[i]))
+        .collect()
+}
+
+/// Newton on the slipping coefficients at fixed states and X = lam, from the rows as they
+/// are: the converged change (coefficients within [`tolerances::COEFFICIENT`] mu_s of their
+/// slips, with the springs centred there), not yet applied. None, with the rows back where it
+/// started, when an iterate moves a node by more than D_c/2 from where Newton started or back
+/// past `u_pre` by more than `td`, or it does not converge in [`NEWTON_MAX`] iterates.
+fn newton(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f64) -> Result<Option<Rows>> {
+    let start = snapshot(sv);
     let mut a = sv.solve()?;
-    let u0: Vec<f64> = (0..n).map(|i| a.b(i, lam)).collect();
+    let u0: Vec<f64> = (0..sv.n()).map(|i| a.b(i, lam)).collect();
     for _ in 0..NEWTON_MAX {
         let change = coefficients(sv, &a, lam, true, tolerances::COEFFICIENT * sv.law().mu_s());
         if change.iter().all(|c| (c.1 - sv.mu_slip(c.0)).abs() <= tolerances::COEFFICIENT * sv.law().mu_s()) {
-            // Converged: the spring-free rows at these coefficients, if the equilibrium is
-            // one that fixed point would reach (stable).
-            let keep: Vec<_> = change.iter().map(|&(i, mu, _, _)| (i, mu, 0.0, 0.0)).collect();
-            let springs: Vec<(usize, f64)> =
-                change.iter().filter(|c| c.2 != 0.0).map(|c| (c.0, c.2)).collect();
-            sv.set_coefficients(&keep)?;
-            if !stable(sv, &springs)? {
-                break;
-            }
-            return Ok(true);
+            return Ok(Some(change));
         }
         sv.set_coefficients(&change)?;
         a = sv.solve()?;
@@ -347,7 +399,7 @@ fn newton_coefficients(sv: &mut Solver, lam: f64, u_pre: &[f64], dc: f64, td: f6
         }
     }
     sv.set_coefficients(&start)?;
-    Ok(false)
+    Ok(None)
 }
 
 /// Every slipping node sticks where it is and heals to mu_s (end of an instability).

@@ -26,7 +26,7 @@ use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
 use crate::interface::banded::{BandedOperator, Solving};
 use crate::interface::condense::{condense, Condensed};
-use crate::interface::events::{self, Operator};
+use crate::interface::events::{self, Operator, Weakening};
 use crate::law::{Law, Normal};
 use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
@@ -153,6 +153,11 @@ pub struct DynEvent {
     pub event: usize,
     pub x: f64,
     pub f_onset: f64,
+    /// Drive force on the static branch just before the onset (the onset's `f_pre`): on the
+    /// exact path the last stable point before the fold (f_onset is the start just past it),
+    /// on the stepped path the step's start before the relaxation that ran away; in the
+    /// constant-velocity drive f_onset.
+    pub f_pre: f64,
     pub f_after: f64,
     pub record: EventRecord,
     /// Time at which the tip reached its final position (front arrest), s since onset.
@@ -272,6 +277,42 @@ pub fn weakening_steps(given: Option<f64>, o: &SlideOptions, drive_velocity: Opt
     }
 }
 
+/// Which path the held mode's static loading follows slip weakening by (None: no weakening
+/// law, or the constant-velocity drive, which has no static loading).
+pub fn held_weakening(o: &SlideOptions, d: &DynamicOptions) -> Option<Weakening> {
+    (o.law.weakens() && d.drive_velocity.is_none()).then_some(o.weakening)
+}
+
+/// [`SlideOptions::weakening`] from what a front end was given: `exact` (`--exact-weakening`)
+/// or the stepped default, refused where the exact path cannot act (as
+/// [`weakening_steps`]) and beside a given step count (`steps_given`), which is the other path.
+pub fn weakening(
+    exact: bool,
+    steps_given: bool,
+    o: &SlideOptions,
+    drive_velocity: Option<f64>,
+) -> Result<Weakening> {
+    if !exact {
+        return Ok(Weakening::Steps);
+    }
+    if steps_given {
+        return Err(Error::input(
+            "--exact-weakening",
+            "follows the weakening exactly, without steps: drop --weakening-steps (the stepped path's N) or --exact-weakening",
+        ));
+    }
+    if drive_velocity.is_some() {
+        return Err(Error::input(
+            "--exact-weakening",
+            "acts only on the held mode's static loading: --drive-velocity has none (it updates the coefficient every explicit step); drop one of the two",
+        ));
+    }
+    if !o.law.weakens() {
+        return Err(Error::input("--exact-weakening", "acts only under --law slip-weakening: drop it"));
+    }
+    Ok(Weakening::Exact)
+}
+
 /// The event cap met after the run started, as the run's `incomplete` note (the run then ends
 /// with what it computed, exit status 5 in the command); any other error stays one.
 pub(crate) fn cap_met(e: Error) -> Result<String> {
@@ -341,7 +382,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let layout = su.layout(c.x.clone(), d)?;
     let driven = su.driven(&layout, o.n_force);
     progress.message(&format!(
-        "dynamics: {} DOFs, dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), eta = {eta:.4e} s = {:.3} of critical at the thickness mode omega = {omega_t:.4e} rad/s; c_s = {:.4} m/s; Lambda_0 = {:.3e} m = {:.2} h{}; static phase on the {} operator",
+        "dynamics: {} DOFs, dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), eta = {eta:.4e} s = {:.3} of critical at the thickness mode omega = {omega_t:.4e} rad/s; c_s = {:.4} m/s; Lambda_0 = {:.3e} m = {:.2} h{}; static phase on the {} operator{}",
         model.n_dofs(),
         d.courant,
         su.xi(),
@@ -357,7 +398,12 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         } else {
             String::new()
         },
-        o.operator.name()
+        o.operator.name(),
+        match held_weakening(o, d) {
+            Some(Weakening::Exact) => ", slip weakening followed exactly (--exact-weakening)".to_string(),
+            Some(Weakening::Steps) => format!(", slip weakening in steps of D_c/{}", d.weakening_steps),
+            None => String::new(),
+        }
     ));
 
     // The event solver's start-up and its drive loop, each instability run dynamically.
@@ -406,6 +452,10 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let static_s = total - setup_s - dynamic_s;
     let mut res = su.result(scene, o, c, run, dyn_events, steps, [setup_s, static_s, dynamic_s]);
     res.incomplete = incomplete;
-    res.weakening_steps = d.weakening_steps;
+    // 0: the exact path has no step.
+    res.weakening_steps = match held_weakening(o, d) {
+        Some(Weakening::Exact) => 0.0,
+        _ => d.weakening_steps,
+    };
     Ok(res)
 }

@@ -112,6 +112,7 @@ impl Resolver for Held<'_, '_> {
             event: rec.out.events.len() - 1,
             x: lam,
             f_onset: before.f,
+            f_pre: at.f_pre,
             f_after,
             record: ev,
             t_arrest,

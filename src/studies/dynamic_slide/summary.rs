@@ -44,7 +44,10 @@ pub const COLUMNS: &[(&str, &str)] = &[
     ("h_m", "element size"),
     ("damping_eta_s", "Kelvin-Voigt eta"),
     ("damping_ratio_thickness_mode", "eta as a fraction of critical at the thickness mode"),
-    ("weakening_steps", "the static loading's coefficient updates per D_c"),
+    (
+        "weakening_steps",
+        "the static loading's coefficient updates per D_c (0: followed exactly, --exact-weakening)",
+    ),
     ("complete", "1: the run reached its end; 0: it met a cap (run.toml names it)"),
 ];
 

@@ -465,6 +465,7 @@ fn close(
         event: recorder.out.events.len() - 1,
         x: x0,
         f_onset: f0,
+        f_pre: f0,
         f_after,
         record: rec,
         t_arrest,
