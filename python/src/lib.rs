@@ -523,7 +523,9 @@ fn slide<'py>(
         max_events,
         newton,
         keep_states,
-        operator: choice("operator", operator, OPERATORS)?.unwrap_or(base.operator),
+        // The command's rule: by the interface's size.
+        operator: choice("operator", operator, OPERATORS)?
+            .unwrap_or_else(|| tribofe::interface::events::Operator::for_scene(&scene)),
         ..Default::default()
     };
     sl::check_options(&scene, &o).map_err(to_py)?;

@@ -323,11 +323,12 @@ def test_dynamic_slide_passes_the_weakening_path():
     exact = tribofe.dynamics.slide(tribofe.Scene(length=0.1), exact_weakening=True, **kw)
     assert stepped.summary["weakening_steps"] == 40 and exact.summary["weakening_steps"] == 0
     # The exact onset's branch force is the command's fold, 0.77187062 mu_s N (printed to 8
-    # digits: 1e-8); the stepped onset lags it by less than 1/N of the strength.
+    # digits: 1e-8); the stepped onset is off it by less than one step's strength change,
+    # 1/N of mu_s N, either side (N = 20 lands below it, N = 80 and more above: stop 52's series).
     f_exact = float(exact.dyn_events["F_pre_over_mu_s_N"][0])
     assert abs(f_exact - 0.77187062) < 1e-8, f_exact
     f_stepped = float(stepped.dyn_events["F_onset_over_mu_s_N"][0])
-    assert 0 < f_exact - f_stepped < 1 / 40, (f_exact, f_stepped)
+    assert 0 < abs(f_exact - f_stepped) < 1 / 40, (f_exact, f_stepped)
 
 
 def test_dynamic_slide_is_silent_and_refuses_a_wrong_choice(capfd):

@@ -403,7 +403,7 @@ fn run_checked(
             Some("banded") => tribofe::interface::events::Operator::Banded,
             Some(_) => tribofe::interface::events::Operator::Dense,
             None if a.dynamics => ds::DEFAULT_OPERATOR,
-            None => tribofe::interface::events::Operator::for_interface(interface_estimate(&scene)),
+            None => tribofe::interface::events::Operator::for_scene(&scene),
         },
         ..Default::default()
     };

@@ -106,6 +106,12 @@ impl Operator {
         }
     }
 
+    /// The default for `scene`: [`Self::for_interface`] of its structured mesh's interface
+    /// nodes (a mesh file: the reference). `slide` and its Python function both choose by it.
+    pub fn for_scene(scene: &crate::scene::Scene) -> Operator {
+        Self::for_interface(scene.mesh.file.is_none().then(|| scene.estimate_nx() as usize + 1))
+    }
+
     pub fn name(&self) -> &'static str {
         match self {
             Operator::Dense => "dense",
