@@ -502,6 +502,7 @@ fn slide<'py>(
         ..Default::default()
     }
     .with_scene(&scene.law, law_given, rule_given);
+    choice_law.check_rule_options(rule_given, residual.is_some(), backslip.is_some()).map_err(to_py)?;
     let law = choice_law.law(&scene).and_then(|l| l.with_paper_options(paper)).map_err(to_py)?;
     if newton && !law.weakens() {
         return Err(to_py(Error::input("newton", "newton cannot act without law='slip-weakening'")));

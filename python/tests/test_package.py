@@ -331,6 +331,19 @@ def test_dynamic_slide_passes_the_weakening_path():
     assert 0 < abs(f_exact - f_stepped) < 1 / 40, (f_exact, f_stepped)
 
 
+def test_slide_refuses_rule_options_its_law_cannot_take():
+    # As the command: the event rule and the paper rule's conventions belong to static-kinetic
+    # (before stop 55 Python ran these silently with the rule ignored).
+    for kw, named in [
+        (dict(law="coulomb", rule="overdamped"), "rule="),
+        (dict(law="slip-weakening", residual="pre-event"), "residual="),
+        (dict(law="static-kinetic", rule="overdamped", backslip="forbidden"), "backslip="),
+    ]:
+        with pytest.raises(tribofe.InputError) as e:
+            tribofe.slide(x_max=1e-7, **kw)
+        assert named in str(e.value) and "static-kinetic" in str(e.value) and "--" not in str(e.value), kw
+
+
 def test_dynamic_slide_is_silent_and_refuses_a_wrong_choice(capfd):
     res = tribofe.dynamics.slide(tribofe.Scene(length=0.1), law="coulomb", x_max=1e-6)
     assert res.law.startswith("coulomb")

@@ -351,17 +351,11 @@ fn run_checked(
     if a.dc.is_some() && a.law != "slip-weakening" {
         return Err(Error::input("dc", "--dc belongs to --law slip-weakening"));
     }
-    if super::given("rule") && a.law != "static-kinetic" {
-        return Err(Error::input("--rule", "the event rule belongs to --law static-kinetic"));
-    }
-    for flag in ["residual", "backslip"] {
-        if super::given(flag) && (a.law != "static-kinetic" || a.rule != "paper") {
-            return Err(Error::input(
-                format!("--{flag}"),
-                "a convention of the paper rule: belongs to --law static-kinetic --rule paper",
-            ));
-        }
-    }
+    law_choice(&a, &scene).check_rule_options(
+        super::given("rule"),
+        super::given("residual"),
+        super::given("backslip"),
+    )?;
     if a.newton && a.law != "slip-weakening" {
         return Err(Error::input("newton", "--newton cannot act without --law slip-weakening"));
     }

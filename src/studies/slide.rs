@@ -725,6 +725,30 @@ impl LawChoice {
         self
     }
 
+    /// Refuses the event rule's options given with a law they cannot act on (the front ends'
+    /// one check): `rule` with a law other than static-kinetic, `residual` or `backslip`
+    /// unless static-kinetic with the paper rule. Named as flags (`--rule`); Python renders
+    /// them as keywords.
+    pub fn check_rule_options(
+        &self,
+        rule_given: bool,
+        residual_given: bool,
+        backslip_given: bool,
+    ) -> Result<()> {
+        if rule_given && self.law != "static-kinetic" {
+            return Err(Error::input("--rule", "the event rule belongs to --law static-kinetic"));
+        }
+        for (flag, given) in [("--residual", residual_given), ("--backslip", backslip_given)] {
+            if given && (self.law != "static-kinetic" || self.rule != "paper") {
+                return Err(Error::input(
+                    flag,
+                    "a convention of the paper rule: belongs to --law static-kinetic --rule paper",
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// The law on `scene`, a refusal of a scene value naming its `[law]` key.
     pub fn law(&self, scene: &Scene) -> Result<Law> {
         self.build(scene).map_err(|e| match e {
