@@ -966,129 +966,40 @@ fn rupture<'py>(
     let warn = |text: &str, class: &Bound<'py, pyo3::types::PyType>| {
         PyErr::warn(py, class, &std::ffi::CString::new(text).unwrap_or_default(), 1)
     };
-    let spec = match &scene {
-        // A rupture scene file, the keywords on top (as the command's `--scene` and flags).
-        Some(path) => {
-            let inputs = rp::SceneInputs {
-                s,
-                h,
-                dc,
-                t_end,
-                length,
-                height,
-                mu_s,
-                mu_d,
-                sigma0,
-                young,
-                poisson,
-                density,
-                courant,
-                damping,
-                contact: contact.map(str::to_string),
-                normal_lag,
-                normal_lag_length,
-                normal_lag_v_star,
-                patch_taper,
-                max_steps,
-            };
-            inputs.spec(path).map_err(to_py)?.0
-        }
-        None => rupture_flags_spec(
-            s,
-            h,
-            dc,
-            t_end,
-            length,
-            height,
-            mu_s,
-            mu_d,
-            sigma0,
-            young,
-            poisson,
-            density,
-            courant,
-            damping,
-            contact,
-            normal_lag,
-            normal_lag_length,
-            normal_lag_v_star,
-            patch_taper,
-            max_steps,
-        )?,
+    let inputs = rp::SceneInputs {
+        s,
+        h,
+        dc,
+        t_end,
+        length,
+        height,
+        mu_s,
+        mu_d,
+        sigma0,
+        young,
+        poisson,
+        density,
+        courant,
+        damping,
+        contact: contact.map(str::to_string),
+        normal_lag,
+        normal_lag_length,
+        normal_lag_v_star,
+        patch_taper,
+        max_steps,
     };
+    // A rupture scene file with the keywords on top, or the flag-driven scene (as the
+    // command's `--scene` and flags).
+    let spec = match &scene {
+        Some(path) => inputs.spec(path).map(|(spec, _)| spec),
+        None => inputs.flag_spec(),
+    }
+    .map_err(to_py)?;
     if let Some(w) = spec.instantaneous_normal_warning() {
         warn(&w.replace("--normal-lag", "normal_lag="), &py.get_type::<pyo3::exceptions::PyUserWarning>())?;
     }
     let (r, core_s) = run_detached(py, progress, |cancel, poll| rp::run(&spec, cancel, poll))?;
     rupture_dict(py, &r, core_s)
-}
-
-/// The flag-driven scene of `rupture`'s keywords, checked.
-#[allow(clippy::too_many_arguments)]
-fn rupture_flags_spec(
-    s: Option<f64>,
-    h: Option<f64>,
-    dc: Option<f64>,
-    t_end: Option<f64>,
-    length: Option<f64>,
-    height: Option<f64>,
-    mu_s: Option<f64>,
-    mu_d: Option<f64>,
-    sigma0: Option<f64>,
-    young: Option<f64>,
-    poisson: Option<f64>,
-    density: Option<f64>,
-    courant: Option<f64>,
-    damping: Option<f64>,
-    contact: Option<&str>,
-    normal_lag: Option<f64>,
-    normal_lag_length: Option<f64>,
-    normal_lag_v_star: Option<f64>,
-    patch_taper: Option<f64>,
-    max_steps: Option<u64>,
-) -> PyResult<tribofe::dynamics::rupture::RuptureSpec> {
-    let mut spec = rupture_defaults();
-    let set = |v: Option<f64>, field: &mut f64| {
-        if let Some(v) = v {
-            *field = v;
-        }
-    };
-    set(s, &mut spec.s_ratio);
-    set(h, &mut spec.h);
-    if let tribofe::law::Law::SlipWeakening { mu_s: s0, mu_d: d0, dc: c0 } = spec.friction {
-        let law = tribofe::law::Law::SlipWeakening {
-            mu_s: mu_s.unwrap_or(s0),
-            mu_d: mu_d.unwrap_or(d0),
-            dc: dc.unwrap_or(c0),
-        };
-        spec.friction = law;
-    }
-    set(t_end, &mut spec.t_end);
-    set(length, &mut spec.length);
-    set(height, &mut spec.height);
-    set(sigma0, &mut spec.sigma0);
-    set(young, &mut spec.young);
-    set(poisson, &mut spec.poisson);
-    set(density, &mut spec.density);
-    set(courant, &mut spec.courant);
-    set(damping, &mut spec.damping);
-    set(patch_taper, &mut spec.patch_taper);
-    if let Some(c) = contact {
-        spec.contact = c.parse().map_err(to_py)?;
-    }
-    spec.normal = tribofe::law::Normal::from_inputs(
-        normal_lag,
-        normal_lag_length,
-        normal_lag_v_star,
-        spec.normal,
-        ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
-    )
-    .map_err(to_py)?;
-    if let Some(n) = max_steps {
-        spec.max_steps = n;
-    }
-    spec.validate().map_err(to_py)?;
-    Ok(spec)
 }
 
 /// A rupture run as the dict `rupture` returns.

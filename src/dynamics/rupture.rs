@@ -1639,3 +1639,50 @@ impl SceneInputs {
         Ok((spec, sc))
     }
 }
+
+impl SceneInputs {
+    /// The flag-driven scene (no file): [`RuptureSpec::default`] with the command's normal lag
+    /// ([`DEFAULT_NORMAL_LAG`]) and these values on top, checked.
+    pub fn flag_spec(&self) -> Result<RuptureSpec> {
+        let mut spec = RuptureSpec { normal: Normal::Time { t: DEFAULT_NORMAL_LAG }, ..Default::default() };
+        for (v, slot) in [
+            (self.s, &mut spec.s_ratio),
+            (self.h, &mut spec.h),
+            (self.t_end, &mut spec.t_end),
+            (self.length, &mut spec.length),
+            (self.height, &mut spec.height),
+            (self.sigma0, &mut spec.sigma0),
+            (self.young, &mut spec.young),
+            (self.poisson, &mut spec.poisson),
+            (self.density, &mut spec.density),
+            (self.courant, &mut spec.courant),
+            (self.damping, &mut spec.damping),
+            (self.patch_taper, &mut spec.patch_taper),
+        ] {
+            if let Some(v) = v {
+                *slot = v;
+            }
+        }
+        let f = spec.friction;
+        spec.friction = Law::SlipWeakening {
+            mu_s: self.mu_s.unwrap_or(f.mu_s()),
+            mu_d: self.mu_d.unwrap_or(f.mu_d()),
+            dc: self.dc.unwrap_or(spec.dc()),
+        };
+        if let Some(c) = &self.contact {
+            spec.contact = c.parse()?;
+        }
+        spec.normal = Normal::from_inputs(
+            self.normal_lag,
+            self.normal_lag_length,
+            self.normal_lag_v_star,
+            spec.normal,
+            ["--normal-lag", "--normal-lag-length", "--normal-lag-v-star"],
+        )?;
+        if let Some(n) = self.max_steps {
+            spec.max_steps = n;
+        }
+        spec.validate()?;
+        Ok(spec)
+    }
+}
