@@ -50,6 +50,25 @@ pub struct BandedOperator {
     pub rigid_residual: f64,
 }
 
+impl crate::interface::condense::Condensed {
+    /// The interface of a run on the banded operator: positions, widths and the stiffness
+    /// checks, without a dense S (the operator solves on the block instead).
+    pub fn of_banded(scene: &Scene, op: &BandedOperator) -> Self {
+        let b = &scene.block;
+        Self {
+            n: op.n,
+            x: op.x.clone(),
+            w: op.w.clone(),
+            l: b.length,
+            t: b.thickness,
+            e_star: b.young / (1.0 - b.poisson.powi(2)),
+            s: vec![],
+            asymmetry: op.asymmetry,
+            rigid_residual: op.rigid_residual,
+        }
+    }
+}
+
 /// What one solve needs, per boundary DOF d in 0..2n + 3 (see the module's conventions).
 pub struct Rows<'a> {
     pub free: &'a [bool],

@@ -256,17 +256,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, progress: Progress) -> Result<SlideR
     let clock = Instant::now();
     if o.operator == Operator::Banded {
         let op = BandedOperator::new(scene, scene.loading.height)?;
-        let c = Condensed {
-            n: op.n,
-            x: op.x.clone(),
-            w: op.w.clone(),
-            l: scene.block.length,
-            t: scene.block.thickness,
-            e_star: scene.block.young / (1.0 - scene.block.poisson.powi(2)),
-            s: vec![],
-            asymmetry: op.asymmetry,
-            rigid_residual: op.rigid_residual,
-        };
+        let c = Condensed::of_banded(scene, &op);
         return run_banded(scene, &op, c, clock.elapsed().as_secs_f64(), o, progress);
     }
     let c = condense(scene, &SolverOptions::default())?;

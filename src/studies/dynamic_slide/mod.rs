@@ -24,15 +24,12 @@
 use crate::dynamics::driven::{EventLimits, EventRecord};
 use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
-use crate::interface::banded::{BandedOperator, Solving};
-use crate::interface::condense::{condense, Condensed};
-use crate::interface::events::{self, Operator, Weakening};
+use crate::interface::events::Weakening;
 use crate::law::{Law, Normal};
-use crate::linalg::solve::SolverOptions;
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{SlideOptions, SlideResult};
-use events::handoff::{drive_stepped, start_drive, Affine, Ended};
+use crate::interface::events::handoff::{drive_stepped, start_drive, Affine, Ended};
 use std::time::Instant;
 
 pub mod assumption5;
@@ -45,7 +42,7 @@ mod steps;
 pub mod summary;
 pub use physics::{default_dc, smallest_resolved_dc};
 pub mod velocity;
-use setup::Setup;
+use setup::{Setup, StaticOperator};
 
 /// The dynamic options beside the slide options.
 #[derive(Debug, Clone)]
@@ -335,31 +332,9 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     // condensation); full fields: the block with its boundary held, factorised once.
     let su = Setup::new(scene, o, d)?;
     su.check_event_work(scene, d)?;
-    // The static phase's operator: the dense condensed S, or the banded block (O(n) a solve).
-    let (c, banded) = if o.operator == Operator::Banded {
-        let op = BandedOperator::new(scene, scene.loading.height)?;
-        let b = &scene.block;
-        let c = Condensed {
-            n: op.n,
-            x: op.x.clone(),
-            w: op.w.clone(),
-            l: b.length,
-            t: b.thickness,
-            e_star: b.young / (1.0 - b.poisson.powi(2)),
-            s: vec![],
-            asymmetry: op.asymmetry,
-            rigid_residual: op.rigid_residual,
-        };
-        (c, Some(op))
-    } else {
-        (condense(scene, &SolverOptions::default())?, None)
-    };
-    let s_h = if banded.is_none() { c.at_height(scene.loading.height) } else { vec![] };
+    let so = StaticOperator::new(scene, o.operator)?;
+    let (c, op) = (&so.c, so.solver());
     let n = c.n;
-    let op: Box<dyn events::operator::Operator + '_> = match &banded {
-        Some(b) => Box::new(Solving::new(b)),
-        None => Box::new(events::operator::Dense::new(&s_h, 2 * n + 3)),
-    };
     let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
     let full = su.full_field()?;
     let full_field =
@@ -441,6 +416,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
         Ended::Done | Ended::Stopped => {}
     }
     let run = rec.finish(&sv);
+    drop(sv); // it borrows the operator, whose interface the result takes
     let resting = dyn_events.iter().filter(|e| e.record.at_strength > 0).count();
     if resting > 0 {
         progress.message(&format!(
@@ -450,7 +426,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     }
     let total = clock.elapsed().as_secs_f64();
     let static_s = total - setup_s - dynamic_s;
-    let mut res = su.result(scene, o, c, run, dyn_events, steps, [setup_s, static_s, dynamic_s]);
+    let mut res = su.result(scene, o, so.c, run, dyn_events, steps, [setup_s, static_s, dynamic_s]);
     res.incomplete = incomplete;
     // 0: the exact path has no step.
     res.weakening_steps = match held_weakening(o, d) {

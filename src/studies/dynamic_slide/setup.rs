@@ -10,7 +10,9 @@ use crate::error::{Error, Result};
 use crate::fem::assembly::Assembler;
 use crate::fem::constraints::Reduction;
 use crate::fem::material::Material;
-use crate::interface::condense::{boundary_model, Condensed};
+use crate::interface::banded::{BandedOperator, Solving};
+use crate::interface::condense::{boundary_model, condense, Condensed};
+use crate::interface::events::{self, Operator};
 use crate::interface::events::Run;
 use crate::law::{Law, Normal};
 use crate::linalg::solve::{Factor, Solver, SolverOptions};
@@ -278,5 +280,35 @@ impl FullField<'_> {
         red.project_add(&f, &mut r);
         self.factor.solve_in_place(&mut r, 1);
         red.expand(&r, &g)[..nd].to_vec()
+    }
+}
+
+/// The static phase's operator, `--operator`'s choice in both drive modes: the dense
+/// condensed S at the drive height, or the banded block (O(n) a solve, no n x n condensation).
+pub(super) struct StaticOperator {
+    pub c: Condensed,
+    banded: Option<BandedOperator>,
+    s_h: Vec<f64>,
+}
+
+impl StaticOperator {
+    pub fn new(scene: &Scene, operator: Operator) -> Result<Self> {
+        let h = scene.loading.height;
+        Ok(if operator == Operator::Banded {
+            let op = BandedOperator::new(scene, h)?;
+            Self { c: Condensed::of_banded(scene, &op), banded: Some(op), s_h: vec![] }
+        } else {
+            let c = condense(scene, &SolverOptions::default())?;
+            let s_h = c.at_height(h);
+            Self { c, banded: None, s_h }
+        })
+    }
+
+    /// The event solver's operator over the 2n + 3 boundary DOFs.
+    pub fn solver(&self) -> Box<dyn events::operator::Operator + '_> {
+        match &self.banded {
+            Some(b) => Box::new(Solving::new(b)),
+            None => Box::new(events::operator::Dense::new(&self.s_h, self.c.dim())),
+        }
     }
 }

@@ -27,15 +27,13 @@
 //! f_gap and u_gap (distance to a static equilibrium after an event) are 0 here: no static
 //! equilibrium is solved.
 
-use super::setup::Setup;
+use super::setup::{Setup, StaticOperator};
 use super::steps::{arrest, crossing, kind_of};
 use super::{check as check_held, DynEvent, DynamicOptions, DynamicResult};
 use crate::dynamics::driven::{Contact, DynState, EventEnergy, EventRecord};
 use crate::error::{Error, Result};
-use crate::interface::condense::condense;
 use crate::interface::events::handoff::{settle_continuous, start_drive, Recorder};
-use crate::interface::events::{operator, tolerances, Event, EventKind, NodeState, Phase, State, Violations};
-use crate::linalg::solve::SolverOptions;
+use crate::interface::events::{tolerances, Event, EventKind, NodeState, Phase, State, Violations};
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::SlideOptions;
@@ -164,11 +162,11 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             ),
         ));
     }
-    let c = condense(scene, &SolverOptions::default())?;
+    let so = StaticOperator::new(scene, o.operator)?;
+    let c = &so.c;
     let layout = su.layout(c.x.clone(), d)?;
     let n = c.n;
     let (mu_s, law, weakens, lambda0) = (o.law.mu_s(), su.law, su.weakens, su.lambda0);
-    let s_h = c.at_height(scene.loading.height);
     // Full fields from boundary values (as the held mode): the block with its boundary held.
     let full = su.full_field()?;
     let full_field = |b: &[f64]| full.field(b);
@@ -190,7 +188,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     // Normal phase, quasi-static and exact, and the drive's start: the event solver's (as the
     // held mode), and its recorder for every event (the observer, the cap).
     let o_qs = SlideOptions { law: o.law.rate_free_stand_in(), ..o.clone() };
-    let (mut sv, mut rec) = start_drive(Box::new(operator::Dense::new(&s_h, 2 * n + 3)), n, &o_qs)?;
+    let (mut sv, mut rec) = start_drive(so.solver(), n, &o_qs)?;
     let cap = tolerances::max_changes(n);
     // The start on the quasi-static path: u of the static field at U_H = 0, v = V du/dU_H.
     let p = settle_continuous(&mut sv, 0.0, true, cap, "drive")?;
@@ -404,8 +402,9 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let dynamic_s = dclock.elapsed().as_secs_f64();
     let total = clock.elapsed().as_secs_f64();
     let run = rec.finish(&sv);
+    drop(sv); // it borrows the operator, whose interface the result takes
     let mut res =
-        su.result(scene, o, c, run, dyn_events, steps, [setup_s, total - setup_s - dynamic_s, dynamic_s]);
+        su.result(scene, o, so.c, run, dyn_events, steps, [setup_s, total - setup_s - dynamic_s, dynamic_s]);
     res.incomplete = incomplete;
     Ok(res)
 }
