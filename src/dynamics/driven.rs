@@ -540,7 +540,7 @@ impl<'a> Driven<'a> {
             if step % lim.sample_every == 0 {
                 rec.t.push(rec.steps as f64 * dt);
                 rec.force.push(f_drive);
-                rec.tip.push(tip(&rec, &lay.x));
+                rec.tip.push(tip_of(&rec, &lay.x));
                 rec.rates.push(lay.base.iter().map(|&k| st.v[2 * k].abs() as f32).collect());
                 rec.p_samples.push(contact.iter().map(|c| c.p as f32).collect());
                 rec.t_samples.push(contact.iter().map(|c| c.t as f32).collect());
@@ -589,7 +589,7 @@ impl<'a> Driven<'a> {
         rec.energy = e;
         rec.t.push(rec.duration);
         rec.force.push(f_drive);
-        rec.tip.push(tip(&rec, &lay.x));
+        rec.tip.push(tip_of(&rec, &lay.x));
         let keep = arrest_sample(&rec.tip).map_or(0, |k| k + 1);
         rec.p_samples.truncate(keep);
         rec.t_samples.truncate(keep);
@@ -627,16 +627,15 @@ pub fn rest_rate(law: &Law, elastic_slip: f64, period: f64) -> f64 {
 pub const REST_SLIP: f64 = 1e-6;
 
 /// x of the end of the slipped run around the nucleation node farther from it; NaN before one.
-fn tip(rec: &EventRecord, x: &[f64]) -> f64 {
-    let Some(c) = rec.nucleation else { return f64::NAN };
-    let went = |i: usize| rec.slip[i] > rec.threshold;
-    let (mut a, mut b) = (c, c);
-    while a > 0 && went(a - 1) {
-        a -= 1;
-    }
-    while b + 1 < x.len() && went(b + 1) {
-        b += 1;
-    }
+fn tip_of(rec: &EventRecord, x: &[f64]) -> f64 {
+    tip(rec.nucleation, |i| rec.slip[i] > rec.threshold, x)
+}
+
+/// x of the end of the run of nodes that `went` around the nucleation node, the end farther
+/// from it; NaN before one. Both drive modes' front tip.
+pub(crate) fn tip(nucleation: Option<usize>, went: impl Fn(usize) -> bool, x: &[f64]) -> f64 {
+    let Some(c) = nucleation else { return f64::NAN };
+    let (a, b) = crate::numeric::run_around(c, x.len(), went);
     if (x[b] - x[c]).abs() >= (x[c] - x[a]).abs() {
         x[b]
     } else {

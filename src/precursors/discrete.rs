@@ -261,14 +261,7 @@ pub fn simulate(iface: &Interface, max_events: usize) -> Result<Run> {
             ));
         }
         let slips = |k: usize| sigma[k] > mu_d * iface.p(k, f);
-        let mut first = nuc;
-        while first > 0 && slips(first - 1) {
-            first -= 1;
-        }
-        let mut last = nuc;
-        while last + 1 < n && slips(last + 1) {
-            last += 1;
-        }
+        let (first, last) = crate::numeric::run_around(nuc, n, slips);
         for k in first..=last {
             sigma[k] = mu_d * iface.p(k, f);
         }

@@ -130,13 +130,7 @@ fn paper(sv: &mut Solver, a: &Affine, lam: f64, i0: usize, u_start: &[f64]) -> R
     let t_start: Vec<f64> = (0..n).map(|i| a.f(i, lam)).collect();
     let above =
         |i: usize| sv.set.states[i] != NodeState::Open && t_start[i].abs() >= mu_d * a.f(n + i, lam) - tf;
-    let (mut lo, mut hi) = (i0, i0);
-    while lo > 0 && above(lo - 1) {
-        lo -= 1;
-    }
-    while hi + 1 < n && above(hi + 1) {
-        hi += 1;
-    }
+    let (lo, hi) = crate::numeric::run_around(i0, n, above);
     let ch: Vec<(usize, NodeState, f64)> =
         (lo..=hi).map(|i| (i, NodeState::Slip(dir(t_start[i])), 0.0)).collect();
     sv.set_many(&ch)?;

@@ -154,14 +154,7 @@ impl Resolver for Runaway {
         // the relaxation by more than 1 % of D_c (a corner that crept a little at the other
         // end is not part of it).
         let went = |i: usize| touched[i] && moved[i] > 0.01 * dc;
-        let mut first = i0;
-        while first > 0 && went(first - 1) {
-            first -= 1;
-        }
-        let mut last = i0;
-        while last + 1 < n && went(last + 1) {
-            last += 1;
-        }
+        let (first, last) = crate::numeric::run_around(i0, n, went);
         let all_slipping = sv.all_contact_slipping();
         // Nucleation: the most weakened node slipping when the step began.
         let node = (first..=last)

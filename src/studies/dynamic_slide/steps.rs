@@ -55,13 +55,7 @@ pub(super) fn classify_event(ev: &EventRecord, dc: f64, n: usize) -> (EventKind,
 pub(super) fn kind_of(ev: &EventRecord, went: &[bool]) -> (EventKind, usize, (usize, usize)) {
     let n = went.len();
     let node = ev.nucleation.unwrap_or(0);
-    let (mut a, mut b) = (node, node);
-    while a > 0 && went[a - 1] {
-        a -= 1;
-    }
-    while b + 1 < n && went[b + 1] {
-        b += 1;
-    }
+    let (a, b) = crate::numeric::run_around(node, n, |k| went[k]);
     let first_contact = (0..n).find(|&k| !ev.open[k] || went[k]).unwrap_or(0);
     let last_contact = (0..n).rev().find(|&k| !ev.open[k] || went[k]).unwrap_or(n - 1);
     let kind = if !ev.weakened || ev.nucleation.is_none() {

@@ -30,7 +30,7 @@
 use super::setup::{Setup, StaticOperator};
 use super::steps::{arrest, crossing, kind_of};
 use super::{check as check_held, DynEvent, DynamicOptions, DynamicResult};
-use crate::dynamics::driven::{Contact, DynState, EventEnergy, EventRecord};
+use crate::dynamics::driven::{tip, Contact, DynState, EventEnergy, EventRecord};
 use crate::error::{Error, Result};
 use crate::interface::events::handoff::{settle_continuous, start_drive, Recorder};
 use crate::interface::events::{tolerances, Event, EventKind, NodeState, Phase, State, Violations};
@@ -336,7 +336,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
                 }
                 rec.t.push(rec.steps as f64 * dt);
                 rec.force.push(out.f_drive);
-                rec.tip.push(tip(rec.nucleation, &ev.went, &layout.x));
+                rec.tip.push(tip(rec.nucleation, |i| ev.went[i], &layout.x));
                 rec.rates.push(layout.base.iter().map(|&k| ds.v[2 * k].abs() as f32).collect());
             }
             ev.quiet = if max_rate > thr { 0 } else { ev.quiet + 1 };
@@ -443,7 +443,7 @@ fn close(
     };
     rec.t.push(rec.duration);
     rec.force.push(out.f_drive);
-    rec.tip.push(tip(rec.nucleation, &went, x));
+    rec.tip.push(tip(rec.nucleation, |i| went[i], x));
     let f_after = s.f;
     recorder.push(
         Event {
@@ -476,20 +476,3 @@ fn close(
     Ok(kind)
 }
 
-/// x of the end of the run of nodes that went over the threshold around the nucleation node,
-/// farther from it; NaN before one.
-fn tip(nucleation: Option<usize>, went: &[bool], x: &[f64]) -> f64 {
-    let Some(c) = nucleation else { return f64::NAN };
-    let (mut a, mut b) = (c, c);
-    while a > 0 && went[a - 1] {
-        a -= 1;
-    }
-    while b + 1 < x.len() && went[b + 1] {
-        b += 1;
-    }
-    if (x[b] - x[c]).abs() >= (x[c] - x[a]).abs() {
-        x[b]
-    } else {
-        x[a]
-    }
-}
