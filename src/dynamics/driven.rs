@@ -429,7 +429,7 @@ impl<'a> Driven<'a> {
             .with_boundary(&self.layout.hooked);
         ex.set_state(&st.u, &st.v);
         // The event reads the conserved ledger only (EventEnergy).
-        ex.physical_energies = false;
+        ex.sums = crate::dynamics::explicit::Sums::Ledger;
         Work { ex }
     }
 

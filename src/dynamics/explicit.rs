@@ -351,13 +351,14 @@ struct RowCtx<'a> {
 /// from `vin`), fe is read and zeroed. Per DOF the arithmetic of the general path; the sums
 /// run in two lanes (x and y DOFs) added at the row's end, so no sum waits on the one before.
 /// Without FULL the physical energies at step n (strain, kinetic, correction) are not summed:
-/// a run that reads only the conserved ledger saves three of the seven sums. Without EXT there
+/// a run that reads only the conserved ledger saves three of the seven sums; without HALF
+/// neither are the energies at the half step (kinetic, u^{n-1} K u^n). Without EXT there
 /// are no external forces: fe is neither read nor zeroed (it stays zero). HOOKED: the row holds
 /// boundary nodes; their DOFs add only their share of the sums over v^{n-1/2} and u^n (the
 /// rest is added after the boundary ran), keep K u in `kus` and K v in `kvs`, and are left
 /// for the boundary (v^{n-1/2} in `vout` unless DAMPED, their fe unread).
 #[inline(always)]
-fn update_row<const DAMPED: bool, const FULL: bool, const EXT: bool, const HOOKED: bool>(
+fn update_row<const DAMPED: bool, const HALF: bool, const FULL: bool, const EXT: bool, const HOOKED: bool>(
     c: &RowCtx,
     j: usize,
     ku: &[f64],
@@ -375,8 +376,10 @@ fn update_row<const DAMPED: bool, const FULL: bool, const EXT: bool, const HOOKE
         for a in 0..2 {
             let (k, i) = (2 * node + a, i0 + 2 * node + a);
             let vm = if DAMPED { vin[i] } else { vout[k] };
-            l[0][a] += mi * vm * vm;
-            l[1][a] += un[k] * ku[k];
+            if HALF {
+                l[0][a] += mi * vm * vm;
+                l[1][a] += un[k] * ku[k];
+            }
             if HOOKED && c.owned[i] {
                 if FULL {
                     l[2][a] += c.u[i] * ku[k];
@@ -396,7 +399,10 @@ fn update_row<const DAMPED: bool, const FULL: bool, const EXT: bool, const HOOKE
             if EXT {
                 l[3][a] += dt * vbar * fe[k];
             }
-            l[4][a] += dt * vbar * fd;
+            // Undamped, fd = 0 adds nothing; skipping it saves a multiply-add per DOF.
+            if DAMPED {
+                l[4][a] += dt * vbar * fd;
+            }
             if FULL {
                 l[2][a] += c.u[i] * ku[k];
                 l[5][a] += 0.5 * mi * vbar * vbar;
@@ -525,11 +531,24 @@ pub struct Explicit<'a> {
     /// K v at the boundary's DOFs on the grid path (whole-mesh array), and v^{n-1/2} there.
     kv_hook: Vec<f64>,
     v_hook: Vec<f64>,
-    /// Whether the grid pass sums the ledger's physical energies at step n (`strain`,
-    /// `kinetic`, `correction`; default true). A run that reads only the conserved ledger
-    /// (its energies at the half step and the work and dissipation sums) turns it off: those
-    /// three fields then hold only the boundary's share and mean nothing.
-    pub physical_energies: bool,
+    /// Which energy sums the grid pass makes (default all; see [`Sums`]).
+    pub sums: Sums,
+}
+
+/// The energy sums a grid step makes: each is a multiply-add per DOF, so a run skips those it
+/// never reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sums {
+    /// The running sums only (work, damping, the boundary's net work): a run that takes its
+    /// energies from [`Explicit::level`] when it reports them (`rupture`). The ledger's
+    /// half-step and step-n energies then mean nothing.
+    Running,
+    /// Those and the energies at the half step (`kinetic_half`, `shadow_half`): the conserved
+    /// ledger every step (the plate-driven events' end test). `strain`, `kinetic` and
+    /// `correction` then hold only the boundary's share and mean nothing.
+    Ledger,
+    /// Every sum, the physical energies at step n too.
+    All,
 }
 
 impl<'a> Explicit<'a> {
@@ -572,7 +591,7 @@ impl<'a> Explicit<'a> {
             hook_rows: vec![],
             kv_hook: vec![],
             v_hook: vec![],
-            physical_energies: true,
+            sums: Sums::All,
         }
     }
 
@@ -663,8 +682,12 @@ impl<'a> Explicit<'a> {
         if let Some(f) = f_ext.as_mut() {
             f(self.n as f64 * dt, &mut self.fe);
         }
-        let kinetic_half = m.kinetic_energy(&self.v) + own_kinetic;
-        let shadow_half = kinetic_half + 0.5 * dot(&self.u_prev, &self.ku);
+        let (kinetic_half, shadow_half) = if self.sums == Sums::Running {
+            (0.0, 0.0)
+        } else {
+            let kinetic_half = m.kinetic_energy(&self.v) + own_kinetic;
+            (kinetic_half, kinetic_half + 0.5 * dot(&self.u_prev, &self.ku))
+        };
         let mut s = RowSums::default();
         let hooked = !self.owned.is_empty();
         for i in 0..self.u.len() {
@@ -760,11 +783,13 @@ impl<'a> Explicit<'a> {
     /// runs after the pass.
     fn step_grid(&mut self, g: &Grid, b: &mut dyn Boundary, own_kinetic: f64, ext: bool) {
         let eta = self.eta;
-        let rows = match (self.physical_energies, ext) {
-            (true, true) => self.sweep::<true, true>(g),
-            (true, false) => self.sweep::<true, false>(g),
-            (false, true) => self.sweep::<false, true>(g),
-            (false, false) => self.sweep::<false, false>(g),
+        let rows = match (self.sums, ext) {
+            (Sums::All, true) => self.sweep::<true, true, true>(g),
+            (Sums::All, false) => self.sweep::<true, true, false>(g),
+            (Sums::Ledger, true) => self.sweep::<true, false, true>(g),
+            (Sums::Ledger, false) => self.sweep::<true, false, false>(g),
+            (Sums::Running, true) => self.sweep::<false, false, true>(g),
+            (Sums::Running, false) => self.sweep::<false, false, false>(g),
         };
         let mut s = rows.iter().fold(RowSums::default(), |a, b| a.add(b));
         let boundary = self.apply_boundary(b, &mut s, true);
@@ -776,8 +801,8 @@ impl<'a> Explicit<'a> {
         self.close_step(s, kinetic_half + 0.5 * s.shadow, kinetic_half, 0.5 * s.strain, boundary);
     }
 
-    /// The pass of [`Self::step_grid`] over the node rows; FULL: see [`update_row`].
-    fn sweep<const FULL: bool, const EXT: bool>(&mut self, g: &Grid) -> Vec<RowSums> {
+    /// The pass of [`Self::step_grid`] over the node rows; HALF, FULL: see [`update_row`].
+    fn sweep<const HALF: bool, const FULL: bool, const EXT: bool>(&mut self, g: &Grid) -> Vec<RowSums> {
         let (m, dt, eta) = (self.model, self.dt, self.eta);
         let row_len = g.row_len();
         let (fixed, mass, u) = (&self.fixed, &m.mass, &self.u);
@@ -791,13 +816,13 @@ impl<'a> Explicit<'a> {
                     [&mut self.u_prev, &mut self.fe, &mut self.kv],
                     m.threads,
                     |j, ku, kv, o| {
-                        update_row::<true, FULL, EXT, false>(&ctx, j, ku, kv, v, o, [&mut [], &mut []])
+                        update_row::<true, HALF, FULL, EXT, false>(&ctx, j, ku, kv, v, o, [&mut [], &mut []])
                     },
                 )
             }
             (true, false) => {
                 g.sweep(u, None, [&mut self.u_prev, &mut self.fe, &mut self.v], m.threads, |j, ku, kv, o| {
-                    update_row::<false, FULL, EXT, false>(&ctx, j, ku, kv, &[], o, [&mut [], &mut []])
+                    update_row::<false, HALF, FULL, EXT, false>(&ctx, j, ku, kv, &[], o, [&mut [], &mut []])
                 })
             }
             (false, damped) => {
@@ -809,10 +834,10 @@ impl<'a> Explicit<'a> {
                 g.sweep(u, damped.then_some(vin), outs, m.threads, |j, ku, kv, [un, fe, vo, kus, kvs]| {
                     let (o, st) = ([un, fe, vo], [kus, kvs]);
                     match (hook_rows[j], damped) {
-                        (false, true) => update_row::<true, FULL, EXT, false>(&ctx, j, ku, kv, vin, o, st),
-                        (false, false) => update_row::<false, FULL, EXT, false>(&ctx, j, ku, kv, &[], o, st),
-                        (true, true) => update_row::<true, FULL, EXT, true>(&ctx, j, ku, kv, vin, o, st),
-                        (true, false) => update_row::<false, FULL, EXT, true>(&ctx, j, ku, kv, &[], o, st),
+                        (false, true) => update_row::<true, HALF, FULL, EXT, false>(&ctx, j, ku, kv, vin, o, st),
+                        (false, false) => update_row::<false, HALF, FULL, EXT, false>(&ctx, j, ku, kv, &[], o, st),
+                        (true, true) => update_row::<true, HALF, FULL, EXT, true>(&ctx, j, ku, kv, vin, o, st),
+                        (true, false) => update_row::<false, HALF, FULL, EXT, true>(&ctx, j, ku, kv, &[], o, st),
                     }
                 })
             }

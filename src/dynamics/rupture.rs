@@ -996,7 +996,7 @@ pub fn run(spec: &RuptureSpec, cancel: &crate::Cancel, progress: crate::Progress
     let mut ex = Explicit::checked_by_caller(&model, dt, spec.damping, vec![false; model.n_dofs()])
         .with_boundary(&base);
     // The energies are read at t_end (`level`) and from the sums: not summed per step.
-    ex.physical_energies = false;
+    ex.sums = crate::dynamics::explicit::Sums::Running;
     let mut beat = cancel.beat();
     for step in 0..steps {
         ex.step_boundary(&mut fl);
