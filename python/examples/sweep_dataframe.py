@@ -6,6 +6,6 @@ slope is from the FE's as the block thickens, at F/N = 0.82.
 
 import tribofe
 
-df = tribofe.sweep(thickness="0.001:0.008:4g", height=[0.02, 0.04, 0.08])
+df = tribofe.sweep(thickness="0.001:0.008:4g", height=[0.02, 0.04, 0.08]).to_pandas()
 view = df[df["FN"] == 0.82][["thickness_m", "height_m", "slope_ratio", "slope_ratio_corrected"]]
 print(view.to_string(index=False))

@@ -590,13 +590,14 @@ fn slide_result<'py>(
 }
 
 /// A library table as a dict of columns, in its order: int64 and float64 arrays (NaN where
-/// the CSV cell is empty), lists of strings.
+/// the CSV cell is empty), lists of strings; a count that may be missing as [`maybe_ints`].
 fn table<'py>(py: Python<'py>, t: &tribofe::report::table::Table) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::report::table::Values;
     let out = PyDict::new(py);
     for c in &t.columns {
         match &c.values {
             Values::Int(v) => out.set_item(c.name, PyArray1::from_slice(py, v))?,
+            Values::MaybeInt(v) => out.set_item(c.name, maybe_ints(py, v))?,
             Values::Float(v) => out.set_item(c.name, arr(py, v))?,
             Values::Text(v) => out.set_item(c.name, v)?,
         }
@@ -604,32 +605,26 @@ fn table<'py>(py: Python<'py>, t: &tribofe::report::table::Table) -> PyResult<Bo
     Ok(out)
 }
 
+/// Counts that may be missing: int64 when every row has one, else float64 with NaN where
+/// one is missing (pandas' convention for an integer column with gaps).
+fn maybe_ints<'py>(py: Python<'py>, v: &[Option<i64>]) -> Bound<'py, PyAny> {
+    match v.iter().copied().collect::<Option<Vec<i64>>>() {
+        Some(v) => PyArray1::from_vec(py, v).into_any(),
+        None => arr(py, &v.iter().map(|i| i.map_or(f64::NAN, |i| i as f64)).collect::<Vec<_>>()).into_any(),
+    }
+}
+
+/// A library table as `{"table": columns, "units": [(column, unit)...]}`.
+fn table_with_units<'py>(py: Python<'py>, t: &tribofe::report::table::Table) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    out.set_item("table", table(py, t)?)?;
+    out.set_item("units", table_units(t))?;
+    Ok(out)
+}
+
 /// A library table's units as (column, unit) pairs, in its order.
 fn table_units(t: &tribofe::report::table::Table) -> Vec<(&'static str, &'static str)> {
     t.columns.iter().map(|c| (c.name, c.unit)).collect()
-}
-
-/// A CSV table (header line, then rows) as a dict of columns: whole numbers as int arrays,
-/// numbers as float arrays (empty cells NaN), the rest as lists of strings.
-fn columns<'py>(py: Python<'py>, csv: &str) -> PyResult<Bound<'py, PyDict>> {
-    let mut lines = csv.lines();
-    let names: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
-    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    let out = PyDict::new(py);
-    for (j, name) in names.iter().enumerate() {
-        let cells: Vec<&str> = rows.iter().map(|r| r.get(j).copied().unwrap_or("")).collect();
-        let ints: Option<Vec<i64>> = cells.iter().map(|c| c.parse::<i64>().ok()).collect();
-        // An empty cell is a value the command leaves undefined (e.g. an edge zone that does
-        // not exist): NaN in a numeric column.
-        let nums: Option<Vec<f64>> =
-            cells.iter().map(|c| if c.is_empty() { Some(f64::NAN) } else { c.parse::<f64>().ok() }).collect();
-        match (ints, nums) {
-            (Some(v), _) if !v.is_empty() => out.set_item(*name, PyArray1::from_vec(py, v))?,
-            (_, Some(v)) => out.set_item(*name, arr(py, &v))?,
-            _ => out.set_item(*name, cells)?,
-        }
-    }
-    Ok(out)
 }
 
 /// The paper's analytic event iteration for (r, g): a dict of columns (F, F^c and relaxed
@@ -657,7 +652,7 @@ fn precursors_model<'py>(
     out.set_item("n", n)?;
     out.set_item("F_1", p.f1())?;
     out.set_item("F_max", pm::f_max(&p))?;
-    out.set_item("event", ev.iter().map(|e| e.i).collect::<Vec<_>>())?;
+    out.set_item("event", PyArray1::from_vec(py, ev.iter().map(|e| e.i as i64).collect::<Vec<_>>()))?;
     out.set_item("F_over_mu_s_N", arr(py, &ev.iter().map(|e| e.f).collect::<Vec<_>>()))?;
     out.set_item("Fc_over_mu_s_N", arr(py, &ev.iter().map(|e| e.fc).collect::<Vec<_>>()))?;
     out.set_item("x_arrest_over_L", arr(py, &ev.iter().map(|e| e.x).collect::<Vec<_>>()))?;
@@ -683,9 +678,8 @@ fn axis_values(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
         .map_err(|_| PyTypeError::new_err(format!("{key}: expected a number, a list of numbers or 'a:b:n'")))
 }
 
-/// The bonded check over the product of the given parameter values; returns the columns of
-/// the command's `sweep.csv` as arrays from the library ([`tribofe::report::sweep::columns`]),
-/// not parsed back from its text.
+/// The bonded check over the product of the given parameter values; returns `sweep.csv`'s
+/// table, the library's ([`tribofe::report::sweep::table`]), with its units.
 #[pyfunction]
 #[pyo3(signature = (scene=None, *, length=None, thickness=None, height=None, young=None, poisson=None,
     converged=true, friction=None, rule=None, cycles=None, progress=None))]
@@ -732,20 +726,12 @@ fn sweep<'py>(
         let forward = poll.forward::<sw::Point>();
         sw::run(&scene, &axes, &o, Progress::new(&forward))
     })?;
-    let out = PyDict::new(py);
-    for (name, column) in tribofe::report::sweep::columns(&points).map_err(to_py)? {
-        use tribofe::report::sweep::Column;
-        match column {
-            Column::Int(v) => out.set_item(name, PyArray1::from_vec(py, v))?,
-            Column::Float(v) => out.set_item(name, arr(py, &v))?,
-            Column::Text(v) => out.set_item(name, v)?,
-        }
-    }
-    Ok(out)
+    table_with_units(py, &tribofe::report::sweep::table(&points).map_err(to_py)?)
 }
 
-/// Mesh and element convergence of the check; returns the columns of `convergence.csv` and
-/// the printed summary under `"summary"`.
+/// Mesh and element convergence of the check; returns `convergence.csv`'s table, the
+/// library's ([`tribofe::report::convergence::table`]), with its units and the printed
+/// summary under `"summary"`.
 #[pyfunction]
 #[pyo3(signature = (scene=None, *, elements=None, families=None, n_thick=None, fn_ratio=None, parallel=true,
     target=None, progress=None))]
@@ -786,7 +772,7 @@ fn converge<'py>(
         let forward = poll.forward::<cv::Run>();
         cv::study(&scene, &o, Progress::new(&forward))
     })?;
-    let out = columns(py, &tribofe::report::convergence::csv(&study).map_err(to_py)?)?;
+    let out = table_with_units(py, &tribofe::report::convergence::table(&study))?;
     out.set_item("summary", tribofe::report::convergence::summary(&study, target))?;
     Ok(out)
 }
@@ -883,19 +869,23 @@ fn precursors_fe_fig5<'py>(
             let Some(run) = run else { continue };
             r.push(c.r);
             g.push(c.g);
-            n_model.push(c.n_model as f64);
+            n_model.push(c.n_model as i64);
             f_max_model.push(c.f_max_model);
             rule.push(pfe::RULES[k].name());
             status.push(run.status());
             seconds.push(run.seconds());
             let (a, b, d, e, ev) = match *run {
-                CellRun::Done { n, n_long, n_advancing, f_max, events, .. } => {
-                    (n as f64, n_long as f64, n_advancing as f64, f_max.unwrap_or(f64::NAN), events as f64)
-                }
+                CellRun::Done { n, n_long, n_advancing, f_max, events, .. } => (
+                    Some(n as i64),
+                    Some(n_long as i64),
+                    Some(n_advancing as i64),
+                    f_max.unwrap_or(f64::NAN),
+                    Some(events as i64),
+                ),
                 CellRun::Capped { precursors, f_peak, .. } => {
-                    (precursors as f64, f64::NAN, f64::NAN, f_peak, f64::NAN)
+                    (Some(precursors as i64), None, None, f_peak, None)
                 }
-                CellRun::Refused { .. } => (f64::NAN, f64::NAN, f64::NAN, f64::NAN, f64::NAN),
+                CellRun::Refused { .. } => (None, None, None, f64::NAN, None),
             };
             n.push(a);
             n_long.push(b);
@@ -907,16 +897,16 @@ fn precursors_fe_fig5<'py>(
     let out = PyDict::new(py);
     out.set_item("r", arr(py, &r))?;
     out.set_item("g", arr(py, &g))?;
-    out.set_item("n_model", arr(py, &n_model))?;
+    out.set_item("n_model", PyArray1::from_vec(py, n_model))?;
     out.set_item("F_max_model_over_mu_s_N", arr(py, &f_max_model))?;
     out.set_item("rule", rule)?;
     out.set_item("status", status)?;
     // Capped cells: n is the lower bound recorded and F_max the largest F reached.
-    out.set_item("n_fe", arr(py, &n))?;
-    out.set_item("n_fe_long", arr(py, &n_long))?;
-    out.set_item("n_fe_advancing", arr(py, &n_adv))?;
+    out.set_item("n_fe", maybe_ints(py, &n))?;
+    out.set_item("n_fe_long", maybe_ints(py, &n_long))?;
+    out.set_item("n_fe_advancing", maybe_ints(py, &n_adv))?;
     out.set_item("F_max_fe_over_mu_s_N", arr(py, &f_max))?;
-    out.set_item("events", arr(py, &events))?;
+    out.set_item("events", maybe_ints(py, &events))?;
     out.set_item("seconds", arr(py, &seconds))?;
     Ok(out)
 }
@@ -1037,16 +1027,10 @@ fn rupture_dict<'py>(
     out.set_item("energy", energy)?;
     out.set_item("rupture_time_s", arr(py, &opt(&r.rupture_time)))?;
     out.set_item("rate_threshold_m_per_s", r.rate_threshold)?;
-    // One dict per station, keyed by its x (m), with the columns of station_x<x>.csv.
+    // Each station's table (station_x<x>.csv's, the library's), keyed by its x (m).
     let stations = PyDict::new(py);
     for st in &r.stations {
-        let d = PyDict::new(py);
-        d.set_item("t_s", arr(py, &st.t))?;
-        d.set_item("slip_m", arr(py, &st.slip))?;
-        d.set_item("slip_rate_m_per_s", arr(py, &st.slip_rate))?;
-        d.set_item("shear_stress_Pa", arr(py, &st.shear))?;
-        d.set_item("normal_stress_Pa", arr(py, &st.normal))?;
-        stations.set_item(st.x, d)?;
+        stations.set_item(st.x, table_with_units(py, &tribofe::report::rupture::station_table(st))?)?;
     }
     out.set_item("stations", stations)?;
     out.set_item("core_s", core_s)?;

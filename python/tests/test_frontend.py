@@ -85,17 +85,17 @@ def test_rupture_takes_the_commands_s(tribofe_bin, tmp_path):
     out = tmp_path / "r"
     assert run_cli(tribofe_bin, "rupture", "--s", "1.5", "--t-end", "0.02", "--out", str(out)).returncode == 0
     res = tribofe.dynamics.rupture(s=1.5, t_end=0.02)
-    x, t = np.asarray(res["x_m"]), np.asarray(res["t_arrival_s"])
+    x, t = np.asarray(res.x_m), np.asarray(res.t_arrival_s)
     mask = (x >= -1e-12) & np.isfinite(t)
     assert mask.sum() > 10
     np.testing.assert_allclose(t[mask], [float(v) for v in read_csv(out / "arrival.csv")["t_arrival_s"]], rtol=1e-11)
     # A different S is a different run: the keyword reaches the library.
     other = tribofe.dynamics.rupture(t_end=0.02)
-    assert not np.array_equal(np.asarray(other["t_arrival_s"])[mask], t[mask])
+    assert not np.array_equal(np.asarray(other.t_arrival_s)[mask], t[mask])
     # The old name still works, warned, and equals s=.
     with pytest.warns(DeprecationWarning, match="s="):
         old = tribofe.dynamics.rupture(s_ratio=1.5, t_end=0.02)
-    np.testing.assert_array_equal(np.asarray(old["t_arrival_s"]), np.asarray(res["t_arrival_s"]))
+    np.testing.assert_array_equal(np.asarray(old.t_arrival_s), np.asarray(res.t_arrival_s))
     with pytest.raises(tribofe.InputError, match="s_ratio="):
         tribofe.dynamics.rupture(s=1.5, s_ratio=1.5)
 
@@ -103,9 +103,9 @@ def test_rupture_takes_the_commands_s(tribofe_bin, tmp_path):
 def test_rupture_max_steps_is_the_commands(tribofe_bin, tmp_path):
     # The default run's own step count fits; one step fewer is refused before any work with
     # the command's message, the flags named as keywords.
-    n = tribofe.dynamics.rupture()["steps"]
+    n = tribofe.dynamics.rupture().steps
     assert n > 100
-    assert tribofe.dynamics.rupture(max_steps=n)["steps"] == n
+    assert tribofe.dynamics.rupture(max_steps=n).steps == n
     r = run_cli(tribofe_bin, "rupture", "--max-steps", str(n - 1), "--out", str(tmp_path / "x"))
     assert r.returncode == 2 and not (tmp_path / "x").exists()
     with pytest.raises(tribofe.InputError) as e:
@@ -123,12 +123,16 @@ def test_rupture_takes_a_scene_file(tribofe_bin, tmp_path):
     out = tmp_path / "t"
     assert run_cli(tribofe_bin, "rupture", "--scene", str(scene), "--h", "200", "--out", str(out)).returncode == 0
     res = tribofe.dynamics.rupture(scene=scene, h=200)
-    st = res["stations"][4500.0]
+    st = res.stations[4500.0]
     cli = read_csv(out / "station_x4500.csv")
-    for key in ("t_s", "slip_m", "slip_rate_m_per_s", "shear_stress_Pa", "normal_stress_Pa"):
+    # The station's table is the library's, the one the file is printed from: its columns in
+    # order, with units.
+    assert list(st.keys()) == list(cli) and dict(res.station_units)["shear_stress_Pa"] == "Pa"
+    for key in cli:
         np.testing.assert_allclose(st[key], [float(v) for v in cli[key]], rtol=1e-11, atol=1e-300)
+    assert "station_x4500" in res.to_pandas()
     # The rupture time at 4.5 km (a node midway: the field's 1.5 s, PyLith's 1.500).
-    x, t = np.asarray(res["x_m"]), np.asarray(res["rupture_time_s"])
+    x, t = np.asarray(res.x_m), np.asarray(res.rupture_time_s)
     assert abs(np.interp(4500.0, x, t) - 1.55) < 0.01
     with pytest.raises(tribofe.InputError) as e:
         tribofe.dynamics.rupture(scene=scene, h=200, dc=0.12)
@@ -147,16 +151,16 @@ def test_fe_fig4_defaults_are_the_commands(tribofe_bin, tmp_path):
     out = tmp_path / "pfe"
     assert run_cli(tribofe_bin, "precursors", "fe", "--out", str(out)).returncode == 0
     cli = {row["source"]: row for row in csv.DictReader(open(out / "summary.csv"))}
-    runs = {run["rule"]: run for run in tribofe.precursors.fe_fig4()}
+    runs = tribofe.precursors.fe_fig4().runs
     for rule in ("paper", "overdamped"):
-        c, want = runs[rule]["comparison"], cli[rule]
+        c, want = runs[rule].comparison, cli[rule]
         assert c["n_fe"] == int(want["precursors"])
         assert c["n_fe_long"] == int(want["precursors_longer_5t"])
         assert c["n_fe_advancing"] == int(want["precursors_advancing_5t"])
         for key, col in (("F_1_fe", "F1_over_mu_s_N"), ("x_1_fe", "x1_over_L"), ("F_max_fe", "Fmax_over_mu_s_N")):
             assert abs(c[key] - float(want[col])) <= 1e-12 * abs(float(want[col])), (rule, key)
     # The case: the overdamped F_max of the command, 0.9430 (1 cycle gave 0.9214).
-    assert abs(runs["overdamped"]["comparison"]["F_max_fe"] - 0.9430) < 5e-5
+    assert abs(runs["overdamped"].comparison["F_max_fe"] - 0.9430) < 5e-5
 
 
 # Each call refused with the keyword it was given; the message never names a flag.
@@ -207,3 +211,152 @@ def test_interrupt_stops_a_dynamic_slide_within_a_second(tmp_path):
     # The paper's dynamic first cycle runs for tens of seconds; SIGINT 3 s into it must end
     # it with KeyboardInterrupt within a second and leave no file.
     assert_interrupt_stops(tmp_path, "tribofe.dynamics.slide(law='slip-weakening')", 3.0)
+
+
+# Every call's result class, with cheap arguments.
+RESULTS = {
+    "slide": (lambda: tribofe.slide(SMALL, law="static-kinetic", cycles=1), tribofe.SlideResult, {"loading", "events"}),
+    "sweep": (QUIET_CALLS["sweep"], tribofe.SweepResult, None),
+    "converge": (QUIET_CALLS["converge"], tribofe.ConvergeResult, None),
+    "precursors.model": (lambda: tribofe.precursors.model(), tribofe.ModelResult, None),
+    "precursors.fe_fig5": (QUIET_CALLS["precursors.fe_fig5"], tribofe.FeFig5Result, None),
+    "dynamics.slide": (QUIET_CALLS["dynamics.slide"], tribofe.DynamicSlideResult, {"loading", "events", "dyn_events", "fronts", "summary"}),
+    "dynamics.rupture": (QUIET_CALLS["dynamics.rupture"], tribofe.RuptureResult, {"nodes", "summary", "energy"}),
+}
+
+
+@pytest.mark.parametrize("name", sorted(RESULTS))
+def test_every_call_returns_its_result_class_with_to_pandas(name):
+    import pandas as pd
+
+    call, cls, frames = RESULTS[name]
+    res = call()
+    assert type(res) is cls
+    got = res.to_pandas()
+    if frames is None:
+        assert isinstance(got, pd.DataFrame) and len(got) > 0
+    else:
+        assert set(got) == frames and all(isinstance(df, pd.DataFrame) for df in got.values())
+
+
+def test_to_pandas_without_pandas_names_pandas(monkeypatch):
+    import sys
+
+    res = tribofe.precursors.model()
+    monkeypatch.setitem(sys.modules, "pandas", None)  # `import pandas` now raises ImportError
+    with pytest.raises(ImportError, match="pandas"):
+        res.to_pandas()
+    # Without pandas the call's tables are dicts of numpy arrays, counts int64.
+    bare = tribofe.precursors.model()
+    assert isinstance(bare.events, dict) and bare.events["event"].dtype == np.int64
+
+
+def test_old_dict_access_still_works_warned():
+    # Scripts written against the dicts, lists and tuples the calls returned keep running,
+    # each old form warned with its new spelling.
+    m = tribofe.precursors.model()
+    with pytest.warns(DeprecationWarning, match=r"\.n\b"):
+        assert m["n"] == m.n == 10
+    with pytest.warns(DeprecationWarning):
+        assert list(m["events"]["event"]) == list(m.events["event"])
+    r = tribofe.dynamics.rupture(t_end=0.005)
+    with pytest.warns(DeprecationWarning, match=r"\.x_m"):
+        np.testing.assert_array_equal(r["x_m"], r.x_m)
+    with pytest.warns(DeprecationWarning):
+        assert r["energy"]["kinetic_J_per_m"] == r.energy["kinetic_J_per_m"]
+    with pytest.raises(KeyError):
+        r["no_such_key"]
+    sw = QUIET_CALLS["sweep"]()
+    with pytest.warns(DeprecationWarning, match=r"\.table\["):
+        np.testing.assert_array_equal(sw["point"], sw.table["point"])
+    with pytest.warns(DeprecationWarning, match=r"\.table\.groupby"):
+        assert len(sw.groupby("point")) == 2  # the old DataFrame's methods
+    cv = QUIET_CALLS["converge"]()
+    with pytest.warns(DeprecationWarning, match=r"\.summary"):
+        table, summary = cv
+    assert summary == cv.summary and table is cv.table
+    f5 = QUIET_CALLS["precursors.fe_fig5"]()
+    with pytest.warns(DeprecationWarning):
+        assert list(f5["status"]) == list(f5.table["status"])
+
+
+def test_fe_fig4_old_list_access_still_works_warned():
+    res = tribofe.precursors.fe_fig4(SMALL, cycles=1)
+    with pytest.warns(DeprecationWarning) as seen:
+        runs = {run["rule"]: run for run in res}
+    assert any(".runs" in str(w.message) for w in seen) and any(".rule" in str(w.message) for w in seen)
+    assert set(runs) == {"paper", "overdamped"} and len(res) == 2
+    with pytest.warns(DeprecationWarning):
+        first = res[0]
+    assert first is res.runs["paper"]
+    with pytest.warns(DeprecationWarning, match=r"\.comparison"):
+        c = runs["paper"]["comparison"]
+    assert c is res.runs["paper"].comparison
+
+
+# Calls with many progress ticks (a slide reports every event; a rupture every few steps).
+NOISY_CALLS = {
+    "slide": lambda p: tribofe.slide(law="static-kinetic", r=0.9, g=0.35, cycles=1, progress=p),
+    "sweep": lambda p: tribofe.sweep(thickness=[0.002, 0.003, 0.004], length=0.05, converged=False, progress=p),
+    "dynamics.slide": lambda p: tribofe.dynamics.slide(SMALL, law="coulomb", x_max=1e-6, progress=p),
+    "dynamics.rupture": lambda p: tribofe.dynamics.rupture(t_end=0.005, progress=p),
+}
+
+
+@pytest.mark.parametrize("name", sorted(NOISY_CALLS))
+def test_progress_without_a_terminal_writes_a_few_lines(name, capfd):
+    # progress=True with stderr redirected (not a terminal): a line per tenth done at most,
+    # however many ticks the run reports; unset: nothing at all.
+    ticks = []
+    NOISY_CALLS[name](ticks.append)
+    # A slide reports every event: more ticks than the lines allowed.
+    assert len(ticks) > (15 if name == "slide" else 0), len(ticks)
+    capfd.readouterr()
+    NOISY_CALLS[name](True)
+    out, err = capfd.readouterr()
+    lines = err.replace("\r", "\n").splitlines()
+    assert out == "" and 1 <= len(lines) <= 15, (name, len(lines), err[-300:])
+    NOISY_CALLS[name](False)
+    assert capfd.readouterr() == ("", "")
+
+
+def test_progress_lines_are_bounded_however_many_ticks(capfd):
+    # Ten thousand ticks without a terminal: one line per tenth, the first at 0 %.
+    update, close = tribofe._progress(True, "run")
+    for k in range(10001):
+        update(k / 10000)
+    close()
+    out, err = capfd.readouterr()
+    assert out == "" and err.splitlines() == [f"run: {10 * k} %" for k in range(11)]
+
+
+def test_progress_on_a_terminal_draws_a_tqdm_bar(tmp_path):
+    # Under a pseudo-terminal, progress=True is tqdm's bar (a percentage and "|" frame).
+    pytest.importorskip("tqdm")
+    import fcntl
+    import os
+    import pty
+    import struct
+    import subprocess
+    import sys
+    import termios
+
+    code = "import tribofe; tribofe.slide(law='static-kinetic', r=0.9, g=0.35, cycles=1, progress=True)"
+    master, slave = pty.openpty()
+    # An 80-column terminal (a new pty has 0 columns, where tqdm draws nothing).
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 80, 0, 0))
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.DEVNULL, stderr=slave, close_fds=True)
+    os.close(slave)
+    chunks = []
+    while True:
+        try:
+            data = os.read(master, 4096)
+        except OSError:
+            break
+        if not data:
+            break
+        chunks.append(data)
+    assert proc.wait(timeout=120) == 0
+    os.close(master)
+    text = b"".join(chunks).decode(errors="replace")
+    assert "%|" in text and "slide" in text, text[-300:]

@@ -108,18 +108,27 @@ def test_rupture_equals_the_command(tribofe_bin, tmp_path):
     assert r.returncode == 0, r.stderr
     res = tribofe.dynamics.rupture(progress=False)
     cli = read_csv(out / "arrival.csv")
-    x = np.asarray(res["x_m"])
-    t = np.asarray(res["t_arrival_s"])
+    x = np.asarray(res.x_m)
+    t = np.asarray(res.t_arrival_s)
     # arrival.csv holds the nodes with x >= 0 that the front reached (the centre node sits at
     # ~1e-16 m from the mesher's sums, so "x >= 0" is taken with a tolerance of 1e-9 h).
     mask = (x >= -1e-12) & np.isfinite(t)
     np.testing.assert_allclose(x[mask], floats(cli["x_m"]), rtol=1e-12, atol=1e-15)
     np.testing.assert_allclose(t[mask], floats(cli["t_arrival_s"]), rtol=1e-11)
     summary = read_csv(out / "summary.csv")
-    assert abs(res["force_drop_N_per_m"] - float(summary["force_drop_n_per_m"][0])) <= 1e-11 * res["force_drop_N_per_m"]
+    assert abs(res.force_drop_N_per_m - float(summary["force_drop_n_per_m"][0])) <= 1e-11 * res.force_drop_N_per_m
     # The energy ledger closes to round-off (docs/dynamics-verification.md: 5.5e-15 of the work).
-    e = res["energy"]
+    e = res.energy
     assert abs(e["residual_J_per_m"]) < 1e-10 * e["background_work_J_per_m"]
+    # rupture_time.csv: every node whose slip rate crossed the threshold, and summary.csv's steps.
+    rt = read_csv(out / "rupture_time.csv")
+    ok = np.isfinite(res.rupture_time_s)
+    assert ok.sum() > 10
+    np.testing.assert_allclose(res.x_m[ok], floats(rt["x_m"]), rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(res.rupture_time_s[ok], floats(rt["t_s"]), rtol=1e-11)
+    assert res.steps == int(summary["steps"][0])
+    frames = res.to_pandas()
+    assert list(frames) == ["nodes", "summary", "energy"] and len(frames["nodes"]) == len(res.x_m)
     with pytest.raises(tribofe.InputError, match="contact"):
         tribofe.dynamics.rupture(contact="glue", progress=False)
     # A ramped patch edge is the command's --patch-taper: the same arrivals, and refused when
@@ -127,7 +136,7 @@ def test_rupture_equals_the_command(tribofe_bin, tmp_path):
     ramp = tmp_path / "ramp"
     assert run_cli(tribofe_bin, "rupture", "--patch-taper", "0.004", "--t-end", "0.02", "--out", str(ramp)).returncode == 0
     res = tribofe.dynamics.rupture(patch_taper=0.004, t_end=0.02, progress=False)
-    x, t = np.asarray(res["x_m"]), np.asarray(res["t_arrival_s"])
+    x, t = np.asarray(res.x_m), np.asarray(res.t_arrival_s)
     mask = (x >= -1e-12) & np.isfinite(t)
     assert mask.sum() > 10
     np.testing.assert_allclose(t[mask], floats(read_csv(ramp / "arrival.csv")["t_arrival_s"]), rtol=1e-11)
@@ -135,45 +144,103 @@ def test_rupture_equals_the_command(tribofe_bin, tmp_path):
         tribofe.dynamics.rupture(patch_taper=0.05, progress=False)
 
 
-def test_paper_model():
+def test_paper_model(tribofe_bin, tmp_path):
     m = tribofe.precursors.model(0.9, 0.35)
+    assert isinstance(m, tribofe.ModelResult)
     # The paper's iteration: n = 10, F_1 = 1 - g/(r + g)... = 0.72, F_max = 1/(1 + (g/r)(1 - r)).
-    assert m["n"] == 10
-    assert abs(m["F_1"] - 0.72) < 1e-12
-    assert abs(m["F_max"] - 1 / (1 + (0.35 / 0.9) * 0.1)) < 1e-12
-    assert len(m["events"]["event"]) == 11
+    assert m.n == 10
+    assert abs(m.F_1 - 0.72) < 1e-12
+    assert abs(m.F_max - 1 / (1 + (0.35 / 0.9) * 0.1)) < 1e-12
+    assert len(m.events["event"]) == 11 and np.asarray(m.events["event"]).dtype == np.int64
+    # The events equal `tribofe precursors model`'s events.csv row for row (its first n + 1).
+    out = tmp_path / "pm"
+    assert run_cli(tribofe_bin, "precursors", "model", "--r", "0.9", "--g", "0.35", "--out", str(out)).returncode == 0
+    cli = read_csv(out / "events.csv")
+    np.testing.assert_array_equal(m.events["event"], [int(v) for v in cli["i"][:11]])
+    for ours, theirs in (("F_over_mu_s_N", "F"), ("Fc_over_mu_s_N", "Fc"), ("x_arrest_over_L", "x"), ("F_relaxed_over_mu_s_N", "Fstar")):
+        np.testing.assert_allclose(m.events[ours], floats(cli[theirs][:11]), rtol=1e-12, atol=1e-15, err_msg=ours)
+    assert list(m.to_pandas().columns)[:2] == ["event", "F_over_mu_s_N"]
 
 
-def test_fe_precursor_studies():
+def test_fe_precursor_studies(tribofe_bin, tmp_path):
     # The FE fig. 4 on the paper's scene: README's headline n = 17 (rule paper) and 4
     # (overdamped) front-advancing precursors, F_1 = 0.7319 mu_s N for both (the force at the
     # onset of the first long slip), counted by the library's one precursor definition.
-    runs = tribofe.precursors.fe_fig4(r=0.9, g=0.35)
-    by_rule = {run["rule"]: run["comparison"] for run in runs}
+    res = tribofe.precursors.fe_fig4(r=0.9, g=0.35)
+    assert isinstance(res, tribofe.FeFig4Result) and list(res.runs) == ["paper", "overdamped"]
+    by_rule = {rule: run.comparison for rule, run in res.runs.items()}
     assert by_rule["paper"]["n_fe_advancing"] == 17
     assert by_rule["overdamped"]["n_fe_advancing"] == 4
     assert abs(by_rule["paper"]["F_1_fe"] - 0.7319) < 5e-5
     assert abs(by_rule["overdamped"]["F_1_fe"] - 0.7319) < 5e-5
-    assert by_rule["paper"]["definition"].startswith("precursor: ")
+    assert res.definition.startswith("precursor: ")
     # Front advances: the paper rule restarts every front at the trailing edge, so they are
     # its advancing precursors; the overdamped rule's re-slips may join the front from inside.
     assert by_rule["paper"]["n_front"] == 17
     assert by_rule["paper"]["x_1_front"] == by_rule["paper"]["x_1_fe"]
     assert by_rule["overdamped"]["n_front"] >= 4
-    assert len(runs[0]["x_arrest_fe_over_L"]) == 17
-    cells = tribofe.precursors.fe_fig5(resolution=4, progress=False)
-    assert len(cells["r"]) == 16 and set(cells["status"]) <= {"done", "capped", "refused"}
+    assert len(res.runs["paper"].x_arrest_fe_over_L) == 17
+    # The comparison table: one row per rule, counts int64, the same numbers.
+    table = res.comparison
+    assert list(table["rule"]) == ["paper", "overdamped"]
+    assert np.asarray(table["n_fe_advancing"]).dtype == np.int64
+    np.testing.assert_array_equal(table["n_fe_advancing"], [17, 4])
+    frames = res.to_pandas()
+    assert set(frames) == {"comparison", "paper_loading", "paper_events", "overdamped_loading", "overdamped_events"}
+    # fig. 5 equals `tribofe precursors fe-map`'s fig5_fe.csv cell for cell (the paper rule).
+    out = tmp_path / "fm"
+    assert run_cli(tribofe_bin, "precursors", "fe-map", "--resolution", "3", "--out", str(out)).returncode == 0
+    cli = read_csv(out / "fig5_fe.csv")
+    cells = tribofe.precursors.fe_fig5(resolution=3, progress=False)
+    assert isinstance(cells, tribofe.FeFig5Result)
+    t = cells.table
+    assert len(cells) == 9 and set(t["status"]) <= {"done", "capped", "refused"}
+    np.testing.assert_allclose(t["r"], floats(cli["r"]), rtol=1e-15)
+    np.testing.assert_allclose(t["g"], floats(cli["g"]), rtol=1e-15)
+    assert np.asarray(t["n_model"]).dtype == np.int64
+    np.testing.assert_array_equal(t["n_model"], [int(v) for v in cli["model_precursors"]])
+    assert list(t["status"]) == cli["paper_status"]
+    done = np.asarray(t["status"]) == "done"
+    for ours, theirs in (("n_fe", "paper_precursors"), ("n_fe_long", "paper_precursors_longer_5t"), ("n_fe_advancing", "paper_precursors_advancing_5t"), ("events", "paper_events")):
+        want = [int(v) for v, d in zip(cli[theirs], done) if d]
+        np.testing.assert_array_equal(np.asarray(t[ours])[done], want, err_msg=ours)
+    fmax = [float(v) for v, d in zip(cli["paper_Fmax_over_mu_s_N"], done) if d]
+    np.testing.assert_allclose(np.asarray(t["F_max_fe_over_mu_s_N"])[done], fmax, rtol=1e-12)
     # The model's n in each cell equals the paper's iteration.
-    for r, g, n in zip(cells["r"], cells["g"], cells["n_model"]):
-        assert n == tribofe.precursors.model(r, g)["n"]
+    for r, g, n in zip(t["r"], t["g"], t["n_model"]):
+        assert n == tribofe.precursors.model(r, g).n
 
 
-def test_sweep_and_converge_tables():
-    df = tribofe.sweep(thickness=[0.002, 0.004], height="0.02:0.08:3", progress=False)
-    assert len(df["point"]) == 2 * 3 * 3  # points x F/N
-    t, summary = tribofe.converge(n_thick=[1, 2, 4], progress=False)
-    assert len(t["t_over_h"] if "t_over_h" in t else t[list(t.keys())[0]]) == 6
-    assert "reference" in summary
+def test_sweep_and_converge_tables(tribofe_bin, tmp_path):
+    res = tribofe.sweep(thickness=[0.002, 0.004], height="0.02:0.08:3", progress=False)
+    assert isinstance(res, tribofe.SweepResult)
+    assert len(res.table["point"]) == len(res) == 2 * 3 * 3  # points x F/N
+    # converge: convergence.csv's table from the library, every column, counts int64, equal
+    # to the command's to its 7 printed digits (the times and peak heap are measured, so
+    # they differ run to run: only their presence is compared).
+    out = tmp_path / "cv"
+    r = run_cli(tribofe_bin, "converge", "--n-thick", "1,2,4", "--thickness", "0.004", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    cv = tribofe.converge(tribofe.Scene(thickness=0.004), n_thick=[1, 2, 4], progress=False)
+    assert isinstance(cv, tribofe.ConvergeResult) and "reference" in cv.summary
+    assert cv.table.attrs["units"]["t_run_s"] == "s" and dict(cv.units)["dofs"] == "-"
+    cli = read_csv(out / "convergence.csv")
+    assert list(cv.table.keys()) == list(cli.keys())
+    measured = {"t_pattern_s", "t_assembly_s", "t_symbolic_s", "t_numeric_s", "t_solve_s", "t_run_s", "peak_heap_mib"}
+    for col, cells in cli.items():
+        got = np.asarray(cv.table[col])
+        if col in measured:
+            assert got.dtype.kind == "f" and np.array_equal(np.isnan(got), [c == "" for c in cells]), col
+        elif cells[0].lstrip("-").isdigit():
+            assert got.dtype == np.int64, col
+            np.testing.assert_array_equal(got, [int(c) for c in cells], err_msg=col)
+        elif got.dtype.kind == "f":
+            printed = np.array([float(f"{v:.6e}") if np.isfinite(v) else v for v in got])
+            want = np.array([float(c) if c else np.nan for c in cells])
+            np.testing.assert_allclose(printed, want, rtol=1e-12, equal_nan=True, err_msg=col)
+        else:
+            assert list(got) == cells, col
+    assert int(np.sum(cv.table["is_reference"])) == 1
 
 
 def test_sweep_columns_are_the_commands_table(tribofe_bin, tmp_path):
@@ -181,7 +248,7 @@ def test_sweep_columns_are_the_commands_table(tribofe_bin, tmp_path):
     # and values as the command's sweep.csv, to the digits the CSV prints (13 significant,
     # 7 for the edge widths: relative 5e-7), empty cells NaN. The wall-time column differs.
     kw = dict(thickness=[0.002, 0.004], length=0.05, converged=False)
-    df = tribofe.sweep(**kw, progress=False)
+    df = tribofe.sweep(**kw, progress=False).table
     cols = df if isinstance(df, dict) else {k: df[k].to_numpy() for k in df.columns}
     r = run_cli(tribofe_bin, "sweep", "--length", "0.05", "--thickness", "0.002,0.004",
                 "--as-meshed", "--out", str(tmp_path / "sw"))

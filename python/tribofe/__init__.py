@@ -12,6 +12,7 @@ their names (``x_over_L``, ``p_over_pmean``, ``F_over_mu_s_N``).
 from __future__ import annotations
 
 import os
+import sys
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Union
 
@@ -29,6 +30,19 @@ from ._tribofe import precursors_model as _precursors_model
 from ._tribofe import rupture as _rupture
 from ._tribofe import slide as _slide
 from ._tribofe import sweep as _sweep
+from ._results import (
+    ConvergeResult,
+    FeFig4Result,
+    FeFig4Run,
+    FeFig5Result,
+    ModelResult,
+    RuptureResult,
+    SweepResult,
+    _df,
+    _row,
+    _table,
+    rupture_result,
+)
 from .errors import InputError, Interrupted, NumericalError, OutputError, TribofeError
 
 __all__ = [
@@ -44,6 +58,13 @@ __all__ = [
     "CheckCase",
     "SlideResult",
     "DynamicSlideResult",
+    "SweepResult",
+    "ConvergeResult",
+    "ModelResult",
+    "FeFig4Result",
+    "FeFig4Run",
+    "FeFig5Result",
+    "RuptureResult",
     "TribofeError",
     "InputError",
     "NumericalError",
@@ -63,38 +84,43 @@ def defaults() -> Dict[str, Dict[str, Any]]:
     return _defaults()
 
 
-def _table(columns: Dict[str, Any], units: Optional[List[tuple]] = None):
-    """A pandas DataFrame when pandas is installed, else the dict of arrays itself. A table
-    the library defines with its units carries them as ``df.attrs["units"]`` (column -> unit:
-    SI, ``1`` dimensionless, ``-`` a count, code or label)."""
-    try:
-        import pandas as pd
-    except ImportError:
-        return columns
-    df = pd.DataFrame(columns)
-    if units is not None:
-        df.attrs["units"] = dict(units)
-    return df
-
-
 def _progress(progress, desc: str):
-    """The progress callback: ``True`` draws a tqdm bar when tqdm is installed, a callable
-    gets the done fraction in [0, 1], ``None``/``False`` stays silent. Returns (callback, close)."""
+    """The progress callback: a callable gets the done fraction in [0, 1]; ``None``/``False``
+    stays silent; ``True`` draws a tqdm bar on a terminal (or in a notebook) and, elsewhere (a
+    log file, a pipe) or without tqdm, writes a plain line at each tenth done, so a redirected
+    stream gets at most 11 lines however many ticks the run reports. Returns (callback, close)."""
     if callable(progress):
         return progress, lambda: None
     if not progress:
         return None, lambda: None
-    try:
-        from tqdm.auto import tqdm
-    except ImportError:
-        return None, lambda: None
-    bar = tqdm(total=1000, desc=desc, unit="‰", leave=False)
+    stream = sys.stderr
+    terminal = getattr(stream, "isatty", lambda: False)() or "ipykernel" in sys.modules
+    tqdm = None
+    if terminal:
+        try:
+            from tqdm.auto import tqdm
+        except ImportError:
+            pass
+    if tqdm is not None:
+        bar = tqdm(total=1000, desc=desc, unit="‰", leave=False)
 
-    def update(frac: float) -> None:
-        bar.n = int(1000 * min(max(frac, 0.0), 1.0))
-        bar.refresh()
+        def update(frac: float) -> None:
+            # tqdm's own rate limit (mininterval) decides when to redraw; parallel points may
+            # report out of order, the bar only advances.
+            n = int(1000 * min(max(frac, 0.0), 1.0))
+            if n > bar.n:
+                bar.update(n - bar.n)
 
-    return update, bar.close
+        return update, bar.close
+    shown = [-1]
+
+    def line(frac: float) -> None:
+        tenth = int(10 * min(max(frac, 0.0), 1.0))
+        if tenth > shown[0]:
+            shown[0] = tenth
+            print(f"{desc}: {10 * tenth} %", file=stream, flush=True)
+
+    return line, lambda: None
 
 
 @dataclass(frozen=True)
@@ -170,6 +196,14 @@ class CheckResult:
                 rows.setdefault(k, []).append(v)
         return _table({k: np.asarray(v) for k, v in rows.items()})
 
+    def to_pandas(self):
+        """``{"summary": df, "profile_FN<ratio>": df...}``: the summary and each case's profile
+        (the files' names of ``tribofe check``)."""
+        out = {"summary": _df(self.summary())}
+        for c in self.cases:
+            out[f"profile_FN{0 if c.fn_ratio == 0 else f'{c.fn_ratio:g}'}"] = _df(c.profile())
+        return out
+
     def __repr__(self) -> str:
         lines = [f"CheckResult({self.scene!r}, {self.n_nodes} nodes, {self.n_elements} elements, balance {self.balance_error:.1e})"]
         lines += [f"  {c!r}" for c in self.cases]
@@ -216,6 +250,10 @@ class SlideResult:
     condense_s: float
     events_s: float
     core_s: float = field(default=0.0, compare=False)
+
+    def to_pandas(self):
+        """``{"loading": df, "events": df}``, each with its units in ``attrs["units"]``."""
+        return {k: _df(getattr(self, k), self.units[k]) for k in ("loading", "events")}
 
     def __repr__(self) -> str:
         n_ev = len(self.events["event"]) if "event" in self.events else 0
@@ -264,7 +302,8 @@ def slide(
     (``defaults()["slide"]``: law coulomb, rule paper, N = 1 N/m, 10 cycles, 50 000 events,
     whole-slip, dense, all states). The interrupt key stops
     the run within a second (:class:`KeyboardInterrupt`). ``progress``: True for a tqdm bar
-    (when tqdm is installed), a callable for the fraction done, False (the default) for silence.
+    (on a terminal, with tqdm; a line per tenth done elsewhere), a callable for the fraction
+    done, False (the default) for silence.
     """
     cb, close = _progress(progress, f"slide {law or _defaults()['slide']['law']}")
     try:
@@ -316,17 +355,19 @@ def sweep(
     rule: Optional[str] = None,
     cycles: Optional[int] = None,
     progress: Any = False,
-):
+) -> SweepResult:
     """The bonded check over the product of the given values (each a number, a list, or the
     command's text ``"a:b:n"`` / ``"a:b:ng"`` for n linear / geometric points), as
     ``tribofe sweep``: one row per point and F/N with the columns of ``sweep.csv``
     (a pandas DataFrame when pandas is installed, else a dict of arrays).
     ``friction=(mu_s, mu_d)`` also runs the frictional interface at each point (``rule``,
     ``cycles``: None is the command's default, ``defaults()["sweep"]``). Silent unless
-    ``progress`` is True (a tqdm bar) or a callable."""
+    ``progress`` is True (a tqdm bar, a few lines without a terminal) or a callable.
+    Returns a :class:`SweepResult`: ``table`` (sweep.csv's rows, the library's table),
+    ``units``."""
     cb, close = _progress(progress, "sweep")
     try:
-        cols = _sweep(
+        raw = _sweep(
             scene if scene is not None else Scene(),
             length=length,
             thickness=thickness,
@@ -341,7 +382,7 @@ def sweep(
         )
     finally:
         close()
-    return _table(cols)
+    return SweepResult(_table(raw["table"], raw["units"]), raw["units"])
 
 
 def converge(
@@ -354,15 +395,16 @@ def converge(
     parallel: bool = True,
     target: Optional[float] = None,
     progress: Any = False,
-):
-    """Mesh and element convergence of the check (``tribofe converge``): returns
-    ``(table, summary)``, the rows of ``convergence.csv`` and the printed reading (orders,
-    edge widths, the cheapest run reaching ``target``, an edge-zone error in units of N/L).
+) -> ConvergeResult:
+    """Mesh and element convergence of the check (``tribofe converge``): returns a
+    :class:`ConvergeResult`, ``table`` the rows of ``convergence.csv`` (the library's table at
+    full precision, ``units``) and ``summary`` the printed reading (orders, edge widths, the
+    cheapest run reaching ``target``, an edge-zone error in units of N/L).
     None is the command's default (``defaults()["converge"]``: QUA4, uniform and graded,
     t/1 to t/64, F/N = 0.82, the command's ``--case``). Silent unless ``progress`` is asked."""
     cb, close = _progress(progress, "converge")
     try:
-        cols = _converge(
+        raw = _converge(
             scene if scene is not None else Scene(),
             elements=None if elements is None else list(elements),
             families=None if families is None else list(families),
@@ -374,20 +416,19 @@ def converge(
         )
     finally:
         close()
-    summary = cols.pop("summary")
-    return _table(cols), summary
+    return ConvergeResult(_table(raw["table"], raw["units"]), raw["units"], raw["summary"])
 
 
 class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
     """The paper's 1D precursor model."""
 
     @staticmethod
-    def model(r: Optional[float] = None, g: Optional[float] = None, events: Optional[int] = None) -> Dict[str, Any]:
+    def model(r: Optional[float] = None, g: Optional[float] = None, events: Optional[int] = None) -> ModelResult:
         """The paper's analytic event iteration for r = mu_d/mu_s and g = 6 mu_d H/L (None:
-        the paper's fig. 4 case, 0.9 and 0.35, as ``tribofe precursors model``): the
-        events (forces in units of mu_s N, arrest x in units of L) as a table under
-        ``"events"``, with ``n`` (precursors), ``F_1`` and ``F_max``. ``events`` defaults
-        to n + 1 (the precursors and the first whole slip)."""
+        the paper's fig. 4 case, 0.9 and 0.35, as ``tribofe precursors model``): a
+        :class:`ModelResult`, ``events`` (forces in units of mu_s N, arrest x in units of L)
+        as a table, ``n`` (precursors), ``F_1``, ``F_max`` and the fig. 4 curve. ``events``
+        defaults to n + 1 (the precursors and the first whole slip)."""
         raw = _precursors_model(r, g, events)
         cols = (
             "event",
@@ -398,7 +439,7 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
             "stick_slip",
         )
         table = _table({k: np.asarray(raw.pop(k)) for k in cols})
-        return {**raw, "events": table}
+        return ModelResult(events=table, **raw)
 
     @staticmethod
     def fe_fig4(
@@ -407,21 +448,25 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         g: Optional[float] = None,
         cycles: Optional[int] = None,
         progress: Any = False,
-    ):
+    ) -> FeFig4Result:
         """The paper's fig. 4 from the frictional FE on ``scene``, as ``tribofe precursors fe``
         (the same runs and defaults: None is the paper's (r, g) = (0.9, 0.35) and the
-        command's 2 cycles, ``defaults()["precursors.fe_fig4"]``): one dict per static-kinetic
-        rule (``"paper"``, ``"overdamped"``) with the comparison against the model (n, F_1,
-        x_1, F_max; forces in units of mu_s N, x in units of L), the precursors' arrest
-        positions and the whole run as a :class:`SlideResult`."""
+        command's 2 cycles, ``defaults()["precursors.fe_fig4"]``): a :class:`FeFig4Result`,
+        ``runs[rule]`` per static-kinetic rule (``"paper"``, ``"overdamped"``) with the
+        comparison against the model (n, F_1, x_1, F_max; forces in units of mu_s N, x in
+        units of L), the precursors' arrest positions and the whole run as a
+        :class:`SlideResult`; ``comparison`` the comparisons as one table, a row per rule."""
         cb, close = _progress(progress, "fig. 4 (FE)")
         try:
             runs = _fe_fig4(scene if scene is not None else Scene(), r, g, cycles, progress=cb)
         finally:
             close()
+        out = {}
         for run in runs:
             run["run"] = _slide_result(run["run"])
-        return runs
+            out[run["rule"]] = FeFig4Run(**run)
+        first = runs[0]["comparison"] if runs else {}
+        return FeFig4Result(out, first.get("definition", ""), first.get("front_definition", ""))
 
     @staticmethod
     def fe_fig5(
@@ -430,11 +475,12 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         rules: Any = None,
         max_events: Optional[int] = None,
         progress: Any = False,
-    ):
-        """The paper's fig. 5 from the frictional FE: one row per (r, g) cell centre of a
-        ``resolution`` x ``resolution`` grid and rule, with the model's n and F_max and the FE
-        run's status (done, capped, refused) and counts. A DataFrame with pandas. None is the
-        command's default (``tribofe precursors fe-map``: 20, the paper rule, 2000 events)."""
+    ) -> FeFig5Result:
+        """The paper's fig. 5 from the frictional FE: a :class:`FeFig5Result` whose ``table``
+        has one row per (r, g) cell centre of a ``resolution`` x ``resolution`` grid and rule,
+        with the model's n and F_max and the FE run's status (done, capped, refused) and
+        counts. None is the command's default (``tribofe precursors fe-map``: 20, the paper
+        rule, 2000 events)."""
         cb, close = _progress(progress, "fig. 5 (FE)")
         try:
             cols = _fe_fig5(
@@ -446,7 +492,7 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
             )
         finally:
             close()
-        return _table(cols)
+        return FeFig5Result(_table(cols))
 
 
 @dataclass(frozen=True)
@@ -484,6 +530,18 @@ class DynamicSlideResult:
     advances: Any = None
     units: Dict[str, List[tuple]] = field(default_factory=dict)
     core_s: float = field(default=0.0, compare=False)
+
+    def to_pandas(self):
+        """``{"loading", "events", "dyn_events", "fronts", ["advances",] "summary"}`` as
+        DataFrames (``summary`` one row), each with its units in ``attrs["units"]``."""
+        out = {}
+        for k in ("loading", "events", "dyn_events", "fronts", "advances"):
+            t = getattr(self, k)
+            if t is not None:
+                out[k] = _df(t, self.units.get(k))
+        out["summary"] = _row(self.summary)
+        out["summary"].attrs["units"] = dict(self.units.get("summary", []))
+        return out
 
     def __repr__(self) -> str:
         f1 = self.summary.get("first_advance_F_over_mu_s_N", float("nan"))
@@ -563,8 +621,8 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         (m/s, default 1e-6), ``state_law`` (``"aging"`` or ``"slip"``) and ``theta0`` (s,
         default ``l_rs / v0``). The base's normal response: ``normal_lag`` (s, Prakash-Clifton
         with a time scale) or ``normal_lag_length`` (m, with a slip length; ``normal_lag_v_star``
-        m/s); default instantaneous. Silent unless ``progress`` is True (a tqdm bar) or a
-        callable; the interrupt key stops the run (:class:`KeyboardInterrupt`). A run that
+        m/s); default instantaneous. Silent unless ``progress`` is True (a tqdm bar; a few
+        lines without a terminal) or a callable; the interrupt key stops the run (:class:`KeyboardInterrupt`). A run that
         meets a cap returns what it computed with ``incomplete`` naming the cap, and warns."""
         cb, close = _progress(progress, "slide --dynamics")
         try:
@@ -646,7 +704,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         max_steps: Optional[int] = None,
         s_ratio: Optional[float] = None,
         progress: Any = False,
-    ) -> Dict[str, Any]:
+    ) -> RuptureResult:
         """The dynamic-rupture scene on a rigid flat, as ``tribofe rupture``: each keyword is
         the command's flag (``s`` is ``--s``) and None its default (``defaults()["dynamics.rupture"]``:
         the cross-check spec's scene with the normal-stress lag ``normal_lag`` = 1e-3 s;
@@ -660,17 +718,18 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         (m/s, default 0), ``patch_taper`` (m: a cosine
         ramp of the initial shear across the patch edge), ``max_steps`` (most explicit steps;
         a run above it is refused before any work, naming the largest ``t_end`` that fits).
-        Silent unless ``progress`` is True (a tqdm bar) or a callable. ``scene``: a rupture
-        scene file (``tribofe rupture --scene``: the block, ``[law]``, ``[interface]`` with
+        Silent unless ``progress`` is True (a tqdm bar; a few lines without a terminal) or a
+        callable. ``scene``: a rupture scene file (``tribofe rupture --scene``: the block, ``[law]``, ``[interface]`` with
         values piecewise in x and a nucleation patch, ``[rupture]`` with stations), the
         keywords given on top of its keys.
 
-        Returns per base node ``x_m``, ``t_arrival_s`` (NaN where the front never arrived),
-        ``slip_m``, ``peak_slip_rate_m_per_s``, ``rupture_time_s`` (the first slip rate above
-        ``rate_threshold_m_per_s``; NaN where never)..., the force drop, front speed, wave
-        speeds, cohesive-zone size ``lambda0_m``, the energy ledger, and ``stations``: one dict
-        per station keyed by its x (m) with the columns of ``station_x<x>.csv`` (``t_s``,
-        ``slip_m``, ``slip_rate_m_per_s``, ``shear_stress_Pa``, ``normal_stress_Pa``)."""
+        Returns a :class:`RuptureResult`: per base node ``x_m``, ``t_arrival_s`` (NaN where
+        the front never arrived), ``slip_m``, ``peak_slip_rate_m_per_s``, ``rupture_time_s``
+        (the first slip rate above ``rate_threshold_m_per_s``; NaN where never)... (``nodes``
+        as a table), the force drop, front speed, wave speeds, cohesive-zone size
+        ``lambda0_m``, the energy ledger, and ``stations``: per station x (m) the table of
+        ``station_x<x>.csv`` (``t_s``, ``slip_m``, ``slip_rate_m_per_s``,
+        ``shear_stress_Pa``, ``normal_stress_Pa``)."""
         if s_ratio is not None:
             # The old keyword, kept working: the command names it --s.
             if s is not None:
@@ -681,7 +740,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
             s = s_ratio
         cb, close = _progress(progress, "rupture")
         try:
-            return _rupture(
+            raw = _rupture(
                 scene=None if scene is None else os.fspath(scene),
                 s=s,
                 h=h,
@@ -707,3 +766,4 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
             )
         finally:
             close()
+        return rupture_result(raw)

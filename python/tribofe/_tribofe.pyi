@@ -81,6 +81,9 @@ def slide(
     keep_states: Optional[bool] = None,
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
+# sweep, converge: {"table": the library's table as {column: int64 / float64 array or list of
+# str}, "units": [(column, unit)...]} (converge also "summary": str); tribofe.sweep and
+# tribofe.converge wrap them as SweepResult and ConvergeResult.
 def sweep(
     scene: Optional[Scene] = None,
     *,
@@ -106,6 +109,8 @@ def converge(
     target: Optional[float] = None,
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
+# precursors_model, precursors_fe_fig4, precursors_fe_fig5: wrapped by tribofe.precursors as
+# ModelResult, FeFig4Result (one FeFig4Run per rule) and FeFig5Result.
 def precursors_model(r: Optional[float] = None, g: Optional[float] = None, events: Optional[int] = None) -> Dict[str, Any]: ...
 def precursors_fe_fig4(
     scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None, cycles: Optional[int] = None,
@@ -115,6 +120,8 @@ def precursors_fe_fig5(
     scene: Optional[Scene] = None, resolution: Optional[int] = None, rules: Optional[List[str]] = None,
     max_events: Optional[int] = None, progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
+# The per-node arrays and scalars of a rupture, "energy" a dict, "stations" {x: {"table": ...,
+# "units": ...}}; tribofe.dynamics.rupture wraps it as RuptureResult.
 def rupture(
     *,
     scene: Optional[str] = None,

@@ -14,6 +14,12 @@ use std::path::Path;
 pub const PROFILE_HEADER: &str =
     "x_over_L,p_over_pmean,tau_over_pmean,p_model,tau_model,p_extrap,tau_extrap,p_corrected";
 pub const SUMMARY_HEADER: &str = "FN,N,F,slope_interior,slope_model,tau_center,edge_p_left_t,edge_p_right_t,edge_tau_left_t,edge_tau_right_t,interior_dev_p,interior_dev_tau,p_end_left,p_end_right,tau_end_left,tau_end_right,tilt_rad,balance_N,balance_F,balance_moment,slope_corrected,interior_dev_p_corrected";
+/// The unit of each [`SUMMARY_HEADER`] column: N and F in N/m, the tilt in rad, stresses in
+/// units of N/L, edge widths in units of t, balances relative to the loads (all `1`).
+pub const SUMMARY_UNITS: [&str; 22] = [
+    "1", "N/m", "N/m", "1", "1", "1", "1", "1", "1", "1", "1", "1", "1", "1", "1", "1", "rad", "1", "1", "1",
+    "1", "1",
+];
 
 /// Writes `profile_FN<ratio>.csv`, summary.csv and fig2.svg into `dir`, and with a converged
 /// run, `summary_converged.csv` and its profiles under `converged/`.

@@ -1,62 +1,62 @@
 //! Outputs of a convergence study: `convergence.csv`, the error-versus-DOFs chart per zone,
 //! the error-versus-time chart with the Pareto front, and a readable summary.
 
+use super::table::{Column, Table};
 use super::write_atomic;
 use crate::error::Result;
 use crate::studies::convergence::{
-    cheapest, edge_error, first_converged_width, orders, pareto_front, series, Study,
+    cheapest, edge_error, first_converged_width, orders, pareto_front, series, Run, Study,
 };
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
 
-pub const HEADER: &str = "family,element,n_thick,h_over_t,dofs,elements,t_pattern_s,t_assembly_s,t_symbolic_s,t_numeric_s,t_solve_s,t_run_s,factor_mib,peak_heap_mib,err_interior_p,err_interior_tau,err_edge_p,err_edge_tau,err_end_p,err_end_tau,slope,tau_center,edge_p_left_t,edge_p_right_t,edge_tau_left_t,edge_tau_right_t,p_end_right,tau_end_right,is_reference";
+/// convergence.csv's table, one row per run (7 significant digits; errors and stresses in
+/// units of N/L, edge widths in units of t, empty where a zone has no width; peak heap empty
+/// when the runs were concurrent).
+pub fn table(study: &Study) -> Table {
+    let runs = &study.runs;
+    let f = |get: &dyn Fn(&Run) -> f64| runs.iter().map(get).collect::<Vec<f64>>();
+    let int = |get: &dyn Fn(&Run) -> usize| runs.iter().map(|r| get(r) as i64).collect::<Vec<i64>>();
+    let width = |k: usize| runs.iter().map(|r| r.widths[k].unwrap_or(f64::NAN)).collect::<Vec<f64>>();
+    let columns = vec![
+        Column::text("family", "-", runs.iter().map(|r| r.family.name().to_string()).collect()),
+        Column::text("element", "-", runs.iter().map(|r| r.element.clone()).collect()),
+        Column::int("n_thick", "-", int(&|r| r.n_thick)),
+        Column::float("h_over_t", "1", f(&|r| 1.0 / r.n_thick as f64)),
+        Column::int("dofs", "-", int(&|r| r.dofs)),
+        Column::int("elements", "-", int(&|r| r.n_elements)),
+        Column::float("t_pattern_s", "s", f(&|r| r.timings.pattern)),
+        Column::float("t_assembly_s", "s", f(&|r| r.timings.assembly)),
+        Column::float("t_symbolic_s", "s", f(&|r| r.timings.symbolic)),
+        Column::float("t_numeric_s", "s", f(&|r| r.timings.numeric)),
+        Column::float("t_solve_s", "s", f(&|r| r.timings.solve)),
+        Column::float("t_run_s", "s", f(&|r| r.wall)),
+        Column::float("factor_mib", "MiB", f(&|r| r.factor_mib)),
+        Column::maybe("peak_heap_mib", "MiB", f(&|r| r.peak_mib.unwrap_or(f64::NAN))),
+        Column::float("err_interior_p", "1", f(&|r| r.errors.interior[0])),
+        Column::float("err_interior_tau", "1", f(&|r| r.errors.interior[1])),
+        Column::float("err_edge_p", "1", f(&|r| r.errors.edge[0])),
+        Column::float("err_edge_tau", "1", f(&|r| r.errors.edge[1])),
+        Column::float("err_end_p", "1", f(&|r| r.errors.end[0])),
+        Column::float("err_end_tau", "1", f(&|r| r.errors.end[1])),
+        Column::float("slope", "1", f(&|r| r.slope)),
+        Column::float("tau_center", "1", f(&|r| r.tau_center)),
+        Column::maybe("edge_p_left_t", "1", width(0)),
+        Column::maybe("edge_p_right_t", "1", width(1)),
+        Column::maybe("edge_tau_left_t", "1", width(2)),
+        Column::maybe("edge_tau_right_t", "1", width(3)),
+        Column::float("p_end_right", "1", f(&|r| r.p_end[1])),
+        Column::float("tau_end_right", "1", f(&|r| r.tau_end[1])),
+        Column::int("is_reference", "-", (0..runs.len()).map(|i| i64::from(i == study.reference)).collect()),
+    ];
+    Table { columns, digits: 7 }
+}
 
+/// convergence.csv, printed from [`table`].
 pub fn csv(study: &Study) -> Result<String> {
-    let mut s = String::from(HEADER);
-    s.push('\n');
-    for (i, r) in study.runs.iter().enumerate() {
-        let t = &r.timings;
-        let e = &r.errors;
-        let nums = [
-            t.pattern,
-            t.assembly,
-            t.symbolic,
-            t.numeric,
-            t.solve,
-            r.wall,
-            r.factor_mib,
-            e.interior[0],
-            e.interior[1],
-            e.edge[0],
-            e.edge[1],
-            e.end[0],
-            e.end[1],
-            r.slope,
-            r.tau_center,
-        ];
-        let mut cells = vec![
-            r.family.name().to_string(),
-            r.element.clone(),
-            r.n_thick.to_string(),
-            format!("{:.6e}", 1.0 / r.n_thick as f64),
-            r.dofs.to_string(),
-            r.n_elements.to_string(),
-        ];
-        for v in nums {
-            cells.push(format!("{:.6e}", super::finite("convergence.csv", v)?));
-        }
-        // Peak heap sits after factor_mib (index 6 + 6 leading text cells); empty when parallel.
-        cells.insert(13, r.peak_mib.map_or(String::new(), |m| format!("{m:.6e}")));
-        cells.extend(r.widths.iter().map(|w| w.map_or(String::new(), |w| format!("{w:.6e}"))));
-        cells.push(format!("{:.6e}", r.p_end[1]));
-        cells.push(format!("{:.6e}", r.tau_end[1]));
-        cells.push(u8::from(i == study.reference).to_string());
-        s.push_str(&cells.join(","));
-        s.push('\n');
-    }
-    Ok(s)
+    table(study).csv()
 }
 
 pub fn write(study: &Study, dir: &Path) -> Result<()> {

@@ -2,8 +2,9 @@
 //! shared spec's columns, energy.csv and zone.csv; the field's station files
 //! (`station_x<x>.csv`), rupture_time.csv and the space-time picture spacetime.svg.
 
+use super::table::{Column, Table};
 use super::{csv, write_atomic};
-use crate::dynamics::rupture::RuptureResult;
+use crate::dynamics::rupture::{RuptureResult, Station};
 use crate::error::Result;
 use std::path::Path;
 
@@ -26,17 +27,28 @@ pub fn write(r: &RuptureResult, dir: &Path) -> Result<()> {
     let zone: Vec<Vec<f64>> = r.cohesive_zone().into_iter().map(|(x, z)| vec![x, z, z / r.lambda0]).collect();
     write_atomic(&dir.join("zone.csv"), csv("x_m,zone_m,zone_over_lambda0", &zone)?.as_bytes())?;
     for st in &r.stations {
-        let rows: Vec<Vec<f64>> = (0..st.t.len())
-            .map(|k| vec![st.t[k], st.slip[k], st.slip_rate[k], st.shear[k], st.normal[k]])
-            .collect();
-        let text = csv("t_s,slip_m,slip_rate_m_per_s,shear_stress_Pa,normal_stress_Pa", &rows)?;
-        write_atomic(&dir.join(station_file(st.x)), text.as_bytes())?;
+        write_atomic(&dir.join(station_file(st.x)), station_table(st).csv()?.as_bytes())?;
     }
     let rows: Vec<Vec<f64>> =
         r.x.iter().zip(&r.rupture_time).filter_map(|(&x, t)| t.map(|t| vec![x, t])).collect();
     write_atomic(&dir.join("rupture_time.csv"), csv("x_m,t_s", &rows)?.as_bytes())?;
     write_atomic(&dir.join("spacetime.svg"), spacetime(r).as_bytes())?;
     Ok(())
+}
+
+/// A station's table, `station_x<x>.csv` (13 significant digits): time, slip, slip rate,
+/// shear and normal stress at the station's base node.
+pub fn station_table(st: &Station) -> Table {
+    Table {
+        columns: vec![
+            Column::float("t_s", "s", st.t.clone()),
+            Column::float("slip_m", "m", st.slip.clone()),
+            Column::float("slip_rate_m_per_s", "m/s", st.slip_rate.clone()),
+            Column::float("shear_stress_Pa", "Pa", st.shear.clone()),
+            Column::float("normal_stress_Pa", "Pa", st.normal.clone()),
+        ],
+        digits: 13,
+    }
 }
 
 /// `station_x<x in m>.csv`, x as written in the scene (`station_x-4500.csv`).

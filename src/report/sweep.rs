@@ -1,158 +1,121 @@
 //! Outputs of `tribofe sweep`: one tidy CSV (one row per point and load case) and SVG maps of
 //! the model's error and validity against the two first swept parameters.
 
-use super::check::{cell, summary_row, SUMMARY_HEADER};
+use super::check::{summary_row, SUMMARY_HEADER, SUMMARY_UNITS};
+use super::table::{Column, Table};
 use super::write_atomic;
 use crate::error::{Error, Result};
-use crate::studies::sweep::{Axis, Param, Point};
+use crate::studies::slide::PaperComparison;
+use crate::studies::sweep::{Axis, Param, Point, Verdict};
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
 use std::path::Path;
 
-/// Columns of the frictional run (F in units of mu_s N, x in units of L): the FE's precursor
-/// counts, first long precursor and last stick-slip peak, then the paper's iteration.
-const FRICTION_HEADER: &str = "friction_r,friction_g,fe_precursors,fe_precursors_longer_5t,fe_precursors_advancing_5t,fe_F1_over_mu_s_N,fe_x1_over_L,fe_Fmax_over_mu_s_N,model_precursors,model_F1_over_mu_s_N,model_x1_over_L,model_Fmax_over_mu_s_N";
-
-pub fn header(friction: bool) -> String {
-    let inputs: Vec<&str> = Param::ALL.iter().map(|p| p.column()).collect();
-    format!(
-        "point,{},element,{SUMMARY_HEADER},slope_ratio,slope_ratio_corrected,shear_uniformity,edge_zone_fraction_L,tension_onset_FN,tension_onset_FN_model,locking_prone,interior_ok,edges_ok,tension_ok,model_holds,n_unknowns,{}point_wall_s",
-        inputs.join(","),
-        if friction { format!("{FRICTION_HEADER},") } else { String::new() }
-    )
-}
-
-/// One cell of the table: a whole number, a number printed with the given digits after the
-/// point (None: an empty cell), or text.
-enum Cell {
-    Int(i64),
-    Num(Option<f64>, usize),
-    Text(String),
-}
-
-impl Cell {
-    fn num(v: f64) -> Cell {
-        Cell::Num(Some(v), 12)
+/// sweep.csv's table (one row per point and load case), the one schema the CSV is printed
+/// from and a front end takes: 13 significant digits, the edge widths 7 (as check's
+/// summary.csv); empty where a figure is undefined. With any frictional run, its columns (F
+/// in units of mu_s N, x in units of L): the FE's precursor counts, first long precursor and
+/// last stick-slip peak, then the paper's iteration; a point without a frictional comparison
+/// ((r, g) outside the model's square) has them all empty.
+pub fn table(points: &[Point]) -> Result<Table> {
+    let rows: Vec<(&Point, usize)> = points
+        .iter()
+        .flat_map(|p| (0..p.result.cases.len().min(p.verdicts.len())).map(move |k| (p, k)))
+        .collect();
+    let summary = rows.iter().map(|(p, k)| summary_row(&p.result.cases[*k])).collect::<Result<Vec<_>>>()?;
+    let f = |get: &dyn Fn(&Point, usize) -> f64| rows.iter().map(|(p, k)| get(p, *k)).collect::<Vec<f64>>();
+    let opt = |get: &dyn Fn(&Point, usize) -> Option<f64>| {
+        rows.iter().map(|(p, k)| get(p, *k).unwrap_or(f64::NAN)).collect::<Vec<f64>>()
+    };
+    let flag = |get: &dyn Fn(&Verdict) -> bool| {
+        rows.iter().map(|(p, k)| i64::from(get(&p.verdicts[*k]))).collect::<Vec<i64>>()
+    };
+    let mut columns = vec![Column::int("point", "-", rows.iter().map(|(p, _)| p.index as i64 + 1).collect())];
+    columns
+        .extend(Param::ALL.iter().map(|q| Column::float(q.column(), q.unit(), f(&|p, _| q.get(&p.scene)))));
+    columns.push(Column::text(
+        "element",
+        "-",
+        rows.iter().map(|(p, _)| p.scene.mesh.element.clone()).collect(),
+    ));
+    for (j, (name, unit)) in SUMMARY_HEADER.split(',').zip(SUMMARY_UNITS).enumerate() {
+        let column = Column::maybe(name, unit, summary.iter().map(|r| r[j].0.unwrap_or(f64::NAN)).collect());
+        // summary_row's digits after the point (check's summary.csv prints the same).
+        columns.push(match summary.first().map(|r| r[j].1) {
+            Some(d) if d != 12 => column.with_digits(d + 1),
+            _ => column,
+        });
     }
-    fn opt(v: Option<f64>) -> Cell {
-        Cell::Num(v, 12)
-    }
-    fn count(n: usize) -> Cell {
-        Cell::Int(n as i64)
-    }
-    fn text(&self) -> String {
-        match self {
-            Cell::Int(i) => i.to_string(),
-            Cell::Num(v, digits) => cell(*v, *digits),
-            Cell::Text(t) => t.clone(),
-        }
-    }
-}
-
-/// A column of the table as an array: whole numbers, numbers (NaN where the CSV cell is
-/// empty) or text.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Column {
-    Int(Vec<i64>),
-    Float(Vec<f64>),
-    Text(Vec<String>),
-}
-
-/// The rows of the table (the cells of [`header`]'s columns), one per point and load case.
-fn rows(points: &[Point]) -> Result<Vec<Vec<Cell>>> {
-    let friction = points.iter().any(|p| p.friction.is_some());
-    let mut rows = Vec::new();
-    for p in points {
-        for (c, v) in p.result.cases.iter().zip(&p.verdicts) {
-            let m = &c.metrics;
-            let ratio = |a: f64, b: f64| if c.fn_ratio != 0.0 && b != 0.0 { Some(a / b) } else { None };
-            let mut cells = vec![Cell::count(p.index + 1)];
-            cells.extend(Param::ALL.iter().map(|q| Cell::num(q.get(&p.scene))));
-            cells.push(Cell::Text(p.scene.mesh.element.clone()));
-            cells.extend(summary_row(c)?.into_iter().map(|(v, d)| Cell::Num(v, d)));
-            cells.push(Cell::opt(ratio(m.slope_interior, m.slope_model)));
-            cells.push(Cell::opt(ratio(m.slope_interior, m.slope_corrected)));
-            cells.push(Cell::opt(ratio(m.tau_center, c.fn_ratio)));
-            cells.push(Cell::num(v.edge_zone_fraction));
-            cells.push(Cell::opt(v.tension_onset_fn));
-            cells.push(Cell::num(v.tension_onset_fn_model));
-            for b in [v.locking_prone, v.interior_ok, v.edges_ok, v.tension_ok, v.holds()] {
-                cells.push(Cell::Int(i64::from(b)));
-            }
-            cells.push(Cell::count(p.result.stats.n_unknowns));
-            if friction {
-                match &p.friction {
-                    Some(f) => cells.extend([
-                        Cell::num(f.r),
-                        Cell::num(f.g),
-                        Cell::count(f.n_fe),
-                        Cell::count(f.n_fe_long),
-                        Cell::count(f.n_fe_advancing),
-                        Cell::opt(f.f1_fe),
-                        Cell::opt(f.x1_fe),
-                        Cell::opt(f.f_max_fe),
-                        Cell::count(f.n),
-                        Cell::num(f.f1),
-                        Cell::num(f.x1),
-                        Cell::num(f.f_max),
-                    ]),
-                    // A point without a frictional comparison (r, g outside the model's
-                    // square): every friction column empty.
-                    None => cells.extend(FRICTION_HEADER.split(',').map(|_| Cell::opt(None))),
-                }
-            }
-            cells.push(Cell::num(p.wall));
-            rows.push(cells);
-        }
-    }
-    Ok(rows)
-}
-
-/// The table, with its header line if `with_header` (every file `sweep` writes has it, shards
-/// included, so each reads alone; [`merge`] joins shards).
-pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
-    let mut s = String::new();
-    if with_header {
-        s.push_str(&header(points.iter().any(|p| p.friction.is_some())));
-        s.push('\n');
-    }
-    for row in rows(points)? {
-        let cells: Vec<String> = row.iter().map(Cell::text).collect();
-        s.push_str(&cells.join(","));
-        s.push('\n');
-    }
-    Ok(s)
-}
-
-/// The table of [`csv`] as named columns (the header's names), for hosts that hand it to
-/// numpy or a data frame: the same numbers, not parsed back from text (the CSV prints edge
-/// widths to 7 significant digits, the others to 13). A column whose cells are all whole
-/// numbers is [`Column::Int`]; one mixing numbers and empty cells is [`Column::Float`].
-pub fn columns(points: &[Point]) -> Result<Vec<(String, Column)>> {
-    let names = header(points.iter().any(|p| p.friction.is_some()));
-    let rows = rows(points)?;
-    let mut out = Vec::new();
-    for (j, name) in names.split(',').enumerate() {
-        let cells: Vec<&Cell> = rows.iter().filter_map(|r| r.get(j)).collect();
-        let column = if !cells.is_empty() && cells.iter().all(|c| matches!(c, Cell::Int(_))) {
-            Column::Int(cells.iter().map(|c| if let Cell::Int(i) = c { *i } else { 0 }).collect())
-        } else if cells.iter().all(|c| !matches!(c, Cell::Text(_))) {
-            Column::Float(
-                cells
-                    .iter()
-                    .map(|c| match c {
-                        Cell::Int(i) => *i as f64,
-                        Cell::Num(v, _) => v.unwrap_or(f64::NAN),
-                        Cell::Text(_) => f64::NAN,
-                    })
-                    .collect(),
-            )
-        } else {
-            Column::Text(cells.iter().map(|c| c.text()).collect())
+    let ratio = |p: &Point,
+                 k: usize,
+                 a: fn(&crate::studies::check::Metrics) -> f64,
+                 b: fn(&crate::studies::check::Metrics) -> f64| {
+        let c = &p.result.cases[k];
+        let (a, b) = (a(&c.metrics), b(&c.metrics));
+        (c.fn_ratio != 0.0 && b != 0.0).then(|| a / b)
+    };
+    columns.extend([
+        Column::maybe("slope_ratio", "1", opt(&|p, k| ratio(p, k, |m| m.slope_interior, |m| m.slope_model))),
+        Column::maybe(
+            "slope_ratio_corrected",
+            "1",
+            opt(&|p, k| ratio(p, k, |m| m.slope_interior, |m| m.slope_corrected)),
+        ),
+        Column::maybe(
+            "shear_uniformity",
+            "1",
+            opt(&|p, k| {
+                let c = &p.result.cases[k];
+                (c.fn_ratio != 0.0).then(|| c.metrics.tau_center / c.fn_ratio)
+            }),
+        ),
+        Column::float("edge_zone_fraction_L", "1", f(&|p, k| p.verdicts[k].edge_zone_fraction)),
+        Column::maybe("tension_onset_FN", "1", opt(&|p, k| p.verdicts[k].tension_onset_fn)),
+        Column::float("tension_onset_FN_model", "1", f(&|p, k| p.verdicts[k].tension_onset_fn_model)),
+        Column::int("locking_prone", "-", flag(&|v| v.locking_prone)),
+        Column::int("interior_ok", "-", flag(&|v| v.interior_ok)),
+        Column::int("edges_ok", "-", flag(&|v| v.edges_ok)),
+        Column::int("tension_ok", "-", flag(&|v| v.tension_ok)),
+        Column::int("model_holds", "-", flag(&|v| v.holds())),
+        Column::int("n_unknowns", "-", rows.iter().map(|(p, _)| p.result.stats.n_unknowns as i64).collect()),
+    ]);
+    if points.iter().any(|p| p.friction.is_some()) {
+        let fr = |get: &dyn Fn(&PaperComparison) -> Option<f64>| {
+            rows.iter()
+                .map(|(p, _)| p.friction.as_ref().and_then(get).unwrap_or(f64::NAN))
+                .collect::<Vec<f64>>()
         };
-        out.push((name.to_string(), column));
+        let count = |get: &dyn Fn(&PaperComparison) -> usize| {
+            rows.iter().map(|(p, _)| p.friction.as_ref().map(|f| get(f) as i64)).collect::<Vec<Option<i64>>>()
+        };
+        columns.extend([
+            Column::maybe("friction_r", "1", fr(&|f| Some(f.r))),
+            Column::maybe("friction_g", "1", fr(&|f| Some(f.g))),
+            Column::maybe_int("fe_precursors", "-", count(&|f| f.n_fe)),
+            Column::maybe_int("fe_precursors_longer_5t", "-", count(&|f| f.n_fe_long)),
+            Column::maybe_int("fe_precursors_advancing_5t", "-", count(&|f| f.n_fe_advancing)),
+            Column::maybe("fe_F1_over_mu_s_N", "1", fr(&|f| f.f1_fe)),
+            Column::maybe("fe_x1_over_L", "1", fr(&|f| f.x1_fe)),
+            Column::maybe("fe_Fmax_over_mu_s_N", "1", fr(&|f| f.f_max_fe)),
+            Column::maybe_int("model_precursors", "-", count(&|f| f.n)),
+            Column::maybe("model_F1_over_mu_s_N", "1", fr(&|f| Some(f.f1))),
+            Column::maybe("model_x1_over_L", "1", fr(&|f| Some(f.x1))),
+            Column::maybe("model_Fmax_over_mu_s_N", "1", fr(&|f| Some(f.f_max))),
+        ]);
     }
-    Ok(out)
+    columns.push(Column::float("point_wall_s", "s", f(&|p, _| p.wall)));
+    Ok(Table { columns, digits: 13 })
+}
+
+/// sweep.csv printed from [`table`], with its header line if `with_header` (every file
+/// `sweep` writes has it, shards included, so each reads alone; [`merge`] joins shards).
+pub fn csv(points: &[Point], with_header: bool) -> Result<String> {
+    let text = table(points)?.csv()?;
+    Ok(if with_header {
+        text
+    } else {
+        text.split_once('\n').map_or(String::new(), |(_, rows)| rows.to_string())
+    })
 }
 
 /// Shard `(i, n)` of a shard file name `sweep_<i>of<n>.csv`.

@@ -1,8 +1,9 @@
 //! A table defined once: each column's name, unit and type with its values. The CSV writer
 //! prints it, and a front end (the Python package) takes its arrays at full precision, so
 //! the file and the arrays cannot differ in columns, order or types: slide's loading.csv,
-//! events.csv and advances.csv, and slide --dynamics' dyn_events.csv, fronts_t.csv and
-//! summary.csv are built this way.
+//! events.csv and advances.csv, slide --dynamics' dyn_events.csv, fronts_t.csv and
+//! summary.csv, converge's convergence.csv, sweep's sweep.csv and rupture's station files are
+//! built this way.
 
 use super::finite;
 use crate::error::Result;
@@ -14,6 +15,9 @@ use std::fmt::Write as _;
 pub enum Values {
     Int(Vec<i64>),
     Float(Vec<f64>),
+    /// Whole numbers that may not exist for a row (None: an empty cell), e.g. a count of a
+    /// run that was not made.
+    MaybeInt(Vec<Option<i64>>),
     Text(Vec<String>),
 }
 
@@ -22,6 +26,7 @@ impl Values {
         match self {
             Values::Int(v) => v.len(),
             Values::Float(v) => v.len(),
+            Values::MaybeInt(v) => v.len(),
             Values::Text(v) => v.len(),
         }
     }
@@ -36,22 +41,33 @@ pub struct Column {
     /// NaN is written as an empty cell (a quantity that does not exist for the row); where
     /// false, a non-finite value is refused (a bug, never written).
     pub may_be_empty: bool,
+    /// Significant digits of this column where they differ from the table's (sweep.csv's
+    /// edge widths: 7 of 13).
+    pub digits: Option<usize>,
     pub values: Values,
 }
 
 impl Column {
     pub fn int(name: &'static str, unit: &'static str, v: Vec<i64>) -> Column {
-        Column { name, unit, may_be_empty: false, values: Values::Int(v) }
+        Column { name, unit, may_be_empty: false, digits: None, values: Values::Int(v) }
     }
     pub fn float(name: &'static str, unit: &'static str, v: Vec<f64>) -> Column {
-        Column { name, unit, may_be_empty: false, values: Values::Float(v) }
+        Column { name, unit, may_be_empty: false, digits: None, values: Values::Float(v) }
     }
     /// A number that may not exist for a row (NaN: an empty cell).
     pub fn maybe(name: &'static str, unit: &'static str, v: Vec<f64>) -> Column {
-        Column { name, unit, may_be_empty: true, values: Values::Float(v) }
+        Column { name, unit, may_be_empty: true, digits: None, values: Values::Float(v) }
+    }
+    /// A whole number that may not exist for a row (None: an empty cell).
+    pub fn maybe_int(name: &'static str, unit: &'static str, v: Vec<Option<i64>>) -> Column {
+        Column { name, unit, may_be_empty: true, digits: None, values: Values::MaybeInt(v) }
+    }
+    /// The column printed with `digits` significant digits instead of the table's.
+    pub fn with_digits(self, digits: usize) -> Column {
+        Column { digits: Some(digits), ..self }
     }
     pub fn text(name: &'static str, unit: &'static str, v: Vec<String>) -> Column {
-        Column { name, unit, may_be_empty: false, values: Values::Text(v) }
+        Column { name, unit, may_be_empty: false, digits: None, values: Values::Text(v) }
     }
 }
 
@@ -69,20 +85,25 @@ impl Table {
     }
 
     /// The CSV text: the names, then one line per row; numbers in scientific notation with
-    /// [`Self::digits`] significant digits.
+    /// [`Self::digits`] significant digits (or the column's own).
     pub fn csv(&self) -> Result<String> {
         let n = self.rows();
         debug_assert!(self.columns.iter().all(|c| c.values.len() == n), "ragged table");
         let mut s = self.columns.iter().map(|c| c.name).collect::<Vec<_>>().join(",");
         s.push('\n');
-        let prec = self.digits.saturating_sub(1);
         for i in 0..n {
             for (j, c) in self.columns.iter().enumerate() {
                 if j > 0 {
                     s.push(',');
                 }
+                let prec = c.digits.unwrap_or(self.digits).saturating_sub(1);
                 match &c.values {
                     Values::Int(v) => write!(s, "{}", v[i]).unwrap(),
+                    Values::MaybeInt(v) => {
+                        if let Some(k) = v[i] {
+                            write!(s, "{k}").unwrap()
+                        }
+                    }
                     Values::Text(v) => s.push_str(&v[i]),
                     Values::Float(v) if c.may_be_empty && !v[i].is_finite() => {}
                     Values::Float(v) => write!(s, "{:.*e}", prec, finite(c.name, v[i])?).unwrap(),
@@ -106,12 +127,14 @@ mod tests {
                 Column::text("kind", "-", vec!["slip".into(), "open".into()]),
                 Column::float("X_m", "m", vec![1.0 / 3.0, -2.5e-7]),
                 Column::maybe("t_s", "s", vec![f64::NAN, 0.125]),
+                Column::maybe_int("n", "-", vec![Some(4), None]),
+                Column::float("w", "1", vec![2.0, 1.0 / 3.0]).with_digits(3),
             ],
             digits: 10,
         };
         assert_eq!(
             t.csv().unwrap(),
-            "event,kind,X_m,t_s\n3,slip,3.333333333e-1,\n7,open,-2.500000000e-7,1.250000000e-1\n"
+            "event,kind,X_m,t_s,n,w\n3,slip,3.333333333e-1,,4,2.00e0\n7,open,-2.500000000e-7,1.250000000e-1,,3.33e-1\n"
         );
         // A column that must hold a number refuses NaN, naming itself.
         let bad = Table { columns: vec![Column::float("X_m", "m", vec![f64::NAN])], digits: 10 };

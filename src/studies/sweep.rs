@@ -44,6 +44,14 @@ impl Param {
             Param::Poisson => "poisson",
         }
     }
+    /// The unit of [`Self::column`].
+    pub fn unit(self) -> &'static str {
+        match self {
+            Param::Length | Param::Thickness | Param::Height => "m",
+            Param::Young => "Pa",
+            Param::Poisson => "1",
+        }
+    }
     pub fn get(self, s: &Scene) -> f64 {
         match self {
             Param::Length => s.block.length,

@@ -131,3 +131,32 @@ fn graded_meshes_reach_the_uniform_accuracy_with_far_fewer_dofs() {
     let e = |r: &Run| r.errors.edge[0].max(r.errors.edge[1]);
     assert!(e(g) < 1.5 * e(u));
 }
+
+/// convergence.csv is printed from the library's table, the one a front end takes: same
+/// names in order, counts and the reference flag whole numbers, numbers equal to the 7
+/// printed digits, and the run's own figures (dofs, slope) in the right rows.
+#[test]
+fn convergence_csv_is_its_table() {
+    use tribofe::report::convergence::{csv, table};
+    use tribofe::report::table::Values;
+    let s = uniform_series();
+    let t = table(s);
+    let text = csv(s).unwrap();
+    assert_eq!(t.csv().unwrap(), text);
+    let lines: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(t.columns.iter().map(|c| c.name).collect::<Vec<_>>(), lines[0]);
+    assert_eq!(t.rows(), s.runs.len());
+    let col = |n: &str| &t.columns.iter().find(|c| c.name == n).unwrap().values;
+    let Values::Int(dofs) = col("dofs") else { panic!("dofs is not whole numbers") };
+    assert_eq!(dofs, &s.runs.iter().map(|r| r.dofs as i64).collect::<Vec<_>>());
+    let Values::Int(reference) = col("is_reference") else { panic!("is_reference is not whole numbers") };
+    assert_eq!(reference.iter().filter(|&&v| v == 1).count(), 1);
+    assert_eq!(reference[s.reference], 1);
+    let Values::Float(slope) = col("slope") else { panic!("slope is not numbers") };
+    let j = lines[0].iter().position(|&n| n == "slope").unwrap();
+    for (i, r) in s.runs.iter().enumerate() {
+        assert_eq!(slope[i], r.slope);
+        let printed: f64 = lines[i + 1][j].parse().unwrap();
+        assert!((printed - r.slope).abs() <= 5e-7 * r.slope.abs(), "{printed} vs {}", r.slope);
+    }
+}

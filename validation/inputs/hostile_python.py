@@ -43,6 +43,8 @@ def infinite(x):
         return x.dtype.kind in "fc" and bool(np.isinf(x).any())
     if isinstance(x, float):
         return math.isinf(x)
+    if hasattr(x, "columns") and hasattr(x, "to_numpy"):  # a DataFrame (a result's table)
+        return any(infinite(np.asarray(x[c])) for c in x.columns)
     if hasattr(x, "__dict__"):
         return infinite(vars(x))
     return False

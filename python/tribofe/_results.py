@@ -1,0 +1,345 @@
+"""The result classes: one per call, each with ``.to_pandas()``; tables follow the package's
+one rule (the library's tables, DataFrames when pandas is installed, dicts of numpy arrays
+otherwise, counts and codes int64, units in ``units`` and ``df.attrs["units"]``)."""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Tuple
+
+import numpy as np
+
+
+def _table(columns: Dict[str, Any], units: Optional[List[tuple]] = None):
+    """A pandas DataFrame when pandas is installed, else the dict of arrays itself. A table
+    the library defines with its units carries them as ``df.attrs["units"]`` (column -> unit:
+    SI, ``1`` dimensionless, ``-`` a count, code or label)."""
+    try:
+        import pandas as pd
+    except ImportError:
+        return columns
+    df = pd.DataFrame(columns)
+    if units is not None:
+        df.attrs["units"] = dict(units)
+    return df
+
+
+def _pandas():
+    try:
+        import pandas as pd
+    except ImportError as e:
+        raise ImportError("tribofe: .to_pandas() needs pandas (pip install pandas)") from e
+    return pd
+
+
+def _df(table, units: Optional[List[tuple]] = None):
+    """A table as a DataFrame (it already is one when pandas was there at the call)."""
+    pd = _pandas()
+    if isinstance(table, pd.DataFrame):
+        return table
+    df = pd.DataFrame(table)
+    if units is not None:
+        df.attrs["units"] = dict(units)
+    return df
+
+
+def _row(values: Dict[str, Any]):
+    """A one-row DataFrame of scalars."""
+    return _pandas().DataFrame({k: [v] for k, v in values.items()})
+
+
+def _deprecated(what: str, instead: str) -> None:
+    # stacklevel 3: the user's line, above __getitem__ and this helper.
+    warnings.warn(f"tribofe: {what} is deprecated, use {instead}", DeprecationWarning, stacklevel=3)
+
+
+class _Result:
+    """What every result shares: ``to_pandas()``, and the old dict-style access
+    (``result["key"]`` is ``result.key``) kept working with a DeprecationWarning."""
+
+    def __getitem__(self, key):
+        if isinstance(key, str) and not key.startswith("_") and hasattr(self, key):
+            _deprecated(f'{type(self).__name__}["{key}"]', f".{key}")
+            return getattr(self, key)
+        raise KeyError(key)
+
+    def to_pandas(self):  # pragma: no cover - every class overrides it
+        raise NotImplementedError
+
+
+class _OneTable(_Result):
+    """A result whose rows are one table (``table``). Before, the call returned the table
+    itself: its column access (``result["col"]``), ``len`` and DataFrame methods still work
+    on the result, with a DeprecationWarning."""
+
+    table: Any
+    units: Optional[List[Tuple[str, str]]]
+
+    def __getitem__(self, key):
+        if isinstance(key, str) and key in self.table:
+            _deprecated(f'{type(self).__name__}["{key}"]', f'.table["{key}"]')
+            return self.table[key]
+        return super().__getitem__(key)
+
+    def __getattr__(self, name):
+        # Only reached for names the result lacks: the old DataFrame's methods (df.query...).
+        if name.startswith("_") or name in ("table", "units"):
+            raise AttributeError(name)
+        table = self.__dict__.get("table")
+        if table is not None and not isinstance(table, dict) and hasattr(table, name):
+            _deprecated(f"{type(self).__name__}.{name}", f".table.{name}")
+            return getattr(table, name)
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    def __len__(self) -> int:
+        first = next(iter(self.table), None)
+        return 0 if first is None else len(self.table[first])
+
+    def to_pandas(self):
+        """The table as a DataFrame (its units in ``attrs["units"]``)."""
+        return _df(self.table, self.units)
+
+
+@dataclass(frozen=True, eq=False)
+class SweepResult(_OneTable):
+    """``tribofe sweep``: ``table``, the rows of sweep.csv (one per point and load case), the
+    library's table with every column, ``units`` (column, unit) pairs."""
+
+    table: Any
+    units: List[Tuple[str, str]]
+
+    def __repr__(self) -> str:
+        return f"SweepResult({len(self)} rows x {len(self.units)} columns)"
+
+
+@dataclass(frozen=True, eq=False)
+class ConvergeResult(_OneTable):
+    """``tribofe converge``: ``table``, the rows of convergence.csv (the library's table at
+    full precision), ``units``, and ``summary``, the printed reading (orders, edge widths, the
+    cheapest run reaching ``target``). ``table, summary = result`` still works (deprecated)."""
+
+    table: Any
+    units: List[Tuple[str, str]]
+    summary: str
+
+    def __iter__(self):
+        _deprecated("unpacking converge()'s (table, summary)", ".table and .summary")
+        return iter((self.table, self.summary))
+
+    def __getitem__(self, key):
+        if isinstance(key, int):
+            _deprecated(f"converge()[{key}]", ".table and .summary")
+            return (self.table, self.summary)[key]
+        return super().__getitem__(key)
+
+    def __repr__(self) -> str:
+        return f"ConvergeResult({len(self)} runs)"
+
+
+@dataclass(frozen=True, eq=False)
+class FeFig5Result(_OneTable):
+    """``tribofe precursors fe-map``: ``table``, one row per (r, g) cell and rule: the model's
+    n and F_max, the FE run's status (done, capped, refused), counts (int64 when every row has
+    one, else float64 with NaN where a capped or refused run has none) and seconds."""
+
+    table: Any
+    units: Optional[List[Tuple[str, str]]] = None
+
+    def __repr__(self) -> str:
+        return f"FeFig5Result({len(self)} cells x rules)"
+
+
+@dataclass(frozen=True, eq=False)
+class ModelResult(_Result):
+    """The paper's analytic iteration for (r, g): ``n`` precursors, ``F_1`` and ``F_max``
+    (units of mu_s N), ``events`` (the events table: forces in units of mu_s N, arrest x in
+    units of L) and the fig. 4 curve (``curve_Fc_over_mu_s_N``, ``curve_F_over_mu_s_N``)."""
+
+    r: float
+    g: float
+    n: int
+    F_1: float
+    F_max: float
+    events: Any
+    curve_Fc_over_mu_s_N: np.ndarray
+    curve_F_over_mu_s_N: np.ndarray
+
+    def to_pandas(self):
+        """The events table as a DataFrame."""
+        return _df(self.events)
+
+    def __repr__(self) -> str:
+        return f"ModelResult(r={self.r}, g={self.g}: n = {self.n}, F_1 = {self.F_1:.4f}, F_max = {self.F_max:.4f})"
+
+
+@dataclass(frozen=True, eq=False)
+class FeFig4Run(_Result):
+    """One static-kinetic rule's FE run of fig. 4: ``comparison`` with the model (dict: n,
+    F_1, x_1, F_max of model and FE, the one definition's counts, the front advances),
+    the precursors' arrest positions (FE and model, units of L), the stick-slip peaks (units
+    of mu_s N), the worst violation and the whole ``run`` (a SlideResult)."""
+
+    rule: str
+    comparison: Dict[str, Any]
+    x_arrest_fe_over_L: np.ndarray
+    x_arrest_model_over_L: np.ndarray
+    peaks_over_mu_s_N: np.ndarray
+    worst_violation: float
+    run: Any
+
+    def to_pandas(self):
+        """The run's tables: ``{"loading": df, "events": df}``."""
+        return self.run.to_pandas()
+
+    def __repr__(self) -> str:
+        c = self.comparison
+        return f"FeFig4Run({self.rule}: n advancing {c['n_fe_advancing']} (model {c['n_model']}), F_max {c['F_max_fe']:.4f})"
+
+
+# The comparison's columns that are counts (int64 in the table).
+_COUNTS = ("n_model", "n_fe", "n_fe_long", "n_fe_advancing", "n_front")
+
+
+@dataclass(frozen=True, eq=False)
+class FeFig4Result(_Result):
+    """``tribofe precursors fe``: ``runs``, one :class:`FeFig4Run` per static-kinetic rule
+    (``runs["paper"]``, ``runs["overdamped"]``), and ``comparison``, their comparisons with
+    the model as one table (a row per rule, as the command's summary.csv). Before, the call
+    returned a list of dicts: ``result[0]``, iteration and ``len`` still work (deprecated)."""
+
+    runs: Dict[str, FeFig4Run]
+    definition: str
+    front_definition: str
+
+    @property
+    def comparison(self):
+        skip = ("definition", "front_definition")
+        rows = [r.comparison for r in self.runs.values()]
+        cols: Dict[str, Any] = {"rule": list(self.runs)}
+        for k in (rows[0] if rows else {}):
+            if k in skip:
+                continue
+            vals = [np.nan if row[k] is None else row[k] for row in rows]
+            cols[k] = np.asarray(vals, dtype=np.int64 if k in _COUNTS else float)
+        cols["worst_violation"] = np.asarray([r.worst_violation for r in self.runs.values()])
+        return _table(cols)
+
+    def __getitem__(self, key):
+        if isinstance(key, int):
+            _deprecated(f"precursors.fe_fig4()[{key}]", ".runs[rule]")
+            return list(self.runs.values())[key]
+        return super().__getitem__(key)
+
+    def __iter__(self):
+        _deprecated("iterating precursors.fe_fig4()", ".runs.values()")
+        return iter(list(self.runs.values()))
+
+    def __len__(self) -> int:
+        return len(self.runs)
+
+    def to_pandas(self):
+        """``{"comparison": df, "<rule>_loading": df, "<rule>_events": df, ...}``."""
+        out = {"comparison": _df(self.comparison)}
+        for rule, run in self.runs.items():
+            for name, df in run.to_pandas().items():
+                out[f"{rule}_{name}"] = df
+        return out
+
+    def __repr__(self) -> str:
+        return "FeFig4Result(" + "; ".join(repr(r) for r in self.runs.values()) + ")"
+
+
+# The per-node arrays of a rupture (one value per base node, x >= any).
+_NODES = (
+    "x_m",
+    "width_m",
+    "tau0_Pa",
+    "t_arrival_s",
+    "t_weakened_s",
+    "slip_m",
+    "peak_slip_rate_m_per_s",
+    "rupture_time_s",
+)
+_SCALARS = (
+    "force_drop_N_per_m",
+    "min_sigma_Pa",
+    "steps",
+    "dt_s",
+    "dt_stable_s",
+    "front_speed_m_per_s",
+    "c_p_m_per_s",
+    "c_s_m_per_s",
+    "c_R_m_per_s",
+    "lambda0_m",
+    "rate_threshold_m_per_s",
+)
+
+
+@dataclass(frozen=True, eq=False)
+class RuptureResult(_Result):
+    """``tribofe rupture``: per base node ``x_m``, ``width_m``, ``tau0_Pa``,
+    ``t_arrival_s`` and ``t_weakened_s`` (NaN where never), ``slip_m``,
+    ``peak_slip_rate_m_per_s``, ``rupture_time_s`` (the first slip rate above
+    ``rate_threshold_m_per_s``; NaN where never) as arrays (``nodes``: them as a table); the
+    force drop, front speed (None when no front), wave speeds, steps, cohesive-zone size
+    ``lambda0_m``; ``energy`` the ledger (J/m); ``stations``: per station x (m) the table of
+    ``station_x<x>.csv`` (the library's, its units in ``station_units``)."""
+
+    x_m: np.ndarray
+    width_m: np.ndarray
+    tau0_Pa: np.ndarray
+    t_arrival_s: np.ndarray
+    t_weakened_s: np.ndarray
+    slip_m: np.ndarray
+    peak_slip_rate_m_per_s: np.ndarray
+    rupture_time_s: np.ndarray
+    force_drop_N_per_m: float
+    min_sigma_Pa: float
+    steps: int
+    dt_s: float
+    dt_stable_s: float
+    front_speed_m_per_s: Optional[float]
+    c_p_m_per_s: float
+    c_s_m_per_s: float
+    c_R_m_per_s: float
+    lambda0_m: float
+    rate_threshold_m_per_s: float
+    energy: Dict[str, float]
+    stations: Dict[float, Any]
+    station_units: List[Tuple[str, str]] = field(default_factory=list)
+    core_s: float = 0.0
+
+    @property
+    def nodes(self):
+        """The per-node arrays as one table."""
+        return _table({k: getattr(self, k) for k in _NODES})
+
+    def to_pandas(self):
+        """``{"nodes": df, "summary": one row, "energy": one row, "station_x<x>": df...}``."""
+        out = {
+            "nodes": _df(self.nodes),
+            "summary": _row({k: getattr(self, k) for k in _SCALARS}),
+            "energy": _row(self.energy),
+        }
+        for x, t in self.stations.items():
+            out[f"station_x{x:g}"] = _df(t, self.station_units)
+        return out
+
+    def __repr__(self) -> str:
+        arrived = int(np.isfinite(self.t_arrival_s).sum())
+        speed = "none" if self.front_speed_m_per_s is None else f"{self.front_speed_m_per_s:.4g} m/s"
+        return (
+            f"RuptureResult({len(self.x_m)} base nodes, {arrived} reached, front {speed}, "
+            f"force drop {self.force_drop_N_per_m:.4g} N/m, {self.steps} steps)"
+        )
+
+
+def rupture_result(raw: Dict[str, Any]) -> RuptureResult:
+    """The extension's dict as a :class:`RuptureResult`, each station a table with units."""
+    units: List[Tuple[str, str]] = []
+    stations = {}
+    for x, st in raw.pop("stations").items():
+        units = st["units"]
+        stations[x] = _table(st["table"], units)
+    return RuptureResult(stations=stations, station_units=units, **raw)
