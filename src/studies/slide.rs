@@ -262,7 +262,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, progress: Progress) -> Result<SlideR
             w: op.w.clone(),
             l: scene.block.length,
             t: scene.block.thickness,
-            e_star: scene.block.young / (1.0 - scene.block.poisson.powi(2)),
+            e_star: scene.block.e_star(),
             s: vec![],
             asymmetry: op.asymmetry,
             rigid_residual: op.rigid_residual,

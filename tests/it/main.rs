@@ -32,6 +32,7 @@ mod lean;
 mod mesh_geometry;
 mod observer;
 mod operator;
+mod out_of_plane;
 mod paper_rule;
 mod parallel;
 mod precursors;

@@ -206,7 +206,7 @@ pub struct DynamicResult {
 /// The block's shear-wave speed c_s, m/s.
 pub fn shear_speed(scene: &Scene) -> Result<f64> {
     let b = &scene.block;
-    Ok(WaveSpeeds::new(&crate::fem::material::Material::plane_strain(b.young, b.poisson)?, b.density).c_s)
+    Ok(WaveSpeeds::new(&b.material()?, b.density).c_s)
 }
 
 /// Refusals before any work: the element, the law, damping and step.
@@ -345,7 +345,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             w: op.w.clone(),
             l: b.length,
             t: b.thickness,
-            e_star: b.young / (1.0 - b.poisson.powi(2)),
+            e_star: b.e_star(),
             s: vec![],
             asymmetry: op.asymmetry,
             rigid_residual: op.rigid_residual,
