@@ -600,6 +600,7 @@ fn slide_result<'py>(
     states.set_item("t_force_N_per_m", grid(StateField::TangentialForce)?)?;
     states.set_item("slip_m", grid(StateField::Slip)?)?;
     states.set_item("gap_m", grid(StateField::Gap)?)?;
+    states.set_item("contact_area_over_A0", grid(StateField::ContactAreaOverA0)?)?;
     // The codes are integers (0, 1, 2), as in states.csv.
     let (codes, shape) = res.field(StateField::Code);
     let codes: Vec<i64> = codes.iter().map(|&c| c as i64).collect();

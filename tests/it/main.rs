@@ -13,6 +13,7 @@ mod assumption5;
 mod bounds;
 mod check;
 mod cli_smoke;
+mod contact_area;
 mod convergence;
 mod dynamics;
 mod dynamics_defaults;
