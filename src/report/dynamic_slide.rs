@@ -274,7 +274,7 @@ pub fn contact_area_svg(r: &DynamicResult, e: &DynEvent) -> Option<String> {
     let shown = |i: usize| c.x[i] >= xa && c.x[i] <= xb;
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for row in &area {
-        for (_, &v) in row.iter().enumerate().filter(|(i, _)| shown(*i)) {
+        for &v in row.iter().enumerate().filter(|(i, _)| shown(*i)).map(|(_, v)| v) {
             lo = lo.min(v);
             hi = hi.max(v);
         }

@@ -23,17 +23,17 @@ fn contact_area_is_p_over_p_mean_and_averages_to_one() {
         let n_state: f64 = st.p_force.iter().sum();
         let p_mean = n_state / c.l;
         let row = &area[k * n..(k + 1) * n];
-        for i in 0..n {
-            let p = st.p_force[i] / c.w[i];
-            assert!((row[i] - p / p_mean).abs() <= 1e-12 * (p / p_mean).abs().max(1.0), "state {k} node {i}");
+        for (i, (a, (f, w))) in row.iter().zip(st.p_force.iter().zip(&c.w)).enumerate() {
+            let want = f / w / p_mean;
+            assert!((a - want).abs() <= 1e-12 * want.abs().max(1.0), "state {k} node {i}");
         }
         let mean: f64 = row.iter().zip(&c.w).map(|(a, w)| a * w).sum::<f64>() / c.l;
         assert!((mean - 1.0).abs() <= 1e-12, "state {k}: mean A/A0 = {mean}");
         // The states.csv column is the same number to its 13 digits.
-        for i in 0..n {
+        for (i, a) in row.iter().enumerate() {
             let line = lines.next().unwrap();
             let v: f64 = line.rsplit(',').next().unwrap().parse().unwrap();
-            assert!((v - row[i]).abs() <= 1e-12 * row[i].abs().max(1.0), "states.csv state {k} node {i}");
+            assert!((v - a).abs() <= 1e-12 * a.abs().max(1.0), "states.csv state {k} node {i}");
         }
     }
     // The drive holds N: there the column is states.csv's p_over_pmean (p over the target N/L).
