@@ -23,6 +23,7 @@ const KEYWORDS: &[(&str, &str)] = &[
     ("mu-s/mu-d", "mu_s/mu_d"),
     ("--mu-s/--mu-d", "mu_s/mu_d"),
     ("--plate-modulus", "plate_young"),
+    ("--plane-stress", "state"),
 ];
 
 /// A refusal as a Python caller reads it: the parameter by its keyword (`dc=`, `n_force=`),
@@ -200,7 +201,7 @@ struct Scene {
 }
 
 const SCENE_KEYS: &str = "length, thickness, young, poisson, height, fn_ratios, plate, plate_thickness, \
-plate_young, plate_poisson, h, grading, h_max, n_thick, element, mesh, geometry, tol, max_dofs";
+plate_young, plate_poisson, h, grading, h_max, n_thick, element, mesh, geometry, tol, max_dofs, state, width";
 
 fn overrides(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Overrides> {
     let mut o = Overrides::default();
@@ -221,6 +222,16 @@ fn overrides(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Overrides> {
             "grading" => o.grading = f(&v)?,
             "h_max" => o.h_max = f(&v)?,
             "tol" => o.tol = f(&v)?,
+            "width" => o.width = f(&v)?,
+            "state" => {
+                let s: String = v.extract()?;
+                o.state = Some(s.parse().map_err(|_| {
+                    to_py(Error::input(
+                        "state",
+                        format!("'{}': use plane-strain or plane-stress", tribofe::error::quote(&s)),
+                    ))
+                })?)
+            }
             "fn_ratios" => {
                 o.fn_ratios = Some(
                     v.extract().map_err(|_| PyTypeError::new_err("fn_ratios: expected a list of numbers"))?,
@@ -323,6 +334,14 @@ impl Scene {
     #[getter]
     fn fn_ratios(&self) -> Vec<f64> {
         self.inner.loading.fn_ratios.clone()
+    }
+    #[getter]
+    fn state(&self) -> &'static str {
+        self.inner.block.state.name()
+    }
+    #[getter]
+    fn width(&self) -> Option<f64> {
+        self.inner.block.width
     }
     #[getter]
     fn h(&self) -> f64 {
@@ -581,6 +600,7 @@ fn slide_result<'py>(
     states.set_item("t_force_N_per_m", grid(StateField::TangentialForce)?)?;
     states.set_item("slip_m", grid(StateField::Slip)?)?;
     states.set_item("gap_m", grid(StateField::Gap)?)?;
+    states.set_item("contact_area_over_A0", grid(StateField::ContactAreaOverA0)?)?;
     // The codes are integers (0, 1, 2), as in states.csv.
     let (codes, shape) = res.field(StateField::Code);
     let codes: Vec<i64> = codes.iter().map(|&c| c as i64).collect();

@@ -9,7 +9,8 @@ class Scene:
     1 mm QUA4 mesh) with any key overridden; SI units. Keys: length, thickness (m), young (Pa),
     poisson, height (m), fn_ratios (F/N list), plate ('rigid' | 'elastic'), plate_thickness (m),
     plate_young (Pa), plate_poisson, h (m), grading, h_max (m), n_thick, element, mesh (path of a
-    Gmsh file), tol, max_dofs. Validated on construction (InputError, the command's message)."""
+    Gmsh file), tol, max_dofs, state ('plane-strain' | 'plane-stress'), width (m, the plate's
+    out-of-plane width; plane stress requires it). Validated on construction (InputError, the command's message)."""
 
     def __init__(
         self,
@@ -32,6 +33,8 @@ class Scene:
         mesh: str = ...,
         tol: float = ...,
         max_dofs: int = ...,
+        state: str = ...,
+        width: float = ...,
     ) -> None: ...
     @staticmethod
     def from_toml(path: str) -> Scene: ...
@@ -50,6 +53,10 @@ class Scene:
     def height(self) -> float: ...
     @property
     def fn_ratios(self) -> List[float]: ...
+    @property
+    def state(self) -> str: ...
+    @property
+    def width(self) -> Optional[float]: ...
     @property
     def h(self) -> float: ...
     @property

@@ -78,6 +78,13 @@ pub struct SceneArgs {
     /// half this machine's memory at about 1.5 kB per unknown, at most 1.5e6).
     #[arg(long)]
     pub max_dofs: Option<usize>,
+    /// Plane stress (sigma_zz = 0: a thin plate) instead of plane strain; needs --width.
+    #[arg(long)]
+    pub plane_stress: bool,
+    /// The plate's out-of-plane width b, m: the forces per unit width times b are the plate's
+    /// newtons (run.toml, header). Required with --plane-stress.
+    #[arg(long)]
+    pub width: Option<f64>,
 }
 
 /// The values of a sweepable flag: one number, a list `a,b,c`, or a range `a:b:n` (n points,
@@ -156,6 +163,8 @@ impl SceneArgs {
             geometry: self.geometry,
             tol: self.tol,
             max_dofs: self.max_dofs,
+            state: self.plane_stress.then_some(tribofe::scene::State::PlaneStress),
+            width: self.width,
         })
     }
 }
@@ -181,6 +190,8 @@ pub const FLAG_KEYS: &[(&str, &str)] = &[
     ("--mesh", "mesh.file"),
     ("--geometry", "mesh.geometry"),
     ("--max-dofs", "mesh.max_dofs"),
+    ("--plane-stress", "block.state"),
+    ("--width", "block.width"),
 ];
 
 impl SceneArgs {
@@ -206,6 +217,8 @@ impl SceneArgs {
             "--mesh" => self.mesh.is_some(),
             "--geometry" => self.geometry.is_some(),
             "--max-dofs" => self.max_dofs.is_some(),
+            "--plane-stress" => self.plane_stress,
+            "--width" => self.width.is_some(),
             "--scene" => self.scene.is_some(),
             "--write-scene" => self.write_scene.is_some(),
             _ => false,
@@ -281,6 +294,10 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
                 ),
             ));
         }
+    }
+    if let Some(note) = s.block.out_of_plane_note(None) {
+        use std::io::Write;
+        let _ = writeln!(std::io::stderr(), "note: {note}");
     }
     for w in s.warnings() {
         use std::io::Write;

@@ -1283,6 +1283,12 @@ impl SceneSpec {
     /// lag, [`DEFAULT_NORMAL_LAG`]), the block's and the mesh's are the scene's.
     pub fn from_scene(scene: &crate::scene::Scene) -> Result<Self> {
         use crate::scene::{InterfaceTable, RuptureTable};
+        if scene.block.state != crate::scene::State::PlaneStrain {
+            return Err(Error::input(
+                "[block] state",
+                "'plane-stress': a rupture scene runs plane strain only (its benchmarks are plane strain); remove the key",
+            ));
+        }
         let d = RuptureSpec::default();
         let mut keys = vec![
             ("--length", "block.length"),

@@ -1,4 +1,6 @@
-//! Wave speeds of an isotropic plane-strain solid: P, S, and the Rayleigh speed (the root of
+//! Wave speeds of an isotropic solid in plane strain or plane stress: P (of the in-plane
+//! law: (lambda + 2 G) / rho in plane strain, E / ((1 - nu^2) rho) in plane stress), S, and the
+//! Rayleigh speed (the root of
 //! the Rayleigh equation between 0 and c_s).
 
 use crate::fem::material::Material;
@@ -14,6 +16,7 @@ pub struct WaveSpeeds {
 impl WaveSpeeds {
     pub fn new(material: &Material, rho: f64) -> Self {
         let (l, g) = (material.lambda(), material.shear_modulus());
+        // lambda is the in-plane law's: E nu / (1 - nu^2) in plane stress.
         let c_p = ((l + 2.0 * g) / rho).sqrt();
         let c_s = (g / rho).sqrt();
         Self { c_p, c_s, c_r: c_s * rayleigh_ratio(c_s / c_p) }

@@ -61,7 +61,7 @@ impl crate::interface::condense::Condensed {
             w: op.w.clone(),
             l: b.length,
             t: b.thickness,
-            e_star: b.young / (1.0 - b.poisson.powi(2)),
+            e_star: b.e_star(),
             s: vec![],
             asymmetry: op.asymmetry,
             rigid_residual: op.rigid_residual,

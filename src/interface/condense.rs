@@ -28,7 +28,8 @@ pub struct Condensed {
     /// Block length, thickness, m.
     pub l: f64,
     pub t: f64,
-    /// Plane-strain modulus E/(1 - nu^2), Pa (scales for tolerances).
+    /// In-plane modulus E* (E/(1 - nu^2) in plane strain, E in plane stress), Pa (scales for
+    /// tolerances).
     pub e_star: f64,
     /// Dense symmetric S, (2n + 3)^2, row-major, N/m per m.
     pub s: Vec<f64>,
@@ -264,6 +265,6 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
         });
     }
     let w = sm.tributary_widths();
-    let e_star = scene.block.young / (1.0 - scene.block.poisson.powi(2));
+    let e_star = scene.block.e_star();
     Ok(Condensed { n, x, w, l: scene.block.length, t, e_star, s, asymmetry: asym, rigid_residual })
 }

@@ -1,7 +1,7 @@
 //! Feeding the discrete model with interface fields from an FE solution, and comparing with
 //! the paper's linear fields on the same cells.
 //!
-//! Conversion (plane strain, per unit out-of-plane width w, linear elasticity so fields
+//! Conversion (plane strain or plane stress, per unit out-of-plane width w, linear elasticity so fields
 //! superpose; the interface is stuck everywhere in the FE solve, which is what loads the
 //! model between events). Under normal load N and tangential force F:
 //!   p(x)   = (N/L) p_per_n(x) + (F/L) p_per_f(x),

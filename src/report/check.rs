@@ -203,6 +203,9 @@ pub fn table(res: &CheckResult) -> String {
         s,
         "stresses in units of the mean pressure N/L; widths in units of t; forces per unit width (N/m)"
     );
+    if let Some(note) = sc.block.out_of_plane_note(res.cases.first().map(|c| c.n)) {
+        let _ = writeln!(s, "{note}");
+    }
     let _ = writeln!(
         s,
         "{:>6} {:>11} {:>11} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} | {:>13} {:>13}",

@@ -4,7 +4,7 @@
 //! (`spacetime_<event>.svg`, [`Spacetime`]).
 
 pub use super::spacetime::SPACETIME_DECADES;
-use super::spacetime::{frame, heat_map, sig4, HeatMap};
+use super::spacetime::{frame, heat_map, linear_map, sig4, HeatMap, LinearMap};
 use super::table::{Column, Table};
 use super::{finite, write_atomic};
 use crate::error::Result;
@@ -245,6 +245,68 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
     })
 }
 
+/// The contact-area picture of one dynamic event (`contact_area_<event>.svg`): the proxy
+/// A(x)/A_0 = p(x)/p_mean ([`crate::studies::slide::contact_area_over_a0`]) over x/L (across)
+/// and time since the onset (down), from the base's contact forces sampled up to the front's
+/// arrest (the samples the event keeps); the same x crop as [`spacetime_svg`]. None when the
+/// event kept no samples.
+pub fn contact_area_svg(r: &DynamicResult, e: &DynEvent) -> Option<String> {
+    let rec = &e.record;
+    let c = &r.slide.condensed;
+    let rows = rec.p_samples.len().min(rec.t.len());
+    if rows == 0 || c.n == 0 {
+        return None;
+    }
+    let area: Vec<Vec<f64>> = rec.p_samples[..rows]
+        .iter()
+        .map(|p| {
+            let p: Vec<f64> = p.iter().map(|&v| f64::from(v)).collect();
+            crate::studies::slide::contact_area_over_a0(&p, &c.w, c.l)
+        })
+        .collect();
+    let reached: Vec<usize> =
+        (0..c.n).filter(|&i| rec.arrival.get(i).is_some_and(|a| a.is_finite())).collect();
+    let margin = 2.0 * r.slide.scene.block.thickness;
+    let (xa, xb) = match (reached.first(), reached.last()) {
+        (Some(&i), Some(&j)) => ((c.x[i] - margin).max(c.x[0]), (c.x[j] + margin).min(c.x[c.n - 1])),
+        _ => (c.x[0], c.x[c.n - 1]),
+    };
+    let shown = |i: usize| c.x[i] >= xa && c.x[i] <= xb;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for row in &area {
+        for &v in row.iter().enumerate().filter(|(i, _)| shown(*i)).map(|(_, v)| v) {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        return None;
+    }
+    if hi - lo < 1e-6 {
+        (lo, hi) = (lo - 0.05, hi + 0.05);
+    }
+    let t_of = |k: usize| rec.t[k];
+    let k_onset = e.f_onset / (r.slide.options.law.mu_s() * r.slide.options.n_force);
+    Some(linear_map(&LinearMap {
+        title: format!(
+            "event {} ({}), F = {} mu_s N: contact area A/A0 = p/p_mean, to the arrest",
+            e.event,
+            r.slide.run.events[e.event].kind,
+            sig4(k_onset)
+        ),
+        x: &c.x,
+        x_range: (xa, xb),
+        x_unit: (c.l, "position x / L (dimensionless)"),
+        t: &t_of,
+        rows,
+        t_end: rec.t[rows - 1].max(f64::MIN_POSITIVE),
+        t_label: "time since onset (s)",
+        value: &|k, i| area[k][i],
+        range: (lo, hi),
+        label: "A/A0 = p/p_mean (dimensionless)",
+    }))
+}
+
 /// cycle.svg: the run's instabilities as experiments image precursors (Rubinstein et al.,
 /// PRL 98, 226103, 2007): each one's slipped extent (x/L, across) at the drive force of its
 /// onset (F/(mu_s N), up), one bar each, with its nucleation node as a dot; the cycle's end
@@ -387,7 +449,8 @@ fn summary_unit(name: &str) -> &'static str {
 }
 
 /// Writes slide's files, summary.csv, fronts_t.csv, dyn_events.csv, cycle.svg and the
-/// space-time pictures `spacetime` asks for (`spacetime_<event>.svg`) into `dir`.
+/// space-time pictures `spacetime` asks for (`spacetime_<event>.svg`, each with its
+/// contact-area picture `contact_area_<event>.svg`) into `dir`.
 pub fn write(
     r: &DynamicResult,
     dir: &Path,
@@ -404,6 +467,9 @@ pub fn write(
     ];
     for e in spacetime.picks(r) {
         files.push((format!("spacetime_{:06}.svg", e.event), spacetime_svg(r, e)));
+        if let Some(svg) = contact_area_svg(r, e) {
+            files.push((format!("contact_area_{:06}.svg", e.event), svg));
+        }
     }
     for (name, text) in files {
         let p = dir.join(name);

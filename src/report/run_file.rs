@@ -39,17 +39,34 @@ pub fn run_toml<R: Serialize>(
     results: &R,
 ) -> Result<String> {
     #[derive(Serialize)]
-    struct Run<'a, R> {
+    struct Run<'a> {
         /// A mesh of the file's own shape: no verdict against the paper's model describes it.
         #[serde(skip_serializing_if = "Option::is_none")]
         geometry: Option<&'static str>,
         tribofe: Provenance,
         options: &'a toml::Table,
-        results: &'a R,
+        /// Plane strain or stress, the width b, and what the forces are per.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        out_of_plane: Option<OutOfPlane>,
+        results: &'a toml::Value,
         #[serde(skip_serializing_if = "Option::is_none")]
         scene: Option<&'a crate::scene::Scene>,
     }
     let file_shape = scene.is_some_and(|s| s.mesh.geometry == crate::scene::MeshGeometry::File);
+    let mut results = toml::Value::try_from(results).map_err(|e| Error::input("run.toml", e.to_string()))?;
+    let out_of_plane = scene.map(|s| OutOfPlane {
+        state: s.block.state.name(),
+        width_m: s.block.width,
+        forces: if s.block.width.is_some() {
+            "per unit width (N/m) in the tables; each *_N_per_m result has a *_newtons twin, times width_m"
+        } else {
+            "per unit width (N/m)"
+        },
+    });
+    if let Some(b) = scene.and_then(|s| s.block.width) {
+        add_newtons(&mut results, b);
+    }
+    let results = &results;
     let run = Run {
         geometry: file_shape.then_some(crate::scene::FILE_GEOMETRY_NOTE),
         tribofe: Provenance {
@@ -62,6 +79,7 @@ pub fn run_toml<R: Serialize>(
             arguments: inv.args.clone(),
         },
         options: &inv.options,
+        out_of_plane,
         results,
         scene,
     };
@@ -69,6 +87,40 @@ pub fn run_toml<R: Serialize>(
     refuse_non_finite(&value, "run.toml")?;
     let body = toml::to_string(&run).map_err(|e| Error::input("run.toml", e.to_string()))?;
     Ok(format!("{RUN_FILE_MARKER} {}; the provenance of this folder\n{body}", env!("CARGO_PKG_VERSION")))
+}
+
+#[derive(Serialize)]
+struct OutOfPlane {
+    state: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    width_m: Option<f64>,
+    forces: &'static str,
+}
+
+/// Beside every `*_n_per_m` number in `v`, its `*_newtons` over the width `b` (m).
+fn add_newtons(v: &mut toml::Value, b: f64) {
+    match v {
+        toml::Value::Table(t) => {
+            let twins: Vec<(String, toml::Value)> = t
+                .iter()
+                .filter_map(|(k, x)| {
+                    // Either spelling of the unit: n_force_n_per_m, n_force_N_per_m.
+                    let stem = k
+                        .len()
+                        .checked_sub(8)
+                        .filter(|&i| k.is_char_boundary(i) && k[i..].eq_ignore_ascii_case("_n_per_m"))
+                        .map(|i| &k[..i])?;
+                    Some((format!("{stem}_newtons"), toml::Value::Float(x.as_float()? * b)))
+                })
+                .collect();
+            for (_, x) in t.iter_mut() {
+                add_newtons(x, b);
+            }
+            t.extend(twins);
+        }
+        toml::Value::Array(a) => a.iter_mut().for_each(|x| add_newtons(x, b)),
+        _ => {}
+    }
 }
 
 /// Refuses a NaN or infinite number anywhere in `v` (`at` names the key).

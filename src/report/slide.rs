@@ -128,7 +128,8 @@ fn states_bytes(r: &SlideResult) -> Result<Vec<u8>> {
     needs_states(r, "states.csv")?;
     let c = &r.condensed;
     let pm = r.p_mean();
-    let header = "event,x_over_L,p_over_pmean,tau_over_pmean,slip_m,gap_m,state\n";
+    // contact_area_over_A0 last: the columns before it keep their places for scripts.
+    let header = "event,x_over_L,p_over_pmean,tau_over_pmean,slip_m,gap_m,state,contact_area_over_A0\n";
     let x: Vec<f64> = (0..c.n).map(|i| c.x[i] / c.l).collect();
     let chunk = |k0: usize, states: &[crate::interface::events::State]| -> Result<Vec<u8>> {
         let mut b = Vec::with_capacity(states.len() * c.n * 96);
@@ -139,6 +140,7 @@ fn states_bytes(r: &SlideResult) -> Result<Vec<u8>> {
         };
         for (k, st) in (k0..).zip(states) {
             let tag = format!("{k},");
+            let area = crate::studies::slide::contact_area_over_a0(&st.p_force, &c.w, c.l);
             for i in 0..c.n {
                 b.extend_from_slice(tag.as_bytes());
                 put(&mut b, "x", x[i])?;
@@ -147,6 +149,8 @@ fn states_bytes(r: &SlideResult) -> Result<Vec<u8>> {
                 put(&mut b, "slip", st.u[i])?;
                 put(&mut b, "gap", st.gap[i])?;
                 b.extend_from_slice(st.states[i].name().as_bytes());
+                b.push(b',');
+                crate::io::csv::push_e12(&mut b, finite("contact_area_over_A0", area[i])?);
                 b.push(b'\n');
             }
         }

@@ -271,3 +271,119 @@ pub(crate) fn colour(v: f32) -> String {
     };
     format!("#{:02x}{:02x}{:02x}", r as u8, g as u8, b as u8)
 }
+
+/// What [`linear_map`] draws: a field over position (across) and time (down) on a linear
+/// colour scale from `range.0` (white) to `range.1` (dark red).
+pub(crate) struct LinearMap<'a> {
+    pub title: String,
+    pub x: &'a [f64],
+    pub x_range: (f64, f64),
+    pub x_unit: (f64, &'a str),
+    pub t: &'a dyn Fn(usize) -> f64,
+    pub rows: usize,
+    pub t_end: f64,
+    pub t_label: &'a str,
+    pub value: &'a dyn Fn(usize, usize) -> f64,
+    pub range: (f64, f64),
+    pub label: &'a str,
+}
+
+/// The picture: one cell per node and row (20 colour bands), a colour bar with ticks.
+pub(crate) fn linear_map(m: &LinearMap) -> String {
+    const BANDS: usize = 20;
+    let (x, nx) = (m.x, m.x.len());
+    let (xa, xb) = m.x_range;
+    let (lo, hi) = m.range;
+    let span = (hi - lo).max(f64::MIN_POSITIVE);
+    let (w, h, ml, mt, mb, mr) = (720.0, 480.0, 80.0, 50.0, 60.0, 150.0);
+    let px = |x: f64| ml + (x - xa) / (xb - xa).max(f64::MIN_POSITIVE) * w;
+    let py = |t: f64| mt + t / m.t_end * h;
+    let band = |v: f64| (((v - lo) / span * BANDS as f64).floor() as i64).clamp(0, BANDS as i64 - 1) as usize;
+    let fill = |q: usize| colour(((q as f64 + 0.5) / BANDS as f64) as f32);
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"14\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<defs><clipPath id=\"plot\"><rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\"/></clipPath></defs>\n",
+        ml + w + mr,
+        mt + h + mb
+    );
+    let _ = writeln!(
+        s,
+        "<text class=\"title\" x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"16\">{}</text>",
+        ml + w / 2.0,
+        m.title
+    );
+    let mut g = String::from("<g clip-path=\"url(#plot)\">\n");
+    let half = |i: usize, d: isize| 0.5 * (x[i] + x[(i as isize + d).clamp(0, nx as isize - 1) as usize]);
+    for k in 0..m.rows {
+        let (ya, yb) = (py(if k == 0 { 0.0 } else { (m.t)(k - 1) }), py((m.t)(k)));
+        // Neighbours of one band are one rectangle.
+        let mut run: Option<(f64, f64, usize)> = None;
+        let flush = |g: &mut String, run: Option<(f64, f64, usize)>| {
+            if let Some((x0, x1, q)) = run {
+                let _ = writeln!(
+                    g,
+                    "<rect x=\"{x0:.2}\" y=\"{ya:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{}\"/>",
+                    (x1 - x0).max(0.3) + 0.3,
+                    (yb - ya).max(0.3) + 0.3,
+                    fill(q)
+                );
+            }
+        };
+        for i in (0..nx).filter(|&i| x[i] >= xa && x[i] <= xb) {
+            let (q, x0, x1) = (band((m.value)(k, i)), px(half(i, -1)), px(half(i, 1)));
+            match &mut run {
+                Some((_, end, q0)) if *q0 == q => *end = x1,
+                _ => {
+                    flush(&mut g, run.take());
+                    run = Some((x0, x1, q));
+                }
+            }
+        }
+        flush(&mut g, run);
+    }
+    g.push_str("</g>\n");
+    s.push_str(&g);
+    let unit = m.x_unit.0;
+    frame(
+        &mut s,
+        [ml, mt, w, h],
+        ((xa / unit, xb / unit), &|v| px(v * unit)),
+        ((0.0, m.t_end), &py),
+        m.x_unit.1,
+        m.t_label,
+    );
+    let (bx, bw) = (ml + w + 24.0, 22.0);
+    for q in 0..BANDS {
+        let _ = writeln!(
+            s,
+            "<rect x=\"{bx}\" y=\"{:.2}\" width=\"{bw}\" height=\"{:.2}\" fill=\"{}\"/>",
+            mt + h * (1.0 - (q + 1) as f64 / BANDS as f64),
+            h / BANDS as f64 + 0.3,
+            fill(q)
+        );
+    }
+    let _ = writeln!(
+        s,
+        "<rect x=\"{bx}\" y=\"{mt}\" width=\"{bw}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
+    );
+    let (vt, vd) = ticks(lo, hi);
+    for v in vt {
+        let y = mt + h * (1.0 - (v - lo) / span);
+        let _ = writeln!(
+            s,
+            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{}\" y2=\"{y:.1}\" stroke=\"black\"/><text class=\"cbar-tick\" x=\"{}\" y=\"{:.1}\">{v:.vd$}</text>",
+            bx + bw,
+            bx + bw + 5.0,
+            bx + bw + 8.0,
+            y + 5.0
+        );
+    }
+    let lx = bx + bw + 62.0;
+    let _ = writeln!(
+        s,
+        "<text x=\"{lx}\" y=\"{0}\" transform=\"rotate(-90 {lx} {0})\" text-anchor=\"middle\">{1}</text>",
+        mt + h / 2.0,
+        m.label
+    );
+    s.push_str("</svg>\n");
+    s
+}

@@ -20,7 +20,7 @@ impl Scene {
         }
         let (l, t, hgt) = (self.block.length, self.block.thickness, self.loading.height);
         let tech = self.element()?.tech;
-        let block_mat = Material::plane_strain(self.block.young, self.block.poisson)?;
+        let block_mat = self.block.material()?;
         let nx = even((l / self.mesh.h).round().max(2.0) as usize);
         let ny = self.mesh.n_thick.unwrap_or(((t / self.mesh.h).round() as usize).max(1));
         let (interface_name, top_name) = (self.mesh.interface.clone(), self.mesh.top.clone());
@@ -298,7 +298,7 @@ impl Scene {
         let mesh = merge(&block, &plate);
         let nb = block.n_elements();
         let element_material: Vec<u32> = (0..mesh.n_elements()).map(|e| u32::from(e >= nb)).collect();
-        let plate_mat = Material::plane_strain(self.plate.young, self.plate.poisson)?;
+        let plate_mat = Material::new(self.plate.young, self.plate.poisson, self.block.state)?;
         let mut c = Constraints::new(mesh.n_nodes());
         let interface = sorted_by_x(&mesh, mesh.set_nodes(interface_name)?);
         for &n in &interface {

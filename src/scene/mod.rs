@@ -26,6 +26,7 @@ use crate::fem::assembly::Model;
 use crate::fem::constraints::Constraints;
 use crate::fem::element::stiffness::{ElementChoice, Technology};
 use crate::fem::material::Material;
+pub use crate::fem::material::State;
 use crate::fem::mesh::Mesh;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -58,6 +59,16 @@ pub struct Block {
     pub c_p: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub c_s: Option<f64>,
+    /// plane-strain (the default) or plane-stress (`--plane-stress`), for the whole 2D model.
+    pub state: State,
+    /// b, the plate's out-of-plane width, m (`--width`): turns the per-unit-width forces into
+    /// newtons; plane stress requires it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
+    /// The file's wave speeds (c_p, c_s) once turned into young and poisson, to turn them
+    /// again if a flag changes the state.
+    #[serde(skip)]
+    pub(crate) wave_speeds: Option<(f64, f64)>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -290,6 +301,9 @@ impl Default for Block {
             density: 1000.0,
             c_p: None,
             c_s: None,
+            state: State::PlaneStrain,
+            width: None,
+            wave_speeds: None,
         }
     }
 }
@@ -317,21 +331,90 @@ impl Block {
         }
         crate::error::scaled("block.c_p (m/s)", c_p, "m/s")?;
         crate::error::scaled("block.c_s (m/s)", c_s, "m/s")?;
-        // Plane strain: G = rho c_s^2, lambda = rho c_p^2 - 2 G, nu = lambda / (2 (lambda + G)).
-        let g = self.density * c_s * c_s;
-        let lambda = self.density * c_p * c_p - 2.0 * g;
-        // nu > -1 is lambda > -2 G / 3, that is c_p > sqrt(4/3) c_s.
-        let least = c_s * (4.0f64 / 3.0).sqrt();
-        if !(c_p > least && lambda + g > 0.0) {
-            return Err(Error::input(
-                "block.c_s (m/s)",
-                format!("c_p = {c_p} m/s, c_s = {c_s} m/s: an isotropic solid (nu > -1) needs c_p > sqrt(4/3) c_s = {least:.6} m/s"),
-            ));
-        }
-        self.poisson = lambda / (2.0 * (lambda + g));
-        self.young = 2.0 * g * (1.0 + self.poisson);
+        self.set_young_poisson(c_p, c_s)?;
         (self.c_p, self.c_s) = (None, None);
+        self.wave_speeds = Some((c_p, c_s));
         Ok(())
+    }
+
+    /// young and poisson of wave speeds c_p, c_s (m/s) at this density, in this state.
+    pub(crate) fn set_young_poisson(&mut self, c_p: f64, c_s: f64) -> Result<()> {
+        let g = self.density * c_s * c_s;
+        let m = self.density * c_p * c_p;
+        match self.state {
+            State::PlaneStrain => {
+                // G = rho c_s^2, lambda = rho c_p^2 - 2 G, nu = lambda / (2 (lambda + G)).
+                let lambda = m - 2.0 * g;
+                // nu > -1 is lambda > -2 G / 3, that is c_p > sqrt(4/3) c_s.
+                let least = c_s * (4.0f64 / 3.0).sqrt();
+                if !(c_p > least && lambda + g > 0.0) {
+                    return Err(Error::input(
+                        "block.c_s (m/s)",
+                        format!("c_p = {c_p} m/s, c_s = {c_s} m/s: an isotropic solid (nu > -1) needs c_p > sqrt(4/3) c_s = {least:.6} m/s"),
+                    ));
+                }
+                self.poisson = lambda / (2.0 * (lambda + g));
+            }
+            State::PlaneStress => {
+                // rho c_p^2 = E / (1 - nu^2) = 2 G / (1 - nu): nu = 1 - 2 G / (rho c_p^2).
+                let nu = 1.0 - 2.0 * g / m;
+                if !(c_p > c_s && nu <= 0.5) {
+                    return Err(Error::input(
+                        "block.c_s (m/s)",
+                        format!("c_p = {c_p} m/s, c_s = {c_s} m/s: an isotropic plate in plane stress (-1 < nu <= 0.5) needs c_s < c_p and c_p >= 2 c_s = {} m/s", 2.0 * c_s),
+                    ));
+                }
+                self.poisson = nu;
+            }
+        }
+        self.young = 2.0 * g * (1.0 + self.poisson);
+        Ok(())
+    }
+
+    /// The block's material in its state.
+    pub fn material(&self) -> Result<Material> {
+        Material::new(self.young, self.poisson, self.state)
+    }
+
+    /// The material unchecked, for the closed forms below (validate has checked it).
+    fn law(&self) -> Material {
+        Material { e: self.young, nu: self.poisson, state: self.state }
+    }
+
+    /// [`Material::plane_strain_nu`]: the Poisson ratio closed forms written for plane strain
+    /// take (poisson itself in plane strain).
+    pub fn plane_strain_nu(&self) -> f64 {
+        self.law().plane_strain_nu()
+    }
+
+    /// [`Material::e_star`]: E / (1 - nu^2) in plane strain, E in plane stress, Pa.
+    pub fn e_star(&self) -> f64 {
+        self.law().e_star()
+    }
+
+    /// The normal force in newtons of `n_per_m` (N/m) over the width b, if b is given.
+    pub fn newtons(&self, n_per_m: f64) -> Option<f64> {
+        self.width.map(|b| n_per_m * b)
+    }
+
+    /// The printed line on the out-of-plane state and width, with the normal force `n_per_m`
+    /// (N/m) in newtons if given; none for plane strain without a width (the default scene).
+    pub fn out_of_plane_note(&self, n_per_m: Option<f64>) -> Option<String> {
+        if self.state == State::PlaneStrain && self.width.is_none() {
+            return None;
+        }
+        let state = match self.state {
+            State::PlaneStrain => "plane strain (eps_zz = 0)",
+            State::PlaneStress => "plane stress (sigma_zz = 0)",
+        };
+        let mut s = format!("{state}; forces per unit width (N/m)");
+        if let Some(b) = self.width {
+            s += &format!(", width b = {} m", crate::error::num(b));
+            if let Some(n) = n_per_m {
+                s += &format!(": N = {} N/m x b = {} N", crate::error::num(n), crate::error::num(n * b));
+            }
+        }
+        Some(s)
     }
 }
 
@@ -522,12 +605,31 @@ impl Scene {
                 ));
             }
         }
-        material(self.block.young, self.block.poisson, "block.young (--young)", "block.poisson (--poisson)")?;
+        if let Some(b) = self.block.width {
+            scaled("block.width (m, --width)", b, "m")?;
+        }
+        if self.block.state == State::PlaneStress && self.block.width.is_none() {
+            return Err(Error::input(
+                "block.width (m, --width)",
+                "plane stress (block.state = \"plane-stress\", --plane-stress) describes a plate of finite \
+                 out-of-plane width b: give it with [block] width or --width (m), to turn the forces per unit \
+                 width into the plate's newtons",
+            ));
+        }
+        let state = self.block.state;
+        material(
+            self.block.young,
+            self.block.poisson,
+            state,
+            "block.young (--young)",
+            "block.poisson (--poisson)",
+        )?;
         // The plate's keys are checked whatever the model, so a scene file never holds a
         // nonsense value that only a later switch to the elastic plate would reveal.
         material(
             self.plate.young,
             self.plate.poisson,
+            state,
             "plate.young (--plate-modulus)",
             "plate.poisson (--plate-poisson)",
         )?;
@@ -615,7 +717,8 @@ impl Scene {
                 self.mesh.element
             )
         };
-        if matches!(self.mesh.element.as_str(), "qua4" | "tri3") {
+        // Plane stress has no volumetric constraint to lock on.
+        if matches!(self.mesh.element.as_str(), "qua4" | "tri3") && self.block.state == State::PlaneStrain {
             if self.block.poisson >= 0.499 {
                 w.push(lock(self.block.poisson, "block.poisson"));
             }
@@ -657,8 +760,8 @@ fn key_line(text: &str, what: &str) -> Option<usize> {
 /// Largest |F/N| accepted: far above any friction coefficient (rubber reaches ~3).
 pub const MAX_FN_RATIO: f64 = 10.0;
 
-/// [`Material::plane_strain`] with its refusal naming the scene key (`young` or `poisson`).
-fn material(e: f64, nu: f64, young: &str, poisson: &str) -> Result<Material> {
+/// [`Material::new`] with its refusal naming the scene key (`young` or `poisson`).
+fn material(e: f64, nu: f64, state: State, young: &str, poisson: &str) -> Result<Material> {
     // A ratio this small is 0 to every digit the solve keeps, and its subnormal products
     // slow the arithmetic a hundredfold (issue 31: `edges --poisson 1e-308` ran past a minute).
     if nu != 0.0 && nu.abs() < 1e-100 {
@@ -667,7 +770,7 @@ fn material(e: f64, nu: f64, young: &str, poisson: &str) -> Result<Material> {
             format!("{nu:e} is 0 to every digit kept: give 0 or |nu| >= 1e-100"),
         ));
     }
-    Material::plane_strain(e, nu).map_err(|err| match err {
+    Material::new(e, nu, state).map_err(|err| match err {
         Error::Input { what, why } => {
             Error::input(if what.starts_with("Young") { young } else { poisson }, why)
         }

@@ -2,7 +2,7 @@
 //! scene's value. Applied by [`Scene::apply`], then checked by the same [`Scene::validate`] as a
 //! scene file.
 
-use super::{MeshGeometry, PlateModel, Scene};
+use super::{MeshGeometry, PlateModel, Scene, State};
 use crate::error::{Error, Result};
 use std::path::PathBuf;
 
@@ -27,6 +27,8 @@ pub struct Overrides {
     pub geometry: Option<MeshGeometry>,
     pub tol: Option<f64>,
     pub max_dofs: Option<usize>,
+    pub state: Option<State>,
+    pub width: Option<f64>,
 }
 
 macro_rules! set {
@@ -69,6 +71,17 @@ impl Scene {
         set!(o.tol, s.report.tol);
         if o.max_dofs.is_some() {
             s.mesh.max_dofs = o.max_dofs;
+        }
+        if let Some(state) = o.state {
+            let turn = state != s.block.state && o.young.is_none() && o.poisson.is_none();
+            s.block.state = state;
+            // A file's wave speeds stay the material: turned again in the new state.
+            if let (true, Some((c_p, c_s))) = (turn, s.block.wave_speeds) {
+                s.block.set_young_poisson(c_p, c_s)?;
+            }
+        }
+        if o.width.is_some() {
+            s.block.width = o.width;
         }
         s.validate()?;
         Ok(s)

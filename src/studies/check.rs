@@ -412,7 +412,7 @@ fn finish(
     let mut displacements = Vec::new();
     let decay = match decay {
         Some(k) => k,
-        None => crate::analytical::thin_layer::Corrected::decay(scene.block.poisson)?,
+        None => crate::analytical::thin_layer::Corrected::decay(scene.block.plane_strain_nu())?,
     };
     for &ratio in &scene.loading.fn_ratios {
         // N = N_A (the normal force of case A alone), F = ratio N.
@@ -442,7 +442,7 @@ fn finish(
             l,
             t,
             hgt,
-            scene.block.poisson,
+            scene.block.plane_strain_nu(),
             ratio,
             decay,
         )?;

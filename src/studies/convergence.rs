@@ -260,7 +260,7 @@ pub fn study(base: &Scene, o: &StudyOptions, progress: Progress<Run>) -> Result<
     for r in &mut runs {
         r.errors = samples.errors(&r.x, &r.p, &r.tau, &rx, &rp, &rt);
     }
-    let theory = Theory::new(base.block.poisson, &runs[reference], t_over_l)?;
+    let theory = Theory::new(base.block.plane_strain_nu(), &runs[reference], t_over_l)?;
     Ok(Study { nu: base.block.poisson, t_over_l, runs, reference, skipped, theory })
 }
 

@@ -14,7 +14,7 @@ use crate::progress::Progress;
 use crate::scene::{Scene, SceneModel};
 use std::time::Instant;
 
-pub use super::slide_arrays::{EventColumns, StateField};
+pub use super::slide_arrays::{contact_area_over_a0, EventColumns, StateField};
 
 /// The options of a frictional run: the event solver's [`Problem`] itself (one options type).
 pub type SlideOptions = Problem;

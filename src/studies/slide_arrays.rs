@@ -18,16 +18,35 @@ pub enum StateField {
     NormalForce,
     /// The node's state as a number: 0 stick, 1 slip, 2 open (dimensionless).
     Code,
+    /// The real-contact-area proxy A(x)/A_0 = p(x)/p_mean (dimensionless,
+    /// [`contact_area_over_a0`]).
+    ContactAreaOverA0,
 }
 
 impl StateField {
-    pub const ALL: [StateField; 5] = [
+    pub const ALL: [StateField; 6] = [
         StateField::Slip,
         StateField::Gap,
         StateField::TangentialForce,
         StateField::NormalForce,
         StateField::Code,
+        StateField::ContactAreaOverA0,
     ];
+}
+
+/// The real contact area of a multicontact interface under Amontons friction, relative to its
+/// mean: A(x)/A_0 = p(x)/p_mean (dimensionless), p the nodal pressure (normal force `p_force`,
+/// N/m, over the tributary width `w`, m) and p_mean = N/L with N the state's own normal force
+/// (the sum of `p_force`), so it averages to 1 over the interface of length `l` (m). A
+/// state carrying no normal force has no contact: zeros. A proxy: it cannot show the
+/// contact area's drop behind a front (ageing, rejuvenation).
+pub fn contact_area_over_a0(p_force: &[f64], w: &[f64], l: f64) -> Vec<f64> {
+    let n: f64 = p_force.iter().sum();
+    if !(n > 0.0 && n.is_finite()) {
+        return vec![0.0; p_force.len()];
+    }
+    let p_mean = n / l;
+    p_force.iter().zip(w).map(|(p, w)| p / w / p_mean).collect()
 }
 
 /// The events as columns, one entry per event (read off the events and their summaries, so
@@ -75,6 +94,9 @@ impl SlideResult {
                     NodeState::Slip(_) => 1.0,
                     NodeState::Open => 2.0,
                 })),
+                StateField::ContactAreaOverA0 => {
+                    out.extend(contact_area_over_a0(&s.p_force, &self.condensed.w, self.condensed.l))
+                }
             }
         }
         (out, [states.len(), n])

@@ -386,7 +386,7 @@ pub fn run(base: &Scene, axes: &[Axis], o: &SweepOptions, progress: Progress<Poi
     let mut decays: Vec<(f64, f64)> = Vec::new();
     let (done, total) = (AtomicUsize::new(0), scenes.len().max(1));
     for (_, s) in &scenes {
-        let nu = s.block.poisson;
+        let nu = s.block.plane_strain_nu();
         let k = match decays.iter().find(|d| d.0 == nu) {
             Some(d) => d.1,
             None => {
@@ -455,7 +455,7 @@ pub fn run(base: &Scene, axes: &[Axis], o: &SweepOptions, progress: Progress<Poi
             o.cancel.check()?;
             let clock = Instant::now();
             let first = &sub[0].1;
-            let k = decays.iter().find(|d| d.0 == first.block.poisson).map(|d| d.1);
+            let k = decays.iter().find(|d| d.0 == first.block.plane_strain_nu()).map(|d| d.1);
             let results = if rigid(first) {
                 let mut reference = first.clone();
                 reference.loading.height = h_ref;

@@ -408,11 +408,20 @@ fn fronts_come_from_arrival_times_and_the_pictures_show_the_activity() {
         v
     };
     assert_eq!(names(&Spacetime::None, "none"), ["cycle.svg"]);
+    // Each space-time picture has its contact-area picture A/A0 = p/p_mean beside it (issue 49).
     assert_eq!(
         names(&Spacetime::Events(vec![e.event]), "one"),
-        ["cycle.svg".to_string(), format!("spacetime_{:06}.svg", e.event)]
+        [
+            format!("contact_area_{:06}.svg", e.event),
+            "cycle.svg".to_string(),
+            format!("spacetime_{:06}.svg", e.event)
+        ]
     );
-    assert_eq!(names(&Spacetime::All, "all").len(), 1 + inst);
+    let all = names(&Spacetime::All, "all");
+    assert_eq!(all.iter().filter(|f| f.starts_with("spacetime_")).count(), inst);
+    assert_eq!(all.iter().filter(|f| f.starts_with("contact_area_")).count(), inst);
+    let area = report::contact_area_svg(&r, e).unwrap();
+    assert!(area.contains("contact area A/A0") && area.matches("class=\"cbar-tick\"").count() >= 2);
     assert_eq!("3,17".parse::<Spacetime>().unwrap(), Spacetime::Events(vec![3, 17]));
     let err = "3,x".parse::<Spacetime>().unwrap_err().to_string();
     assert!(err.contains("--spacetime"), "{err}");

@@ -75,6 +75,11 @@ fn a_slides_arrays_are_its_states_and_events_columns_its_csv() {
                         tribofe::interface::events::NodeState::Open => 2.0,
                     })
                     .collect(),
+                StateField::ContactAreaOverA0 => {
+                    let n: f64 = st.p_force.iter().sum();
+                    let p_mean = n / r.condensed.l;
+                    st.p_force.iter().zip(&r.condensed.w).map(|(p, w)| p / w / p_mean).collect()
+                }
             };
             assert_eq!(row, &want[..], "{f:?} state {k}");
         }

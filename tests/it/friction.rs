@@ -274,7 +274,8 @@ fn slide_command_writes_the_named_files() {
     ));
     assert_eq!(ev.lines().filter(|l| l.contains(",sliding,")).count(), 2);
     let st = read("states.csv");
-    assert!(st.starts_with("event,x_over_L,p_over_pmean,tau_over_pmean,slip_m,gap_m,state\n"));
+    assert!(st
+        .starts_with("event,x_over_L,p_over_pmean,tau_over_pmean,slip_m,gap_m,state,contact_area_over_A0\n"));
     assert!(read("fig4_fe.svg").contains("<svg") && read("fronts.svg").contains("<svg"));
     assert!(read("run.toml").contains("static-kinetic"));
     let bad = std::process::Command::new(env!("CARGO_BIN_EXE_tribofe"))

@@ -203,7 +203,7 @@ pub struct DynamicResult {
 /// The block's shear-wave speed c_s, m/s.
 pub fn shear_speed(scene: &Scene) -> Result<f64> {
     let b = &scene.block;
-    Ok(WaveSpeeds::new(&crate::fem::material::Material::plane_strain(b.young, b.poisson)?, b.density).c_s)
+    Ok(WaveSpeeds::new(&b.material()?, b.density).c_s)
 }
 
 /// Refusals before any work: the element, the law, damping and step.

@@ -99,7 +99,7 @@ pub fn lambda0(scene: &Scene, mu_s: f64, mu_d: f64, dc: f64, n_force: f64) -> Re
     crate::studies::slide::check_n_force(scene, n_force)?;
     let b = &scene.block;
     let g = b.young / (2.0 * (1.0 + b.poisson));
-    Ok(Law::SlipWeakening { mu_s, mu_d, dc }.cohesive_zone(g, b.poisson, n_force / b.length))
+    Ok(Law::SlipWeakening { mu_s, mu_d, dc }.cohesive_zone(g, b.plane_strain_nu(), n_force / b.length))
 }
 
 /// The smallest D_c whose cohesive zone spans [`MIN_ZONE_ELEMENTS`] elements of the scene's
@@ -151,7 +151,7 @@ pub fn check_rate_state_resolved(scene: &Scene, r: &crate::law::RateState, n_for
     crate::studies::slide::check_n_force(scene, n_force)?;
     let b = &scene.block;
     let g = b.young / (2.0 * (1.0 + b.poisson));
-    let lb = Law::RateState(*r).process_zone(g, b.poisson, n_force / b.length);
+    let lb = Law::RateState(*r).process_zone(g, b.plane_strain_nu(), n_force / b.length);
     let h = scene.mesh.h;
     if lb < MIN_ZONE_ELEMENTS * h {
         return Err(Error::input(

@@ -64,7 +64,7 @@ impl Setup {
         let (values, _) = asm.assemble(&sm.model(), &red, &[vec![]], &[vec![0.0; nf]])?;
         let solver = Solver::analyse(&asm.pattern, SolverOptions::default())?;
         let b = &scene.block;
-        let mat = Material::plane_strain(b.young, b.poisson)?;
+        let mat = b.material()?;
         let model = Elastodynamic::new(&sm.mesh, mat, b.density)?;
         let speeds = WaveSpeeds::new(&mat, b.density);
         let omega_t = std::f64::consts::PI * speeds.c_s / (2.0 * b.thickness);
@@ -74,7 +74,7 @@ impl Setup {
         let dt = d.courant * dt_stable;
         let (law, normal) = (o.law, d.normal);
         let weakens = law.weakens();
-        let lambda0 = law.cohesive_zone(mat.shear_modulus(), mat.nu, o.n_force / b.length);
+        let lambda0 = law.cohesive_zone(mat.shear_modulus(), mat.plane_strain_nu(), o.n_force / b.length);
         Ok(Self {
             sm,
             slots,

@@ -47,9 +47,11 @@ pub fn corners(base: &Scene, o: &Options, progress: Progress) -> Result<CornerSt
     let increment_ratios: Vec<f64> = p_end.windows(3).map(|w| (w[2] - w[1]) / (w[1] - w[0])).collect();
     let tail = &increment_ratios[increment_ratios.len().saturating_sub(2)..];
     let factor = tail.iter().sum::<f64>() / tail.len().max(1) as f64;
-    let lw =
-        crate::analytical::williams::clamped_free_exponent(std::f64::consts::FRAC_PI_2, base.block.poisson)?
-            .re;
+    let lw = crate::analytical::williams::clamped_free_exponent(
+        std::f64::consts::FRAC_PI_2,
+        base.block.plane_strain_nu(),
+    )?
+    .re;
     Ok(CornerStudy {
         study,
         p_end,

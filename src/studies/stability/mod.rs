@@ -5,7 +5,6 @@
 //! `corners` (singular end nodes vs converging integrated quantities).
 
 use crate::error::{Error, Result};
-use crate::fem::material::Material;
 use crate::linalg::solve::SolverOptions;
 use crate::numeric::interpolate;
 use crate::scene::{PlateModel, Scene};

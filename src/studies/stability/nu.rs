@@ -31,7 +31,7 @@ pub struct NuStudy {
 /// Closed-form p(0) and N/(L strain) ratios of a run's F/N = 0 case (the first).
 fn closed_form(r: &CheckResult) -> Result<(f64, f64)> {
     let s = &r.scene;
-    let mat = Material::plane_strain(s.block.young, s.block.poisson)?;
+    let mat = s.block.material()?;
     let c = &r.cases[0];
     let strain = c.plate_v.abs() / s.block.thickness;
     let pmean = c.n / s.block.length;
