@@ -5,15 +5,16 @@
 use std::path::Path;
 
 /// The layers, lowest first; a module may use only modules of a lower rank (and itself).
-/// Ranks 0 and 1 sit beside everything: the error enum, then what uses only it (the cancel
-/// token, progress, numeric helpers, the allocator type, the paper's 1D model). `scene` sits
+/// Ranks 0 and 1 sit beside everything: what uses nothing of the crate (the error enum, the
+/// numeric helpers), then what uses only those (the cancel token, progress, the allocator
+/// type, the laws, the paper's 1D model). `scene` sits
 /// below `interface`: the interface is condensed from the scene's block and plate, and the
 /// scene needs nothing of the interface.
 const RANKS: &[(&str, u32)] = &[
     ("error", 0),
+    ("numeric", 0),
     ("cancel", 1),
     ("progress", 1),
-    ("numeric", 1),
     ("memory", 1),
     ("law", 1),
     ("precursors", 1),
