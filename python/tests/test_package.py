@@ -84,6 +84,22 @@ def test_slide_equals_the_command(tribofe_bin, tmp_path):
     assert set(np.unique(res.states["state_code"])) <= {0.0, 1.0, 2.0}
 
 
+def test_plane_stress_is_plane_strain_with_the_mapped_moduli():
+    # Plane stress with (E, nu) has the in-plane law of plane strain with
+    # E' = E (1 + 2 nu)/(1 + nu)^2, nu' = nu/(1 + nu): the profiles agree to round-off.
+    base = tribofe.Scene(h=0.001)
+    e, nu = base.young, base.poisson
+    stress = tribofe.check(base.replace(state="plane-stress", width=0.005))
+    strain = tribofe.check(
+        base.replace(young=e * (1 + 2 * nu) / (1 + nu) ** 2, poisson=nu / (1 + nu))
+    )
+    for a, b in zip(stress.cases, strain.cases):
+        for name in ("p_over_pmean", "tau_over_pmean", "p_corrected"):
+            np.testing.assert_allclose(getattr(a, name), getattr(b, name), rtol=0, atol=1e-10)
+    with pytest.raises(tribofe.errors.InputError, match="width="):
+        tribofe.Scene(state="plane-stress")
+
+
 def test_check_fields_on_request():
     res = tribofe.check(fields=True)
     f = res.fields
