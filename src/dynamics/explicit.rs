@@ -834,10 +834,18 @@ impl<'a> Explicit<'a> {
                 g.sweep(u, damped.then_some(vin), outs, m.threads, |j, ku, kv, [un, fe, vo, kus, kvs]| {
                     let (o, st) = ([un, fe, vo], [kus, kvs]);
                     match (hook_rows[j], damped) {
-                        (false, true) => update_row::<true, HALF, FULL, EXT, false>(&ctx, j, ku, kv, vin, o, st),
-                        (false, false) => update_row::<false, HALF, FULL, EXT, false>(&ctx, j, ku, kv, &[], o, st),
-                        (true, true) => update_row::<true, HALF, FULL, EXT, true>(&ctx, j, ku, kv, vin, o, st),
-                        (true, false) => update_row::<false, HALF, FULL, EXT, true>(&ctx, j, ku, kv, &[], o, st),
+                        (false, true) => {
+                            update_row::<true, HALF, FULL, EXT, false>(&ctx, j, ku, kv, vin, o, st)
+                        }
+                        (false, false) => {
+                            update_row::<false, HALF, FULL, EXT, false>(&ctx, j, ku, kv, &[], o, st)
+                        }
+                        (true, true) => {
+                            update_row::<true, HALF, FULL, EXT, true>(&ctx, j, ku, kv, vin, o, st)
+                        }
+                        (true, false) => {
+                            update_row::<false, HALF, FULL, EXT, true>(&ctx, j, ku, kv, &[], o, st)
+                        }
                     }
                 })
             }

@@ -4,7 +4,7 @@
 //! (`spacetime_<event>.svg`, [`Spacetime`]).
 
 pub use super::spacetime::SPACETIME_DECADES;
-use super::spacetime::{frame, heat_map, linear_map, sig4, HeatMap, LinearMap};
+use super::spacetime::{frame, heat_map, sig4, HeatMap, Scale};
 use super::table::{Column, Table};
 use super::{finite, write_atomic};
 use crate::error::Result;
@@ -237,11 +237,11 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
         rows: rows_shown,
         t_end,
         t_label: "time since onset (s)",
-        rate: &|k, i| f64::from(rec.rates[k][i]),
-        peak,
+        value: &|k, i| f64::from(rec.rates[k][i]),
+        scale: Scale::Log { peak },
         origin: first.map(|&i| (c.x[i], rec.arrival[i])),
         speeds: [r.speeds.c_s, r.speeds.c_r],
-        rate_label: "slip rate |v_x| (m/s)",
+        label: "slip rate |v_x| (m/s)",
     })
 }
 
@@ -287,7 +287,7 @@ pub fn contact_area_svg(r: &DynamicResult, e: &DynEvent) -> Option<String> {
     }
     let t_of = |k: usize| rec.t[k];
     let k_onset = e.f_onset / (r.slide.options.law.mu_s() * r.slide.options.n_force);
-    Some(linear_map(&LinearMap {
+    Some(heat_map(&HeatMap {
         title: format!(
             "event {} ({}), F = {} mu_s N: contact area A/A0 = p/p_mean, to the arrest",
             e.event,
@@ -302,7 +302,9 @@ pub fn contact_area_svg(r: &DynamicResult, e: &DynEvent) -> Option<String> {
         t_end: rec.t[rows - 1].max(f64::MIN_POSITIVE),
         t_label: "time since onset (s)",
         value: &|k, i| area[k][i],
-        range: (lo, hi),
+        scale: Scale::Linear { range: (lo, hi) },
+        origin: None,
+        speeds: [0.0; 2],
         label: "A/A0 = p/p_mean (dimensionless)",
     }))
 }

@@ -71,7 +71,7 @@ pub fn files(r: &RuptureResult) -> Vec<String> {
 /// peak) over x (km on a block of a kilometre or more, else m) and time, cropped to the nodes
 /// that ruptured, with the c_s and c_R guides from the first of them.
 pub fn spacetime(r: &RuptureResult) -> String {
-    use super::spacetime::{heat_map, sig4, HeatMap};
+    use super::spacetime::{heat_map, sig4, HeatMap, Scale};
     let map = &r.map;
     let (x0, x1) = (r.x[0], r.x[r.x.len() - 1]);
     let ruptured: Vec<usize> = (0..r.x.len()).filter(|&i| r.rupture_time[i].is_some()).collect();
@@ -98,10 +98,10 @@ pub fn spacetime(r: &RuptureResult) -> String {
         rows: map.t.len().max(1),
         t_end: t_end.max(f64::MIN_POSITIVE),
         t_label: "time (s)",
-        rate: &|k, i| map.rates.get(k).and_then(|row| row.get(i)).map_or(0.0, |&v| f64::from(v)),
-        peak,
+        value: &|k, i| map.rates.get(k).and_then(|row| row.get(i)).map_or(0.0, |&v| f64::from(v)),
+        scale: Scale::Log { peak },
         origin: first.map(|i| (r.x[i], r.rupture_time[i].unwrap_or(0.0))),
         speeds: [r.speeds.c_s, r.speeds.c_r],
-        rate_label: "slip rate (m/s)",
+        label: "slip rate (m/s)",
     })
 }

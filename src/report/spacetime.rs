@@ -21,25 +21,71 @@ pub(crate) struct HeatMap<'a> {
     pub rows: usize,
     pub t_end: f64,
     pub t_label: &'a str,
-    /// The slip rate of row k at node i, m/s.
-    pub rate: &'a dyn Fn(usize, usize) -> f64,
-    pub peak: f64,
-    /// Where and when the first node was reached: the guides' origin.
+    /// The value of row k at node i (the slip rate, m/s, on a log scale).
+    pub value: &'a dyn Fn(usize, usize) -> f64,
+    pub scale: Scale,
+    /// Where and when the first node was reached: the origin of the guides at c_s and c_R
+    /// (`speeds`, m/s); none, no guides.
     pub origin: Option<(f64, f64)>,
-    /// c_s and c_R, m/s.
     pub speeds: [f64; 2],
-    pub rate_label: &'a str,
+    pub label: &'a str,
 }
 
-/// The picture: at most 360 columns and 320 rows (the largest rate of each block), the
-/// colour scale [`SPACETIME_DECADES`] decades below the peak (white below).
+/// How [`heat_map`] colours a value.
+pub(crate) enum Scale {
+    /// log10 over [`SPACETIME_DECADES`] decades below the peak, ten bands a decade, white
+    /// below; a block of cells shows its largest value (the slip rate's fronts stay sharp).
+    Log { peak: f64 },
+    /// Linear over (low, high), twenty bands; a block shows its mean.
+    Linear { range: (f64, f64) },
+}
+
+impl Scale {
+    fn bands(&self) -> usize {
+        match self {
+            Scale::Log { .. } => 10 * SPACETIME_DECADES as usize,
+            Scale::Linear { .. } => 20,
+        }
+    }
+
+    /// The lowest decade shown (log scale).
+    fn bottom(peak: f64) -> i32 {
+        peak.log10().ceil() as i32 - SPACETIME_DECADES
+    }
+
+    /// The colour band of a block's values, none (white) below a log scale's floor.
+    fn band(&self, values: impl Iterator<Item = f64>) -> Option<usize> {
+        match *self {
+            Scale::Log { peak } => {
+                let bottom = Self::bottom(peak);
+                let v = values.fold(0.0f64, f64::max);
+                if v <= 10f64.powi(bottom) {
+                    return None;
+                }
+                let f = (v.log10() - f64::from(bottom)) / f64::from(SPACETIME_DECADES);
+                Some(
+                    ((f * f64::from(10 * SPACETIME_DECADES)).floor() as i32)
+                        .clamp(0, 10 * SPACETIME_DECADES - 1) as usize,
+                )
+            }
+            Scale::Linear { range: (lo, hi) } => {
+                let (sum, count) = values.fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
+                let v = sum / count.max(1) as f64;
+                let span = (hi - lo).max(f64::MIN_POSITIVE);
+                Some((((v - lo) / span * 20.0).floor() as i64).clamp(0, 19) as usize)
+            }
+        }
+    }
+}
+
+/// The picture: at most 360 columns and 320 rows (blocks of cells shown as [`Scale`] says),
+/// a colour bar with ticks.
 pub(crate) fn heat_map(m: &HeatMap) -> String {
     let (x, nx) = (m.x, m.x.len());
     let (t_of, t_end, rows_shown) = (m.t, m.t_end, m.rows);
     let (xa, xb) = m.x_range;
     let cols: Vec<usize> = (0..nx).filter(|&i| x[i] >= xa && x[i] <= xb).collect();
-    let top = m.peak.log10().ceil() as i32;
-    let bottom = top - SPACETIME_DECADES;
+    let bands = m.scale.bands();
     let (w, h, ml, mt, mb, mr) = (720.0, 480.0, 80.0, 50.0, 60.0, 150.0);
     let px = |x: f64| ml + (x - xa) / (xb - xa).max(f64::MIN_POSITIVE) * w;
     let py = |t: f64| mt + t / t_end * h;
@@ -54,18 +100,18 @@ pub(crate) fn heat_map(m: &HeatMap) -> String {
         ml + w / 2.0,
         m.title
     );
-    // The heat map: at most 360 columns and 320 rows, the largest rate of each block.
+    // The heat map: at most 360 columns and 320 rows.
     let (cx, ct) = (cols.len().div_ceil(360).max(1), rows_shown.div_ceil(320).max(1));
     let mut g = String::from("<g clip-path=\"url(#plot)\">\n");
     for j0 in (0..rows_shown).step_by(ct) {
         let j1 = (j0 + ct).min(rows_shown);
         let (ya, yb) = (py(if j0 == 0 { 0.0 } else { t_of(j0 - 1) }), py(t_of(j1 - 1)));
-        // Cells of one colour band (a tenth of a decade, as the colour bar) side by side are
-        // one rectangle: the picture is as read, at a tenth of the size.
-        let mut run: Option<(f64, f64, i32)> = None;
-        let flush = |g: &mut String, run: &mut Option<(f64, f64, i32)>| {
+        // Cells of one colour band (as the colour bar) side by side are one rectangle: the
+        // picture is as read, at a tenth of the size.
+        let mut run: Option<(f64, f64, usize)> = None;
+        let flush = |g: &mut String, run: &mut Option<(f64, f64, usize)>| {
             if let Some((x0, x1, q)) = run.take() {
-                let f = (f64::from(q) + 0.5) / f64::from(10 * SPACETIME_DECADES);
+                let f = (q as f64 + 0.5) / bands as f64;
                 let _ = writeln!(
                     g,
                     "<rect x=\"{:.2}\" y=\"{:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{}\"/>",
@@ -78,22 +124,17 @@ pub(crate) fn heat_map(m: &HeatMap) -> String {
             }
         };
         for block in cols.chunks(cx) {
-            let v = (j0..j1)
-                .flat_map(|k| block.iter().map(move |&i| (k, i)))
-                .fold(0.0f64, |acc, (k, i)| acc.max((m.rate)(k, i)));
-            if v <= 10f64.powi(bottom) {
+            let values = (j0..j1).flat_map(|k| block.iter().map(move |&i| (m.value)(k, i)));
+            let Some(q) = m.scale.band(values) else {
                 flush(&mut g, &mut run);
                 continue;
-            }
+            };
             let (i0, i1) = (block[0], block[block.len() - 1]);
             let half = |i: usize, d: isize| {
                 let k = (i as isize + d).clamp(0, nx as isize - 1) as usize;
                 0.5 * (x[i] + x[k])
             };
             let (x0, x1) = (px(half(i0, -1)), px(half(i1, 1)));
-            let f = (v.log10() - f64::from(bottom)) / f64::from(SPACETIME_DECADES);
-            let q =
-                ((f * f64::from(10 * SPACETIME_DECADES)).floor() as i32).clamp(0, 10 * SPACETIME_DECADES - 1);
             match &mut run {
                 Some((_, end, q0)) if *q0 == q => *end = x1,
                 _ => {
@@ -143,9 +184,10 @@ pub(crate) fn heat_map(m: &HeatMap) -> String {
         m.x_unit.1,
         m.t_label,
     );
-    // The colour bar: one band per tenth of a decade, a labelled tick at each decade.
+    // The colour bar: one rectangle per band; a labelled tick at each decade (log) or at
+    // round values (linear).
     let (bx, bw) = (ml + w + 24.0, 22.0);
-    let steps = 10 * SPACETIME_DECADES;
+    let steps = bands;
     for k in 0..steps {
         let f = (k as f64 + 0.5) / steps as f64;
         let _ = writeln!(
@@ -160,16 +202,28 @@ pub(crate) fn heat_map(m: &HeatMap) -> String {
         s,
         "<rect x=\"{bx}\" y=\"{mt}\" width=\"{bw}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
     );
-    for k in 0..=SPACETIME_DECADES {
-        let y = mt + h * (1.0 - f64::from(k) / f64::from(SPACETIME_DECADES));
+    let ticks: Vec<(f64, String)> = match m.scale {
+        Scale::Log { peak } => {
+            let bottom = Scale::bottom(peak);
+            (0..=SPACETIME_DECADES)
+                .map(|k| (f64::from(k) / f64::from(SPACETIME_DECADES), decade(bottom + k)))
+                .collect()
+        }
+        Scale::Linear { range: (lo, hi) } => {
+            let (vt, vd) = ticks(lo, hi);
+            let span = (hi - lo).max(f64::MIN_POSITIVE);
+            vt.into_iter().map(|v| ((v - lo) / span, format!("{v:.vd$}"))).collect()
+        }
+    };
+    for (f, text) in ticks {
+        let y = mt + h * (1.0 - f);
         let _ = writeln!(
             s,
-            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{}\" y2=\"{y:.1}\" stroke=\"black\"/><text class=\"cbar-tick\" x=\"{}\" y=\"{:.1}\">{}</text>",
+            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{}\" y2=\"{y:.1}\" stroke=\"black\"/><text class=\"cbar-tick\" x=\"{}\" y=\"{:.1}\">{text}</text>",
             bx + bw,
             bx + bw + 5.0,
             bx + bw + 8.0,
             y + 5.0,
-            decade(bottom + k)
         );
     }
     let lx = bx + bw + 62.0;
@@ -177,7 +231,7 @@ pub(crate) fn heat_map(m: &HeatMap) -> String {
         s,
         "<text x=\"{lx}\" y=\"{0}\" transform=\"rotate(-90 {lx} {0})\" text-anchor=\"middle\">{1}</text>",
         mt + h / 2.0,
-        m.rate_label
+        m.label
     );
     s.push_str("</svg>\n");
     s
@@ -270,120 +324,4 @@ pub(crate) fn colour(v: f32) -> String {
         (255.0 * (1.0 - 0.7 * f), 0.0, 0.0)
     };
     format!("#{:02x}{:02x}{:02x}", r as u8, g as u8, b as u8)
-}
-
-/// What [`linear_map`] draws: a field over position (across) and time (down) on a linear
-/// colour scale from `range.0` (white) to `range.1` (dark red).
-pub(crate) struct LinearMap<'a> {
-    pub title: String,
-    pub x: &'a [f64],
-    pub x_range: (f64, f64),
-    pub x_unit: (f64, &'a str),
-    pub t: &'a dyn Fn(usize) -> f64,
-    pub rows: usize,
-    pub t_end: f64,
-    pub t_label: &'a str,
-    pub value: &'a dyn Fn(usize, usize) -> f64,
-    pub range: (f64, f64),
-    pub label: &'a str,
-}
-
-/// The picture: one cell per node and row (20 colour bands), a colour bar with ticks.
-pub(crate) fn linear_map(m: &LinearMap) -> String {
-    const BANDS: usize = 20;
-    let (x, nx) = (m.x, m.x.len());
-    let (xa, xb) = m.x_range;
-    let (lo, hi) = m.range;
-    let span = (hi - lo).max(f64::MIN_POSITIVE);
-    let (w, h, ml, mt, mb, mr) = (720.0, 480.0, 80.0, 50.0, 60.0, 150.0);
-    let px = |x: f64| ml + (x - xa) / (xb - xa).max(f64::MIN_POSITIVE) * w;
-    let py = |t: f64| mt + t / m.t_end * h;
-    let band = |v: f64| (((v - lo) / span * BANDS as f64).floor() as i64).clamp(0, BANDS as i64 - 1) as usize;
-    let fill = |q: usize| colour(((q as f64 + 0.5) / BANDS as f64) as f32);
-    let mut s = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"14\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<defs><clipPath id=\"plot\"><rect x=\"{ml}\" y=\"{mt}\" width=\"{w}\" height=\"{h}\"/></clipPath></defs>\n",
-        ml + w + mr,
-        mt + h + mb
-    );
-    let _ = writeln!(
-        s,
-        "<text class=\"title\" x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"16\">{}</text>",
-        ml + w / 2.0,
-        m.title
-    );
-    let mut g = String::from("<g clip-path=\"url(#plot)\">\n");
-    let half = |i: usize, d: isize| 0.5 * (x[i] + x[(i as isize + d).clamp(0, nx as isize - 1) as usize]);
-    for k in 0..m.rows {
-        let (ya, yb) = (py(if k == 0 { 0.0 } else { (m.t)(k - 1) }), py((m.t)(k)));
-        // Neighbours of one band are one rectangle.
-        let mut run: Option<(f64, f64, usize)> = None;
-        let flush = |g: &mut String, run: Option<(f64, f64, usize)>| {
-            if let Some((x0, x1, q)) = run {
-                let _ = writeln!(
-                    g,
-                    "<rect x=\"{x0:.2}\" y=\"{ya:.2}\" width=\"{:.2}\" height=\"{:.2}\" fill=\"{}\"/>",
-                    (x1 - x0).max(0.3) + 0.3,
-                    (yb - ya).max(0.3) + 0.3,
-                    fill(q)
-                );
-            }
-        };
-        for i in (0..nx).filter(|&i| x[i] >= xa && x[i] <= xb) {
-            let (q, x0, x1) = (band((m.value)(k, i)), px(half(i, -1)), px(half(i, 1)));
-            match &mut run {
-                Some((_, end, q0)) if *q0 == q => *end = x1,
-                _ => {
-                    flush(&mut g, run.take());
-                    run = Some((x0, x1, q));
-                }
-            }
-        }
-        flush(&mut g, run);
-    }
-    g.push_str("</g>\n");
-    s.push_str(&g);
-    let unit = m.x_unit.0;
-    frame(
-        &mut s,
-        [ml, mt, w, h],
-        ((xa / unit, xb / unit), &|v| px(v * unit)),
-        ((0.0, m.t_end), &py),
-        m.x_unit.1,
-        m.t_label,
-    );
-    let (bx, bw) = (ml + w + 24.0, 22.0);
-    for q in 0..BANDS {
-        let _ = writeln!(
-            s,
-            "<rect x=\"{bx}\" y=\"{:.2}\" width=\"{bw}\" height=\"{:.2}\" fill=\"{}\"/>",
-            mt + h * (1.0 - (q + 1) as f64 / BANDS as f64),
-            h / BANDS as f64 + 0.3,
-            fill(q)
-        );
-    }
-    let _ = writeln!(
-        s,
-        "<rect x=\"{bx}\" y=\"{mt}\" width=\"{bw}\" height=\"{h}\" fill=\"none\" stroke=\"black\"/>"
-    );
-    let (vt, vd) = ticks(lo, hi);
-    for v in vt {
-        let y = mt + h * (1.0 - (v - lo) / span);
-        let _ = writeln!(
-            s,
-            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{}\" y2=\"{y:.1}\" stroke=\"black\"/><text class=\"cbar-tick\" x=\"{}\" y=\"{:.1}\">{v:.vd$}</text>",
-            bx + bw,
-            bx + bw + 5.0,
-            bx + bw + 8.0,
-            y + 5.0
-        );
-    }
-    let lx = bx + bw + 62.0;
-    let _ = writeln!(
-        s,
-        "<text x=\"{lx}\" y=\"{0}\" transform=\"rotate(-90 {lx} {0})\" text-anchor=\"middle\">{1}</text>",
-        mt + h / 2.0,
-        m.label
-    );
-    s.push_str("</svg>\n");
-    s
 }

@@ -24,12 +24,12 @@
 use crate::dynamics::driven::{EventLimits, EventRecord};
 use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
+use crate::interface::events::handoff::{drive_stepped, start_drive, Affine, Ended};
 use crate::interface::events::Weakening;
 use crate::law::{Law, Normal};
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::studies::slide::{SlideOptions, SlideResult};
-use crate::interface::events::handoff::{drive_stepped, start_drive, Affine, Ended};
 use std::time::Instant;
 
 pub mod assumption5;

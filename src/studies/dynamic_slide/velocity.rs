@@ -475,4 +475,3 @@ fn close(
     });
     Ok(kind)
 }
-
