@@ -1037,13 +1037,13 @@ fn rupture_dict<'py>(
     out.set_item("c_s_m_per_s", r.speeds.c_s)?;
     out.set_item("c_R_m_per_s", r.speeds.c_r)?;
     out.set_item("lambda0_m", r.lambda0)?;
-    let e = &r.energy;
+    // energy.csv's one row, under its column names (the library's table).
     let energy = PyDict::new(py);
-    energy.set_item("kinetic_J_per_m", e.kinetic)?;
-    energy.set_item("strain_J_per_m", e.strain)?;
-    energy.set_item("background_work_J_per_m", e.background_work)?;
-    energy.set_item("friction_J_per_m", e.friction)?;
-    energy.set_item("residual_J_per_m", e.residual)?;
+    for c in &tribofe::report::rupture::energy_table(r).columns {
+        if let tribofe::report::table::Values::Float(v) = &c.values {
+            energy.set_item(c.name, v[0])?;
+        }
+    }
     out.set_item("energy", energy)?;
     out.set_item("rupture_time_s", arr(py, &opt(&r.rupture_time)))?;
     out.set_item("rate_threshold_m_per_s", r.rate_threshold)?;

@@ -263,7 +263,7 @@ def test_old_dict_access_still_works_warned():
     with pytest.warns(DeprecationWarning, match=r"\.x_m"):
         np.testing.assert_array_equal(r["x_m"], r.x_m)
     with pytest.warns(DeprecationWarning):
-        assert r["energy"]["kinetic_J_per_m"] == r.energy["kinetic_J_per_m"]
+        assert r["energy"]["kinetic_j_per_m"] == r.energy["kinetic_j_per_m"]
     with pytest.raises(KeyError):
         r["no_such_key"]
     sw = QUIET_CALLS["sweep"]()

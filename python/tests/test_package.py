@@ -135,7 +135,12 @@ def test_rupture_equals_the_command(tribofe_bin, tmp_path):
     assert abs(res.force_drop_N_per_m - float(summary["force_drop_n_per_m"][0])) <= 1e-11 * res.force_drop_N_per_m
     # The energy ledger closes to round-off (docs/dynamics-verification.md: 5.5e-15 of the work).
     e = res.energy
-    assert abs(e["residual_J_per_m"]) < 1e-10 * e["background_work_J_per_m"]
+    assert abs(e["balance_residual_j_per_m"]) < 1e-10 * e["background_work_j_per_m"]
+    # energy is energy.csv's row, every column under its name.
+    energy = read_csv(out / "energy.csv")
+    assert list(e) == list(energy)
+    for k, v in e.items():
+        assert abs(v - float(energy[k][0])) <= 1e-12 * max(abs(v), 1e-300)
     # rupture_time.csv: every node whose slip rate crossed the threshold, and summary.csv's steps.
     rt = read_csv(out / "rupture_time.csv")
     ok = np.isfinite(res.rupture_time_s)

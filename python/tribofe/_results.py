@@ -283,7 +283,7 @@ class RuptureResult(_Result):
     ``peak_slip_rate_m_per_s``, ``rupture_time_s`` (the first slip rate above
     ``rate_threshold_m_per_s``; NaN where never) as arrays (``nodes``: them as a table); the
     force drop, front speed (None when no front), wave speeds, steps, cohesive-zone size
-    ``lambda0_m``; ``energy`` the ledger (J/m); ``stations``: per station x (m) the table of
+    ``lambda0_m``; ``energy`` the ledger at t_end (J/m), energy.csv's row under its column names; ``stations``: per station x (m) the table of
     ``station_x<x>.csv`` (the library's, its units in ``station_units``)."""
 
     x_m: np.ndarray

@@ -18,12 +18,7 @@ pub fn write(r: &RuptureResult, dir: &Path) -> Result<()> {
         r.force_drop, r.min_sigma, r.steps, r.dt
     );
     write_atomic(&dir.join("summary.csv"), summary.as_bytes())?;
-    let e = &r.energy;
-    let energy = csv(
-        "kinetic_j_per_m,strain_j_per_m,background_work_j_per_m,friction_dissipation_j_per_m,friction_path_j_per_m,contact_work_j_per_m,damping_dissipation_j_per_m,balance_residual_j_per_m",
-        &[vec![e.kinetic, e.strain, e.background_work, e.friction, e.friction_path, e.contact, e.damping, e.residual]],
-    )?;
-    write_atomic(&dir.join("energy.csv"), energy.as_bytes())?;
+    write_atomic(&dir.join("energy.csv"), energy_table(r).csv()?.as_bytes())?;
     let zone: Vec<Vec<f64>> = r.cohesive_zone().into_iter().map(|(x, z)| vec![x, z, z / r.lambda0]).collect();
     write_atomic(&dir.join("zone.csv"), csv("x_m,zone_m,zone_over_lambda0", &zone)?.as_bytes())?;
     for st in &r.stations {
@@ -34,6 +29,25 @@ pub fn write(r: &RuptureResult, dir: &Path) -> Result<()> {
     write_atomic(&dir.join("rupture_time.csv"), csv("x_m,t_s", &rows)?.as_bytes())?;
     write_atomic(&dir.join("spacetime.svg"), spacetime(r).as_bytes())?;
     Ok(())
+}
+
+/// energy.csv's one row (13 significant digits): the ledger at t_end, J/m.
+pub fn energy_table(r: &RuptureResult) -> Table {
+    let e = &r.energy;
+    let one = |name, v: f64| Column::float(name, "J/m", vec![v]);
+    Table {
+        columns: vec![
+            one("kinetic_j_per_m", e.kinetic),
+            one("strain_j_per_m", e.strain),
+            one("background_work_j_per_m", e.background_work),
+            one("friction_dissipation_j_per_m", e.friction),
+            one("friction_path_j_per_m", e.friction_path),
+            one("contact_work_j_per_m", e.contact),
+            one("damping_dissipation_j_per_m", e.damping),
+            one("balance_residual_j_per_m", e.residual),
+        ],
+        digits: 13,
+    }
 }
 
 /// A station's table, `station_x<x>.csv` (13 significant digits): time, slip, slip rate,
