@@ -199,6 +199,20 @@ pub fn spacetime_end(rec: &crate::dynamics::driven::EventRecord) -> f64 {
     last.map_or(rec.duration, |k| (1.05 * rec.t[k]).min(rec.duration)).max(f64::MIN_POSITIVE)
 }
 
+/// The base nodes an event's front reached, and the x range its pictures show: those nodes
+/// with a margin of 2 t each side (the whole interface when it reached none).
+fn reached_span(r: &DynamicResult, e: &DynEvent) -> (Vec<usize>, (f64, f64)) {
+    let (c, rec) = (&r.slide.condensed, &e.record);
+    let reached: Vec<usize> =
+        (0..c.n).filter(|&i| rec.arrival.get(i).is_some_and(|a| a.is_finite())).collect();
+    let margin = 2.0 * r.slide.scene.block.thickness;
+    let span = match (reached.first(), reached.last()) {
+        (Some(&i), Some(&j)) => ((c.x[i] - margin).max(c.x[0]), (c.x[j] + margin).min(c.x[c.n - 1])),
+        _ => (c.x[0], c.x[c.n - 1]),
+    };
+    (reached, span)
+}
+
 /// A space-time picture of one dynamic event: log10 |v_x| over x/L (across) and time since
 /// the onset (down), as plain SVG. Cropped to the activity: x to the nodes the front reached
 /// (2 t margin), time to the last sample with a node above the arrival rate (5 % margin,
@@ -208,17 +222,11 @@ pub fn spacetime_end(rec: &crate::dynamics::driven::EventRecord) -> f64 {
 pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
     let rec = &e.record;
     let c = &r.slide.condensed;
-    let (nx, ns) = (c.n, rec.rates.len());
+    let ns = rec.rates.len();
     let t_of = |k: usize| rec.t.get(k).copied().unwrap_or(rec.duration);
     let t_end = spacetime_end(rec);
     let rows_shown = (0..ns).filter(|&k| t_of(k) <= t_end).count().max(1);
-    let reached: Vec<usize> =
-        (0..nx).filter(|&i| rec.arrival.get(i).is_some_and(|a| a.is_finite())).collect();
-    let margin = 2.0 * r.slide.scene.block.thickness;
-    let (xa, xb) = match (reached.first(), reached.last()) {
-        (Some(&i), Some(&j)) => ((c.x[i] - margin).max(c.x[0]), (c.x[j] + margin).min(c.x[nx - 1])),
-        _ => (c.x[0], c.x[nx - 1]),
-    };
+    let (reached, (xa, xb)) = reached_span(r, e);
     let peak = peak(e).max(f64::MIN_POSITIVE);
     let k_onset = e.f_onset / (r.slide.options.law.mu_s() * r.slide.options.n_force);
     let first = reached.iter().min_by(|&&i, &&j| rec.arrival[i].total_cmp(&rec.arrival[j]));
@@ -264,13 +272,7 @@ pub fn contact_area_svg(r: &DynamicResult, e: &DynEvent) -> Option<String> {
             crate::studies::slide::contact_area_over_a0(&p, &c.w, c.l)
         })
         .collect();
-    let reached: Vec<usize> =
-        (0..c.n).filter(|&i| rec.arrival.get(i).is_some_and(|a| a.is_finite())).collect();
-    let margin = 2.0 * r.slide.scene.block.thickness;
-    let (xa, xb) = match (reached.first(), reached.last()) {
-        (Some(&i), Some(&j)) => ((c.x[i] - margin).max(c.x[0]), (c.x[j] + margin).min(c.x[c.n - 1])),
-        _ => (c.x[0], c.x[c.n - 1]),
-    };
+    let (_, (xa, xb)) = reached_span(r, e);
     let shown = |i: usize| c.x[i] >= xa && c.x[i] <= xb;
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for row in &area {
