@@ -295,7 +295,7 @@ pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
             ));
         }
     }
-    if let Some(note) = s.block.out_of_plane_note(None) {
+    if let Some(note) = s.block.out_of_plane_note() {
         use std::io::Write;
         let _ = writeln!(std::io::stderr(), "note: {note}");
     }

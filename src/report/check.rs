@@ -203,8 +203,10 @@ pub fn table(res: &CheckResult) -> String {
         s,
         "stresses in units of the mean pressure N/L; widths in units of t; forces per unit width (N/m)"
     );
-    if let Some(note) = sc.block.out_of_plane_note(res.cases.first().map(|c| c.n)) {
-        let _ = writeln!(s, "{note}");
+    // The state and b are in the header every command prints; the table adds N in newtons.
+    if let (Some(b), Some(c)) = (sc.block.width, res.cases.first()) {
+        let sig4 = super::spacetime::sig4;
+        let _ = writeln!(s, "width b = {} m: N = {} N/m x b = {} N", sig4(b), sig4(c.n), sig4(c.n * b));
     }
     let _ = writeln!(
         s,

@@ -392,14 +392,9 @@ impl Block {
         self.law().e_star()
     }
 
-    /// The normal force in newtons of `n_per_m` (N/m) over the width b, if b is given.
-    pub fn newtons(&self, n_per_m: f64) -> Option<f64> {
-        self.width.map(|b| n_per_m * b)
-    }
-
-    /// The printed line on the out-of-plane state and width, with the normal force `n_per_m`
-    /// (N/m) in newtons if given; none for plane strain without a width (the default scene).
-    pub fn out_of_plane_note(&self, n_per_m: Option<f64>) -> Option<String> {
+    /// The printed line on the out-of-plane state and width; none for plane strain without a
+    /// width (the default scene).
+    pub fn out_of_plane_note(&self) -> Option<String> {
         if self.state == State::PlaneStrain && self.width.is_none() {
             return None;
         }
@@ -410,9 +405,6 @@ impl Block {
         let mut s = format!("{state}; forces per unit width (N/m)");
         if let Some(b) = self.width {
             s += &format!(", width b = {} m", crate::error::num(b));
-            if let Some(n) = n_per_m {
-                s += &format!(": N = {} N/m x b = {} N", crate::error::num(n), crate::error::num(n * b));
-            }
         }
         Some(s)
     }
