@@ -173,6 +173,11 @@ const OPERATORS: &[(&str, tribofe::interface::events::Operator)] = &[
     ("dense", tribofe::interface::events::Operator::Dense),
     ("banded", tribofe::interface::events::Operator::Banded),
 ];
+/// `[block] state`: the out-of-plane state (`--plane-stress`).
+const PLANE_STATES: &[(&str, tribofe::scene::State)] = &[
+    ("plane-strain", tribofe::scene::State::PlaneStrain),
+    ("plane-stress", tribofe::scene::State::PlaneStress),
+];
 /// `--states`: whether every event's state is kept.
 const STATES: &[(&str, bool)] = &[("all", true), ("none", false)];
 /// `--cycle-end`: whether a front crossing also ends a cycle.
@@ -223,15 +228,7 @@ fn overrides(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Overrides> {
             "h_max" => o.h_max = f(&v)?,
             "tol" => o.tol = f(&v)?,
             "width" => o.width = f(&v)?,
-            "state" => {
-                let s: String = v.extract()?;
-                o.state = Some(s.parse().map_err(|_| {
-                    to_py(Error::input(
-                        "state",
-                        format!("'{}': use plane-strain or plane-stress", tribofe::error::quote(&s)),
-                    ))
-                })?)
-            }
+            "state" => o.state = choice("state", Some(&v.extract::<String>()?), PLANE_STATES)?,
             "fn_ratios" => {
                 o.fn_ratios = Some(
                     v.extract().map_err(|_| PyTypeError::new_err("fn_ratios: expected a list of numbers"))?,
