@@ -613,10 +613,10 @@ fn table<'py>(py: Python<'py>, t: &tribofe::report::table::Table) -> PyResult<Bo
     let out = PyDict::new(py);
     for c in &t.columns {
         match &c.values {
-            Values::Int(v) => out.set_item(c.name, PyArray1::from_slice(py, v))?,
-            Values::MaybeInt(v) => out.set_item(c.name, maybe_ints(py, v))?,
-            Values::Float(v) => out.set_item(c.name, arr(py, v))?,
-            Values::Text(v) => out.set_item(c.name, v)?,
+            Values::Int(v) => out.set_item(&c.name, PyArray1::from_slice(py, v))?,
+            Values::MaybeInt(v) => out.set_item(&c.name, maybe_ints(py, v))?,
+            Values::Float(v) => out.set_item(&c.name, arr(py, v))?,
+            Values::Text(v) => out.set_item(&c.name, v)?,
         }
     }
     Ok(out)
@@ -640,12 +640,13 @@ fn table_with_units<'py>(py: Python<'py>, t: &tribofe::report::table::Table) -> 
 }
 
 /// A library table's units as (column, unit) pairs, in its order.
-fn table_units(t: &tribofe::report::table::Table) -> Vec<(&'static str, &'static str)> {
-    t.columns.iter().map(|c| (c.name, c.unit)).collect()
+fn table_units(t: &tribofe::report::table::Table) -> Vec<(&str, &'static str)> {
+    t.columns.iter().map(|c| (c.name.as_ref(), c.unit)).collect()
 }
 
-/// The paper's analytic event iteration for (r, g): a dict of columns (F, F^c and relaxed
-/// force in units of mu_s N, arrest x in units of L) plus n and F_max.
+/// The paper's analytic event iteration for (r, g): n, F_1 and F_max, `events`, events.csv's
+/// table (the library's: `tribofe::report::precursors::events_table`), with its units, and
+/// the fig. 4 curve (loading.csv's columns).
 #[pyfunction]
 #[pyo3(signature = (r=None, g=None, events=None))]
 fn precursors_model<'py>(
@@ -655,6 +656,7 @@ fn precursors_model<'py>(
     events: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::precursors as pm;
+    use tribofe::report::precursors as rp;
     let (r, g) = (r.unwrap_or(pm::PAPER_R), g.unwrap_or(pm::PAPER_G));
     let p = pm::Params::new(r, g).map_err(to_py)?;
     let n = pm::n_precursors(&p).map_err(to_py)?;
@@ -669,16 +671,11 @@ fn precursors_model<'py>(
     out.set_item("n", n)?;
     out.set_item("F_1", p.f1())?;
     out.set_item("F_max", pm::f_max(&p))?;
-    out.set_item("event", PyArray1::from_vec(py, ev.iter().map(|e| e.i as i64).collect::<Vec<_>>()))?;
-    out.set_item("F_over_mu_s_N", arr(py, &ev.iter().map(|e| e.f).collect::<Vec<_>>()))?;
-    out.set_item("Fc_over_mu_s_N", arr(py, &ev.iter().map(|e| e.fc).collect::<Vec<_>>()))?;
-    out.set_item("x_arrest_over_L", arr(py, &ev.iter().map(|e| e.x).collect::<Vec<_>>()))?;
-    out.set_item("F_relaxed_over_mu_s_N", arr(py, &ev.iter().map(|e| e.fstar).collect::<Vec<_>>()))?;
-    out.set_item("stick_slip", ev.iter().map(|e| e.stick_slip).collect::<Vec<_>>())?;
-    // The loading curve of the paper's fig. 4: (F^c, F) / (mu_s N) with each event's drop.
-    let (fc, f): (Vec<f64>, Vec<f64>) = pm::loading_curve(&ev).into_iter().unzip();
-    out.set_item("curve_Fc_over_mu_s_N", arr(py, &fc))?;
-    out.set_item("curve_F_over_mu_s_N", arr(py, &f))?;
+    let events = rp::events_table(&ev);
+    out.set_item("events", table_with_units(py, &events)?)?;
+    // The loading curve of the paper's fig. 4 (loading.csv): (F^c, F) / (mu_s N) with each
+    // event's drop.
+    out.set_item("curve", table(py, &rp::loading_table(&pm::loading_curve(&ev)))?)?;
     Ok(out)
 }
 
@@ -819,9 +816,10 @@ fn comparison<'py>(
     Ok(d)
 }
 
-/// The paper's fig. 4 from the frictional FE, one dict per static-kinetic rule (paper,
+/// The paper's fig. 4 from the frictional FE: `runs`, one dict per static-kinetic rule (paper,
 /// overdamped): the comparison with the model (forces in units of mu_s N, x in units of L),
-/// the precursors' arrest positions, the peaks, and the whole run as `slide` returns it.
+/// the precursors' arrest positions, the peaks, and the whole run as `slide` returns it; and
+/// `summary`, summary.csv's table (the library's, with its units).
 #[pyfunction]
 #[pyo3(signature = (scene=None, r=None, g=None, cycles=None, progress=None))]
 fn precursors_fe_fig4<'py>(
@@ -831,14 +829,16 @@ fn precursors_fe_fig4<'py>(
     g: Option<f64>,
     cycles: Option<usize>,
     progress: Option<Py<PyAny>>,
-) -> PyResult<Bound<'py, PyList>> {
+) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let (r, g) = (r.unwrap_or(tribofe::precursors::PAPER_R), g.unwrap_or(tribofe::precursors::PAPER_G));
     let cycles = cycles.unwrap_or(tribofe::studies::precursors_fe::DEFAULT_FIG4_CYCLES);
     let (runs, _) = run_detached(py, progress, |cancel, poll| {
         tribofe::studies::precursors_fe::fig4(&scene, r, g, cycles, cancel, poll)
     })?;
-    let out = PyList::empty(py);
+    let p = tribofe::precursors::Params::new(r, g).map_err(to_py)?;
+    let summary = tribofe::report::precursors::fe_fig4_summary_table(&p, &runs).map_err(to_py)?;
+    let list = PyList::empty(py);
     for run in runs {
         let f = run.map_err(to_py)?;
         let d = PyDict::new(py);
@@ -849,13 +849,17 @@ fn precursors_fe_fig4<'py>(
         d.set_item("peaks_over_mu_s_N", arr(py, &f.peaks))?;
         d.set_item("worst_violation", f.worst_violation)?;
         d.set_item("run", slide_result(py, &f.run)?)?;
-        out.append(d)?;
+        list.append(d)?;
     }
+    let out = PyDict::new(py);
+    out.set_item("runs", list)?;
+    out.set_item("summary", table_with_units(py, &summary)?)?;
     Ok(out)
 }
 
-/// The paper's fig. 5 from the frictional FE: one row per (r, g) cell and rule with the
-/// model's n and F_max and the FE run's status and counts.
+/// The paper's fig. 5 from the frictional FE: fig5_fe.csv's table (the library's,
+/// `tribofe::report::precursors::fe_fig5_table`), one row per (r, g) cell with the model's n
+/// and F_max and per rule the FE run's status and counts, with its units.
 #[pyfunction]
 #[pyo3(signature = (scene=None, resolution=None, rules=None, max_events=None, progress=None))]
 fn precursors_fe_fig5<'py>(
@@ -866,7 +870,7 @@ fn precursors_fe_fig5<'py>(
     max_events: Option<usize>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use tribofe::studies::precursors_fe::{self as pfe, CellRun};
+    use tribofe::studies::precursors_fe as pfe;
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
     let resolution = resolution.unwrap_or(pfe::DEFAULT_FIG5_RESOLUTION);
     let max_events = max_events.unwrap_or(pfe::DEFAULT_FIG5_MAX_EVENTS);
@@ -877,55 +881,7 @@ fn precursors_fe_fig5<'py>(
     let (cells, _) = run_detached(py, progress, |cancel, poll| {
         pfe::fig5(&scene, resolution, &rules, max_events, cancel, poll)
     })?;
-    let (mut r, mut g, mut n_model, mut f_max_model, mut rule, mut status) =
-        (vec![], vec![], vec![], vec![], vec![], vec![]);
-    let (mut n, mut n_long, mut n_adv, mut f_max, mut events, mut seconds) =
-        (vec![], vec![], vec![], vec![], vec![], vec![]);
-    for c in &cells {
-        for (k, run) in c.runs.iter().enumerate() {
-            let Some(run) = run else { continue };
-            r.push(c.r);
-            g.push(c.g);
-            n_model.push(c.n_model as i64);
-            f_max_model.push(c.f_max_model);
-            rule.push(pfe::RULES[k].name());
-            status.push(run.status());
-            seconds.push(run.seconds());
-            let (a, b, d, e, ev) = match *run {
-                CellRun::Done { n, n_long, n_advancing, f_max, events, .. } => (
-                    Some(n as i64),
-                    Some(n_long as i64),
-                    Some(n_advancing as i64),
-                    f_max.unwrap_or(f64::NAN),
-                    Some(events as i64),
-                ),
-                CellRun::Capped { precursors, f_peak, .. } => {
-                    (Some(precursors as i64), None, None, f_peak, None)
-                }
-                CellRun::Refused { .. } => (None, None, None, f64::NAN, None),
-            };
-            n.push(a);
-            n_long.push(b);
-            n_adv.push(d);
-            f_max.push(e);
-            events.push(ev);
-        }
-    }
-    let out = PyDict::new(py);
-    out.set_item("r", arr(py, &r))?;
-    out.set_item("g", arr(py, &g))?;
-    out.set_item("n_model", PyArray1::from_vec(py, n_model))?;
-    out.set_item("F_max_model_over_mu_s_N", arr(py, &f_max_model))?;
-    out.set_item("rule", rule)?;
-    out.set_item("status", status)?;
-    // Capped cells: n is the lower bound recorded and F_max the largest F reached.
-    out.set_item("n_fe", maybe_ints(py, &n))?;
-    out.set_item("n_fe_long", maybe_ints(py, &n_long))?;
-    out.set_item("n_fe_advancing", maybe_ints(py, &n_adv))?;
-    out.set_item("F_max_fe_over_mu_s_N", arr(py, &f_max))?;
-    out.set_item("events", maybe_ints(py, &events))?;
-    out.set_item("seconds", arr(py, &seconds))?;
-    Ok(out)
+    table_with_units(py, &tribofe::report::precursors::fe_fig5_table(&cells))
 }
 
 /// The spec `tribofe rupture` runs when no flag is given: the cross-check spec with the
@@ -1038,7 +994,7 @@ fn rupture_dict<'py>(
     let energy = PyDict::new(py);
     for c in &tribofe::report::rupture::energy_table(r).columns {
         if let tribofe::report::table::Values::Float(v) = &c.values {
-            energy.set_item(c.name, v[0])?;
+            energy.set_item(&c.name, v[0])?;
         }
     }
     out.set_item("energy", energy)?;

@@ -430,16 +430,15 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         as a table, ``n`` (precursors), ``F_1``, ``F_max`` and the fig. 4 curve. ``events``
         defaults to n + 1 (the precursors and the first whole slip)."""
         raw = _precursors_model(r, g, events)
-        cols = (
-            "event",
-            "F_over_mu_s_N",
-            "Fc_over_mu_s_N",
-            "x_arrest_over_L",
-            "F_relaxed_over_mu_s_N",
-            "stick_slip",
+        events = raw.pop("events")
+        curve = raw.pop("curve")
+        return ModelResult(
+            events=_table(events["table"], events["units"]),
+            units=events["units"],
+            curve_Fc_over_mu_s_N=np.asarray(curve["Fc_over_mu_s_N"]),
+            curve_F_over_mu_s_N=np.asarray(curve["F_over_mu_s_N"]),
+            **raw,
         )
-        table = _table({k: np.asarray(raw.pop(k)) for k in cols})
-        return ModelResult(events=table, **raw)
 
     @staticmethod
     def fe_fig4(
@@ -455,18 +454,26 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         ``runs[rule]`` per static-kinetic rule (``"paper"``, ``"overdamped"``) with the
         comparison against the model (n, F_1, x_1, F_max; forces in units of mu_s N, x in
         units of L), the precursors' arrest positions and the whole run as a
-        :class:`SlideResult`; ``comparison`` the comparisons as one table, a row per rule."""
+        :class:`SlideResult`; ``summary`` the command's summary.csv (a row for the model, then
+        one per rule)."""
         cb, close = _progress(progress, "fig. 4 (FE)")
         try:
-            runs = _fe_fig4(scene if scene is not None else Scene(), r, g, cycles, progress=cb)
+            raw = _fe_fig4(scene if scene is not None else Scene(), r, g, cycles, progress=cb)
         finally:
             close()
+        runs, summary = raw["runs"], raw["summary"]
         out = {}
         for run in runs:
             run["run"] = _slide_result(run["run"])
             out[run["rule"]] = FeFig4Run(**run)
         first = runs[0]["comparison"] if runs else {}
-        return FeFig4Result(out, first.get("definition", ""), first.get("front_definition", ""))
+        return FeFig4Result(
+            out,
+            first.get("definition", ""),
+            first.get("front_definition", ""),
+            _table(summary["table"], summary["units"]),
+            summary["units"],
+        )
 
     @staticmethod
     def fe_fig5(
@@ -492,7 +499,7 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
             )
         finally:
             close()
-        return FeFig5Result(_table(cols))
+        return FeFig5Result(_table(cols["table"], cols["units"]), cols["units"])
 
 
 @dataclass(frozen=True)

@@ -139,22 +139,26 @@ class ConvergeResult(_OneTable):
 
 @dataclass(frozen=True, eq=False)
 class FeFig5Result(_OneTable):
-    """``tribofe precursors fe-map``: ``table``, one row per (r, g) cell and rule: the model's
-    n and F_max, the FE run's status (done, capped, refused), counts (int64 when every row has
-    one, else float64 with NaN where a capped or refused run has none) and seconds."""
+    """``tribofe precursors fe-map``: ``table``, fig5_fe.csv's rows and columns (the library's
+    table): one row per (r, g) cell with the model's n and F_max, then per rule
+    (``paper_...``, ``overdamped_...``) the FE run's status (done, capped, refused, empty when
+    not run), counts (int64 when every row has one, else float64 with NaN where a run has
+    none), peak, violation and seconds; ``units`` (column, unit). Until stop 57 the table had
+    a row per cell and rule under other names."""
 
     table: Any
     units: Optional[List[Tuple[str, str]]] = None
 
     def __repr__(self) -> str:
-        return f"FeFig5Result({len(self)} cells x rules)"
+        return f"FeFig5Result({len(self)} cells)"
 
 
 @dataclass(frozen=True, eq=False)
 class ModelResult(_Result):
     """The paper's analytic iteration for (r, g): ``n`` precursors, ``F_1`` and ``F_max``
-    (units of mu_s N), ``events`` (the events table: forces in units of mu_s N, arrest x in
-    units of L) and the fig. 4 curve (``curve_Fc_over_mu_s_N``, ``curve_F_over_mu_s_N``)."""
+    (units of mu_s N), ``events`` (events.csv's table, the library's: forces in units of
+    mu_s N, arrest x in units of L; ``units`` its (column, unit) pairs) and the fig. 4 curve
+    (loading.csv's columns ``curve_Fc_over_mu_s_N``, ``curve_F_over_mu_s_N``)."""
 
     r: float
     g: float
@@ -164,6 +168,7 @@ class ModelResult(_Result):
     events: Any
     curve_Fc_over_mu_s_N: np.ndarray
     curve_F_over_mu_s_N: np.ndarray
+    units: Optional[List[Tuple[str, str]]] = None
 
     def to_pandas(self):
         """The events table as a DataFrame."""
@@ -204,16 +209,21 @@ _COUNTS = ("n_model", "n_fe", "n_fe_long", "n_fe_advancing", "n_front")
 @dataclass(frozen=True, eq=False)
 class FeFig4Result(_Result):
     """``tribofe precursors fe``: ``runs``, one :class:`FeFig4Run` per static-kinetic rule
-    (``runs["paper"]``, ``runs["overdamped"]``), and ``comparison``, their comparisons with
-    the model as one table (a row per rule, as the command's summary.csv). Before, the call
-    returned a list of dicts: ``result[0]``, iteration and ``len`` still work (deprecated)."""
+    (``runs["paper"]``, ``runs["overdamped"]``), and ``summary``, the command's summary.csv
+    (the library's table: the model's row, then a row per rule; ``units`` its (column, unit)
+    pairs). Before, the call returned a list of dicts: ``result[0]``, iteration and ``len``
+    still work (deprecated), and ``comparison`` (a table made here, under other names) is
+    deprecated for ``summary``."""
 
     runs: Dict[str, FeFig4Run]
     definition: str
     front_definition: str
+    summary: Any = None
+    units: Optional[List[Tuple[str, str]]] = None
 
     @property
     def comparison(self):
+        _deprecated("precursors.fe_fig4().comparison", ".summary")
         skip = ("definition", "front_definition")
         rows = [r.comparison for r in self.runs.values()]
         cols: Dict[str, Any] = {"rule": list(self.runs)}
@@ -239,8 +249,8 @@ class FeFig4Result(_Result):
         return len(self.runs)
 
     def to_pandas(self):
-        """``{"comparison": df, "<rule>_loading": df, "<rule>_events": df, ...}``."""
-        out = {"comparison": _df(self.comparison)}
+        """``{"summary": df, "<rule>_loading": df, "<rule>_events": df, ...}``."""
+        out = {"summary": _df(self.summary)}
         for rule, run in self.runs.items():
             for name, df in run.to_pandas().items():
                 out[f"{rule}_{name}"] = df

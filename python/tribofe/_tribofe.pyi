@@ -117,12 +117,13 @@ def converge(
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
 # precursors_model, precursors_fe_fig4, precursors_fe_fig5: wrapped by tribofe.precursors as
-# ModelResult, FeFig4Result (one FeFig4Run per rule) and FeFig5Result.
+# ModelResult, FeFig4Result (one FeFig4Run per rule, and summary.csv's table) and
+# FeFig5Result.
 def precursors_model(r: Optional[float] = None, g: Optional[float] = None, events: Optional[int] = None) -> Dict[str, Any]: ...
 def precursors_fe_fig4(
     scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None, cycles: Optional[int] = None,
     progress: Optional[Callable[[float], None]] = None,
-) -> List[Dict[str, Any]]: ...
+) -> Dict[str, Any]: ...
 def precursors_fe_fig5(
     scene: Optional[Scene] = None, resolution: Optional[int] = None, rules: Optional[List[str]] = None,
     max_events: Optional[int] = None, progress: Optional[Callable[[float], None]] = None,

@@ -7,6 +7,7 @@
 
 use super::finite;
 use crate::error::Result;
+use std::borrow::Cow;
 use std::fmt::Write as _;
 
 /// A column's values: whole numbers, numbers (NaN: no value, an empty CSV cell where the
@@ -32,42 +33,69 @@ impl Values {
     }
 }
 
+/// How a column's numbers are printed where it does not follow its table's digits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Scientific notation with this many significant digits.
+    Sci(usize),
+    /// The shortest decimal that reads back as the same number (Rust's `{}`): the paper's
+    /// iteration, whose values are exact fractions of its inputs.
+    Shortest,
+    /// The shortest scientific notation that reads back as the same number (`{:e}`).
+    ShortestSci,
+    /// This many decimals (wall times, s).
+    Fixed(usize),
+}
+
 /// One column: its CSV name, its unit (SI, `1` for a dimensionless ratio, `-` for a count,
 /// code or label) and its values.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Column {
-    pub name: &'static str,
+    /// Built at run time where a table has a column per rule (fig5_fe.csv).
+    pub name: Cow<'static, str>,
     pub unit: &'static str,
     /// NaN is written as an empty cell (a quantity that does not exist for the row); where
     /// false, a non-finite value is refused (a bug, never written).
     pub may_be_empty: bool,
-    /// Significant digits of this column where they differ from the table's (sweep.csv's
-    /// edge widths: 7 of 13).
-    pub digits: Option<usize>,
+    /// The column's own format, where it differs from the table's digits (sweep.csv's edge
+    /// widths: 7 significant digits of 13).
+    pub format: Option<Format>,
     pub values: Values,
 }
 
 impl Column {
-    pub fn int(name: &'static str, unit: &'static str, v: Vec<i64>) -> Column {
-        Column { name, unit, may_be_empty: false, digits: None, values: Values::Int(v) }
+    fn new(
+        name: impl Into<Cow<'static, str>>,
+        unit: &'static str,
+        may_be_empty: bool,
+        values: Values,
+    ) -> Column {
+        Column { name: name.into(), unit, may_be_empty, format: None, values }
     }
-    pub fn float(name: &'static str, unit: &'static str, v: Vec<f64>) -> Column {
-        Column { name, unit, may_be_empty: false, digits: None, values: Values::Float(v) }
+    pub fn int(name: impl Into<Cow<'static, str>>, unit: &'static str, v: Vec<i64>) -> Column {
+        Column::new(name, unit, false, Values::Int(v))
+    }
+    pub fn float(name: impl Into<Cow<'static, str>>, unit: &'static str, v: Vec<f64>) -> Column {
+        Column::new(name, unit, false, Values::Float(v))
     }
     /// A number that may not exist for a row (NaN: an empty cell).
-    pub fn maybe(name: &'static str, unit: &'static str, v: Vec<f64>) -> Column {
-        Column { name, unit, may_be_empty: true, digits: None, values: Values::Float(v) }
+    pub fn maybe(name: impl Into<Cow<'static, str>>, unit: &'static str, v: Vec<f64>) -> Column {
+        Column::new(name, unit, true, Values::Float(v))
     }
     /// A whole number that may not exist for a row (None: an empty cell).
-    pub fn maybe_int(name: &'static str, unit: &'static str, v: Vec<Option<i64>>) -> Column {
-        Column { name, unit, may_be_empty: true, digits: None, values: Values::MaybeInt(v) }
+    pub fn maybe_int(name: impl Into<Cow<'static, str>>, unit: &'static str, v: Vec<Option<i64>>) -> Column {
+        Column::new(name, unit, true, Values::MaybeInt(v))
+    }
+    pub fn text(name: impl Into<Cow<'static, str>>, unit: &'static str, v: Vec<String>) -> Column {
+        Column::new(name, unit, false, Values::Text(v))
     }
     /// The column printed with `digits` significant digits instead of the table's.
     pub fn with_digits(self, digits: usize) -> Column {
-        Column { digits: Some(digits), ..self }
+        self.with_format(Format::Sci(digits))
     }
-    pub fn text(name: &'static str, unit: &'static str, v: Vec<String>) -> Column {
-        Column { name, unit, may_be_empty: false, digits: None, values: Values::Text(v) }
+    /// The column printed in `format` instead of the table's digits.
+    pub fn with_format(self, format: Format) -> Column {
+        Column { format: Some(format), ..self }
     }
 }
 
@@ -85,18 +113,17 @@ impl Table {
     }
 
     /// The CSV text: the names, then one line per row; numbers in scientific notation with
-    /// [`Self::digits`] significant digits (or the column's own).
+    /// [`Self::digits`] significant digits (or in the column's own [`Format`]).
     pub fn csv(&self) -> Result<String> {
         let n = self.rows();
         debug_assert!(self.columns.iter().all(|c| c.values.len() == n), "ragged table");
-        let mut s = self.columns.iter().map(|c| c.name).collect::<Vec<_>>().join(",");
+        let mut s = self.columns.iter().map(|c| c.name.as_ref()).collect::<Vec<_>>().join(",");
         s.push('\n');
         for i in 0..n {
             for (j, c) in self.columns.iter().enumerate() {
                 if j > 0 {
                     s.push(',');
                 }
-                let prec = c.digits.unwrap_or(self.digits).saturating_sub(1);
                 match &c.values {
                     Values::Int(v) => write!(s, "{}", v[i]).unwrap(),
                     Values::MaybeInt(v) => {
@@ -106,7 +133,16 @@ impl Table {
                     }
                     Values::Text(v) => s.push_str(&v[i]),
                     Values::Float(v) if c.may_be_empty && !v[i].is_finite() => {}
-                    Values::Float(v) => write!(s, "{:.*e}", prec, finite(c.name, v[i])?).unwrap(),
+                    Values::Float(v) => {
+                        let x = finite(&c.name, v[i])?;
+                        match c.format.unwrap_or(Format::Sci(self.digits)) {
+                            Format::Sci(d) => write!(s, "{:.*e}", d.saturating_sub(1), x),
+                            Format::Shortest => write!(s, "{x}"),
+                            Format::ShortestSci => write!(s, "{x:e}"),
+                            Format::Fixed(d) => write!(s, "{x:.d$}"),
+                        }
+                        .unwrap()
+                    }
                 }
             }
             s.push('\n');

@@ -144,7 +144,7 @@ fn convergence_csv_is_its_table() {
     let text = csv(s).unwrap();
     assert_eq!(t.csv().unwrap(), text);
     let lines: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
-    assert_eq!(t.columns.iter().map(|c| c.name).collect::<Vec<_>>(), lines[0]);
+    assert_eq!(t.columns.iter().map(|c| c.name.as_ref()).collect::<Vec<_>>(), lines[0]);
     assert_eq!(t.rows(), s.runs.len());
     let col = |n: &str| &t.columns.iter().find(|c| c.name == n).unwrap().values;
     let Values::Int(dofs) = col("dofs") else { panic!("dofs is not whole numbers") };

@@ -355,13 +355,16 @@ fn outputs_have_the_documented_columns_and_no_nan() {
     assert_eq!(written.len(), 3);
     let events = std::fs::read_to_string(dir.join("events.csv")).unwrap();
     let mut lines = events.lines();
-    assert_eq!(lines.next(), Some("i,F,Fc,x,Fstar,stick_slip"));
+    assert_eq!(
+        lines.next(),
+        Some("event,F_over_mu_s_N,Fc_over_mu_s_N,x_arrest_over_L,F_relaxed_over_mu_s_N,stick_slip")
+    );
     let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
     assert_eq!(rows.len(), ev.len());
     assert_eq!(rows.iter().filter(|r| r[5] == 0.0).count(), 10);
     assert!(rows.iter().flatten().all(|v| v.is_finite()));
     let loading = std::fs::read_to_string(dir.join("loading.csv")).unwrap();
-    assert!(loading.starts_with("Fc,F\n0,0\n"));
+    assert!(loading.starts_with("Fc_over_mu_s_N,F_over_mu_s_N\n0,0\n"));
     let svg = std::fs::read_to_string(dir.join("fig4.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("dimensionless") && svg.contains("precursor"));
     let mut bad = ev.clone();

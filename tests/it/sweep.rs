@@ -278,7 +278,7 @@ fn table_is_the_csv_table() {
     let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
     let t = table(&points).unwrap();
     assert_eq!(t.csv().unwrap(), text);
-    assert_eq!(t.columns.iter().map(|c| c.name).collect::<Vec<_>>(), rows[0]);
+    assert_eq!(t.columns.iter().map(|c| c.name.as_ref()).collect::<Vec<_>>(), rows[0]);
     for row in &rows[1..] {
         assert_eq!(row.len(), rows[0].len(), "{row:?}");
     }
@@ -288,7 +288,7 @@ fn table_is_the_csv_table() {
     assert!(matches!(kind("fe_precursors"), Values::MaybeInt(v) if v[0].is_some() && v[1].is_none()));
     assert!(matches!(kind("model_holds"), Values::Int(_)));
     for (j, col) in t.columns.iter().enumerate() {
-        let name = col.name;
+        let name = col.name.as_ref();
         let cells: Vec<&str> = rows[1..].iter().map(|r| r[j]).collect();
         match &col.values {
             Values::Int(v) => {

@@ -3,7 +3,8 @@
 
 #[cfg(feature = "plots")]
 use super::super::plot::{n_colour, n_key, render, FONT, RED};
-use super::super::{ensure_dir, finite, opt, write_all};
+use super::super::table::{Column, Format, Table};
+use super::super::{ensure_dir, opt, write_all};
 use crate::studies::precursors_fe::Cell;
 use crate::Result;
 #[cfg(feature = "plots")]
@@ -11,62 +12,119 @@ use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// `fig5_fe.csv`: per cell the model's n and F_max, then per rule its status (done, capped,
-/// refused, or empty when not run), the three counts, the first cycle's peak, the events, the
-/// worst violation, the wall time, for a capped run the precursors and the peak force reached
-/// at the cap, and for a finished one what ended its cycle (whole-slip or crossing).
-pub fn fe_fig5_csv(cells: &[Cell]) -> Result<String> {
+/// `fig5_fe.csv`'s table: per cell the model's n and F_max, then per rule its status (done,
+/// capped, refused, or empty when not run), the three counts, the first cycle's peak, the
+/// events, the worst violation, the wall time, for a capped run the precursors and the peak
+/// force reached at the cap, and for a finished one what ended its cycle (whole-slip or
+/// crossing). The one definition the CSV and the Python package's `table` are made from.
+pub fn fe_fig5_table(cells: &[Cell]) -> Table {
     use crate::studies::precursors_fe::{CellRun, RULES};
-    let mut s = String::from("r,g,model_precursors,model_Fmax_over_mu_s_N");
-    for rule in RULES {
-        let k = rule.name();
-        let _ = write!(
-            s,
-            ",{k}_status,{k}_precursors,{k}_precursors_longer_5t,{k}_precursors_advancing_5t,{k}_Fmax_over_mu_s_N,{k}_events,{k}_max_violation_over_N_per_n,{k}_seconds,{k}_precursors_at_cap,{k}_Fpeak_at_cap_over_mu_s_N,{k}_cycle_end"
-        );
+    let shortest = |name: String, v: Vec<f64>| Column::maybe(name, "1", v).with_format(Format::Shortest);
+    let mut columns = vec![
+        Column::float("r", "1", cells.iter().map(|c| c.r).collect()).with_format(Format::Shortest),
+        Column::float("g", "1", cells.iter().map(|c| c.g).collect()).with_format(Format::Shortest),
+        Column::int("model_precursors", "-", cells.iter().map(|c| c.n_model as i64).collect()),
+        Column::float("model_Fmax_over_mu_s_N", "1", cells.iter().map(|c| c.f_max_model).collect())
+            .with_format(Format::Shortest),
+    ];
+    for (k, rule) in RULES.iter().enumerate() {
+        let runs: Vec<Option<&CellRun>> = cells.iter().map(|c| c.runs[k].as_ref()).collect();
+        let done = |f: &dyn Fn(&CellRun) -> Option<f64>| -> Vec<f64> {
+            runs.iter().map(|r| r.and_then(f).unwrap_or(f64::NAN)).collect()
+        };
+        let count = |f: &dyn Fn(&CellRun) -> Option<usize>| -> Vec<Option<i64>> {
+            runs.iter().map(|r| r.and_then(f).map(|v| v as i64)).collect()
+        };
+        let name = |what: &str| format!("{}_{what}", rule.name());
+        columns.extend([
+            Column::text(
+                name("status"),
+                "-",
+                runs.iter().map(|r| r.map_or("", |r| r.status()).into()).collect(),
+            ),
+            Column::maybe_int(
+                name("precursors"),
+                "-",
+                count(&|r| match *r {
+                    CellRun::Done { n, .. } => Some(n),
+                    _ => None,
+                }),
+            ),
+            Column::maybe_int(
+                name("precursors_longer_5t"),
+                "-",
+                count(&|r| match *r {
+                    CellRun::Done { n_long, .. } => Some(n_long),
+                    _ => None,
+                }),
+            ),
+            Column::maybe_int(
+                name("precursors_advancing_5t"),
+                "-",
+                count(&|r| match *r {
+                    CellRun::Done { n_advancing, .. } => Some(n_advancing),
+                    _ => None,
+                }),
+            ),
+            shortest(
+                name("Fmax_over_mu_s_N"),
+                done(&|r| match *r {
+                    CellRun::Done { f_max, .. } => f_max,
+                    _ => None,
+                }),
+            ),
+            Column::maybe_int(
+                name("events"),
+                "-",
+                count(&|r| match *r {
+                    CellRun::Done { events, .. } => Some(events),
+                    _ => None,
+                }),
+            ),
+            Column::maybe(
+                name("max_violation_over_N_per_n"),
+                "1",
+                done(&|r| match *r {
+                    CellRun::Done { violation, .. } => Some(violation),
+                    _ => None,
+                }),
+            )
+            .with_format(Format::ShortestSci),
+            Column::maybe(name("seconds"), "s", done(&|r| Some(r.seconds()))).with_format(Format::Fixed(3)),
+            Column::maybe_int(
+                name("precursors_at_cap"),
+                "-",
+                count(&|r| match *r {
+                    CellRun::Capped { precursors, .. } => Some(precursors),
+                    _ => None,
+                }),
+            ),
+            shortest(
+                name("Fpeak_at_cap_over_mu_s_N"),
+                done(&|r| match *r {
+                    CellRun::Capped { f_peak, .. } => Some(f_peak),
+                    _ => None,
+                }),
+            ),
+            Column::text(
+                name("cycle_end"),
+                "-",
+                runs.iter()
+                    .map(|r| match r {
+                        Some(CellRun::Done { crossing: true, .. }) => "crossing".into(),
+                        Some(CellRun::Done { crossing: false, .. }) => "whole-slip".into(),
+                        _ => String::new(),
+                    })
+                    .collect(),
+            ),
+        ]);
     }
-    s.push('\n');
-    for c in cells {
-        let _ = write!(
-            s,
-            "{},{},{},{}",
-            finite("r", c.r)?,
-            finite("g", c.g)?,
-            c.n_model,
-            finite("F_max", c.f_max_model)?
-        );
-        for run in &c.runs {
-            match run {
-                Some(CellRun::Done {
-                    crossing,
-                    n,
-                    n_long,
-                    n_advancing,
-                    f_max,
-                    events,
-                    violation,
-                    seconds,
-                }) => {
-                    let end = if *crossing { "crossing" } else { "whole-slip" };
-                    let _ = write!(
-                        s,
-                        ",done,{n},{n_long},{n_advancing},{},{events},{violation:e},{seconds:.3},,,{end}",
-                        opt(*f_max)
-                    );
-                }
-                Some(CellRun::Capped { seconds, precursors, f_peak }) => {
-                    let _ =
-                        write!(s, ",capped,,,,,,,{seconds:.3},{precursors},{},", finite("F peak", *f_peak)?);
-                }
-                Some(CellRun::Refused { seconds }) => {
-                    let _ = write!(s, ",refused,,,,,,,{seconds:.3},,,");
-                }
-                None => s.push_str(",,,,,,,,,,,"),
-            }
-        }
-        s.push('\n');
-    }
-    Ok(s)
+    Table { columns, digits: 17 }
+}
+
+/// `fig5_fe.csv` ([`fe_fig5_table`]).
+pub fn fe_fig5_csv(cells: &[Cell]) -> Result<String> {
+    fe_fig5_table(cells).csv()
 }
 
 /// `boundary_fe.csv`: per r, the paper's no-precursor line (1 - r)/2, the model grid's and

@@ -18,11 +18,11 @@ mod thin_layer;
 
 pub use bonded::{comparison_csv, sweep_csv, write_comparison, write_sweep};
 pub use dc::write_dc;
-pub use fe::write_fe_fig4;
-pub use fe_map::{fe_boundary_csv, fe_fig5_csv, write_fe_fig5};
+pub use fe::{fe_fig4_summary_table, write_fe_fig4};
+pub use fe_map::{fe_boundary_csv, fe_fig5_csv, fe_fig5_table, write_fe_fig5};
 pub use heights::write_heights;
 pub use map::{n_map_csv, write_map};
-pub use model::{events_csv, loading_csv, write_events};
+pub use model::{events_csv, events_table, loading_csv, loading_table, write_events};
 pub use thin_layer::write_thin_layer;
 /// The figures, with the `plots` feature.
 #[cfg(feature = "plots")]

@@ -3,32 +3,51 @@
 
 #[cfg(feature = "plots")]
 use super::super::plot::{render, Legend, BLUE, FONT, RED};
+use super::super::table::{Column, Format, Table};
 use super::super::{ensure_dir, finite, write_all};
 use crate::precursors::{loading_curve, Event, Params};
 use crate::Result;
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// `events.csv`: header `i,F,Fc,x,Fstar,stick_slip`, stick_slip 0 for a precursor, 1 after.
-pub fn events_csv(events: &[Event]) -> Result<String> {
-    let mut s = String::from("i,F,Fc,x,Fstar,stick_slip\n");
-    for e in events {
-        let (f, fc, x, fs) =
-            (finite("F", e.f)?, finite("Fc", e.fc)?, finite("x", e.x)?, finite("Fstar", e.fstar)?);
-        let _ = writeln!(s, "{},{f},{fc},{x},{fs},{}", e.i, u8::from(e.stick_slip));
+/// `events.csv`'s table: per event its index, F_i, F_i^c and the relaxed force F_i^* in
+/// units of mu_s N, the arrest x_i in units of L, and stick_slip (0 for a precursor, 1 after),
+/// at full precision (the shortest decimals that read back: the values are exact fractions
+/// of r and g). The one definition the CSV and the Python package's `events` are made from.
+pub fn events_table(events: &[Event]) -> Table {
+    let col = |name: &'static str, f: fn(&Event) -> f64| {
+        Column::float(name, "1", events.iter().map(f).collect()).with_format(Format::Shortest)
+    };
+    Table {
+        columns: vec![
+            Column::int("event", "-", events.iter().map(|e| e.i as i64).collect()),
+            col("F_over_mu_s_N", |e| e.f),
+            col("Fc_over_mu_s_N", |e| e.fc),
+            col("x_arrest_over_L", |e| e.x),
+            col("F_relaxed_over_mu_s_N", |e| e.fstar),
+            Column::int("stick_slip", "-", events.iter().map(|e| i64::from(e.stick_slip)).collect()),
+        ],
+        digits: 17,
     }
-    Ok(s)
 }
 
-/// `loading.csv`: the vertices of the loading curve F(F^c), header `Fc,F`.
+/// `events.csv` ([`events_table`]).
+pub fn events_csv(events: &[Event]) -> Result<String> {
+    events_table(events).csv()
+}
+
+/// `loading.csv`'s table: the vertices of the loading curve F(F^c), both in units of mu_s N.
+pub fn loading_table(curve: &[(f64, f64)]) -> Table {
+    let col = |name: &'static str, f: fn(&(f64, f64)) -> f64| {
+        Column::float(name, "1", curve.iter().map(f).collect()).with_format(Format::Shortest)
+    };
+    Table { columns: vec![col("Fc_over_mu_s_N", |c| c.0), col("F_over_mu_s_N", |c| c.1)], digits: 17 }
+}
+
+/// `loading.csv` ([`loading_table`]).
 pub fn loading_csv(curve: &[(f64, f64)]) -> Result<String> {
-    let mut s = String::from("Fc,F\n");
-    for &(fc, f) in curve {
-        let _ = writeln!(s, "{},{}", finite("Fc", fc)?, finite("F", f)?);
-    }
-    Ok(s)
+    loading_table(curve).csv()
 }
 
 #[cfg(feature = "plots")]

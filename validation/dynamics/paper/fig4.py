@@ -49,12 +49,12 @@ def main():
     runs = [a.rsplit("=", 1) for a in rest]
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5))
     ml = rows(f"{model}/loading.csv")
-    ax.plot([float(r["Fc"]) for r in ml], [float(r["F"]) for r in ml], "k-", lw=1.5, label="model (paper)")
+    ax.plot([float(r["Fc_over_mu_s_N"]) for r in ml], [float(r["F_over_mu_s_N"]) for r in ml], "k-", lw=1.5, label="model (paper)")
     me = rows(f"{model}/events.csv")
     for r in me:
         if r["stick_slip"] == "1":
             break
-        bx.plot([-0.5, float(r["x"])], [float(r["F"])] * 2, "k-", lw=2.5, alpha=0.5)
+        bx.plot([-0.5, float(r["x_arrest_over_L"])], [float(r["F_over_mu_s_N"])] * 2, "k-", lw=2.5, alpha=0.5)
     bx.plot([], [], "k-", lw=2.5, alpha=0.5, label="model precursors")
     for j, ((lab, d), c) in reversed(list(enumerate(zip(runs, ["C0", "C1", "C2", "C3", "C4"])))):
         w = 1.6 if j == 0 else 0.6
