@@ -253,10 +253,12 @@ pub fn spacetime_svg(r: &DynamicResult, e: &DynEvent) -> String {
     })
 }
 
-/// The contact-area picture of one dynamic event (`contact_area_<event>.svg`): the proxy
-/// A(x)/A_0 = p(x)/p_mean ([`crate::studies::slide::contact_area_over_a0`]) over x/L (across)
-/// and time since the onset (down), from the base's contact forces sampled up to the front's
-/// arrest (the samples the event keeps); the same x crop as [`spacetime_svg`]. None when the
+/// The contact-area picture of one dynamic event (`contact_area_<event>.svg`), as the
+/// experiments image it (Rubinstein et al., PRL 2007: A(x, t)/A(x, t_0)): the proxy
+/// A(x)/A_0 = p(x)/p_mean ([`crate::studies::slide::contact_area_over_a0`]) at each sample over
+/// its value at the onset, over x/L (across) and time since the onset (down), from the base's
+/// contact forces sampled up to the front's arrest (the samples the event keeps); the same x
+/// crop as [`spacetime_svg`]. Nodes out of contact at the onset are left blank. None when the
 /// event kept no samples.
 pub fn contact_area_svg(r: &DynamicResult, e: &DynEvent) -> Option<String> {
     let rec = &e.record;
@@ -265,18 +267,22 @@ pub fn contact_area_svg(r: &DynamicResult, e: &DynEvent) -> Option<String> {
     if rows == 0 || c.n == 0 {
         return None;
     }
+    let proxy = |p: &Vec<f32>| {
+        let p: Vec<f64> = p.iter().map(|&v| f64::from(v)).collect();
+        crate::studies::slide::contact_area_over_a0(&p, &c.w, c.l)
+    };
+    let onset = proxy(&rec.p_samples[0]);
     let area: Vec<Vec<f64>> = rec.p_samples[..rows]
         .iter()
         .map(|p| {
-            let p: Vec<f64> = p.iter().map(|&v| f64::from(v)).collect();
-            crate::studies::slide::contact_area_over_a0(&p, &c.w, c.l)
+            proxy(p).iter().zip(&onset).map(|(a, a0)| if *a0 > 0.0 { a / a0 } else { f64::NAN }).collect()
         })
         .collect();
     let (_, (xa, xb)) = reached_span(r, e);
     let shown = |i: usize| c.x[i] >= xa && c.x[i] <= xb;
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for row in &area {
-        for &v in row.iter().enumerate().filter(|(i, _)| shown(*i)).map(|(_, v)| v) {
+        for &v in row.iter().enumerate().filter(|(i, v)| shown(*i) && v.is_finite()).map(|(_, v)| v) {
             lo = lo.min(v);
             hi = hi.max(v);
         }
@@ -291,7 +297,7 @@ pub fn contact_area_svg(r: &DynamicResult, e: &DynEvent) -> Option<String> {
     let k_onset = e.f_onset / (r.slide.options.law.mu_s() * r.slide.options.n_force);
     Some(heat_map(&HeatMap {
         title: format!(
-            "event {} ({}), F = {} mu_s N: contact area A/A0 = p/p_mean, to the arrest",
+            "event {} ({}), F = {} mu_s N: contact area A(x,t)/A(x,onset), A/A0 = p/p_mean, to the arrest",
             e.event,
             r.slide.run.events[e.event].kind,
             sig4(k_onset)
@@ -307,7 +313,7 @@ pub fn contact_area_svg(r: &DynamicResult, e: &DynEvent) -> Option<String> {
         scale: Scale::Linear { range: (lo, hi) },
         origin: None,
         speeds: [0.0; 2],
-        label: "A/A0 = p/p_mean (dimensionless)",
+        label: "A(x,t)/A(x,onset) (dimensionless)",
     }))
 }
 

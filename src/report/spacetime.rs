@@ -53,7 +53,8 @@ impl Scale {
         peak.log10().ceil() as i32 - SPACETIME_DECADES
     }
 
-    /// The colour band of a block's values, none (white) below a log scale's floor.
+    /// The colour band of a block's values, none (white) below a log scale's floor or where a
+    /// linear scale's block holds no number (a quantity undefined there).
     fn band(&self, values: impl Iterator<Item = f64>) -> Option<usize> {
         match *self {
             Scale::Log { peak } => {
@@ -69,8 +70,12 @@ impl Scale {
                 )
             }
             Scale::Linear { range: (lo, hi) } => {
-                let (sum, count) = values.fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
-                let v = sum / count.max(1) as f64;
+                let (sum, count) =
+                    values.filter(|v| v.is_finite()).fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
+                if count == 0 {
+                    return None;
+                }
+                let v = sum / count as f64;
                 let span = (hi - lo).max(f64::MIN_POSITIVE);
                 Some((((v - lo) / span * 20.0).floor() as i64).clamp(0, 19) as usize)
             }
