@@ -117,6 +117,10 @@ one rupture --density 1e-300 rupture --density 1e-300
 one rupture --courant 1e-300 rupture --courant 1e-300
 one "precursors thin-layer" "" default precursors thin-layer
 one slide "--n-force" 0 slide --n-force 0
+# Plane stress (issue 49): the out-of-plane width of every numeric kind, and no width at all.
+sweep_flag "check --plane-stress" --width -- check --plane-stress --no-converged --no-fields
+sweep_flag "slide --dynamics --plane-stress" --width -- "${DYN[@]}" --x-max 2e-6 --plane-stress
+one "check --plane-stress" "--width" none check --plane-stress --no-converged --no-fields
 
 # Output folders: nothing of the user's lost or changed.
 # folder LABEL CHECK-COMMAND: records ok when CHECK-COMMAND succeeds, LOST otherwise.
