@@ -277,7 +277,7 @@ def test_old_dict_access_still_works_warned():
     assert summary == cv.summary and table is cv.table
     f5 = QUIET_CALLS["precursors.fe_fig5"]()
     with pytest.warns(DeprecationWarning):
-        assert list(f5["status"]) == list(f5.table["status"])
+        assert list(f5["paper_status"]) == list(f5.table["paper_status"])
 
 
 def test_fe_fig4_old_list_access_still_works_warned():
