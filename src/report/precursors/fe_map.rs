@@ -27,14 +27,32 @@ pub fn fe_fig5_table(cells: &[Cell]) -> Table {
         Column::float("model_Fmax_over_mu_s_N", "1", cells.iter().map(|c| c.f_max_model).collect())
             .with_format(Format::Shortest),
     ];
+    // A finished run's numbers: n, n > 5 t, n advancing, events, F_max, the worst violation.
+    struct Done {
+        counts: [usize; 4],
+        f_max: Option<f64>,
+        violation: f64,
+    }
     for (k, rule) in RULES.iter().enumerate() {
         let runs: Vec<Option<&CellRun>> = cells.iter().map(|c| c.runs[k].as_ref()).collect();
-        let done = |f: &dyn Fn(&CellRun) -> Option<f64>| -> Vec<f64> {
-            runs.iter().map(|r| r.and_then(f).unwrap_or(f64::NAN)).collect()
-        };
-        let count = |f: &dyn Fn(&CellRun) -> Option<usize>| -> Vec<Option<i64>> {
-            runs.iter().map(|r| r.and_then(f).map(|v| v as i64)).collect()
-        };
+        let done: Vec<Option<Done>> = runs
+            .iter()
+            .map(|r| match r {
+                Some(&CellRun::Done { n, n_long, n_advancing, events, f_max, violation, .. }) => {
+                    Some(Done { counts: [n, n_long, n_advancing, events], f_max, violation })
+                }
+                _ => None,
+            })
+            .collect();
+        let count = |i: usize| done.iter().map(|d| d.as_ref().map(|d| d.counts[i] as i64)).collect();
+        // A capped run's precursors and peak force at the cap.
+        let cap: Vec<Option<(usize, f64)>> = runs
+            .iter()
+            .map(|r| match r {
+                Some(&CellRun::Capped { precursors, f_peak, .. }) => Some((precursors, f_peak)),
+                _ => None,
+            })
+            .collect();
         let name = |what: &str| format!("{}_{what}", rule.name());
         columns.extend([
             Column::text(
@@ -42,69 +60,34 @@ pub fn fe_fig5_table(cells: &[Cell]) -> Table {
                 "-",
                 runs.iter().map(|r| r.map_or("", |r| r.status()).into()).collect(),
             ),
-            Column::maybe_int(
-                name("precursors"),
-                "-",
-                count(&|r| match *r {
-                    CellRun::Done { n, .. } => Some(n),
-                    _ => None,
-                }),
-            ),
-            Column::maybe_int(
-                name("precursors_longer_5t"),
-                "-",
-                count(&|r| match *r {
-                    CellRun::Done { n_long, .. } => Some(n_long),
-                    _ => None,
-                }),
-            ),
-            Column::maybe_int(
-                name("precursors_advancing_5t"),
-                "-",
-                count(&|r| match *r {
-                    CellRun::Done { n_advancing, .. } => Some(n_advancing),
-                    _ => None,
-                }),
-            ),
+            Column::maybe_int(name("precursors"), "-", count(0)),
+            Column::maybe_int(name("precursors_longer_5t"), "-", count(1)),
+            Column::maybe_int(name("precursors_advancing_5t"), "-", count(2)),
             shortest(
                 name("Fmax_over_mu_s_N"),
-                done(&|r| match *r {
-                    CellRun::Done { f_max, .. } => f_max,
-                    _ => None,
-                }),
+                done.iter().map(|d| d.as_ref().and_then(|d| d.f_max).unwrap_or(f64::NAN)).collect(),
             ),
-            Column::maybe_int(
-                name("events"),
-                "-",
-                count(&|r| match *r {
-                    CellRun::Done { events, .. } => Some(events),
-                    _ => None,
-                }),
-            ),
+            Column::maybe_int(name("events"), "-", count(3)),
             Column::maybe(
                 name("max_violation_over_N_per_n"),
                 "1",
-                done(&|r| match *r {
-                    CellRun::Done { violation, .. } => Some(violation),
-                    _ => None,
-                }),
+                done.iter().map(|d| d.as_ref().map_or(f64::NAN, |d| d.violation)).collect(),
             )
             .with_format(Format::ShortestSci),
-            Column::maybe(name("seconds"), "s", done(&|r| Some(r.seconds()))).with_format(Format::Fixed(3)),
+            Column::maybe(
+                name("seconds"),
+                "s",
+                runs.iter().map(|r| r.map_or(f64::NAN, |r| r.seconds())).collect(),
+            )
+            .with_format(Format::Fixed(3)),
             Column::maybe_int(
                 name("precursors_at_cap"),
                 "-",
-                count(&|r| match *r {
-                    CellRun::Capped { precursors, .. } => Some(precursors),
-                    _ => None,
-                }),
+                cap.iter().map(|c| c.map(|c| c.0 as i64)).collect(),
             ),
             shortest(
                 name("Fpeak_at_cap_over_mu_s_N"),
-                done(&|r| match *r {
-                    CellRun::Capped { f_peak, .. } => Some(f_peak),
-                    _ => None,
-                }),
+                cap.iter().map(|c| c.map_or(f64::NAN, |c| c.1)).collect(),
             ),
             Column::text(
                 name("cycle_end"),
