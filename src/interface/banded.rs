@@ -516,7 +516,8 @@ impl BandedOperator {
 /// ([`crate::studies::dynamic_slide::fracture`]), which needs S on the slipped DOFs only.
 pub struct HeldColumns<'a> {
     op: &'a BandedOperator,
-    f: Factored,
+    // Boxed: the factor's header is large beside a dense stiffness's reference.
+    f: Box<Factored>,
 }
 
 impl BandedOperator {
@@ -535,7 +536,7 @@ impl BandedOperator {
             load: &[],
         };
         let (f, _, _) = self.factor(&rows, self.workspace())?;
-        Ok(HeldColumns { op: self, f })
+        Ok(HeldColumns { op: self, f: Box::new(f) })
     }
 }
 
