@@ -202,7 +202,7 @@ fn fracture_arrest(dyn_events: &str, s: &HashMap<String, f64>) {
     );
     // Measured: arrest -0.46125, Griffith -0.45125, fracture -0.4475, tau = mu_d p -0.32875.
     // The fracture prediction is 0.01375 L from the dynamic arrest, not within 0.01 L: the
-    // front stops short of both static balances (by 4 and 5.5 h), on the side of the patch.
+    // front stops short of both static balances (by 8 and 11 h), on the side of the patch.
     // What holds: the whole body's G and the thin-layer one differ only through the tip's
     // end zone (the body averages the drop over it), so the two predictions lie within the
     // zone's 2.18 t (its decay to 5 %, docs/convergence.md); both are beyond the arrest; and
