@@ -2,8 +2,9 @@
 //! arrested") measured as the model uses it: the arrest is set by the pre-event field. Per
 //! instability, (1) how much p and tau change ahead of the moving tip while it runs, in
 //! units of the local strength drop, and (2) where the pre-event field says the front
-//! stops, with zero fracture energy (tau = mu_d p, the paper's rule) and with the thin-layer
-//! Griffith balance, beside where it stopped (docs/dynamics-findings.md, "Assumption 5").
+//! stops, with zero fracture energy (tau = mu_d p, the paper's rule), with the thin-layer
+//! Griffith balance and with the Griffith balance on the whole body's G ([`super::fracture`]),
+//! beside where it stopped (docs/dynamics-findings.md, "Assumption 5").
 
 use super::fracture::{HeldStiffness, Release};
 use crate::dynamics::driven::EventRecord;
@@ -137,13 +138,7 @@ pub fn measure(
     let predicted_griffith = walk(dc, &mut thin).ok()?;
     // The whole body's release: the patch slipped from the start, grown toward the tip.
     let patch: Vec<usize> = if rec.d_pre[c] > rec.threshold {
-        let (mut lo, mut hi) = (c, c);
-        while lo > 0 && rec.d_pre[lo - 1] > rec.threshold {
-            lo -= 1;
-        }
-        while hi + 1 < n && rec.d_pre[hi + 1] > rec.threshold {
-            hi += 1;
-        }
+        let (lo, hi) = crate::numeric::run_around(c, n, |i| rec.d_pre[i] > rec.threshold);
         (lo..=hi).collect()
     } else {
         vec![]
