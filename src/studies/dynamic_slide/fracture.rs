@@ -15,10 +15,11 @@
 //!
 //! K_ss grows by bordering: adding DOF j to a set of m solves L y = S_sj (O(m^2)), appends the
 //! row (y, sqrt(S_jj - y.y)) to the Cholesky factor L and z_j = (df_j - y.z) / L_jj to
-//! z = L^{-1} df, so W = |z|^2 / 2 grows by z_j^2 / 2. A walk over m nodes costs O(m^3 / 3)
-//! flops and m columns of S: read from the dense S, or one solve each on the banded operator's
-//! held factor ([`HeldColumns`]); at the paper's 801 nodes a walk across the whole interface
-//! is ~2e8 flops, small against an event's explicit steps.
+//! z = L^{-1} df, so W = |z|^2 / 2 grows by z_j^2 / 2. A walk over m nodes (patch included)
+//! costs O(m^3 / 3) flops and m columns of S: read from the dense S, or one solve each on the
+//! banded operator's held factor ([`HeldColumns`], O(band) each). At the paper's 801 nodes a
+//! typical walk (tens of nodes) is ~1e7 flops, against ~1e8-1e9 for an event's explicit steps;
+//! only a walk across the whole interface (~5e8) is comparable to an event.
 
 use crate::error::{Error, Result};
 use crate::interface::banded::HeldColumns;
