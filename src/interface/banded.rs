@@ -12,7 +12,7 @@
 //! (its row an identity row, scaled like a stiffness row); a free interface u-row of a
 //! slipping node is f_u + c f_v + k (u - u_k) = 0; other free rows f_d = external force.
 //!
-//! About 620 lines: the assembly in band order, its symmetry and rigid-motion checks, the
+//! About 670 lines: the assembly in band order, its symmetry and rigid-motion checks, the
 //! bordered factor and solve and the residual products share one storage layout; the reuse of
 //! one factor across events is in `banded/reuse.rs`.
 
@@ -507,6 +507,65 @@ impl BandedOperator {
             out.f1[d] = f(1);
         }
         out
+    }
+}
+
+/// The condensed stiffness S of the dense path, column by column, without forming it: the
+/// block factored once with every boundary DOF held (identity rows), one banded solve a
+/// column (O(m (kl + ku))). For the fracture-mechanics energy release
+/// ([`crate::studies::dynamic_slide::fracture`]), which needs S on the slipped DOFs only.
+pub struct HeldColumns<'a> {
+    op: &'a BandedOperator,
+    // Boxed: the factor's header is large beside a dense stiffness's reference.
+    f: Box<Factored>,
+}
+
+impl BandedOperator {
+    /// The factor of the block with the interface and the plate held.
+    pub fn held_columns(&self) -> Result<HeldColumns<'_>> {
+        let (n, nb) = (self.n, self.dim());
+        let (free, zb, zn) = (vec![false; nb], vec![0.0; nb], vec![0.0; n]);
+        let rows = Rows {
+            free: &free,
+            b0: &zb,
+            b1: &zb,
+            coef: &zn,
+            spring: &zn,
+            spring_u: &zn,
+            fk: (0.0, 0.0),
+            load: &[],
+        };
+        let (f, _, _) = self.factor(&rows, self.workspace())?;
+        Ok(HeldColumns { op: self, f: Box::new(f) })
+    }
+}
+
+impl HeldColumns<'_> {
+    /// S e_d over the 2n interface DOFs (N/m per m): the forces on the block at the interface
+    /// DOFs when interface DOF `d` (< 2n) moves by 1 m and every other boundary DOF is held.
+    pub fn column(&self, d: usize) -> Result<Vec<f64>> {
+        let op = self.op;
+        let (m, nb) = (op.m, op.dim());
+        if d >= 2 * op.n {
+            return Err(Error::input(
+                "held column",
+                format!("DOF {d} is not an interface DOF (< {})", 2 * op.n),
+            ));
+        }
+        let mut z = vec![0.0; m];
+        z[op.pos(d)] = op.scale;
+        let mut full = vec![0.0; m + 3];
+        self.f.apply(&mut z, [0.0; 3], &mut full)?;
+        // The held values exactly (the identity rows return them to round-off).
+        for e in 0..nb {
+            full[op.pos(e)] = if e == d { 1.0 } else { 0.0 };
+        }
+        Ok((0..2 * op.n)
+            .map(|e| {
+                let (c, v) = op.row(op.pos(e));
+                c.iter().zip(v).map(|(&c, &v)| v * full[c]).sum()
+            })
+            .collect())
     }
 }
 

@@ -72,7 +72,9 @@ pub fn fronts_table(r: &DynamicResult) -> Table {
 /// dyn_events.csv: one row per dynamic event. The assumption-5 columns (held drive only,
 /// empty otherwise; [`crate::studies::dynamic_slide::assumption5`]): the dynamic arrest
 /// (x/L of the tip's final place) beside the arrests predicted from the pre-event field with
-/// zero fracture energy (tau = mu_d p) and with the thin-layer Griffith balance, and the
+/// zero fracture energy (tau = mu_d p), with the thin-layer Griffith balance and with the
+/// Griffith balance on the whole body's G(l) (fixed grips, p frozen;
+/// [`crate::studies::dynamic_slide::fracture`]), and the
 /// largest changes of p (over p_pre) and tau (over the strength drop (mu_s - mu_d) p_pre)
 /// ahead of the running tip, anywhere ahead and from 2.5 t ahead on.
 /// `force_drop_at_arrest_over_event_drop`: (F_onset - F(t_arrest)) / (F_onset - F_after), not
@@ -117,6 +119,7 @@ pub fn events_table(r: &DynamicResult) -> Table {
         Column::maybe("arrest_over_L", "1", a5(&|a| a.arrest / c.l)),
         Column::maybe("predicted_arrest_mu_d_over_L", "1", a5(&|a| a.predicted_mu_d / c.l)),
         Column::maybe("predicted_arrest_griffith_over_L", "1", a5(&|a| a.predicted_griffith / c.l)),
+        Column::maybe("predicted_arrest_fracture_over_L", "1", a5(&|a| a.predicted_fracture / c.l)),
         Column::maybe("dp_ahead_over_p_pre", "1", a5(&|a| a.dp_ahead)),
         Column::maybe("dtau_ahead_over_strength_drop", "1", a5(&|a| a.dtau_ahead)),
         Column::maybe("dp_ahead_2_5t_over_p_pre", "1", a5(&|a| a.dp_far)),

@@ -22,6 +22,7 @@ fn assumption5_measures_match_an_independent_recomputation() {
     let inst: Vec<_> = r.events.iter().filter(|e| e.record.weakened).collect();
     assert!(inst.len() >= 2, "{} instabilities", inst.len());
     let mut griffith_err = Vec::new();
+    let mut fracture_err = Vec::new();
     let mut mu_d_err = Vec::new();
     let mut concentration = Vec::new();
     for e in inst {
@@ -121,6 +122,12 @@ fn assumption5_measures_match_an_independent_recomputation() {
         let d = dir as f64;
         assert!(d * (a.predicted_mu_d - a.predicted_griffith) >= -1e-12, "event {}: {a:?}", e.event);
         assert!(d * (a.predicted_griffith - c.x[edge as usize]) >= -1e-12, "event {}: {a:?}", e.event);
+        // The whole body's G (the dense S here) walks the same rule: it ends no later than
+        // tau = mu_d p and not before the patch's edge.
+        assert!(a.predicted_fracture.is_finite(), "event {}: {a:?}", e.event);
+        assert!(d * (a.predicted_mu_d - a.predicted_fracture) >= -1e-12, "event {}: {a:?}", e.event);
+        assert!(d * (a.predicted_fracture - c.x[edge as usize]) >= -1e-12, "event {}: {a:?}", e.event);
+        fracture_err.push((a.arrest - a.predicted_fracture).abs());
         griffith_err.push((a.arrest - a.predicted_griffith).abs());
         mu_d_err.push((a.arrest - a.predicted_mu_d).abs());
 
@@ -181,8 +188,13 @@ fn assumption5_measures_match_an_independent_recomputation() {
         v.sort_by(f64::total_cmp);
         v[v.len() / 2]
     };
-    let (mg, m0) = (median(&mut griffith_err), median(&mut mu_d_err));
-    eprintln!("median |arrest - Griffith| {:.2} h, |arrest - (tau = mu_d p)| {:.2} h", mg / h, m0 / h);
+    let (mg, m0, mf) = (median(&mut griffith_err), median(&mut mu_d_err), median(&mut fracture_err));
+    eprintln!(
+        "median |arrest - Griffith| {:.2} h, |arrest - whole-body Griffith| {:.2} h, |arrest - (tau = mu_d p)| {:.2} h",
+        mg / h,
+        mf / h,
+        m0 / h
+    );
     // The tip moves the field ahead of it (its stress concentration): a measure that reads
     // the pre-event field back as the samples would give 0 in every instability.
     assert!(concentration.iter().all(|(all, _)| *all > 0.0), "{concentration:?}");
@@ -196,5 +208,7 @@ fn assumption5_measures_match_an_independent_recomputation() {
         o.n_force / b.length,
     );
     assert!(mg <= zone + h, "median |arrest - Griffith| {mg} m, Lambda_0 + h = {} m", zone + h);
+    // The whole body's G (measured: 1 h, as the thin-layer rule) by the same bound.
+    assert!(mf <= zone + h, "median |arrest - whole-body Griffith| {mf} m, Lambda_0 + h = {} m", zone + h);
     assert!(m0 > zone + h, "median |arrest - (tau = mu_d p)| {m0} m within Lambda_0 + h");
 }

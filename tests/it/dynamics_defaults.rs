@@ -171,6 +171,61 @@ fn the_default_first_run_completes_the_papers_first_cycle_with_precursors() {
         .unwrap()
         .filter(|f| f.as_ref().unwrap().file_name().to_string_lossy().starts_with("spacetime_"));
     assert_eq!(pictures.count(), 0);
+    fracture_arrest(&dyn_events, &s);
+}
+
+/// The arrests predicted from the pre-event field (dyn_events.csv) on the paper's scene
+/// against the dynamic arrest: the thin-layer Griffith rule and the whole body's G(l)
+/// (src/studies/dynamic_slide/fracture.rs).
+fn fracture_arrest(dyn_events: &str, s: &HashMap<String, f64>) {
+    let mut lines = dyn_events.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| head.iter().position(|&h| h == name).unwrap_or_else(|| panic!("{name}"));
+    let (arrest, griffith, fracture, mu_d) = (
+        col("arrest_over_L"),
+        col("predicted_arrest_griffith_over_L"),
+        col("predicted_arrest_fracture_over_L"),
+        col("predicted_arrest_mu_d_over_L"),
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').collect::<Vec<&str>>())
+        .filter(|c| c[2] == "1" && !c[arrest].is_empty())
+        .map(|c| [arrest, griffith, fracture, mu_d].iter().map(|&k| c[k].parse::<f64>().unwrap()).collect())
+        .collect();
+    assert!(rows.len() > 10, "{} instabilities with an arrest", rows.len());
+    let (l, h) = (0.4, s["h_m"]);
+    let t = 0.002 / l;
+    let first = &rows[0];
+    eprintln!(
+        "first instability: arrest {:+.5}, Griffith {:+.5}, fracture {:+.5}, mu_d {:+.5} (x/L)",
+        first[0], first[1], first[2], first[3]
+    );
+    // Measured: arrest -0.46125, Griffith -0.45125, fracture -0.4475, tau = mu_d p -0.32875.
+    // The fracture prediction is 0.01375 L from the dynamic arrest, not within 0.01 L: the
+    // front stops short of both static balances (by 8 and 11 h), on the side of the patch.
+    // What holds: the whole body's G and the thin-layer one differ only through the tip's
+    // end zone (the body averages the drop over it), so the two predictions lie within the
+    // zone's 2.18 t (its decay to 5 %, docs/convergence.md); both are beyond the arrest; and
+    // the whole body's prediction is nearer the arrest than the zero-fracture-energy one by
+    // far (the paper's rule: 0.13 L off).
+    let d = (first[3] - first[0]).signum();
+    assert!((first[2] - first[1]).abs() <= 2.18 * t, "{first:?}");
+    assert!(d * (first[1] - first[0]) > 0.0 && d * (first[2] - first[0]) > 0.0, "{first:?}");
+    assert!((first[2] - first[0]).abs() < 0.25 * (first[3] - first[0]).abs(), "{first:?}");
+    // Over every instability the median |arrest - prediction| is within the cohesive zone and
+    // a node (Lambda_0 + h), as the thin-layer rule's (tests/it/assumption5.rs).
+    let median = |k: usize| {
+        let mut e: Vec<f64> = rows.iter().map(|r| (r[0] - r[k]).abs()).collect();
+        e.sort_by(f64::total_cmp);
+        e[e.len() / 2]
+    };
+    let zone = (s["lambda0_m"] + h) / l;
+    eprintln!(
+        "median |arrest - Griffith| {:.5} L, |arrest - fracture| {:.5} L, Lambda_0 + h = {zone:.5} L",
+        median(1),
+        median(2)
+    );
+    assert!(median(1) <= zone && median(2) <= zone, "{} {} vs {zone}", median(1), median(2));
 }
 
 #[test]

@@ -23,6 +23,7 @@ mod elements;
 mod embed;
 mod engine;
 mod folder_safety;
+mod fracture;
 mod friction;
 mod gmsh_io;
 mod handoff;

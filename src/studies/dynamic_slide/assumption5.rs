@@ -2,10 +2,13 @@
 //! arrested") measured as the model uses it: the arrest is set by the pre-event field. Per
 //! instability, (1) how much p and tau change ahead of the moving tip while it runs, in
 //! units of the local strength drop, and (2) where the pre-event field says the front
-//! stops, with zero fracture energy (tau = mu_d p, the paper's rule) and with the thin-layer
-//! Griffith balance, beside where it stopped (docs/dynamics-findings.md, "Assumption 5").
+//! stops, with zero fracture energy (tau = mu_d p, the paper's rule), with the thin-layer
+//! Griffith balance and with the Griffith balance on the whole body's G ([`super::fracture`]),
+//! beside where it stopped (docs/dynamics-findings.md, "Assumption 5").
 
+use super::fracture::{HeldStiffness, Release};
 use crate::dynamics::driven::EventRecord;
+use crate::error::Result;
 use crate::law::Law;
 
 /// The stated distance ahead of the tip, in block thicknesses t: the stress concentration
@@ -22,9 +25,12 @@ pub struct Assumption5 {
     pub arrest: f64,
     /// Predicted from the pre-event field, walking from the nucleating patch's edge
     /// ([`patch_edge`]): zero fracture energy (the first node where tau < mu_d p) and the
-    /// thin-layer Griffith balance ([`predicted_arrest`]).
+    /// thin-layer Griffith balance ([`predicted_arrest`]), and the Griffith balance with G
+    /// from the whole body's static response ([`super::fracture`]; NaN without a held
+    /// stiffness).
     pub predicted_mu_d: f64,
     pub predicted_griffith: f64,
+    pub predicted_fracture: f64,
     /// Largest |p - p_pre| / p_pre and |tau - tau_pre| / ((mu_s - mu_d) p_pre) over the
     /// contact nodes ahead of the tip, over the samples from nucleation to arrest: anywhere
     /// ahead (the tip's own stress concentration included), and from
@@ -37,45 +43,50 @@ pub struct Assumption5 {
 
 /// Where a front started at node `start` and running in `direction` (+1 or -1) stops on
 /// the field p, tau (stresses, Pa): the first contact node (p > 0; open nodes are passed
-/// over) at which the released energy per unit advance falls below the fracture energy,
+/// over) at which the released energy per unit advance `released(i)` (J/m^2, called once per
+/// contact node reached, in walking order) falls below the fracture energy of linear slip
+/// weakening, or where the front has nothing left to release:
 ///
 /// ```text
-/// t (tau - mu_d p)^2 / (2 G_s)  <  (mu_s - mu_d) p D_c / 2,   or tau < mu_d p,
+/// G(i)  <  (mu_s - mu_d) p D_c / 2,   or tau < mu_d p.
 /// ```
 ///
-/// the long front in a layer of thickness t under a held rigid top (fixed grips; G_s the
-/// shear modulus): equivalently tau - mu_d p < (mu_s - mu_d) p sqrt(kappa(x)),
-/// kappa = G_s D_c / ((mu_s - mu_d) p t), validation/dynamics/paper/regime.py's rule.
-/// `d_c` = 0 gives the zero-fracture-energy rule (tau < mu_d p). None of them: the last
-/// node in that direction. Returns the node index.
-#[allow(clippy::too_many_arguments)]
+/// `d_c` = 0 gives the zero-fracture-energy rule (tau < mu_d p). None of them: the last node
+/// in that direction. Returns the node index. G is [`thin_layer_release`] for the thin-layer
+/// Griffith rule and [`super::fracture::Release::advance`] for the whole body's.
 pub fn predicted_arrest(
-    p: &[f64],
-    tau: &[f64],
+    (p, tau): (&[f64], &[f64]),
     start: usize,
     direction: i32,
     (mu_s, mu_d): (f64, f64),
     d_c: f64,
-    shear_modulus: f64,
-    thickness: f64,
-) -> usize {
+    mut released: impl FnMut(usize) -> Result<f64>,
+) -> Result<usize> {
     let n = p.len();
     let mut i = start;
     loop {
         if p[i] > 0.0 {
-            let excess = tau[i] - mu_d * p[i];
-            let released = thickness * excess * excess / (2.0 * shear_modulus);
             let gamma = (mu_s - mu_d) * p[i] * d_c / 2.0;
-            if excess < 0.0 || released < gamma {
-                return i;
+            if tau[i] < mu_d * p[i] || released(i)? < gamma {
+                return Ok(i);
             }
         }
         match (direction > 0, i) {
             (true, k) if k + 1 < n => i += 1,
             (false, k) if k > 0 => i -= 1,
-            _ => return i,
+            _ => return Ok(i),
         }
     }
+}
+
+/// The long front's release in a layer of thickness t under a held rigid top (fixed grips;
+/// G_s the shear modulus), J/m^2: t (tau - mu_d p)^2 / (2 G_s) (docs/dynamics-equations.md,
+/// "The thin-layer energy release"). Against the fracture energy it is
+/// tau - mu_d p < (mu_s - mu_d) p sqrt(kappa(x)), kappa = G_s D_c / ((mu_s - mu_d) p t),
+/// validation/dynamics/paper/regime.py's rule.
+pub fn thin_layer_release(p: f64, tau: f64, mu_d: f64, shear_modulus: f64, thickness: f64) -> f64 {
+    let excess = tau - mu_d * p;
+    thickness * excess * excess / (2.0 * shear_modulus)
 }
 
 /// The first node beyond the run of nodes with slip memory `d` above `threshold` that
@@ -94,14 +105,14 @@ pub fn patch_edge(d: &[f64], c: usize, direction: i32, threshold: f64) -> usize 
 }
 
 /// The measures of one held-drive event (None: it never nucleated, or the record holds no
-/// pre-event field). `x`, `w`: the base nodes' positions and tributary widths (m).
+/// pre-event field). `x`, `w`: the base nodes' positions and tributary widths (m); `held`:
+/// the interface's stiffness for the fracture prediction (None: that one is NaN).
 pub fn measure(
     rec: &EventRecord,
-    x: &[f64],
-    w: &[f64],
+    (x, w): (&[f64], &[f64]),
     law: &Law,
-    shear_modulus: f64,
-    thickness: f64,
+    (shear_modulus, thickness): (f64, f64),
+    held: Option<&HeldStiffness>,
 ) -> Option<Assumption5> {
     let Law::SlipWeakening { mu_s, mu_d, dc } = *law else { return None };
     let c = rec.nucleation?;
@@ -119,9 +130,25 @@ pub fn measure(
     // memory past the threshold at the onset) is the crack already there, weakened below
     // what the balance asks of fresh interface.
     let start = patch_edge(&rec.d_pre, c, direction, rec.threshold);
-    let at =
-        |d_c| x[predicted_arrest(&p, &tau, start, direction, (mu_s, mu_d), d_c, shear_modulus, thickness)];
-    let (predicted_mu_d, predicted_griffith) = (at(0.0), at(dc));
+    let walk = |d_c, released: &mut dyn FnMut(usize) -> Result<f64>| {
+        predicted_arrest((&p, &tau), start, direction, (mu_s, mu_d), d_c, released).map(|i| x[i])
+    };
+    let mut thin = |i: usize| Ok(thin_layer_release(p[i], tau[i], mu_d, shear_modulus, thickness));
+    let predicted_mu_d = walk(0.0, &mut thin).ok()?;
+    let predicted_griffith = walk(dc, &mut thin).ok()?;
+    // The whole body's release: the patch slipped from the start, grown toward the tip.
+    let patch: Vec<usize> = if rec.d_pre[c] > rec.threshold {
+        let (lo, hi) = crate::numeric::run_around(c, n, |i| rec.d_pre[i] > rec.threshold);
+        (lo..=hi).collect()
+    } else {
+        vec![]
+    };
+    let predicted_fracture = held
+        .and_then(|k| {
+            let mut r = Release::new(k, (&p, &tau, w), mu_d, &patch).ok()?;
+            walk(dc, &mut |i| r.advance(i)).ok()
+        })
+        .unwrap_or(f64::NAN);
     let drop = mu_s - mu_d;
     let far = AHEAD_THICKNESSES * thickness;
     // Positions are whole node spacings apart: 1e-9 of an element is round-off.
@@ -160,6 +187,7 @@ pub fn measure(
         arrest,
         predicted_mu_d,
         predicted_griffith,
+        predicted_fracture,
         dp_ahead,
         dtau_ahead,
         dp_far,

@@ -33,6 +33,7 @@ use crate::studies::slide::{SlideOptions, SlideResult};
 use std::time::Instant;
 
 pub mod assumption5;
+pub mod fracture;
 pub mod fronts;
 pub mod physics;
 pub mod refine;
@@ -384,8 +385,15 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     // The event solver's start-up and its drive loop, each instability run dynamically.
     let (mut sv, mut rec) = start_drive(op, n, o)?;
     let setup_s = clock.elapsed().as_secs_f64();
+    // The fracture prediction's stiffness (slip weakening only): the dense S, or the banded
+    // block factored once with its boundary held.
+    let held = match law {
+        Law::SlipWeakening { .. } => Some(so.held()?),
+        _ => None,
+    };
     let mut resolver = resolve::Held {
         full_field: &full_field,
+        held: held.as_ref(),
         driven: &driven,
         lim: &lim,
         base: &layout.base,

@@ -3,6 +3,7 @@
 //! equilibrium (v = 0, U_H held), then statics resumes with every contact node anchored where
 //! the event left it.
 
+use super::fracture::HeldStiffness;
 use super::steps::{anchor_after, arrest, classify_event, crossing};
 use super::{assumption5, DynEvent};
 use crate::dynamics::driven::{DynState, EventLimits};
@@ -18,6 +19,8 @@ use std::time::Instant;
 pub(super) struct Held<'r, 'a> {
     /// The whole block's displacement from the event solver's boundary values at X.
     pub full_field: &'r dyn Fn(&Affine, f64) -> Vec<f64>,
+    /// The interface's stiffness with its boundary held, for the fracture arrest (None: none).
+    pub held: Option<&'r HeldStiffness<'r>>,
     pub driven: &'r crate::dynamics::driven::Driven<'a>,
     pub lim: &'r EventLimits,
     /// Base node of each interface node; interface x and weights (m).
@@ -107,7 +110,8 @@ impl Resolver for Held<'_, '_> {
         })?;
         let (t_arrest, force_drop_at_arrest) =
             arrest(&ev, before.f, f_after).map_or((None, None), |(t, f)| (Some(t), f));
-        let assumption5 = assumption5::measure(&ev, self.x, self.w, law, self.shear_modulus, self.thickness);
+        let assumption5 =
+            assumption5::measure(&ev, (self.x, self.w), law, (self.shear_modulus, self.thickness), self.held);
         self.events.push(DynEvent {
             event: rec.out.events.len() - 1,
             x: lam,

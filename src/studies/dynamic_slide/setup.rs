@@ -304,6 +304,14 @@ impl StaticOperator {
         })
     }
 
+    /// The interface's stiffness with every boundary DOF held, for the fracture arrest.
+    pub fn held(&self) -> Result<super::fracture::HeldStiffness<'_>> {
+        Ok(match &self.banded {
+            Some(b) => super::fracture::HeldStiffness::Banded(b.held_columns()?),
+            None => super::fracture::HeldStiffness::Dense(&self.c),
+        })
+    }
+
     /// The event solver's operator over the 2n + 3 boundary DOFs.
     pub fn solver(&self) -> Box<dyn events::operator::Operator + '_> {
         match &self.banded {
