@@ -146,7 +146,7 @@ pub const DEFAULT_OPERATOR: crate::interface::events::Operator = crate::interfac
 /// [`EventEnd::Slip`]'s tolerance: a base node's slip may grow by at most this fraction of
 /// D_c over the window, a tenth of the D_c/100 at which the handoff counts a node as slipped
 /// (the tip, the slipped region, `--heal slipped`); anchors moved by that much move the static
-/// F after the event by at most k_bonded D_c / 1000 (3e-5 mu_s N on the paper's scene).
+/// F after the event by at most k_bonded D_c / 1000 (5e-5 mu_s N on the paper's scene).
 pub const SLIP_END_TOL: f64 = 1e-3;
 
 /// [`EventEnd::Slip`]'s window, in periods of the thickness mode: the stuck block's slowest
