@@ -177,8 +177,10 @@ pub enum EventEnd {
     /// node moving ([`EventLimits::quiet_steps`]): the ring-down to rest.
     #[default]
     Energy,
-    /// What is handed back is frozen: over [`EventLimits::slip_window`] steps no base node's slip
-    /// (path length) grew by more than [`EventLimits::slip_tol`] and none opened or closed.
+    /// What is handed back is frozen: once some node slipped past the event's threshold, over
+    /// [`EventLimits::slip_window`] steps no base node's slip (path length) grew by more than
+    /// [`EventLimits::slip_tol`] and none opened or closed. The energy test still ends the event
+    /// if it comes first (an event in which no node passed the threshold).
     Slip,
 }
 
