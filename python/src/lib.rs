@@ -1017,7 +1017,7 @@ fn rupture_dict<'py>(
 #[pyo3(signature = (scene=None, law=None, *, mu=None, mu_s=None, mu_d=None, r=None, g=None,
     dc=None, h=None, n_force=None, x_max=None, cycles=None, cycle_end=None, max_events=None,
     operator=None, states=None, keep_states=None, damping=None, courant=None, drive_velocity=None,
-    plate_mass=None, plate_inertia=None, heal=None, weakening_steps=None, exact_weakening=None, density=None, a=None, b=None,
+    plate_mass=None, plate_inertia=None, heal=None, weakening_steps=None, exact_weakening=None, event_end=None, density=None, a=None, b=None,
     l_rs=None, f0=None, v0=None, state_law=None, theta0=None, normal_lag=None, normal_lag_length=None,
     normal_lag_v_star=None, progress=None))]
 #[allow(clippy::too_many_arguments)]
@@ -1048,6 +1048,7 @@ fn dynamic_slide<'py>(
     heal: Option<&str>,
     weakening_steps: Option<f64>,
     exact_weakening: Option<bool>,
+    event_end: Option<&str>,
     density: Option<f64>,
     a: Option<f64>,
     b: Option<f64>,
@@ -1112,6 +1113,7 @@ fn dynamic_slide<'py>(
     let end_at_crossing = choice("cycle_end", cycle_end, CYCLE_ENDS)?;
     let operator = choice("operator", operator, OPERATORS)?;
     let heal_slipped_only = choice("heal", heal, HEALS)?.unwrap_or(base.heal_slipped_only);
+    let event_end = choice("event_end", event_end, &tribofe::dynamics::driven::EventEnd::NAMES)?;
     let keep_states = match (choice("states", states, STATES)?, keep_states) {
         (Some(_), Some(_)) => {
             return Err(to_py(Error::input("keep_states", "the old spelling of states=: give states= alone")))
@@ -1145,6 +1147,7 @@ fn dynamic_slide<'py>(
         plate_inertia: plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only,
         weakening_steps: ds::weakening_steps(weakening_steps, &o, drive_velocity).map_err(to_py)?,
+        event_end: ds::event_end(event_end, drive_velocity).map_err(to_py)?,
         normal: scene.law.normal([normal_lag, normal_lag_length, normal_lag_v_star]).map_err(to_py)?,
         ..Default::default()
     };
@@ -1259,6 +1262,7 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
             ("plate_mass", dyn_o.plate_mass),
             ("plate_inertia", dyn_o.plate_inertia),
             ("heal", name_of(HEALS, dyn_o.heal_slipped_only)),
+            ("event_end", dyn_o.event_end.name()),
         ],
     );
     put!("sweep", [("rule", sl::DEFAULT_RULE), ("cycles", sw::DEFAULT_FRICTION_CYCLES)]);

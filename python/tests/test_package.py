@@ -593,6 +593,13 @@ def test_options_that_cannot_act_are_refused_by_keyword(tribofe_bin, tmp_path):
     with pytest.raises(tribofe.InputError) as e:
         tribofe.dynamics.slide(small, law="slip-weakening", drive_velocity=1e-5, x_max=1e-6, exact_weakening=True)
     assert "exact_weakening=" in str(e.value) and "drive_velocity=" in str(e.value), str(e.value)
+    # event_end: the held mode's events only; a wrong name lists the accepted ones.
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.dynamics.slide(small, law="slip-weakening", drive_velocity=1e-5, x_max=1e-6, event_end="slip")
+    assert "event_end=" in str(e.value) and "drive_velocity=" in str(e.value), str(e.value)
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.dynamics.slide(small, law="slip-weakening", x_max=1e-6, event_end="rest")
+    assert "event_end=" in str(e.value) and '"energy", "slip"' in str(e.value), str(e.value)
     # The sweep's frictional settings without its frictional run.
     for kw in ({"rule": "overdamped"}, {"cycles": 3}):
         with pytest.raises(tribofe.InputError) as e:

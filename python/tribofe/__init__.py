@@ -590,6 +590,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         heal: Optional[str] = None,
         weakening_steps: Optional[float] = None,
         exact_weakening: Optional[bool] = None,
+        event_end: Optional[str] = None,
         density: Optional[float] = None,
         a: Optional[float] = None,
         b: Optional[float] = None,
@@ -615,7 +616,9 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         20 (held drive under slip weakening only: refused with ``drive_velocity``, which updates
         the coefficient every explicit step), ``exact_weakening`` False (True: the static
         loading follows slip weakening exactly, each onset at its fold, ``--exact-weakening``;
-        ~10x slower on the paper's scene, docs/speed.md; refused beside ``weakening_steps``), ``n_force`` 1 N/m, ``max_events`` 50 000,
+        ~10x slower on the paper's scene, docs/speed.md; refused beside ``weakening_steps``), ``event_end`` ``"energy"`` (a held-mode event
+        ends at rest; ``"slip"``: once the state handed back is frozen, ``--event-end slip``,
+        docs/speed.md "Event end"; refused with ``drive_velocity``), ``n_force`` 1 N/m, ``max_events`` 50 000,
         ``plate_mass`` and ``plate_inertia`` 0, ``heal`` ``"all"``, ``states`` ``"none"`` (only
         the last interface state kept; ``"all"``: every event's), ``density`` (kg/m^3) the
         scene's, ``law`` the command's ``"coulomb"`` (``defaults()["dynamics.slide"]``; the
@@ -659,6 +662,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
                 heal=heal,
                 weakening_steps=weakening_steps,
                 exact_weakening=exact_weakening,
+                event_end=event_end,
                 density=density,
                 a=a,
                 b=b,

@@ -182,6 +182,7 @@ def dynamic_slide(
     heal: Optional[str] = None,
     weakening_steps: Optional[float] = None,
     exact_weakening: Optional[bool] = None,
+    event_end: Optional[str] = None,
     density: Optional[float] = None,
     a: Optional[float] = None,
     b: Optional[float] = None,

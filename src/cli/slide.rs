@@ -186,6 +186,13 @@ pub struct Args {
     /// summary.csv's weakening_steps (0) say it ran.
     #[arg(long)]
     pub exact_weakening: bool,
+    /// When a dynamic event ends (--dynamics, held drive): `energy` (the default), at rest,
+    /// the kinetic energy 1e-6 of the event's dissipation; or `slip`, once no node's slip grew
+    /// by D_c/1000, nor a node opened or closed, over one thickness period: what is handed
+    /// back to the static loading is then frozen (docs/speed.md, "Event end"). run.toml's
+    /// event_end says which ran.
+    #[arg(long, value_parser = ["energy", "slip"])]
+    pub event_end: Option<String>,
     /// A refinement series at fixed physics (--dynamics): run N meshes (2 to 4), h, h/2...,
     /// D_c fixed; writes refinement.csv (each summary quantity per mesh, its spread and a
     /// converged yes/no: the two finest meshes within 0.01 mu_s N for forces, 0.02 L for
@@ -265,6 +272,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
             ("--normal-lag-v-star", a.normal_lag_v_star.is_some()),
             ("--weakening-steps", a.weakening_steps.is_some()),
             ("--exact-weakening", a.exact_weakening),
+            ("--event-end", a.event_end.is_some()),
             ("--refine", a.refine.is_some()),
             ("--spacetime", a.spacetime.is_some()),
         ] {
@@ -517,6 +525,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         plate_inertia: a.plate_inertia.unwrap_or(base.plate_inertia),
         heal_slipped_only: a.heal == "slipped",
         weakening_steps: ds::weakening_steps(a.weakening_steps, &o, a.drive_velocity)?,
+        event_end: ds::event_end(a.event_end.as_deref().map(str::parse).transpose()?, a.drive_velocity)?,
         normal: scene.law.normal([a.normal_lag, a.normal_lag_length, a.normal_lag_v_star])?,
         ..Default::default()
     };
@@ -563,6 +572,10 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
         ("plate_inertia_kg_m2_per_m", toml::Value::from(d.plate_inertia)),
         ("normal_response", toml::Value::from(d.normal.name())),
         ("weakening_path", toml::Value::from(ds::held_weakening(&o, &d).map_or("none", |w| w.name()))),
+        (
+            "event_end",
+            toml::Value::from(if a.drive_velocity.is_some() { "none" } else { d.event_end.name() }),
+        ),
     ];
     // summary.csv's row, NaN (a quantity the run does not have) left out, and the cap if met.
     let summary = ds::summary::COLUMNS.iter().zip(ds::summary::values(&res));

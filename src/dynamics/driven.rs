@@ -170,14 +170,52 @@ pub struct DynState {
     pub time: f64,
 }
 
+/// Which test ends an event (`slide --dynamics --event-end`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EventEnd {
+    /// The kinetic energy at most [`EventLimits::ke_fraction`] of the dissipation with no base
+    /// node moving ([`EventLimits::quiet_steps`]): the ring-down to rest.
+    #[default]
+    Energy,
+    /// What is handed back is frozen: once some node slipped past the event's threshold, over
+    /// [`EventLimits::slip_window`] steps no base node's slip (path length) grew by more than
+    /// [`EventLimits::slip_tol`] and none opened or closed. The energy test still ends the event
+    /// if it comes first (an event in which no node passed the threshold).
+    Slip,
+}
+
+impl EventEnd {
+    /// The names a front end accepts, with their values.
+    pub const NAMES: [(&'static str, EventEnd); 2] = [("energy", EventEnd::Energy), ("slip", EventEnd::Slip)];
+
+    pub fn name(self) -> &'static str {
+        Self::NAMES.iter().find(|(_, e)| *e == self).map_or("", |(n, _)| n)
+    }
+}
+
+impl std::str::FromStr for EventEnd {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        Self::NAMES.iter().find(|(n, _)| *n == s).map(|&(_, e)| e).ok_or_else(|| {
+            Error::input("--event-end", format!("'{s}': give energy (rest: the kinetic-energy test) or slip (the handed-back state frozen)"))
+        })
+    }
+}
+
 /// When an event stops.
 #[derive(Debug, Clone, Copy)]
 pub struct EventLimits {
-    /// Kinetic energy at most this fraction of what the event has dissipated (friction +
-    /// damping)...
+    /// Which test ends the event.
+    pub end: EventEnd,
+    /// [`EventEnd::Energy`]: kinetic energy at most this fraction of what the event has
+    /// dissipated (friction + damping)...
     pub ke_fraction: f64,
     /// ...and no base node slipping, both for this many consecutive steps.
     pub quiet_steps: usize,
+    /// [`EventEnd::Slip`]: the largest slip growth of a base node over the window, m, and the
+    /// window, steps.
+    pub slip_tol: f64,
+    pub slip_window: usize,
     /// A base node at its strength slipping slower than this (m/s) counts as stuck in that
     /// test: a node that comes to rest exactly at its strength (tau -> mu(d) p from above,
     /// e.g. a fully weakened node arresting at mu_d p) stays flagged as slipping at any
@@ -507,6 +545,8 @@ impl<'a> Driven<'a> {
         let mut e = EventEnergy::default();
         let mut start_balance = None;
         let mut quiet = 0usize;
+        // The slip test's window: its first step, and the slips and contact at its start.
+        let (mut since, mut d_ref, mut open_ref) = (0usize, d0.clone(), vec![false; nb]);
         let mut f_drive = 0.0;
         let mut beat = cancel.beat();
         for step in 0..lim.max_steps {
@@ -562,6 +602,22 @@ impl<'a> Driven<'a> {
             }
             rec.at_strength = if moving { 0 } else { resting };
             quiet = if moving { 0 } else { quiet + 1 };
+            if lim.end == EventEnd::Slip {
+                // The handoff anchors each node where it is and keeps its slip (or heals it):
+                // a window in which neither moved past the tolerance ends the event. Only once
+                // some node slipped past the threshold: a slow start (an onset just past its
+                // fold) must not end before it runs away; such a non-event rings down as before.
+                let changed = step == 0
+                    || (0..nb).any(|b| st.d[b] - d_ref[b] > lim.slip_tol || contact[b].open != open_ref[b]);
+                if changed {
+                    d_ref.copy_from_slice(&st.d);
+                    open_ref.iter_mut().zip(&contact).for_each(|(o, c)| *o = c.open);
+                    since = step;
+                } else if step - since >= lim.slip_window && rec.nucleation.is_some() {
+                    rec.settled = true;
+                    break;
+                }
+            }
             let dissipated = e.friction + e.damping;
             // The kinetic energy only once quiet (a pass over every node, 10 % of a step).
             let ke = || m.kinetic_energy(&st.v) + lay.plate_kinetic(st.drive_velocity, st.qdot);

@@ -759,6 +759,50 @@ fn dynamic_events_balance_energy_and_end_at_rest() {
 }
 
 #[test]
+fn the_slip_event_end_hands_back_the_same_state_in_fewer_steps() {
+    // The small scene to X = 6e-6 m (its first dynamic events) under each event-end rule. The
+    // slip rule ends an event once no node's slip grew by tol = SLIP_END_TOL D_c over a
+    // window: what the handoff reads (each node's slip, hence its anchor and slip memory) is
+    // then the energy rule's within tol per node, and the static F after the event within
+    // k_bonded tol (anchors moved by at most tol move F by at most a rigid shift by tol does:
+    // F = k_bonded X when stuck). The same events follow, at the same X and F to that bound.
+    let (scene, o) = short_weakening(Operator::Banded, 6.0e-6);
+    let run = |end| {
+        let d = DynamicOptions { event_end: end, ..Default::default() };
+        ds::run(&scene, &o, &d, tribofe::Progress::none()).unwrap()
+    };
+    let (energy, slip) = (run(driven::EventEnd::Energy), run(driven::EventEnd::Slip));
+    let tol = ds::SLIP_END_TOL * o.law.dc().unwrap();
+    let f_tol = energy.slide.run.k_bonded * tol;
+    assert!(energy.events.len() >= 3, "{} dynamic events", energy.events.len());
+    assert_eq!(
+        energy.events.iter().map(|e| e.event).collect::<Vec<_>>(),
+        slip.events.iter().map(|e| e.event).collect::<Vec<_>>()
+    );
+    for (p, q) in energy.events.iter().zip(&slip.events) {
+        let worst = p.record.slip.iter().zip(&q.record.slip).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        assert!(worst <= tol, "event {}: a node's slip differs by {worst:e} m > {tol:e} m", p.event);
+        assert!(
+            (p.f_after - q.f_after).abs() <= f_tol,
+            "event {}: F after {} vs {} N/m (tolerance {f_tol:e})",
+            p.event,
+            p.f_after,
+            q.f_after
+        );
+        assert!(q.record.settled && q.record.steps <= p.record.steps, "event {}", p.event);
+    }
+    let steps = |r: &ds::DynamicResult| r.events.iter().map(|e| e.record.steps).sum::<usize>();
+    assert!(steps(&slip) < steps(&energy), "steps: slip {} vs energy {}", steps(&slip), steps(&energy));
+    let (ea, eb) = (&energy.slide.run.events, &slip.slide.run.events);
+    assert_eq!(ea.len(), eb.len());
+    for (p, q) in ea.iter().zip(eb) {
+        assert_eq!((p.kind, p.node), (q.kind, q.node), "at X = {}", p.x);
+        assert!((p.f - q.f).abs() <= f_tol, "F {} vs {} at X = {}", p.f, q.f, p.x);
+        assert!((p.x - q.x).abs() <= tol, "X {} vs {}", p.x, q.x);
+    }
+}
+
+#[test]
 fn dynamic_slide_refuses_what_it_cannot_run() {
     let scene = block(0.1, 0.0005, None);
     let d = DynamicOptions::default();
@@ -831,8 +875,11 @@ fn arrest_at_strength_with(
     let quiet_steps = (period / dt).ceil() as usize;
     let cap = (ds::event_cap_periods(l, t, xi, 1e-6) * period / dt).ceil() as usize;
     let lim = EventLimits {
+        end: driven::EventEnd::Energy,
         ke_fraction: 1e-6,
         quiet_steps,
+        slip_tol: 0.0,
+        slip_window: quiet_steps,
         rest_rate: rest_rate.unwrap_or(default_rate),
         max_steps: cap_steps.unwrap_or(cap),
         sample_every: quiet_steps / 16,

@@ -292,6 +292,33 @@ fn the_weakening_path_is_in_run_toml_and_summary_csv() {
 }
 
 #[test]
+fn the_event_end_rule_is_in_run_toml_and_the_header() {
+    // energy by default, slip when asked; refused where no event ends by it.
+    let dir = tempfile::tempdir().unwrap();
+    for (extra, name, said) in [
+        (None, "energy", "ends at rest (kinetic energy 1e-6 of its dissipation, --event-end energy)"),
+        (Some("slip"), "slip", "the thickness period (--event-end slip)"),
+    ] {
+        let out = dir.path().join(name);
+        let mut args = SHORT.to_vec();
+        args.extend(["--h", "0.0005", "--x-max", "4.9e-6"]);
+        if let Some(e) = extra {
+            args.extend(["--event-end", e]);
+        }
+        let r = tribofe(&args, &out, 300);
+        assert_eq!(r.code, 0, "{}", r.stderr);
+        let toml = std::fs::read_to_string(out.join("run.toml")).unwrap();
+        assert!(toml.contains(&format!("event_end = \"{name}\"")), "{toml}");
+        assert!(r.stderr.contains(said), "{}", r.stderr);
+    }
+    let mut args = SHORT.to_vec();
+    args.extend(["--event-end", "slip", "--drive-velocity", "1e-5", "--x-max", "1e-6"]);
+    let r = tribofe(&args, &dir.path().join("velocity"), 60);
+    assert_eq!(r.code, 2);
+    assert!(r.stderr.contains("--event-end") && r.stderr.contains("--drive-velocity"), "{}", r.stderr);
+}
+
+#[test]
 fn a_run_that_meets_a_cap_writes_what_it_computed_and_exits_incomplete() {
     // The event cap met midway: exit 5, the tables up to there, the cap in run.toml and on
     // stderr; the summary says complete = 0.

@@ -12,7 +12,8 @@
 //!    the event to this mode's resolver (`resolve.rs`), which runs it dynamically.
 //! 2. The event ([`crate::dynamics::driven`]): from the static field (v = 0), U_H held, until
 //!    no node slips and the kinetic energy is below 1e-6 of what the event dissipated, both
-//!    for one period of the block's thickness mode.
+//!    for one period of the block's thickness mode; with `--event-end slip`, once no node's
+//!    slip grew by D_c/1000 (nor a node opened or closed) over one such period.
 //! 3. The static equilibrium with every contact node anchored where the event left it; an
 //!    event in which some node weakened fully (slip >= D_c) is an instability: every node
 //!    heals to mu_s (slip memory 0), as in the quasi-static solver; otherwise nodes keep
@@ -21,7 +22,7 @@
 //! Coulomb friction never becomes unstable, so a Coulomb run is the static loading alone:
 //! the same events as `slide` (tests/it/dynamics.rs).
 
-use crate::dynamics::driven::{EventLimits, EventRecord};
+use crate::dynamics::driven::{EventEnd, EventLimits, EventRecord};
 use crate::dynamics::waves::WaveSpeeds;
 use crate::error::{Error, Result};
 use crate::interface::events::handoff::{drive_stepped, start_drive, Affine, Ended};
@@ -52,6 +53,8 @@ pub struct DynamicOptions {
     pub damping: Option<f64>,
     /// Time step as a fraction of the stable one.
     pub courant: f64,
+    /// Which test ends a held-mode event ([`EventEnd`]; docs/speed.md, "Event end").
+    pub event_end: EventEnd,
     /// End of an event: kinetic energy below this fraction of the event's dissipation.
     pub ke_fraction: f64,
     /// Cap on the steps of one event, in thickness-mode periods; None: [`event_cap_periods`]
@@ -85,6 +88,7 @@ impl Default for DynamicOptions {
         Self {
             damping: None,
             courant: DEFAULT_COURANT,
+            event_end: EventEnd::Energy,
             ke_fraction: 1e-6,
             max_periods: None,
             drive_velocity: None,
@@ -139,6 +143,19 @@ pub const DEFAULT_END_AT_CROSSING: bool = true;
 /// The operator of a dynamic slide's static loading by default: its runs have thousands of
 /// events on fine meshes, where the banded solve's cost per event grows like n, not n^2.
 pub const DEFAULT_OPERATOR: crate::interface::events::Operator = crate::interface::events::Operator::Banded;
+
+/// [`EventEnd::Slip`]'s tolerance: a base node's slip may grow by at most this fraction of
+/// D_c over the window, a tenth of the D_c/100 at which the handoff counts a node as slipped
+/// (the tip, the slipped region, `--heal slipped`); anchors moved by that much move the static
+/// F after the event by at most k_bonded D_c / 1000 (5e-5 mu_s N on the paper's scene).
+pub const SLIP_END_TOL: f64 = 1e-3;
+
+/// [`EventEnd::Slip`]'s window, in periods of the thickness mode: the stuck block's slowest
+/// mode (the quiet test's window, [`event_cap_periods`]), so every mode that could push a node
+/// past its strength again has peaked in it, and with the drive held and the damping its
+/// next peaks are lower. Two periods end no event earlier than the energy test on the small
+/// scene (docs/speed.md, "Event end").
+pub const SLIP_END_PERIODS: f64 = 1.0;
 
 /// Default slip-weakening step of the static loading: D_c / this of slip (as the quasi-static
 /// solver).
@@ -275,6 +292,19 @@ pub fn weakening_steps(given: Option<f64>, o: &SlideOptions, drive_velocity: Opt
     }
 }
 
+/// [`DynamicOptions::event_end`] from what a front end was given (None: the default), refused
+/// under the constant-velocity drive, whose events are read off the slip rates.
+pub fn event_end(given: Option<EventEnd>, drive_velocity: Option<f64>) -> Result<EventEnd> {
+    match given {
+        Some(_) if drive_velocity.is_some() => Err(Error::input(
+            "--event-end",
+            "acts only on the held mode's dynamic events: --drive-velocity runs one explicit drive without events to end",
+        )),
+        Some(end) => Ok(end),
+        None => Ok(DynamicOptions::default().event_end),
+    }
+}
+
 /// Which path the held mode's static loading follows slip weakening by (None: no weakening
 /// law, or the constant-velocity drive, which has no static loading).
 pub fn held_weakening(o: &SlideOptions, d: &DynamicOptions) -> Option<Weakening> {
@@ -348,8 +378,11 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let max_periods = d.max_periods.unwrap_or_else(|| event_cap_periods(c.l, t, su.xi(), d.ke_fraction));
     let elastic_slip = mu_s * (o.n_force / c.l) * t / mat.shear_modulus();
     let lim = EventLimits {
+        end: d.event_end,
         ke_fraction: d.ke_fraction,
         quiet_steps: su.quiet_steps,
+        slip_tol: SLIP_END_TOL * dc,
+        slip_window: (SLIP_END_PERIODS * period / dt).ceil() as usize,
         rest_rate: crate::dynamics::driven::rest_rate(&law, elastic_slip, period),
         max_steps: (max_periods * period / dt).ceil() as usize,
         sample_every: su.sample_every,
@@ -358,7 +391,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let layout = su.layout(c.x.clone(), d)?;
     let driven = su.driven(&layout, o.n_force);
     progress.message(&format!(
-        "dynamics: {} DOFs, dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), eta = {eta:.4e} s = {:.3} of critical at the thickness mode omega = {omega_t:.4e} rad/s; c_s = {:.4} m/s; Lambda_0 = {:.3e} m = {:.2} h{}; static phase on the {} operator{}",
+        "dynamics: {} DOFs, dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), eta = {eta:.4e} s = {:.3} of critical at the thickness mode omega = {omega_t:.4e} rad/s; c_s = {:.4} m/s; Lambda_0 = {:.3e} m = {:.2} h{}; static phase on the {} operator{}; {}",
         model.n_dofs(),
         d.courant,
         su.xi(),
@@ -379,6 +412,15 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
             Some(Weakening::Exact) => ", slip weakening followed exactly (--exact-weakening)".to_string(),
             Some(Weakening::Steps) => format!(", slip weakening in steps of D_c/{}", d.weakening_steps),
             None => String::new(),
+        },
+        match d.event_end {
+            EventEnd::Energy => format!(
+                "an event ends at rest (kinetic energy {:e} of its dissipation, --event-end energy)",
+                d.ke_fraction
+            ),
+            EventEnd::Slip => format!(
+                "an event ends when no node's slip grows by {SLIP_END_TOL:e} D_c, nor a node opens or closes, in {SLIP_END_PERIODS} x the thickness period (--event-end slip)"
+            ),
         }
     ));
 
