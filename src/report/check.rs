@@ -308,7 +308,8 @@ pub fn table(res: &CheckResult) -> String {
     }
     let (worst, limit) = (res.balance_error(), res.balance_limit());
     let verdict = if worst <= limit { "ok, <=" } else { "FAILED, >" };
-    let _ = writeln!(s, "global balance (sum of interface forces vs N, F; moment vs F H; relative to the load): worst error {worst:.1e} ({verdict} {limit:.1e} = 100 eps kappa)");
+    let arm = if side.is_some() { "the pusher's own moment" } else { "F H" };
+    let _ = writeln!(s, "global balance (sum of interface forces vs N, F; moment vs {arm}; relative to the load): worst error {worst:.1e} ({verdict} {limit:.1e} = 100 eps kappa)");
     let r = &res.stats.report;
     let _ = writeln!(
         s,
