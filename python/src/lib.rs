@@ -178,6 +178,14 @@ const PLANE_STATES: &[(&str, tribofe::scene::State)] = &[
     ("plane-strain", tribofe::scene::State::PlaneStrain),
     ("plane-stress", tribofe::scene::State::PlaneStress),
 ];
+/// `rig=`: the loading rig (`[loading] rig`).
+const RIGS: &[(&str, tribofe::scene::Rig)] =
+    &[("top-plate", tribofe::scene::Rig::TopPlate), ("side-push", tribofe::scene::Rig::SidePush)];
+/// `top=`: the side push's normal load on the top face (`[loading] top`).
+const TOPS: &[(&str, tribofe::scene::Top)] = &[
+    ("uniform-pressure", tribofe::scene::Top::UniformPressure),
+    ("sliding-plate", tribofe::scene::Top::SlidingPlate),
+];
 /// `--states`: whether every event's state is kept.
 const STATES: &[(&str, bool)] = &[("all", true), ("none", false)];
 /// `--cycle-end`: whether a front crossing also ends a cycle.
@@ -206,7 +214,8 @@ struct Scene {
 }
 
 const SCENE_KEYS: &str = "length, thickness, young, poisson, height, fn_ratios, plate, plate_thickness, \
-plate_young, plate_poisson, h, grading, h_max, n_thick, element, mesh, geometry, tol, max_dofs, state, width";
+plate_young, plate_poisson, h, grading, h_max, n_thick, element, mesh, geometry, tol, max_dofs, state, width, \
+rig, push_height, push_width, push_stiffness, top";
 
 fn overrides(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Overrides> {
     let mut o = Overrides::default();
@@ -228,6 +237,11 @@ fn overrides(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Overrides> {
             "h_max" => o.h_max = f(&v)?,
             "tol" => o.tol = f(&v)?,
             "width" => o.width = f(&v)?,
+            "push_height" => o.push_height = f(&v)?,
+            "push_width" => o.push_width = f(&v)?,
+            "push_stiffness" => o.push_stiffness = f(&v)?,
+            "rig" => o.rig = choice("rig", Some(&v.extract::<String>()?), RIGS)?,
+            "top" => o.top = choice("top", Some(&v.extract::<String>()?), TOPS)?,
             "state" => o.state = choice("state", Some(&v.extract::<String>()?), PLANE_STATES)?,
             "fn_ratios" => {
                 o.fn_ratios = Some(

@@ -35,10 +35,10 @@ pub struct Args {
     pub no_converged: bool,
 }
 
-pub use super::scene_args::{scene, SceneArgs};
+pub use super::scene_args::{scene, scene_any_rig, SceneArgs};
 
 pub fn run(args: Args) -> tribofe::Result<()> {
-    let scene = scene(&args.scene)?;
+    let scene = scene_any_rig(&args.scene)?;
     let fields: FieldFormat = if args.no_fields { FieldFormat::None } else { args.fields.parse()? };
     if let Some(n) = args.n_force {
         if !(n.is_finite() && n > 0.0) {
@@ -49,7 +49,9 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     let opts = SolverOptions::default();
     let (mut res, sm) = tribofe::studies::check::run(&scene, &opts)?;
     // The converged figures need the exact rigid plate and the structured mesh of the scene.
-    let mut converged = match (scene.plate.model, &scene.mesh.file, args.no_converged) {
+    // The side push's converged run is a later phase's (its pusher sets the mesh).
+    let top_plate = scene.loading.rig == tribofe::scene::Rig::TopPlate;
+    let mut converged = match (scene.plate.model, &scene.mesh.file, args.no_converged || !top_plate) {
         (PlateModel::Rigid, None, false) => {
             Some(tribofe::studies::check::run(&tribofe::studies::check::converged_scene(&scene), &opts)?.0)
         }

@@ -4,7 +4,7 @@
 
 use clap::Args as ClapArgs;
 use std::path::PathBuf;
-use tribofe::scene::{MeshGeometry, Overrides, PlateModel, Scene};
+use tribofe::scene::{MeshGeometry, Overrides, PlateModel, Rig, Scene, Top};
 
 #[derive(ClapArgs, Debug, Clone, Default)]
 pub struct SceneArgs {
@@ -85,6 +85,24 @@ pub struct SceneArgs {
     /// newtons (run.toml, header). Required with --plane-stress.
     #[arg(long)]
     pub width: Option<f64>,
+    /// Loading rig: top-plate (the paper's, default) or side-push (a rigid pusher on the
+    /// trailing face x = -L/2; `tribofe check` only in this phase).
+    #[arg(long, value_parser = parse_rig, value_name = "top-plate|side-push")]
+    pub rig: Option<Rig>,
+    /// Side push: the pusher's centre above the interface, m.
+    #[arg(long)]
+    pub push_height: Option<f64>,
+    /// Side push: the pusher's contact length on the trailing face, m.
+    #[arg(long)]
+    pub push_width: Option<f64>,
+    /// Side push: the driving spring's stiffness, N/m per metre of width (checked; used by the
+    /// frictional phases to come).
+    #[arg(long)]
+    pub push_stiffness: Option<f64>,
+    /// Side push: the normal load on the top face, a uniform pressure N/L or a rigid plate free
+    /// to slide and rotate, N at its centre (default uniform-pressure).
+    #[arg(long, value_parser = parse_top, value_name = "uniform-pressure|sliding-plate")]
+    pub top: Option<Top>,
 }
 
 /// The values of a sweepable flag: one number, a list `a,b,c`, or a range `a:b:n` (n points,
@@ -99,6 +117,14 @@ fn parse_plate(s: &str) -> Result<PlateModel, String> {
         "elastic" => Ok(PlateModel::Elastic),
         _ => Err(format!("'{s}': use rigid or elastic")),
     }
+}
+
+fn parse_rig(s: &str) -> Result<Rig, String> {
+    s.parse().map_err(|_| format!("'{s}': use {}", Rig::NAMES))
+}
+
+fn parse_top(s: &str) -> Result<Top, String> {
+    s.parse().map_err(|_| format!("'{s}': use {}", Top::NAMES))
 }
 
 fn parse_geometry(s: &str) -> Result<MeshGeometry, String> {
@@ -165,6 +191,11 @@ impl SceneArgs {
             max_dofs: self.max_dofs,
             state: self.plane_stress.then_some(tribofe::scene::State::PlaneStress),
             width: self.width,
+            rig: self.rig,
+            push_height: self.push_height,
+            push_width: self.push_width,
+            push_stiffness: self.push_stiffness,
+            top: self.top,
         })
     }
 }
@@ -192,6 +223,11 @@ pub const FLAG_KEYS: &[(&str, &str)] = &[
     ("--max-dofs", "mesh.max_dofs"),
     ("--plane-stress", "block.state"),
     ("--width", "block.width"),
+    ("--rig", "loading.rig"),
+    ("--push-height", "loading.push_height"),
+    ("--push-width", "loading.push_width"),
+    ("--push-stiffness", "loading.push_stiffness"),
+    ("--top", "loading.top"),
 ];
 
 impl SceneArgs {
@@ -219,6 +255,11 @@ impl SceneArgs {
             "--max-dofs" => self.max_dofs.is_some(),
             "--plane-stress" => self.plane_stress,
             "--width" => self.width.is_some(),
+            "--rig" => self.rig.is_some(),
+            "--push-height" => self.push_height.is_some(),
+            "--push-width" => self.push_width.is_some(),
+            "--push-stiffness" => self.push_stiffness.is_some(),
+            "--top" => self.top.is_some(),
             "--scene" => self.scene.is_some(),
             "--write-scene" => self.write_scene.is_some(),
             _ => false,
@@ -262,13 +303,46 @@ pub fn refuse_inapplicable(args: &SceneArgs, flags: &[&str], why: &str) -> tribo
 }
 
 /// The scene file (or the paper's defaults) with the flags applied and validated; writes it
-/// to `--write-scene` when asked.
+/// to `--write-scene` when asked. The top-plate rig only: a side-pushed scene is refused,
+/// naming the flag or key and the command that runs it ([`scene_any_rig`]).
 pub fn scene(args: &SceneArgs) -> tribofe::Result<Scene> {
+    scene_with(args, false)
+}
+
+/// [`scene`] with the side-pushed rig accepted too (`tribofe check`).
+pub fn scene_any_rig(args: &SceneArgs) -> tribofe::Result<Scene> {
+    scene_with(args, true)
+}
+
+fn scene_with(args: &SceneArgs, side_push: bool) -> tribofe::Result<Scene> {
     let base = match &args.scene {
         Some(p) => Scene::from_file(p)?,
         None => Scene::default(),
     };
+    // The rig first: a command that cannot run the side push says so before its values.
+    if args.rig.unwrap_or(base.loading.rig) == Rig::SidePush && !side_push {
+        let key = match (&args.scene, args.rig.is_some()) {
+            (Some(f), false) => {
+                format!("loading.rig in {}", tribofe::error::quote(&f.display().to_string()))
+            }
+            _ => "--rig".to_string(),
+        };
+        return Err(tribofe::Error::input(
+            key,
+            "side-push runs in `tribofe check` only in this phase (bonded interface); this command \
+             supports rig = \"top-plate\" (remove the key or the flag)",
+        ));
+    }
     let s = base.apply(&args.overrides()?)?;
+    if s.loading.rig == Rig::SidePush && file_sets(args, "loading", "height")? {
+        return Err(tribofe::Error::input(
+            format!(
+                "loading.height in {}",
+                tribofe::error::quote(&args.scene.clone().unwrap_or_default().display().to_string())
+            ),
+            tribofe::scene::HEIGHT_WITH_SIDE_PUSH,
+        ));
+    }
     for (table, there) in [("[interface]", s.interface.is_some()), ("[rupture]", s.rupture.is_some())] {
         if there {
             return Err(tribofe::Error::input(

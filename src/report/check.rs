@@ -45,6 +45,18 @@ pub fn run_toml(res: &CheckResult, inv: &super::run_file::Invocation) -> Result<
             mean_pressure_pa: c.n / l,
         })
         .collect();
+    if let Some(sp) = res.scene.side_push()? {
+        // The side push's model and arm beside the cases, so the file says what it compared.
+        let model = format!(
+            "side push, bonded interface: p = N/L + 12 F h x / L^3, tau = F/L, the torque balance with \
+             the push's arm h = push_height = {} m (corrected model: none for side push yet, \
+             p_corrected repeats the model)",
+            sp.height
+        );
+        let cases = toml::Value::try_from(&cases).map_err(|e| Error::input("run.toml", e.to_string()))?;
+        let pairs = vec![("model".to_string(), toml::Value::String(model)), ("cases".to_string(), cases)];
+        return super::run_toml(inv, &pairs, &res.scene);
+    }
     super::run_toml(inv, &cases, &res.scene)
 }
 
@@ -188,11 +200,23 @@ pub fn converged_table(paper: &CheckResult, conv: &CheckResult) -> String {
 pub fn table(res: &CheckResult) -> String {
     let sc = &res.scene;
     let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "tribofe check: block L = {} m, t = {} m, E = {} Pa, nu = {}; {:?} plate; H = {} m; {} elements ({}), {} nodes, {} unknowns",
-        sc.block.length, sc.block.thickness, sc.block.young, sc.block.poisson, sc.plate.model, sc.loading.height, res.n_elements, sc.mesh.element, res.n_nodes, res.stats.n_unknowns
-    );
+    let side = sc.side_push().ok().flatten();
+    match side {
+        None => {
+            let _ = writeln!(
+                s,
+                "tribofe check: block L = {} m, t = {} m, E = {} Pa, nu = {}; {:?} plate; H = {} m; {} elements ({}), {} nodes, {} unknowns",
+                sc.block.length, sc.block.thickness, sc.block.young, sc.block.poisson, sc.plate.model, sc.loading.height, res.n_elements, sc.mesh.element, res.n_nodes, res.stats.n_unknowns
+            );
+        }
+        Some(sp) => {
+            let _ = writeln!(
+                s,
+                "tribofe check: block L = {} m, t = {} m, E = {} Pa, nu = {}; side push (bonded interface): rigid pusher on the trailing face x = -L/2 at h = {} m, {} m wide; top: {}; {} elements ({}), {} nodes, {} unknowns",
+                sc.block.length, sc.block.thickness, sc.block.young, sc.block.poisson, sp.height, sp.width, sp.top.name(), res.n_elements, sc.mesh.element, res.n_nodes, res.stats.n_unknowns
+            );
+        }
+    }
     if let Some(note) = &res.geometry_note {
         let _ = writeln!(
             s,
@@ -267,7 +291,11 @@ pub fn table(res: &CheckResult) -> String {
             ""
         }
     );
-    let _ = writeln!(s, "model: the paper's 12 (F/N)(H/L); corrected: arm H - t/2 (the block's shear couple) and the Poisson edge deficit (analytical::thin_layer); dev p c: interior |p - corrected|");
+    if side.is_some() {
+        let _ = writeln!(s, "model: the torque balance with the push's arm h = push_height: p = N/L + 12 F h x / L^3, tau = F/L, slope 12 (F/N)(h/L); corrected: none for side push yet (the column repeats the model); tilt: of the top face's corners; balance_moment: against the moment of the pusher's own nodal forces (its arm is where they act, near h)");
+    } else {
+        let _ = writeln!(s, "model: the paper's 12 (F/N)(H/L); corrected: arm H - t/2 (the block's shear couple) and the Poisson edge deficit (analytical::thin_layer); dev p c: interior |p - corrected|");
+    }
     let _ = writeln!(s, "paper (Cast3M, 1 mm QUA4): edge zones ~1 t for pressure and ~3 t for shear (tolerance here: {} of the local model value)", sc.report.tol);
     let _ = writeln!(s, "end-node values (NOT converged: the clamped-free corners are singular, they grow without bound under refinement):");
     for c in &res.cases {
@@ -280,7 +308,8 @@ pub fn table(res: &CheckResult) -> String {
     }
     let (worst, limit) = (res.balance_error(), res.balance_limit());
     let verdict = if worst <= limit { "ok, <=" } else { "FAILED, >" };
-    let _ = writeln!(s, "global balance (sum of interface forces vs N, F; moment vs F H; relative to the load): worst error {worst:.1e} ({verdict} {limit:.1e} = 100 eps kappa)");
+    let arm = if side.is_some() { "the pusher's own moment" } else { "F H" };
+    let _ = writeln!(s, "global balance (sum of interface forces vs N, F; moment vs {arm}; relative to the load): worst error {worst:.1e} ({verdict} {limit:.1e} = 100 eps kappa)");
     let r = &res.stats.report;
     let _ = writeln!(
         s,

@@ -1,7 +1,7 @@
 //! A scene turned into a model: the structured mesh (or the Gmsh file, checked against the
 //! scene), the plate, the constraints and the interface's nodes in x order.
 
-use super::{limits, PlateModel, Scene, SceneModel};
+use super::{limits, PlateModel, Rig, Scene, SceneModel, Top};
 use crate::error::{Error, Result};
 use crate::fem::constraints::{dof, Constraints};
 use crate::fem::element::stiffness::Technology;
@@ -14,6 +14,13 @@ impl Scene {
     /// Builds the structured mesh (or reads the Gmsh one) and the constraints.
     pub fn build(&self) -> Result<SceneModel> {
         self.validate()?;
+        if self.loading.rig == Rig::SidePush {
+            return Err(Error::input(
+                "loading.rig (--rig)",
+                "side-push is run by `tribofe check` only in this phase (studies::check::run, \
+                 Scene::build_side_push); this command supports rig = \"top-plate\"",
+            ));
+        }
         if self.mesh.file.is_none() {
             self.check_rows()?;
             self.check_size()?;
@@ -71,6 +78,103 @@ impl Scene {
             }
             PlateModel::Elastic => self.build_elastic(mesh, &interface_name, block_mat, nx, tech),
         }
+    }
+
+    /// The side-pushed rig on the bonded block (the check): the interface fixed, the rigid
+    /// pusher's face nodes tied to its horizontal displacement U_p (an extra DOF, loaded by F;
+    /// their vertical displacements free: a frictionless pusher), and with the sliding plate
+    /// the top nodes tied to its U, V and rotation (all free: N acts on V, no horizontal force,
+    /// no moment). The returned model's `dof_u` is U_p and `dof_v` the plate's V (U_p with the
+    /// uniform pressure, which has no DOF); neither is prescribed.
+    pub fn build_side_push(&self) -> Result<(SceneModel, SidePushDofs)> {
+        self.validate()?;
+        let Some(sp) = self.side_push()? else {
+            return Err(Error::input("loading.rig (--rig)", "the scene's rig is top-plate, not side-push"));
+        };
+        self.check_rows()?;
+        self.check_size()?;
+        let (l, t) = (self.block.length, self.block.thickness);
+        let tech = self.element()?.tech;
+        let order = self.element()?.kind.order();
+        let block_mat = self.block.material()?;
+        let nx = even((l / self.mesh.h).round().max(2.0) as usize);
+        let ny = self.mesh.n_thick.unwrap_or(((t / self.mesh.h).round() as usize).max(1));
+        let (interface_name, top_name) = (self.mesh.interface.clone(), self.mesh.top.clone());
+        let mut mesh = self.layer(0.0, t, ny, nx)?;
+        let (bottom, top) = (mesh.edge_sets["bottom"].clone(), mesh.edge_sets["top"].clone());
+        mesh.edge_sets.insert(interface_name.clone(), bottom);
+        mesh.edge_sets.insert(top_name.clone(), top);
+        mesh.element_sets.insert(self.mesh.block.clone(), mesh.element_sets["all"].clone());
+        let tol = 1e-9 * t;
+        let (lo, hi) = (sp.height - sp.width / 2.0, sp.height + sp.width / 2.0);
+        let mut face: Vec<usize> = (0..mesh.n_nodes())
+            .filter(|&k| {
+                let [x, y] = mesh.nodes[k];
+                (x + l / 2.0).abs() < 1e-9 * l && y >= lo - tol && y <= hi + tol
+            })
+            .collect();
+        face.sort_by(|&a, &b| mesh.nodes[a][1].total_cmp(&mesh.nodes[b][1]));
+        // The contact must span at least two element edges of the trailing face.
+        let edges = face.len().saturating_sub(1) as f64 / order as f64;
+        if edges < 2.0 {
+            let dy = t / ny as f64;
+            let (key, fix) = match self.mesh.n_thick {
+                Some(_) => {
+                    ("mesh.n_thick (--n-thick)", format!("n_thick >= {}", (3.0 * t / sp.width).ceil()))
+                }
+                None => ("mesh.h (--h)", format!("h <= {:.3e} m (push_width / 3)", sp.width / 3.0)),
+            };
+            return Err(Error::input(
+                key,
+                format!(
+                    "the pusher's contact (push_width = {} m) spans {edges} element edge(s) of the trailing face \
+                     (edges {dy:.3e} m long): at least 2 are needed to resolve it; use {fix}",
+                    crate::error::num(sp.width)
+                ),
+            ));
+        }
+        let interface = sorted_by_x(&mesh, mesh.set_nodes(&interface_name)?);
+        let mut c = Constraints::new(mesh.n_nodes());
+        for &n in &interface {
+            c.fix(dof(n, 0));
+            c.fix(dof(n, 1));
+        }
+        let up = c.add_extra_dof("pusher U_p (horizontal displacement of the rigid pusher)");
+        let sliding = sp.top == Top::SlidingPlate;
+        // The interface corner is fixed, and with the sliding plate the top corner is the plate's.
+        face.retain(|&k| mesh.nodes[k][1] > tol && !(sliding && mesh.nodes[k][1] > t - tol));
+        for &k in &face {
+            c.tie(dof(k, 0), &[(up, 1.0)]);
+        }
+        let plate = if sliding {
+            let pu = c.add_extra_dof("top plate U (horizontal, free)");
+            let pv = c.add_extra_dof("top plate V (normal, loaded by N)");
+            let pth = c.add_extra_dof("top plate rotation (free, no moment)");
+            // Small rotation about (0, t): u = U - theta (y - t) = U on the top, v = V + theta x.
+            for n in mesh.set_nodes(&top_name)? {
+                let x = mesh.nodes[n][0];
+                c.tie(dof(n, 0), &[(pu, 1.0)]);
+                c.tie(dof(n, 1), &[(pv, 1.0), (pth, x)]);
+            }
+            Some([pu, pv, pth])
+        } else {
+            None
+        };
+        let n_el = mesh.n_elements();
+        let sm = SceneModel {
+            mesh,
+            materials: vec![block_mat],
+            element_material: vec![0; n_el],
+            tech,
+            constraints: c,
+            interface,
+            interface_set: interface_name,
+            top_set: top_name,
+            dof_u: up,
+            dof_v: plate.map_or(up, |p| p[1]),
+            dof_theta: None,
+        };
+        Ok((sm, SidePushDofs { rig: sp, pusher: up, pusher_nodes: face, plate }))
     }
 
     /// The block from a Gmsh file: its element set `mesh.block`, with the edge sets
@@ -374,4 +478,16 @@ fn merge(a: &Mesh, b: &Mesh) -> Mesh {
     m.edge_sets = a.edge_sets.clone();
     m.element_sets = a.element_sets.clone();
     m
+}
+
+/// The side-pushed model's own DOFs ([`Scene::build_side_push`]).
+#[derive(Debug, Clone)]
+pub struct SidePushDofs {
+    pub rig: super::SidePush,
+    /// U_p, the pusher's horizontal displacement (extra DOF, free, loaded by F).
+    pub pusher: usize,
+    /// The trailing-face nodes tied to U_p, bottom to top.
+    pub pusher_nodes: Vec<usize>,
+    /// The sliding plate's U, V, rotation (extra DOFs, free), None with the uniform pressure.
+    pub plate: Option<[usize; 3]>,
 }

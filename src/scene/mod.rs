@@ -19,6 +19,7 @@ pub mod limits;
 pub mod overrides;
 pub mod rectangle;
 
+pub use build::SidePushDofs;
 pub use overrides::Overrides;
 
 use crate::error::{num, Error, Result};
@@ -85,10 +86,106 @@ pub struct Plate {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Loading {
-    /// H, height of the tangential loading point above the interface, m.
+    /// H, height of the tangential loading point above the interface, m (top-plate rig only).
     pub height: f64,
     /// Requested load cases as ratios F/N (dimensionless).
     pub fn_ratios: Vec<f64>,
+    /// The loading rig (`--rig`): top-plate (the paper's, the default) or side-push.
+    #[serde(skip_serializing_if = "Rig::is_top_plate")]
+    pub rig: Rig,
+    /// Side push: the pusher's centre above the interface, m (`--push-height`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub push_height: Option<f64>,
+    /// Side push: the pusher's contact length on the trailing face x = -L/2, m (`--push-width`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub push_width: Option<f64>,
+    /// Side push: the driving spring's stiffness, N/m per metre of width (`--push-stiffness`);
+    /// checked now, used by the frictional phases.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub push_stiffness: Option<f64>,
+    /// Side push: how the normal load reaches the top face (`--top`; default uniform-pressure).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub top: Option<Top>,
+}
+
+/// The loading rig (`[loading] rig`, `--rig`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Rig {
+    /// The paper's: a rigid plate bonded on the top, driven at height H.
+    #[default]
+    TopPlate,
+    /// A rigid pusher on the trailing face x = -L/2 at `push_height`, `push_width` wide.
+    SidePush,
+}
+
+impl Rig {
+    pub const NAMES: &'static str = "top-plate or side-push";
+    pub fn is_top_plate(&self) -> bool {
+        *self == Rig::TopPlate
+    }
+    pub fn name(&self) -> &'static str {
+        match self {
+            Rig::TopPlate => "top-plate",
+            Rig::SidePush => "side-push",
+        }
+    }
+}
+
+impl std::str::FromStr for Rig {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "top-plate" => Ok(Rig::TopPlate),
+            "side-push" => Ok(Rig::SidePush),
+            _ => Err(Error::input("--rig", format!("'{}': use {}", crate::error::quote(s), Rig::NAMES))),
+        }
+    }
+}
+
+/// The normal load on the top face under side push (`[loading] top`, `--top`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Top {
+    /// A uniform pressure N/L on the top face.
+    #[default]
+    UniformPressure,
+    /// A rigid plate bonded on the top, free to slide horizontally (no horizontal force) and
+    /// to rotate (no moment), N applied at its centre: it carries no part of the push's torque.
+    SlidingPlate,
+}
+
+impl Top {
+    pub const NAMES: &'static str = "uniform-pressure or sliding-plate";
+    pub fn name(&self) -> &'static str {
+        match self {
+            Top::UniformPressure => "uniform-pressure",
+            Top::SlidingPlate => "sliding-plate",
+        }
+    }
+}
+
+impl std::str::FromStr for Top {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "uniform-pressure" => Ok(Top::UniformPressure),
+            "sliding-plate" => Ok(Top::SlidingPlate),
+            _ => Err(Error::input("--top", format!("'{}': use {}", crate::error::quote(s), Top::NAMES))),
+        }
+    }
+}
+
+/// The side-pushed rig's values, checked ([`Scene::side_push`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SidePush {
+    /// The pusher's centre above the interface, m.
+    pub height: f64,
+    /// Its contact length on the trailing face, m.
+    pub width: f64,
+    /// N/m per metre of width, if given.
+    pub stiffness: Option<f64>,
+    pub top: Top,
 }
 
 /// What a mesh file must be: the scene's L x t block (the default), or the file's own shape
@@ -417,7 +514,15 @@ impl Default for Plate {
 }
 impl Default for Loading {
     fn default() -> Self {
-        Self { height: 0.04, fn_ratios: vec![0.0, 0.41, 0.82] }
+        Self {
+            height: 0.04,
+            fn_ratios: vec![0.0, 0.41, 0.82],
+            rig: Rig::TopPlate,
+            push_height: None,
+            push_width: None,
+            push_stiffness: None,
+            top: None,
+        }
     }
 }
 impl Default for MeshSpec {
@@ -503,6 +608,14 @@ impl Scene {
             }
         })?;
         let mut scene = scene;
+        let raw: toml::Table = toml::from_str(&text).unwrap_or_default();
+        if scene.loading.rig == Rig::SidePush && raw.get("loading").and_then(|l| l.get("height")).is_some() {
+            return Err(Error::Parse {
+                file: path.to_path_buf(),
+                at: key_line(&text, "loading.height").map_or("[loading]".into(), |l| format!("line {l}")),
+                msg: format!("loading.height: {HEIGHT_WITH_SIDE_PUSH}"),
+            });
+        }
         scene.block.set_from_wave_speeds(&text).map_err(|e| match e {
             Error::Input { what, why } => Error::Parse {
                 file: path.to_path_buf(),
@@ -689,7 +802,118 @@ impl Scene {
             }
         }
         self.element()?;
+        self.side_push()?;
         Ok(())
+    }
+
+    /// The side-pushed rig's values, checked (None for the top-plate rig, whose scene must
+    /// then hold none of them). Each refusal names the key and its flag.
+    pub fn side_push(&self) -> Result<Option<SidePush>> {
+        let ld = &self.loading;
+        let keys = [
+            ("loading.push_height (m, --push-height)", ld.push_height.is_some()),
+            ("loading.push_width (m, --push-width)", ld.push_width.is_some()),
+            ("loading.push_stiffness (N/m per m of width, --push-stiffness)", ld.push_stiffness.is_some()),
+            ("loading.top (--top)", ld.top.is_some()),
+        ];
+        if ld.rig == Rig::TopPlate {
+            if let Some((key, _)) = keys.iter().find(|k| k.1) {
+                return Err(Error::input(
+                    *key,
+                    "describes the side-pushed rig, but loading.rig is top-plate (the default): \
+                     set rig = \"side-push\" (--rig side-push) or remove the key",
+                ));
+            }
+            return Ok(None);
+        }
+        let t = self.block.thickness;
+        let (Some(h), Some(w)) = (ld.push_height, ld.push_width) else {
+            let key = if ld.push_height.is_none() { keys[0].0 } else { keys[1].0 };
+            return Err(Error::input(
+                key,
+                "is required with loading.rig = side-push: give the pusher's centre above the interface \
+                 (push_height) and its contact length on the trailing face (push_width), in m",
+            ));
+        };
+        crate::error::scaled(keys[1].0, w, "m")?;
+        if h != 0.0 {
+            crate::error::scaled(keys[0].0, h, "m")?;
+        }
+        if w > t {
+            return Err(Error::input(
+                keys[1].0,
+                format!(
+                    "{} m is wider than the trailing face (the block thickness t = {} m): use push_width <= t",
+                    num(w),
+                    num(t)
+                ),
+            ));
+        }
+        // Round-off of the sums: a pusher flush with the interface or the top is accepted.
+        let slack = 1e-12 * t;
+        let num = |v: f64| num(format!("{v:.12e}").parse().unwrap_or(v));
+        if h - w / 2.0 < -slack {
+            return Err(Error::input(
+                keys[0].0,
+                format!(
+                    "{} m puts the pusher's lower end at push_height - push_width/2 = {} m, below the \
+                     interface: use push_height >= push_width/2 = {} m",
+                    num(h),
+                    num(h - w / 2.0),
+                    num(w / 2.0)
+                ),
+            ));
+        }
+        if h + w / 2.0 > t + slack {
+            return Err(Error::input(
+                keys[0].0,
+                format!(
+                    "{} m puts the pusher's upper end at push_height + push_width/2 = {} m, above the \
+                     block (t = {} m): use push_height <= t - push_width/2 = {} m",
+                    num(h),
+                    num(h + w / 2.0),
+                    num(t),
+                    num(t - w / 2.0)
+                ),
+            ));
+        }
+        if let Some(k) = ld.push_stiffness {
+            if !(k.is_finite() && k > 0.0) {
+                return Err(Error::input(
+                    keys[2].0,
+                    format!("{k} N/m: the driving spring needs a positive, finite stiffness"),
+                ));
+            }
+            crate::error::scaled(keys[2].0, k, "N/m")?;
+        }
+        if self.plate.model == PlateModel::Elastic {
+            return Err(Error::input(
+                "plate.model (--plate)",
+                "the elastic plate is the top-plate rig's; with side push the top is loading.top \
+                 (--top uniform-pressure or sliding-plate): remove the key",
+            ));
+        }
+        if self.mesh.file.is_some() {
+            return Err(Error::input(
+                "mesh.file (--mesh)",
+                "side push needs the structured mesh in this phase (its pusher nodes are found on the \
+                 built-in block's trailing face): remove the mesh file",
+            ));
+        }
+        Ok(Some(SidePush {
+            height: h,
+            width: w,
+            stiffness: ld.push_stiffness,
+            top: ld.top.unwrap_or_default(),
+        }))
+    }
+
+    /// The arm of the tangential force about the interface: H (top plate) or push_height.
+    pub fn arm(&self) -> f64 {
+        match (self.loading.rig, self.loading.push_height) {
+            (Rig::SidePush, Some(h)) => h,
+            _ => self.loading.height,
+        }
     }
 
     /// Advice that does not stop the run: element and material pairs known to lock, a mesh
@@ -725,6 +949,10 @@ impl Scene {
         self.mesh.element.parse()
     }
 }
+
+/// Why `height` is refused with side push (the key or `--height`).
+pub const HEIGHT_WITH_SIDE_PUSH: &str = "is the top plate's loading height H, but loading.rig is side-push: \
+     the push acts at loading.push_height (--push-height); remove height (--height)";
 
 /// Largest H/L accepted: far beyond any experiment (the paper's is 0.1).
 pub const MAX_H_OVER_L: f64 = 1e3;

@@ -2,7 +2,7 @@
 //! scene's value. Applied by [`Scene::apply`], then checked by the same [`Scene::validate`] as a
 //! scene file.
 
-use super::{MeshGeometry, PlateModel, Scene, State};
+use super::{MeshGeometry, PlateModel, Rig, Scene, State, Top};
 use crate::error::{Error, Result};
 use std::path::PathBuf;
 
@@ -29,6 +29,11 @@ pub struct Overrides {
     pub max_dofs: Option<usize>,
     pub state: Option<State>,
     pub width: Option<f64>,
+    pub rig: Option<Rig>,
+    pub push_height: Option<f64>,
+    pub push_width: Option<f64>,
+    pub push_stiffness: Option<f64>,
+    pub top: Option<Top>,
 }
 
 macro_rules! set {
@@ -83,12 +88,37 @@ impl Scene {
         if o.width.is_some() {
             s.block.width = o.width;
         }
+        set!(o.rig, s.loading.rig);
+        for (given, key) in [
+            (o.push_height, &mut s.loading.push_height),
+            (o.push_width, &mut s.loading.push_width),
+            (o.push_stiffness, &mut s.loading.push_stiffness),
+        ] {
+            if given.is_some() {
+                *key = given;
+            }
+        }
+        if o.top.is_some() {
+            s.loading.top = o.top;
+        }
+        if o.height.is_some() && s.loading.rig == Rig::SidePush {
+            return Err(Error::input("--height", super::HEIGHT_WITH_SIDE_PUSH));
+        }
         s.validate()?;
         Ok(s)
     }
 
     /// The scene as TOML (every key, so the file is a template to edit).
     pub fn to_toml(&self) -> Result<String> {
-        toml::to_string(self).map_err(|e| Error::input("scene", format!("cannot write it as TOML: {e}")))
+        let bad = |e: &dyn std::fmt::Display| Error::input("scene", format!("cannot write it as TOML: {e}"));
+        if self.loading.rig == Rig::SidePush {
+            // The top plate's H does not belong to a side-pushed scene (read back, it is refused).
+            let mut v = toml::Value::try_from(self).map_err(|e| bad(&e))?;
+            if let Some(l) = v.get_mut("loading").and_then(|l| l.as_table_mut()) {
+                l.remove("height");
+            }
+            return toml::to_string(&v).map_err(|e| bad(&e));
+        }
+        toml::to_string(self).map_err(|e| bad(&e))
     }
 }

@@ -10,7 +10,7 @@ use crate::fem::recovery::{elements_touching, nodal_stresses_from};
 use crate::linalg::solve::SolverOptions;
 use crate::numeric::{interpolate, line_fit};
 use crate::precursors::fe::UnitFields;
-use crate::scene::{PlateModel, Scene, SceneModel};
+use crate::scene::{PlateModel, Rig, Scene, SceneModel, SidePushDofs};
 use std::time::Instant;
 
 /// Figures of one load case (all stresses divided by the mean pressure N/L).
@@ -149,6 +149,9 @@ pub fn prepare(scene: &Scene, opts: &SolverOptions) -> Result<Prepared> {
 
 /// Runs the paper's check on a scene.
 pub fn run(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneModel)> {
+    if scene.loading.rig == Rig::SidePush {
+        return run_side_push(scene, opts);
+    }
     let clock = Instant::now();
     let sm = scene.build()?;
     let mesh_time = clock.elapsed().as_secs_f64();
@@ -185,7 +188,61 @@ pub fn run_model_with_decay(
     let clock = Instant::now();
     let model = sm.model();
     let units = Units::from_solution(&sm, &model, &sol, &cases)?;
-    let res = finish(scene, &sm, &sol, units, mesh_time, clock, decay)?;
+    let res = finish(scene, &sm, &sol, units, mesh_time, clock, decay, None)?;
+    Ok((res, sm))
+}
+
+/// The check under side push (bonded interface): two force cases from one factorisation, a
+/// unit normal load N0 on the top (uniform pressure N0/L, or N0 on the sliding plate's V) and
+/// a force N0 on the pusher's U_p, combined to each requested F/N. N0 = 0.05 E L (a mean
+/// pressure of 5 % of E); `--n-force` rescales. The model column is the paper's torque
+/// balance with the push's arm h: p = N/L + 12 F h x / L^3, tau = F/L; the corrected model is
+/// the top plate's only, so p_corrected repeats the model. The moment balance compares the
+/// interface's moment with the one the pusher's own nodal forces and the top load make.
+pub fn run_side_push(scene: &Scene, opts: &SolverOptions) -> Result<(CheckResult, SceneModel)> {
+    let clock = Instant::now();
+    let (sm, sp) = scene.build_side_push()?;
+    let mesh_time = clock.elapsed().as_secs_f64();
+    let model = sm.model();
+    let (n_full, nf) = (sm.constraints.n_full(), sm.constraints.n_fixed());
+    let l = scene.block.length;
+    let n0 = 0.05 * scene.block.young * l;
+    let mut fa = vec![0.0; n_full];
+    match sp.plate {
+        Some([_, pv, _]) => fa[pv] = -n0,
+        None => crate::fem::loads::add_edge_traction(&sm.mesh, &sm.top_set, &|_| [0.0, -n0 / l], &mut fa)?,
+    }
+    let mut fb = vec![0.0; n_full];
+    fb[sp.pusher] = n0;
+    let cases = vec![
+        LoadCase { prescribed: vec![0.0; nf], forces: fa },
+        LoadCase { prescribed: vec![0.0; nf], forces: fb },
+    ];
+    let sol = solve(&model, &sm.constraints, &cases, opts, "check the mesh and the material values")?;
+    let solved = Instant::now();
+    let near = elements_touching(&model, &sm.interface);
+    let push_elems = elements_touching(&model, &sp.pusher_nodes);
+    let mut units = Vec::new();
+    for (c, case) in cases.iter().enumerate() {
+        let r_int = sol.residual_forces(&model, case, c, &near)?;
+        let r_push = sol.residual_forces(&model, case, c, &push_elems)?;
+        // The moment about (0, 0) the interface must carry: y F_i of each pusher node's force
+        // (the tie's reaction), minus the top load's own moment (zero to round-off).
+        let pushed: f64 = sp.pusher_nodes.iter().map(|&k| sm.mesh.nodes[k][1] * r_push[2 * k]).sum();
+        let top: f64 = (0..sm.mesh.n_nodes()).map(|k| sm.mesh.nodes[k][0] * case.forces[2 * k + 1]).sum();
+        units.push(Unit {
+            u: sol.u[c].clone(),
+            n: if c == 0 { n0 } else { 0.0 },
+            f: if c == 1 { n0 } else { 0.0 },
+            rx: sm.interface.iter().map(|&k| r_int[2 * k]).collect(),
+            ry: sm.interface.iter().map(|&k| r_int[2 * k + 1]).collect(),
+            plate_u: sol.u[c][sp.pusher],
+            theta: 0.0,
+            moment: pushed - top,
+        });
+    }
+    let mut res = finish(scene, &sm, &sol, Units(units), mesh_time, solved, None, Some(&sp))?;
+    res.stats.timings.set_wall(clock.elapsed().as_secs_f64());
     Ok((res, sm))
 }
 
@@ -222,7 +279,7 @@ pub fn run_heights(
             }
             let clock = Instant::now();
             let units = base.at_height(s.loading.height - reference.loading.height)?;
-            finish(s, &sm, &sol, units, mesh_time, clock, decay)
+            finish(s, &sm, &sol, units, mesh_time, clock, decay, None)
         })
         .collect()
 }
@@ -357,7 +414,9 @@ impl Units {
     }
 }
 
-/// The check's figures from the two unit cases.
+/// The check's figures from the two unit cases (with `side`, the side-pushed rig's: each
+/// unit's `moment` is the moment the interface must carry, `plate_u` the pusher's U_p).
+#[allow(clippy::too_many_arguments)]
 fn finish(
     scene: &Scene,
     sm: &SceneModel,
@@ -366,9 +425,10 @@ fn finish(
     mesh_time: f64,
     clock: Instant,
     decay: Option<f64>,
+    side: Option<&SidePushDofs>,
 ) -> Result<CheckResult> {
     let model = sm.model();
-    let (l, t, hgt) = (scene.block.length, scene.block.thickness, scene.loading.height);
+    let (l, t, hgt) = (scene.block.length, scene.block.thickness, scene.arm());
     let d = 0.05 * t;
     let near = elements_touching(&model, &sm.interface);
     let unit: Vec<(f64, f64, Vec<f64>, Vec<f64>)> =
@@ -438,15 +498,20 @@ fn finish(
             Some(th) => u[th],
             None => plate_tilt(sm, &u),
         };
-        let corr = crate::analytical::thin_layer::Corrected::with_decay(
-            l,
-            t,
-            hgt,
-            scene.block.plane_strain_nu(),
-            ratio,
-            decay,
-        )?;
-        let p_corrected: Vec<f64> = x_over_l.iter().map(|&x| corr.pressure(x)).collect();
+        let p_corrected: Vec<f64> = match side {
+            Some(_) => p_model.clone(),
+            None => {
+                let corr = crate::analytical::thin_layer::Corrected::with_decay(
+                    l,
+                    t,
+                    hgt,
+                    scene.block.plane_strain_nu(),
+                    ratio,
+                    decay,
+                )?;
+                x_over_l.iter().map(|&x| corr.pressure(x)).collect()
+            }
+        };
         let interior = interior_nodes(&x_over_l, l, t);
         let slope_corrected =
             line_fit(interior.iter().map(|&i| (x_over_l[i], p_corrected[i]))).map_or(f64::NAN, |l| l.1);
@@ -456,7 +521,13 @@ fn finish(
             interior_dev_p_corrected,
             balance_n: (sum_ry - n).abs() / (n.abs() + f.abs()),
             balance_f: (sum_rx + f).abs() / (n.abs() + f.abs()),
-            balance_moment: (moment - f * hgt).abs() / (n.abs() * l / 2.0 + f.abs() * hgt),
+            balance_moment: match side {
+                None => (moment - f * hgt).abs() / (n.abs() * l / 2.0 + f.abs() * hgt),
+                Some(_) => {
+                    let applied = a * units.0[0].moment + b * units.0[1].moment;
+                    (moment - applied).abs() / (n.abs() * l / 2.0 + f.abs() * hgt)
+                }
+            },
             ..metrics(&x_over_l, &p, &tau, &p_model, &tau_model, slope_model, l, t, scene.report.tol)
         };
         results.push(CaseResult {
@@ -464,8 +535,17 @@ fn finish(
             n,
             f,
             tilt,
-            plate_u: b * d,
-            plate_v: -a * d,
+            plate_u: side.map_or(b * d, |s| u[s.pusher]),
+            plate_v: match side {
+                None => -a * d,
+                Some(s) => match s.plate {
+                    Some([_, pv, _]) => u[pv],
+                    None => {
+                        let top = sm.mesh.set_nodes(&sm.top_set)?;
+                        top.iter().map(|&k| u[2 * k + 1]).sum::<f64>() / top.len() as f64
+                    }
+                },
+            },
             x_over_l: x_over_l.clone(),
             p,
             tau,

@@ -42,6 +42,7 @@ mod precursors_fe;
 mod rate_state;
 mod run_bounds;
 mod rupture_scene;
+mod side_push;
 mod slide_fields;
 mod stability;
 mod sweep;

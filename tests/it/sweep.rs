@@ -68,7 +68,7 @@ fn strip_time(table: &str) -> Vec<String> {
 #[test]
 fn sweep_rows_equal_single_checks_shards_and_thread_counts() {
     let base = Scene {
-        loading: tribofe::scene::Loading { height: 0.04, fn_ratios: vec![0.0, 0.82] },
+        loading: tribofe::scene::Loading { height: 0.04, fn_ratios: vec![0.0, 0.82], ..Default::default() },
         ..Default::default()
     };
     let o = SweepOptions::default();

@@ -1,0 +1,215 @@
+//! Issue 49, phase 1: the side-pushed rig in `tribofe check` (bonded interface). A rigid pusher
+//! on the trailing face x = -L/2 at push_height, push_width wide, carries F; the top carries N
+//! as a uniform pressure or through a rigid plate free to slide and rotate.
+
+use tribofe::linalg::solve::SolverOptions;
+use tribofe::scene::{Overrides, Rig, Scene, Top};
+use tribofe::studies::check::run;
+
+/// A block thick enough to push on its side: L = 0.1 m, t = 0.02 m, h = t / 10; the pusher
+/// 6 mm wide at 5 mm (three element edges on the coarsest mesh).
+fn side(top: Top, h: f64) -> Scene {
+    Scene::default()
+        .apply(&Overrides {
+            length: Some(0.1),
+            thickness: Some(0.02),
+            h: Some(h),
+            rig: Some(Rig::SidePush),
+            push_height: Some(0.005),
+            push_width: Some(0.006),
+            top: Some(top),
+            fn_ratios: Some(vec![0.0, 0.3, 0.7]),
+            ..Default::default()
+        })
+        .unwrap()
+}
+
+#[test]
+fn side_push_balances_force_and_moment() {
+    for top in [Top::UniformPressure, Top::SlidingPlate] {
+        let r = run(&side(top, 0.002), &SolverOptions::default()).unwrap().0;
+        for c in &r.cases {
+            let m = &c.metrics;
+            // Every balance is exact for any displacement but for the solve's residual and the
+            // summation's round-off (~1e-14 here): 1e-10 relative to the load, as the issue asks.
+            assert!(
+                m.balance_n < 1e-10 && m.balance_f < 1e-10 && m.balance_moment < 1e-10,
+                "{top:?} F/N = {}: {m:?}",
+                c.fn_ratio
+            );
+            assert!((c.f / c.n - c.fn_ratio).abs() < 1e-12);
+            // The model column is the torque balance with the push's arm h.
+            assert!((m.slope_model - 12.0 * c.fn_ratio * 0.005 / 0.1).abs() < 1e-15);
+            // The mean of p is N/L, and of tau F/L.
+            let w = &r.unit.w_over_l;
+            let mean_p: f64 = c.p.iter().zip(w).map(|(p, w)| p * w).sum();
+            let mean_tau: f64 = c.tau.iter().zip(w).map(|(t, w)| t * w).sum();
+            assert!(
+                (mean_p - 1.0).abs() < 1e-10 && (mean_tau - c.fn_ratio).abs() < 1e-10,
+                "{mean_p} {mean_tau}"
+            );
+        }
+        r.self_check().unwrap();
+    }
+}
+
+#[test]
+fn the_pushed_corner_concentrates_shear_under_refinement() {
+    // The trailing corner (x = -L/2, y = 0) joins the free face below the pusher to the bonded
+    // interface: its stress is singular, so the corner node's shear grows without bound as h
+    // shrinks (h, h/2, h/4).
+    let peaks: Vec<f64> = [0.002, 0.001, 0.0005]
+        .iter()
+        .map(|&h| {
+            let r = run(&side(Top::UniformPressure, h), &SolverOptions::default()).unwrap().0;
+            let c = &r.cases[2];
+            // The peak over the first t of the trailing end (the corner node by far).
+            c.x_over_l
+                .iter()
+                .zip(&c.tau)
+                .filter(|(x, _)| **x < -0.5 + 0.2)
+                .map(|(_, t)| *t)
+                .fold(f64::MIN, f64::max)
+        })
+        .collect();
+    assert!(peaks[0] < peaks[1] && peaks[1] < peaks[2], "peak tau/(N/L) at the pushed corner: {peaks:?}");
+    // And far above the mean shear F/N = 0.7.
+    assert!(peaks[0] > 0.7, "{peaks:?}");
+}
+
+#[test]
+fn a_side_pushed_scene_round_trips_without_height() {
+    let s = side(Top::SlidingPlate, 0.002);
+    let text = s.to_toml().unwrap();
+    assert!(text.contains("rig = \"side-push\"") && !text.contains("height = 0.04"), "{text}");
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("s.toml");
+    std::fs::write(&f, &text).unwrap();
+    assert_eq!(Scene::from_file(&f).unwrap(), s);
+    // The top-plate scene writes none of the new keys (its files are unchanged).
+    let t = Scene::default().to_toml().unwrap();
+    assert!(!t.contains("rig = ") && !t.contains("push_") && !t.contains("uniform-pressure"), "{t}");
+    // A library caller cannot run a side-pushed scene through the top plate's model.
+    assert!(s.build().err().unwrap().to_string().contains("loading.rig"));
+}
+
+fn tribofe(args: &[&str], out: &std::path::Path) -> (Option<i32>, String) {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_tribofe"))
+        .args(args)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+#[test]
+fn bad_side_push_input_is_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let block = ["--length", "0.1", "--thickness", "0.02", "--h", "0.002", "--rig", "side-push"];
+    let cases: &[(&[&str], &str)] = &[
+        // above the block: 0.018 + 0.003 > t
+        (&["--push-height", "0.018", "--push-width", "0.006"], "--push-height"),
+        // wider than the face
+        (&["--push-height", "0.01", "--push-width", "0.03"], "--push-width"),
+        // at a negative height: 0.002 - 0.003 < 0
+        (&["--push-height", "0.002", "--push-width", "0.006"], "--push-height"),
+        (&["--push-height=-0.005", "--push-width", "0.006"], "--push-height"),
+        // the spring
+        (&["--push-height", "0.005", "--push-width", "0.006", "--push-stiffness", "0"], "--push-stiffness"),
+        (&["--push-height", "0.005", "--push-width", "0.006", "--push-stiffness=-4e6"], "--push-stiffness"),
+        // the top plate's H
+        (&["--push-height", "0.005", "--push-width", "0.006", "--height", "0.01"], "--height"),
+        // a contact of 1.5 element edges
+        (&["--push-height", "0.005", "--push-width", "0.003"], "--h"),
+        // a missing key
+        (&["--push-width", "0.006"], "--push-height"),
+        // a wrong name lists the accepted ones
+        (&["--push-height", "0.005", "--push-width", "0.006", "--top", "plate"], "sliding-plate"),
+    ];
+    for (extra, named) in cases {
+        let mut args = vec!["check"];
+        args.extend(block);
+        args.extend(*extra);
+        let (code, err) = tribofe(&args, &out);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(err.contains(named), "{args:?} should name {named}: {err}");
+        assert!(!out.exists(), "{args:?} wrote {out:?}");
+    }
+    let (code, err) = tribofe(&["check", "--rig", "side-pushed"], &out);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("top-plate") && err.contains("side-push"), "{err}");
+    // The side push's keys need the side push.
+    let (code, err) = tribofe(&["check", "--push-height", "0.001"], &out);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("--push-height") && err.contains("side-push"), "{err}");
+    // Commands that cannot run it yet name what can.
+    for cmd in [&["slide"][..], &["precursors", "fe"], &["converge"], &["sweep"], &["stability"]] {
+        let mut args = cmd.to_vec();
+        args.extend(["--length", "0.1", "--thickness", "0.02", "--rig", "side-push"]);
+        args.extend(["--push-height", "0.005", "--push-width", "0.006"]);
+        let (code, err) = tribofe(&args, &out);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(err.contains("--rig") && err.contains("tribofe check"), "{args:?}: {err}");
+        assert!(!out.exists(), "{args:?} wrote {out:?}");
+    }
+    // In a scene file: the key, with its line.
+    let scene = dir.path().join("s.toml");
+    std::fs::write(
+        &scene,
+        "[block]\nlength = 0.1\nthickness = 0.02\n[mesh]\nh = 0.002\n[loading]\nrig = \"side-push\"\npush_height = 0.005\npush_width = 0.006\nheight = 0.01\n",
+    )
+    .unwrap();
+    let msg = Scene::from_file(&scene).unwrap_err().to_string();
+    assert!(msg.contains("line 10") && msg.contains("height"), "{msg}");
+    // A top-plate file's height and the flag --rig side-push.
+    std::fs::write(
+        &scene,
+        "[block]\nlength = 0.1\nthickness = 0.02\n[mesh]\nh = 0.002\n[loading]\nheight = 0.01\n",
+    )
+    .unwrap();
+    let s = scene.to_str().unwrap();
+    let (code, err) = tribofe(
+        &["check", "--scene", s, "--rig", "side-push", "--push-height", "0.005", "--push-width", "0.006"],
+        &out,
+    );
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("loading.height"), "{err}");
+    for (text, named) in [
+        ("push_stiffness = 0.0\n", "push_stiffness"),
+        ("push_width = 0.03\n", "push_width"),
+        ("rig = \"sidepush\"\n", "side-push"),
+    ] {
+        let base = "[block]\nlength = 0.1\nthickness = 0.02\n[mesh]\nh = 0.002\n[loading]\nrig = \"side-push\"\npush_height = 0.005\n";
+        let body = if text.starts_with("push_width") {
+            format!("{base}{text}")
+        } else {
+            format!("{base}push_width = 0.006\n{text}")
+        };
+        let body = if text.starts_with("rig") { body.replace("rig = \"side-push\"\n", "") } else { body };
+        std::fs::write(&scene, body).unwrap();
+        let (code, err) = tribofe(&["check", "--scene", s], &out);
+        assert_eq!(code, Some(2), "{text}: {err}");
+        assert!(err.contains(named), "{text}: {err}");
+    }
+}
+
+#[test]
+fn check_runs_the_side_push_and_says_its_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_tribofe"))
+        .args(["check", "--length", "0.1", "--thickness", "0.02", "--h", "0.002", "--rig", "side-push"])
+        .args(["--push-height", "0.005", "--push-width", "0.006", "--top", "sliding-plate", "--no-fields"])
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.contains("side push") && stdout.contains("12 F h x / L^3"), "{stdout}");
+    let run = std::fs::read_to_string(out.join("run.toml")).unwrap();
+    assert!(run.contains("12 F h x / L^3") && run.contains("rig = \"side-push\""), "{run}");
+    assert!(out.join("profile_FN0.82.csv").exists());
+}
