@@ -503,7 +503,9 @@ fn fronts_come_from_arrival_times_and_the_pictures_show_the_activity() {
     assert_eq!(all.iter().filter(|f| f.starts_with("spacetime_")).count(), inst);
     assert_eq!(all.iter().filter(|f| f.starts_with("contact_area_")).count(), inst);
     let area = report::contact_area_svg(&r, e).unwrap();
-    assert!(area.contains("contact area A(x,t)/A(x,onset)") && area.matches("class=\"cbar-tick\"").count() >= 2);
+    assert!(
+        area.contains("contact area A(x,t)/A(x,onset)") && area.matches("class=\"cbar-tick\"").count() >= 2
+    );
     assert_eq!("3,17".parse::<Spacetime>().unwrap(), Spacetime::Events(vec![3, 17]));
     let err = "3,x".parse::<Spacetime>().unwrap_err().to_string();
     assert!(err.contains("--spacetime"), "{err}");
