@@ -576,6 +576,12 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
             "event_end",
             toml::Value::from(if a.drive_velocity.is_some() { "none" } else { d.event_end.name() }),
         ),
+        // What the run cost, phase by phase (wall s; writing follows): `cargo bench --bench
+        // dynamic_refine` reads them.
+        ("setup_wall_s", toml::Value::from(res.setup_s)),
+        ("static_wall_s", toml::Value::from(res.static_s)),
+        ("dynamic_wall_s", toml::Value::from(res.dynamic_s)),
+        ("static_factorisations", toml::Value::from(res.slide.run.refreshes as i64)),
     ];
     // summary.csv's row, NaN (a quantity the run does not have) left out, and the cap if met.
     let summary = ds::summary::COLUMNS.iter().zip(ds::summary::values(&res));

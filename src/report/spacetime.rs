@@ -164,17 +164,23 @@ pub(crate) fn heat_map(m: &HeatMap) -> String {
                     py(t_end)
                 );
             }
-            // Labelled where the right-going line leaves the box.
-            let (xe, te) = if x0 + v * (t_end - t0) <= xb {
-                (x0 + v * (t_end - t0), t_end)
+            // Labelled on the side with more room, at a different fraction of each line's
+            // length inside the box: c_s and c_R differ by under 10 %, so labels at the lines'
+            // exits would overlap.
+            let side = if xb - x0 >= x0 - xa { 1.0 } else { -1.0 };
+            let edge = if side > 0.0 { xb } else { xa };
+            let (xe, te) = if (x0 + side * v * (t_end - t0) - edge) * side <= 0.0 {
+                (x0 + side * v * (t_end - t0), t_end)
             } else {
-                (xb, t0 + (xb - x0) / v)
+                (edge, t0 + (edge - x0).abs() / v)
             };
+            let f = if name == "c_s" { 0.92 } else { 0.6 };
+            let (anchor, nudge) = if side > 0.0 { ("start", 4.0) } else { ("end", -4.0) };
             let _ = writeln!(
                 g,
-                "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"#1f4e9c\" text-anchor=\"end\">{name}</text>",
-                px(xe) - 4.0,
-                py(te) - 4.0
+                "<text x=\"{:.1}\" y=\"{:.1}\" fill=\"#1f4e9c\" text-anchor=\"{anchor}\">{name}</text>",
+                px(x0 + f * (xe - x0)) + nudge,
+                py(t0 + f * (te - t0)) - 4.0
             );
         }
     }

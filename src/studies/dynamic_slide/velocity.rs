@@ -174,14 +174,18 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let (quiet_steps, sample_every) = (su.quiet_steps, su.sample_every);
     let thr = event_threshold(scene, o, vel)?;
     progress.message(&format!(
-        "dynamics, drive at V = {vel:e} m/s to X = {x_max:e} m: {n_total:.0} steps of dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), {} DOFs, eta = {eta:.4e} s = {:.3} of critical at the thickness mode; event threshold |v_x| > {thr:.3e} m/s; plate mass {} kg/m, inertia {} kg m^2/m; Lambda_0 = {:.3e} m = {:.2} h",
+        "dynamics, drive at V = {vel:e} m/s to X = {x_max:e} m: {n_total:.0} steps of dt = {dt:.4e} s ({} x the stable {dt_stable:.4e} s), {} DOFs, eta = {eta:.4e} s = {:.3} of critical at the thickness mode; event threshold |v_x| > {thr:.3e} m/s; plate mass {} kg/m, inertia {} kg m^2/m{}",
         d.courant,
         model.n_dofs(),
         su.xi(),
         d.plate_mass,
         d.plate_inertia,
-        lambda0,
-        lambda0 / scene.mesh.h,
+        // Only a slip-weakening law has a cohesive zone at the mean pressure.
+        if lambda0.is_finite() {
+            format!("; Lambda_0 = {lambda0:.3e} m = {:.2} h", lambda0 / scene.mesh.h)
+        } else {
+            String::new()
+        },
     ));
     let setup_s = clock.elapsed().as_secs_f64();
 
