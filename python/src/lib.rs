@@ -898,6 +898,151 @@ fn precursors_fe_fig5<'py>(
     table_with_units(py, &tribofe::report::precursors::fe_fig5_table(&cells))
 }
 
+/// The model's n(r, g) at the cell centres of a `resolution` x `resolution` grid over the
+/// (r, g) square (`tribofe precursors map`): n_map.csv's table (the library's,
+/// `tribofe::report::precursors::n_map_table`), with its units.
+#[pyfunction]
+#[pyo3(signature = (resolution=None))]
+fn precursors_map(py: Python<'_>, resolution: Option<usize>) -> PyResult<Bound<'_, PyDict>> {
+    let resolution = resolution.unwrap_or(tribofe::precursors::DEFAULT_MAP_RESOLUTION);
+    let (map, _) = run_detached(py, None, |cancel, _| {
+        cancel.check()?;
+        tribofe::precursors::n_map(resolution)
+    })?;
+    table_with_units(py, &tribofe::report::precursors::n_map_table(&map))
+}
+
+/// A series' values (`t_over_l=`, `h_over_l=`, `dc=`): at least one, as the command's list.
+fn series_values(key: &str, v: &[f64]) -> PyResult<()> {
+    if v.is_empty() {
+        return Err(to_py(Error::input(key, "an empty list: give at least one value")));
+    }
+    Ok(())
+}
+
+/// The paper's (r, g), validated (None: the paper's fig. 4 case).
+fn rg(r: Option<f64>, g: Option<f64>) -> PyResult<tribofe::precursors::Params> {
+    tribofe::precursors::Params::new(
+        r.unwrap_or(tribofe::precursors::PAPER_R),
+        g.unwrap_or(tribofe::precursors::PAPER_G),
+    )
+    .map_err(to_py)
+}
+
+/// The thin-layer limit (`tribofe precursors thin-layer`): the `paper` rule at (r, g) on
+/// blocks of each t/L at the scene's L and H/L (h = t, 2 elements through t):
+/// thin_layer.csv's table (the library's, `series_table`), with its units.
+#[pyfunction]
+#[pyo3(signature = (t_over_l, scene=None, r=None, g=None, progress=None))]
+fn precursors_thin_layer<'py>(
+    py: Python<'py>,
+    t_over_l: Vec<f64>,
+    scene: Option<PyRef<'_, Scene>>,
+    r: Option<f64>,
+    g: Option<f64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    series_values("t_over_l", &t_over_l)?;
+    let p = rg(r, g)?;
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let (rows, _) = run_detached(py, progress, |cancel, poll| {
+        tribofe::studies::precursors_fe::thin_layer(&scene, p.r(), p.g(), &t_over_l, cancel, poll)
+    })?;
+    table_with_units(py, &tribofe::report::precursors::series_table("t_over_L", "1", &rows))
+}
+
+/// The height of the drive (`tribofe precursors heights`): the `paper` rule with the
+/// coefficients of (r, g) at the scene's H kept fixed, over H/L: heights.csv's table (the
+/// library's), with its units, and those coefficients (`mu_s`, `mu_d`).
+#[pyfunction]
+#[pyo3(signature = (h_over_l, scene=None, r=None, g=None, progress=None))]
+fn precursors_heights<'py>(
+    py: Python<'py>,
+    h_over_l: Vec<f64>,
+    scene: Option<PyRef<'_, Scene>>,
+    r: Option<f64>,
+    g: Option<f64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    series_values("h_over_l", &h_over_l)?;
+    let p = rg(r, g)?;
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let mu = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g()).map_err(to_py)?;
+    let (rows, _) = run_detached(py, progress, |cancel, poll| {
+        tribofe::studies::precursors_fe::heights(&scene, p.r(), p.g(), &h_over_l, cancel, poll)
+    })?;
+    let out = table_with_units(py, &tribofe::report::precursors::series_table("H_over_L", "1", &rows))?;
+    out.set_item("mu_s", mu.0)?;
+    out.set_item("mu_d", mu.1)?;
+    Ok(out)
+}
+
+/// The event rule against D_c (`tribofe precursors dc`): the `paper` rule (the row D_c = 0)
+/// and slip-weakening with each D_c (m) at (r, g), one cycle each: dc.csv's table (the
+/// library's), with its units, and the coefficients (`mu_s`, `mu_d`).
+#[pyfunction]
+#[pyo3(signature = (dc, scene=None, r=None, g=None, max_events=None, progress=None))]
+fn precursors_dc<'py>(
+    py: Python<'py>,
+    dc: Vec<f64>,
+    scene: Option<PyRef<'_, Scene>>,
+    r: Option<f64>,
+    g: Option<f64>,
+    max_events: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::precursors_fe as pfe;
+    series_values("dc", &dc)?;
+    let p = rg(r, g)?;
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let max_events = max_events.unwrap_or(pfe::DEFAULT_DC_MAX_EVENTS);
+    let mu = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g()).map_err(to_py)?;
+    let (rows, _) = run_detached(py, progress, |cancel, poll| {
+        pfe::dc_series(&scene, p.r(), p.g(), &dc, max_events, cancel, poll)
+    })?;
+    let out = table_with_units(py, &tribofe::report::precursors::series_table("Dc_m", "m", &rows))?;
+    out.set_item("mu_s", mu.0)?;
+    out.set_item("mu_d", mu.1)?;
+    Ok(out)
+}
+
+/// The earlier comparison (`tribofe precursors bonded`): the 1D model fed with the scene's
+/// bonded interface fields next to the paper's linear fields on the same cells:
+/// fe_events.csv's table (the library's, `comparison_table`), with its units, and the
+/// comparison's numbers (forces in units of mu_s N).
+#[pyfunction]
+#[pyo3(signature = (scene=None, r=None, g=None, events=None))]
+fn precursors_bonded<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    r: Option<f64>,
+    g: Option<f64>,
+    events: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (r, g) = (r.unwrap_or(tribofe::precursors::PAPER_R), g.unwrap_or(tribofe::precursors::PAPER_G));
+    let events = events.unwrap_or(tribofe::precursors::DEFAULT_EVENTS);
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let (c, _) = run_detached(py, None, |cancel, _| {
+        cancel.check()?;
+        tribofe::studies::precursors_fe::bonded(&scene, r, g, events)
+    })?;
+    let out = table_with_units(py, &tribofe::report::precursors::comparison_table(&c))?;
+    let first = |run: &tribofe::precursors::discrete::Run| run.events.first().map(|e| e.f);
+    out.set_item("r", c.params.r())?;
+    out.set_item("g", c.params.g())?;
+    out.set_item("mu_s", c.mu_s)?;
+    out.set_item("mu_d", c.mu_d)?;
+    out.set_item("H_over_L", c.h_over_l)?;
+    out.set_item("t_over_L", c.t_over_l)?;
+    out.set_item("n_fe", c.fe.n_precursors())?;
+    out.set_item("n_linear", c.linear.n_precursors())?;
+    out.set_item("F_1_fe", first(&c.fe))?;
+    out.set_item("F_1_linear", first(&c.linear))?;
+    out.set_item("F_max_fe", c.fe.f_limit())?;
+    out.set_item("F_max_linear", c.linear.f_limit())?;
+    Ok(out)
+}
+
 /// The spec `tribofe rupture` runs when no flag is given: the cross-check spec with the
 /// default normal-stress lag. Every keyword left at None keeps its value here.
 fn rupture_defaults() -> tribofe::dynamics::rupture::RuptureSpec {
@@ -1301,6 +1446,11 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
             ("max_events", pfe::DEFAULT_FIG5_MAX_EVENTS),
         ],
     );
+    put!("precursors.map", [("resolution", tribofe::precursors::DEFAULT_MAP_RESOLUTION)]);
+    put!("precursors.thin_layer", [("r", pr), ("g", pg)]);
+    put!("precursors.heights", [("r", pr), ("g", pg)]);
+    put!("precursors.dc", [("r", pr), ("g", pg), ("max_events", pfe::DEFAULT_DC_MAX_EVENTS)]);
+    put!("precursors.bonded", [("r", pr), ("g", pg), ("events", tribofe::precursors::DEFAULT_EVENTS)]);
     put!(
         "dynamics.rupture",
         [
@@ -1339,6 +1489,11 @@ fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(converge, m)?)?;
     m.add_function(wrap_pyfunction!(precursors_fe_fig4, m)?)?;
     m.add_function(wrap_pyfunction!(precursors_fe_fig5, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_map, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_thin_layer, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_heights, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_dc, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_bonded, m)?)?;
     m.add_function(wrap_pyfunction!(rupture, m)?)?;
     m.add_function(wrap_pyfunction!(dynamic_slide, m)?)?;
     m.add_function(wrap_pyfunction!(defaults, m)?)?;

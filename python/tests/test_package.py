@@ -236,6 +236,83 @@ def test_fe_precursor_studies(tribofe_bin, tmp_path):
         assert n == tribofe.precursors.model(r, g).n
 
 
+def test_n_map_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "map"
+    assert run_cli(tribofe_bin, "precursors", "map", "--resolution", "12", "--out", str(out)).returncode == 0
+    res = tribofe.precursors.map(resolution=12)
+    assert isinstance(res, tribofe.NMapResult) and len(res) == 144
+    assert_table_is_the_csv("n_map", res.table, out / "n_map.csv", 17, res.units)
+    # The paper's fig. 5: no precursor below the line g = (1 - r)/2 and at least one above
+    # (no cell centre of a 12 x 12 grid lies on it).
+    r, g, n = (np.asarray(res.table[k]) for k in ("r", "g", "n"))
+    np.testing.assert_array_equal(n == 0, g < (1 - r) / 2)
+    with pytest.raises(tribofe.InputError, match="resolution=1"):
+        tribofe.precursors.map(resolution=1)
+
+
+def test_precursor_series_equal_the_command(tribofe_bin, tmp_path):
+    # thin-layer, heights and dc: each table is the command's CSV for the same options, every
+    # column (the wall time measured, so only named), counts int64.
+    runs = [
+        ("thin-layer", ["--t-over-l", "0.02,0.01"], "thin_layer.csv",
+         lambda: tribofe.precursors.thin_layer([0.02, 0.01])),
+        ("heights", ["--h-over-l", "0.05,0.1", "--length", "0.1"], "heights.csv",
+         lambda: tribofe.precursors.heights([0.05, 0.1], tribofe.Scene(length=0.1))),
+        ("dc", ["--dc", "1e-7", "--length", "0.1"], "dc.csv",
+         lambda: tribofe.precursors.dc([1e-7], tribofe.Scene(length=0.1))),
+    ]
+    got = {}
+    for cmd, args, csv_name, call in runs:
+        out = tmp_path / cmd
+        r = run_cli(tribofe_bin, "precursors", cmd, *args, "--out", str(out))
+        assert r.returncode == 0, r.stderr
+        res = call()
+        assert isinstance(res, tribofe.SeriesResult)
+        assert_table_is_the_csv(cmd, res.table, out / csv_name, 17, res.units, measured=("seconds",))
+        assert np.asarray(res.table["precursors_advancing_5t"]).dtype == np.int64
+        got[cmd] = res
+    # The model's columns are the paper's iteration at (0.9, 0.35): n = 10, F_1 = 0.72.
+    tl = got["thin-layer"].table
+    np.testing.assert_array_equal(tl["model_precursors"], [10, 10])
+    np.testing.assert_allclose(tl["model_F1_over_mu_s_N"], 0.72, rtol=1e-12)
+    # heights keeps mu_d fixed, so g = 6 mu_d H/L on every row (to round-off).
+    h = got["heights"]
+    np.testing.assert_allclose(h.table["g"], 6 * h.mu_d * np.asarray(h.table["H_over_L"]), rtol=1e-12)
+    # dc: the paper rule's row (D_c = 0) first, then each D_c.
+    np.testing.assert_array_equal(got["dc"].table["Dc_m"], [0.0, 1e-7])
+    assert dict(got["dc"].units)["Dc_m"] == "m"
+
+
+def test_bonded_comparison_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "bonded"
+    assert run_cli(tribofe_bin, "precursors", "bonded", "--out", str(out)).returncode == 0
+    res = tribofe.precursors.bonded()
+    assert isinstance(res, tribofe.BondedResult)
+    assert_table_is_the_csv("fe_events", res.table, out / "fe_events.csv", 17, res.units)
+    t = res.table
+    # Each run ends at its one stick-slip event, after its precursors (n of them).
+    for model, n in (("fe", res.n_fe), ("linear", res.n_linear)):
+        ss = np.asarray(t["stick_slip"])[np.asarray(t["model"]) == model]
+        assert n is not None and ss[n] == 1 and not ss[:n].any(), model
+    # The linear run is the paper's iteration on cells: its F_1 is the model's 0.72 to the
+    # cells' resolution (h/L = 1/400).
+    assert abs(res.F_1_linear - 0.72) < 1 / 400
+    with pytest.raises(tribofe.InputError, match="events="):
+        tribofe.precursors.bonded(events=100_001)
+
+
+def test_precursor_studies_name_the_keyword():
+    with pytest.raises(tribofe.InputError, match="t_over_l="):
+        tribofe.precursors.thin_layer([0.5])
+    with pytest.raises(tribofe.InputError, match="h_over_l="):
+        tribofe.precursors.heights([])
+    with pytest.raises(tribofe.InputError, match="max_events="):
+        tribofe.precursors.dc([1e-7], tribofe.Scene(length=0.1), max_events=0)
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.precursors.dc([1e-7], r=1.5)
+    assert str(e.value).startswith("invalid r=1.5:"), str(e.value)
+
+
 def test_sweep_and_converge_tables(tribofe_bin, tmp_path):
     res = tribofe.sweep(thickness=[0.002, 0.004], height="0.02:0.08:3", progress=False)
     assert isinstance(res, tribofe.SweepResult)
@@ -459,6 +536,11 @@ COMMANDS = {
     "precursors.model": (["precursors", "model"], {}),
     "precursors.fe_fig4": (["precursors", "fe"], {}),
     "precursors.fe_fig5": (["precursors", "fe-map"], {}),
+    "precursors.map": (["precursors", "map"], {}),
+    "precursors.thin_layer": (["precursors", "thin-layer"], {}),
+    "precursors.heights": (["precursors", "heights"], {}),
+    "precursors.dc": (["precursors", "dc"], {}),
+    "precursors.bonded": (["precursors", "bonded"], {}),
     "dynamics.rupture": (["rupture"], {}),
 }
 # Options the package deliberately defaults otherwise (none: every default is the library's).
@@ -523,6 +605,11 @@ def test_defaults_equal_the_commands_help(tribofe_bin):
         "precursors.model": {"r", "g"},
         "precursors.fe_fig4": {"r", "g", "cycles"},
         "precursors.fe_fig5": {"resolution", "rules", "max_events"},
+        "precursors.map": {"resolution"},
+        "precursors.thin_layer": {"r", "g"},
+        "precursors.heights": {"r", "g"},
+        "precursors.dc": {"r", "g", "max_events"},
+        "precursors.bonded": {"r", "g", "events"},
         "dynamics.rupture": {"s", "h", "dc", "t_end", "length", "height", "mu_s", "mu_d", "sigma0", "young",
                              "poisson", "density", "courant", "damping", "contact", "normal_lag",
                              "patch_taper", "max_steps"},

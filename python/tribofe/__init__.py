@@ -26,17 +26,25 @@ from ._tribofe import defaults as _defaults
 from ._tribofe import dynamic_slide as _dynamic_slide
 from ._tribofe import precursors_fe_fig4 as _fe_fig4
 from ._tribofe import precursors_fe_fig5 as _fe_fig5
+from ._tribofe import precursors_bonded as _bonded
+from ._tribofe import precursors_dc as _dc
+from ._tribofe import precursors_heights as _heights
+from ._tribofe import precursors_map as _n_map
 from ._tribofe import precursors_model as _precursors_model
+from ._tribofe import precursors_thin_layer as _thin_layer
 from ._tribofe import rupture as _rupture
 from ._tribofe import slide as _slide
 from ._tribofe import sweep as _sweep
 from ._results import (
+    BondedResult,
     ConvergeResult,
     FeFig4Result,
     FeFig4Run,
     FeFig5Result,
     ModelResult,
+    NMapResult,
     RuptureResult,
+    SeriesResult,
     SweepResult,
     _df,
     _row,
@@ -64,6 +72,9 @@ __all__ = [
     "FeFig4Result",
     "FeFig4Run",
     "FeFig5Result",
+    "NMapResult",
+    "SeriesResult",
+    "BondedResult",
     "RuptureResult",
     "TribofeError",
     "InputError",
@@ -500,6 +511,93 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         finally:
             close()
         return FeFig5Result(_table(cols["table"], cols["units"]), cols["units"])
+
+    @staticmethod
+    def map(resolution: Optional[int] = None) -> NMapResult:
+        """The model's n(r, g) at the cell centres of a ``resolution`` x ``resolution`` grid
+        over the (r, g) square (the paper's fig. 5), as ``tribofe precursors map`` (None: its
+        40, ``defaults()["precursors.map"]``; 2 to 400): a :class:`NMapResult` whose ``table``
+        is n_map.csv's (``r``, ``g``, ``n``)."""
+        raw = _n_map(resolution)
+        return NMapResult(_table(raw["table"], raw["units"]), raw["units"])
+
+    @staticmethod
+    def thin_layer(
+        t_over_l: Any,
+        scene: Optional[Scene] = None,
+        r: Optional[float] = None,
+        g: Optional[float] = None,
+        progress: Any = False,
+    ) -> SeriesResult:
+        """The thin-layer limit, as ``tribofe precursors thin-layer``: the ``paper`` rule at
+        (r, g) (None: 0.9, 0.35) on blocks of each ``t_over_l`` (t/L, a list; 0 < t/L <= 0.1)
+        at the scene's L and H/L; each block is meshed here with h = t and 2 elements through
+        t, so the scene's thickness and mesh keys do not act. A :class:`SeriesResult` whose
+        ``table`` is thin_layer.csv's. Silent unless ``progress`` is asked; the interrupt key
+        stops it."""
+        cb, close = _progress(progress, "thin layer")
+        try:
+            raw = _thin_layer([float(v) for v in t_over_l], scene if scene is not None else Scene(), r, g, progress=cb)
+        finally:
+            close()
+        return SeriesResult(_table(raw["table"], raw["units"]), raw["units"], "t_over_L")
+
+    @staticmethod
+    def heights(
+        h_over_l: Any,
+        scene: Optional[Scene] = None,
+        r: Optional[float] = None,
+        g: Optional[float] = None,
+        progress: Any = False,
+    ) -> SeriesResult:
+        """The height of the drive, as ``tribofe precursors heights``: the ``paper`` rule with
+        the coefficients of (r, g) (None: 0.9, 0.35) at the scene's H kept fixed, over each
+        ``h_over_l`` (H/L, a list; g = 6 mu_d H/L must stay below 1). A :class:`SeriesResult`
+        whose ``table`` is heights.csv's, with ``mu_s``, ``mu_d``. Silent unless ``progress``
+        is asked; the interrupt key stops it."""
+        cb, close = _progress(progress, "heights")
+        try:
+            raw = _heights([float(v) for v in h_over_l], scene if scene is not None else Scene(), r, g, progress=cb)
+        finally:
+            close()
+        return SeriesResult(_table(raw["table"], raw["units"]), raw["units"], "H_over_L", raw["mu_s"], raw["mu_d"])
+
+    @staticmethod
+    def dc(
+        dc: Any,
+        scene: Optional[Scene] = None,
+        r: Optional[float] = None,
+        g: Optional[float] = None,
+        max_events: Optional[int] = None,
+        progress: Any = False,
+    ) -> SeriesResult:
+        """The event rule against D_c, as ``tribofe precursors dc``: at (r, g) (None: 0.9,
+        0.35) the ``paper`` rule (its row has ``Dc_m`` = 0) and slip-weakening with each
+        ``dc`` (m, a list), one cycle each, a run over ``max_events`` (None: 2000,
+        ``defaults()["precursors.dc"]``) refused on its own row. A :class:`SeriesResult` whose
+        ``table`` is dc.csv's, with ``mu_s``, ``mu_d``. Silent unless ``progress`` is asked;
+        the interrupt key stops it."""
+        cb, close = _progress(progress, "D_c")
+        try:
+            raw = _dc([float(v) for v in dc], scene if scene is not None else Scene(), r, g, max_events, progress=cb)
+        finally:
+            close()
+        return SeriesResult(_table(raw["table"], raw["units"]), raw["units"], "Dc_m", raw["mu_s"], raw["mu_d"])
+
+    @staticmethod
+    def bonded(
+        scene: Optional[Scene] = None,
+        r: Optional[float] = None,
+        g: Optional[float] = None,
+        events: Optional[int] = None,
+    ) -> BondedResult:
+        """The earlier comparison, as ``tribofe precursors bonded`` (without ``--sweep``): the
+        1D model fed with the scene's bonded interface fields next to the paper's linear
+        fields on the same cells, at (r, g) (None: 0.9, 0.35), ``events`` events each (None:
+        200; at most 100 000). A :class:`BondedResult` whose ``table`` is fe_events.csv's."""
+        raw = _bonded(scene if scene is not None else Scene(), r, g, events)
+        table = _table(raw.pop("table"), raw["units"])
+        return BondedResult(table=table, **raw)
 
 
 @dataclass(frozen=True)

@@ -154,6 +154,70 @@ class FeFig5Result(_OneTable):
 
 
 @dataclass(frozen=True, eq=False)
+class NMapResult(_OneTable):
+    """``tribofe precursors map``: ``table``, n_map.csv's rows (the library's table): per cell
+    centre ``r``, ``g`` (dimensionless) and the model's number of precursors ``n`` (int64);
+    ``units`` (column, unit)."""
+
+    table: Any
+    units: List[Tuple[str, str]]
+
+    def __repr__(self) -> str:
+        n = np.asarray(self.table["n"])
+        return f"NMapResult({len(self)} cells, n from {n.min() if len(n) else 0} to {n.max() if len(n) else 0})"
+
+
+@dataclass(frozen=True, eq=False)
+class SeriesResult(_OneTable):
+    """``tribofe precursors thin-layer``, ``heights`` and ``dc``: ``table``, the rows of
+    thin_layer.csv, heights.csv or dc.csv (the library's one series table): per value of
+    ``parameter`` (``t_over_L``, ``H_over_L`` or ``Dc_m``, its first column) the model's n,
+    F_1, x_1 and F_max, the FE run's counts (int64 when every run finished, else float64 with
+    NaN on a refused run's row), F_1, x_1, peak and their deviations, the field checks, the
+    worst violation and the wall time ``seconds`` (forces in units of mu_s N, x in units of
+    L); ``units`` (column, unit); ``mu_s``, ``mu_d`` the coefficients of (r, g) at the scene's
+    H (``heights`` and ``dc``)."""
+
+    table: Any
+    units: List[Tuple[str, str]]
+    parameter: str
+    mu_s: Optional[float] = None
+    mu_d: Optional[float] = None
+
+    def __repr__(self) -> str:
+        return f"SeriesResult({len(self)} runs over {self.parameter})"
+
+
+@dataclass(frozen=True, eq=False)
+class BondedResult(_OneTable):
+    """``tribofe precursors bonded``: ``table``, fe_events.csv's rows (the library's table):
+    both discrete runs, ``model`` ``"fe"`` (the scene's bonded fields) then ``"linear"`` (the
+    paper's fields on the same cells), per event ``i``, ``F``, ``Fc``, ``x_nucleation``,
+    ``x``, ``Fstar`` and ``stick_slip`` (1 for the whole slip, 0 for a precursor); forces in
+    units of mu_s N, x in units of L; ``units``; and the comparison's numbers: ``r``, ``g``,
+    ``mu_s``, ``mu_d``, ``H_over_L``, ``t_over_L``, precursors ``n_fe`` and ``n_linear``,
+    ``F_1_*`` and ``F_max_*`` (None where a run did not reach stick-slip)."""
+
+    table: Any
+    units: List[Tuple[str, str]]
+    r: float
+    g: float
+    mu_s: float
+    mu_d: float
+    H_over_L: float
+    t_over_L: float
+    n_fe: Optional[int]
+    n_linear: Optional[int]
+    F_1_fe: Optional[float]
+    F_1_linear: Optional[float]
+    F_max_fe: Optional[float]
+    F_max_linear: Optional[float]
+
+    def __repr__(self) -> str:
+        return f"BondedResult(r={self.r}, g={self.g}: n FE-fed {self.n_fe}, linear {self.n_linear})"
+
+
+@dataclass(frozen=True, eq=False)
 class ModelResult(_Result):
     """The paper's analytic iteration for (r, g): ``n`` precursors, ``F_1`` and ``F_max``
     (units of mu_s N), ``events`` (events.csv's table, the library's: forces in units of

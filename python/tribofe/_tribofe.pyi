@@ -128,6 +128,25 @@ def precursors_fe_fig5(
     scene: Optional[Scene] = None, resolution: Optional[int] = None, rules: Optional[List[str]] = None,
     max_events: Optional[int] = None, progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
+# precursors_map, _thin_layer, _heights, _dc, _bonded: {"table": the library's table, "units":
+# [(column, unit)...]} (heights and dc also "mu_s", "mu_d"; bonded the comparison's numbers);
+# wrapped by tribofe.precursors as NMapResult, SeriesResult and BondedResult.
+def precursors_map(resolution: Optional[int] = None) -> Dict[str, Any]: ...
+def precursors_thin_layer(
+    t_over_l: Sequence[float], scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None,
+    progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
+def precursors_heights(
+    h_over_l: Sequence[float], scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None,
+    progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
+def precursors_dc(
+    dc: Sequence[float], scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None,
+    max_events: Optional[int] = None, progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
+def precursors_bonded(
+    scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None, events: Optional[int] = None,
+) -> Dict[str, Any]: ...
 # The per-node arrays and scalars of a rupture, "energy" a dict, "stations" {x: {"table": ...,
 # "units": ...}}; tribofe.dynamics.rupture wraps it as RuptureResult.
 def rupture(
