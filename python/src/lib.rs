@@ -473,6 +473,119 @@ fn check<'py>(
     Ok(out)
 }
 
+/// `tribofe solve`: the rectangle [0, lx] x [0, ly] (m) of nx x ny elements in plane strain
+/// (young Pa, poisson), one condition per side (`bottom`, `right`, `top`, `left`: "free",
+/// "clamped", "roller", "u=UX,UY" in m or "t=TX,TY" in Pa). Returns the reactions per side
+/// and their sum (N per metre of width), the applied traction force, the unknowns, and the
+/// fields: node coordinates (n x 2, m), displacement (n x 2, m), nodal stresses (n x 4:
+/// sigma_xx, sigma_yy, sigma_xy, sigma_zz, Pa). None is the command's default.
+#[pyfunction]
+#[pyo3(signature = (*, lx=None, ly=None, nx=None, ny=None, element=None, young=None, poisson=None,
+    bottom=None, right=None, top=None, left=None, max_dofs=None))]
+#[allow(clippy::too_many_arguments)]
+fn solve<'py>(
+    py: Python<'py>,
+    lx: Option<f64>,
+    ly: Option<f64>,
+    nx: Option<usize>,
+    ny: Option<usize>,
+    element: Option<&str>,
+    young: Option<f64>,
+    poisson: Option<f64>,
+    bottom: Option<&str>,
+    right: Option<&str>,
+    top: Option<&str>,
+    left: Option<&str>,
+    max_dofs: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::scene::rectangle as rect;
+    let d = rect::DEFAULT_SIDES;
+    let p = rect::RectangleProblem::from_inputs(
+        lx.unwrap_or(rect::DEFAULT_LX),
+        ly.unwrap_or(rect::DEFAULT_LY),
+        nx.unwrap_or(rect::DEFAULT_NX),
+        ny.unwrap_or(rect::DEFAULT_NY),
+        element.unwrap_or(rect::DEFAULT_ELEMENT),
+        young.unwrap_or(rect::DEFAULT_YOUNG),
+        poisson.unwrap_or(rect::DEFAULT_POISSON),
+        [bottom.unwrap_or(d[0]), right.unwrap_or(d[1]), top.unwrap_or(d[2]), left.unwrap_or(d[3])],
+    )
+    .map_err(to_py)?;
+    p.check_size(max_dofs).map_err(to_py)?;
+    let (r, core_s) = run_detached(py, None, |cancel, _| {
+        cancel.check()?;
+        p.solve()
+    })?;
+    let model = tribofe::fem::assembly::Model {
+        tech: p.element.tech,
+        ..tribofe::fem::assembly::Model::new(&r.mesh, p.material)
+    };
+    let grid =
+        |rows: Vec<Vec<f64>>| PyArray2::from_vec2(py, &rows).map_err(|e| PyTypeError::new_err(e.to_string()));
+    let u = &r.solution.u[0];
+    let n = r.mesh.nodes.len();
+    let out = PyDict::new(py);
+    let reactions = PyDict::new(py);
+    for (name, f) in rect::SIDES.iter().zip(&r.side_reactions) {
+        reactions.set_item(*name, (f[0], f[1]))?;
+    }
+    out.set_item("reactions_N_per_m", reactions)?;
+    out.set_item("total_reaction_N_per_m", (r.total_reaction[0], r.total_reaction[1]))?;
+    out.set_item("applied_N_per_m", (r.applied[0], r.applied[1]))?;
+    out.set_item("unknowns", r.solution.stats.n_unknowns)?;
+    out.set_item("nodes_m", grid(r.mesh.nodes.iter().map(|q| q.to_vec()).collect())?)?;
+    out.set_item("displacement_m", grid(u[..2 * n].chunks(2).map(|c| c.to_vec()).collect())?)?;
+    let stress = tribofe::fem::recovery::nodal_stresses(&model, u);
+    out.set_item("stress_Pa", grid(stress.iter().map(|v| v.to_vec()).collect())?)?;
+    out.set_item("core_s", core_s)?;
+    Ok(out)
+}
+
+/// `tribofe edges`: the block's ends on the frictional interface, pre-slip under N alone
+/// against refinement (coulomb `mu`, `refine` elements through t) and the trailing end's
+/// opening under the drive against the first precursor (static-kinetic `mu_s`, `mu_d`,
+/// `rule`, over `t_over_l` x `open_refine` x `h_over_l`), meshes graded from the ends by
+/// `end_grading`: preslip.csv's and opening.csv's tables (the library's), with their units.
+#[pyfunction]
+#[pyo3(signature = (scene=None, *, mu=None, refine=None, mu_s=None, mu_d=None, rule=None, t_over_l=None,
+    open_refine=None, end_grading=None, h_over_l=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn edges<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    mu: Option<Vec<f64>>,
+    refine: Option<Vec<usize>>,
+    mu_s: Option<f64>,
+    mu_d: Option<f64>,
+    rule: Option<&str>,
+    t_over_l: Option<Vec<f64>>,
+    open_refine: Option<Vec<usize>>,
+    end_grading: Option<f64>,
+    h_over_l: Option<Vec<f64>>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::edges as ed;
+    let base = ed::EdgesOptions::default();
+    let o = ed::EdgesOptions {
+        mu: mu.unwrap_or(base.mu),
+        refine: refine.unwrap_or(base.refine),
+        mu_s: mu_s.unwrap_or(base.mu_s),
+        mu_d: mu_d.unwrap_or(base.mu_d),
+        rule: choice("rule", rule, RULES)?.unwrap_or(base.rule),
+        t_over_l: t_over_l.unwrap_or(base.t_over_l),
+        open_refine: open_refine.unwrap_or(base.open_refine),
+        h_over_l: h_over_l.unwrap_or(base.h_over_l),
+        end_grading: end_grading.unwrap_or(base.end_grading),
+    };
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    o.check(&scene).map_err(to_py)?;
+    let ((pre, open), _) = run_detached(py, progress, |cancel, poll| ed::run(&scene, &o, cancel, poll))?;
+    let out = PyDict::new(py);
+    out.set_item("preslip", table_with_units(py, &tribofe::report::edges::preslip_table(&pre))?)?;
+    out.set_item("opening", table_with_units(py, &tribofe::report::edges::opening_table(&open))?)?;
+    Ok(out)
+}
+
 /// The frictional interface under N then the drive X at height H, event by event (`tribofe
 /// slide`: every option of it but the files'; a choice is parsed here into the library's
 /// value, refused with the accepted names).
@@ -1446,6 +1559,43 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
             ("max_events", pfe::DEFAULT_FIG5_MAX_EVENTS),
         ],
     );
+    {
+        use tribofe::scene::rectangle as rect;
+        let d = rect::DEFAULT_SIDES;
+        put!(
+            "solve",
+            [
+                ("lx", rect::DEFAULT_LX),
+                ("ly", rect::DEFAULT_LY),
+                ("nx", rect::DEFAULT_NX),
+                ("ny", rect::DEFAULT_NY),
+                ("element", rect::DEFAULT_ELEMENT),
+                ("young", rect::DEFAULT_YOUNG),
+                ("poisson", rect::DEFAULT_POISSON),
+                ("bottom", d[0]),
+                ("right", d[1]),
+                ("top", d[2]),
+                ("left", d[3]),
+            ],
+        );
+    }
+    {
+        use tribofe::studies::edges as ed;
+        put!(
+            "edges",
+            [
+                ("mu", ed::DEFAULT_MU.to_vec()),
+                ("refine", ed::DEFAULT_REFINE.to_vec()),
+                ("mu_s", ed::DEFAULT_MU_S),
+                ("mu_d", ed::DEFAULT_MU_D),
+                ("rule", ed::DEFAULT_RULE.name()),
+                ("t_over_l", ed::DEFAULT_T_OVER_L.to_vec()),
+                ("open_refine", ed::DEFAULT_OPEN_REFINE.to_vec()),
+                ("end_grading", ed::DEFAULT_END_GRADING),
+                ("h_over_l", ed::DEFAULT_H_OVER_L.to_vec()),
+            ],
+        );
+    }
     put!("precursors.map", [("resolution", tribofe::precursors::DEFAULT_MAP_RESOLUTION)]);
     put!("precursors.thin_layer", [("r", pr), ("g", pg)]);
     put!("precursors.heights", [("r", pr), ("g", pg)]);
@@ -1484,6 +1634,8 @@ fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(slide, m)?)?;
+    m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(edges, m)?)?;
     m.add_function(wrap_pyfunction!(precursors_model, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(converge, m)?)?;

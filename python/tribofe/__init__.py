@@ -24,6 +24,7 @@ from ._tribofe import check as _check
 from ._tribofe import converge as _converge
 from ._tribofe import defaults as _defaults
 from ._tribofe import dynamic_slide as _dynamic_slide
+from ._tribofe import edges as _edges
 from ._tribofe import precursors_fe_fig4 as _fe_fig4
 from ._tribofe import precursors_fe_fig5 as _fe_fig5
 from ._tribofe import precursors_bonded as _bonded
@@ -34,10 +35,12 @@ from ._tribofe import precursors_model as _precursors_model
 from ._tribofe import precursors_thin_layer as _thin_layer
 from ._tribofe import rupture as _rupture
 from ._tribofe import slide as _slide
+from ._tribofe import solve as _solve
 from ._tribofe import sweep as _sweep
 from ._results import (
     BondedResult,
     ConvergeResult,
+    EdgesResult,
     FeFig4Result,
     FeFig4Run,
     FeFig5Result,
@@ -45,6 +48,7 @@ from ._results import (
     NMapResult,
     RuptureResult,
     SeriesResult,
+    SolveResult,
     SweepResult,
     _df,
     _row,
@@ -56,14 +60,17 @@ from .errors import InputError, Interrupted, NumericalError, OutputError, Tribof
 __all__ = [
     "Scene",
     "check",
+    "solve",
     "slide",
     "precursors",
     "dynamics",
     "sweep",
     "converge",
+    "edges",
     "defaults",
     "CheckResult",
     "CheckCase",
+    "SolveResult",
     "SlideResult",
     "DynamicSlideResult",
     "SweepResult",
@@ -75,6 +82,7 @@ __all__ = [
     "NMapResult",
     "SeriesResult",
     "BondedResult",
+    "EdgesResult",
     "RuptureResult",
     "TribofeError",
     "InputError",
@@ -236,6 +244,47 @@ def check(scene: Optional[Scene] = None, fields: bool = False) -> CheckResult:
     return CheckResult(
         scene, cases, raw["n_nodes"], raw["n_elements"], raw["balance_error"], raw["core_s"], raw.get("fields")
     )
+
+
+def solve(
+    *,
+    lx: Optional[float] = None,
+    ly: Optional[float] = None,
+    nx: Optional[int] = None,
+    ny: Optional[int] = None,
+    element: Optional[str] = None,
+    young: Optional[float] = None,
+    poisson: Optional[float] = None,
+    bottom: Optional[str] = None,
+    right: Optional[str] = None,
+    top: Optional[str] = None,
+    left: Optional[str] = None,
+    max_dofs: Optional[int] = None,
+) -> SolveResult:
+    """A rectangle [0, lx] x [0, ly] (m) of ``nx`` x ``ny`` elements (``element``: qua4,
+    qua4-sri, qua4-im, qua8, qua9, tri3, tri6) in plane strain (``young`` Pa, ``poisson``),
+    one condition per side: ``bottom``, ``right``, ``top``, ``left`` each ``"free"``,
+    ``"clamped"``, ``"roller"``, ``"u=UX,UY"`` (m) or ``"t=TX,TY"`` (Pa), as ``tribofe solve``
+    (None is its default, ``defaults()["solve"]``: 1 m x 0.1 m, 40 x 4 QUA4, E = 2 kPa,
+    nu = 0.4, bottom clamped, top displaced 1 mm along x). ``max_dofs``: refuse meshes above
+    this many unknowns (None: what fits in memory). Returns a :class:`SolveResult`: the
+    reactions per side, their balance and the fields. A bad input raises
+    :class:`InputError` naming its keyword."""
+    raw = _solve(
+        lx=lx,
+        ly=ly,
+        nx=nx,
+        ny=ny,
+        element=element,
+        young=young,
+        poisson=poisson,
+        bottom=bottom,
+        right=right,
+        top=top,
+        left=left,
+        max_dofs=max_dofs,
+    )
+    return SolveResult(**raw)
 
 
 @dataclass(frozen=True)
@@ -428,6 +477,52 @@ def converge(
     finally:
         close()
     return ConvergeResult(_table(raw["table"], raw["units"]), raw["units"], raw["summary"])
+
+
+def edges(
+    scene: Optional[Scene] = None,
+    *,
+    mu: Any = None,
+    refine: Any = None,
+    mu_s: Optional[float] = None,
+    mu_d: Optional[float] = None,
+    rule: Optional[str] = None,
+    t_over_l: Any = None,
+    open_refine: Any = None,
+    end_grading: Optional[float] = None,
+    h_over_l: Any = None,
+    progress: Any = False,
+) -> EdgesResult:
+    """The block's ends on the frictional interface, as ``tribofe edges``: pre-slip under N
+    alone for each coulomb ``mu`` and refinement ``refine`` (elements through t), and the
+    trailing end's opening under the drive (static-kinetic ``mu_s``, ``mu_d``, ``rule``
+    ``"paper"`` or ``"overdamped"``) for each ``t_over_l`` x ``open_refine`` x ``h_over_l``;
+    ``end_grading`` grows the elements from the ends (1: uniform). Each study meshes its own
+    blocks from the scene's length and materials (its thickness, height and mesh keys do not
+    act; a mesh file is refused). None is the command's default (``defaults()["edges"]``).
+    Returns an :class:`EdgesResult`: ``preslip`` and ``opening``, the tables of preslip.csv
+    and opening.csv. Silent unless ``progress`` is asked; the interrupt key stops it."""
+    cb, close = _progress(progress, "edges")
+    try:
+        raw = _edges(
+            scene if scene is not None else Scene(),
+            mu=None if mu is None else [float(v) for v in mu],
+            refine=None if refine is None else [int(v) for v in refine],
+            mu_s=mu_s,
+            mu_d=mu_d,
+            rule=rule,
+            t_over_l=None if t_over_l is None else [float(v) for v in t_over_l],
+            open_refine=None if open_refine is None else [int(v) for v in open_refine],
+            end_grading=end_grading,
+            h_over_l=None if h_over_l is None else [float(v) for v in h_over_l],
+            progress=cb,
+        )
+    finally:
+        close()
+    units = {k: raw[k]["units"] for k in ("preslip", "opening")}
+    return EdgesResult(
+        _table(raw["preslip"]["table"], units["preslip"]), _table(raw["opening"]["table"], units["opening"]), units
+    )
 
 
 class precursors:  # noqa: N801 - a namespace, as tribofe::precursors

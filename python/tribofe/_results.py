@@ -154,6 +154,60 @@ class FeFig5Result(_OneTable):
 
 
 @dataclass(frozen=True, eq=False)
+class SolveResult(_Result):
+    """``tribofe solve``: ``reactions_N_per_m`` per side (``"bottom"``, ``"right"``,
+    ``"top"``, ``"left"``: (Fx, Fy), N per metre of width; a corner node counts for both its
+    sides), ``total_reaction_N_per_m`` (each constrained DOF once) and ``applied_N_per_m``
+    (the traction force; the two balance), ``unknowns``, and the fields: ``nodes_m`` (n x 2),
+    ``displacement_m`` (n x 2, m), ``stress_Pa`` (n x 4: sigma_xx, sigma_yy, sigma_xy,
+    sigma_zz; nodal values extrapolated from the integration points and averaged)."""
+
+    reactions_N_per_m: Dict[str, Tuple[float, float]]
+    total_reaction_N_per_m: Tuple[float, float]
+    applied_N_per_m: Tuple[float, float]
+    unknowns: int
+    nodes_m: np.ndarray = field(repr=False)
+    displacement_m: np.ndarray = field(repr=False)
+    stress_Pa: np.ndarray = field(repr=False)
+    core_s: float = field(default=0.0, compare=False)
+
+    @property
+    def reactions(self):
+        """The reactions as a table: ``side``, ``Fx_N_per_m``, ``Fy_N_per_m``."""
+        sides = list(self.reactions_N_per_m)
+        f = np.asarray([self.reactions_N_per_m[k] for k in sides], dtype=float).reshape(-1, 2)
+        return _table({"side": sides, "Fx_N_per_m": f[:, 0], "Fy_N_per_m": f[:, 1]})
+
+    def to_pandas(self):
+        """``{"reactions": df}``."""
+        return {"reactions": _df(self.reactions)}
+
+    def __repr__(self) -> str:
+        return f"SolveResult({self.unknowns} unknowns, {len(self.nodes_m)} nodes, reactions {self.reactions_N_per_m})"
+
+
+@dataclass(frozen=True, eq=False)
+class EdgesResult(_Result):
+    """``tribofe edges``: ``preslip``, preslip.csv's table (per coulomb mu and t/h the
+    interface nodes and the pre-slip extents from each end, units of t), and ``opening``,
+    opening.csv's (per t/L, t/h, H/L: g, F_1 of the model and the FE, the force and open
+    length when the trailing end first opens, whether it opens before the first precursor,
+    the open nodes; forces in units of mu_s N, lengths in units of t; an empty cell NaN);
+    the library's tables, ``units[name]`` their (column, unit) pairs."""
+
+    preslip: Any
+    opening: Any
+    units: Dict[str, List[Tuple[str, str]]]
+
+    def to_pandas(self):
+        """``{"preslip": df, "opening": df}``, each with its units in ``attrs["units"]``."""
+        return {k: _df(getattr(self, k), self.units[k]) for k in ("preslip", "opening")}
+
+    def __repr__(self) -> str:
+        return f"EdgesResult({len(self.preslip['mu'])} pre-slip rows, {len(self.opening['g'])} opening runs)"
+
+
+@dataclass(frozen=True, eq=False)
 class NMapResult(_OneTable):
     """``tribofe precursors map``: ``table``, n_map.csv's rows (the library's table): per cell
     centre ``r``, ``g`` (dimensionless) and the model's number of precursors ``n`` (int64);
