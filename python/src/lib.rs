@@ -788,9 +788,8 @@ fn precursors_model<'py>(
     let p = pm::Params::new(r, g).map_err(to_py)?;
     let n = pm::n_precursors(&p).map_err(to_py)?;
     let count = events.unwrap_or(n + 1);
-    if count > pm::MAX_PRECURSORS {
-        return Err(to_py(Error::input("events", format!("at most {} events", pm::MAX_PRECURSORS))));
-    }
+    // The command's cap on --events.
+    pm::check_events(count).map_err(to_py)?;
     let ev = pm::simulate(&p, count);
     let out = PyDict::new(py);
     out.set_item("r", r)?;

@@ -354,6 +354,9 @@ def test_precursor_studies_name_the_keyword():
     with pytest.raises(tribofe.InputError) as e:
         tribofe.precursors.dc([1e-7], r=1.5)
     assert str(e.value).startswith("invalid r=1.5:"), str(e.value)
+    # The model's event count has the command's cap (--events at most 100 000).
+    with pytest.raises(tribofe.InputError, match="events=: 100001: at most 100000"):
+        tribofe.precursors.model(events=100_001)
 
 
 def test_edges_equals_the_command(tribofe_bin, tmp_path):

@@ -15,6 +15,11 @@ fn given(name: &'static str, unit: &'static str, v: Vec<f64>) -> Column {
     Column::float(name, unit, v).with_format(Format::Shortest)
 }
 
+/// t/h, the elements through the thickness: a count (whole by construction).
+fn elements_through_t(v: impl Iterator<Item = f64>) -> Column {
+    Column::int("t_over_h", "-", v.map(|k| k as i64).collect())
+}
+
 /// preslip.csv's table: per coulomb mu and refinement t/h the interface nodes and the
 /// pre-slip extents from the left and right end (units of t). The one definition the CSV and
 /// the Python package's table are made from.
@@ -22,7 +27,7 @@ pub fn preslip_table(rows: &[Preslip]) -> Table {
     Table {
         columns: vec![
             given("mu", "1", rows.iter().map(|r| r.mu).collect()),
-            given("t_over_h", "1", rows.iter().map(|r| r.t_over_h).collect()),
+            elements_through_t(rows.iter().map(|r| r.t_over_h)),
             Column::int("interface_nodes", "-", rows.iter().map(|r| r.nodes as i64).collect()),
             Column::float("left_extent_over_t", "1", rows.iter().map(|r| r.extent_t[0]).collect()),
             Column::float("right_extent_over_t", "1", rows.iter().map(|r| r.extent_t[1]).collect()),
@@ -52,7 +57,7 @@ pub fn opening_table(rows: &[Opening]) -> Table {
     Table {
         columns: vec![
             given("t_over_L", "1", rows.iter().map(|r| r.t_over_l).collect()),
-            given("t_over_h", "1", rows.iter().map(|r| r.t_over_h).collect()),
+            elements_through_t(rows.iter().map(|r| r.t_over_h)),
             given("H_over_L", "1", rows.iter().map(|r| r.h_over_l).collect()),
             num("g", |r| r.g),
             num("F1_model_over_mu_s_N", |r| r.f1_model),
