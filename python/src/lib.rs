@@ -473,6 +473,119 @@ fn check<'py>(
     Ok(out)
 }
 
+/// `tribofe solve`: the rectangle [0, lx] x [0, ly] (m) of nx x ny elements in plane strain
+/// (young Pa, poisson), one condition per side (`bottom`, `right`, `top`, `left`: "free",
+/// "clamped", "roller", "u=UX,UY" in m or "t=TX,TY" in Pa). Returns the reactions per side
+/// and their sum (N per metre of width), the applied traction force, the unknowns, and the
+/// fields: node coordinates (n x 2, m), displacement (n x 2, m), nodal stresses (n x 4:
+/// sigma_xx, sigma_yy, sigma_xy, sigma_zz, Pa). None is the command's default.
+#[pyfunction]
+#[pyo3(signature = (*, lx=None, ly=None, nx=None, ny=None, element=None, young=None, poisson=None,
+    bottom=None, right=None, top=None, left=None, max_dofs=None))]
+#[allow(clippy::too_many_arguments)]
+fn solve<'py>(
+    py: Python<'py>,
+    lx: Option<f64>,
+    ly: Option<f64>,
+    nx: Option<usize>,
+    ny: Option<usize>,
+    element: Option<&str>,
+    young: Option<f64>,
+    poisson: Option<f64>,
+    bottom: Option<&str>,
+    right: Option<&str>,
+    top: Option<&str>,
+    left: Option<&str>,
+    max_dofs: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::scene::rectangle as rect;
+    let d = rect::DEFAULT_SIDES;
+    let p = rect::RectangleProblem::from_inputs(
+        lx.unwrap_or(rect::DEFAULT_LX),
+        ly.unwrap_or(rect::DEFAULT_LY),
+        nx.unwrap_or(rect::DEFAULT_NX),
+        ny.unwrap_or(rect::DEFAULT_NY),
+        element.unwrap_or(rect::DEFAULT_ELEMENT),
+        young.unwrap_or(rect::DEFAULT_YOUNG),
+        poisson.unwrap_or(rect::DEFAULT_POISSON),
+        [bottom.unwrap_or(d[0]), right.unwrap_or(d[1]), top.unwrap_or(d[2]), left.unwrap_or(d[3])],
+    )
+    .map_err(to_py)?;
+    p.check_size(max_dofs).map_err(to_py)?;
+    let (r, core_s) = run_detached(py, None, |cancel, _| {
+        cancel.check()?;
+        p.solve()
+    })?;
+    let model = tribofe::fem::assembly::Model {
+        tech: p.element.tech,
+        ..tribofe::fem::assembly::Model::new(&r.mesh, p.material)
+    };
+    let grid =
+        |rows: Vec<Vec<f64>>| PyArray2::from_vec2(py, &rows).map_err(|e| PyTypeError::new_err(e.to_string()));
+    let u = &r.solution.u[0];
+    let n = r.mesh.nodes.len();
+    let out = PyDict::new(py);
+    let reactions = PyDict::new(py);
+    for (name, f) in rect::SIDES.iter().zip(&r.side_reactions) {
+        reactions.set_item(*name, (f[0], f[1]))?;
+    }
+    out.set_item("reactions_N_per_m", reactions)?;
+    out.set_item("total_reaction_N_per_m", (r.total_reaction[0], r.total_reaction[1]))?;
+    out.set_item("applied_N_per_m", (r.applied[0], r.applied[1]))?;
+    out.set_item("unknowns", r.solution.stats.n_unknowns)?;
+    out.set_item("nodes_m", grid(r.mesh.nodes.iter().map(|q| q.to_vec()).collect())?)?;
+    out.set_item("displacement_m", grid(u[..2 * n].chunks(2).map(|c| c.to_vec()).collect())?)?;
+    let stress = tribofe::fem::recovery::nodal_stresses(&model, u);
+    out.set_item("stress_Pa", grid(stress.iter().map(|v| v.to_vec()).collect())?)?;
+    out.set_item("core_s", core_s)?;
+    Ok(out)
+}
+
+/// `tribofe edges`: the block's ends on the frictional interface, pre-slip under N alone
+/// against refinement (coulomb `mu`, `refine` elements through t) and the trailing end's
+/// opening under the drive against the first precursor (static-kinetic `mu_s`, `mu_d`,
+/// `rule`, over `t_over_l` x `open_refine` x `h_over_l`), meshes graded from the ends by
+/// `end_grading`: preslip.csv's and opening.csv's tables (the library's), with their units.
+#[pyfunction]
+#[pyo3(signature = (scene=None, *, mu=None, refine=None, mu_s=None, mu_d=None, rule=None, t_over_l=None,
+    open_refine=None, end_grading=None, h_over_l=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+fn edges<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    mu: Option<Vec<f64>>,
+    refine: Option<Vec<usize>>,
+    mu_s: Option<f64>,
+    mu_d: Option<f64>,
+    rule: Option<&str>,
+    t_over_l: Option<Vec<f64>>,
+    open_refine: Option<Vec<usize>>,
+    end_grading: Option<f64>,
+    h_over_l: Option<Vec<f64>>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::edges as ed;
+    let base = ed::EdgesOptions::default();
+    let o = ed::EdgesOptions {
+        mu: mu.unwrap_or(base.mu),
+        refine: refine.unwrap_or(base.refine),
+        mu_s: mu_s.unwrap_or(base.mu_s),
+        mu_d: mu_d.unwrap_or(base.mu_d),
+        rule: choice("rule", rule, RULES)?.unwrap_or(base.rule),
+        t_over_l: t_over_l.unwrap_or(base.t_over_l),
+        open_refine: open_refine.unwrap_or(base.open_refine),
+        h_over_l: h_over_l.unwrap_or(base.h_over_l),
+        end_grading: end_grading.unwrap_or(base.end_grading),
+    };
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    o.check(&scene).map_err(to_py)?;
+    let ((pre, open), _) = run_detached(py, progress, |cancel, poll| ed::run(&scene, &o, cancel, poll))?;
+    let out = PyDict::new(py);
+    out.set_item("preslip", table_with_units(py, &tribofe::report::edges::preslip_table(&pre))?)?;
+    out.set_item("opening", table_with_units(py, &tribofe::report::edges::opening_table(&open))?)?;
+    Ok(out)
+}
+
 /// The frictional interface under N then the drive X at height H, event by event (`tribofe
 /// slide`: every option of it but the files'; a choice is parsed here into the library's
 /// value, refused with the accepted names).
@@ -675,9 +788,8 @@ fn precursors_model<'py>(
     let p = pm::Params::new(r, g).map_err(to_py)?;
     let n = pm::n_precursors(&p).map_err(to_py)?;
     let count = events.unwrap_or(n + 1);
-    if count > pm::MAX_PRECURSORS {
-        return Err(to_py(Error::input("events", format!("at most {} events", pm::MAX_PRECURSORS))));
-    }
+    // The command's cap on --events.
+    pm::check_events(count).map_err(to_py)?;
     let ev = pm::simulate(&p, count);
     let out = PyDict::new(py);
     out.set_item("r", r)?;
@@ -896,6 +1008,151 @@ fn precursors_fe_fig5<'py>(
         pfe::fig5(&scene, resolution, &rules, max_events, cancel, poll)
     })?;
     table_with_units(py, &tribofe::report::precursors::fe_fig5_table(&cells))
+}
+
+/// The model's n(r, g) at the cell centres of a `resolution` x `resolution` grid over the
+/// (r, g) square (`tribofe precursors map`): n_map.csv's table (the library's,
+/// `tribofe::report::precursors::n_map_table`), with its units.
+#[pyfunction]
+#[pyo3(signature = (resolution=None))]
+fn precursors_map(py: Python<'_>, resolution: Option<usize>) -> PyResult<Bound<'_, PyDict>> {
+    let resolution = resolution.unwrap_or(tribofe::precursors::DEFAULT_MAP_RESOLUTION);
+    let (map, _) = run_detached(py, None, |cancel, _| {
+        cancel.check()?;
+        tribofe::precursors::n_map(resolution)
+    })?;
+    table_with_units(py, &tribofe::report::precursors::n_map_table(&map))
+}
+
+/// A series' values (`t_over_l=`, `h_over_l=`, `dc=`): at least one, as the command's list.
+fn series_values(key: &str, v: &[f64]) -> PyResult<()> {
+    if v.is_empty() {
+        return Err(to_py(Error::input(key, "an empty list: give at least one value")));
+    }
+    Ok(())
+}
+
+/// The paper's (r, g), validated (None: the paper's fig. 4 case).
+fn rg(r: Option<f64>, g: Option<f64>) -> PyResult<tribofe::precursors::Params> {
+    tribofe::precursors::Params::new(
+        r.unwrap_or(tribofe::precursors::PAPER_R),
+        g.unwrap_or(tribofe::precursors::PAPER_G),
+    )
+    .map_err(to_py)
+}
+
+/// The thin-layer limit (`tribofe precursors thin-layer`): the `paper` rule at (r, g) on
+/// blocks of each t/L at the scene's L and H/L (h = t, 2 elements through t):
+/// thin_layer.csv's table (the library's, `series_table`), with its units.
+#[pyfunction]
+#[pyo3(signature = (t_over_l, scene=None, r=None, g=None, progress=None))]
+fn precursors_thin_layer<'py>(
+    py: Python<'py>,
+    t_over_l: Vec<f64>,
+    scene: Option<PyRef<'_, Scene>>,
+    r: Option<f64>,
+    g: Option<f64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    series_values("t_over_l", &t_over_l)?;
+    let p = rg(r, g)?;
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let (rows, _) = run_detached(py, progress, |cancel, poll| {
+        tribofe::studies::precursors_fe::thin_layer(&scene, p.r(), p.g(), &t_over_l, cancel, poll)
+    })?;
+    table_with_units(py, &tribofe::report::precursors::series_table("t_over_L", "1", &rows))
+}
+
+/// The height of the drive (`tribofe precursors heights`): the `paper` rule with the
+/// coefficients of (r, g) at the scene's H kept fixed, over H/L: heights.csv's table (the
+/// library's), with its units, and those coefficients (`mu_s`, `mu_d`).
+#[pyfunction]
+#[pyo3(signature = (h_over_l, scene=None, r=None, g=None, progress=None))]
+fn precursors_heights<'py>(
+    py: Python<'py>,
+    h_over_l: Vec<f64>,
+    scene: Option<PyRef<'_, Scene>>,
+    r: Option<f64>,
+    g: Option<f64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    series_values("h_over_l", &h_over_l)?;
+    let p = rg(r, g)?;
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let mu = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g()).map_err(to_py)?;
+    let (rows, _) = run_detached(py, progress, |cancel, poll| {
+        tribofe::studies::precursors_fe::heights(&scene, p.r(), p.g(), &h_over_l, cancel, poll)
+    })?;
+    let out = table_with_units(py, &tribofe::report::precursors::series_table("H_over_L", "1", &rows))?;
+    out.set_item("mu_s", mu.0)?;
+    out.set_item("mu_d", mu.1)?;
+    Ok(out)
+}
+
+/// The event rule against D_c (`tribofe precursors dc`): the `paper` rule (the row D_c = 0)
+/// and slip-weakening with each D_c (m) at (r, g), one cycle each: dc.csv's table (the
+/// library's), with its units, and the coefficients (`mu_s`, `mu_d`).
+#[pyfunction]
+#[pyo3(signature = (dc, scene=None, r=None, g=None, max_events=None, progress=None))]
+fn precursors_dc<'py>(
+    py: Python<'py>,
+    dc: Vec<f64>,
+    scene: Option<PyRef<'_, Scene>>,
+    r: Option<f64>,
+    g: Option<f64>,
+    max_events: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::precursors_fe as pfe;
+    series_values("dc", &dc)?;
+    let p = rg(r, g)?;
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let max_events = max_events.unwrap_or(pfe::DEFAULT_DC_MAX_EVENTS);
+    let mu = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g()).map_err(to_py)?;
+    let (rows, _) = run_detached(py, progress, |cancel, poll| {
+        pfe::dc_series(&scene, p.r(), p.g(), &dc, max_events, cancel, poll)
+    })?;
+    let out = table_with_units(py, &tribofe::report::precursors::series_table("Dc_m", "m", &rows))?;
+    out.set_item("mu_s", mu.0)?;
+    out.set_item("mu_d", mu.1)?;
+    Ok(out)
+}
+
+/// The earlier comparison (`tribofe precursors bonded`): the 1D model fed with the scene's
+/// bonded interface fields next to the paper's linear fields on the same cells:
+/// fe_events.csv's table (the library's, `comparison_table`), with its units, and the
+/// comparison's numbers (forces in units of mu_s N).
+#[pyfunction]
+#[pyo3(signature = (scene=None, r=None, g=None, events=None))]
+fn precursors_bonded<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    r: Option<f64>,
+    g: Option<f64>,
+    events: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (r, g) = (r.unwrap_or(tribofe::precursors::PAPER_R), g.unwrap_or(tribofe::precursors::PAPER_G));
+    let events = events.unwrap_or(tribofe::precursors::DEFAULT_EVENTS);
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    let (c, _) = run_detached(py, None, |cancel, _| {
+        cancel.check()?;
+        tribofe::studies::precursors_fe::bonded(&scene, r, g, events)
+    })?;
+    let out = table_with_units(py, &tribofe::report::precursors::comparison_table(&c))?;
+    let first = |run: &tribofe::precursors::discrete::Run| run.events.first().map(|e| e.f);
+    out.set_item("r", c.params.r())?;
+    out.set_item("g", c.params.g())?;
+    out.set_item("mu_s", c.mu_s)?;
+    out.set_item("mu_d", c.mu_d)?;
+    out.set_item("H_over_L", c.h_over_l)?;
+    out.set_item("t_over_L", c.t_over_l)?;
+    out.set_item("n_fe", c.fe.n_precursors())?;
+    out.set_item("n_linear", c.linear.n_precursors())?;
+    out.set_item("F_1_fe", first(&c.fe))?;
+    out.set_item("F_1_linear", first(&c.linear))?;
+    out.set_item("F_max_fe", c.fe.f_limit())?;
+    out.set_item("F_max_linear", c.linear.f_limit())?;
+    Ok(out)
 }
 
 /// The spec `tribofe rupture` runs when no flag is given: the cross-check spec with the
@@ -1301,6 +1558,48 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
             ("max_events", pfe::DEFAULT_FIG5_MAX_EVENTS),
         ],
     );
+    {
+        use tribofe::scene::rectangle as rect;
+        let d = rect::DEFAULT_SIDES;
+        put!(
+            "solve",
+            [
+                ("lx", rect::DEFAULT_LX),
+                ("ly", rect::DEFAULT_LY),
+                ("nx", rect::DEFAULT_NX),
+                ("ny", rect::DEFAULT_NY),
+                ("element", rect::DEFAULT_ELEMENT),
+                ("young", rect::DEFAULT_YOUNG),
+                ("poisson", rect::DEFAULT_POISSON),
+                ("bottom", d[0]),
+                ("right", d[1]),
+                ("top", d[2]),
+                ("left", d[3]),
+            ],
+        );
+    }
+    {
+        use tribofe::studies::edges as ed;
+        put!(
+            "edges",
+            [
+                ("mu", ed::DEFAULT_MU.to_vec()),
+                ("refine", ed::DEFAULT_REFINE.to_vec()),
+                ("mu_s", ed::DEFAULT_MU_S),
+                ("mu_d", ed::DEFAULT_MU_D),
+                ("rule", ed::DEFAULT_RULE.name()),
+                ("t_over_l", ed::DEFAULT_T_OVER_L.to_vec()),
+                ("open_refine", ed::DEFAULT_OPEN_REFINE.to_vec()),
+                ("end_grading", ed::DEFAULT_END_GRADING),
+                ("h_over_l", ed::DEFAULT_H_OVER_L.to_vec()),
+            ],
+        );
+    }
+    put!("precursors.map", [("resolution", tribofe::precursors::DEFAULT_MAP_RESOLUTION)]);
+    put!("precursors.thin_layer", [("r", pr), ("g", pg)]);
+    put!("precursors.heights", [("r", pr), ("g", pg)]);
+    put!("precursors.dc", [("r", pr), ("g", pg), ("max_events", pfe::DEFAULT_DC_MAX_EVENTS)]);
+    put!("precursors.bonded", [("r", pr), ("g", pg), ("events", tribofe::precursors::DEFAULT_EVENTS)]);
     put!(
         "dynamics.rupture",
         [
@@ -1334,11 +1633,18 @@ fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(check, m)?)?;
     m.add_function(wrap_pyfunction!(slide, m)?)?;
+    m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(edges, m)?)?;
     m.add_function(wrap_pyfunction!(precursors_model, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(converge, m)?)?;
     m.add_function(wrap_pyfunction!(precursors_fe_fig4, m)?)?;
     m.add_function(wrap_pyfunction!(precursors_fe_fig5, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_map, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_thin_layer, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_heights, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_dc, m)?)?;
+    m.add_function(wrap_pyfunction!(precursors_bonded, m)?)?;
     m.add_function(wrap_pyfunction!(rupture, m)?)?;
     m.add_function(wrap_pyfunction!(dynamic_slide, m)?)?;
     m.add_function(wrap_pyfunction!(defaults, m)?)?;

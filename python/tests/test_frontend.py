@@ -34,6 +34,10 @@ QUIET_CALLS = {
     "converge": lambda: tribofe.converge(n_thick=[1, 2]),
     "precursors.fe_fig4": lambda: tribofe.precursors.fe_fig4(SMALL, cycles=1),
     "precursors.fe_fig5": lambda: tribofe.precursors.fe_fig5(resolution=2),
+    "precursors.thin_layer": lambda: tribofe.precursors.thin_layer([0.02]),
+    "precursors.heights": lambda: tribofe.precursors.heights([0.1], SMALL),
+    "precursors.dc": lambda: tribofe.precursors.dc([1e-7], SMALL),
+    "edges": lambda: tribofe.edges(SMALL, mu=[0.3], refine=[2], t_over_l=[0.02], open_refine=[2], h_over_l=[0.1]),
     "dynamics.slide": lambda: tribofe.dynamics.slide(SMALL, law="coulomb", x_max=1e-6),
     "dynamics.rupture": lambda: tribofe.dynamics.rupture(t_end=0.005),
 }
@@ -220,6 +224,11 @@ RESULTS = {
     "converge": (QUIET_CALLS["converge"], tribofe.ConvergeResult, None),
     "precursors.model": (lambda: tribofe.precursors.model(), tribofe.ModelResult, None),
     "precursors.fe_fig5": (QUIET_CALLS["precursors.fe_fig5"], tribofe.FeFig5Result, None),
+    "precursors.map": (lambda: tribofe.precursors.map(resolution=4), tribofe.NMapResult, None),
+    "precursors.thin_layer": (QUIET_CALLS["precursors.thin_layer"], tribofe.SeriesResult, None),
+    "precursors.bonded": (lambda: tribofe.precursors.bonded(), tribofe.BondedResult, None),
+    "solve": (lambda: tribofe.solve(nx=4, ny=2), tribofe.SolveResult, {"reactions"}),
+    "edges": (QUIET_CALLS["edges"], tribofe.EdgesResult, {"preslip", "opening"}),
     "dynamics.slide": (QUIET_CALLS["dynamics.slide"], tribofe.DynamicSlideResult, {"loading", "events", "dyn_events", "fronts", "summary"}),
     "dynamics.rupture": (QUIET_CALLS["dynamics.rupture"], tribofe.RuptureResult, {"nodes", "summary", "energy"}),
 }

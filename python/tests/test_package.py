@@ -67,6 +67,43 @@ def test_check_equals_the_command(tribofe_bin, tmp_path):
     assert res.balance_error < 1e-12
 
 
+def test_solve_equals_the_command(tribofe_bin, tmp_path):
+    import tomllib
+
+    # Uniaxial stress: rollers at the bottom and left, a uniform pressure of 10 Pa on the top.
+    # The exact field is linear, so every element reproduces it: sigma_yy = -10 Pa at every
+    # node, the bottom carries Fy = 10 Pa x lx, and the top sinks by (1 - nu^2)/E x 10 Pa x ly
+    # (plane strain).
+    args = ["--bottom", "roller", "--left", "roller", "--top", "t=0,-10", "--nx", "10", "--ny", "2"]
+    out = tmp_path / "solve"
+    r = run_cli(tribofe_bin, "solve", *args, "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    res = tribofe.solve(bottom="roller", left="roller", top="t=0,-10", nx=10, ny=2)
+    assert isinstance(res, tribofe.SolveResult)
+    with open(out / "run.toml", "rb") as f:
+        cli = tomllib.load(f)["results"]
+    assert res.unknowns == cli["unknowns"]
+    for side, fxy in res.reactions_N_per_m.items():
+        np.testing.assert_allclose(fxy, cli[f"reaction_{side}_n_per_m"], rtol=1e-12, atol=1e-12, err_msg=side)
+    d = tribofe.defaults()["solve"]
+    lx, ly, e, nu = d["lx"], d["ly"], d["young"], d["poisson"]
+    assert abs(res.reactions_N_per_m["bottom"][1] - 10 * lx) < 1e-9 * 10 * lx
+    np.testing.assert_allclose(res.applied_N_per_m, (0.0, -10 * lx), rtol=1e-12)
+    np.testing.assert_allclose(np.add(res.total_reaction_N_per_m, res.applied_N_per_m), 0.0, atol=1e-9)
+    np.testing.assert_allclose(res.stress_Pa[:, 1], -10.0, rtol=1e-9)
+    top = np.abs(res.nodes_m[:, 1] - ly) < 1e-12
+    np.testing.assert_allclose(res.displacement_m[top, 1], -(1 - nu**2) / e * 10 * ly, rtol=1e-9)
+    assert list(res.reactions["side"]) == ["bottom", "right", "top", "left"]
+    # A bad side condition and a bad element are refused by keyword, the accepted forms listed.
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.solve(left="glue")
+    assert str(e.value).startswith("invalid left=") and "roller" in str(e.value), str(e.value)
+    with pytest.raises(tribofe.InputError, match="element="):
+        tribofe.solve(element="qua5")
+    with pytest.raises(tribofe.InputError, match="nx="):
+        tribofe.solve(nx=0)
+
+
 def test_slide_equals_the_command(tribofe_bin, tmp_path):
     out = tmp_path / "slide"
     args = ["--law", "static-kinetic", "--r", "0.9", "--g", "0.35", "--cycles", "1"]
@@ -234,6 +271,118 @@ def test_fe_precursor_studies(tribofe_bin, tmp_path):
     # The model's n in each cell equals the paper's iteration.
     for r, g, n in zip(t["r"], t["g"], t["model_precursors"]):
         assert n == tribofe.precursors.model(r, g).n
+
+
+def test_n_map_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "map"
+    assert run_cli(tribofe_bin, "precursors", "map", "--resolution", "12", "--out", str(out)).returncode == 0
+    res = tribofe.precursors.map(resolution=12)
+    assert isinstance(res, tribofe.NMapResult) and len(res) == 144
+    assert_table_is_the_csv("n_map", res.table, out / "n_map.csv", 17, res.units)
+    # The paper's fig. 5: no precursor below the line g = (1 - r)/2 and at least one above
+    # (no cell centre of a 12 x 12 grid lies on it).
+    r, g, n = (np.asarray(res.table[k]) for k in ("r", "g", "n"))
+    np.testing.assert_array_equal(n == 0, g < (1 - r) / 2)
+    with pytest.raises(tribofe.InputError, match="resolution=1"):
+        tribofe.precursors.map(resolution=1)
+
+
+def test_precursor_series_equal_the_command(tribofe_bin, tmp_path):
+    # thin-layer, heights and dc: each table is the command's CSV for the same options, every
+    # column (the wall time measured, so only named), counts int64.
+    runs = [
+        ("thin-layer", ["--t-over-l", "0.02,0.01"], "thin_layer.csv",
+         lambda: tribofe.precursors.thin_layer([0.02, 0.01])),
+        ("heights", ["--h-over-l", "0.05,0.1", "--length", "0.1"], "heights.csv",
+         lambda: tribofe.precursors.heights([0.05, 0.1], tribofe.Scene(length=0.1))),
+        ("dc", ["--dc", "1e-7", "--length", "0.1"], "dc.csv",
+         lambda: tribofe.precursors.dc([1e-7], tribofe.Scene(length=0.1))),
+    ]
+    got = {}
+    for cmd, args, csv_name, call in runs:
+        out = tmp_path / cmd
+        r = run_cli(tribofe_bin, "precursors", cmd, *args, "--out", str(out))
+        assert r.returncode == 0, r.stderr
+        res = call()
+        assert isinstance(res, tribofe.SeriesResult)
+        assert_table_is_the_csv(cmd, res.table, out / csv_name, 17, res.units, measured=("seconds",))
+        assert np.asarray(res.table["precursors_advancing_5t"]).dtype == np.int64
+        got[cmd] = res
+    # The model's columns are the paper's iteration at (0.9, 0.35): n = 10, F_1 = 0.72.
+    tl = got["thin-layer"].table
+    np.testing.assert_array_equal(tl["model_precursors"], [10, 10])
+    np.testing.assert_allclose(tl["model_F1_over_mu_s_N"], 0.72, rtol=1e-12)
+    # heights keeps mu_d fixed, so g = 6 mu_d H/L on every row (to round-off).
+    h = got["heights"]
+    np.testing.assert_allclose(h.table["g"], 6 * h.mu_d * np.asarray(h.table["H_over_L"]), rtol=1e-12)
+    # dc: the paper rule's row (D_c = 0) first, then each D_c.
+    np.testing.assert_array_equal(got["dc"].table["Dc_m"], [0.0, 1e-7])
+    assert dict(got["dc"].units)["Dc_m"] == "m"
+
+
+def test_interrupt_stops_a_precursor_series_within_a_second(tmp_path):
+    # The D_c = 1e-6 m run on the small scene takes several seconds (slip weakening, one
+    # cycle): SIGINT 2 s in stops it at its next solve.
+    assert_interrupt_stops(tmp_path, "tribofe.precursors.dc([1e-6], tribofe.Scene(length=0.1))", 2.0)
+
+
+def test_bonded_comparison_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "bonded"
+    assert run_cli(tribofe_bin, "precursors", "bonded", "--out", str(out)).returncode == 0
+    res = tribofe.precursors.bonded()
+    assert isinstance(res, tribofe.BondedResult)
+    assert_table_is_the_csv("fe_events", res.table, out / "fe_events.csv", 17, res.units)
+    t = res.table
+    # Each run ends at its one stick-slip event, after its precursors (n of them).
+    for model, n in (("fe", res.n_fe), ("linear", res.n_linear)):
+        ss = np.asarray(t["stick_slip"])[np.asarray(t["model"]) == model]
+        assert n is not None and ss[n] == 1 and not ss[:n].any(), model
+    # The linear run is the paper's iteration on cells: its F_1 is the model's 0.72 to the
+    # cells' resolution (h/L = 1/400).
+    assert abs(res.F_1_linear - 0.72) < 1 / 400
+    with pytest.raises(tribofe.InputError, match="events="):
+        tribofe.precursors.bonded(events=100_001)
+
+
+def test_precursor_studies_name_the_keyword():
+    with pytest.raises(tribofe.InputError, match="t_over_l="):
+        tribofe.precursors.thin_layer([0.5])
+    with pytest.raises(tribofe.InputError, match="h_over_l="):
+        tribofe.precursors.heights([])
+    with pytest.raises(tribofe.InputError, match="max_events="):
+        tribofe.precursors.dc([1e-7], tribofe.Scene(length=0.1), max_events=0)
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.precursors.dc([1e-7], r=1.5)
+    assert str(e.value).startswith("invalid r=1.5:"), str(e.value)
+    # The model's event count has the command's cap (--events at most 100 000).
+    with pytest.raises(tribofe.InputError, match="events=: 100001: at most 100000"):
+        tribofe.precursors.model(events=100_001)
+
+
+def test_edges_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "edges"
+    args = ["--length", "0.1", "--mu", "0.3,0.65", "--refine", "2,4", "--t-over-l", "0.02,0.01", "--open-refine", "4",
+            "--h-over-l", "0.05,0.1"]
+    r = run_cli(tribofe_bin, "edges", *args, "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    res = tribofe.edges(tribofe.Scene(length=0.1), mu=[0.3, 0.65], refine=[2, 4], t_over_l=[0.02, 0.01],
+                        open_refine=[4], h_over_l=[0.05, 0.1])
+    assert isinstance(res, tribofe.EdgesResult)
+    # Both tables are the command's CSVs (13 significant digits), counts int64.
+    assert_table_is_the_csv("preslip", res.preslip, out / "preslip.csv", 13, res.units["preslip"])
+    assert_table_is_the_csv("opening", res.opening, out / "opening.csv", 13, res.units["opening"])
+    # The opening runs sit at g = 6 mu_d H/L, and their model F_1 is the paper's iteration at
+    # (r, g) = (mu_d/mu_s, g).
+    d = tribofe.defaults()["edges"]
+    op = res.opening
+    np.testing.assert_allclose(op["g"], 6 * d["mu_d"] * np.asarray(op["H_over_L"]), rtol=1e-12)
+    for g, f1 in zip(op["g"], op["F1_model_over_mu_s_N"]):
+        assert abs(f1 - tribofe.precursors.model(d["mu_d"] / d["mu_s"], g).F_1) < 1e-12
+    with pytest.raises(tribofe.InputError, match="open_refine="):
+        tribofe.edges(open_refine=[1])
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.edges(rule="damped")
+    assert "rule=" in str(e.value) and '"paper", "overdamped"' in str(e.value), str(e.value)
 
 
 def test_sweep_and_converge_tables(tribofe_bin, tmp_path):
@@ -452,6 +601,7 @@ def test_dynamic_slide_is_silent_and_refuses_a_wrong_choice(capfd):
 # Each function with a command, the command's words and the flags the package names
 # otherwise; every option both share is compared.
 COMMANDS = {
+    "solve": (["solve"], {}),
     "slide": (["slide"], {}),
     "dynamics.slide": (["slide"], {}),
     "sweep": (["sweep"], {}),
@@ -459,6 +609,12 @@ COMMANDS = {
     "precursors.model": (["precursors", "model"], {}),
     "precursors.fe_fig4": (["precursors", "fe"], {}),
     "precursors.fe_fig5": (["precursors", "fe-map"], {}),
+    "precursors.map": (["precursors", "map"], {}),
+    "precursors.thin_layer": (["precursors", "thin-layer"], {}),
+    "precursors.heights": (["precursors", "heights"], {}),
+    "precursors.dc": (["precursors", "dc"], {}),
+    "precursors.bonded": (["precursors", "bonded"], {}),
+    "edges": (["edges"], {}),
     "dynamics.rupture": (["rupture"], {}),
 }
 # Options the package deliberately defaults otherwise (none: every default is the library's).
@@ -515,6 +671,7 @@ def test_defaults_equal_the_commands_help(tribofe_bin):
             compared.setdefault(name, set()).add(key)
     # The comparison reached the options it must (a help layout change would empty it).
     must = {
+        "solve": {"lx", "ly", "nx", "ny", "element", "young", "poisson", "bottom", "right", "top", "left"},
         "slide": {"law", "rule", "residual", "backslip", "n_force", "max_events"},
         # law: `slide --dynamics` takes slide's --law default, and so does dynamics.slide.
         "dynamics.slide": {"law", "n_force", "max_events", "courant", "heal"},
@@ -523,6 +680,12 @@ def test_defaults_equal_the_commands_help(tribofe_bin):
         "precursors.model": {"r", "g"},
         "precursors.fe_fig4": {"r", "g", "cycles"},
         "precursors.fe_fig5": {"resolution", "rules", "max_events"},
+        "precursors.map": {"resolution"},
+        "precursors.thin_layer": {"r", "g"},
+        "precursors.heights": {"r", "g"},
+        "precursors.dc": {"r", "g", "max_events"},
+        "precursors.bonded": {"r", "g", "events"},
+        "edges": {"mu", "refine", "mu_s", "mu_d", "rule", "t_over_l", "open_refine", "end_grading", "h_over_l"},
         "dynamics.rupture": {"s", "h", "dc", "t_end", "length", "height", "mu_s", "mu_d", "sigma0", "young",
                              "poisson", "density", "courant", "damping", "contact", "normal_lag",
                              "patch_taper", "max_steps"},

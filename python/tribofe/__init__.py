@@ -24,19 +24,31 @@ from ._tribofe import check as _check
 from ._tribofe import converge as _converge
 from ._tribofe import defaults as _defaults
 from ._tribofe import dynamic_slide as _dynamic_slide
+from ._tribofe import edges as _edges
 from ._tribofe import precursors_fe_fig4 as _fe_fig4
 from ._tribofe import precursors_fe_fig5 as _fe_fig5
+from ._tribofe import precursors_bonded as _bonded
+from ._tribofe import precursors_dc as _dc
+from ._tribofe import precursors_heights as _heights
+from ._tribofe import precursors_map as _n_map
 from ._tribofe import precursors_model as _precursors_model
+from ._tribofe import precursors_thin_layer as _thin_layer
 from ._tribofe import rupture as _rupture
 from ._tribofe import slide as _slide
+from ._tribofe import solve as _solve
 from ._tribofe import sweep as _sweep
 from ._results import (
+    BondedResult,
     ConvergeResult,
+    EdgesResult,
     FeFig4Result,
     FeFig4Run,
     FeFig5Result,
     ModelResult,
+    NMapResult,
     RuptureResult,
+    SeriesResult,
+    SolveResult,
     SweepResult,
     _df,
     _row,
@@ -48,14 +60,17 @@ from .errors import InputError, Interrupted, NumericalError, OutputError, Tribof
 __all__ = [
     "Scene",
     "check",
+    "solve",
     "slide",
     "precursors",
     "dynamics",
     "sweep",
     "converge",
+    "edges",
     "defaults",
     "CheckResult",
     "CheckCase",
+    "SolveResult",
     "SlideResult",
     "DynamicSlideResult",
     "SweepResult",
@@ -64,6 +79,10 @@ __all__ = [
     "FeFig4Result",
     "FeFig4Run",
     "FeFig5Result",
+    "NMapResult",
+    "SeriesResult",
+    "BondedResult",
+    "EdgesResult",
     "RuptureResult",
     "TribofeError",
     "InputError",
@@ -225,6 +244,47 @@ def check(scene: Optional[Scene] = None, fields: bool = False) -> CheckResult:
     return CheckResult(
         scene, cases, raw["n_nodes"], raw["n_elements"], raw["balance_error"], raw["core_s"], raw.get("fields")
     )
+
+
+def solve(
+    *,
+    lx: Optional[float] = None,
+    ly: Optional[float] = None,
+    nx: Optional[int] = None,
+    ny: Optional[int] = None,
+    element: Optional[str] = None,
+    young: Optional[float] = None,
+    poisson: Optional[float] = None,
+    bottom: Optional[str] = None,
+    right: Optional[str] = None,
+    top: Optional[str] = None,
+    left: Optional[str] = None,
+    max_dofs: Optional[int] = None,
+) -> SolveResult:
+    """A rectangle [0, lx] x [0, ly] (m) of ``nx`` x ``ny`` elements (``element``: qua4,
+    qua4-sri, qua4-im, qua8, qua9, tri3, tri6) in plane strain (``young`` Pa, ``poisson``),
+    one condition per side: ``bottom``, ``right``, ``top``, ``left`` each ``"free"``,
+    ``"clamped"``, ``"roller"``, ``"u=UX,UY"`` (m) or ``"t=TX,TY"`` (Pa), as ``tribofe solve``
+    (None is its default, ``defaults()["solve"]``: 1 m x 0.1 m, 40 x 4 QUA4, E = 2 kPa,
+    nu = 0.4, bottom clamped, top displaced 1 mm along x). ``max_dofs``: refuse meshes above
+    this many unknowns (None: what fits in memory). Returns a :class:`SolveResult`: the
+    reactions per side, their balance and the fields. A bad input raises
+    :class:`InputError` naming its keyword."""
+    raw = _solve(
+        lx=lx,
+        ly=ly,
+        nx=nx,
+        ny=ny,
+        element=element,
+        young=young,
+        poisson=poisson,
+        bottom=bottom,
+        right=right,
+        top=top,
+        left=left,
+        max_dofs=max_dofs,
+    )
+    return SolveResult(**raw)
 
 
 @dataclass(frozen=True)
@@ -419,6 +479,52 @@ def converge(
     return ConvergeResult(_table(raw["table"], raw["units"]), raw["units"], raw["summary"])
 
 
+def edges(
+    scene: Optional[Scene] = None,
+    *,
+    mu: Any = None,
+    refine: Any = None,
+    mu_s: Optional[float] = None,
+    mu_d: Optional[float] = None,
+    rule: Optional[str] = None,
+    t_over_l: Any = None,
+    open_refine: Any = None,
+    end_grading: Optional[float] = None,
+    h_over_l: Any = None,
+    progress: Any = False,
+) -> EdgesResult:
+    """The block's ends on the frictional interface, as ``tribofe edges``: pre-slip under N
+    alone for each coulomb ``mu`` and refinement ``refine`` (elements through t), and the
+    trailing end's opening under the drive (static-kinetic ``mu_s``, ``mu_d``, ``rule``
+    ``"paper"`` or ``"overdamped"``) for each ``t_over_l`` x ``open_refine`` x ``h_over_l``;
+    ``end_grading`` grows the elements from the ends (1: uniform). Each study meshes its own
+    blocks from the scene's length and materials (its thickness, height and mesh keys do not
+    act; a mesh file is refused). None is the command's default (``defaults()["edges"]``).
+    Returns an :class:`EdgesResult`: ``preslip`` and ``opening``, the tables of preslip.csv
+    and opening.csv. Silent unless ``progress`` is asked; the interrupt key stops it."""
+    cb, close = _progress(progress, "edges")
+    try:
+        raw = _edges(
+            scene if scene is not None else Scene(),
+            mu=None if mu is None else [float(v) for v in mu],
+            refine=None if refine is None else [int(v) for v in refine],
+            mu_s=mu_s,
+            mu_d=mu_d,
+            rule=rule,
+            t_over_l=None if t_over_l is None else [float(v) for v in t_over_l],
+            open_refine=None if open_refine is None else [int(v) for v in open_refine],
+            end_grading=end_grading,
+            h_over_l=None if h_over_l is None else [float(v) for v in h_over_l],
+            progress=cb,
+        )
+    finally:
+        close()
+    units = {k: raw[k]["units"] for k in ("preslip", "opening")}
+    return EdgesResult(
+        _table(raw["preslip"]["table"], units["preslip"]), _table(raw["opening"]["table"], units["opening"]), units
+    )
+
+
 class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
     """The paper's 1D precursor model."""
 
@@ -500,6 +606,93 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         finally:
             close()
         return FeFig5Result(_table(cols["table"], cols["units"]), cols["units"])
+
+    @staticmethod
+    def map(resolution: Optional[int] = None) -> NMapResult:
+        """The model's n(r, g) at the cell centres of a ``resolution`` x ``resolution`` grid
+        over the (r, g) square (the paper's fig. 5), as ``tribofe precursors map`` (None: its
+        40, ``defaults()["precursors.map"]``; 2 to 400): a :class:`NMapResult` whose ``table``
+        is n_map.csv's (``r``, ``g``, ``n``)."""
+        raw = _n_map(resolution)
+        return NMapResult(_table(raw["table"], raw["units"]), raw["units"])
+
+    @staticmethod
+    def thin_layer(
+        t_over_l: Any,
+        scene: Optional[Scene] = None,
+        r: Optional[float] = None,
+        g: Optional[float] = None,
+        progress: Any = False,
+    ) -> SeriesResult:
+        """The thin-layer limit, as ``tribofe precursors thin-layer``: the ``paper`` rule at
+        (r, g) (None: 0.9, 0.35) on blocks of each ``t_over_l`` (t/L, a list; 0 < t/L <= 0.1)
+        at the scene's L and H/L; each block is meshed here with h = t and 2 elements through
+        t, so the scene's thickness and mesh keys do not act. A :class:`SeriesResult` whose
+        ``table`` is thin_layer.csv's. Silent unless ``progress`` is asked; the interrupt key
+        stops it."""
+        cb, close = _progress(progress, "thin layer")
+        try:
+            raw = _thin_layer([float(v) for v in t_over_l], scene if scene is not None else Scene(), r, g, progress=cb)
+        finally:
+            close()
+        return SeriesResult(_table(raw["table"], raw["units"]), raw["units"], "t_over_L")
+
+    @staticmethod
+    def heights(
+        h_over_l: Any,
+        scene: Optional[Scene] = None,
+        r: Optional[float] = None,
+        g: Optional[float] = None,
+        progress: Any = False,
+    ) -> SeriesResult:
+        """The height of the drive, as ``tribofe precursors heights``: the ``paper`` rule with
+        the coefficients of (r, g) (None: 0.9, 0.35) at the scene's H kept fixed, over each
+        ``h_over_l`` (H/L, a list; g = 6 mu_d H/L must stay below 1). A :class:`SeriesResult`
+        whose ``table`` is heights.csv's, with ``mu_s``, ``mu_d``. Silent unless ``progress``
+        is asked; the interrupt key stops it."""
+        cb, close = _progress(progress, "heights")
+        try:
+            raw = _heights([float(v) for v in h_over_l], scene if scene is not None else Scene(), r, g, progress=cb)
+        finally:
+            close()
+        return SeriesResult(_table(raw["table"], raw["units"]), raw["units"], "H_over_L", raw["mu_s"], raw["mu_d"])
+
+    @staticmethod
+    def dc(
+        dc: Any,
+        scene: Optional[Scene] = None,
+        r: Optional[float] = None,
+        g: Optional[float] = None,
+        max_events: Optional[int] = None,
+        progress: Any = False,
+    ) -> SeriesResult:
+        """The event rule against D_c, as ``tribofe precursors dc``: at (r, g) (None: 0.9,
+        0.35) the ``paper`` rule (its row has ``Dc_m`` = 0) and slip-weakening with each
+        ``dc`` (m, a list), one cycle each, a run over ``max_events`` (None: 2000,
+        ``defaults()["precursors.dc"]``) refused on its own row. A :class:`SeriesResult` whose
+        ``table`` is dc.csv's, with ``mu_s``, ``mu_d``. Silent unless ``progress`` is asked;
+        the interrupt key stops it."""
+        cb, close = _progress(progress, "D_c")
+        try:
+            raw = _dc([float(v) for v in dc], scene if scene is not None else Scene(), r, g, max_events, progress=cb)
+        finally:
+            close()
+        return SeriesResult(_table(raw["table"], raw["units"]), raw["units"], "Dc_m", raw["mu_s"], raw["mu_d"])
+
+    @staticmethod
+    def bonded(
+        scene: Optional[Scene] = None,
+        r: Optional[float] = None,
+        g: Optional[float] = None,
+        events: Optional[int] = None,
+    ) -> BondedResult:
+        """The earlier comparison, as ``tribofe precursors bonded`` (without ``--sweep``): the
+        1D model fed with the scene's bonded interface fields next to the paper's linear
+        fields on the same cells, at (r, g) (None: 0.9, 0.35), ``events`` events each (None:
+        200; at most 100 000). A :class:`BondedResult` whose ``table`` is fe_events.csv's."""
+        raw = _bonded(scene if scene is not None else Scene(), r, g, events)
+        table = _table(raw.pop("table"), raw["units"])
+        return BondedResult(table=table, **raw)
 
 
 @dataclass(frozen=True)

@@ -154,6 +154,124 @@ class FeFig5Result(_OneTable):
 
 
 @dataclass(frozen=True, eq=False)
+class SolveResult(_Result):
+    """``tribofe solve``: ``reactions_N_per_m`` per side (``"bottom"``, ``"right"``,
+    ``"top"``, ``"left"``: (Fx, Fy), N per metre of width; a corner node counts for both its
+    sides), ``total_reaction_N_per_m`` (each constrained DOF once) and ``applied_N_per_m``
+    (the traction force; the two balance), ``unknowns``, and the fields: ``nodes_m`` (n x 2),
+    ``displacement_m`` (n x 2, m), ``stress_Pa`` (n x 4: sigma_xx, sigma_yy, sigma_xy,
+    sigma_zz; nodal values extrapolated from the integration points and averaged)."""
+
+    reactions_N_per_m: Dict[str, Tuple[float, float]]
+    total_reaction_N_per_m: Tuple[float, float]
+    applied_N_per_m: Tuple[float, float]
+    unknowns: int
+    nodes_m: np.ndarray = field(repr=False)
+    displacement_m: np.ndarray = field(repr=False)
+    stress_Pa: np.ndarray = field(repr=False)
+    core_s: float = field(default=0.0, compare=False)
+
+    @property
+    def reactions(self):
+        """The reactions as a table: ``side``, ``Fx_N_per_m``, ``Fy_N_per_m``."""
+        sides = list(self.reactions_N_per_m)
+        f = np.asarray([self.reactions_N_per_m[k] for k in sides], dtype=float).reshape(-1, 2)
+        return _table({"side": sides, "Fx_N_per_m": f[:, 0], "Fy_N_per_m": f[:, 1]})
+
+    def to_pandas(self):
+        """``{"reactions": df}``."""
+        return {"reactions": _df(self.reactions)}
+
+    def __repr__(self) -> str:
+        return f"SolveResult({self.unknowns} unknowns, {len(self.nodes_m)} nodes, reactions {self.reactions_N_per_m})"
+
+
+@dataclass(frozen=True, eq=False)
+class EdgesResult(_Result):
+    """``tribofe edges``: ``preslip``, preslip.csv's table (per coulomb mu and t/h the
+    interface nodes and the pre-slip extents from each end, units of t), and ``opening``,
+    opening.csv's (per t/L, t/h, H/L: g, F_1 of the model and the FE, the force and open
+    length when the trailing end first opens, whether it opens before the first precursor,
+    the open nodes; forces in units of mu_s N, lengths in units of t; an empty cell NaN);
+    the library's tables, ``units[name]`` their (column, unit) pairs."""
+
+    preslip: Any
+    opening: Any
+    units: Dict[str, List[Tuple[str, str]]]
+
+    def to_pandas(self):
+        """``{"preslip": df, "opening": df}``, each with its units in ``attrs["units"]``."""
+        return {k: _df(getattr(self, k), self.units[k]) for k in ("preslip", "opening")}
+
+    def __repr__(self) -> str:
+        return f"EdgesResult({len(self.preslip['mu'])} pre-slip rows, {len(self.opening['g'])} opening runs)"
+
+
+@dataclass(frozen=True, eq=False)
+class NMapResult(_OneTable):
+    """``tribofe precursors map``: ``table``, n_map.csv's rows (the library's table): per cell
+    centre ``r``, ``g`` (dimensionless) and the model's number of precursors ``n`` (int64);
+    ``units`` (column, unit)."""
+
+    table: Any
+    units: List[Tuple[str, str]]
+
+    def __repr__(self) -> str:
+        n = np.asarray(self.table["n"])
+        return f"NMapResult({len(self)} cells, n from {n.min() if len(n) else 0} to {n.max() if len(n) else 0})"
+
+
+@dataclass(frozen=True, eq=False)
+class SeriesResult(_OneTable):
+    """``tribofe precursors thin-layer``, ``heights`` and ``dc``: ``table``, the rows of
+    thin_layer.csv, heights.csv or dc.csv (the library's one series table): per value of
+    ``parameter`` (``t_over_L``, ``H_over_L`` or ``Dc_m``, its first column) the model's n,
+    F_1, x_1 and F_max, the FE run's counts (int64 when every run finished, else float64 with
+    NaN on a refused run's row), F_1, x_1, peak and their deviations, the field checks, the
+    worst violation and the wall time ``seconds`` (forces in units of mu_s N, x in units of
+    L); ``units`` (column, unit); ``mu_s``, ``mu_d`` the coefficients of (r, g) at the scene's
+    H (``heights`` and ``dc``)."""
+
+    table: Any
+    units: List[Tuple[str, str]]
+    parameter: str
+    mu_s: Optional[float] = None
+    mu_d: Optional[float] = None
+
+    def __repr__(self) -> str:
+        return f"SeriesResult({len(self)} runs over {self.parameter})"
+
+
+@dataclass(frozen=True, eq=False)
+class BondedResult(_OneTable):
+    """``tribofe precursors bonded``: ``table``, fe_events.csv's rows (the library's table):
+    both discrete runs, ``model`` ``"fe"`` (the scene's bonded fields) then ``"linear"`` (the
+    paper's fields on the same cells), per event ``i``, ``F``, ``Fc``, ``x_nucleation``,
+    ``x``, ``Fstar`` and ``stick_slip`` (1 for the whole slip, 0 for a precursor); forces in
+    units of mu_s N, x in units of L; ``units``; and the comparison's numbers: ``r``, ``g``,
+    ``mu_s``, ``mu_d``, ``H_over_L``, ``t_over_L``, precursors ``n_fe`` and ``n_linear``,
+    ``F_1_*`` and ``F_max_*`` (None where a run did not reach stick-slip)."""
+
+    table: Any
+    units: List[Tuple[str, str]]
+    r: float
+    g: float
+    mu_s: float
+    mu_d: float
+    H_over_L: float
+    t_over_L: float
+    n_fe: Optional[int]
+    n_linear: Optional[int]
+    F_1_fe: Optional[float]
+    F_1_linear: Optional[float]
+    F_max_fe: Optional[float]
+    F_max_linear: Optional[float]
+
+    def __repr__(self) -> str:
+        return f"BondedResult(r={self.r}, g={self.g}: n FE-fed {self.n_fe}, linear {self.n_linear})"
+
+
+@dataclass(frozen=True, eq=False)
 class ModelResult(_Result):
     """The paper's analytic iteration for (r, g): ``n`` precursors, ``F_1`` and ``F_max``
     (units of mu_s N), ``events`` (events.csv's table, the library's: forces in units of

@@ -63,6 +63,23 @@ class Scene:
     def element(self) -> str: ...
 
 def check(scene: Optional[Scene] = None, fields: bool = False) -> Dict[str, Any]: ...
+# The reactions per side, their sum, the applied force, the unknowns and the fields; wrapped
+# by tribofe.solve as SolveResult.
+def solve(
+    *,
+    lx: Optional[float] = None,
+    ly: Optional[float] = None,
+    nx: Optional[int] = None,
+    ny: Optional[int] = None,
+    element: Optional[str] = None,
+    young: Optional[float] = None,
+    poisson: Optional[float] = None,
+    bottom: Optional[str] = None,
+    right: Optional[str] = None,
+    top: Optional[str] = None,
+    left: Optional[str] = None,
+    max_dofs: Optional[int] = None,
+) -> Dict[str, Any]: ...
 # A keyword at None takes the library's default (the command's), listed by defaults().
 def slide(
     scene: Optional[Scene] = None,
@@ -116,6 +133,22 @@ def converge(
     target: Optional[float] = None,
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
+# {"preslip": {"table", "units"}, "opening": {"table", "units"}}; tribofe.edges wraps it as
+# EdgesResult.
+def edges(
+    scene: Optional[Scene] = None,
+    *,
+    mu: Optional[List[float]] = None,
+    refine: Optional[List[int]] = None,
+    mu_s: Optional[float] = None,
+    mu_d: Optional[float] = None,
+    rule: Optional[str] = None,
+    t_over_l: Optional[List[float]] = None,
+    open_refine: Optional[List[int]] = None,
+    end_grading: Optional[float] = None,
+    h_over_l: Optional[List[float]] = None,
+    progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
 # precursors_model, precursors_fe_fig4, precursors_fe_fig5: wrapped by tribofe.precursors as
 # ModelResult, FeFig4Result (one FeFig4Run per rule, and summary.csv's table) and
 # FeFig5Result.
@@ -127,6 +160,25 @@ def precursors_fe_fig4(
 def precursors_fe_fig5(
     scene: Optional[Scene] = None, resolution: Optional[int] = None, rules: Optional[List[str]] = None,
     max_events: Optional[int] = None, progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
+# precursors_map, _thin_layer, _heights, _dc, _bonded: {"table": the library's table, "units":
+# [(column, unit)...]} (heights and dc also "mu_s", "mu_d"; bonded the comparison's numbers);
+# wrapped by tribofe.precursors as NMapResult, SeriesResult and BondedResult.
+def precursors_map(resolution: Optional[int] = None) -> Dict[str, Any]: ...
+def precursors_thin_layer(
+    t_over_l: Sequence[float], scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None,
+    progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
+def precursors_heights(
+    h_over_l: Sequence[float], scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None,
+    progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
+def precursors_dc(
+    dc: Sequence[float], scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None,
+    max_events: Optional[int] = None, progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
+def precursors_bonded(
+    scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None, events: Optional[int] = None,
 ) -> Dict[str, Any]: ...
 # The per-node arrays and scalars of a rupture, "energy" a dict, "stations" {x: {"table": ...,
 # "units": ...}}; tribofe.dynamics.rupture wraps it as RuptureResult.

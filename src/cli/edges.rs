@@ -5,45 +5,52 @@ use super::scene_args::{scene as scene_from, SceneArgs};
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
+use std::sync::LazyLock;
 use tribofe::law::Rule;
-use tribofe::studies::edges::{opening_graded, preslip_graded};
+use tribofe::studies::edges::{self as edges, EdgesOptions};
 
-/// Most values of a list flag (or opening runs): each is a mesh or a run of seconds.
-const MAX_LIST: usize = 1000;
-use tribofe::Error;
+/// A list default of the library as the flag's text (`0.3,0.65`).
+fn list<T: ToString>(v: &[T]) -> String {
+    v.iter().map(T::to_string).collect::<Vec<_>>().join(",")
+}
+static MU: LazyLock<String> = LazyLock::new(|| list(&edges::DEFAULT_MU));
+static REFINE: LazyLock<String> = LazyLock::new(|| list(&edges::DEFAULT_REFINE));
+static T_OVER_L: LazyLock<String> = LazyLock::new(|| list(&edges::DEFAULT_T_OVER_L));
+static OPEN_REFINE: LazyLock<String> = LazyLock::new(|| list(&edges::DEFAULT_OPEN_REFINE));
+static H_OVER_L: LazyLock<String> = LazyLock::new(|| list(&edges::DEFAULT_H_OVER_L));
 
 #[derive(ClapArgs, Debug)]
 pub struct Args {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Coulomb coefficients of the pre-slip study.
-    #[arg(long, value_delimiter = ',', default_value = "0.3,0.65")]
+    #[arg(long, value_delimiter = ',', default_value = MU.as_str())]
     pub mu: Vec<f64>,
     /// Elements through the thickness (t/h, uniform mesh) of the pre-slip study.
-    #[arg(long, value_delimiter = ',', default_value = "2,4,8,16")]
+    #[arg(long, value_delimiter = ',', default_value = REFINE.as_str())]
     pub refine: Vec<usize>,
     /// Static and kinetic coefficients of the opening study (default: the paper's r = 0.9,
     /// g = 0.35 at H/L = 0.1: mu_s = 0.6481, mu_d = 0.5833).
-    #[arg(long, default_value_t = 0.35 / 0.6 / 0.9)]
+    #[arg(long, default_value_t = edges::DEFAULT_MU_S)]
     pub mu_s: f64,
-    #[arg(long, default_value_t = 0.35 / 0.6)]
+    #[arg(long, default_value_t = edges::DEFAULT_MU_D)]
     pub mu_d: f64,
     /// Event rule of the opening study: paper or overdamped.
-    #[arg(long, default_value = "paper")]
+    #[arg(long, default_value = edges::DEFAULT_RULE.name())]
     pub rule: String,
     /// Thickness ratios t/L of the opening study.
-    #[arg(long, value_delimiter = ',', default_value = "0.02,0.01,0.005,0.0025")]
+    #[arg(long, value_delimiter = ',', default_value = T_OVER_L.as_str())]
     pub t_over_l: Vec<f64>,
     /// Elements through the thickness (t/h) of the opening study.
-    #[arg(long, value_delimiter = ',', default_value = "8")]
+    #[arg(long, value_delimiter = ',', default_value = OPEN_REFINE.as_str())]
     pub open_refine: Vec<usize>,
     /// Growth ratio of the element length along x from h = t/(t/h) at both ends up to t/2 in
     /// the middle, for both studies; 1: uniform meshes with h = t/(t/h) everywhere (the
     /// committed validation/edges study).
-    #[arg(long, default_value_t = 1.05)]
+    #[arg(long, default_value_t = edges::DEFAULT_END_GRADING)]
     pub end_grading: f64,
     /// Drive heights H/L of the opening study.
-    #[arg(long, value_delimiter = ',', default_value = "0.025,0.05,0.1,0.2")]
+    #[arg(long, value_delimiter = ',', default_value = H_OVER_L.as_str())]
     pub h_over_l: Vec<f64>,
     #[arg(long, default_value = "out/edges")]
     pub out: PathBuf,
@@ -60,53 +67,28 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         "`edges` builds its own meshes: --refine (pre-slip) and --t-over-l (h = t/2), the heights from --h-over-l",
     )?;
     let scene = scene_from(&a.scene)?;
-    if scene.mesh.file.is_some() {
-        return Err(Error::input("--mesh", "`edges` builds its own meshes; a mesh file cannot act"));
-    }
-    if let Some(k) = a.refine.iter().chain(&a.open_refine).find(|&&k| k < 2) {
-        return Err(Error::input(
-            "--refine",
-            format!("{k}: the condensation needs at least 2 elements through t"),
-        ));
-    }
-    if !(a.end_grading.is_finite() && (1.0..=2.0).contains(&a.end_grading)) {
-        return Err(Error::input(
-            "--end-grading",
-            format!("{}: a growth ratio in [1, 2] (1: uniform meshes)", a.end_grading),
-        ));
-    }
-    for (flag, n) in [("--mu", a.mu.len()), ("--refine", a.refine.len())] {
-        if n > MAX_LIST {
-            return Err(Error::input(flag, format!("{n} values: at most {MAX_LIST}")));
-        }
-    }
-    let runs = a.t_over_l.len().saturating_mul(a.open_refine.len()).saturating_mul(a.h_over_l.len());
-    if runs > MAX_LIST {
-        return Err(Error::input(
-            "--t-over-l / --open-refine / --h-over-l",
-            format!("{runs} opening runs: at most {MAX_LIST}"),
-        ));
-    }
     let rule: Rule = a.rule.parse()?;
+    let o = EdgesOptions {
+        mu: a.mu.clone(),
+        refine: a.refine.clone(),
+        mu_s: a.mu_s,
+        mu_d: a.mu_d,
+        rule,
+        t_over_l: a.t_over_l.clone(),
+        open_refine: a.open_refine.clone(),
+        h_over_l: a.h_over_l.clone(),
+        end_grading: a.end_grading,
+    };
+    o.check(&scene)?;
     tribofe::io::outdir::check(&a.out, a.force)?;
-    let grading = (a.end_grading > 1.0).then_some(a.end_grading);
-    let bar = ProgressBar::new((a.refine.len() + runs) as u64).with_style(
+    let grading = o.grading();
+    let len = (o.refine.len() + o.runs()) as u64;
+    let bar = ProgressBar::new(len).with_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} meshes and runs, {elapsed}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    let tick = |_: &tribofe::Tick| bar.inc(1);
-    let pre = preslip_graded(&scene, &a.mu, &a.refine, grading, tribofe::Progress::new(&tick))?;
-    let open = opening_graded(
-        &scene,
-        a.mu_s,
-        a.mu_d,
-        rule,
-        &a.t_over_l,
-        &a.open_refine,
-        &a.h_over_l,
-        grading,
-        tribofe::Progress::new(&tick),
-    )?;
+    let tick = |t: &tribofe::Tick| bar.set_position((t.fraction.unwrap_or(0.0) * len as f64).round() as u64);
+    let (pre, open) = edges::run(&scene, &o, &tribofe::Cancel::new(), tribofe::Progress::new(&tick))?;
     bar.finish_and_clear();
     let dir = super::begin_out(&a.out, a.force)?;
     let files = [
@@ -126,7 +108,7 @@ pub fn run(a: Args) -> tribofe::Result<()> {
                     (
                         "h_max_over_t",
                         if grading.is_some() {
-                            toml::Value::from(tribofe::studies::edges::H_MAX_OVER_T)
+                            toml::Value::from(edges::H_MAX_OVER_T)
                         } else {
                             toml::Value::from("uniform")
                         },

@@ -3,39 +3,37 @@
 
 use clap::Args as ClapArgs;
 use std::path::PathBuf;
-use tribofe::fem::material::Material;
-use tribofe::fem::mesher::Rectangle;
 use tribofe::io::{gmsh_post::write_msh, vtu::write_vtu, Field};
-use tribofe::scene::rectangle::{RectangleProblem, Side, SIDES};
+use tribofe::scene::rectangle::{self as rect, RectangleProblem, SIDES};
 
 #[derive(ClapArgs, Debug)]
 pub struct Args {
     /// Width along x, m.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = rect::DEFAULT_LX)]
     pub lx: f64,
     /// Height along y, m.
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = rect::DEFAULT_LY)]
     pub ly: f64,
-    #[arg(long, default_value_t = 40)]
+    #[arg(long, default_value_t = rect::DEFAULT_NX)]
     pub nx: usize,
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = rect::DEFAULT_NY)]
     pub ny: usize,
     /// Element (qua4, qua4-sri, qua4-im, qua8, qua9, tri3, tri6).
-    #[arg(long, default_value = "qua4")]
+    #[arg(long, default_value = rect::DEFAULT_ELEMENT)]
     pub element: String,
     /// Young's modulus, Pa.
-    #[arg(long, default_value_t = 2e3)]
+    #[arg(long, default_value_t = rect::DEFAULT_YOUNG)]
     pub young: f64,
-    #[arg(long, default_value_t = 0.4)]
+    #[arg(long, default_value_t = rect::DEFAULT_POISSON)]
     pub poisson: f64,
     /// Bottom side: free, clamped, roller, u=UX,UY (m) or t=TX,TY (Pa).
-    #[arg(long, default_value = "clamped")]
+    #[arg(long, default_value = rect::DEFAULT_SIDES[0])]
     pub bottom: String,
-    #[arg(long, default_value = "free")]
+    #[arg(long, default_value = rect::DEFAULT_SIDES[1])]
     pub right: String,
-    #[arg(long, default_value = "u=0.001,0")]
+    #[arg(long, default_value = rect::DEFAULT_SIDES[2])]
     pub top: String,
-    #[arg(long, default_value = "free")]
+    #[arg(long, default_value = rect::DEFAULT_SIDES[3])]
     pub left: String,
     #[arg(long, default_value = "out/solve")]
     pub out: PathBuf,
@@ -50,13 +48,16 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
-    let sides: [Side; 4] = [a.bottom.parse()?, a.right.parse()?, a.top.parse()?, a.left.parse()?];
-    let p = RectangleProblem {
-        rect: Rectangle::new(0.0, a.lx, 0.0, a.ly, a.nx, a.ny),
-        material: Material::plane_strain(a.young, a.poisson)?,
-        element: a.element.parse()?,
-        sides,
-    };
+    let p = RectangleProblem::from_inputs(
+        a.lx,
+        a.ly,
+        a.nx,
+        a.ny,
+        &a.element,
+        a.young,
+        a.poisson,
+        [&a.bottom, &a.right, &a.top, &a.left],
+    )?;
     p.check_size(a.max_dofs)?;
     tribofe::io::outdir::check(&a.out, a.force)?;
     let r = p.solve()?;

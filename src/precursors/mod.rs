@@ -30,6 +30,28 @@ pub const PAPER_G: f64 = 0.35;
 /// giving up; n grows without bound as (r, g) -> (1, 1) (about 2500 at r = g = 0.9875).
 pub const MAX_PRECURSORS: usize = 10_000_000;
 
+/// Cells per axis of the n(r, g) map by default (`precursors map`, `tribofe.precursors.map`).
+pub const DEFAULT_MAP_RESOLUTION: usize = 40;
+
+/// Events of each discrete run of the bonded comparison by default (`precursors bonded`,
+/// `tribofe.precursors.bonded`), and the cap of the iteration run to convergence.
+pub const DEFAULT_EVENTS: usize = 200;
+
+/// Largest event count asked for: the iteration reaches its stick-slip limit cycle within
+/// ~200 events, and each event printed and written costs ~100 bytes (10 MB at the cap).
+pub const MAX_EVENTS: usize = 100_000;
+
+/// Refuses an event count above [`MAX_EVENTS`] (`--events`).
+pub fn check_events(n: usize) -> Result<()> {
+    if n > MAX_EVENTS {
+        return Err(Error::input(
+            "--events",
+            format!("{n}: at most {MAX_EVENTS} (the iteration settles on its stick-slip cycle within ~200 events)"),
+        ));
+    }
+    Ok(())
+}
+
 /// Control parameters (r, g), validated to the accessible square 0 < r < 1, 0 < g < 1.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Params {

@@ -3,53 +3,88 @@
 //! precursor). Undefined figures are empty cells, never NaN.
 
 use crate::error::Result;
-use crate::report::finite;
 #[cfg(feature = "plots")]
 use crate::report::plot::{render, Legend, PALETTE};
+use crate::report::table::{Column, Format, Table};
 use crate::studies::edges::{Opening, Preslip};
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
-use std::fmt::Write as _;
 
-fn cell(what: &str, v: Option<f64>) -> Result<String> {
-    v.map_or(Ok(String::new()), |v| Ok(format!("{:.12e}", finite(what, v)?)))
+/// A parameter as given (the shortest decimal).
+fn given(name: &'static str, unit: &'static str, v: Vec<f64>) -> Column {
+    Column::float(name, unit, v).with_format(Format::Shortest)
 }
 
+/// t/h, the elements through the thickness: a count (whole by construction).
+fn elements_through_t(v: impl Iterator<Item = f64>) -> Column {
+    Column::int("t_over_h", "-", v.map(|k| k as i64).collect())
+}
+
+/// preslip.csv's table: per coulomb mu and refinement t/h the interface nodes and the
+/// pre-slip extents from the left and right end (units of t). The one definition the CSV and
+/// the Python package's table are made from.
+pub fn preslip_table(rows: &[Preslip]) -> Table {
+    Table {
+        columns: vec![
+            given("mu", "1", rows.iter().map(|r| r.mu).collect()),
+            elements_through_t(rows.iter().map(|r| r.t_over_h)),
+            Column::int("interface_nodes", "-", rows.iter().map(|r| r.nodes as i64).collect()),
+            Column::float("left_extent_over_t", "1", rows.iter().map(|r| r.extent_t[0]).collect()),
+            Column::float("right_extent_over_t", "1", rows.iter().map(|r| r.extent_t[1]).collect()),
+        ],
+        digits: 13,
+    }
+}
+
+/// preslip.csv ([`preslip_table`]).
 pub fn preslip_csv(rows: &[Preslip]) -> Result<String> {
-    let mut s = String::from("mu,t_over_h,interface_nodes,left_extent_over_t,right_extent_over_t\n");
-    for r in rows {
-        let c = |v| cell("pre-slip extent", Some(v));
-        writeln!(s, "{},{},{},{},{}", r.mu, r.t_over_h, r.nodes, c(r.extent_t[0])?, c(r.extent_t[1])?)
-            .unwrap();
-    }
-    Ok(s)
+    preslip_table(rows).csv()
 }
 
-pub fn opening_csv(rows: &[Opening]) -> Result<String> {
-    let mut s = String::from(
-        "t_over_L,t_over_h,H_over_L,g,F1_model_over_mu_s_N,F_open_over_mu_s_N,open_length_over_t,F1_fe_over_mu_s_N,max_open_length_over_t,opens_before_first_precursor,open_nodes,max_open_nodes,end_element_over_t\n",
-    );
-    for r in rows {
-        writeln!(
-            s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{}",
-            r.t_over_l,
-            r.t_over_h,
-            r.h_over_l,
-            cell("g", Some(r.g))?,
-            cell("F_1", Some(r.f1_model))?,
-            cell("F_open", r.f_open)?,
-            cell("open length", r.open_length_t)?,
-            cell("F_1 FE", r.f1_fe)?,
-            cell("open length", Some(r.max_open_t))?,
-            r.opens_first(),
-            r.open_nodes.map_or(String::new(), |n| n.to_string()),
-            r.max_open_nodes,
-            cell("end element", Some(r.end_element_t))?
-        )
-        .unwrap();
+/// opening.csv's table: per t/L, t/h and H/L the paper's g and F_1, the force and open length
+/// when the trailing end first opens, the FE's F_1, the largest open length, whether the end
+/// opens before the first precursor (`true`/`false`), the open nodes then and at most, and
+/// the end element's length (forces in units of mu_s N, lengths in units of t; an empty cell
+/// where a figure does not exist). The one definition the CSV and the Python package's table
+/// are made from.
+pub fn opening_table(rows: &[Opening]) -> Table {
+    let num = |name: &'static str, get: fn(&Opening) -> f64| {
+        Column::float(name, "1", rows.iter().map(get).collect())
+    };
+    let maybe = |name: &'static str, get: fn(&Opening) -> Option<f64>| {
+        Column::maybe(name, "1", rows.iter().map(|r| get(r).unwrap_or(f64::NAN)).collect())
+    };
+    Table {
+        columns: vec![
+            given("t_over_L", "1", rows.iter().map(|r| r.t_over_l).collect()),
+            elements_through_t(rows.iter().map(|r| r.t_over_h)),
+            given("H_over_L", "1", rows.iter().map(|r| r.h_over_l).collect()),
+            num("g", |r| r.g),
+            num("F1_model_over_mu_s_N", |r| r.f1_model),
+            maybe("F_open_over_mu_s_N", |r| r.f_open),
+            maybe("open_length_over_t", |r| r.open_length_t),
+            maybe("F1_fe_over_mu_s_N", |r| r.f1_fe),
+            num("max_open_length_over_t", |r| r.max_open_t),
+            Column::text(
+                "opens_before_first_precursor",
+                "-",
+                rows.iter().map(|r| r.opens_first().to_string()).collect(),
+            ),
+            Column::maybe_int(
+                "open_nodes",
+                "-",
+                rows.iter().map(|r| r.open_nodes.map(|n| n as i64)).collect(),
+            ),
+            Column::int("max_open_nodes", "-", rows.iter().map(|r| r.max_open_nodes as i64).collect()),
+            num("end_element_over_t", |r| r.end_element_t),
+        ],
+        digits: 13,
     }
-    Ok(s)
+}
+
+/// opening.csv ([`opening_table`]).
+pub fn opening_csv(rows: &[Opening]) -> Result<String> {
+    opening_table(rows).csv()
 }
 
 #[cfg(feature = "plots")]

@@ -14,6 +14,19 @@ use crate::linalg::solve::SolverOptions;
 
 pub const SIDES: [&str; 4] = ["bottom", "right", "top", "left"];
 
+/// The `solve` command's defaults (`tribofe solve`, `tribofe.solve`): a 1 m x 0.1 m strip of
+/// 40 x 4 QUA4 of the paper's material (E = 2 kPa, nu = 0.4), clamped at the bottom, its top
+/// displaced 1 mm along x, the ends free.
+pub const DEFAULT_LX: f64 = 1.0;
+pub const DEFAULT_LY: f64 = 0.1;
+pub const DEFAULT_NX: usize = 40;
+pub const DEFAULT_NY: usize = 4;
+pub const DEFAULT_ELEMENT: &str = "qua4";
+pub const DEFAULT_YOUNG: f64 = 2e3;
+pub const DEFAULT_POISSON: f64 = 0.4;
+/// The conditions of bottom, right, top, left ([`SIDES`]).
+pub const DEFAULT_SIDES: [&str; 4] = ["clamped", "free", "u=0.001,0", "free"];
+
 /// What one side of the rectangle does.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Side {
@@ -79,7 +92,58 @@ pub struct RectangleResult {
     pub applied: [f64; 2],
 }
 
+/// A refusal of the library (`side condition`, `element`) named by the parameter the user
+/// typed (`--bottom`, `--element`).
+fn named(e: Error, flag: &str) -> Error {
+    match e {
+        Error::Input { why, .. } => Error::input(flag, why),
+        e => e,
+    }
+}
+
 impl RectangleProblem {
+    /// The problem from the command's inputs, each refused naming its flag (`--lx`, `--nx`,
+    /// `--element`, `--young`, `--poisson`, `--bottom`...): the rectangle [0, lx] x [0, ly] in
+    /// m with nx x ny elements, plane strain, `sides` the conditions of bottom, right, top and
+    /// left as [`Side`] reads them.
+    #[allow(clippy::too_many_arguments)]
+    pub fn from_inputs(
+        lx: f64,
+        ly: f64,
+        nx: usize,
+        ny: usize,
+        element: &str,
+        young: f64,
+        poisson: f64,
+        sides: [&str; 4],
+    ) -> Result<RectangleProblem> {
+        for (flag, v) in [("--lx", lx), ("--ly", ly)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(Error::input(flag, format!("{v} m: a side length must be positive")));
+            }
+        }
+        for (flag, n) in [("--nx", nx), ("--ny", ny)] {
+            if n == 0 {
+                return Err(Error::input(flag, "0: need at least one element per direction"));
+            }
+        }
+        let element: ElementChoice = element.parse().map_err(|e| named(e, "--element"))?;
+        let material = Material::plane_strain(young, poisson).map_err(|e| {
+            // Which of the two is at fault: E alone with a valid nu.
+            named(e, if Material::plane_strain(young, 0.0).is_err() { "--young" } else { "--poisson" })
+        })?;
+        let mut parsed = [Side::Free; 4];
+        for ((side, text), name) in parsed.iter_mut().zip(sides).zip(SIDES) {
+            *side = text.parse().map_err(|e| named(e, &format!("--{name}")))?;
+        }
+        Ok(RectangleProblem {
+            rect: Rectangle::new(0.0, lx, 0.0, ly, nx, ny),
+            material,
+            element,
+            sides: parsed,
+        })
+    }
+
     /// Refuses a rectangle above `limit` unknowns (none: [`super::limits::default_max_dofs`])
     /// before meshing: 2 (p nx + 1)(p ny + 1) for order p, in f64 so absurd counts cannot overflow.
     pub fn check_size(&self, limit: Option<usize>) -> Result<()> {

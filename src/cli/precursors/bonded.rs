@@ -1,8 +1,8 @@
 //! `precursors bonded`: the 1D model fed with the scene's bonded unit interface fields, next
 //! to the paper's linear fields on the same cells.
 
-use super::{print_written, run_file, too_many_events, write_whole, OutArgs, RgArgs};
-use super::{MAX_DEFAULT_EVENTS, MAX_EVENTS};
+use super::MAX_DEFAULT_EVENTS;
+use super::{print_written, run_file, write_whole, OutArgs, RgArgs};
 use tribofe::linalg::solve::SolverOptions;
 use tribofe::report::precursors as report;
 use tribofe::Error;
@@ -28,13 +28,10 @@ pub struct BondedArgs {
 pub fn bonded(args: BondedArgs) -> tribofe::Result<()> {
     let scene = super::super::check::scene(&args.scene)?;
     let n_events = args.events;
-    if n_events > MAX_EVENTS {
-        return Err(too_many_events(n_events));
-    }
     let fields = |s: &tribofe::scene::Scene| {
         tribofe::studies::check::run(s, &SolverOptions::default()).map(|r| r.0.unit)
     };
-    let c = tribofe::precursors::fe::compare(&fields(&scene)?, args.rg.r, args.rg.g, n_events)?;
+    let c = tribofe::studies::precursors_fe::bonded(&scene, args.rg.r, args.rg.g, n_events)?;
     print_comparison(&c)?;
     tribofe::io::outdir::check(&args.out.out, args.out.force)?;
     let mut sweep_fields = Vec::new();

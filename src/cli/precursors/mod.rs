@@ -15,10 +15,7 @@ use tribofe::Error;
 
 /// Events are iterated until |F - F_max| < this (or MAX_DEFAULT_EVENTS) unless --events is given.
 const CONVERGED: f64 = 1e-6;
-const MAX_DEFAULT_EVENTS: usize = 200;
-/// Largest --events: the iteration reaches its stick-slip limit cycle within ~200 events, and
-/// each event printed and written costs ~100 bytes (10 MB at the cap).
-const MAX_EVENTS: usize = 100_000;
+use tribofe::precursors::DEFAULT_EVENTS as MAX_DEFAULT_EVENTS;
 
 #[derive(clap::Args, Debug)]
 #[command(
@@ -110,15 +107,6 @@ pub fn run(args: Args) -> tribofe::Result<()> {
         Mode::Dc(a) => series::dc(a),
         Mode::Bonded(a) => bonded::bonded(a),
     }
-}
-
-fn too_many_events(n: usize) -> Error {
-    Error::input(
-        "--events",
-        format!(
-            "{n}: at most {MAX_EVENTS} (the iteration settles on its stick-slip cycle within ~200 events)"
-        ),
-    )
 }
 
 /// A progress bar over `len` items called `what`.

@@ -1,8 +1,8 @@
 //! `precursors model` and `precursors map`: the paper's iteration and its n(r, g), which
 //! depend on r and g alone (no scene).
 
-use super::{print_written, run_file, too_many_events, write_whole, OutArgs, RgArgs};
-use super::{CONVERGED, MAX_DEFAULT_EVENTS, MAX_EVENTS};
+use super::{print_written, run_file, write_whole, OutArgs, RgArgs};
+use super::{CONVERGED, MAX_DEFAULT_EVENTS};
 use tribofe::precursors::{self, Event, Params};
 use tribofe::report::precursors as report;
 use tribofe::Error;
@@ -21,7 +21,7 @@ pub struct ModelArgs {
 #[derive(clap::Args, Debug)]
 pub struct MapArgs {
     /// Grid points per axis (cell centres), 2..=400.
-    #[arg(long, default_value_t = 40)]
+    #[arg(long, default_value_t = precursors::DEFAULT_MAP_RESOLUTION)]
     pub resolution: usize,
     #[command(flatten)]
     pub out: OutArgs,
@@ -51,8 +51,10 @@ pub fn model(args: ModelArgs) -> tribofe::Result<()> {
     tribofe::io::outdir::check(&out.out, out.force)?;
     let events = match args.events {
         Some(0) => return Err(Error::input("--events 0", "need at least one event")),
-        Some(n) if n > MAX_EVENTS => return Err(too_many_events(n)),
-        Some(n) => precursors::simulate(&p, n),
+        Some(n) => {
+            precursors::check_events(n)?;
+            precursors::simulate(&p, n)
+        }
         None => precursors::simulate_to_convergence(&p, CONVERGED, MAX_DEFAULT_EVENTS),
     };
     let n = precursors::n_precursors(&p)?;

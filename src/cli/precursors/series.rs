@@ -43,7 +43,7 @@ pub struct DcArgs {
     #[command(flatten)]
     pub rg: RgArgs,
     /// Events per run before the run is refused.
-    #[arg(long, default_value_t = 2000)]
+    #[arg(long, default_value_t = tribofe::studies::precursors_fe::DEFAULT_DC_MAX_EVENTS)]
     pub max_events: usize,
     #[command(flatten)]
     pub scene: super::super::check::SceneArgs,
@@ -225,19 +225,6 @@ pub fn dc(args: DcArgs) -> tribofe::Result<()> {
     let p = Params::new(args.rg.r, args.rg.g)?;
     let scene = fe_scene(&args.scene, &args.out)?;
     let (ms, md) = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g())?;
-    // Every D_c and the cap checked before the condensation, as the runs will see them.
-    for &d in &dcs {
-        let o = tribofe::studies::slide::SlideOptions {
-            law: tribofe::law::Law::slip_weakening(ms, md, d)?,
-            cycles: 1,
-            max_events: args.max_events,
-            ..Default::default()
-        };
-        tribofe::studies::slide::check_options(&scene, &o)?;
-    }
-    if args.max_events == 0 {
-        return Err(Error::input("--max-events", "0: need at least one event per run"));
-    }
     let bar = counter(dcs.len() + 1, "runs");
     let tick = |_: &tribofe::Tick| bar.inc(1);
     let rows = tribofe::studies::precursors_fe::dc_series(
@@ -250,10 +237,6 @@ pub fn dc(args: DcArgs) -> tribofe::Result<()> {
         tribofe::Progress::new(&tick),
     )?;
     bar.finish_and_clear();
-    if rows.iter().all(|r| r.fig4.is_err()) {
-        // Nothing to tabulate or draw: the first refusal says why.
-        return rows.into_iter().find_map(|r| r.fig4.err()).map_or(Ok(()), Err);
-    }
     let b = &scene.block;
     // dc_series runs at the default normal force.
     let n_force = tribofe::studies::slide::SlideOptions::default().n_force;

@@ -4,6 +4,7 @@
 
 #[cfg(feature = "plots")]
 use super::super::plot::{render, Legend, BLUE, FONT, RED};
+use super::super::table::{Column, Format, Table};
 use super::super::{ensure_dir, finite, opt, write_all, write_atomic};
 use crate::precursors::discrete::{CellEvent, Run};
 use crate::precursors::fe::{Comparison, SweepRow};
@@ -63,30 +64,37 @@ pub fn fe_extents_svg(c: &Comparison) -> Result<String> {
     })
 }
 
-fn run_csv_rows(s: &mut String, model: &str, run: &Run) -> Result<()> {
-    for e in &run.events {
-        let CellEvent { i, f, fc, x_nucleation, x, fstar, stick_slip, .. } = *e;
-        let _ = writeln!(
-            s,
-            "{model},{i},{},{},{},{},{},{}",
-            finite("F", f)?,
-            finite("Fc", fc)?,
-            finite("x_nucleation", x_nucleation)?,
-            finite("x", x)?,
-            finite("Fstar", fstar)?,
-            u8::from(stick_slip)
-        );
+/// `fe_events.csv`'s table: both discrete runs of a comparison, long format (`model` `fe`
+/// then `linear`): event i, F, F^c, nucleation and arrest x, F^*, and whether it is the
+/// stick-slip event (1) or a precursor (0); forces in units of mu_s N, x in units of L. The
+/// one definition the CSV and the Python package's table are made from.
+pub fn comparison_table(c: &Comparison) -> Table {
+    let events: Vec<(&str, &CellEvent)> = [("fe", &c.fe), ("linear", &c.linear)]
+        .into_iter()
+        .flat_map(|(model, run): (&str, &Run)| run.events.iter().map(move |e| (model, e)))
+        .collect();
+    let num = |name: &'static str, get: fn(&CellEvent) -> f64| {
+        Column::float(name, "1", events.iter().map(|(_, e)| get(e)).collect()).with_format(Format::Shortest)
+    };
+    Table {
+        columns: vec![
+            Column::text("model", "-", events.iter().map(|(m, _)| m.to_string()).collect()),
+            Column::int("i", "-", events.iter().map(|(_, e)| e.i as i64).collect()),
+            num("F", |e| e.f),
+            num("Fc", |e| e.fc),
+            num("x_nucleation", |e| e.x_nucleation),
+            num("x", |e| e.x),
+            num("Fstar", |e| e.fstar),
+            Column::int("stick_slip", "-", events.iter().map(|(_, e)| i64::from(e.stick_slip)).collect()),
+        ],
+        digits: 17,
     }
-    Ok(())
 }
 
-/// Both discrete runs of a comparison, long format:
-/// `model,i,F,Fc,x_nucleation,x,Fstar,stick_slip` with model `fe` or `linear`.
+/// Both discrete runs of a comparison ([`comparison_table`]), header
+/// `model,i,F,Fc,x_nucleation,x,Fstar,stick_slip`.
 pub fn comparison_csv(c: &Comparison) -> Result<String> {
-    let mut s = String::from("model,i,F,Fc,x_nucleation,x,Fstar,stick_slip\n");
-    run_csv_rows(&mut s, "fe", &c.fe)?;
-    run_csv_rows(&mut s, "linear", &c.linear)?;
-    Ok(s)
+    comparison_table(c).csv()
 }
 
 /// Writes `fe_events.csv` and `fe_extents.svg` for a comparison into `dir` (created if

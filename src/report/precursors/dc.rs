@@ -94,7 +94,7 @@ pub fn write_dc(
     ensure_dir(dir)?;
     let what: [(&str, f64); 0] = [];
     let files = [
-        ("dc.csv", series_csv("Dc_m", rows)?),
+        ("dc.csv", series_csv("Dc_m", "m", rows)?),
         #[cfg(feature = "plots")]
         ("dc.svg", dc_svg(rows)?),
         ("run.toml", crate::report::run_toml(inv, &what, scene)?),

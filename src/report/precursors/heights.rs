@@ -71,7 +71,7 @@ pub fn write_heights(
     ensure_dir(dir)?;
     let what = [("mu_s", mu.0), ("mu_d", mu.1)];
     let files = [
-        ("heights.csv", series_csv("H_over_L", rows)?),
+        ("heights.csv", series_csv("H_over_L", "1", rows)?),
         #[cfg(feature = "plots")]
         ("heights.svg", heights_svg(rows)?),
         ("run.toml", crate::report::run_toml(inv, &what, scene)?),

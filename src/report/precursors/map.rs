@@ -2,21 +2,32 @@
 
 #[cfg(feature = "plots")]
 use super::super::plot::{n_colour, n_key, render, Legend, FONT, RED};
-use super::super::{ensure_dir, finite, write_all};
+use super::super::table::{Column, Format, Table};
+use super::super::{ensure_dir, write_all};
 use crate::precursors::MapPoint;
 use crate::Result;
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// `n_map.csv`: header `r,g,n`.
-pub fn n_map_csv(map: &[MapPoint]) -> Result<String> {
-    let mut s = String::from("r,g,n\n");
-    for m in map {
-        let _ = writeln!(s, "{},{},{}", finite("r", m.r)?, finite("g", m.g)?, m.n);
+/// `n_map.csv`'s table: per cell centre r, g (the shortest decimals) and the model's n. The
+/// one definition the CSV and the Python package's table are made from.
+pub fn n_map_table(map: &[MapPoint]) -> Table {
+    let shortest =
+        |name: &'static str, v: Vec<f64>| Column::float(name, "1", v).with_format(Format::Shortest);
+    Table {
+        columns: vec![
+            shortest("r", map.iter().map(|m| m.r).collect()),
+            shortest("g", map.iter().map(|m| m.g).collect()),
+            Column::int("n", "-", map.iter().map(|m| m.n as i64).collect()),
+        ],
+        digits: 17,
     }
-    Ok(s)
+}
+
+/// `n_map.csv` ([`n_map_table`]): header `r,g,n`.
+pub fn n_map_csv(map: &[MapPoint]) -> Result<String> {
+    n_map_table(map).csv()
 }
 
 #[cfg(feature = "plots")]

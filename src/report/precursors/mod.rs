@@ -16,12 +16,12 @@ mod map;
 mod model;
 mod thin_layer;
 
-pub use bonded::{comparison_csv, sweep_csv, write_comparison, write_sweep};
+pub use bonded::{comparison_csv, comparison_table, sweep_csv, write_comparison, write_sweep};
 pub use dc::write_dc;
 pub use fe::{fe_fig4_summary_table, write_fe_fig4};
 pub use fe_map::{fe_boundary_csv, fe_fig5_csv, fe_fig5_table, write_fe_fig5};
 pub use heights::write_heights;
-pub use map::{n_map_csv, write_map};
+pub use map::{n_map_csv, n_map_table, write_map};
 pub use model::{events_csv, events_table, loading_csv, loading_table, write_events};
 pub use thin_layer::write_thin_layer;
 /// The figures, with the `plots` feature.
@@ -31,81 +31,67 @@ pub use {
     model::fig4_svg, thin_layer::thin_layer_svg,
 };
 
-use super::opt;
-use crate::studies::precursors_fe::{FieldChecks, SeriesRow};
+use super::table::{Column, Format, Table};
+use crate::studies::precursors_fe::{Fig4, SeriesRow};
+#[cfg(feature = "plots")]
 use crate::studies::slide::PaperComparison;
 use crate::Result;
 #[cfg(feature = "plots")]
 use plotters::prelude::RGBColor;
-use std::fmt::Write as _;
 
-/// Header fragment and values of a run's counts, first precursor and peak for CSVs.
-const FE_COLUMNS: &str =
-    "precursors,precursors_longer_5t,precursors_advancing_5t,F1_over_mu_s_N,x1_over_L,Fmax_over_mu_s_N";
-
-fn fe_values(c: &PaperComparison) -> String {
-    format!(
-        "{},{},{},{},{},{}",
-        c.n_fe,
-        c.n_fe_long,
-        c.n_fe_advancing,
-        opt(c.f1_fe),
-        opt(c.x1_fe),
-        opt(c.f_max_fe)
-    )
+/// A series' table (`thin_layer.csv`, `heights.csv`, `dc.csv`): per value of `param` (its
+/// unit `unit`) the model's n, F_1, x_1 and F_max, the run's counts, F_1, x_1 and first
+/// whole-slip peak, their deviations (relative; x_1 in units of t), the field checks, the
+/// worst violation and the wall time; a refused run's row holds only its value and time.
+/// The one definition the CSV and the Python package's tables are made from.
+pub fn series_table(param: &'static str, unit: &'static str, rows: &[SeriesRow]) -> Table {
+    let ok: Vec<Option<&Fig4>> = rows.iter().map(|r| r.fig4.as_ref().ok()).collect();
+    // A number of a finished run (None: an empty cell), printed as the shortest decimal.
+    let num = |name: &'static str, get: &dyn Fn(&Fig4) -> Option<f64>| {
+        Column::maybe(name, "1", ok.iter().map(|f| f.and_then(get).unwrap_or(f64::NAN)).collect())
+            .with_format(Format::Shortest)
+    };
+    let sci = |name: &'static str, get: &dyn Fn(&Fig4) -> Option<f64>| {
+        num(name, get).with_format(Format::ShortestSci)
+    };
+    let count = |name: &'static str, get: &dyn Fn(&Fig4) -> usize| {
+        Column::maybe_int(name, "-", ok.iter().map(|f| f.map(|f| get(f) as i64)).collect())
+    };
+    let rel = |v: Option<f64>, m: f64| v.map(|v| v / m - 1.0);
+    let columns = vec![
+        Column::float(param, unit, rows.iter().map(|r| r.value).collect()).with_format(Format::Shortest),
+        num("r", &|f| Some(f.cmp.r)),
+        num("g", &|f| Some(f.cmp.g)),
+        count("model_precursors", &|f| f.cmp.n),
+        num("model_F1_over_mu_s_N", &|f| Some(f.cmp.f1)),
+        num("model_x1_over_L", &|f| Some(f.cmp.x1)),
+        num("model_Fmax_over_mu_s_N", &|f| Some(f.cmp.f_max)),
+        count("precursors", &|f| f.cmp.n_fe),
+        count("precursors_longer_5t", &|f| f.cmp.n_fe_long),
+        count("precursors_advancing_5t", &|f| f.cmp.n_fe_advancing),
+        num("F1_over_mu_s_N", &|f| f.cmp.f1_fe),
+        num("x1_over_L", &|f| f.cmp.x1_fe),
+        num("Fmax_over_mu_s_N", &|f| f.cmp.f_max_fe),
+        num("F1_rel_dev", &|f| rel(f.cmp.f1_fe, f.cmp.f1)),
+        num("x1_dev_over_t", &|f| {
+            let t_over_l = f.run.condensed.t / f.run.condensed.l;
+            f.cmp.x1_fe.map(|x| (x - f.cmp.x1) / t_over_l)
+        }),
+        num("Fmax_rel_dev", &|f| rel(f.cmp.f_max_fe, f.cmp.f_max)),
+        sci("shear_far_rel_dev", &|f| f.fields.shear_far),
+        sci("shear_tip_rel_excess", &|f| f.fields.shear_tip),
+        sci("pressure_dev_over_pmean", &|f| f.fields.pressure),
+        num("F_corner_over_mu_s_N", &|f| f.fields.f_corner),
+        num("x_nucleation_over_L", &|f| f.fields.x_nucleation),
+        sci("max_violation_over_N_per_n", &|f| Some(f.worst_violation)),
+        Column::float("seconds", "s", rows.iter().map(|r| r.seconds).collect()).with_format(Format::Fixed(3)),
+    ];
+    Table { columns, digits: 17 }
 }
 
-/// Header fragment and values of [`FieldChecks`] for CSVs.
-const FIELD_COLUMNS: &str =
-    "shear_far_rel_dev,shear_tip_rel_excess,pressure_dev_over_pmean,F_corner_over_mu_s_N,x_nucleation_over_L";
-
-fn field_values(f: &FieldChecks) -> String {
-    format!(
-        "{},{},{},{},{}",
-        opt(f.shear_far.map(|v| format!("{v:e}"))),
-        opt(f.shear_tip.map(|v| format!("{v:e}"))),
-        opt(f.pressure.map(|v| format!("{v:e}"))),
-        opt(f.f_corner),
-        opt(f.x_nucleation)
-    )
-}
-
-/// A series' CSV (`thin_layer.csv`, `heights.csv`): per value of `param` the model's n, F_1,
-/// x_1 and F_max, the `paper` rule's front-advancing count, F_1, x_1 and first whole-slip peak,
-/// their deviations (relative; x_1 in units of t), the field checks, the worst violation and
-/// the wall time.
-pub fn series_csv(param: &str, rows: &[SeriesRow]) -> Result<String> {
-    let mut s = format!(
-        "{param},r,g,model_precursors,model_F1_over_mu_s_N,model_x1_over_L,model_Fmax_over_mu_s_N,{FE_COLUMNS},F1_rel_dev,x1_dev_over_t,Fmax_rel_dev,{FIELD_COLUMNS},max_violation_over_N_per_n,seconds\n"
-    );
-    for row in rows {
-        let Ok(f) = &row.fig4 else {
-            let _ = writeln!(s, "{}{}{:.3}", row.value, ",".repeat(22), row.seconds);
-            continue;
-        };
-        let c = &f.cmp;
-        let t_over_l = f.run.condensed.t / f.run.condensed.l;
-        let rel = |v: Option<f64>, m: f64| opt(v.map(|v| v / m - 1.0));
-        let _ = writeln!(
-            s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{:e},{:.3}",
-            row.value,
-            c.r,
-            c.g,
-            c.n,
-            c.f1,
-            c.x1,
-            c.f_max,
-            fe_values(c),
-            rel(c.f1_fe, c.f1),
-            opt(c.x1_fe.map(|x| (x - c.x1) / t_over_l)),
-            rel(c.f_max_fe, c.f_max),
-            field_values(&f.fields),
-            f.worst_violation,
-            row.seconds
-        );
-    }
-    Ok(s)
+/// A series' CSV ([`series_table`]).
+pub fn series_csv(param: &'static str, unit: &'static str, rows: &[SeriesRow]) -> Result<String> {
+    series_table(param, unit, rows).csv()
 }
 
 #[cfg(feature = "plots")]

@@ -97,7 +97,7 @@ pub fn write_thin_layer(
     ensure_dir(dir)?;
     let what = [("r", p.r()), ("g", p.g())];
     let files = [
-        ("thin_layer.csv", series_csv("t_over_L", rows)?),
+        ("thin_layer.csv", series_csv("t_over_L", "1", rows)?),
         #[cfg(feature = "plots")]
         ("thin_layer.svg", thin_layer_svg(p, rows)?),
         ("run.toml", crate::report::run_toml(inv, &what, scene)?),

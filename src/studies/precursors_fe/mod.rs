@@ -40,6 +40,19 @@ pub const DEFAULT_FIG5_RESOLUTION: usize = 20;
 pub const DEFAULT_FIG5_MAX_EVENTS: usize = 2000;
 pub const DEFAULT_FIG5_RULES: [Rule; 1] = [Rule::Paper];
 
+/// The event cap of each run of the D_c series by default (`precursors dc`,
+/// `tribofe.precursors.dc`).
+pub const DEFAULT_DC_MAX_EVENTS: usize = 2000;
+
+/// The earlier comparison (`precursors bonded`): the 1D model fed with the scene's bonded
+/// unit interface fields next to the paper's linear fields on the same cells, `events` events
+/// each (at most [`crate::precursors::MAX_EVENTS`]).
+pub fn bonded(scene: &Scene, r: f64, g: f64, events: usize) -> Result<crate::precursors::fe::Comparison> {
+    crate::precursors::check_events(events)?;
+    let fields = crate::studies::check::run(scene, &SolverOptions::default())?.0.unit;
+    crate::precursors::fe::compare(&fields, r, g, events)
+}
+
 /// One rule's FE fig. 4 next to the analytic iteration (forces in units of mu_s N, x in L).
 #[derive(Debug, Clone)]
 pub struct Fig4 {

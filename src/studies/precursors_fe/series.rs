@@ -176,8 +176,9 @@ pub fn richardson(points: &[(f64, f64)]) -> Option<(f64, f64)> {
 
 /// Event rule and D_c (issue 18, assumption 4): at (r, g) on `scene`, the `paper` rule (row
 /// value 0) and then slip-weakening with each D_c (m, largest first), one condensation, one
-/// cycle each; a run over `max_events` is refused on its own row; `progress` and `cancel` as
-/// in [`thin_layer`].
+/// cycle each; a run over `max_events` is refused on its own row (every row refused: the
+/// first refusal); every D_c and the cap are checked before any work; `progress` and
+/// `cancel` as in [`thin_layer`].
 #[allow(clippy::too_many_arguments)]
 pub fn dc_series(
     scene: &Scene,
@@ -189,6 +190,19 @@ pub fn dc_series(
     progress: Progress,
 ) -> Result<Vec<SeriesRow>> {
     let (ms, md) = coefficients_from_rg(scene, r, g)?;
+    // Every D_c and the cap checked before the condensation, as the runs will see them.
+    for &d in dcs {
+        let o = SlideOptions {
+            law: Law::slip_weakening(ms, md, d)?,
+            cycles: 1,
+            max_events,
+            ..Default::default()
+        };
+        crate::studies::slide::check_options(scene, &o)?;
+    }
+    if max_events == 0 {
+        return Err(crate::Error::input("--max-events", "0: need at least one event per run"));
+    }
     let mut ds = dcs.to_vec();
     ds.sort_by(|a, b| b.total_cmp(a));
     let laws = std::iter::once(Ok((0.0, sk(scene, r, g, Rule::Paper)?)))
@@ -203,6 +217,10 @@ pub fn dc_series(
         interrupted(&fig4)?;
         rows.push(SeriesRow { value: d, fig4, seconds: clock.elapsed().as_secs_f64() });
         progress.fraction(rows.len() as f64 / total as f64);
+    }
+    if rows.iter().all(|r| r.fig4.is_err()) {
+        // Nothing to tabulate or draw: the first refusal says why.
+        return rows.into_iter().find_map(|r| r.fig4.err()).map_or(Ok(Vec::new()), Err);
     }
     Ok(rows)
 }
