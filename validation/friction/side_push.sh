@@ -3,7 +3,6 @@
 # L = 10 cm, t = 2 cm, h = 2 mm, a rigid pusher 6 mm wide centred 5 mm above the interface on
 # the trailing face, N = 1 N/m. Each run writes loading.csv, events.csv, states.csv,
 # advances.csv (static-kinetic), fig4_fe.svg, fronts.svg, run.toml; its summary in <dir>.txt.
-# A few seconds in all.
 set -e
 cd "$(dirname "$0")/../.."
 cargo build --release --quiet
