@@ -86,7 +86,8 @@ pub struct SceneArgs {
     #[arg(long)]
     pub width: Option<f64>,
     /// Loading rig: top-plate (the paper's, default) or side-push (a rigid pusher on the
-    /// trailing face x = -L/2; `tribofe check` only in this phase).
+    /// trailing face x = -L/2; `tribofe check` and the quasi-static `tribofe slide` in this
+    /// phase).
     #[arg(long, value_parser = parse_rig, value_name = "top-plate|side-push")]
     pub rig: Option<Rig>,
     /// Side push: the pusher's centre above the interface, m.
@@ -95,8 +96,8 @@ pub struct SceneArgs {
     /// Side push: the pusher's contact length on the trailing face, m.
     #[arg(long)]
     pub push_width: Option<f64>,
-    /// Side push: the driving spring's stiffness, N/m per metre of width (checked; used by the
-    /// frictional phases to come).
+    /// Side push: the driving spring's stiffness, N/m per metre of width (`slide`: X is then the
+    /// spring's far end; `check` does not use it).
     #[arg(long)]
     pub push_stiffness: Option<f64>,
     /// Side push: the normal load on the top face, a uniform pressure N/L or a rigid plate free
@@ -329,8 +330,9 @@ fn scene_with(args: &SceneArgs, side_push: bool) -> tribofe::Result<Scene> {
         };
         return Err(tribofe::Error::input(
             key,
-            "side-push runs in `tribofe check` only in this phase (bonded interface); this command \
-             supports rig = \"top-plate\" (remove the key or the flag)",
+            "side-push runs in `tribofe check` and the quasi-static `tribofe slide` (without \
+             --dynamics) in this phase; this command supports rig = \"top-plate\" (remove the key or \
+             the flag)",
         ));
     }
     let s = base.apply(&args.overrides()?)?;

@@ -1,6 +1,6 @@
 //! `tribofe slide`: the frictional interface loaded by N then X at height H, event by event.
 
-use super::scene_args::{scene as scene_from, SceneArgs};
+use super::scene_args::SceneArgs;
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -216,6 +216,7 @@ fn interface_estimate(scene: &tribofe::scene::Scene) -> Option<usize> {
 fn operator_reason(a: &Args, scene: &tribofe::scene::Scene) -> String {
     match (&a.operator, interface_estimate(scene)) {
         (Some(_), _) => "given".into(),
+        (None, _) if !scene.loading.rig.is_top_plate() => "the side push's default (dense)".into(),
         (None, _) if a.dynamics => "the --dynamics default".into(),
         (None, Some(n)) => format!(
             "default for {n} interface nodes (banded above {})",
@@ -235,14 +236,29 @@ fn paper_options(a: &Args) -> tribofe::Result<tribofe::law::PaperOptions> {
 }
 
 pub fn run(a: Args) -> tribofe::Result<()> {
-    // The scene flags (shared with check and sweep) are applied and validated in scene_from;
+    // The scene flags (shared with check and sweep) are applied and validated in scene_any_rig;
     // two of them belong to the bonded check and cannot act here.
     super::scene_args::refuse_inapplicable(
         &a.scene,
         &["--fn-ratios", "--tol"],
         "`slide` loads N then X until the interface slides (--n-force, --x-max); the load ratios and the edge-zone tolerance belong to `check`",
     )?;
-    let scene = scene_from(&a.scene)?;
+    let scene = super::scene_args::scene_any_rig(&a.scene)?;
+    if !scene.loading.rig.is_top_plate() {
+        // The quasi-static solver runs the side push; the dynamic one borders the top plate only.
+        if a.dynamics {
+            return Err(Error::input(
+                "--dynamics",
+                "side-push runs in `tribofe check` and the quasi-static `tribofe slide` (without --dynamics) in this phase",
+            ));
+        }
+        if a.fields > 0 {
+            return Err(Error::input(
+                "--fields",
+                "the block's fields of a side-pushed run are not written yet: drop --fields",
+            ));
+        }
+    }
     // The scene's [law] kind and rule where the flags (which have defaults) were not given;
     // its numbers join in law_choice.
     let mut a = a;
@@ -433,6 +449,16 @@ fn run_checked(
         ("operator", toml::Value::from(o.operator.name())),
         ("operator_reason", toml::Value::from(operator_reason(&a, &scene))),
     ];
+    // Under side push X is the pusher's displacement, or the spring's far end; F its force.
+    let drive = match scene.loading.push_stiffness {
+        _ if scene.loading.rig.is_top_plate() => None,
+        Some(_) => {
+            Some("X: the far end of the pusher's spring (push_stiffness), m; F: the pusher force, N/m")
+        }
+        None => Some("X: the pusher's displacement U_p, m; F: the pusher force, N/m"),
+    };
+    let results: Vec<(&str, toml::Value)> =
+        results.into_iter().chain(drive.map(|d| ("drive", toml::Value::from(d)))).collect();
     let header = tribofe::report::run_toml(super::invocation(), &results, &scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
     let states = res.options.keep_states;

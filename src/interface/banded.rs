@@ -65,6 +65,7 @@ impl crate::interface::condense::Condensed {
             s: vec![],
             asymmetry: op.asymmetry,
             rigid_residual: op.rigid_residual,
+            border: crate::interface::events::TOP_PLATE.to_vec(),
         }
     }
 }

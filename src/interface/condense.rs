@@ -1,17 +1,20 @@
-//! Condensation of the block and the rigid plate onto the interface DOFs and the plate's
-//! three DOFs: one factorisation, one solve with 2n + 3 unit load cases (a unit prescribed
-//! value on one boundary DOF each); the consistent reactions of each case are a column of the
-//! dense symmetric Schur complement S (f_b = S b, forces on the block/plate at the boundary
-//! DOFs).
+//! Condensation of the block and the rig onto the interface DOFs and the rig's k border DOFs:
+//! one factorisation, one solve with 2n + k unit load cases (a unit prescribed value on one
+//! boundary DOF each); the consistent reactions of each case are a column of the dense
+//! symmetric Schur complement S (f_b = S b, forces on the block/plate at the boundary DOFs).
 //!
-//! Boundary order: u_0..u_{n-1}, v_0..v_{n-1} (interface nodes sorted by x), then the plate's
-//! (U0, V0, theta) with u = U0 - theta (y - t), v = V0 + theta x on the top y = t. The drive
-//! height H enters only through [`Condensed::at_height`], which moves the drive point
-//! algebraically (U_H = U0 - theta (H - t)), so one condensation serves every H.
+//! Boundary order: u_0..u_{n-1}, v_0..v_{n-1} (interface nodes sorted by x), then the border
+//! ([`Condensed::border`]). The top-plate rig's is the plate's (U0, V0, theta) with
+//! u = U0 - theta (y - t), v = V0 + theta x on the top y = t; the drive height H enters only
+//! through [`Condensed::at_height`], which moves the drive point algebraically
+//! (U_H = U0 - theta (H - t)), so one condensation serves every H. The side-pushed rig's
+//! ([`condense_side_push`]): the pusher's U_p (or the far end of its spring, then U_p), then the sliding
+//! plate's V, theta, U, or the uniform pressure's amplitude.
 
 use crate::error::{Error, Result};
 use crate::fem::assembly::Assembler;
 use crate::fem::constraints::dof;
+use crate::interface::events::{BorderRole, TOP_PLATE};
 use crate::linalg::solve::Solver;
 use crate::linalg::solve::SolverOptions;
 use crate::scene::{PlateModel, Scene, SceneModel};
@@ -36,16 +39,21 @@ pub struct Condensed {
     /// Largest |S_ij - S_ji| / max |S|, and largest |S r| / (max |S| |r|) over the three rigid motions.
     pub asymmetry: f64,
     pub rigid_residual: f64,
+    /// The roles of the DOFs after the interface's 2n ([`TOP_PLATE`] for the top-plate rig).
+    pub border: Vec<BorderRole>,
 }
 
 impl Condensed {
     pub fn dim(&self) -> usize {
-        2 * self.n + 3
+        2 * self.n + self.border.len()
     }
 
     /// S with the plate DOFs (U_H, V, theta): U_H is the plate's horizontal displacement at
-    /// height `h` (m) above the interface.
+    /// height `h` (m) above the interface. Another rig's S as it is (H is the top plate's).
     pub fn at_height(&self, h: f64) -> Vec<f64> {
+        if self.border[..] != TOP_PLATE[..] {
+            return self.s.clone();
+        }
         let nd = self.dim();
         let (iu, ith) = (2 * self.n, 2 * self.n + 2);
         // b_old = T b_new: U0 = U_H + (h - t) theta.
@@ -109,9 +117,203 @@ pub fn boundary_model(scene: &Scene) -> Result<(SceneModel, Vec<usize>)> {
     Ok((sm, bdofs))
 }
 
-/// Condenses the scene's block and rigid plate (the loading height of `scene` is ignored).
+/// Condenses the scene's block and rigid plate (the loading height of `scene` is ignored); the
+/// side-pushed rig is [`condense_side_push`]'s (this refuses it, naming what runs it).
 pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
     let (sm, bdofs) = boundary_model(scene)?;
+    let mut touch = sm.interface.clone();
+    touch.extend(sm.mesh.set_nodes(&sm.top_set)?);
+    let (s, _) = schur(scene, &sm, &bdofs, &touch, None, opts)?;
+    let n = sm.interface.len();
+    let nd = bdofs.len();
+    let x: Vec<f64> = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
+    let t = scene.block.thickness;
+    let mut rigid = vec![vec![0.0; nd]; 3];
+    for i in 0..n {
+        rigid[0][i] = 1.0;
+        rigid[1][n + i] = 1.0;
+        rigid[2][n + i] = x[i];
+    }
+    rigid[0][2 * n] = 1.0;
+    rigid[1][2 * n + 1] = 1.0;
+    rigid[2][2 * n] = -t;
+    rigid[2][2 * n + 2] = 1.0;
+    finish(scene, &sm, s, &rigid, &TOP_PLATE)
+}
+
+/// The checks of a condensed S (nd x nd, the FE part unsymmetrised): its asymmetry, then S
+/// symmetrised, and its residual on the `rigid` motions over every row but a pressure's
+/// (its row is the load's work, not an equilibrium); refused beyond 1e-9.
+fn finish(
+    scene: &Scene,
+    sm: &SceneModel,
+    mut s: Vec<f64>,
+    rigid: &[Vec<f64>],
+    border: &[BorderRole],
+) -> Result<Condensed> {
+    let n = sm.interface.len();
+    let nd = 2 * n + border.len();
+    let smax = s.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut asym = 0.0f64;
+    for i in 0..nd {
+        for j in 0..i {
+            asym = asym.max((s[i * nd + j] - s[j * nd + i]).abs() / smax);
+        }
+    }
+    // Symmetrise (the asymmetry is round-off, reported above).
+    for i in 0..nd {
+        for j in 0..i {
+            let a = 0.5 * (s[i * nd + j] + s[j * nd + i]);
+            s[i * nd + j] = a;
+            s[j * nd + i] = a;
+        }
+    }
+    let x: Vec<f64> = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
+    let t = scene.block.thickness;
+    let mut rigid_residual = 0.0f64;
+    for r in rigid {
+        let rn = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for i in (0..nd).filter(|&i| i < 2 * n || border[i - 2 * n] != BorderRole::Pressure) {
+            let v: f64 = (0..nd).map(|j| s[i * nd + j] * r[j]).sum();
+            rigid_residual = rigid_residual.max(v.abs() / (smax * rn));
+        }
+    }
+    if !(asym < 1e-9 && rigid_residual < 1e-9) {
+        return Err(Error::Untrustworthy {
+            detail: format!(
+                "the condensed interface stiffness is not symmetric ({asym:.1e}) or does not annihilate the rigid motions ({rigid_residual:.1e}) to 1e-9"
+            ),
+            hint: "refine the mesh or check the material values".into(),
+        });
+    }
+    let w = sm.tributary_widths();
+    let e_star = scene.block.e_star();
+    Ok(Condensed {
+        n,
+        x,
+        w,
+        l: scene.block.length,
+        t,
+        e_star,
+        s,
+        asymmetry: asym,
+        rigid_residual,
+        border: border.to_vec(),
+    })
+}
+
+/// Where a side-pushed border DOF comes from: a DOF of the FE model (its index in the
+/// boundary), the pressure's amplitude, or the far end of the pusher's spring.
+#[derive(Clone, Copy, PartialEq)]
+enum Src {
+    Fe(usize),
+    Load,
+    End,
+}
+
+/// The side-pushed rig ([`Scene::build_side_push`]) condensed: the interface, the pusher's
+/// U_p and the sliding plate's V, theta, U (all prescribed for the condensation), or the
+/// uniform pressure as one more column (the held boundary's reactions to N = 1). With
+/// push_stiffness k the spring's far end D is the drive and U_p is free: S gains
+/// k [[1, -1], [-1, 1]] on (D, U_p). The rigid motions checked are the two translations (the
+/// pusher's flat face admits no rotation).
+pub fn condense_side_push(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
+    check_element(scene)?;
+    let (mut sm, sp) = scene.build_side_push()?;
+    if sm.interface.len() < 3 {
+        return Err(Error::input("mesh", "the interface needs at least 3 nodes"));
+    }
+    crate::scene::limits::check_interface(sm.interface.len())?;
+    let n = sm.interface.len();
+    let mut bdofs: Vec<usize> = sm.interface.iter().map(|&k| dof(k, 0)).collect();
+    bdofs.extend(sm.interface.iter().map(|&k| dof(k, 1)));
+    bdofs.push(sp.pusher);
+    // The border, drive first: (D, U_p) with the spring, else U_p; then the top's.
+    let mut src: Vec<Src> = vec![];
+    let mut border = vec![];
+    if sp.rig.stiffness.is_some() {
+        src.extend([Src::End, Src::Fe(2 * n)]);
+        border.extend([BorderRole::Drive, BorderRole::Free]);
+    } else {
+        src.push(Src::Fe(2 * n));
+        border.push(BorderRole::Drive);
+    }
+    let mut touch = sm.interface.clone();
+    touch.extend(&sp.pusher_nodes);
+    let load = match sp.plate {
+        Some([pu, pv, pth]) => {
+            bdofs.extend([pv, pth, pu]);
+            src.extend([Src::Fe(2 * n + 1), Src::Fe(2 * n + 2), Src::Fe(2 * n + 3)]);
+            border.extend([BorderRole::Normal, BorderRole::Tilt, BorderRole::Free]);
+            touch.extend(sm.mesh.set_nodes(&sm.top_set)?);
+            None
+        }
+        None => {
+            src.push(Src::Load);
+            border.push(BorderRole::Pressure);
+            // The top's consistent nodal forces of the mean pressure of N = 1 N/m.
+            let l = scene.block.length;
+            let mut p = vec![0.0; sm.constraints.n_full()];
+            crate::fem::loads::add_edge_traction(&sm.mesh, &sm.top_set, &|_| [0.0, -1.0 / l], &mut p)?;
+            Some(p)
+        }
+    };
+    for &d in &bdofs[2 * n..] {
+        sm.constraints.fix(d);
+    }
+    let nf = sm.constraints.n_fixed();
+    if nf != bdofs.len() {
+        return Err(Error::input("scene", format!("{nf} prescribed DOFs, expected {}", bdofs.len())));
+    }
+    let (s_fe, ell) = schur(scene, &sm, &bdofs, &touch, load.as_deref(), opts)?;
+    let (nb, nd) = (bdofs.len(), 2 * n + border.len());
+    let k = sp.rig.stiffness.unwrap_or(0.0);
+    let src: Vec<Src> = (0..2 * n).map(Src::Fe).chain(src).collect();
+    let up = Src::Fe(2 * n);
+    let entry = |a: Src, b: Src| match (a, b) {
+        (Src::Fe(i), Src::Fe(j)) => s_fe[i * nb + j] + if a == up && b == up { k } else { 0.0 },
+        (Src::Fe(i), Src::Load) | (Src::Load, Src::Fe(i)) => ell.as_ref().map_or(0.0, |l| l[i]),
+        (Src::End, Src::End) => k,
+        (Src::End, x) | (x, Src::End) if x == up => -k,
+        _ => 0.0,
+    };
+    let mut s = vec![0.0; nd * nd];
+    for i in 0..nd {
+        for j in 0..nd {
+            s[i * nd + j] = entry(src[i], src[j]);
+        }
+    }
+    // The translations: x moves the interface's u, the pusher (and its spring's end) and the
+    // plate's U; y the interface's v and the plate's V.
+    let mut rigid = vec![vec![0.0; nd]; 2];
+    for i in 0..n {
+        rigid[0][i] = 1.0;
+        rigid[1][n + i] = 1.0;
+    }
+    for (p, &b) in src[2 * n..].iter().enumerate() {
+        let d = 2 * n + p;
+        match b {
+            Src::End => rigid[0][d] = 1.0,
+            Src::Fe(j) if j == 2 * n || j == 2 * n + 3 => rigid[0][d] = 1.0,
+            Src::Fe(j) if j == 2 * n + 1 => rigid[1][d] = 1.0,
+            _ => {}
+        }
+    }
+    finish(scene, &sm, s, &rigid, &border)
+}
+
+/// The Schur complement S (nd x nd, row-major, not yet symmetrised) of `sm` onto its
+/// prescribed boundary DOFs `bdofs`, and the held boundary's reactions to the distributed
+/// load `load` (full DOF vector, N/m), if given. `touch`: the nodes tied to boundary DOFs
+/// (their elements carry every unit case's right-hand side and reactions).
+fn schur(
+    scene: &Scene,
+    sm: &SceneModel,
+    bdofs: &[usize],
+    touch: &[usize],
+    load: Option<&[f64]>,
+    opts: &SolverOptions,
+) -> Result<(Vec<f64>, Option<Vec<f64>>)> {
     let model = sm.model();
     let n = sm.interface.len();
     let nd = bdofs.len();
@@ -153,9 +355,7 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
         component: None,
     })?;
     // Element stiffnesses of the elements touching the interface or the top, once.
-    let mut touch = sm.interface.clone();
-    touch.extend(sm.mesh.set_nodes(&sm.top_set)?);
-    let elems = crate::fem::recovery::elements_touching(&model, &touch);
+    let elems = crate::fem::recovery::elements_touching(&model, touch);
     let kes: Vec<(Vec<usize>, Vec<f64>)> = elems
         .iter()
         .map(|&e| {
@@ -201,7 +401,20 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
         .collect();
     let mut x: Vec<f64> = rhs.concat();
     factor.solve_in_place(&mut x, nd);
-    if x.iter().any(|v| !v.is_finite()) {
+    // The distributed load's column (b = 0): reactions r = K u - p at the held boundary.
+    let load_reactions = match load {
+        Some(p) => {
+            let mut y = vec![0.0; nfree];
+            red.project_add(p, &mut y);
+            factor.solve_in_place(&mut y, 1);
+            let u = red.expand(&y, &vec![0.0; nf]);
+            let r: Vec<f64> = k_times(&u, false).iter().zip(p).map(|(k, p)| k - p).collect();
+            let fixed = red.fixed_reactions(&r);
+            Some(slots.iter().map(|&j| fixed[j]).collect())
+        }
+        None => None,
+    };
+    if x.iter().chain(load_reactions.iter().flatten()).any(|v: &f64| !v.is_finite()) {
         return Err(Error::Untrustworthy {
             detail: "the condensation produced non-finite displacements".into(),
             hint: "check the mesh and the material values".into(),
@@ -221,50 +434,5 @@ pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
             s[i * nd + j] = c[i];
         }
     }
-    let smax = s.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut asym = 0.0f64;
-    for i in 0..nd {
-        for j in 0..i {
-            asym = asym.max((s[i * nd + j] - s[j * nd + i]).abs() / smax);
-        }
-    }
-    // Symmetrise (the asymmetry is round-off, reported above).
-    for i in 0..nd {
-        for j in 0..i {
-            let a = 0.5 * (s[i * nd + j] + s[j * nd + i]);
-            s[i * nd + j] = a;
-            s[j * nd + i] = a;
-        }
-    }
-    let x: Vec<f64> = sm.interface.iter().map(|&k| sm.mesh.nodes[k][0]).collect();
-    let t = scene.block.thickness;
-    let mut rigid = vec![vec![0.0; nd]; 3];
-    for i in 0..n {
-        rigid[0][i] = 1.0;
-        rigid[1][n + i] = 1.0;
-        rigid[2][n + i] = x[i];
-    }
-    rigid[0][2 * n] = 1.0;
-    rigid[1][2 * n + 1] = 1.0;
-    rigid[2][2 * n] = -t;
-    rigid[2][2 * n + 2] = 1.0;
-    let mut rigid_residual = 0.0f64;
-    for r in &rigid {
-        let rn = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        for i in 0..nd {
-            let v: f64 = (0..nd).map(|j| s[i * nd + j] * r[j]).sum();
-            rigid_residual = rigid_residual.max(v.abs() / (smax * rn));
-        }
-    }
-    if !(asym < 1e-9 && rigid_residual < 1e-9) {
-        return Err(Error::Untrustworthy {
-            detail: format!(
-                "the condensed interface stiffness is not symmetric ({asym:.1e}) or does not annihilate the rigid motions ({rigid_residual:.1e}) to 1e-9"
-            ),
-            hint: "refine the mesh or check the material values".into(),
-        });
-    }
-    let w = sm.tributary_widths();
-    let e_star = scene.block.e_star();
-    Ok(Condensed { n, x, w, l: scene.block.length, t, e_star, s, asymmetry: asym, rigid_residual })
+    Ok((s, load_reactions))
 }

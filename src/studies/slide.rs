@@ -4,7 +4,7 @@
 use crate::error::{Error, Result};
 use crate::fem::problem::{solve, LoadCase};
 use crate::interface::banded::BandedOperator;
-use crate::interface::condense::{boundary_model, condense, Condensed};
+use crate::interface::condense::{boundary_model, condense, condense_side_push, Condensed};
 use crate::interface::events::{self, run_with, Operator, OperatorRef, Problem, Run};
 use crate::law::Law;
 use crate::linalg::solve::SolverOptions;
@@ -108,6 +108,12 @@ pub fn check_options(scene: &Scene, o: &SlideOptions) -> Result<()> {
         check_records(o, n as usize, "about ")?;
     }
     check_n_force(scene, o.n_force)?;
+    if !scene.loading.rig.is_top_plate() && o.operator == Operator::Banded {
+        return Err(Error::input(
+            "--operator",
+            "banded: the banded operator borders the top plate's three DOFs only; the side push runs on --operator dense",
+        ));
+    }
     if let Some(x) = o.x_max {
         if x > scene.block.length {
             return Err(Error::input(
@@ -259,7 +265,11 @@ pub fn run(scene: &Scene, o: &SlideOptions, progress: Progress) -> Result<SlideR
         let c = Condensed::of_banded(scene, &op);
         return run_banded(scene, &op, c, clock.elapsed().as_secs_f64(), o, progress);
     }
-    let c = condense(scene, &SolverOptions::default())?;
+    let c = if scene.loading.rig.is_top_plate() {
+        condense(scene, &SolverOptions::default())?
+    } else {
+        condense_side_push(scene, &SolverOptions::default())?
+    };
     let condense_s = clock.elapsed().as_secs_f64();
     run_condensed(scene, c, condense_s, o, progress)
 }
@@ -286,7 +296,8 @@ pub fn run_condensed(
         ));
     }
     let s = c.at_height(scene.loading.height);
-    run_on(scene, OperatorRef::Dense(&s), c, condense_s, o, progress)
+    let border = c.border.clone();
+    run_on(scene, OperatorRef::Dense(&s, &border), c, condense_s, o, progress)
 }
 
 /// The run on the banded operator; `c` carries the interface's positions and widths (its S,
@@ -344,6 +355,12 @@ pub fn state_displacements(
             "the run kept only its last state (keep_states false): the fields of an event need a run that keeps its states",
         ));
     }
+    if !res.scene.loading.rig.is_top_plate() {
+        return Err(Error::input(
+            "--fields",
+            "the block's fields of a side-pushed run are not written yet (the states keep the top plate's U, V, theta only)",
+        ));
+    }
     let (sm, bdofs) = boundary_model(&res.scene)?;
     let n = res.condensed.n;
     if sm.interface.len() != n {
@@ -374,7 +391,7 @@ pub fn state_displacements(
 /// Coefficients from the paper's (r, g) at the scene's H/L: mu_d = g L/(6 H), mu_s = mu_d/r.
 pub fn coefficients_from_rg(scene: &Scene, r: f64, g: f64) -> Result<(f64, f64)> {
     let p = crate::precursors::Params::new(r, g)?;
-    if scene.loading.height == 0.0 {
+    if scene.arm() == 0.0 {
         return Err(Error::input(
             "--g",
             "at --height 0 g = 6 mu_d H/L is 0 whatever the coefficients, so (r, g) cannot set them: give --mu-s and --mu-d (or neither, for the paper's)",
@@ -386,7 +403,7 @@ pub fn coefficients_from_rg(scene: &Scene, r: f64, g: f64) -> Result<(f64, f64)>
             "g = 6 mu_d H/L = 0 is the control case without torque, H = 0: give --height 0 (with --mu-s and --mu-d, or neither for the paper's)",
         ));
     }
-    let mu_d = p.g() * scene.block.length / (6.0 * scene.loading.height);
+    let mu_d = p.g() * scene.block.length / (6.0 * scene.arm());
     Ok((mu_d / p.r(), mu_d))
 }
 
@@ -394,7 +411,7 @@ pub fn coefficients_from_rg(scene: &Scene, r: f64, g: f64) -> Result<(f64, f64)>
 /// (the control case, where g is 0 whatever the coefficients) at the paper's H/L = 0.1, so
 /// the control case keeps the paper's friction with the torque removed.
 pub fn default_coefficients(scene: &Scene) -> Result<(f64, f64)> {
-    if scene.loading.height == 0.0 {
+    if scene.arm() == 0.0 {
         let mut paper = scene.clone();
         paper.loading.height = 0.1 * scene.block.length;
         return coefficients_from_rg(&paper, PAPER_R, PAPER_G);
@@ -433,7 +450,7 @@ pub struct FrontOffset {
 pub fn front_offset(res: &SlideResult) -> Option<FrontOffset> {
     let Law::Coulomb { mu } = res.options.law else { return None };
     let (l, t) = (res.condensed.l, res.condensed.t);
-    let g = 6.0 * mu * res.scene.loading.height / l;
+    let g = 6.0 * mu * res.scene.arm() / l;
     let mut d = Vec::new();
     for (k, st) in res.run.summaries.iter().enumerate() {
         if st.phase != crate::interface::events::Phase::Drive || mu == 0.0 {
@@ -491,9 +508,13 @@ pub fn precursors(res: &SlideResult) -> Precursors {
 }
 
 /// The edge [`precursors`] and [`front_advances`] count from: that of the lowest interior
-/// pressure ([`definition::Edge::of_lowest_pressure`]).
+/// pressure ([`definition::Edge::of_lowest_pressure`]); under side push the pushed, trailing
+/// edge at any push height (p = N/L + 12 F h x/L^3: no top shear adds a couple).
 pub fn nucleating_edge(res: &SlideResult) -> definition::Edge {
-    definition::Edge::of_lowest_pressure(res.scene.loading.height, res.scene.block.thickness)
+    if !res.scene.loading.rig.is_top_plate() {
+        return definition::Edge::Trailing;
+    }
+    definition::Edge::of_lowest_pressure(res.scene.arm(), res.scene.block.thickness)
 }
 
 /// The front advances of a run's first cycle ([`definition::advances`]); forces in N/m.
@@ -522,7 +543,7 @@ pub fn compare_paper(res: &SlideResult) -> Option<PaperComparison> {
     }
     let (mu_s, mu_d) = (res.options.law.mu_s(), res.options.law.mu_d());
     let c = &res.condensed;
-    let (r, g) = (mu_d / mu_s, 6.0 * mu_d * res.scene.loading.height / c.l);
+    let (r, g) = (mu_d / mu_s, 6.0 * mu_d * res.scene.arm() / c.l);
     let p = crate::precursors::Params::new(r, g).ok()?;
     let ev = crate::precursors::simulate(&p, 1);
     let k = mu_s * res.options.n_force;
@@ -562,7 +583,7 @@ pub struct ModelCurve {
 /// next to the FE curve.
 pub fn model_curve(res: &SlideResult) -> ModelCurve {
     let law = res.options.law;
-    let (r, g) = (law.mu_d() / law.mu_s(), 6.0 * law.mu_d() * res.scene.loading.height / res.condensed.l);
+    let (r, g) = (law.mu_d() / law.mu_s(), 6.0 * law.mu_d() * res.scene.arm() / res.condensed.l);
     let points = match crate::precursors::Params::new(r, g) {
         Ok(p) if law.weakens() => {
             let n = res.run.sliding_events.max(1) + crate::precursors::n_precursors(&p).unwrap_or(0);
@@ -797,9 +818,7 @@ impl LawChoice {
                 }
                 let mu = match (self.mu, self.g) {
                     (Some(m), None) => m,
-                    (None, Some(g)) if scene.loading.height > 0.0 => {
-                        g * scene.block.length / (6.0 * scene.loading.height)
-                    }
+                    (None, Some(g)) if scene.arm() > 0.0 => g * scene.block.length / (6.0 * scene.arm()),
                     (None, Some(_)) => {
                         return Err(Error::input("--g", "at --height 0 g is 0 whatever mu: give --mu"))
                     }

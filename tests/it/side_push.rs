@@ -145,13 +145,16 @@ fn bad_side_push_input_is_refused_before_any_work() {
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("--push-height") && err.contains("side-push"), "{err}");
     // Commands that cannot run it yet name what can.
-    for cmd in [&["slide"][..], &["precursors", "fe"], &["converge"], &["sweep"], &["stability"]] {
+    for cmd in
+        [&["slide", "--dynamics"][..], &["precursors", "fe"], &["converge"], &["sweep"], &["stability"]]
+    {
         let mut args = cmd.to_vec();
         args.extend(["--length", "0.1", "--thickness", "0.02", "--rig", "side-push"]);
         args.extend(["--push-height", "0.005", "--push-width", "0.006"]);
         let (code, err) = tribofe(&args, &out);
         assert_eq!(code, Some(2), "{args:?}: {err}");
-        assert!(err.contains("--rig") && err.contains("tribofe check"), "{args:?}: {err}");
+        let named = if cmd[0] == "slide" { "--dynamics" } else { "--rig" };
+        assert!(err.contains(named) && err.contains("tribofe check"), "{args:?}: {err}");
         assert!(!out.exists(), "{args:?} wrote {out:?}");
     }
     // In a scene file: the key, with its line.
@@ -212,4 +215,125 @@ fn check_runs_the_side_push_and_says_its_model() {
     let run = std::fs::read_to_string(out.join("run.toml")).unwrap();
     assert!(run.contains("12 F h x / L^3") && run.contains("rig = \"side-push\""), "{run}");
     assert!(out.join("profile_FN0.82.csv").exists());
+}
+
+// Issue 49, phase 2: the side push in the quasi-static `slide` (the event solver on the
+// condensed block with the rig's border: the pusher's U_p, or its spring's far end, driven).
+
+use tribofe::interface::events::{EventKind, Phase};
+use tribofe::law::{Law, Rule};
+use tribofe::studies::slide::{run as slide, SlideOptions, SlideResult};
+
+/// The frictional run of `side(top, 0.002)` under `law`, N = 1 N/m, with the driving spring
+/// `k` (N/m per m) if given.
+fn slid(top: Top, law: Law, k: Option<f64>) -> SlideResult {
+    let mut scene = side(top, 0.002);
+    scene.loading.push_stiffness = k;
+    let o = SlideOptions { law, cycles: 1, ..Default::default() };
+    slide(&scene, &o, tribofe::Progress::none()).unwrap()
+}
+
+#[test]
+fn side_push_nucleates_the_first_slip_at_the_pushed_edge() {
+    // The push at h = t/4 < t/2, where the top plate's rule would put the lowest pressure at
+    // the leading edge: under side push p = N/L + 12 F h x/L^3 is lowest at x = -L/2.
+    for top in [Top::UniformPressure, Top::SlidingPlate] {
+        let r = slid(top, Law::static_kinetic(0.5, 0.45, Rule::Paper).unwrap(), None);
+        let (k, e) = r
+            .run
+            .events
+            .iter()
+            .enumerate()
+            .find(|(k, e)| {
+                r.run.summaries[*k].phase == Phase::Drive && (e.region.is_some() || e.kind == EventKind::Slip)
+            })
+            .expect("a slip in the drive");
+        assert_eq!(e.node, 0, "{top:?}: first slip (event {k}, {:?}) at node {}", e.kind, e.node);
+        assert_eq!(r.condensed.x[0], -0.05, "{top:?}: node 0 is the pushed edge x = -L/2");
+        assert_eq!(tribofe::studies::slide::nucleating_edge(&r).name(), "trailing");
+    }
+}
+
+#[test]
+fn side_push_force_equals_the_interface_shear() {
+    // Horizontal balance of the block: the pusher's force F and the interface's shear
+    // sum(T_i) are its only horizontal forces (the top: a pressure, or a plate free to slide),
+    // in every recorded state: before the first slip (asserted to exist) and after. F + sum T
+    // is S's x translation applied to b: S annihilates it to its rigid residual (~1e-15 of
+    // max |S|), and a sprung pusher's free row holds to the solver's 1e-10 of the largest
+    // force (tolerances::RESIDUAL): 1e-9 of N covers both at N = 1 N/m and F <= N.
+    for top in [Top::UniformPressure, Top::SlidingPlate] {
+        for k in [None, Some(1e9)] {
+            let r = slid(top, Law::static_kinetic(0.5, 0.45, Rule::Paper).unwrap(), k);
+            let first_slip =
+                r.run.events.iter().position(|e| e.region.is_some() || e.kind == EventKind::Slip);
+            assert!(first_slip.is_some_and(|s| s >= 1), "{top:?} {k:?}");
+            let mut worst = 0.0f64;
+            for st in &r.run.states {
+                let shear: f64 = st.t_force.iter().sum();
+                worst = worst.max((st.f + shear).abs() / st.n_force);
+                let normal: f64 = st.p_force.iter().sum();
+                assert!((normal - st.n_force).abs() <= 1e-9 * st.n_force, "{top:?} {k:?}: sum P {normal:e}");
+            }
+            eprintln!("{top:?} {k:?}: |F + sum T|/N <= {worst:e}");
+            assert!(worst <= 1e-9, "{top:?} {k:?}: |F + sum T|/N = {worst:e}");
+            // The drive force is F: with the spring, k (X - U_p) > 0 and X > U_p.
+            let last = r.run.states.last().unwrap();
+            assert!(last.f > 0.0 && last.x > 0.0, "{top:?} {k:?}");
+        }
+    }
+}
+
+#[test]
+fn side_push_coulomb_peak_is_mu_n_at_full_sliding() {
+    // Coulomb: |sum T_i| <= mu sum P_i = mu N in every state, equal once every contact node
+    // slips one way. The states satisfy friction and balance to the run's largest violation v
+    // (in N/n per node): summed over the n nodes, |F/N - mu| at most 2 v (friction and
+    // balance), plus round-off.
+    let mu = 0.5;
+    for top in [Top::UniformPressure, Top::SlidingPlate] {
+        let r = slid(top, Law::coulomb(mu).unwrap(), None);
+        let tol = 2.0 * r.run.max_violation + 1e-9;
+        let peak = r.run.states.iter().map(|s| s.f / s.n_force).fold(f64::MIN, f64::max);
+        eprintln!("{top:?}: F_max/N = {peak}, tol {tol:e}");
+        assert!(peak <= mu + tol, "{top:?}: F_max/N = {peak} above mu = {mu}");
+        let full =
+            r.run.states.iter().find(|s| s.states.iter().all(|q| q.name() != "stick")).expect("full sliding");
+        assert!(
+            (full.f / full.n_force - mu).abs() <= tol,
+            "{top:?}: F/N = {} at full sliding, mu = {mu}",
+            full.f / full.n_force
+        );
+        // Before full sliding the push is below mu N: the drive loads the pushed edge first.
+        let first = &r.run.states[1];
+        assert!(first.f / first.n_force < mu * (1.0 - 1e-3), "{top:?}: {}", first.f / first.n_force);
+    }
+}
+
+#[test]
+fn slide_runs_the_side_push_on_the_dense_operator_only() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let base = ["slide", "--length", "0.1", "--thickness", "0.02", "--h", "0.002", "--rig", "side-push"];
+    let push = ["--push-height", "0.005", "--push-width", "0.006", "--push-stiffness", "1e9"];
+    for (extra, named) in [(&["--operator", "banded"][..], "--operator"), (&["--fields", "2"], "--fields")] {
+        let mut args = base.to_vec();
+        args.extend(push);
+        args.extend(extra);
+        let (code, err) = tribofe(&args, &out);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(err.contains(named), "{args:?} should name {named}: {err}");
+        assert!(!out.exists(), "{args:?} wrote {out:?}");
+    }
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_tribofe"))
+        .args(base)
+        .args(push)
+        .args(["--law", "static-kinetic", "--cycles", "1", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let run = std::fs::read_to_string(out.join("run.toml")).unwrap();
+    assert!(run.contains("far end of the pusher's spring") && run.contains("operator = \"dense\""), "{run}");
+    assert!(out.join("events.csv").exists());
 }

@@ -55,6 +55,7 @@ impl<'a> Solver<'a> {
             spring_u: vec![0.0; n],
             phase: Phase::Drive,
             n_force: pb.n_force,
+            border: op.border(),
         };
         let mut sv = Solver {
             law: pb.law,

@@ -107,8 +107,12 @@ impl Operator {
     }
 
     /// The default for `scene`: [`Self::for_interface`] of its structured mesh's interface
-    /// nodes (a mesh file: the reference). `slide` and its Python function both choose by it.
+    /// nodes (a mesh file, the side push: the reference). `slide` and its Python function both choose by it.
     pub fn for_scene(scene: &crate::scene::Scene) -> Operator {
+        // The side push borders more than the top plate's three DOFs: the dense reference.
+        if !scene.loading.rig.is_top_plate() {
+            return Operator::Dense;
+        }
         Self::for_interface(scene.mesh.file.is_none().then(|| scene.estimate_nx() as usize + 1))
     }
 
@@ -120,11 +124,34 @@ impl Operator {
     }
 }
 
+/// What the event solver does with each boundary DOF after the interface's 2n (the rig's
+/// border, in order): the loading rig as data, one solver for every rig.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BorderRole {
+    /// Prescribed: 0 in the normal phase, the loading parameter X in the drive phase (the top
+    /// plate's U_H, the pusher's U_p, or the far end of the pusher's spring). F is its force.
+    Drive,
+    /// Free under the normal force -N (ramped in the normal phase, held after): a plate's V.
+    Normal,
+    /// Free under no force (the sliding plate's U, a sprung pusher's U_p).
+    Free,
+    /// Free under no moment: a plate's rotation theta (reported as its tilt).
+    Tilt,
+    /// The uniform pressure's amplitude: prescribed to the normal force reached (lambda N in the
+    /// normal phase, N after); its column in S is the held boundary's reactions to the
+    /// pressure of a unit N, its own row is never an equation.
+    Pressure,
+}
+
+/// The top-plate rig's border: U_H, V, theta.
+pub const TOP_PLATE: [BorderRole; 3] = [BorderRole::Drive, BorderRole::Normal, BorderRole::Tilt];
+
 /// The operator a run works on (see [`Operator`]).
 #[derive(Clone, Copy)]
 pub enum OperatorRef<'a> {
-    /// Dense S at the drive height, (2n + 3)^2 row-major.
-    Dense(&'a [f64]),
+    /// Dense S at the drive height, (2n + k)^2 row-major, over the interface and the rig's k
+    /// border DOFs of the given roles.
+    Dense(&'a [f64], &'a [BorderRole]),
     Banded(&'a crate::interface::banded::BandedOperator),
 }
 

@@ -6,7 +6,7 @@
 //! the bordered inverse of its free block ([`super::inverse`]).
 
 use super::inverse::{Bordered, Rows};
-use super::{tolerances, NodeState, Phase};
+use super::{tolerances, BorderRole, NodeState, Phase};
 use crate::error::Result;
 
 /// The active set an operator solves for, owned by the solver: per node its state, the anchor
@@ -22,25 +22,35 @@ pub(crate) struct ActiveSet {
     pub phase: Phase,
     /// N, N/m.
     pub n_force: f64,
+    /// The rig's border DOFs after the interface's 2n, the drive first
+    /// ([`super::TOP_PLATE`]: U_H, V, theta).
+    pub border: Vec<BorderRole>,
 }
 
 impl ActiveSet {
-    /// Number of DOFs, 2n + 3.
+    /// Number of DOFs, 2n + k (k border DOFs).
     pub fn nd(&self) -> usize {
-        2 * self.n + 3
+        2 * self.n + self.border.len()
     }
+    /// The driven DOF (the border's first).
     pub fn iu(&self) -> usize {
         2 * self.n
     }
-    pub fn iv(&self) -> usize {
-        2 * self.n + 1
+    /// The DOF loaded by -N (a plate's V), if the rig has one.
+    pub fn iv(&self) -> Option<usize> {
+        self.border.iter().position(|&r| r == BorderRole::Normal).map(|p| 2 * self.n + p)
     }
-    pub fn ith(&self) -> usize {
-        2 * self.n + 2
+    /// A plate's rotation, if the rig has one.
+    pub fn ith(&self) -> Option<usize> {
+        self.border.iter().position(|&r| r == BorderRole::Tilt).map(|p| 2 * self.n + p)
+    }
+    /// Role of border DOF d (>= 2n).
+    fn role(&self, d: usize) -> BorderRole {
+        self.border[d - 2 * self.n]
     }
 
-    /// Whether DOF d is unknown: u_i of a node not stuck, v_i of an open node, V and theta
-    /// (U_H is prescribed).
+    /// Whether DOF d is unknown: u_i of a node not stuck, v_i of an open node, the border's
+    /// DOFs under a force (V, theta; the drive and the pressure's amplitude are prescribed).
     pub fn is_free(&self, d: usize) -> bool {
         let n = self.n;
         if d < n {
@@ -48,7 +58,28 @@ impl ActiveSet {
         } else if d < 2 * n {
             matches!(self.states[d - n], NodeState::Open)
         } else {
-            d != self.iu()
+            matches!(self.role(d), BorderRole::Normal | BorderRole::Free | BorderRole::Tilt)
+        }
+    }
+
+    /// Prescribed value of border DOF d (>= 2n), b0 + lambda b1: the drive 0 then lambda, the
+    /// pressure's amplitude lambda N then N; (0, 0) for a free DOF.
+    pub fn pinned(&self, d: usize) -> (f64, f64) {
+        match (self.role(d), self.phase) {
+            (BorderRole::Drive, Phase::Drive) => (0.0, 1.0),
+            (BorderRole::Pressure, Phase::Normal) => (0.0, self.n_force),
+            (BorderRole::Pressure, Phase::Drive) => (self.n_force, 0.0),
+            _ => (0.0, 0.0),
+        }
+    }
+
+    /// External force on DOF d, f0 + lambda f1 (N/m): [`Self::v_force`] on the DOF loaded by
+    /// N, 0 elsewhere.
+    pub fn ext_force(&self, d: usize) -> (f64, f64) {
+        if d >= 2 * self.n && self.role(d) == BorderRole::Normal {
+            self.v_force()
+        } else {
+            (0.0, 0.0)
         }
     }
 
@@ -144,6 +175,11 @@ pub(crate) trait Operator {
     fn det_sign(&mut self, _set: &ActiveSet) -> Result<Option<f64>> {
         Ok(None)
     }
+    /// The rig's border roles after the interface's 2n DOFs (the top plate's unless the
+    /// representation holds another rig).
+    fn border(&self) -> Vec<BorderRole> {
+        super::TOP_PLATE.to_vec()
+    }
 }
 
 /// The dense reference: S row-major, the bordered inverse of the free block, and g = S b_c,
@@ -155,12 +191,20 @@ pub(crate) struct Dense<'a> {
     /// S b0 and S b1 over the constrained values, or None to rebuild.
     g: Option<(Vec<f64>, Vec<f64>)>,
     g_updates: usize,
+    border: Vec<BorderRole>,
 }
 
 impl<'a> Dense<'a> {
-    /// S: nd x nd row-major, symmetric.
+    /// S: nd x nd row-major, symmetric, of the top-plate rig.
     pub fn new(s: &'a [f64], nd: usize) -> Dense<'a> {
-        Dense { s, nd, inv: Bordered::new(nd), g: None, g_updates: 0 }
+        Dense { s, nd, inv: Bordered::new(nd), g: None, g_updates: 0, border: super::TOP_PLATE.to_vec() }
+    }
+
+    /// S of a rig whose border DOFs (after the interface's 2n) have the roles `border`; nd is
+    /// sqrt(len S).
+    pub fn with_border(s: &'a [f64], border: &[BorderRole]) -> Dense<'a> {
+        let nd = (s.len() as f64).sqrt().round() as usize;
+        Dense { border: border.to_vec(), ..Dense::new(s, nd) }
     }
 }
 
@@ -252,7 +296,6 @@ impl Operator for Dense<'_> {
 
     fn solve(&mut self, set: &ActiveSet) -> Result<Affine> {
         let (n, nd) = (set.n, self.nd);
-        let iv = set.iv();
         let mut b0 = vec![0.0; nd];
         let mut b1 = vec![0.0; nd];
         for i in 0..n {
@@ -260,10 +303,9 @@ impl Operator for Dense<'_> {
                 b0[i] = set.anchor[i];
             }
         }
-        if set.phase == Phase::Drive {
-            b1[set.iu()] = 1.0;
+        for d in 2 * n..nd {
+            (b0[d], b1[d]) = set.pinned(d);
         }
-        let (fk0, fk1) = set.v_force();
         let s = self.s;
         // g = S b_c (the constrained values' forces), kept up to date by `change` (O(N) per
         // change) and rebuilt in one pass over S after bulk changes or [`tolerances::REBUILD`] updates; the free
@@ -287,7 +329,7 @@ impl Operator for Dense<'_> {
             let mut r0 = vec![0.0; m];
             let mut r1 = vec![0.0; m];
             for (k, &a) in dofs.iter().enumerate() {
-                let (mut s0, mut s1) = if a == iv { (fk0, fk1) } else { (0.0, 0.0) };
+                let (mut s0, mut s1) = set.ext_force(a);
                 s0 -= g0[a];
                 s1 -= g1[a];
                 let c = set.slip_coef(a);
@@ -329,10 +371,9 @@ impl Operator for Dense<'_> {
             for &a in dofs {
                 let c = set.slip_coef(a);
                 let (k, ku) = set.spring(a);
-                let q0 = f0[a] + if c != 0.0 { c * f0[a + n] } else { 0.0 } - if a == iv { fk0 } else { 0.0 }
-                    + k * (c0[a] - ku);
-                let q1 = f1[a] + if c != 0.0 { c * f1[a + n] } else { 0.0 } - if a == iv { fk1 } else { 0.0 }
-                    + k * c1[a];
+                let (e0, e1) = set.ext_force(a);
+                let q0 = f0[a] + if c != 0.0 { c * f0[a + n] } else { 0.0 } - e0 + k * (c0[a] - ku);
+                let q1 = f1[a] + if c != 0.0 { c * f1[a + n] } else { 0.0 } - e1 + k * c1[a];
                 res = res.max(q0.abs()).max(q1.abs());
             }
             if res > tolerances::RESIDUAL * big && attempt == 0 {
@@ -355,5 +396,9 @@ impl Operator for Dense<'_> {
 
     fn counts(&self) -> (usize, usize) {
         (self.inv.updates, self.inv.refreshes)
+    }
+
+    fn border(&self) -> Vec<BorderRole> {
+        self.border.clone()
     }
 }

@@ -154,13 +154,10 @@ impl Solver<'_> {
             Phase::Drive => -self.set.n_force,
         };
         for d in 0..self.set.nd() {
-            if d == self.iu() {
-                continue;
-            }
-            let target = if d == self.set.iv() {
-                Some(nk)
-            } else if d == self.set.ith() {
-                Some(0.0)
+            // The border's free DOFs carry N (a plate's V) or nothing; its pinned ones (the
+            // drive, the pressure's amplitude) are not equations.
+            let target = if d >= 2 * n {
+                self.set.is_free(d).then(|| if self.set.ext_force(d) == (0.0, 0.0) { 0.0 } else { nk })
             } else if self.set.is_free(d) {
                 Some(if d < n { -self.set.slip_coef(d) * a.f(n + d, lam) } else { 0.0 })
             } else {
@@ -182,8 +179,8 @@ impl Solver<'_> {
             x,
             n_force: nf,
             f: a.f(self.iu(), lam),
-            tilt: a.b(self.set.ith(), lam),
-            v: a.b(self.set.iv(), lam),
+            tilt: self.set.ith().map_or(0.0, |d| a.b(d, lam)),
+            v: self.set.iv().map_or(0.0, |d| a.b(d, lam)),
             t_force: (0..n).map(|i| a.f(i, lam)).collect(),
             p_force: (0..n).map(|i| a.f(n + i, lam)).collect(),
             u: (0..n).map(|i| a.b(i, lam)).collect(),

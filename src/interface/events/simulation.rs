@@ -6,24 +6,32 @@ use super::handoff::{Found, Onset, Resolved, Resolver};
 use super::operator::{Affine, Dense, Operator};
 use super::relax::Rules;
 use super::search::{Fix, Hit};
-use super::{tolerances, weakening, Event, EventKind, NodeState, OperatorRef, Phase, Problem, Run, State};
+use super::{
+    tolerances, weakening, BorderRole, Event, EventKind, NodeState, OperatorRef, Phase, Problem, Run, State,
+};
 use crate::error::{Error, Result};
 use crate::law::Law;
 
 /// Runs the loading history on the condensed S (at the drive height, see
 /// [`crate::interface::condense::Condensed::at_height`]); `progress` gets a fraction in [0, 1].
 pub fn run(s: &[f64], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<Run> {
-    let nd = 2 * n + 3;
-    if s.len() != nd * nd {
+    run_rig(s, &super::TOP_PLATE, n, pb, progress)
+}
+
+/// [`run`] on the condensed S of any rig: the interface's 2n DOFs then `border`.
+fn run_rig(s: &[f64], border: &[BorderRole], n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<Run> {
+    let nd = 2 * n + border.len();
+    let drives = border.iter().filter(|&&r| r == BorderRole::Drive).count();
+    if s.len() != nd * nd || drives != 1 || border.first() != Some(&BorderRole::Drive) {
         return Err(Error::input("condensed system", "sizes do not match the interface"));
     }
-    run_on(Box::new(Dense::new(s, nd)), n, pb, progress)
+    run_on(Box::new(Dense::with_border(s, border)), n, pb, progress)
 }
 
 /// [`run`] on either operator ([`Problem::operator`] is the caller's choice of which to build).
 pub fn run_with(op: OperatorRef, n: usize, pb: &Problem, progress: &dyn Fn(f64)) -> Result<Run> {
     match op {
-        OperatorRef::Dense(s) => run(s, n, pb, progress),
+        OperatorRef::Dense(s, border) => run_rig(s, border, n, pb, progress),
         OperatorRef::Banded(b) => {
             if b.n != n {
                 return Err(Error::input("banded operator", "sizes do not match the interface"));
@@ -100,7 +108,12 @@ fn start<'a, 'p>(
     let mut sv = Solver::new(op, n, pb)?;
     let a = sv.solve()?;
     let k_bonded = a.f1[sv.iu()];
-    let v_scale = a.b0[sv.set.iv()].abs();
+    // |V| under N; without a plate (uniform pressure) N over the bonded stiffness, the
+    // same order (both ~ N t/(E L)).
+    let v_scale = match sv.set.iv() {
+        Some(iv) => a.b0[iv].abs(),
+        None => pb.n_force / k_bonded,
+    };
     if !(k_bonded > 0.0 && v_scale > 0.0) {
         return Err(Error::input(
             "condensed system",

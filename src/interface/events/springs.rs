@@ -35,6 +35,6 @@ pub(super) fn operator(x: &[f64], kt: &[f64], kn: f64, h: f64) -> Vec<f64> {
 pub(super) fn solver<'a>(s: &'a [f64], n: usize, pb: &Problem) -> Solver<'a> {
     let mut sv = Solver::new(Box::new(Dense::new(s, 2 * n + 3)), n, pb).unwrap();
     let a = sv.solve().unwrap();
-    sv.dscale = a.b0[sv.set.iv()].abs();
+    sv.dscale = a.b0[sv.set.iv().expect("the top plate's V")].abs();
     sv
 }

@@ -38,6 +38,7 @@ fn reused_factor_matches_a_fresh_factorisation_through_many_updates() {
         spring_u: vec![0.0; n],
         phase: Phase::Normal,
         n_force: 40.0,
+        border: crate::interface::events::TOP_PLATE.to_vec(),
     };
     let mut small = Solving::with_rank_cap(&op, 3);
     let mut large = Solving::new(&op);
@@ -122,6 +123,7 @@ fn coefficient_iterates_are_low_rank_updates_of_one_factor() {
         spring_u: vec![0.0; n],
         phase: Phase::Drive,
         n_force: 40.0,
+        border: crate::interface::events::TOP_PLATE.to_vec(),
     };
     let mut reused = Solving::new(&op);
     assert!(reused.rank_cap >= zone.len(), "rank cap {}", reused.rank_cap);
