@@ -30,13 +30,8 @@ const RUNS: [(&str, &[&str], f64); 2] = [
     ),
 ];
 
-fn children_cpu() -> f64 {
-    let mut u: libc::rusage = unsafe { std::mem::zeroed() };
-    // SAFETY: getrusage writes into the struct we own.
-    unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut u) };
-    let tv = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
-    tv(u.ru_utime) + tv(u.ru_stime)
-}
+mod common;
+use common::children_cpu;
 
 fn main() {
     let tmp = tempfile::tempdir().expect("a temporary folder");

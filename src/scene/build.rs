@@ -25,22 +25,14 @@ impl Scene {
             self.check_rows()?;
             self.check_size()?;
         }
-        let (l, t, hgt) = (self.block.length, self.block.thickness, self.loading.height);
+        let hgt = self.loading.height;
         let tech = self.element()?.tech;
         let block_mat = self.block.material()?;
-        let nx = even((l / self.mesh.h).round().max(2.0) as usize);
-        let ny = self.mesh.n_thick.unwrap_or(((t / self.mesh.h).round() as usize).max(1));
+        let (nx, ny) = self.grid();
         let (interface_name, top_name) = (self.mesh.interface.clone(), self.mesh.top.clone());
         let mesh = match &self.mesh.file {
             Some(path) => self.read_mesh(path)?,
-            None => {
-                let mut m = self.layer(0.0, t, ny, nx)?;
-                let (bottom, top) = (m.edge_sets["bottom"].clone(), m.edge_sets["top"].clone());
-                m.edge_sets.insert(interface_name.clone(), bottom);
-                m.edge_sets.insert(top_name.clone(), top);
-                m.element_sets.insert(self.mesh.block.clone(), m.element_sets["all"].clone());
-                m
-            }
+            None => self.block_mesh(nx, ny)?,
         };
         match self.plate.model {
             PlateModel::Rigid => {
@@ -97,14 +89,9 @@ impl Scene {
         let tech = self.element()?.tech;
         let order = self.element()?.kind.order();
         let block_mat = self.block.material()?;
-        let nx = even((l / self.mesh.h).round().max(2.0) as usize);
-        let ny = self.mesh.n_thick.unwrap_or(((t / self.mesh.h).round() as usize).max(1));
+        let (nx, ny) = self.grid();
         let (interface_name, top_name) = (self.mesh.interface.clone(), self.mesh.top.clone());
-        let mut mesh = self.layer(0.0, t, ny, nx)?;
-        let (bottom, top) = (mesh.edge_sets["bottom"].clone(), mesh.edge_sets["top"].clone());
-        mesh.edge_sets.insert(interface_name.clone(), bottom);
-        mesh.edge_sets.insert(top_name.clone(), top);
-        mesh.element_sets.insert(self.mesh.block.clone(), mesh.element_sets["all"].clone());
+        let mesh = self.block_mesh(nx, ny)?;
         let tol = 1e-9 * t;
         let (lo, hi) = (sp.height - sp.width / 2.0, sp.height + sp.width / 2.0);
         let mut face: Vec<usize> = (0..mesh.n_nodes())
@@ -235,7 +222,7 @@ impl Scene {
     /// Refuses a structured mesh with one element through the thickness that only the
     /// rounding of h produced (checked when the mesh is built: a study may replace h).
     fn check_rows(&self) -> Result<()> {
-        let ny = self.mesh.n_thick.unwrap_or(((self.block.thickness / self.mesh.h).round() as usize).max(1));
+        let (_, ny) = self.grid();
         // One element through the thickness (no free node for QUA4) only when asked for
         // by n_thick, never as the rounding of h.
         if ny == 1 && self.mesh.n_thick.is_none() {
@@ -363,6 +350,26 @@ impl Scene {
 
     /// A layer y0 < y < y1 spanning the block's length, with the block's spacing along x
     /// (uniform with nx elements, or graded) and ny uniform rows.
+    /// The structured block's elements along x (even) and through the thickness.
+    fn grid(&self) -> (usize, usize) {
+        let (l, t, h) = (self.block.length, self.block.thickness, self.mesh.h);
+        (
+            even((l / h).round().max(2.0) as usize),
+            self.mesh.n_thick.unwrap_or(((t / h).round() as usize).max(1)),
+        )
+    }
+
+    /// The structured block, nx x ny elements, its bottom and top edges named as the scene's
+    /// interface and top sets and its elements as its block set.
+    fn block_mesh(&self, nx: usize, ny: usize) -> Result<Mesh> {
+        let mut m = self.layer(0.0, self.block.thickness, ny, nx)?;
+        let (bottom, top) = (m.edge_sets["bottom"].clone(), m.edge_sets["top"].clone());
+        m.edge_sets.insert(self.mesh.interface.clone(), bottom);
+        m.edge_sets.insert(self.mesh.top.clone(), top);
+        m.element_sets.insert(self.mesh.block.clone(), m.element_sets["all"].clone());
+        Ok(m)
+    }
+
     fn layer(&self, y0: f64, y1: f64, ny: usize, nx: usize) -> Result<Mesh> {
         let l = self.block.length;
         let mut r = Rectangle::new(-l / 2.0, l / 2.0, y0, y1, nx, ny).kind(self.element()?.kind);
