@@ -626,6 +626,31 @@ fn the_weakening_path_is_recorded_with_the_branch_force_before_each_onset() {
 }
 
 #[test]
+fn the_exact_path_hands_a_rate_problem_without_a_settled_state_to_the_dynamics() {
+    // (r, g) = (0.7, 0.5), D_c = 1.274e-6 m, h = 0.5 mm: at X = 5.2047e-6 m a node's joining
+    // with its weakening spring leaves the rate problem cycling between states (no unique
+    // rate solution: no stable quasi-static branch goes on). That point was an error
+    // ("cycles without settling") until 2026-11-29; it is an onset, the fold recorded at it.
+    let scene = block(Scene::default().block.length, 0.0005, None);
+    let (mu_s, mu_d) = slide::coefficients_from_rg(&scene, 0.7, 0.5).unwrap();
+    let o = SlideOptions {
+        law: Law::slip_weakening(mu_s, mu_d, 1.274e-6).unwrap(),
+        x_max: Some(5.25e-6),
+        operator: Operator::Banded,
+        weakening: Weakening::Exact,
+        ..Default::default()
+    };
+    let run = ds::run(&scene, &o, &DynamicOptions::default(), tribofe::Progress::none()).unwrap();
+    let (x_fold, f_fold) = run.slide.run.folds[0];
+    assert!((x_fold - 5.2047e-6).abs() < 1e-10, "fold at X = {x_fold:e}");
+    // The event starts past the fold, at most the kick (5e-2 D_c of the fastest node's slip)
+    // further on, and its force starts at the fold's (1e-4 mu_s N, the fold tolerance).
+    let e = &run.events[0];
+    assert!(e.x >= x_fold && e.x - x_fold < 1e-8, "event at X = {:e}", e.x);
+    assert!((e.f_pre - f_fold).abs() <= 1e-4 * mu_s * o.n_force);
+}
+
+#[test]
 fn dynamic_slide_coulomb_is_the_event_solver() {
     // Coulomb friction never becomes unstable, so --dynamics is its exact static loading
     // alone: the same events at the same X and F as `slide` (the same active-set solver, but

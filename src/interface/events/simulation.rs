@@ -338,10 +338,15 @@ pub(crate) fn settle_continuous(
     cap: usize,
     what: &str,
 ) -> Result<Affine> {
+    settle_within(sv, lam, cont, cap)?.ok_or_else(|| stuck_err(what, lam))
+}
+
+/// [`settle_continuous`], with None where `cap` changes did not settle the states.
+pub(crate) fn settle_within(sv: &mut Solver, lam: f64, cont: bool, cap: usize) -> Result<Option<Affine>> {
     for _ in 0..cap {
         let a = sv.solve()?;
         match sv.rate_fix(&a, lam, cont)? {
-            Fix::None => return Ok(a),
+            Fix::None => return Ok(Some(a)),
             Fix::Changed(i, _) if sv.tangent => {
                 // The exact weakening path: a node that starts slipping takes its row's
                 // linearisation at once, so that the rates are the branch's; if that makes
@@ -351,15 +356,15 @@ pub(crate) fn settle_continuous(
                     sv.set_coefficients(&[(i, sv.mu_slip(i), k, a.b(i, lam))])?;
                     if !super::weakening::tangent_stable(sv)? {
                         sv.lost = true;
-                        return sv.solve();
+                        return sv.solve().map(Some);
                     }
                 }
             }
             Fix::Changed(..) => {}
-            Fix::Instability(_) => return Err(stuck_err(what, lam)),
+            Fix::Instability(_) => return Ok(None),
         }
     }
-    Err(stuck_err(what, lam))
+    Ok(None)
 }
 
 pub(super) fn hit_kind(h: Hit) -> EventKind {

@@ -14,7 +14,7 @@ use super::active::Solver;
 use super::handoff::{Found, Onset, Resolved, Resolver};
 use super::operator::Affine;
 use super::search::Hit;
-use super::simulation::{apply_hit, hit_kind, settle_continuous, stuck_err, Recorder};
+use super::simulation::{apply_hit, hit_kind, settle_continuous, settle_within, stuck_err, Recorder};
 use super::{tolerances, EventKind, NodeState, Weakening};
 use crate::error::{Error, Result};
 use crate::law::Law;
@@ -444,7 +444,12 @@ fn on_path(
                 _ => return Ok(Err(a)),
             }
         }
-        let t = settle_continuous(sv, lam, true, cap, "drive")?;
+        // States that cycle with the weakening springs on: the rate problem has no unique
+        // solution there, so no stable quasi-static branch goes on (an onset).
+        let Some(t) = settle_within(sv, lam, true, cap)? else {
+            sv.lost = false;
+            return Ok(Err(sv.solve()?));
+        };
         if std::mem::take(&mut sv.lost) {
             return Ok(Err(t));
         }
