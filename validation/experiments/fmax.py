@@ -6,6 +6,7 @@ import math
 import os
 import shutil
 import tempfile
+import time
 
 import common
 
@@ -23,7 +24,7 @@ rows = []
 
 
 def case(rig, a, d, mu_d, h, study):
-    t = a * L
+    t, t0 = a * L, time.time()
     res = common.run(os.path.join(scratch, "run"), t, rig, d * t, MU_S, mu_d, h, push_width=0.15 * t)
     rows.append({
         "set": study,
@@ -43,7 +44,7 @@ def case(rig, a, d, mu_d, h, study):
         "instabilities_before_sliding": sum(e["kind"] in ("precursor", "nucleation", "tip-advance") for e in res["events"]),
         "max_violation_over_N_per_n": res["violation"],
     })
-    print(f"{study:9s} {rig:10s} t/L={a:<5} d/t={d:<4} mu_d={mu_d:<5} h/L={h / L:<6} F_max/N={res['F_max_over_N']:.4f}", flush=True)
+    print(f"{time.time() - t0:6.1f} s {study:9s} {rig:10s} t/L={a:<5} d/t={d:<4} mu_d={mu_d:<5} h/L={h / L:<6} F_max/N={res['F_max_over_N']:.4f}", flush=True)
 
 
 try:
@@ -52,9 +53,9 @@ try:
             for d in HEIGHTS:
                 case(rig, a, d, MU_D, H_MESH, "grid")
             case(rig, a, 0.5, MU_D_R09, H_MESH, "r0.9")
-    # h/2 where affordable: the top plate at t/L = 0.5, h = L/200 took 465 s here.
-    for rig, a in [("top-plate", 0.05), ("side-push", 0.05), ("side-push", 0.5)]:
-        case(rig, a, 0.5, MU_D, H_MESH / 2, "refine")
+    for a in [0.05, 0.2, 1.0]:
+        for rig in RIGS:
+            case(rig, a, 0.5, MU_D, H_MESH / 2, "refine")
 finally:
     shutil.rmtree(scratch)
 
