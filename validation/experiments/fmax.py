@@ -76,19 +76,21 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 plt.rcParams.update({"font.size": 9, "svg.hashsalt": "tribofe", "svg.fonttype": "none"})
-fig, axes = plt.subplots(1, 2, figsize=(7.0, 3.0), sharey=True, constrained_layout=True)
+fig, axes = plt.subplots(1, 2, figsize=(7.0, 3.6), sharey=True, constrained_layout=True)
 cmap = plt.get_cmap("viridis")
 for ax, rig, title in zip(axes, RIGS, ["(a) top plate, driven at H", "(b) side push at h"]):
     for k, d in enumerate(HEIGHTS):
         pts = sorted((r["t_over_L"], r["F_max_over_mu_s_N"]) for r in rows
                      if r["set"] == "grid" and r["rig"] == rig and r["height_over_t"] == d)
         ax.plot(*zip(*pts), "o-", ms=3, color=cmap(k / (len(HEIGHTS) - 1)),
-                label=f"{'H' if rig == 'top-plate' else 'h'} = {d} t")
+                label=f"height {d} t (H or h)")
     # runs stopped at X_max before a whole slip: open markers (F_max is the peak so far)
     pts = [(r["t_over_L"], r["F_max_over_mu_s_N"]) for r in rows if r["rig"] == rig
            and r["set"] in ("grid", "r0.9") and r["ended_by"] == "X_max"]
     if pts:
         ax.plot(*zip(*pts), "o", ms=5, mfc="white", mec="k", mew=0.8, zorder=5)
+    pts = [(r["t_over_L"], r["F_max_over_mu_s_N"]) for r in rows if r["set"] == "refine" and r["rig"] == rig]
+    ax.plot(*zip(*pts), "x", ms=6, color="C3", zorder=6, label="height t/2, h = L/200")
     pts = sorted((r["t_over_L"], r["F_max_over_mu_s_N"]) for r in rows if r["set"] == "r0.9" and r["rig"] == rig)
     ax.plot(*zip(*pts), "s--", ms=3, color="0.4", label=r"$\mu_d/\mu_s$ = 0.9, height t/2")
     ax.axhline(1.0, color="k", lw=0.6)
@@ -99,6 +101,6 @@ for ax, rig, title in zip(axes, RIGS, ["(a) top plate, driven at H", "(b) side p
 axes[0].set_ylabel(r"$F_{max}/(\mu_s N)$")
 axes[0].text(0.06, MU_D / MU_S + 0.02, r"$\mu_d/\mu_s$", fontsize=8)
 axes[1].plot([], [], "o", ms=5, mfc="white", mec="k", mew=0.8, label="stopped at X_max, no whole slip")
-axes[1].legend(fontsize=7, loc="center right", frameon=False)
+fig.legend(*axes[1].get_legend_handles_labels(), loc="outside lower center", ncol=4, fontsize=7, frameon=False)
 fig.savefig(os.path.join(HERE, "fmax.svg"), metadata={"Date": None})
 print(f"wrote {os.path.join(HERE, 'fmax.csv')} and fmax.svg")
