@@ -110,8 +110,8 @@ pub struct Args {
     /// How each state set is solved: `dense` (the condensed S with a bordered inverse, the
     /// reference) or `banded` (the block's sparse stiffness in x order, one reused banded LU:
     /// cost per event grows like n, not n^2; equal results to round-off). Default: banded above
-    /// 200 interface nodes (a mesh file: dense), dense at or below (docs/speed.md); banded
-    /// with --dynamics. The choice and its reason are printed and written to run.toml.
+    /// 200 interface nodes while (node rows through t)^2 <= nodes / 2, dense otherwise and for
+    /// a mesh file (docs/speed.md); banded with --dynamics. The choice and its reason are printed and written to run.toml.
     #[arg(long, value_parser = ["dense", "banded"])]
     pub operator: Option<String>,
     /// Write the whole block's fields for this many states spread evenly over the drive X, one
@@ -219,7 +219,9 @@ fn operator_reason(a: &Args, scene: &tribofe::scene::Scene) -> String {
         (None, _) if !scene.loading.rig.is_top_plate() => "the side push's default (dense)".into(),
         (None, _) if a.dynamics => "the --dynamics default".into(),
         (None, Some(n)) => format!(
-            "default for {n} interface nodes (banded above {})",
+            "default for {n} interface nodes and {} node rows through t: banded above {} nodes \
+             while rows^2 <= nodes / 2",
+            tribofe::interface::events::Operator::band_rows(scene),
             tribofe::interface::events::AUTO_BANDED_ABOVE
         ),
         (None, None) => "default for a mesh file (dense)".into(),

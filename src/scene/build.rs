@@ -246,13 +246,19 @@ impl Scene {
     pub fn estimate_dofs(&self) -> Result<f64> {
         let (t, h) = (self.block.thickness, self.mesh.h);
         let nx = self.estimate_nx();
-        let ny = self.mesh.n_thick.map_or((t / h).round().max(1.0), |n| n as f64);
+        let ny = self.estimate_rows();
         let rows = match self.plate.model {
             PlateModel::Rigid => ny,
             PlateModel::Elastic => ny + self.plate.thickness / (t / 2.0).max(h) + 1.0,
         };
         let p = self.element()?.kind.order() as f64;
         Ok(2.0 * (p * nx + 1.0) * (p * rows + 1.0))
+    }
+
+    /// Element rows through the block's thickness of the structured mesh.
+    pub fn estimate_rows(&self) -> f64 {
+        let (t, h) = (self.block.thickness, self.mesh.h);
+        self.mesh.n_thick.map_or((t / h).round().max(1.0), |n| n as f64)
     }
 
     /// Elements along x of the structured mesh, uniform or graded, estimated from the scene

@@ -279,3 +279,21 @@ fn same_events_thin_block_and_weakening() {
     let (e, _, _) = same_prefix(&w, Law::slip_weakening(ms, md, 3e-7).unwrap(), 1, Some(150), 1e-6);
     assert_eq!(e, 150, "slip weakening");
 }
+
+#[test]
+fn the_default_operator_is_dense_on_thick_blocks_and_banded_on_thin_long_ones() {
+    // The size rule (Operator::for_interface): banded above 200 nodes while rows^2 <= n / 2.
+    // Measured (docs/speed.md): 401 nodes, 20 rows, static-kinetic: dense 1.1 s, banded 2.4 s;
+    // 10 rows: 0.65 s, 0.23 s. The default must pick the faster of each pair.
+    let mut s = Scene::default();
+    s.block.length = 0.1;
+    s.mesh.h = 0.00025;
+    s.block.thickness = 0.005;
+    assert_eq!(Operator::for_scene(&s), Operator::Dense);
+    s.block.thickness = 0.0025;
+    assert_eq!(Operator::for_scene(&s), Operator::Banded);
+    // The top plate at t/L = 0.5 on 201 nodes (100 rows): banded took 465 s, dense 2.9 s.
+    s.mesh.h = 0.0005;
+    s.block.thickness = 0.05;
+    assert_eq!(Operator::for_scene(&s), Operator::Dense);
+}

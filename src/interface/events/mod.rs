@@ -97,23 +97,34 @@ pub enum Operator {
 pub const AUTO_BANDED_ABOVE: usize = 200;
 
 impl Operator {
-    /// The default for an interface of `n` nodes (None: not known before the mesh is read,
-    /// a mesh file: the reference); see [`AUTO_BANDED_ABOVE`].
-    pub fn for_interface(n: Option<usize>) -> Operator {
+    /// The default for an interface of `n` nodes over `rows` node rows through the thickness
+    /// (None: not known before the mesh is read, a mesh file: the reference): banded above
+    /// [`AUTO_BANDED_ABOVE`] nodes while rows^2 <= n / 2. A banded factorisation costs
+    /// O(n rows^3) against the dense inverse's O(n^2) per state change, so thick blocks stay
+    /// dense; measured crossovers (static-kinetic, docs/speed.md): between 10 and 20 rows at
+    /// 401 nodes, near 20 at 801.
+    pub fn for_interface(n: Option<usize>, rows: f64) -> Operator {
         match n {
-            Some(n) if n > AUTO_BANDED_ABOVE => Operator::Banded,
+            Some(n) if n > AUTO_BANDED_ABOVE && rows * rows <= n as f64 / 2.0 => Operator::Banded,
             _ => Operator::Dense,
         }
     }
 
     /// The default for `scene`: [`Self::for_interface`] of its structured mesh's interface
-    /// nodes (a mesh file, the side push: the reference). `slide` and its Python function both choose by it.
+    /// nodes and rows (a mesh file, the side push: the reference). `slide` and its Python
+    /// function both choose by it.
     pub fn for_scene(scene: &crate::scene::Scene) -> Operator {
         // The side push borders more than the top plate's three DOFs: the dense reference.
         if !scene.loading.rig.is_top_plate() {
             return Operator::Dense;
         }
-        Self::for_interface(scene.mesh.file.is_none().then(|| scene.estimate_nx() as usize + 1))
+        let n = scene.mesh.file.is_none().then(|| scene.estimate_nx() as usize + 1);
+        Self::for_interface(n, Self::band_rows(scene))
+    }
+
+    /// Node rows through the block's thickness (element rows times the element's order).
+    pub fn band_rows(scene: &crate::scene::Scene) -> f64 {
+        scene.estimate_rows() * scene.element().map_or(1.0, |e| e.kind.order() as f64)
     }
 
     pub fn name(&self) -> &'static str {
