@@ -255,13 +255,11 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         "`slide` loads N then X until the interface slides (--n-force, --x-max); the load ratios and the edge-zone tolerance belong to `check`",
     )?;
     let scene = super::scene_args::scene_any_rig(&a.scene)?;
-    if !scene.loading.rig.is_top_plate() {
-        if a.fields > 0 {
-            return Err(Error::input(
-                "--fields",
-                "the block's fields of a side-pushed run are not written yet: drop --fields",
-            ));
-        }
+    if !scene.loading.rig.is_top_plate() && a.fields > 0 {
+        return Err(Error::input(
+            "--fields",
+            "the block's fields of a side-pushed run are not written yet: drop --fields",
+        ));
     }
     // The scene's [law] kind and rule where the flags (which have defaults) were not given;
     // its numbers join in law_choice.

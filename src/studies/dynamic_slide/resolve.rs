@@ -15,12 +15,15 @@ use crate::progress::Progress;
 use crate::studies::slide::SlideOptions;
 use std::time::Instant;
 
+/// A plate's (V, theta) and the side push's free (U_p, U) ([`super::setup::Setup::coordinates`]).
+pub(super) type Coordinates = ([f64; 2], [f64; 2]);
+
 /// What a dynamic event needs of the run, and what the run reads back after the drive.
 pub(super) struct Held<'r, 'a> {
     /// The whole block's displacement from the event solver's boundary values at X.
     pub full_field: &'r dyn Fn(&Affine, f64) -> Vec<f64>,
     /// The rig's moving coordinates at X: a plate's (V, theta), the side push's free (U_p, U).
-    pub coordinates: &'r dyn Fn(&Affine, f64) -> ([f64; 2], [f64; 2]),
+    pub coordinates: &'r dyn Fn(&Affine, f64) -> Coordinates,
     /// The interface's stiffness with its boundary held, for the fracture arrest (None: none).
     pub held: Option<&'r HeldStiffness<'r>>,
     pub driven: &'r crate::dynamics::driven::Driven<'a>,
