@@ -537,6 +537,7 @@ impl PlateAndBase<'_> {
                 self.free_dot[0] += dt * (face_fx + spring) / side.m_pusher;
                 self.free[0] += dt * self.free_dot[0];
                 self.f_drive = spring;
+                // The ledger's drive work is the spring's on the pusher (its energy is outside the mesh).
                 self.e.drive += dt * 0.5 * (old + self.free_dot[0]) * spring;
                 (self.free[0], self.free_dot[0])
             }

@@ -428,9 +428,14 @@ fn dynamic_side_push_static_states_balance_force() {
         }
         eprintln!("{top:?} {k:?}: {} states, |F + sum T|, |sum P - N| <= {worst:e} N", run.states.len());
         assert!(worst <= 1e-9, "{top:?} {k:?}: {worst:e}");
-        // The dynamic events end near their static equilibrium: F within 1 % of mu_s N.
+        // The dynamic events end near their static equilibrium (F within 1 % of mu_s N), and
+        // the scheme's exact ledger (the pressure's, the plate's N and the spring's or the
+        // driven pusher's work counted as the rig's) closes to round-off: 1e-9 of the dissipation.
         for e in &r.events {
             assert!(e.f_gap < 1e-2, "{top:?}: event {} f_gap {}", e.event, e.f_gap);
+            let en = &e.record.energy;
+            let rel = en.residual.abs() / (en.friction + en.damping);
+            assert!(rel < 1e-9, "{top:?}: event {} ledger residual {rel:e}", e.event);
         }
     }
 }
