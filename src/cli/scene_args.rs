@@ -330,9 +330,8 @@ fn scene_with(args: &SceneArgs, side_push: bool) -> tribofe::Result<Scene> {
         };
         return Err(tribofe::Error::input(
             key,
-            "side-push runs in `tribofe check` and the quasi-static `tribofe slide` (without \
-             --dynamics) in this phase; this command supports rig = \"top-plate\" (remove the key or \
-             the flag)",
+            "side-push runs in `tribofe check` and `tribofe slide` (with or without --dynamics) \
+             in this phase; this command supports rig = \"top-plate\" (remove the key or the flag)",
         ));
     }
     let s = base.apply(&args.overrides()?)?;

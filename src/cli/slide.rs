@@ -212,6 +212,17 @@ fn interface_estimate(scene: &tribofe::scene::Scene) -> Option<usize> {
     scene.mesh.file.is_none().then(|| scene.estimate_nx() as usize + 1)
 }
 
+/// run.toml's `drive` under side push: X is the pusher's displacement, or the spring's far
+/// end; F the pusher's force (None: the top plate).
+fn drive(scene: &tribofe::scene::Scene) -> Option<(&'static str, toml::Value)> {
+    let d = match scene.loading.push_stiffness {
+        _ if scene.loading.rig.is_top_plate() => return None,
+        Some(_) => "X: the far end of the pusher's spring (push_stiffness), m; F: the pusher force, N/m",
+        None => "X: the pusher's displacement U_p, m; F: the pusher force, N/m",
+    };
+    Some(("drive", toml::Value::from(d)))
+}
+
 /// Why the run is on its operator: given, or the size rule.
 fn operator_reason(a: &Args, scene: &tribofe::scene::Scene) -> String {
     match (&a.operator, interface_estimate(scene)) {
@@ -246,20 +257,11 @@ pub fn run(a: Args) -> tribofe::Result<()> {
         "`slide` loads N then X until the interface slides (--n-force, --x-max); the load ratios and the edge-zone tolerance belong to `check`",
     )?;
     let scene = super::scene_args::scene_any_rig(&a.scene)?;
-    if !scene.loading.rig.is_top_plate() {
-        // The quasi-static solver runs the side push; the dynamic one borders the top plate only.
-        if a.dynamics {
-            return Err(Error::input(
-                "--dynamics",
-                "side-push runs in `tribofe check` and the quasi-static `tribofe slide` (without --dynamics) in this phase",
-            ));
-        }
-        if a.fields > 0 {
-            return Err(Error::input(
-                "--fields",
-                "the block's fields of a side-pushed run are not written yet: drop --fields",
-            ));
-        }
+    if !scene.loading.rig.is_top_plate() && a.fields > 0 {
+        return Err(Error::input(
+            "--fields",
+            "the block's fields of a side-pushed run are not written yet: drop --fields",
+        ));
     }
     // The scene's [law] kind and rule where the flags (which have defaults) were not given;
     // its numbers join in law_choice.
@@ -422,7 +424,7 @@ fn run_checked(
         operator: match a.operator.as_deref() {
             Some("banded") => tribofe::interface::events::Operator::Banded,
             Some(_) => tribofe::interface::events::Operator::Dense,
-            None if a.dynamics => ds::DEFAULT_OPERATOR,
+            None if a.dynamics => ds::default_operator(&scene),
             None => tribofe::interface::events::Operator::for_scene(&scene),
         },
         ..Default::default()
@@ -451,16 +453,7 @@ fn run_checked(
         ("operator", toml::Value::from(o.operator.name())),
         ("operator_reason", toml::Value::from(operator_reason(&a, &scene))),
     ];
-    // Under side push X is the pusher's displacement, or the spring's far end; F its force.
-    let drive = match scene.loading.push_stiffness {
-        _ if scene.loading.rig.is_top_plate() => None,
-        Some(_) => {
-            Some("X: the far end of the pusher's spring (push_stiffness), m; F: the pusher force, N/m")
-        }
-        None => Some("X: the pusher's displacement U_p, m; F: the pusher force, N/m"),
-    };
-    let results: Vec<(&str, toml::Value)> =
-        results.into_iter().chain(drive.map(|d| ("drive", toml::Value::from(d)))).collect();
+    let results: Vec<(&str, toml::Value)> = results.into_iter().chain(drive(&scene)).collect();
     let header = tribofe::report::run_toml(super::invocation(), &results, &scene)?;
     let dir = super::begin_out(&a.out, a.force)?;
     let states = res.options.keep_states;
@@ -613,7 +606,7 @@ fn run_dynamic(a: &Args, scene: &tribofe::scene::Scene, o: SlideOptions) -> trib
     ];
     // summary.csv's row, NaN (a quantity the run does not have) left out, and the cap if met.
     let summary = ds::summary::COLUMNS.iter().zip(ds::summary::values(&res));
-    let mut results: Vec<(&str, toml::Value)> = results.into_iter().collect();
+    let mut results: Vec<(&str, toml::Value)> = results.into_iter().chain(drive(scene)).collect();
     results.extend(summary.filter(|(_, v)| v.is_finite()).map(|(c, v)| (c.0, toml::Value::from(v))));
     if let Some(why) = &res.incomplete {
         results.push(("incomplete", toml::Value::from(why.as_str())));

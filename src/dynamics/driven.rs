@@ -56,6 +56,30 @@ pub struct Layout {
     /// Inverse of the plate's 2x2 mass matrix over (V, theta).
     mp_inv: [[f64; 2]; 2],
     m_top: f64,
+    /// The side-pushed rig's boundary in place of the top plate's (None: the top plate).
+    pub side: Option<SideLayout>,
+}
+
+/// The side push's boundary (issue 49; docs/check.md, "The side-pushed rig"): the pusher's
+/// face nodes share U_p (their v free); the top is either under the uniform pressure (free
+/// nodes, each loaded by its consistent share of N) or the sliding plate (u = U, v = V +
+/// theta x: the top plate's (V, theta) with a zero arm, and U free, not driven).
+#[derive(Debug, Clone)]
+pub struct SideLayout {
+    /// The pusher's face nodes; whether the pusher moves each one's v (false: a top node
+    /// under the pressure, moved with the top).
+    pub pusher: Vec<usize>,
+    pusher_v: Vec<bool>,
+    /// The spring's stiffness, N/m per m: the drive X is its far end and U_p is free
+    /// ([`DynState::free`]); None: U_p is the drive.
+    pub stiffness: Option<f64>,
+    /// Under the uniform pressure, each top node's nodal force per N/m of N (y, N/m; the
+    /// consistent share, negative); empty: the sliding plate.
+    pub pressure: Vec<f64>,
+    /// Top nodes whose u is the pusher's (the pressure's top corner when the pusher reaches it).
+    pushed_top: Vec<bool>,
+    /// The pusher nodes' lumped mass, kg/m (the sprung U_p's inertia).
+    m_pusher: f64,
 }
 
 impl Layout {
@@ -91,8 +115,31 @@ impl Layout {
             top_moments: [a, b, c],
             mp_inv: [[0.0; 2]; 2],
             m_top: a,
+            side: None,
         };
         lay.mp_inv = inverse(lay.plate_matrix());
+        lay
+    }
+
+    /// The side-pushed rig: the pusher's face nodes `pusher`, the spring `stiffness` (N/m per
+    /// m; None: U_p driven), the top's `pressure` shares (per top node; empty: the sliding
+    /// plate, whose (V, theta) are the top plate's with a zero arm).
+    pub fn side_push(
+        model: &Elastodynamic,
+        (base, x): (Vec<usize>, Vec<f64>),
+        (top, top_x): (Vec<usize>, Vec<f64>),
+        pusher: Vec<usize>,
+        stiffness: Option<f64>,
+        pressure: Vec<f64>,
+    ) -> Self {
+        let mut lay = Self::new(model, base, x, top, top_x, 0.0);
+        let on_top = |k: &usize| lay.top.contains(k);
+        let pusher_v = pusher.iter().map(|k| !on_top(k)).collect();
+        let pushed_top =
+            if pressure.is_empty() { vec![] } else { lay.top.iter().map(|k| pusher.contains(k)).collect() };
+        lay.hooked.extend(pusher.iter().filter(|k| !on_top(k)));
+        let m_pusher = pusher.iter().map(|&k| model.mass[k]).sum();
+        lay.side = Some(SideLayout { pusher, pusher_v, stiffness, pressure, pushed_top, m_pusher });
         lay
     }
 
@@ -159,6 +206,10 @@ pub struct DynState {
     /// Plate V (m), theta (rad) at step n and their rates at n - 1/2.
     pub q: [f64; 2],
     pub qdot: [f64; 2],
+    /// The side push's free coordinates (the sprung pusher's U_p, the sliding plate's U; m)
+    /// at step n and their rates at n - 1/2 (unused by the top plate).
+    pub free: [f64; 2],
+    pub free_dot: [f64; 2],
     /// Slip path length of each base node since the last healing, m.
     pub d: Vec<f64>,
     /// Rate-and-state state of each base node, s (empty for the rate-free laws).
@@ -361,6 +412,8 @@ struct PlateAndBase<'s> {
     dr: &'s Driven<'s>,
     q: &'s mut [f64; 2],
     qdot: &'s mut [f64; 2],
+    free: &'s mut [f64; 2],
+    free_dot: &'s mut [f64; 2],
     u_h: &'s mut f64,
     drive_velocity: f64,
     d: &'s mut [f64],
@@ -381,7 +434,7 @@ impl Boundary for PlateAndBase<'_> {
         self.dr.layout.plate_kinetic(self.drive_velocity, *self.qdot)
     }
 
-    fn apply(&mut self, s: BoundaryStep<'_>) -> f64 {
+    fn apply(&mut self, mut s: BoundaryStep<'_>) -> f64 {
         let (lay, dt) = (self.dr.layout, s.dt);
         let (fr0, co0, wn0, dr0) = (self.e.friction, self.e.contact, self.e.work_n, self.e.drive);
         // Base nodes: contact and friction.
@@ -427,6 +480,11 @@ impl Boundary for PlateAndBase<'_> {
             s.u_next[iy] = if p_star > 0.0 { 0.0 } else { s.u[iy] + dt * vy };
             self.d[b] += dt * vx.abs();
         }
+        if let Some(side) = &lay.side {
+            self.side_push(side, &mut s);
+            return (self.e.work_n - wn0) + (self.e.contact - co0) + (self.e.drive - dr0)
+                - (self.e.friction - fr0);
+        }
         // The plate: generalized forces on (V, theta) from the top nodes, and the drive's
         // reaction F = (sum m + m_p) arm theta'' - sum f_x (U_H has no acceleration).
         let (mut qv, mut qt, mut fx_sum) = (-self.dr.n_force, 0.0, 0.0);
@@ -455,6 +513,92 @@ impl Boundary for PlateAndBase<'_> {
             s.u_next[iy] = self.q[0] + xk * self.q[1];
         }
         (self.e.work_n - wn0) + (self.e.contact - co0) + (self.e.drive - dr0) - (self.e.friction - fr0)
+    }
+}
+
+/// v^{n+1/2} of DOF `i` moving freely under the mesh's force plus `ext` (N/m).
+fn free_dof(s: &BoundaryStep<'_>, i: usize, ext: f64) -> f64 {
+    s.v[i] + s.dt * (s.force(i) + ext) / s.mass[i / 2]
+}
+
+impl PlateAndBase<'_> {
+    /// The side push's boundary in one step (the base done): the pusher (U_p driven at the
+    /// drive velocity, or free under its spring k (X - U_p) and the face's forces), the top
+    /// (free nodes under the pressure's nodal forces, or the sliding plate: U free, (V,
+    /// theta) as the top plate's with a zero arm). F is the pusher's force on the block: the
+    /// spring's, or -sum f_x over the face (U_p has no acceleration).
+    fn side_push(&mut self, side: &SideLayout, s: &mut BoundaryStep<'_>) {
+        let (lay, dt, n_force) = (self.dr.layout, s.dt, self.dr.n_force);
+        let face_fx: f64 = side.pusher.iter().map(|&k| s.force(2 * k)).sum();
+        let (up_next, up_dot) = match side.stiffness {
+            Some(k) => {
+                let spring = k * (*self.u_h - self.free[0]);
+                let old = self.free_dot[0];
+                self.free_dot[0] += dt * (face_fx + spring) / side.m_pusher;
+                self.free[0] += dt * self.free_dot[0];
+                self.f_drive = spring;
+                // The ledger's drive work is the spring's on the pusher (its energy is outside the mesh).
+                self.e.drive += dt * 0.5 * (old + self.free_dot[0]) * spring;
+                (self.free[0], self.free_dot[0])
+            }
+            None => {
+                self.f_drive = -face_fx;
+                self.e.drive += dt * self.drive_velocity * self.f_drive;
+                (*self.u_h + dt * self.drive_velocity, self.drive_velocity)
+            }
+        };
+        *self.u_h += dt * self.drive_velocity;
+        if side.pressure.is_empty() {
+            // The sliding plate: U under the top's sum f_x, (V, theta) under -N and no moment.
+            let (mut qv, mut qt, mut fx_sum) = (-n_force, 0.0, 0.0);
+            for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
+                let (fx, fy) = (s.force(2 * k), s.force(2 * k + 1));
+                qv += fy;
+                qt += fy * xk;
+                fx_sum += fx;
+            }
+            let acc = [
+                lay.mp_inv[0][0] * qv + lay.mp_inv[0][1] * qt,
+                lay.mp_inv[1][0] * qv + lay.mp_inv[1][1] * qt,
+            ];
+            let qd_old = *self.qdot;
+            for j in 0..2 {
+                self.qdot[j] += dt * acc[j];
+                self.q[j] += dt * self.qdot[j];
+            }
+            self.free_dot[1] += dt * fx_sum / lay.m_top;
+            self.free[1] += dt * self.free_dot[1];
+            self.e.work_n -= dt * 0.5 * (qd_old[0] + self.qdot[0]) * n_force;
+            for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
+                let (ix, iy) = (2 * k, 2 * k + 1);
+                s.v[ix] = self.free_dot[1];
+                s.v[iy] = self.qdot[0] + xk * self.qdot[1];
+                s.u_next[ix] = self.free[1];
+                s.u_next[iy] = self.q[0] + xk * self.q[1];
+            }
+        } else {
+            for (j, &k) in lay.top.iter().enumerate() {
+                let (ix, iy) = (2 * k, 2 * k + 1);
+                let p = n_force * side.pressure[j];
+                let vy = free_dof(s, iy, p);
+                self.e.work_n += dt * 0.5 * (s.v[iy] + vy) * p;
+                s.v[iy] = vy;
+                s.u_next[iy] = s.u[iy] + dt * vy;
+                if !side.pushed_top[j] {
+                    s.v[ix] = free_dof(s, ix, 0.0);
+                    s.u_next[ix] = s.u[ix] + dt * s.v[ix];
+                }
+            }
+        }
+        for (&k, &own_v) in side.pusher.iter().zip(&side.pusher_v) {
+            let (ix, iy) = (2 * k, 2 * k + 1);
+            s.v[ix] = up_dot;
+            s.u_next[ix] = up_next;
+            if own_v {
+                s.v[iy] = free_dof(s, iy, 0.0);
+                s.u_next[iy] = s.u[iy] + dt * s.v[iy];
+            }
+        }
     }
 }
 
@@ -494,6 +638,8 @@ impl<'a> Driven<'a> {
             dr: self,
             q: &mut st.q,
             qdot: &mut st.qdot,
+            free: &mut st.free,
+            free_dot: &mut st.free_dot,
             u_h: &mut st.u_h,
             drive_velocity: st.drive_velocity,
             d: &mut st.d,

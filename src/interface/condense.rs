@@ -204,20 +204,36 @@ fn finish(
 
 /// Where a side-pushed border DOF comes from: a DOF of the FE model (its index in the
 /// boundary), the pressure's amplitude, or the far end of the pusher's spring.
-#[derive(Clone, Copy, PartialEq)]
-enum Src {
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Src {
     Fe(usize),
     Load,
     End,
 }
 
-/// The side-pushed rig ([`Scene::build_side_push`]) condensed: the interface, the pusher's
-/// U_p and the sliding plate's V, theta, U (all prescribed for the condensation), or the
-/// uniform pressure as one more column (the held boundary's reactions to N = 1). With
-/// push_stiffness k the spring's far end D is the drive and U_p is free: S gains
-/// k [[1, -1], [-1, 1]] on (D, U_p). The rigid motions checked are the two translations (the
-/// pusher's flat face admits no rotation).
-pub fn condense_side_push(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
+/// The side-pushed rig's model with its boundary prescribed ([`side_push_model`]): what the
+/// condensation and the fields of any interface state (`slide --dynamics`) are computed on.
+pub struct SidePushModel {
+    pub sm: SceneModel,
+    pub dofs: crate::scene::SidePushDofs,
+    /// The prescribed FE DOFs in boundary order: the interface's u, then v (x order), then
+    /// the pusher's U_p and the sliding plate's V, theta, U.
+    pub bdofs: Vec<usize>,
+    /// The border's roles (after the interface's 2n) and where each comes from.
+    pub border: Vec<BorderRole>,
+    pub src: Vec<Src>,
+    /// The nodes tied to boundary DOFs.
+    pub touch: Vec<usize>,
+    /// The top's consistent nodal forces of the uniform pressure of N = 1 N/m (full DOF
+    /// vector), None with the sliding plate.
+    pub load: Option<Vec<f64>>,
+}
+
+/// The side-pushed rig ([`Scene::build_side_push`]) with the interface, the pusher's U_p and
+/// the sliding plate's V, theta, U prescribed; the border drive first: (D, U_p) with the
+/// spring (D, its far end, has no FE DOF), else U_p; then the top's (V, theta, U), or the
+/// uniform pressure's amplitude.
+pub fn side_push_model(scene: &Scene) -> Result<SidePushModel> {
     check_element(scene)?;
     let (mut sm, sp) = scene.build_side_push()?;
     if sm.interface.len() < 3 {
@@ -228,7 +244,6 @@ pub fn condense_side_push(scene: &Scene, opts: &SolverOptions) -> Result<Condens
     let mut bdofs: Vec<usize> = sm.interface.iter().map(|&k| dof(k, 0)).collect();
     bdofs.extend(sm.interface.iter().map(|&k| dof(k, 1)));
     bdofs.push(sp.pusher);
-    // The border, drive first: (D, U_p) with the spring, else U_p; then the top's.
     let mut src: Vec<Src> = vec![];
     let mut border = vec![];
     if sp.rig.stiffness.is_some() {
@@ -265,6 +280,18 @@ pub fn condense_side_push(scene: &Scene, opts: &SolverOptions) -> Result<Condens
     if nf != bdofs.len() {
         return Err(Error::input("scene", format!("{nf} prescribed DOFs, expected {}", bdofs.len())));
     }
+    Ok(SidePushModel { sm, dofs: sp, bdofs, border, src, touch, load })
+}
+
+/// The side-pushed rig ([`side_push_model`]) condensed: the interface, the pusher's
+/// U_p and the sliding plate's V, theta, U (all prescribed for the condensation), or the
+/// uniform pressure as one more column (the held boundary's reactions to N = 1). With
+/// push_stiffness k the spring's far end D is the drive and U_p is free: S gains
+/// k [[1, -1], [-1, 1]] on (D, U_p). The rigid motions checked are the two translations (the
+/// pusher's flat face admits no rotation).
+pub fn condense_side_push(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
+    let SidePushModel { sm, dofs: sp, bdofs, border, src, touch, load } = side_push_model(scene)?;
+    let n = sm.interface.len();
     let (s_fe, ell) = schur(scene, &sm, &bdofs, &touch, load.as_deref(), opts)?;
     let (nb, nd) = (bdofs.len(), 2 * n + border.len());
     let k = sp.rig.stiffness.unwrap_or(0.0);

@@ -17,8 +17,8 @@ impl Scene {
         if self.loading.rig == Rig::SidePush {
             return Err(Error::input(
                 "loading.rig (--rig)",
-                "side-push is run by `tribofe check` and the quasi-static `tribofe slide` \
-                 (without --dynamics) in this phase; this command supports rig = \"top-plate\"",
+                "side-push is run by `tribofe check` and `tribofe slide` (with or without \
+                 --dynamics) in this phase; this command supports rig = \"top-plate\"",
             ));
         }
         if self.mesh.file.is_none() {

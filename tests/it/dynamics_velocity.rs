@@ -30,7 +30,7 @@ fn slipping(s: &tribofe::interface::events::State) -> usize {
 /// between the event solver's states (exact: between two events the static path is affine
 /// in X), and the largest difference of slipping-node counts against the static state that
 /// holds at the sample's X.
-fn against_static(qs: &SlideResult, dy: &SlideResult, mu_n: f64) -> (f64, usize, usize) {
+pub(crate) fn against_static(qs: &SlideResult, dy: &SlideResult, mu_n: f64) -> (f64, usize, usize) {
     let drive: Vec<_> = qs.run.states.iter().filter(|s| s.phase == Phase::Drive).collect();
     let (mut err, mut worst_nodes, mut samples) = (0.0f64, 0usize, 0usize);
     for (e, s) in dy.run.events.iter().zip(&dy.run.states) {

@@ -144,6 +144,16 @@ pub const DEFAULT_END_AT_CROSSING: bool = true;
 /// events on fine meshes, where the banded solve's cost per event grows like n, not n^2.
 pub const DEFAULT_OPERATOR: crate::interface::events::Operator = crate::interface::events::Operator::Banded;
 
+/// The operator of a dynamic slide's static loading by default: [`DEFAULT_OPERATOR`], except
+/// under side push, whose border only the dense operator holds ([`crate::interface::events::Operator::for_scene`]).
+pub fn default_operator(scene: &Scene) -> crate::interface::events::Operator {
+    if scene.loading.rig.is_top_plate() {
+        DEFAULT_OPERATOR
+    } else {
+        crate::interface::events::Operator::for_scene(scene)
+    }
+}
+
 /// [`EventEnd::Slip`]'s tolerance: a base node's slip may grow by at most this fraction of
 /// D_c over the window, a tenth of the D_c/100 at which the handoff counts a node as slipped
 /// (the tip, the slipped region, `--heal slipped`); anchors moved by that much move the static
@@ -253,6 +263,16 @@ pub fn check(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<()> 
         // (`Setup::check_event_work`, before the condensation, in both drive modes).
     }
     crate::dynamics::driven::check_plate(d.plate_mass, d.plate_inertia)?;
+    if !scene.loading.rig.is_top_plate() {
+        for (flag, v) in [("--plate-mass", d.plate_mass), ("--plate-inertia", d.plate_inertia)] {
+            if v != 0.0 {
+                return Err(Error::input(
+                    flag,
+                    "the top plate's own inertia: the side push has no driven plate (the sliding plate moves with the top nodes' masses); drop it",
+                ));
+            }
+        }
+    }
     if !(d.weakening_steps >= 1.0 && d.weakening_steps <= 1e4) {
         return Err(Error::input(
             "--weakening-steps",
@@ -369,7 +389,8 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let (mu_s, mu_d) = (o.law.mu_s(), o.law.mu_d());
     let full = su.full_field()?;
     let full_field =
-        |a: &Affine, lam: f64| full.field(&(0..2 * n + 3).map(|j| a.b(j, lam)).collect::<Vec<_>>());
+        |a: &Affine, lam: f64| full.field(&(0..c.dim()).map(|j| a.b(j, lam)).collect::<Vec<_>>());
+    let coordinates = |a: &Affine, lam: f64| su.coordinates(n, |j| a.b(j, lam));
     let (model, mat, law, weakens) = (&su.model, su.mat, su.law, su.weakens);
     let (dt, dt_stable, eta, omega_t, period, lambda0) =
         (su.dt, su.dt_stable, su.eta, su.omega_t, su.period, su.lambda0);
@@ -435,6 +456,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     };
     let mut resolver = resolve::Held {
         full_field: &full_field,
+        coordinates: &coordinates,
         held: held.as_ref(),
         driven: &driven,
         lim: &lim,

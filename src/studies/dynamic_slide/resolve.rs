@@ -15,10 +15,15 @@ use crate::progress::Progress;
 use crate::studies::slide::SlideOptions;
 use std::time::Instant;
 
+/// A plate's (V, theta) and the side push's free (U_p, U) ([`super::setup::Setup::coordinates`]).
+pub(super) type Coordinates = ([f64; 2], [f64; 2]);
+
 /// What a dynamic event needs of the run, and what the run reads back after the drive.
 pub(super) struct Held<'r, 'a> {
     /// The whole block's displacement from the event solver's boundary values at X.
     pub full_field: &'r dyn Fn(&Affine, f64) -> Vec<f64>,
+    /// The rig's moving coordinates at X: a plate's (V, theta), the side push's free (U_p, U).
+    pub coordinates: &'r dyn Fn(&Affine, f64) -> Coordinates,
     /// The interface's stiffness with its boundary held, for the fracture arrest (None: none).
     pub held: Option<&'r HeldStiffness<'r>>,
     pub driven: &'r crate::dynamics::driven::Driven<'a>,
@@ -51,13 +56,16 @@ impl Resolver for Held<'_, '_> {
         let mu_s = o.law.mu_s();
         let dclock = Instant::now();
         let before = sv.record(a_cur, lam, Some(&rec.prev_u));
+        let (q, free) = (self.coordinates)(a_cur, lam);
         let mut ds = DynState {
             u: (self.full_field)(a_cur, lam),
             v: vec![0.0; self.driven.model.n_dofs()],
             u_h: lam,
             drive_velocity: 0.0,
-            q: [before.v, before.tilt],
+            q,
             qdot: [0.0; 2],
+            free,
+            free_dot: [0.0; 2],
             d: (0..n).map(|k| sv.slip_memory(k, a_cur.b(k, lam))).collect(),
             theta: vec![],
             p_lagged: vec![],

@@ -11,7 +11,9 @@ use crate::fem::assembly::Assembler;
 use crate::fem::constraints::Reduction;
 use crate::fem::material::Material;
 use crate::interface::banded::{BandedOperator, Solving};
-use crate::interface::condense::{boundary_model, condense, Condensed};
+use crate::interface::condense::{
+    boundary_model, condense, condense_side_push, side_push_model, Condensed, SidePushModel, Src,
+};
 use crate::interface::events::Run;
 use crate::interface::events::{self, Operator};
 use crate::law::{Law, Normal};
@@ -22,8 +24,11 @@ use crate::studies::slide::{SlideOptions, SlideResult};
 /// What both modes build before their drive phase.
 pub(super) struct Setup {
     sm: SceneModel,
-    /// Slot of each boundary DOF (boundary order: interface u, v, then U0, V0, theta).
+    /// Slot of each boundary DOF (boundary order: interface u, v, then U0, V0, theta, or the
+    /// side push's prescribed DOFs).
     slots: Vec<usize>,
+    /// How the event solver's boundary values set the model's.
+    rig: RigMap,
     red: Reduction,
     asm: Assembler,
     values: Vec<f64>,
@@ -53,9 +58,25 @@ pub(super) struct Setup {
     pub arrival_rate: f64,
 }
 
+/// The rig behind the event solver's border (after the interface's 2n boundary values).
+enum RigMap {
+    /// (U_H, V, theta): the model's U0 at the block top is U_H + (H - t) theta.
+    TopPlate,
+    /// The side push's border sources ([`side_push_model`]), its face nodes, its spring
+    /// (N/m per m) and the top's pressure of N = 1 N/m (full DOF vector; None: the sliding plate).
+    SidePush { src: Vec<Src>, pusher: Vec<usize>, stiffness: Option<f64>, load: Option<Vec<f64>> },
+}
+
 impl Setup {
     pub fn new(scene: &Scene, o: &SlideOptions, d: &DynamicOptions) -> Result<Self> {
-        let (sm, bdofs) = boundary_model(scene)?;
+        let (sm, bdofs, rig) = if scene.loading.rig.is_top_plate() {
+            let (sm, bdofs) = boundary_model(scene)?;
+            (sm, bdofs, RigMap::TopPlate)
+        } else {
+            let SidePushModel { sm, dofs, bdofs, src, load, .. } = side_push_model(scene)?;
+            let (pusher, stiffness) = (dofs.pusher_nodes, dofs.rig.stiffness);
+            (sm, bdofs, RigMap::SidePush { src, pusher, stiffness, load })
+        };
         let nf = sm.constraints.n_fixed();
         let slots: Vec<usize> =
             bdofs.iter().map(|&k| sm.constraints.fixed_slot(k).expect("boundary DOF fixed")).collect();
@@ -78,6 +99,7 @@ impl Setup {
         Ok(Self {
             sm,
             slots,
+            rig,
             red,
             asm,
             values,
@@ -95,7 +117,7 @@ impl Setup {
             law,
             normal,
             weakens,
-            arm: scene.loading.height - b.thickness,
+            arm: if scene.loading.rig.is_top_plate() { scene.loading.height - b.thickness } else { 0.0 },
             lambda0,
             arrival_rate: super::physics::arrival_rate(&law, o.n_force / b.length, b.density, speeds.c_s),
         })
@@ -194,8 +216,44 @@ impl Setup {
     pub fn layout(&self, x: Vec<f64>, d: &DynamicOptions) -> Result<Layout> {
         let top: Vec<usize> = self.sm.mesh.set_nodes(&self.sm.top_set)?;
         let top_x: Vec<f64> = top.iter().map(|&k| self.sm.mesh.nodes[k][0]).collect();
-        Layout::new(&self.model, self.sm.interface.clone(), x, top, top_x, self.arm)
-            .with_plate(d.plate_mass, d.plate_inertia)
+        let base = self.sm.interface.clone();
+        match &self.rig {
+            RigMap::TopPlate => Layout::new(&self.model, base, x, top, top_x, self.arm)
+                .with_plate(d.plate_mass, d.plate_inertia),
+            RigMap::SidePush { pusher, stiffness, load, .. } => {
+                let pressure = load.as_ref().map_or(vec![], |p| top.iter().map(|&k| p[2 * k + 1]).collect());
+                Ok(Layout::side_push(
+                    &self.model,
+                    (base, x),
+                    (top, top_x),
+                    pusher.clone(),
+                    *stiffness,
+                    pressure,
+                ))
+            }
+        }
+    }
+
+    /// The rig's moving coordinates at the event solver's boundary values `b(j)`: a plate's
+    /// (V, theta) and the side push's free (U_p, the sliding plate's U) ([`crate::dynamics::driven::DynState`]).
+    pub fn coordinates(&self, n: usize, b: impl Fn(usize) -> f64) -> ([f64; 2], [f64; 2]) {
+        let (mut q, mut free) = ([0.0; 2], [0.0; 2]);
+        match &self.rig {
+            RigMap::TopPlate => q = [b(2 * n + 1), b(2 * n + 2)],
+            RigMap::SidePush { src, .. } => {
+                for (p, &from) in src.iter().enumerate() {
+                    let v = b(2 * n + p);
+                    match from {
+                        Src::Fe(j) if j == 2 * n => free[0] = v,
+                        Src::Fe(j) if j == 2 * n + 1 => q[0] = v,
+                        Src::Fe(j) if j == 2 * n + 2 => q[1] = v,
+                        Src::Fe(_) => free[1] = v,
+                        Src::Load | Src::End => {}
+                    }
+                }
+            }
+        }
+        (q, free)
     }
 
     /// The run's result: `times` (setup, static, dynamic) in s.
@@ -260,12 +318,33 @@ pub(super) struct FullField<'a> {
 
 impl FullField<'_> {
     /// `b` in the event solver's boundary order (interface u, v, then U_H at the drive height
-    /// H, V, theta); the model's U0 is at the block top: U0 = U_H + (H - t) theta.
+    /// H, V, theta); the model's U0 is at the block top: U0 = U_H + (H - t) theta. Under side
+    /// push the border's values go to their FE DOFs, the pressure's amplitude scales the
+    /// top's load, the spring's far end sets none.
     pub fn field(&self, b: &[f64]) -> Vec<f64> {
-        let (s, n2) = (self.s, self.s.slots.len() - 3);
+        let s = self.s;
         let mut g = vec![0.0; s.sm.constraints.n_fixed()];
-        for (j, &slot) in s.slots.iter().enumerate() {
-            g[slot] = if j == n2 { b[j] + s.arm * b[n2 + 2] } else { b[j] };
+        let mut load = None;
+        match &s.rig {
+            RigMap::TopPlate => {
+                let n2 = s.slots.len() - 3;
+                for (j, &slot) in s.slots.iter().enumerate() {
+                    g[slot] = if j == n2 { b[j] + s.arm * b[n2 + 2] } else { b[j] };
+                }
+            }
+            RigMap::SidePush { src, load: top, .. } => {
+                let n2 = 2 * s.sm.interface.len();
+                for j in 0..n2 {
+                    g[s.slots[j]] = b[j];
+                }
+                for (p, &from) in src.iter().enumerate() {
+                    match from {
+                        Src::Fe(j) => g[s.slots[j]] = b[n2 + p],
+                        Src::Load => load = top.as_ref().map(|l| (b[n2 + p], l)),
+                        Src::End => {}
+                    }
+                }
+            }
         }
         let red = &s.red;
         let nd = 2 * s.sm.mesh.n_nodes();
@@ -275,6 +354,11 @@ impl FullField<'_> {
         let mut f = vec![0.0; red.n_full];
         for (fi, k) in f.iter_mut().zip(&ku) {
             *fi = -k;
+        }
+        if let Some((amp, l)) = load {
+            for (fi, li) in f.iter_mut().zip(l) {
+                *fi += amp * li;
+            }
         }
         let mut r = vec![0.0; red.n_free()];
         red.project_add(&f, &mut r);
@@ -298,7 +382,11 @@ impl StaticOperator {
             let op = BandedOperator::new(scene, h)?;
             Self { c: Condensed::of_banded(scene, &op), banded: Some(op), s_h: vec![] }
         } else {
-            let c = condense(scene, &SolverOptions::default())?;
+            let c = if scene.loading.rig.is_top_plate() {
+                condense(scene, &SolverOptions::default())?
+            } else {
+                condense_side_push(scene, &SolverOptions::default())?
+            };
             let s_h = c.at_height(h);
             Self { c, banded: None, s_h }
         })
@@ -312,11 +400,11 @@ impl StaticOperator {
         })
     }
 
-    /// The event solver's operator over the 2n + 3 boundary DOFs.
+    /// The event solver's operator over the 2n + k boundary DOFs.
     pub fn solver(&self) -> Box<dyn events::operator::Operator + '_> {
         match &self.banded {
             Some(b) => Box::new(Solving::new(b)),
-            None => Box::new(events::operator::Dense::new(&self.s_h, self.c.dim())),
+            None => Box::new(events::operator::Dense::with_border(&self.s_h, &self.c.border)),
         }
     }
 }

@@ -200,13 +200,17 @@ pub fn run(scene: &Scene, o: &SlideOptions, d: &DynamicOptions, progress: Progre
     let slip: Vec<f64> = (0..n).map(|k| sv.slip_memory(k, p.b(k, 0.0))).collect();
     let u0 = full_field(&p.b0);
     let du = full_field(&p.b1);
+    let (q, free) = su.coordinates(n, |j| p.b(j, 0.0));
+    let (qdot, free_dot) = su.coordinates(n, |j| vel * p.b1[j]);
     let mut ds = DynState {
         u: u0,
         v: du.iter().map(|g| vel * g).collect(),
         u_h: 0.0,
         drive_velocity: vel,
-        q: [start.v, start.tilt],
-        qdot: [vel * p.b1[2 * n + 1], vel * p.b1[2 * n + 2]],
+        q,
+        qdot,
+        free,
+        free_dot,
         d: slip,
         theta: law.rate_state().map_or(vec![], |r| vec![r.theta0; n]),
         p_lagged: vec![],
