@@ -1041,6 +1041,88 @@ fn rg(r: Option<f64>, g: Option<f64>) -> PyResult<tribofe::precursors::Params> {
     .map_err(to_py)
 }
 
+/// Refuses a scene whose `keys` (Python's `Scene` keywords) differ from the paper's scene:
+/// the call sets them itself, so they could not act (`why` says how).
+fn refuse_scene_keys(scene: &RsScene, keys: &[&str], why: &str) -> PyResult<()> {
+    let d = RsScene::default();
+    for &key in keys {
+        let differs = match key {
+            "thickness" => scene.block.thickness != d.block.thickness,
+            "height" => scene.loading.height != d.loading.height,
+            "fn_ratios" => scene.loading.fn_ratios != d.loading.fn_ratios,
+            "h" => scene.mesh.h != d.mesh.h,
+            "grading" => scene.mesh.grading != d.mesh.grading,
+            "h_max" => scene.mesh.h_max != d.mesh.h_max,
+            "n_thick" => scene.mesh.n_thick != d.mesh.n_thick,
+            "element" => scene.mesh.element != d.mesh.element,
+            "mesh" => scene.mesh.file != d.mesh.file,
+            "geometry" => scene.mesh.geometry != d.mesh.geometry,
+            _ => unreachable!("not a scene keyword: {key}"),
+        };
+        if differs {
+            return Err(to_py(Error::input(
+                format!("Scene({key}=)"),
+                format!("cannot act here: {why} (leave it at the paper's value)"),
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// `tribofe stability`: the numerical stability studies of the paper's check (`study`: any of
+/// plate, nu, shape, thin, corners; None: all), `corner_max` the finest corner mesh and
+/// `n_ref` the qua9 reference's elements through the thickness: each study's table (the
+/// library's, `tribofe::report::stability::tables`, the ones its CSV files are printed from)
+/// with its units, the printed summary, and the corner study's exponents.
+#[pyfunction]
+#[pyo3(signature = (scene=None, study=None, corner_max=None, n_ref=None, progress=None))]
+fn stability<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    study: Option<Vec<String>>,
+    corner_max: Option<usize>,
+    n_ref: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::stability as st;
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    refuse_scene_keys(
+        &scene,
+        &["h", "n_thick", "fn_ratios", "mesh", "geometry"],
+        "each stability study sets its own meshes (n_ref=, corner_max=) and load case",
+    )?;
+    let studies = study.unwrap_or_else(|| st::STUDIES.iter().map(|s| s.to_string()).collect());
+    st::refuse_idle(&studies, n_ref.map(|_| "n_ref"), corner_max.map(|_| "corner_max")).map_err(to_py)?;
+    let base = st::Options::default();
+    let o = st::Options {
+        n_ref: n_ref.unwrap_or(base.n_ref),
+        corner_n_thick: st::corner_meshes(corner_max.unwrap_or(st::DEFAULT_CORNER_MAX)),
+        ..base
+    };
+    let (res, core_s) = run_detached(py, progress, |cancel, poll| {
+        let o = st::Options { cancel: cancel.clone(), ..o };
+        st::run(&scene, &studies, &o, poll)
+    })?;
+    let out = PyDict::new(py);
+    let tables = PyDict::new(py);
+    for (name, t) in tribofe::report::stability::tables(&res).map_err(to_py)? {
+        tables.set_item(name, table_with_units(py, &t)?)?;
+    }
+    out.set_item("tables", tables)?;
+    out.set_item("summary", tribofe::report::stability::summary(&res))?;
+    if let Some(c) = &res.corners {
+        let d = PyDict::new(py);
+        d.set_item("factor", c.factor)?;
+        d.set_item("lambda_measured", c.lambda_measured)?;
+        d.set_item("lambda_williams", c.lambda_williams)?;
+        d.set_item("factor_williams", c.factor_williams)?;
+        d.set_item("nu", c.nu)?;
+        out.set_item("corners", d)?;
+    }
+    out.set_item("core_s", core_s)?;
+    Ok(out)
+}
+
 /// The thin-layer limit (`tribofe precursors thin-layer`): the `paper` rule at (r, g) on
 /// blocks of each t/L at the scene's L and H/L (h = t, 2 elements through t):
 /// thin_layer.csv's table (the library's, `series_table`), with its units.
@@ -1595,6 +1677,10 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
             ],
         );
     }
+    {
+        use tribofe::studies::stability as st;
+        put!("stability", [("corner_max", st::DEFAULT_CORNER_MAX), ("n_ref", st::DEFAULT_N_REF)]);
+    }
     put!("precursors.map", [("resolution", tribofe::precursors::DEFAULT_MAP_RESOLUTION)]);
     put!("precursors.thin_layer", [("r", pr), ("g", pg)]);
     put!("precursors.heights", [("r", pr), ("g", pg)]);
@@ -1647,6 +1733,7 @@ fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(precursors_bonded, m)?)?;
     m.add_function(wrap_pyfunction!(rupture, m)?)?;
     m.add_function(wrap_pyfunction!(dynamic_slide, m)?)?;
+    m.add_function(wrap_pyfunction!(stability, m)?)?;
     m.add_function(wrap_pyfunction!(defaults, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

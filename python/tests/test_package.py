@@ -385,6 +385,49 @@ def test_edges_equals_the_command(tribofe_bin, tmp_path):
     assert "rule=" in str(e.value) and '"paper", "overdamped"' in str(e.value), str(e.value)
 
 
+def test_stability_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "stability"
+    args = ["--study", "nu,thin,corners", "--corner-max", "8", "--n-ref", "4", "--length", "0.1"]
+    r = run_cli(tribofe_bin, "stability", *args, "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    res = tribofe.stability(tribofe.Scene(length=0.1), study=["nu", "thin", "corners"], corner_max=8, n_ref=4)
+    assert isinstance(res, tribofe.StabilityResult) and list(res.tables) == ["nu", "thin", "corners"]
+    # Every table is its CSV (7 significant digits), counts int64; the wall times only by name.
+    for name, table in res.tables.items():
+        assert_table_is_the_csv(name, table, out / f"{name}.csv", 7, res.units[name], measured=("time_s",))
+    # The printed reading is summary.txt's, line for line but the thin study's (wall times).
+    want = (out / "summary.txt").read_text().splitlines()
+    got = res.summary.splitlines()
+    differ = [a for a, b in zip(got, want) if a != b]
+    assert len(got) == len(want) and len(differ) <= len(res.tables["thin"]["nx"]), differ
+    # Theory: the thin layer's interior slope tends to the model's 12 (F/N)(H/L) at first
+    # order in t/L: its error falls tenfold per decade of t/L (15 % for the printed ratio's
+    # higher-order terms), and Williams' clamped-free corner exponent at nu = 0.4 is 0.6499.
+    thin = res.tables["thin"]
+    err = np.asarray(thin["slope_rel_err"])
+    tl = np.asarray(thin["t_over_L"])
+    fine = tl <= 1e-2
+    ratios = err[fine][1:] / err[fine][:-1]
+    np.testing.assert_allclose(ratios, tl[fine][1:] / tl[fine][:-1], rtol=0.15)
+    assert abs(res.corners["lambda_williams"] - 0.6499) < 1e-3, res.corners
+    assert res.corners["nu"] == 0.4
+    # Options and scene keys that cannot act are refused naming the keyword.
+    with pytest.raises(tribofe.InputError, match=r"n_ref=: cannot act"):
+        tribofe.stability(study=["plate"], n_ref=4)
+    with pytest.raises(tribofe.InputError, match=r"Scene\(h=\): cannot act"):
+        tribofe.stability(tribofe.Scene(h=0.0005), study=["corners"])
+    with pytest.raises(tribofe.InputError, match=r"study=: 'bogus' is not known"):
+        tribofe.stability(study="bogus")
+
+
+def test_interrupt_stops_stability_within_a_second(tmp_path):
+    # The plate study solves about a hundred scenes of a few tenths of a second each and checks
+    # the interrupt before and after every solve: SIGINT 2 s and 5 s into it ends it with
+    # KeyboardInterrupt within a second, leaving no file.
+    for after in (2.0, 5.0):
+        assert_interrupt_stops(tmp_path, 'tribofe.stability(study=["plate"])', after)
+
+
 def test_sweep_and_converge_tables(tribofe_bin, tmp_path):
     res = tribofe.sweep(thickness=[0.002, 0.004], height="0.02:0.08:3", progress=False)
     assert isinstance(res, tribofe.SweepResult)
@@ -615,6 +658,7 @@ COMMANDS = {
     "precursors.dc": (["precursors", "dc"], {}),
     "precursors.bonded": (["precursors", "bonded"], {}),
     "edges": (["edges"], {}),
+    "stability": (["stability"], {}),
     "dynamics.rupture": (["rupture"], {}),
 }
 # Options the package deliberately defaults otherwise (none: every default is the library's).
@@ -686,6 +730,7 @@ def test_defaults_equal_the_commands_help(tribofe_bin):
         "precursors.dc": {"r", "g", "max_events"},
         "precursors.bonded": {"r", "g", "events"},
         "edges": {"mu", "refine", "mu_s", "mu_d", "rule", "t_over_l", "open_refine", "end_grading", "h_over_l"},
+        "stability": {"corner_max", "n_ref"},
         "dynamics.rupture": {"s", "h", "dc", "t_end", "length", "height", "mu_s", "mu_d", "sigma0", "young",
                              "poisson", "density", "courant", "damping", "contact", "normal_lag",
                              "patch_taper", "max_steps"},

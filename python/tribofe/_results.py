@@ -208,6 +208,29 @@ class EdgesResult(_Result):
 
 
 @dataclass(frozen=True, eq=False)
+class StabilityResult(_Result):
+    """``tribofe stability``: ``tables[study]``, each study's table as its CSV (``plate``,
+    ``nu``, ``shape``, ``thin``, ``corners``: the library's tables, errors and stresses in
+    units of N/L, widths in units of t, times in s; an empty cell NaN), ``units[study]`` their
+    (column, unit) pairs, ``summary`` the printed reading (summary.txt), and ``corners`` (when
+    that study ran): the end-value increments' ``factor`` per halving, the exponent
+    ``lambda_measured`` = 1 - log2(factor), Williams' clamped-free corner exponent
+    ``lambda_williams`` and its ``factor_williams`` at Poisson's ratio ``nu``."""
+
+    tables: Dict[str, Any]
+    units: Dict[str, List[Tuple[str, str]]]
+    summary: str
+    corners: Optional[Dict[str, float]] = None
+
+    def to_pandas(self):
+        """``{study: df}``, each with its units in ``attrs["units"]``."""
+        return {k: _df(t, self.units[k]) for k, t in self.tables.items()}
+
+    def __repr__(self) -> str:
+        return f"StabilityResult({', '.join(self.tables)})"
+
+
+@dataclass(frozen=True, eq=False)
 class NMapResult(_OneTable):
     """``tribofe precursors map``: ``table``, n_map.csv's rows (the library's table): per cell
     centre ``r``, ``g`` (dimensionless) and the model's number of precursors ``n`` (int64);

@@ -149,6 +149,15 @@ def edges(
     h_over_l: Optional[List[float]] = None,
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
+# {"tables": {study: {"table", "units"}}, "summary", ["corners"], "core_s"}; tribofe.stability
+# wraps it as StabilityResult.
+def stability(
+    scene: Optional[Scene] = None,
+    study: Optional[List[str]] = None,
+    corner_max: Optional[int] = None,
+    n_ref: Optional[int] = None,
+    progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
 # precursors_model, precursors_fe_fig4, precursors_fe_fig5: wrapped by tribofe.precursors as
 # ModelResult, FeFig4Result (one FeFig4Run per rule, and summary.csv's table) and
 # FeFig5Result.

@@ -2,8 +2,8 @@
 //! prints it, and a front end (the Python package) takes its arrays at full precision, so
 //! the file and the arrays cannot differ in columns, order or types: slide's loading.csv,
 //! events.csv and advances.csv, slide --dynamics' dyn_events.csv, fronts_t.csv and
-//! summary.csv, converge's convergence.csv, sweep's sweep.csv and rupture's station files are
-//! built this way.
+//! summary.csv, converge's convergence.csv, sweep's sweep.csv, rupture's station files and
+//! stability's five study files are built this way.
 
 use super::finite;
 use crate::error::Result;
