@@ -41,6 +41,7 @@ QUIET_CALLS = {
     "dynamics.slide": lambda: tribofe.dynamics.slide(SMALL, law="coulomb", x_max=1e-6),
     "dynamics.rupture": lambda: tribofe.dynamics.rupture(t_end=0.005),
     "stability": lambda: tribofe.stability(SMALL, study=["corners"], corner_max=4),
+    "precursors.bonded": lambda: tribofe.precursors.bonded(SMALL, sweep=True),
 }
 
 

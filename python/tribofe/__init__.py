@@ -727,13 +727,27 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         r: Optional[float] = None,
         g: Optional[float] = None,
         events: Optional[int] = None,
+        sweep: bool = False,
+        progress: Any = False,
     ) -> BondedResult:
-        """The earlier comparison, as ``tribofe precursors bonded`` (without ``--sweep``): the
-        1D model fed with the scene's bonded interface fields next to the paper's linear
-        fields on the same cells, at (r, g) (None: 0.9, 0.35), ``events`` events each (None:
-        200; at most 100 000). A :class:`BondedResult` whose ``table`` is fe_events.csv's."""
-        raw = _bonded(scene if scene is not None else Scene(), r, g, events)
+        """The earlier comparison, as ``tribofe precursors bonded``: the 1D model fed with the
+        scene's bonded interface fields next to the paper's linear fields on the same cells,
+        at (r, g) (None: 0.9, 0.35), ``events`` events each (None: 200; at most 100 000). A
+        :class:`BondedResult` whose ``table`` is fe_events.csv's. With ``sweep=True`` (the
+        command's ``--sweep``), also ``sweep``, fe_sweep.csv's table: the comparison over
+        H/L = (1/4, 1/2, 1, 2) x the scene's and t/L = (1/2, 1, 2, 4) x the scene's, one
+        bonded check each (h no coarser than t/2). Silent unless ``progress`` is asked; the
+        interrupt key stops the sweep between two geometries."""
+        cb, close = _progress(progress, "bonded sweep")
+        try:
+            raw = _bonded(scene if scene is not None else Scene(), r, g, events, sweep=bool(sweep), progress=cb)
+        finally:
+            close()
         table = _table(raw.pop("table"), raw["units"])
+        sw = raw.pop("sweep", None)
+        if sw is not None:
+            raw["sweep"] = _table(sw["table"], sw["units"])
+            raw["sweep_units"] = sw["units"]
         return BondedResult(table=table, **raw)
 
 

@@ -273,7 +273,11 @@ class BondedResult(_OneTable):
     ``x``, ``Fstar`` and ``stick_slip`` (1 for the whole slip, 0 for a precursor); forces in
     units of mu_s N, x in units of L; ``units``; and the comparison's numbers: ``r``, ``g``,
     ``mu_s``, ``mu_d``, ``H_over_L``, ``t_over_L``, precursors ``n_fe`` and ``n_linear``,
-    ``F_1_*`` and ``F_max_*`` (None where a run did not reach stick-slip)."""
+    ``F_1_*`` and ``F_max_*`` (None where a run did not reach stick-slip); with
+    ``sweep=True``, ``sweep``: fe_sweep.csv's table (the library's: per H/L and t/L around the
+    scene's, the FE-fed and linear runs' ``n``, ``F1``, ``Fmax`` (units of mu_s N; NaN where a
+    run did not reach stick-slip), ``max_abs_d_length`` (units of L) and ``outside_model``, why
+    a geometry could not be run, its figures then NaN), its units in ``sweep_units``."""
 
     table: Any
     units: List[Tuple[str, str]]
@@ -289,6 +293,8 @@ class BondedResult(_OneTable):
     F_1_linear: Optional[float]
     F_max_fe: Optional[float]
     F_max_linear: Optional[float]
+    sweep: Any = None
+    sweep_units: Optional[List[Tuple[str, str]]] = None
 
     def __repr__(self) -> str:
         return f"BondedResult(r={self.r}, g={self.g}: n FE-fed {self.n_fe}, linear {self.n_linear})"

@@ -188,6 +188,7 @@ def precursors_dc(
 ) -> Dict[str, Any]: ...
 def precursors_bonded(
     scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None, events: Optional[int] = None,
+    sweep: bool = False, progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
 # The per-node arrays and scalars of a rupture, "energy" a dict, "stations" {x: {"table": ...,
 # "units": ...}}; tribofe.dynamics.rupture wraps it as RuptureResult.
