@@ -52,6 +52,14 @@ fn keywords(e: Error) -> Error {
             out.push_str(&key);
             out.push('=');
             rest = &tail[len..];
+            // A choice's value after its flag (`--operator dense`) is the keyword's string.
+            let word = rest
+                .strip_prefix(' ')
+                .map(|w| &w[..w.find(|c: char| !(c.is_ascii_alphanumeric() || c == '-')).unwrap_or(w.len())]);
+            if let Some(value) = word.filter(|w| !w.is_empty() && choice_names(&key).contains(w)) {
+                out.push_str(&format!("{value:?}"));
+                rest = &rest[1 + value.len()..];
+            }
         }
         out.push_str(rest);
         out
@@ -75,6 +83,25 @@ fn keywords(e: Error) -> Error {
             Error::Input { what, why: rename(&why) }
         }
         e => e,
+    }
+}
+
+/// The accepted names of a choice keyword (none for another keyword).
+fn choice_names(key: &str) -> Vec<&'static str> {
+    fn names<T>(t: &[(&'static str, T)]) -> Vec<&'static str> {
+        t.iter().map(|(n, _)| *n).collect()
+    }
+    match key {
+        "operator" => names(OPERATORS),
+        "states" => names(STATES),
+        "cycle_end" => names(CYCLE_ENDS),
+        "rule" => names(RULES),
+        "residual" => names(RESIDUALS),
+        "backslip" => names(BACKSLIPS),
+        "heal" => names(HEALS),
+        "rig" => names(RIGS),
+        "top" => names(TOPS),
+        _ => Vec::new(),
     }
 }
 
@@ -578,6 +605,11 @@ fn edges<'py>(
         end_grading: end_grading.unwrap_or(base.end_grading),
     };
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    refuse_scene_keys(
+        &scene,
+        &["h", "grading", "h_max", "n_thick", "height", "fn_ratios", "tol", "geometry"],
+        "edges builds its own meshes: refine= (pre-slip) and t_over_l= (h = t/2), the heights from h_over_l=",
+    )?;
     o.check(&scene).map_err(to_py)?;
     let ((pre, open), _) = run_detached(py, progress, |cancel, poll| ed::run(&scene, &o, cancel, poll))?;
     let out = PyDict::new(py);
@@ -957,6 +989,7 @@ fn precursors_fe_fig4<'py>(
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    refuse_scene_keys(&scene, FE_UNUSED, FE_WHY)?;
     let (r, g) = (r.unwrap_or(tribofe::precursors::PAPER_R), g.unwrap_or(tribofe::precursors::PAPER_G));
     let cycles = cycles.unwrap_or(tribofe::studies::precursors_fe::DEFAULT_FIG4_CYCLES);
     let (runs, _) = run_detached(py, progress, |cancel, poll| {
@@ -998,6 +1031,7 @@ fn precursors_fe_fig5<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     use tribofe::studies::precursors_fe as pfe;
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    refuse_scene_keys(&scene, FE_UNUSED, FE_WHY)?;
     let resolution = resolution.unwrap_or(pfe::DEFAULT_FIG5_RESOLUTION);
     let max_events = max_events.unwrap_or(pfe::DEFAULT_FIG5_MAX_EVENTS);
     let rules = match rules {
@@ -1017,10 +1051,7 @@ fn precursors_fe_fig5<'py>(
 #[pyo3(signature = (resolution=None))]
 fn precursors_map(py: Python<'_>, resolution: Option<usize>) -> PyResult<Bound<'_, PyDict>> {
     let resolution = resolution.unwrap_or(tribofe::precursors::DEFAULT_MAP_RESOLUTION);
-    let (map, _) = run_detached(py, None, |cancel, _| {
-        cancel.check()?;
-        tribofe::precursors::n_map(resolution)
-    })?;
+    let (map, _) = run_detached(py, None, |cancel, _| tribofe::precursors::n_map(resolution, cancel))?;
     table_with_units(py, &tribofe::report::precursors::n_map_table(&map))
 }
 
@@ -1041,6 +1072,99 @@ fn rg(r: Option<f64>, g: Option<f64>) -> PyResult<tribofe::precursors::Params> {
     .map_err(to_py)
 }
 
+/// The scene keys the FE precursor studies cannot use, and why (the command's rule).
+const FE_UNUSED: &[&str] = &["fn_ratios", "tol"];
+const FE_WHY: &str = "the FE precursor studies load N then X until the interface slides";
+
+/// Refuses a scene whose `keys` (Python's `Scene` keywords) differ from the paper's scene:
+/// the call sets them itself, so they could not act (`why` says how).
+fn refuse_scene_keys(scene: &RsScene, keys: &[&str], why: &str) -> PyResult<()> {
+    let d = RsScene::default();
+    for &key in keys {
+        let differs = match key {
+            "thickness" => scene.block.thickness != d.block.thickness,
+            "height" => scene.loading.height != d.loading.height,
+            "fn_ratios" => scene.loading.fn_ratios != d.loading.fn_ratios,
+            "h" => scene.mesh.h != d.mesh.h,
+            "grading" => scene.mesh.grading != d.mesh.grading,
+            "h_max" => scene.mesh.h_max != d.mesh.h_max,
+            "n_thick" => scene.mesh.n_thick != d.mesh.n_thick,
+            "element" => scene.mesh.element != d.mesh.element,
+            "mesh" => scene.mesh.file != d.mesh.file,
+            "geometry" => scene.mesh.geometry != d.mesh.geometry,
+            "tol" => scene.report.tol != d.report.tol,
+            _ => unreachable!("not a scene keyword: {key}"),
+        };
+        if differs {
+            return Err(to_py(Error::input(
+                format!("Scene({key}=)"),
+                format!("cannot act here: {why} (leave it at the paper's value)"),
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// `tribofe stability`: the numerical stability studies of the paper's check (`study`: any of
+/// plate, nu, shape, thin, corners; None: all), `corner_max` the finest corner mesh and
+/// `n_ref` the qua9 reference's elements through the thickness: each study's table (the
+/// library's, `tribofe::report::stability::tables`, the ones its CSV files are printed from)
+/// with its units, the printed summary, and the corner study's exponents.
+#[pyfunction]
+#[pyo3(signature = (scene=None, study=None, corner_max=None, n_ref=None, progress=None))]
+fn stability<'py>(
+    py: Python<'py>,
+    scene: Option<PyRef<'_, Scene>>,
+    study: Option<Vec<String>>,
+    corner_max: Option<usize>,
+    n_ref: Option<usize>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::stability as st;
+    let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    refuse_scene_keys(
+        &scene,
+        &["h", "n_thick", "fn_ratios", "mesh", "geometry"],
+        "each stability study sets its own meshes (n_ref=, corner_max=) and load case",
+    )?;
+    if !scene.loading.rig.is_top_plate() {
+        return Err(to_py(Error::input(
+            "Scene(rig=)",
+            "side-push: the stability studies run the paper's top-plate rig; the side push runs in check() and slide()",
+        )));
+    }
+    let studies = study.unwrap_or_else(|| st::STUDIES.iter().map(|s| s.to_string()).collect());
+    st::refuse_idle(&studies, n_ref.map(|_| "n_ref"), corner_max.map(|_| "corner_max")).map_err(to_py)?;
+    let base = st::Options::default();
+    let o = st::Options {
+        n_ref: n_ref.unwrap_or(base.n_ref),
+        corner_n_thick: st::corner_meshes(corner_max.unwrap_or(st::DEFAULT_CORNER_MAX)),
+        ..base
+    };
+    let (res, core_s) = run_detached(py, progress, |cancel, poll| {
+        let o = st::Options { cancel: cancel.clone(), ..o };
+        st::run(&scene, &studies, &o, poll)
+    })?;
+    let out = PyDict::new(py);
+    let tables = PyDict::new(py);
+    for (name, t) in tribofe::report::stability::tables(&res).map_err(to_py)? {
+        tables.set_item(name, table_with_units(py, &t)?)?;
+    }
+    out.set_item("tables", tables)?;
+    out.set_item("summary", tribofe::report::stability::summary(&res))?;
+    if let Some(c) = &res.corners {
+        let d = PyDict::new(py);
+        d.set_item("factor", c.factor)?;
+        d.set_item("lambda_measured", c.lambda_measured)?;
+        d.set_item("lambda_williams", c.lambda_williams)?;
+        d.set_item("factor_williams", c.factor_williams)?;
+        d.set_item("nu", c.nu)?;
+        out.set_item("corners", d)?;
+    }
+    out.set_item("core_s", core_s)?;
+    Ok(out)
+}
+
 /// The thin-layer limit (`tribofe precursors thin-layer`): the `paper` rule at (r, g) on
 /// blocks of each t/L at the scene's L and H/L (h = t, 2 elements through t):
 /// thin_layer.csv's table (the library's, `series_table`), with its units.
@@ -1057,6 +1181,12 @@ fn precursors_thin_layer<'py>(
     series_values("t_over_l", &t_over_l)?;
     let p = rg(r, g)?;
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    refuse_scene_keys(&scene, FE_UNUSED, FE_WHY)?;
+    refuse_scene_keys(
+        &scene,
+        &["thickness", "h", "n_thick", "grading", "h_max"],
+        "precursors.thin_layer sets t = (t/L) L, h = t and 2 elements through t per run (t_over_l=)",
+    )?;
     let (rows, _) = run_detached(py, progress, |cancel, poll| {
         tribofe::studies::precursors_fe::thin_layer(&scene, p.r(), p.g(), &t_over_l, cancel, poll)
     })?;
@@ -1079,6 +1209,7 @@ fn precursors_heights<'py>(
     series_values("h_over_l", &h_over_l)?;
     let p = rg(r, g)?;
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    refuse_scene_keys(&scene, FE_UNUSED, FE_WHY)?;
     let mu = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g()).map_err(to_py)?;
     let (rows, _) = run_detached(py, progress, |cancel, poll| {
         tribofe::studies::precursors_fe::heights(&scene, p.r(), p.g(), &h_over_l, cancel, poll)
@@ -1107,6 +1238,7 @@ fn precursors_dc<'py>(
     series_values("dc", &dc)?;
     let p = rg(r, g)?;
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
+    refuse_scene_keys(&scene, FE_UNUSED, FE_WHY)?;
     let max_events = max_events.unwrap_or(pfe::DEFAULT_DC_MAX_EVENTS);
     let mu = tribofe::studies::slide::coefficients_from_rg(&scene, p.r(), p.g()).map_err(to_py)?;
     let (rows, _) = run_detached(py, progress, |cancel, poll| {
@@ -1121,24 +1253,33 @@ fn precursors_dc<'py>(
 /// The earlier comparison (`tribofe precursors bonded`): the 1D model fed with the scene's
 /// bonded interface fields next to the paper's linear fields on the same cells:
 /// fe_events.csv's table (the library's, `comparison_table`), with its units, and the
-/// comparison's numbers (forces in units of mu_s N).
+/// comparison's numbers (forces in units of mu_s N); with `sweep`, also fe_sweep.csv's table
+/// (`sweep_table`: the comparison over H/L and t/L around the scene's) as `sweep`.
 #[pyfunction]
-#[pyo3(signature = (scene=None, r=None, g=None, events=None))]
+#[pyo3(signature = (scene=None, r=None, g=None, events=None, sweep=false, progress=None))]
 fn precursors_bonded<'py>(
     py: Python<'py>,
     scene: Option<PyRef<'_, Scene>>,
     r: Option<f64>,
     g: Option<f64>,
     events: Option<usize>,
+    sweep: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    use tribofe::studies::precursors_fe as pfe;
     let (r, g) = (r.unwrap_or(tribofe::precursors::PAPER_R), g.unwrap_or(tribofe::precursors::PAPER_G));
     let events = events.unwrap_or(tribofe::precursors::DEFAULT_EVENTS);
     let scene = scene.map(|s| s.inner.clone()).unwrap_or_default();
-    let (c, _) = run_detached(py, None, |cancel, _| {
-        cancel.check()?;
-        tribofe::studies::precursors_fe::bonded(&scene, r, g, events)
+    let ((c, rows), _) = run_detached(py, progress, |cancel, poll| {
+        let c = pfe::bonded(&scene, r, g, events, cancel)?;
+        let rows = if sweep { Some(pfe::bonded_sweep(&scene, r, g, events, cancel, poll)?) } else { None };
+        Ok((c, rows))
     })?;
     let out = table_with_units(py, &tribofe::report::precursors::comparison_table(&c))?;
+    if let Some(rows) = &rows {
+        let t = tribofe::report::precursors::sweep_table(rows).map_err(to_py)?;
+        out.set_item("sweep", table_with_units(py, &t)?)?;
+    }
     let first = |run: &tribofe::precursors::discrete::Run| run.events.first().map(|e| e.f);
     out.set_item("r", c.params.r())?;
     out.set_item("g", c.params.g())?;
@@ -1595,6 +1736,10 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
             ],
         );
     }
+    {
+        use tribofe::studies::stability as st;
+        put!("stability", [("corner_max", st::DEFAULT_CORNER_MAX), ("n_ref", st::DEFAULT_N_REF)]);
+    }
     put!("precursors.map", [("resolution", tribofe::precursors::DEFAULT_MAP_RESOLUTION)]);
     put!("precursors.thin_layer", [("r", pr), ("g", pg)]);
     put!("precursors.heights", [("r", pr), ("g", pg)]);
@@ -1647,6 +1792,7 @@ fn _tribofe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(precursors_bonded, m)?)?;
     m.add_function(wrap_pyfunction!(rupture, m)?)?;
     m.add_function(wrap_pyfunction!(dynamic_slide, m)?)?;
+    m.add_function(wrap_pyfunction!(stability, m)?)?;
     m.add_function(wrap_pyfunction!(defaults, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

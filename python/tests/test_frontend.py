@@ -40,6 +40,8 @@ QUIET_CALLS = {
     "edges": lambda: tribofe.edges(SMALL, mu=[0.3], refine=[2], t_over_l=[0.02], open_refine=[2], h_over_l=[0.1]),
     "dynamics.slide": lambda: tribofe.dynamics.slide(SMALL, law="coulomb", x_max=1e-6),
     "dynamics.rupture": lambda: tribofe.dynamics.rupture(t_end=0.005),
+    "stability": lambda: tribofe.stability(SMALL, study=["corners"], corner_max=4),
+    "precursors.bonded": lambda: tribofe.precursors.bonded(SMALL, sweep=True),
 }
 
 
@@ -229,6 +231,7 @@ RESULTS = {
     "precursors.bonded": (lambda: tribofe.precursors.bonded(), tribofe.BondedResult, None),
     "solve": (lambda: tribofe.solve(nx=4, ny=2), tribofe.SolveResult, {"reactions"}),
     "edges": (QUIET_CALLS["edges"], tribofe.EdgesResult, {"preslip", "opening"}),
+    "stability": (QUIET_CALLS["stability"], tribofe.StabilityResult, {"corners"}),
     "dynamics.slide": (QUIET_CALLS["dynamics.slide"], tribofe.DynamicSlideResult, {"loading", "events", "dyn_events", "fronts", "summary"}),
     "dynamics.rupture": (QUIET_CALLS["dynamics.rupture"], tribofe.RuptureResult, {"nodes", "summary", "energy"}),
 }

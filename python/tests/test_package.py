@@ -344,6 +344,72 @@ def test_bonded_comparison_equals_the_command(tribofe_bin, tmp_path):
         tribofe.precursors.bonded(events=100_001)
 
 
+def test_bonded_sweep_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "bonded_sweep"
+    r = run_cli(tribofe_bin, "precursors", "bonded", "--sweep", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    res = tribofe.precursors.bonded(sweep=True)
+    # fe_sweep.csv's every column (shortest round-trip decimals: 17 digits compare them
+    # exactly), counts int64 where every geometry has one, NaN for an empty cell; the quoted
+    # reason a geometry is outside the model as its text.
+    assert_table_is_the_csv("fe_sweep", res.sweep, out / "fe_sweep.csv", 17, res.sweep_units)
+    assert_table_is_the_csv("fe_events", res.table, out / "fe_events.csv", 17, res.units)
+    sw = res.sweep
+    h0, t0 = 0.04 / 0.4, 0.002 / 0.4
+    np.testing.assert_allclose(sw["H_over_L"], np.repeat([h0 / 4, h0 / 2, h0, 2 * h0], 4), rtol=1e-15)
+    np.testing.assert_allclose(sw["t_over_L"], np.tile([t0 / 2, t0, 2 * t0, 4 * t0], 4), rtol=1e-15)
+    # Theory: on the paper's linear fields every geometry that runs is the paper's iteration
+    # at (0.9, 0.35): n = 10 precursors and F_1 = 0.72 mu_s N to the cells' resolution (h/L =
+    # 1/400); a geometry whose FE pressure opens the contact has no figures.
+    model = tribofe.precursors.model(0.9, 0.35)
+    ran = np.array([w == "" for w in sw["outside_model"]])
+    assert ran.any() and (~ran).any()
+    np.testing.assert_array_equal(np.asarray(sw["n_linear"])[ran], model.n)
+    assert np.all(np.abs(np.asarray(sw["F1_linear"])[ran] - model.F_1) < 1 / 400)
+    assert np.isnan(np.asarray(sw["F1_fe"], dtype=float)[~ran]).all()
+    assert all("the contact opens" in w for w in np.asarray(sw["outside_model"])[~ran])
+    assert tribofe.precursors.bonded().sweep is None
+
+
+def test_calls_refuse_scene_keys_that_cannot_act():
+    # A scene key the call sets itself is refused, named as the Scene keyword.
+    for call, key in [
+        (lambda: tribofe.precursors.thin_layer([0.02], tribofe.Scene(h=0.0002)), "h"),
+        (lambda: tribofe.precursors.thin_layer([0.02], tribofe.Scene(thickness=0.004)), "thickness"),
+        (lambda: tribofe.precursors.heights([0.1], tribofe.Scene(fn_ratios=[0.5])), "fn_ratios"),
+        (lambda: tribofe.precursors.dc([1e-7], tribofe.Scene(tol=0.1)), "tol"),
+        (lambda: tribofe.edges(tribofe.Scene(height=0.02)), "height"),
+        (lambda: tribofe.edges(tribofe.Scene(n_thick=4)), "n_thick"),
+    ]:
+        with pytest.raises(tribofe.InputError) as e:
+            call()
+        assert str(e.value).startswith(f"invalid Scene({key}=): cannot act here"), str(e.value)
+        assert "--" not in str(e.value), str(e.value)
+
+
+def test_side_push_slide_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "side_push"
+    scene = ["--length", "0.1", "--thickness", "0.02", "--h", "0.002", "--rig", "side-push",
+             "--push-height", "0.005", "--push-width", "0.006", "--push-stiffness", "1e9"]
+    r = run_cli(tribofe_bin, "slide", *scene, "--law", "static-kinetic", "--cycles", "1", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    s = tribofe.Scene(length=0.1, thickness=0.02, h=0.002, rig="side-push", push_height=0.005, push_width=0.006,
+                      push_stiffness=1e9)
+    res = tribofe.slide(s, law="static-kinetic", cycles=1)
+    # Every column of loading.csv and events.csv (13 significant digits), codes int64.
+    assert_table_is_the_csv("loading", res.loading, out / "loading.csv", 13, res.units["loading"])
+    assert_table_is_the_csv("events", res.events, out / "events.csv", 13, res.units["events"])
+    # Theory: the push balances the base's friction; at full sliding F/N is mu_s's static
+    # value reached by the last event, below it before (the pushed edge loads first).
+    f_over_n = np.asarray(res.loading["F_over_N"])
+    assert f_over_n.max() <= res.mu_s * (1 + 1e-9) and f_over_n[1] < res.mu_s
+    # The banded operator is refused in Python's terms: the keyword and the value to give.
+    with pytest.raises(tribofe.InputError) as e:
+        tribofe.slide(s, law="static-kinetic", operator="banded")
+    msg = str(e.value)
+    assert msg.startswith("invalid operator=: banded") and 'operator="dense"' in msg and "--" not in msg, msg
+
+
 def test_precursor_studies_name_the_keyword():
     with pytest.raises(tribofe.InputError, match="t_over_l="):
         tribofe.precursors.thin_layer([0.5])
@@ -383,6 +449,49 @@ def test_edges_equals_the_command(tribofe_bin, tmp_path):
     with pytest.raises(tribofe.InputError) as e:
         tribofe.edges(rule="damped")
     assert "rule=" in str(e.value) and '"paper", "overdamped"' in str(e.value), str(e.value)
+
+
+def test_stability_equals_the_command(tribofe_bin, tmp_path):
+    out = tmp_path / "stability"
+    args = ["--study", "nu,thin,corners", "--corner-max", "8", "--n-ref", "4", "--length", "0.1"]
+    r = run_cli(tribofe_bin, "stability", *args, "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    res = tribofe.stability(tribofe.Scene(length=0.1), study=["nu", "thin", "corners"], corner_max=8, n_ref=4)
+    assert isinstance(res, tribofe.StabilityResult) and list(res.tables) == ["nu", "thin", "corners"]
+    # Every table is its CSV (7 significant digits), counts int64; the wall times only by name.
+    for name, table in res.tables.items():
+        assert_table_is_the_csv(name, table, out / f"{name}.csv", 7, res.units[name], measured=("time_s",))
+    # The printed reading is summary.txt's, line for line but the thin study's (wall times).
+    want = (out / "summary.txt").read_text().splitlines()
+    got = res.summary.splitlines()
+    differ = [a for a, b in zip(got, want) if a != b]
+    assert len(got) == len(want) and len(differ) <= len(res.tables["thin"]["nx"]), differ
+    # Theory: the thin layer's interior slope tends to the model's 12 (F/N)(H/L) at first
+    # order in t/L: its error falls tenfold per decade of t/L (15 % for the printed ratio's
+    # higher-order terms), and Williams' clamped-free corner exponent at nu = 0.4 is 0.6499.
+    thin = res.tables["thin"]
+    err = np.asarray(thin["slope_rel_err"])
+    tl = np.asarray(thin["t_over_L"])
+    fine = tl <= 1e-2
+    ratios = err[fine][1:] / err[fine][:-1]
+    np.testing.assert_allclose(ratios, tl[fine][1:] / tl[fine][:-1], rtol=0.15)
+    assert abs(res.corners["lambda_williams"] - 0.6499) < 1e-3, res.corners
+    assert res.corners["nu"] == 0.4
+    # Options and scene keys that cannot act are refused naming the keyword.
+    with pytest.raises(tribofe.InputError, match=r"n_ref=: cannot act"):
+        tribofe.stability(study=["plate"], n_ref=4)
+    with pytest.raises(tribofe.InputError, match=r"Scene\(h=\): cannot act"):
+        tribofe.stability(tribofe.Scene(h=0.0005), study=["corners"])
+    with pytest.raises(tribofe.InputError, match=r"study=: 'bogus' is not known"):
+        tribofe.stability(study="bogus")
+
+
+def test_interrupt_stops_stability_within_a_second(tmp_path):
+    # The plate study solves about a hundred scenes of a few tenths of a second each and checks
+    # the interrupt before and after every solve: SIGINT 2 s and 5 s into it ends it with
+    # KeyboardInterrupt within a second, leaving no file.
+    for after in (2.0, 5.0):
+        assert_interrupt_stops(tmp_path, 'tribofe.stability(study=["plate"])', after)
 
 
 def test_sweep_and_converge_tables(tribofe_bin, tmp_path):
@@ -615,6 +724,7 @@ COMMANDS = {
     "precursors.dc": (["precursors", "dc"], {}),
     "precursors.bonded": (["precursors", "bonded"], {}),
     "edges": (["edges"], {}),
+    "stability": (["stability"], {}),
     "dynamics.rupture": (["rupture"], {}),
 }
 # Options the package deliberately defaults otherwise (none: every default is the library's).
@@ -686,6 +796,7 @@ def test_defaults_equal_the_commands_help(tribofe_bin):
         "precursors.dc": {"r", "g", "max_events"},
         "precursors.bonded": {"r", "g", "events"},
         "edges": {"mu", "refine", "mu_s", "mu_d", "rule", "t_over_l", "open_refine", "end_grading", "h_over_l"},
+        "stability": {"corner_max", "n_ref"},
         "dynamics.rupture": {"s", "h", "dc", "t_end", "length", "height", "mu_s", "mu_d", "sigma0", "young",
                              "poisson", "density", "courant", "damping", "contact", "normal_lag",
                              "patch_taper", "max_steps"},

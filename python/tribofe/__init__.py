@@ -36,6 +36,7 @@ from ._tribofe import precursors_thin_layer as _thin_layer
 from ._tribofe import rupture as _rupture
 from ._tribofe import slide as _slide
 from ._tribofe import solve as _solve
+from ._tribofe import stability as _stability
 from ._tribofe import sweep as _sweep
 from ._results import (
     BondedResult,
@@ -49,6 +50,7 @@ from ._results import (
     RuptureResult,
     SeriesResult,
     SolveResult,
+    StabilityResult,
     SweepResult,
     _df,
     _row,
@@ -67,6 +69,7 @@ __all__ = [
     "sweep",
     "converge",
     "edges",
+    "stability",
     "defaults",
     "CheckResult",
     "CheckCase",
@@ -83,6 +86,7 @@ __all__ = [
     "SeriesResult",
     "BondedResult",
     "EdgesResult",
+    "StabilityResult",
     "RuptureResult",
     "TribofeError",
     "InputError",
@@ -525,6 +529,44 @@ def edges(
     )
 
 
+def stability(
+    scene: Optional[Scene] = None,
+    *,
+    study: Any = None,
+    corner_max: Optional[int] = None,
+    n_ref: Optional[int] = None,
+    progress: Any = False,
+) -> StabilityResult:
+    """The numerical stability studies of the paper's check, as ``tribofe stability``:
+    ``study`` any of ``"plate"`` (a stiff elastic plate against the exact rigid one:
+    modelling error against round-off), ``"nu"`` (near-incompressibility: locking per
+    element), ``"shape"`` (elongated and distorted elements), ``"thin"`` (t/L -> 0) and
+    ``"corners"`` (the singular end nodes against converging integrated quantities); None
+    runs all five. ``corner_max``: the finest corner mesh, elements through the thickness (1,
+    2, 4, .. up to it); ``n_ref``: the qua9 reference mesh of the nu and shape studies,
+    elements through the thickness; each refused when its study does not run. None is the
+    command's default (``defaults()["stability"]``). The scene gives the block, plate and
+    materials (lengths m, moduli Pa); every study sets its own meshes and load case, so a
+    scene with other ``h``, ``n_thick``, ``fn_ratios``, ``mesh`` or ``geometry`` than the
+    paper's is refused. Returns a :class:`StabilityResult`: ``tables[study]``, the study's
+    CSV's table (errors in units of N/L, widths in units of t, times in s). Silent unless
+    ``progress`` is asked; the interrupt key stops it between two solves."""
+    cb, close = _progress(progress, "stability")
+    try:
+        raw = _stability(
+            scene if scene is not None else Scene(),
+            study=None if study is None else ([study] if isinstance(study, str) else [str(s) for s in study]),
+            corner_max=corner_max,
+            n_ref=n_ref,
+            progress=cb,
+        )
+    finally:
+        close()
+    tables = {k: _table(v["table"], v["units"]) for k, v in raw["tables"].items()}
+    units = {k: v["units"] for k, v in raw["tables"].items()}
+    return StabilityResult(tables, units, raw["summary"], raw.get("corners"))
+
+
 class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
     """The paper's 1D precursor model."""
 
@@ -685,13 +727,27 @@ class precursors:  # noqa: N801 - a namespace, as tribofe::precursors
         r: Optional[float] = None,
         g: Optional[float] = None,
         events: Optional[int] = None,
+        sweep: bool = False,
+        progress: Any = False,
     ) -> BondedResult:
-        """The earlier comparison, as ``tribofe precursors bonded`` (without ``--sweep``): the
-        1D model fed with the scene's bonded interface fields next to the paper's linear
-        fields on the same cells, at (r, g) (None: 0.9, 0.35), ``events`` events each (None:
-        200; at most 100 000). A :class:`BondedResult` whose ``table`` is fe_events.csv's."""
-        raw = _bonded(scene if scene is not None else Scene(), r, g, events)
+        """The earlier comparison, as ``tribofe precursors bonded``: the 1D model fed with the
+        scene's bonded interface fields next to the paper's linear fields on the same cells,
+        at (r, g) (None: 0.9, 0.35), ``events`` events each (None: 200; at most 100 000). A
+        :class:`BondedResult` whose ``table`` is fe_events.csv's. With ``sweep=True`` (the
+        command's ``--sweep``), also ``sweep``, fe_sweep.csv's table: the comparison over
+        H/L = (1/4, 1/2, 1, 2) x the scene's and t/L = (1/2, 1, 2, 4) x the scene's, one
+        bonded check each (h no coarser than t/2). Silent unless ``progress`` is asked; the
+        interrupt key stops the sweep between two geometries."""
+        cb, close = _progress(progress, "bonded sweep")
+        try:
+            raw = _bonded(scene if scene is not None else Scene(), r, g, events, sweep=bool(sweep), progress=cb)
+        finally:
+            close()
         table = _table(raw.pop("table"), raw["units"])
+        sw = raw.pop("sweep", None)
+        if sw is not None:
+            raw["sweep"] = _table(sw["table"], sw["units"])
+            raw["sweep_units"] = sw["units"]
         return BondedResult(table=table, **raw)
 
 

@@ -208,6 +208,29 @@ class EdgesResult(_Result):
 
 
 @dataclass(frozen=True, eq=False)
+class StabilityResult(_Result):
+    """``tribofe stability``: ``tables[study]``, each study's table as its CSV (``plate``,
+    ``nu``, ``shape``, ``thin``, ``corners``: the library's tables, errors and stresses in
+    units of N/L, widths in units of t, times in s; an empty cell NaN), ``units[study]`` their
+    (column, unit) pairs, ``summary`` the printed reading (summary.txt), and ``corners`` (when
+    that study ran): the end-value increments' ``factor`` per halving, the exponent
+    ``lambda_measured`` = 1 - log2(factor), Williams' clamped-free corner exponent
+    ``lambda_williams`` and its ``factor_williams`` at Poisson's ratio ``nu``."""
+
+    tables: Dict[str, Any]
+    units: Dict[str, List[Tuple[str, str]]]
+    summary: str
+    corners: Optional[Dict[str, float]] = None
+
+    def to_pandas(self):
+        """``{study: df}``, each with its units in ``attrs["units"]``."""
+        return {k: _df(t, self.units[k]) for k, t in self.tables.items()}
+
+    def __repr__(self) -> str:
+        return f"StabilityResult({', '.join(self.tables)})"
+
+
+@dataclass(frozen=True, eq=False)
 class NMapResult(_OneTable):
     """``tribofe precursors map``: ``table``, n_map.csv's rows (the library's table): per cell
     centre ``r``, ``g`` (dimensionless) and the model's number of precursors ``n`` (int64);
@@ -250,7 +273,11 @@ class BondedResult(_OneTable):
     ``x``, ``Fstar`` and ``stick_slip`` (1 for the whole slip, 0 for a precursor); forces in
     units of mu_s N, x in units of L; ``units``; and the comparison's numbers: ``r``, ``g``,
     ``mu_s``, ``mu_d``, ``H_over_L``, ``t_over_L``, precursors ``n_fe`` and ``n_linear``,
-    ``F_1_*`` and ``F_max_*`` (None where a run did not reach stick-slip)."""
+    ``F_1_*`` and ``F_max_*`` (None where a run did not reach stick-slip); with
+    ``sweep=True``, ``sweep``: fe_sweep.csv's table (the library's: per H/L and t/L around the
+    scene's, the FE-fed and linear runs' ``n``, ``F1``, ``Fmax`` (units of mu_s N; NaN where a
+    run did not reach stick-slip), ``max_abs_d_length`` (units of L) and ``outside_model``, why
+    a geometry could not be run, its figures then NaN), its units in ``sweep_units``."""
 
     table: Any
     units: List[Tuple[str, str]]
@@ -266,6 +293,8 @@ class BondedResult(_OneTable):
     F_1_linear: Optional[float]
     F_max_fe: Optional[float]
     F_max_linear: Optional[float]
+    sweep: Any = None
+    sweep_units: Optional[List[Tuple[str, str]]] = None
 
     def __repr__(self) -> str:
         return f"BondedResult(r={self.r}, g={self.g}: n FE-fed {self.n_fe}, linear {self.n_linear})"

@@ -149,6 +149,15 @@ def edges(
     h_over_l: Optional[List[float]] = None,
     progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
+# {"tables": {study: {"table", "units"}}, "summary", ["corners"], "core_s"}; tribofe.stability
+# wraps it as StabilityResult.
+def stability(
+    scene: Optional[Scene] = None,
+    study: Optional[List[str]] = None,
+    corner_max: Optional[int] = None,
+    n_ref: Optional[int] = None,
+    progress: Optional[Callable[[float], None]] = None,
+) -> Dict[str, Any]: ...
 # precursors_model, precursors_fe_fig4, precursors_fe_fig5: wrapped by tribofe.precursors as
 # ModelResult, FeFig4Result (one FeFig4Run per rule, and summary.csv's table) and
 # FeFig5Result.
@@ -179,6 +188,7 @@ def precursors_dc(
 ) -> Dict[str, Any]: ...
 def precursors_bonded(
     scene: Optional[Scene] = None, r: Optional[float] = None, g: Optional[float] = None, events: Optional[int] = None,
+    sweep: bool = False, progress: Optional[Callable[[float], None]] = None,
 ) -> Dict[str, Any]: ...
 # The per-node arrays and scalars of a rupture, "energy" a dict, "stations" {x: {"table": ...,
 # "units": ...}}; tribofe.dynamics.rupture wraps it as RuptureResult.

@@ -3,7 +3,7 @@
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use tribofe::studies::stability::{run as run_studies, Options, STUDIES};
+use tribofe::studies::stability::{self as st, run as run_studies, Options, STUDIES};
 
 #[derive(ClapArgs, Debug)]
 pub struct Args {
@@ -13,10 +13,10 @@ pub struct Args {
     #[arg(long, value_delimiter = ',')]
     pub study: Vec<String>,
     /// Finest corner mesh: elements through the thickness (1, 2, 4, .. up to this).
-    #[arg(long, default_value_t = 32)]
+    #[arg(long, default_value_t = st::DEFAULT_CORNER_MAX)]
     pub corner_max: usize,
     /// Reference qua9 mesh of the nu and shape studies: elements through the thickness.
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = st::DEFAULT_N_REF)]
     pub n_ref: usize,
     /// Output directory (`validation/stability` refreshes the committed results).
     #[arg(long, default_value = "out/stability")]
@@ -41,20 +41,16 @@ pub fn run(args: Args) -> tribofe::Result<()> {
     } else {
         args.study.clone()
     };
-    let runs = |names: &[&str]| studies.iter().any(|s| names.contains(&s.as_str()));
-    for (id, flag, needs) in
-        [("n_ref", "--n-ref", &["nu", "shape"][..]), ("corner_max", "--corner-max", &["corners"])]
-    {
-        if super::given(id) && !runs(needs) {
-            return Err(tribofe::Error::input(
-                flag,
-                format!("cannot act: it sizes the {} study, not run here (--study)", needs.join(" and ")),
-            ));
-        }
-    }
-    let corner_n_thick =
-        std::iter::successors(Some(1usize), |n| Some(2 * n)).take_while(|&n| n <= args.corner_max).collect();
-    let o = Options { n_ref: args.n_ref, corner_n_thick, ..Default::default() };
+    st::refuse_idle(
+        &studies,
+        super::given("n_ref").then_some("--n-ref"),
+        super::given("corner_max").then_some("--corner-max"),
+    )?;
+    let o = Options {
+        n_ref: args.n_ref,
+        corner_n_thick: st::corner_meshes(args.corner_max),
+        ..Default::default()
+    };
     let bar = ProgressBar::new_spinner().with_style(
         ProgressStyle::with_template("{spinner} {pos} runs, {elapsed} {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),

@@ -232,8 +232,9 @@ pub struct MapPoint {
 }
 
 /// n(r, g) at the centres of a `resolution` x `resolution` grid over (0,1)^2, ordered with
-/// g varying fastest; computed in parallel.
-pub fn n_map(resolution: usize) -> Result<Vec<MapPoint>> {
+/// g varying fastest; computed in parallel, each cell stopping at once when `cancel` is
+/// cancelled.
+pub fn n_map(resolution: usize, cancel: &crate::Cancel) -> Result<Vec<MapPoint>> {
     if !(2..=400).contains(&resolution) {
         return Err(Error::input(
             format!("resolution = {resolution}"),
@@ -244,6 +245,7 @@ pub fn n_map(resolution: usize) -> Result<Vec<MapPoint>> {
     (0..resolution * resolution)
         .into_par_iter()
         .map(|k| {
+            cancel.check()?;
             let (r, g) = (centre(k / resolution), centre(k % resolution));
             Ok(MapPoint { r, g, n: n_precursors(&Params::new(r, g)?)? })
         })

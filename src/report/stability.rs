@@ -1,10 +1,11 @@
 //! Outputs of the stability studies: one CSV and one SVG chart per study, and a readable
 //! summary (`summary.txt`) with each study's findings.
 
+use super::table::{Column, Table};
 use super::{finite, write_atomic};
 use crate::error::Result;
 use crate::studies::stability::{
-    CornerStudy, NuStudy, PlateStudy, Results, ShapeCase, ShapePoint, ThinPoint,
+    CornerStudy, NuStudy, PlateRaw, PlateStudy, Results, ShapeCase, ShapePoint, ThinPoint,
 };
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
@@ -14,161 +15,215 @@ use std::path::Path;
 /// Writes the files of every study present; returns their names.
 pub fn write(res: &Results, dir: &Path) -> Result<Vec<String>> {
     let mut files = Vec::new();
-    let mut put = |name: &str, text: String| -> Result<()> {
-        write_atomic(&dir.join(name), text.as_bytes())?;
-        files.push(name.to_string());
+    let mut put = |name: String, text: String| -> Result<()> {
+        write_atomic(&dir.join(&name), text.as_bytes())?;
+        files.push(name);
         Ok(())
     };
-    if let Some(p) = &res.plate {
-        put("plate.csv", plate_csv(p)?)?;
-        #[cfg(feature = "plots")]
-        put("plate.svg", plate_svg(p)?)?;
+    for (name, table) in tables(res)? {
+        put(format!("{name}.csv"), table.csv()?)?;
     }
-    if let Some(n) = &res.nu {
-        put("nu.csv", nu_csv(n)?)?;
-        #[cfg(feature = "plots")]
-        put("nu.svg", nu_svg(n)?)?;
+    #[cfg(feature = "plots")]
+    {
+        if let Some(p) = &res.plate {
+            put("plate.svg".into(), plate_svg(p)?)?;
+        }
+        if let Some(n) = &res.nu {
+            put("nu.svg".into(), nu_svg(n)?)?;
+        }
+        if let Some(s) = &res.shape {
+            put("shape.svg".into(), shape_svg(s)?)?;
+        }
+        if let Some(t) = &res.thin {
+            put("thin.svg".into(), thin_svg(t)?)?;
+        }
+        if let Some(c) = &res.corners {
+            put("corners.svg".into(), corners_svg(c)?)?;
+        }
     }
-    if let Some(s) = &res.shape {
-        put("shape.csv", shape_csv(s)?)?;
-        #[cfg(feature = "plots")]
-        put("shape.svg", shape_svg(s)?)?;
-    }
-    if let Some(t) = &res.thin {
-        put("thin.csv", thin_csv(t)?)?;
-        #[cfg(feature = "plots")]
-        put("thin.svg", thin_svg(t)?)?;
-    }
-    if let Some(c) = &res.corners {
-        put("corners.csv", corners_csv(c)?)?;
-        #[cfg(feature = "plots")]
-        put("corners.svg", corners_svg(c)?)?;
-    }
-    put("summary.txt", summary(res))?;
+    put("summary.txt".into(), summary(res))?;
     Ok(files)
 }
 
-fn num(what: &str, v: f64) -> Result<String> {
-    finite(what, v).map(|v| format!("{v:.6e}"))
-}
-
-fn opt(v: Option<f64>) -> String {
-    v.filter(|x| x.is_finite()).map_or(String::new(), |x| format!("{x:.6e}"))
-}
-
-fn table(header: &str, rows: Vec<Vec<String>>) -> String {
-    let mut s = format!("{header}\n");
-    for r in rows {
-        s.push_str(&r.join(","));
-        s.push('\n');
+/// The table of every study present, by study name (`plate`, `nu`, `shape`, `thin`,
+/// `corners`; the CSV is `<name>.csv`), in the order they run: the one definition the CSV
+/// files and the Python package's tables are made from.
+pub fn tables(res: &Results) -> Result<Vec<(&'static str, Table)>> {
+    let mut out = Vec::new();
+    if let Some(p) = &res.plate {
+        out.push(("plate", plate_table(p)?));
     }
-    s
+    if let Some(n) = &res.nu {
+        out.push(("nu", nu_table(n)));
+    }
+    if let Some(s) = &res.shape {
+        out.push(("shape", shape_table(s)));
+    }
+    if let Some(t) = &res.thin {
+        out.push(("thin", thin_table(t)));
+    }
+    if let Some(c) = &res.corners {
+        out.push(("corners", corners_table(c)));
+    }
+    Ok(out)
 }
 
-pub const PLATE_HEADER: &str = "n_thick,plate_ratio,solved,err_p_over_pmean,err_tau_over_pmean,backward_error,condition_estimate,digits_lost,tilt_rel_diff,err_refined_over_pmean,refinement_steps,refused_by_default,time_s,symbolic_s";
+/// Significant digits of the studies' numbers.
+const DIGITS: usize = 7;
 
-pub fn plate_csv(p: &PlateStudy) -> Result<String> {
-    let mut rows = Vec::new();
-    for q in &p.points {
-        let mut r =
-            vec![q.n_thick.to_string(), num("plate ratio", q.ratio)?, u8::from(q.raw.is_some()).to_string()];
-        match &q.raw {
-            Some(x) => {
-                for v in [x.err_p, x.err_tau, x.backward_error, x.condition, x.condition.log10(), x.tilt_rel]
-                {
-                    r.push(num("plate.csv", v)?);
-                }
-            }
-            None => r.extend(std::iter::repeat_n(String::new(), 6)),
+/// A dimensionless column (errors in units of N/L, ratios, widths in units of t).
+fn ratio<T>(name: &'static str, rows: &[T], get: impl Fn(&T) -> f64) -> Column {
+    Column::float(name, "1", rows.iter().map(get).collect())
+}
+
+/// A dimensionless column that may have no value for a row (an empty cell).
+fn maybe<T>(name: &'static str, unit: &'static str, rows: &[T], get: impl Fn(&T) -> Option<f64>) -> Column {
+    Column::maybe(
+        name,
+        unit,
+        rows.iter().map(|r| get(r).filter(|x| x.is_finite()).unwrap_or(f64::NAN)).collect(),
+    )
+}
+
+fn count<T>(name: &'static str, rows: &[T], get: impl Fn(&T) -> usize) -> Column {
+    Column::int(name, "-", rows.iter().map(|r| get(r) as i64).collect())
+}
+
+/// The four edge-zone widths (units of t; empty where a profile has none).
+fn widths<T>(rows: &[T], get: impl Fn(&T) -> [Option<f64>; 4]) -> [Column; 4] {
+    let w = |k: usize, name: &'static str| maybe(name, "1", rows, |r| get(r)[k]);
+    [w(0, "edge_p_left_t"), w(1, "edge_p_right_t"), w(2, "edge_tau_left_t"), w(3, "edge_tau_right_t")]
+}
+
+/// plate.csv's table: per mesh (elements through t) and E_plate/E_block whether the raw solve
+/// succeeded, its errors against the rigid plate (units of N/L), backward error, condition
+/// estimate and digits lost, the tilt's relative difference, the error with forced iterative
+/// refinement and its steps, whether the default check refuses it, and the wall times (s).
+/// A failed solve's cells are empty.
+pub fn plate_table(p: &PlateStudy) -> Result<Table> {
+    let q = &p.points;
+    // A solved point's figures must be numbers: a non-finite one is a bug, never an empty cell.
+    let raw = |name: &'static str, get: fn(&PlateRaw) -> f64| -> Result<Column> {
+        for r in q.iter().filter_map(|x| x.raw.as_ref()) {
+            finite(name, get(r))?;
         }
-        r.push(opt(q.refined.map(|x| x.0)));
-        r.push(q.refined.map_or(String::new(), |x| x.1.to_string()));
-        r.push(u8::from(q.refused.is_some()).to_string());
-        r.push(opt(q.raw.as_ref().map(|x| x.time)));
-        r.push(opt(q.raw.as_ref().map(|x| x.symbolic_time)));
-        rows.push(r);
-    }
-    Ok(table(PLATE_HEADER, rows))
+        Ok(maybe(name, "1", q, |x| x.raw.as_ref().map(get)))
+    };
+    Ok(Table {
+        columns: vec![
+            count("n_thick", q, |x| x.n_thick),
+            ratio("plate_ratio", q, |x| x.ratio),
+            count("solved", q, |x| usize::from(x.raw.is_some())),
+            raw("err_p_over_pmean", |r| r.err_p)?,
+            raw("err_tau_over_pmean", |r| r.err_tau)?,
+            raw("backward_error", |r| r.backward_error)?,
+            raw("condition_estimate", |r| r.condition)?,
+            raw("digits_lost", |r| r.condition.log10())?,
+            raw("tilt_rel_diff", |r| r.tilt_rel)?,
+            maybe("err_refined_over_pmean", "1", q, |x| x.refined.map(|r| r.0)),
+            Column::maybe_int(
+                "refinement_steps",
+                "-",
+                q.iter().map(|x| x.refined.map(|r| r.1 as i64)).collect(),
+            ),
+            count("refused_by_default", q, |x| usize::from(x.refused.is_some())),
+            maybe("time_s", "s", q, |x| x.raw.as_ref().map(|r| r.time)),
+            maybe("symbolic_s", "s", q, |x| x.raw.as_ref().map(|r| r.symbolic_time)),
+        ],
+        digits: DIGITS,
+    })
 }
 
-pub fn nu_csv(n: &NuStudy) -> Result<String> {
-    let mut rows = Vec::new();
-    for q in &n.points {
-        let mut r = vec![num("nu", q.nu)?, q.element.clone()];
-        for v in [
-            q.err,
-            q.err_edge_far,
-            q.errors.interior[0],
-            q.errors.interior[1],
-            q.errors.edge[0],
-            q.errors.edge[1],
-            q.oscillation,
-            q.p0_closed,
-            q.modulus_ratio,
-        ] {
-            r.push(num("nu.csv", v)?);
-        }
-        rows.push(r);
+/// nu.csv's table: per Poisson's ratio and element the largest errors against the qua9
+/// reference (units of N/L: interior, edge zone t..10 t, and per quantity), the edge zone's
+/// oscillation, p(0) over the closed-form confined compression, and N/L over the strain times
+/// lambda + 2G (dimensionless).
+pub fn nu_table(n: &NuStudy) -> Table {
+    let q = &n.points;
+    Table {
+        columns: vec![
+            ratio("nu", q, |x| x.nu),
+            Column::text("element", "-", q.iter().map(|x| x.element.clone()).collect()),
+            ratio("err_interior_max_over_pmean", q, |x| x.err),
+            ratio("err_edge_t_to_10t_over_pmean", q, |x| x.err_edge_far),
+            ratio("err_interior_p", q, |x| x.errors.interior[0]),
+            ratio("err_interior_tau", q, |x| x.errors.interior[1]),
+            ratio("err_edge_p", q, |x| x.errors.edge[0]),
+            ratio("err_edge_tau", q, |x| x.errors.edge[1]),
+            ratio("oscillation_over_pmean", q, |x| x.oscillation),
+            ratio("p0_over_closed_form", q, |x| x.p0_closed),
+            ratio("N_over_L_strain_over_lambda_plus_2G", q, |x| x.modulus_ratio),
+        ],
+        digits: DIGITS,
     }
-    Ok(table("nu,element,err_interior_max_over_pmean,err_edge_t_to_10t_over_pmean,err_interior_p,err_interior_tau,err_edge_p,err_edge_tau,oscillation_over_pmean,p0_over_closed_form,N_over_L_strain_over_lambda_plus_2G", rows))
 }
 
-pub fn shape_csv(s: &[ShapePoint]) -> Result<String> {
-    let mut rows = Vec::new();
-    for q in s {
-        let mut r = vec![
-            q.case.name().to_string(),
-            q.element.clone(),
-            num("shape", q.param)?,
-            q.n_elements.to_string(),
-        ];
-        for v in [
-            q.err,
-            q.err_edge_far,
-            q.errors.interior[0],
-            q.errors.interior[1],
-            q.errors.edge[0],
-            q.errors.edge[1],
-            q.min_jacobian_rel,
-        ] {
-            r.push(num("shape.csv", v)?);
-        }
-        rows.push(r);
+/// shape.csv's table: per mesh family (`case`), element and aspect ratio or distortion
+/// amplitude (units of h) the elements and the largest errors against the qua9 reference
+/// (units of N/L), and the smallest Jacobian relative to its mean.
+pub fn shape_table(s: &[ShapePoint]) -> Table {
+    Table {
+        columns: vec![
+            Column::text("case", "-", s.iter().map(|x| x.case.name().to_string()).collect()),
+            Column::text("element", "-", s.iter().map(|x| x.element.clone()).collect()),
+            ratio("aspect_or_distortion_over_h", s, |x| x.param),
+            count("elements", s, |x| x.n_elements),
+            ratio("err_interior_max_over_pmean", s, |x| x.err),
+            ratio("err_edge_t_to_10t_over_pmean", s, |x| x.err_edge_far),
+            ratio("err_interior_p", s, |x| x.errors.interior[0]),
+            ratio("err_interior_tau", s, |x| x.errors.interior[1]),
+            ratio("err_edge_p", s, |x| x.errors.edge[0]),
+            ratio("err_edge_tau", s, |x| x.errors.edge[1]),
+            ratio("min_jacobian_rel", s, |x| x.min_jacobian_rel),
+        ],
+        digits: DIGITS,
     }
-    Ok(table("case,element,aspect_or_distortion_over_h,elements,err_interior_max_over_pmean,err_edge_t_to_10t_over_pmean,err_interior_p,err_interior_tau,err_edge_p,err_edge_tau,min_jacobian_rel", rows))
 }
 
-pub fn thin_csv(t: &[ThinPoint]) -> Result<String> {
-    let mut rows = Vec::new();
-    for q in t {
-        let mut r = vec![
-            num("t/L", q.t_over_l)?,
-            q.nx.to_string(),
-            q.dofs.to_string(),
-            u8::from(q.graded).to_string(),
-        ];
-        for v in [q.condition, q.backward_error, q.fill, q.time, q.slope, q.slope_rel_err, q.tau_dev] {
-            r.push(num("thin.csv", v)?);
-        }
-        r.extend(q.widths.iter().map(|w| opt(*w)));
-        rows.push(r);
-    }
-    Ok(table("t_over_L,nx,dofs,graded,condition_estimate,backward_error,fill_nnzL_over_nnzK,time_s,slope_interior,slope_rel_err,tau_dev_over_pmean,edge_p_left_t,edge_p_right_t,edge_tau_left_t,edge_tau_right_t", rows))
+/// thin.csv's table: per t/L the elements along the block, unknowns, whether the mesh was
+/// graded to stay within the DOF limit, the condition estimate, backward error, fill of the
+/// factor, wall time (s), the interior slope of p and its relative error against the model's
+/// 12 (F/N)(H/L), the deviation of tau from uniform (units of N/L) and the edge widths (units
+/// of t).
+pub fn thin_table(t: &[ThinPoint]) -> Table {
+    let mut columns = vec![
+        ratio("t_over_L", t, |x| x.t_over_l),
+        count("nx", t, |x| x.nx),
+        count("dofs", t, |x| x.dofs),
+        count("graded", t, |x| usize::from(x.graded)),
+        ratio("condition_estimate", t, |x| x.condition),
+        ratio("backward_error", t, |x| x.backward_error),
+        ratio("fill_nnzL_over_nnzK", t, |x| x.fill),
+        Column::float("time_s", "s", t.iter().map(|x| x.time).collect()),
+        ratio("slope_interior", t, |x| x.slope),
+        ratio("slope_rel_err", t, |x| x.slope_rel_err),
+        ratio("tau_dev_over_pmean", t, |x| x.tau_dev),
+    ];
+    columns.extend(widths(t, |x| x.widths));
+    Table { columns, digits: DIGITS }
 }
 
-pub fn corners_csv(c: &CornerStudy) -> Result<String> {
-    let mut rows = Vec::new();
-    for (i, r) in c.study.runs.iter().enumerate() {
-        let mut row = vec![r.n_thick.to_string(), r.dofs.to_string()];
-        let inc = if i >= 2 { Some(c.increment_ratios[i - 2]) } else { None };
-        for v in [r.p_end[1], r.tau_end[1], r.balance, r.slope] {
-            row.push(num("corners.csv", v)?);
-        }
-        row.push(opt(inc));
-        row.extend(r.widths.iter().map(|w| opt(*w)));
-        rows.push(row);
-    }
-    Ok(table("n_thick,dofs,p_end_right,tau_end_right,balance_rel_err,slope_interior,increment_ratio,edge_p_left_t,edge_p_right_t,edge_tau_left_t,edge_tau_right_t", rows))
+/// corners.csv's table: per uniform qua4 mesh (elements through t) the unknowns, p and tau at
+/// the right end node (units of N/L), the force balance's relative error, the interior slope,
+/// the ratio of successive end-value increments (from the third mesh on) and the edge widths
+/// (units of t).
+pub fn corners_table(c: &CornerStudy) -> Table {
+    let r = &c.study.runs;
+    let mut columns = vec![
+        count("n_thick", r, |x| x.n_thick),
+        count("dofs", r, |x| x.dofs),
+        ratio("p_end_right", r, |x| x.p_end[1]),
+        ratio("tau_end_right", r, |x| x.tau_end[1]),
+        ratio("balance_rel_err", r, |x| x.balance),
+        ratio("slope_interior", r, |x| x.slope),
+        Column::maybe(
+            "increment_ratio",
+            "1",
+            (0..r.len()).map(|i| if i >= 2 { c.increment_ratios[i - 2] } else { f64::NAN }).collect(),
+        ),
+    ];
+    columns.extend(widths(r, |x| x.widths));
+    Table { columns, digits: DIGITS }
 }
 
 // ---------------------------------------------------------------- summary

@@ -2,8 +2,8 @@
 //! prints it, and a front end (the Python package) takes its arrays at full precision, so
 //! the file and the arrays cannot differ in columns, order or types: slide's loading.csv,
 //! events.csv and advances.csv, slide --dynamics' dyn_events.csv, fronts_t.csv and
-//! summary.csv, converge's convergence.csv, sweep's sweep.csv and rupture's station files are
-//! built this way.
+//! summary.csv, converge's convergence.csv, sweep's sweep.csv, rupture's station files and
+//! stability's five study files are built this way.
 
 use super::finite;
 use crate::error::Result;
@@ -45,6 +45,9 @@ pub enum Format {
     ShortestSci,
     /// This many decimals (wall times, s).
     Fixed(usize),
+    /// Text in double quotes (a message that may hold commas; its own double quotes written
+    /// as single ones), an empty text an empty cell.
+    Quoted,
 }
 
 /// One column: its CSV name, its unit (SI, `1` for a dimensionless ratio, `-` for a count,
@@ -131,6 +134,9 @@ impl Table {
                             write!(s, "{k}").unwrap()
                         }
                     }
+                    Values::Text(v) if c.format == Some(Format::Quoted) && !v[i].is_empty() => {
+                        write!(s, "\"{}\"", v[i].replace('"', "'")).unwrap()
+                    }
                     Values::Text(v) => s.push_str(&v[i]),
                     Values::Float(v) if c.may_be_empty && !v[i].is_finite() => {}
                     Values::Float(v) => {
@@ -140,6 +146,7 @@ impl Table {
                             Format::Shortest => write!(s, "{x}"),
                             Format::ShortestSci => write!(s, "{x:e}"),
                             Format::Fixed(d) => write!(s, "{x:.d$}"),
+                            Format::Quoted => write!(s, "\"{x}\""),
                         }
                         .unwrap()
                     }
@@ -165,12 +172,14 @@ mod tests {
                 Column::maybe("t_s", "s", vec![f64::NAN, 0.125]),
                 Column::maybe_int("n", "-", vec![Some(4), None]),
                 Column::float("w", "1", vec![2.0, 1.0 / 3.0]).with_digits(3),
+                Column::text("why", "-", vec!["p < 0, \"opens\"".into(), String::new()])
+                    .with_format(Format::Quoted),
             ],
             digits: 10,
         };
         assert_eq!(
             t.csv().unwrap(),
-            "event,kind,X_m,t_s,n,w\n3,slip,3.333333333e-1,,4,2.00e0\n7,open,-2.500000000e-7,1.250000000e-1,,3.33e-1\n"
+            "event,kind,X_m,t_s,n,w,why\n3,slip,3.333333333e-1,,4,2.00e0,\"p < 0, 'opens'\"\n7,open,-2.500000000e-7,1.250000000e-1,,3.33e-1,\n"
         );
         // A column that must hold a number refuses NaN, naming itself.
         let bad = Table { columns: vec![Column::float("X_m", "m", vec![f64::NAN])], digits: 10 };

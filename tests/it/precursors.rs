@@ -142,7 +142,7 @@ fn loading_curve_is_a_sawtooth_of_slope_one() {
 #[test]
 fn n_map_is_monotone_and_splits_on_the_line() {
     let res = 40;
-    let map = n_map(res).unwrap();
+    let map = n_map(res, &tribofe::Cancel::new()).unwrap();
     assert_eq!(map.len(), res * res);
     let n = |i: usize, j: usize| map[i * res + j].n;
     for i in 0..res {
@@ -178,7 +178,7 @@ fn invalid_params_say_why() {
     let p = Params::new(0.9, 0.0).unwrap();
     assert_eq!((p.f1(), p.f_max()), (1.0, 1.0));
     assert_eq!(tribofe::precursors::n_precursors(&p).unwrap(), 0);
-    assert!(n_map(1).is_err() && n_map(401).is_err());
+    assert!(n_map(1, &tribofe::Cancel::new()).is_err() && n_map(401, &tribofe::Cancel::new()).is_err());
 }
 
 fn errors<'a>(run: &'a discrete::Run, an: &'a [Event]) -> impl Iterator<Item = (usize, f64, f64, f64)> + 'a {
@@ -371,7 +371,7 @@ fn outputs_have_the_documented_columns_and_no_nan() {
     bad[0].x = f64::NAN;
     assert!(report::events_csv(&bad).is_err());
 
-    let map = n_map(8).unwrap();
+    let map = n_map(8, &tribofe::Cancel::new()).unwrap();
     report::write_map(&dir, &map, 8).unwrap();
     let csv = std::fs::read_to_string(dir.join("n_map.csv")).unwrap();
     assert!(csv.starts_with("r,g,n\n") && csv.lines().count() == 65);

@@ -193,3 +193,24 @@ fn check_summary_labels_end_node_values_as_not_converged() {
     assert!(first > label, "{text}");
     assert!(!text[..label].contains("ends"), "{text}");
 }
+
+#[test]
+fn a_cancelled_run_stops_at_its_next_solve() {
+    // Cancelled before: nothing is solved.
+    let o = Options { plate_ratios: vec![1e6, 1e9], plate_n_thick: vec![2], ..Default::default() };
+    o.cancel.cancel();
+    let err = stability::run(&Scene::default(), &["plate".into()], &o, Progress::none()).err();
+    assert!(matches!(err, Some(tribofe::Error::Interrupted)), "{err:?}");
+    // Cancelled by the host after the first solve (the rigid plate): it stops there, before
+    // the elastic plate's solves.
+    let o = Options { cancel: tribofe::Cancel::new(), ..o };
+    let solves = std::sync::atomic::AtomicUsize::new(0);
+    let host = o.cancel.clone();
+    let tick = |_: &tribofe::Tick| {
+        solves.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        host.cancel();
+    };
+    let err = stability::run(&Scene::default(), &["plate".into()], &o, Progress::new(&tick)).err();
+    assert!(matches!(err, Some(tribofe::Error::Interrupted)), "{err:?}");
+    assert_eq!(solves.into_inner(), 1);
+}

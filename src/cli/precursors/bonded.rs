@@ -3,9 +3,7 @@
 
 use super::MAX_DEFAULT_EVENTS;
 use super::{print_written, run_file, write_whole, OutArgs, RgArgs};
-use tribofe::linalg::solve::SolverOptions;
 use tribofe::report::precursors as report;
-use tribofe::Error;
 
 #[derive(clap::Args, Debug)]
 pub struct BondedArgs {
@@ -27,50 +25,24 @@ pub struct BondedArgs {
 /// fields on the same cells.
 pub fn bonded(args: BondedArgs) -> tribofe::Result<()> {
     let scene = super::super::check::scene(&args.scene)?;
-    let n_events = args.events;
-    let fields = |s: &tribofe::scene::Scene| {
-        tribofe::studies::check::run(s, &SolverOptions::default()).map(|r| r.0.unit)
-    };
-    let c = tribofe::studies::precursors_fe::bonded(&scene, args.rg.r, args.rg.g, n_events)?;
+    let cancel = tribofe::Cancel::new();
+    let c = tribofe::studies::precursors_fe::bonded(&scene, args.rg.r, args.rg.g, args.events, &cancel)?;
     print_comparison(&c)?;
     tribofe::io::outdir::check(&args.out.out, args.out.force)?;
-    let mut sweep_fields = Vec::new();
-    if args.sweep {
-        let (l, h0, t0) = (
-            scene.block.length,
-            scene.loading.height / scene.block.length,
-            scene.block.thickness / scene.block.length,
-        );
-        let hs = [0.25 * h0, 0.5 * h0, h0, 2.0 * h0];
-        let ts = [0.5 * t0, t0, 2.0 * t0, 4.0 * t0];
-        for &h in &hs {
-            for &t in &ts {
-                let mut s = scene.clone();
-                s.loading.height = h * l;
-                s.block.thickness = t * l;
-                s.mesh.h = s.mesh.h.min(s.block.thickness / 2.0);
-                errln!("sweep: H/L = {h}, t/L = {t}");
-                let mut f = fields(&s)?;
-                (f.h_over_l, f.t_over_l) = (h, t); // exact keys for the table
-                sweep_fields.push(f);
-            }
-        }
-        let mut it = sweep_fields.into_iter();
-        let rows = tribofe::precursors::fe::sweep(&hs, &ts, args.rg.r, args.rg.g, n_events, |_, _| {
-            it.next().ok_or_else(|| Error::input("--sweep", "internal: sweep fields out of order"))
-        })?;
-        let written = write_whole(&args.out.out, args.out.force, |dir, inv| {
-            let mut w = report::write_comparison(dir, &c)?;
-            let path = dir.join("fe_sweep.csv");
-            report::write_sweep(&path, &rows)?;
-            w.push(path);
-            w.push(run_file(dir, inv, Some(&scene), &[("r", args.rg.r), ("g", args.rg.g)])?);
-            Ok(w)
-        })?;
-        return print_written(&written);
-    }
+    let rows = if args.sweep {
+        let tick = |t: &tribofe::Tick| errln!("{}", t.message);
+        let (p, progress) = (&args.rg, tribofe::Progress::new(&tick));
+        Some(tribofe::studies::precursors_fe::bonded_sweep(&scene, p.r, p.g, args.events, &cancel, progress)?)
+    } else {
+        None
+    };
     let written = write_whole(&args.out.out, args.out.force, |dir, inv| {
         let mut w = report::write_comparison(dir, &c)?;
+        if let Some(rows) = &rows {
+            let path = dir.join("fe_sweep.csv");
+            report::write_sweep(&path, rows)?;
+            w.push(path);
+        }
         w.push(run_file(dir, inv, Some(&scene), &[("r", args.rg.r), ("g", args.rg.g)])?);
         Ok(w)
     })?;

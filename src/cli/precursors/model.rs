@@ -31,7 +31,7 @@ pub struct MapArgs {
 pub fn map(args: MapArgs) -> tribofe::Result<()> {
     let resolution = args.resolution;
     let out = &args.out;
-    let map = precursors::n_map(resolution)?;
+    let map = precursors::n_map(resolution, &tribofe::Cancel::new())?;
     let n_max = map.iter().map(|m| m.n).max().unwrap_or(0);
     tribofe::io::outdir::check(&out.out, out.force)?;
     let results = [("resolution", resolution as i64), ("n_max", n_max as i64)];

@@ -5,13 +5,12 @@
 #[cfg(feature = "plots")]
 use super::super::plot::{render, Legend, BLUE, FONT, RED};
 use super::super::table::{Column, Format, Table};
-use super::super::{ensure_dir, finite, opt, write_all, write_atomic};
+use super::super::{ensure_dir, finite, write_all, write_atomic};
 use crate::precursors::discrete::{CellEvent, Run};
 use crate::precursors::fe::{Comparison, SweepRow};
 use crate::Result;
 #[cfg(feature = "plots")]
 use plotters::prelude::*;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 #[cfg(feature = "plots")]
@@ -107,39 +106,60 @@ pub fn write_comparison(dir: &Path, c: &Comparison) -> Result<Vec<PathBuf>> {
     write_all(dir, &files)
 }
 
-/// The sweep of [`crate::precursors::fe::sweep`] as CSV, header
-/// `H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length,outside_model`
-/// (forces in units of mu_s N, lengths in units of L; an empty n or Fmax field means the
-/// run did not reach stick-slip within its events; `outside_model` says why a geometry could
-/// not be run, its figures then left empty).
-pub fn sweep_csv(rows: &[SweepRow]) -> Result<String> {
-    let mut s = String::from("H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length,outside_model\n");
-    for w in rows {
-        if let Some(why) = &w.outside_model {
-            let _ = writeln!(
-                s,
-                "{},{},,,,,,,,\"{}\"",
-                finite("H/L", w.h_over_l)?,
-                finite("t/L", w.t_over_l)?,
-                why.replace('"', "'")
-            );
-            continue;
+/// `fe_sweep.csv`'s table, the sweep of [`crate::precursors::fe::sweep`]: per H/L and t/L
+/// the precursors of the FE-fed and the linear run, their F_1 and stick-slip F_max (units of
+/// mu_s N) and the largest difference in precursor length (units of L); an empty n or F_max
+/// where a run did not reach stick-slip within its events; `outside_model` says why a
+/// geometry could not be run (quoted), its figures then empty. The one definition the CSV and
+/// the Python package's table are made from.
+pub fn sweep_table(rows: &[SweepRow]) -> Result<Table> {
+    // A run geometry's figures must be numbers: a non-finite one is a bug, never an empty cell.
+    for w in rows.iter().filter(|w| w.outside_model.is_none()) {
+        for (name, v) in [
+            ("F1_fe", Some(w.f1_fe)),
+            ("F1_linear", Some(w.f1_linear)),
+            ("Fmax_fe", w.f_max_fe),
+            ("Fmax_linear", w.f_max_linear),
+            ("max_abs_d_length", Some(w.max_abs_d_length)),
+        ] {
+            v.map(|v| finite(name, v)).transpose()?;
         }
-        let _ = writeln!(
-            s,
-            "{},{},{},{},{},{},{},{},{},",
-            finite("H/L", w.h_over_l)?,
-            finite("t/L", w.t_over_l)?,
-            opt(w.n_fe),
-            opt(w.n_linear),
-            finite("F1_fe", w.f1_fe)?,
-            finite("F1_linear", w.f1_linear)?,
-            opt(w.f_max_fe.map(|v| finite("Fmax_fe", v)).transpose()?),
-            opt(w.f_max_linear.map(|v| finite("Fmax_linear", v)).transpose()?),
-            finite("max_abs_d_length", w.max_abs_d_length)?
-        );
     }
-    Ok(s)
+    let run = |w: &SweepRow, v: Option<f64>| v.filter(|_| w.outside_model.is_none()).unwrap_or(f64::NAN);
+    let num = |name: &'static str, get: &dyn Fn(&SweepRow) -> Option<f64>| {
+        Column::maybe(name, "1", rows.iter().map(|w| run(w, get(w))).collect()).with_format(Format::Shortest)
+    };
+    let count = |name: &'static str, get: fn(&SweepRow) -> Option<usize>| {
+        Column::maybe_int(name, "-", rows.iter().map(|w| get(w).map(|n| n as i64)).collect())
+    };
+    Ok(Table {
+        columns: vec![
+            Column::float("H_over_L", "1", rows.iter().map(|w| w.h_over_l).collect())
+                .with_format(Format::Shortest),
+            Column::float("t_over_L", "1", rows.iter().map(|w| w.t_over_l).collect())
+                .with_format(Format::Shortest),
+            count("n_fe", |w| w.n_fe),
+            count("n_linear", |w| w.n_linear),
+            num("F1_fe", &|w| Some(w.f1_fe)),
+            num("F1_linear", &|w| Some(w.f1_linear)),
+            num("Fmax_fe", &|w| w.f_max_fe),
+            num("Fmax_linear", &|w| w.f_max_linear),
+            num("max_abs_d_length", &|w| Some(w.max_abs_d_length)),
+            Column::text(
+                "outside_model",
+                "-",
+                rows.iter().map(|w| w.outside_model.clone().unwrap_or_default()).collect(),
+            )
+            .with_format(Format::Quoted),
+        ],
+        digits: 17,
+    })
+}
+
+/// `fe_sweep.csv` ([`sweep_table`]), header
+/// `H_over_L,t_over_L,n_fe,n_linear,F1_fe,F1_linear,Fmax_fe,Fmax_linear,max_abs_d_length,outside_model`.
+pub fn sweep_csv(rows: &[SweepRow]) -> Result<String> {
+    sweep_table(rows)?.csv()
 }
 
 /// Writes [`sweep_csv`] to `path`.

@@ -16,7 +16,7 @@ mod map;
 mod model;
 mod thin_layer;
 
-pub use bonded::{comparison_csv, comparison_table, sweep_csv, write_comparison, write_sweep};
+pub use bonded::{comparison_csv, comparison_table, sweep_csv, sweep_table, write_comparison, write_sweep};
 pub use dc::write_dc;
 pub use fe::{fe_fig4_summary_table, write_fe_fig4};
 pub use fe_map::{fe_boundary_csv, fe_fig5_csv, fe_fig5_table, write_fe_fig5};

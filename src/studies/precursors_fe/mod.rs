@@ -46,11 +46,63 @@ pub const DEFAULT_DC_MAX_EVENTS: usize = 2000;
 
 /// The earlier comparison (`precursors bonded`): the 1D model fed with the scene's bonded
 /// unit interface fields next to the paper's linear fields on the same cells, `events` events
-/// each (at most [`crate::precursors::MAX_EVENTS`]).
-pub fn bonded(scene: &Scene, r: f64, g: f64, events: usize) -> Result<crate::precursors::fe::Comparison> {
+/// each (at most [`crate::precursors::MAX_EVENTS`]); `cancel` stops it before and after the
+/// FE solve.
+pub fn bonded(
+    scene: &Scene,
+    r: f64,
+    g: f64,
+    events: usize,
+    cancel: &crate::Cancel,
+) -> Result<crate::precursors::fe::Comparison> {
     crate::precursors::check_events(events)?;
+    cancel.check()?;
     let fields = crate::studies::check::run(scene, &SolverOptions::default())?.0.unit;
+    cancel.check()?;
     crate::precursors::fe::compare(&fields, r, g, events)
+}
+
+/// The bonded sweep's geometries (`precursors bonded --sweep`): H/L and t/L as multiples of
+/// the scene's.
+pub const BONDED_SWEEP_H: [f64; 4] = [0.25, 0.5, 1.0, 2.0];
+pub const BONDED_SWEEP_T: [f64; 4] = [0.5, 1.0, 2.0, 4.0];
+
+/// `precursors bonded --sweep`: the earlier comparison ([`crate::precursors::fe::sweep`]) at
+/// (r, g) over H/L and t/L around the scene's ([`BONDED_SWEEP_H`] x [`BONDED_SWEEP_T`], H/L
+/// outer), one bonded check per geometry on the scene's mesh size, no coarser than t/2;
+/// `events` events per discrete run. Reports each geometry before its solve (the fraction of
+/// the geometries done) and stops there once `cancel` is cancelled.
+pub fn bonded_sweep(
+    scene: &Scene,
+    r: f64,
+    g: f64,
+    events: usize,
+    cancel: &crate::Cancel,
+    progress: Progress,
+) -> Result<Vec<crate::precursors::fe::SweepRow>> {
+    crate::precursors::check_events(events)?;
+    let l = scene.block.length;
+    let (h0, t0) = (scene.loading.height / l, scene.block.thickness / l);
+    let hs = BONDED_SWEEP_H.map(|k| k * h0);
+    let ts = BONDED_SWEEP_T.map(|k| k * t0);
+    let total = (hs.len() * ts.len()) as f64;
+    let mut done = 0.0;
+    crate::precursors::fe::sweep(&hs, &ts, r, g, events, |h, t| {
+        cancel.check()?;
+        progress.tick(&crate::Tick {
+            fraction: Some(done / total),
+            message: &format!("sweep: H/L = {h}, t/L = {t}"),
+            item: None,
+        });
+        done += 1.0;
+        let mut s = scene.clone();
+        s.loading.height = h * l;
+        s.block.thickness = t * l;
+        s.mesh.h = s.mesh.h.min(s.block.thickness / 2.0);
+        let mut f = crate::studies::check::run(&s, &SolverOptions::default())?.0.unit;
+        (f.h_over_l, f.t_over_l) = (h, t); // exact keys for the table
+        Ok(f)
+    })
 }
 
 /// One rule's FE fig. 4 next to the analytic iteration (forces in units of mu_s N, x in L).
@@ -336,7 +388,7 @@ pub fn fig5(
     cancel: &crate::Cancel,
     progress: Progress,
 ) -> Result<Vec<Cell>> {
-    let model = crate::precursors::n_map(resolution)?;
+    let model = crate::precursors::n_map(resolution, cancel)?;
     let c = condense(scene, &SolverOptions::default())?;
     let done = std::sync::atomic::AtomicUsize::new(0);
     model

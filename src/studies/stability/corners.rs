@@ -24,6 +24,7 @@ pub fn corners(base: &Scene, o: &Options, progress: Progress) -> Result<CornerSt
         n_thick: o.corner_n_thick.clone(),
         fn_ratio: o.fn_ratio,
         parallel: false,
+        cancel: o.cancel.clone(),
         ..Default::default()
     };
     let each = |t: &crate::Tick<'_, convergence::Run>| {

@@ -46,6 +46,41 @@ pub struct Options {
     pub corner_n_thick: Vec<usize>,
     /// The load case compared (F/N) where one is needed.
     pub fn_ratio: f64,
+    /// Stops the studies before and after each solve.
+    pub cancel: crate::Cancel,
+}
+
+/// The finest corner mesh's elements through the thickness (`--corner-max`).
+pub const DEFAULT_CORNER_MAX: usize = 32;
+/// The qua9 reference's elements through the thickness (`--n-ref`).
+pub const DEFAULT_N_REF: usize = 16;
+
+/// The corner study's meshes: 1, 2, 4, .. elements through the thickness, up to `max`.
+pub fn corner_meshes(max: usize) -> Vec<usize> {
+    std::iter::successors(Some(1usize), |n| n.checked_mul(2)).take_while(|&n| n <= max).collect()
+}
+
+/// Refuses a sizing option given for a study that is not run (`given`: the option's name as
+/// the caller typed it, when given): it could not act.
+pub fn refuse_idle(studies: &[String], n_ref: Option<&str>, corner_max: Option<&str>) -> Result<()> {
+    let runs = |names: &[&str]| studies.iter().any(|s| names.contains(&s.as_str()));
+    for (given, needs) in [(n_ref, &["nu", "shape"][..]), (corner_max, &["corners"])] {
+        if let Some(name) = given.filter(|_| !runs(needs)) {
+            return Err(Error::input(
+                name,
+                format!("cannot act: it sizes the {} study, not run here (--study)", needs.join(" and ")),
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl Options {
+    /// Reports a finished solve and stops here once the run is cancelled.
+    fn done(&self, progress: Progress, message: &str) -> Result<()> {
+        progress.message(message);
+        self.cancel.check()
+    }
 }
 
 impl Default for Options {
@@ -57,7 +92,7 @@ impl Default for Options {
             nus: vec![0.3, 0.4, 0.45, 0.49, 0.499, 0.4999],
             elements: ["qua4", "qua4-sri", "qua4-im", "qua8", "qua9"].map(String::from).to_vec(),
             n_thick: 4,
-            n_ref: 16,
+            n_ref: DEFAULT_N_REF,
             aspects: vec![1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0],
             grading_ratio: 1.1,
             distortions: vec![0.0, 0.1, 0.2, 0.3],
@@ -69,8 +104,9 @@ impl Default for Options {
             thin_ratios: vec![1e-1, 1e-2, 1e-3, 1e-4],
             thin_n_thick: 4,
             max_dofs: 600_000,
-            corner_n_thick: vec![1, 2, 4, 8, 16, 32],
+            corner_n_thick: corner_meshes(DEFAULT_CORNER_MAX),
             fn_ratio: 0.82,
+            cancel: crate::Cancel::new(),
         }
     }
 }
@@ -123,18 +159,19 @@ impl References {
         Self { base: base.clone(), n_ref, cache: HashMap::new() }
     }
 
-    /// Reference for the base scene at Poisson's ratio `nu` (load cases F/N = 0 and `fn_ratio`).
-    pub fn get(&mut self, nu: f64, fn_ratio: f64, progress: Progress) -> Result<&CheckResult> {
+    /// Reference for the base scene at Poisson's ratio `nu` (load cases F/N = 0 and `o.fn_ratio`).
+    pub fn get(&mut self, nu: f64, o: &Options, progress: Progress) -> Result<&CheckResult> {
         if !self.cache.contains_key(&nu.to_bits()) {
+            o.cancel.check()?;
             let mut s = self.base.clone();
             s.block.poisson = nu;
             s.mesh.h = s.block.thickness / self.n_ref as f64;
             s.mesh.element = "qua9".into();
             (s.mesh.grading, s.mesh.h_max) = (None, None);
             s.mesh.n_thick = None;
-            s.loading.fn_ratios = vec![0.0, fn_ratio];
+            s.loading.fn_ratios = vec![0.0, o.fn_ratio];
             let (r, _) = check::run(&s, &SolverOptions::default())?;
-            progress.message(&format!("reference qua9 t/{} nu {nu}", self.n_ref));
+            o.done(progress, &format!("reference qua9 t/{} nu {nu}", self.n_ref))?;
             self.cache.insert(nu.to_bits(), r);
         }
         Ok(&self.cache[&nu.to_bits()])
@@ -172,6 +209,7 @@ pub fn run(base: &Scene, studies: &[String], o: &Options, progress: Progress) ->
             format!("'{bad}' is not known; choose from {}", STUDIES.join(", ")),
         ));
     }
+    o.cancel.check()?;
     let on = |name: &str| studies.iter().any(|s| s == name);
     let mut refs = References::new(base, o.n_ref);
     let mut res = Results::default();

@@ -67,7 +67,7 @@ pub fn nu(base: &Scene, o: &Options, refs: &mut References, progress: Progress) 
     let mut points = Vec::new();
     let mut reference_p0 = Vec::new();
     for &nu in &o.nus {
-        let rf = refs.get(nu, o.fn_ratio, progress)?.clone();
+        let rf = refs.get(nu, o, progress)?.clone();
         reference_p0.push((nu, closed_form(&rf)?.0));
         for e in &o.elements {
             let mut s = base.clone();
@@ -76,10 +76,11 @@ pub fn nu(base: &Scene, o: &Options, refs: &mut References, progress: Progress) 
             s.mesh.n_thick = Some(o.n_thick);
             s.mesh.element = e.clone();
             s.loading.fn_ratios = vec![0.0, o.fn_ratio];
+            o.cancel.check()?;
             let (r, _) = check::run(&s, &SolverOptions::default())?;
             let errors = errors_against(&r, &rf);
             let (p0_closed, modulus_ratio) = closed_form(&r)?;
-            progress.message(&format!("nu {nu} {e}"));
+            o.done(progress, &format!("nu {nu} {e}"))?;
             points.push(NuPoint {
                 nu,
                 element: e.clone(),

@@ -76,8 +76,9 @@ pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy
         s.mesh.h = t / n as f64;
         s.mesh.n_thick = Some(n);
         s.plate.model = PlateModel::Rigid;
+        o.cancel.check()?;
         let (rigid, _) = check::run(&s, &SolverOptions::default())?;
-        progress.message(&format!("plate rigid t/{n}"));
+        o.done(progress, &format!("plate rigid t/{n}"))?;
         // Only the plate modulus changes along the sweep: one pattern and symbolic analysis.
         let mut e0 = s.clone();
         e0.plate.model = PlateModel::Elastic;
@@ -88,20 +89,23 @@ pub fn plate(base: &Scene, o: &Options, progress: Progress) -> Result<PlateStudy
         for &ratio in &o.plate_ratios {
             let mut e = e0.clone();
             e.plate.young = ratio * base.block.young;
+            o.cancel.check()?;
             let clock = Instant::now();
             let (raw, failure) = match run(&e, &raw_opts) {
                 Ok((r, _)) => (Some(plate_raw(&r, &rigid, clock.elapsed().as_secs_f64(), o.fn_ratio)), None),
                 Err(err) => (None, Some(err.to_string())),
             };
             let refined = if o.plate_refine && raw.is_some() {
+                o.cancel.check()?;
                 run(&e, &refine_opts).ok().map(|(r, _)| {
                     (plate_raw(&r, &rigid, 0.0, o.fn_ratio).err(), r.stats.report.refinement_steps)
                 })
             } else {
                 None
             };
+            o.cancel.check()?;
             let refused = run(&e, &SolverOptions::default()).err().map(|e| e.to_string());
-            progress.message(&format!("plate t/{n} ratio {ratio:.0e}"));
+            o.done(progress, &format!("plate t/{n} ratio {ratio:.0e}"))?;
             points.push(PlatePoint { n_thick: n, ratio, raw, failure, refined, refused });
         }
     }

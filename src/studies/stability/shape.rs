@@ -47,7 +47,7 @@ pub fn shape(
     refs: &mut References,
     progress: Progress,
 ) -> Result<Vec<ShapePoint>> {
-    let rf = refs.get(base.block.poisson, o.fn_ratio, progress)?.clone();
+    let rf = refs.get(base.block.poisson, o, progress)?.clone();
     let t = base.block.thickness;
     let h = t / o.n_thick as f64;
     let mut out = Vec::new();
@@ -70,9 +70,10 @@ pub fn shape(
                         v.mesh.n_thick = Some(o.n_thick);
                     }
                 }
+                o.cancel.check()?;
                 let (r, _) = check::run(&v, &SolverOptions::default())?;
                 let errors = errors_against(&r, &rf);
-                progress.message(&format!("shape {} {e} 1:{a}", case.name()));
+                o.done(progress, &format!("shape {} {e} 1:{a}", case.name()))?;
                 out.push(ShapePoint {
                     case,
                     element: e.clone(),
@@ -90,9 +91,10 @@ pub fn shape(
             let j0 = (0..sm.mesh.n_elements()).map(|k| sm.mesh.min_jacobian(k)).fold(f64::INFINITY, f64::min);
             sm.mesh.distort(amp * h, o.seed)?;
             let j1 = (0..sm.mesh.n_elements()).map(|k| sm.mesh.min_jacobian(k)).fold(f64::INFINITY, f64::min);
+            o.cancel.check()?;
             let (r, _) = check::run_model(&s, sm, 0.0, &SolverOptions::default(), None)?;
             let errors = errors_against(&r, &rf);
-            progress.message(&format!("shape distorted {e} {amp}"));
+            o.done(progress, &format!("shape distorted {e} {amp}"))?;
             out.push(ShapePoint {
                 case: ShapeCase::Distorted,
                 element: e.clone(),
@@ -111,9 +113,10 @@ pub fn shape(
             let sm = v.build()?;
             let quality =
                 (0..sm.mesh.n_elements()).map(|k| sm.mesh.jacobian_quality(k)).fold(f64::INFINITY, f64::min);
+            o.cancel.check()?;
             let (r, _) = check::run_model(&v, sm, 0.0, &SolverOptions::default(), None)?;
             let errors = errors_against(&r, &rf);
-            progress.message(&format!("shape unstructured {e}"));
+            o.done(progress, &format!("shape unstructured {e}"))?;
             out.push(ShapePoint {
                 case: ShapeCase::Unstructured,
                 element: e.clone(),

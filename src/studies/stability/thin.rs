@@ -39,6 +39,7 @@ pub fn thin(base: &Scene, o: &Options, progress: Progress) -> Result<Vec<ThinPoi
             s.mesh.grading = Some(1.1);
             s.mesh.h_max = Some(10.0 * s.block.thickness);
         }
+        o.cancel.check()?;
         let clock = Instant::now();
         let (r, _) = check::run(&s, &SolverOptions::default())?;
         let time = clock.elapsed().as_secs_f64();
@@ -48,7 +49,7 @@ pub fn thin(base: &Scene, o: &Options, progress: Progress) -> Result<Vec<ThinPoi
             crate::numeric::line_fit(mid.iter().map(|&i| (c.x_over_l[i], c.p[i]))).map_or(f64::NAN, |l| l.1);
         let model = c.metrics.slope_model;
         let mt = &c.metrics;
-        progress.message(&format!("thin t/L {tl:.0e}"));
+        o.done(progress, &format!("thin t/L {tl:.0e}"))?;
         out.push(ThinPoint {
             t_over_l: tl,
             nx: c.x_over_l.len() - 1,
