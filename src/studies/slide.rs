@@ -408,13 +408,14 @@ pub fn coefficients_from_rg(scene: &Scene, r: f64, g: f64) -> Result<(f64, f64)>
 }
 
 /// The default coefficients: the paper's (r, g) = (0.9, 0.35) at the scene's H/L; at H = 0
-/// (the control case, where g is 0 whatever the coefficients) at the paper's H/L = 0.1, so
-/// the control case keeps the paper's friction with the torque removed.
+/// (the control case, where g is 0 whatever the coefficients) and under the side push (whose
+/// push height is no plate's H: g there would put mu_d = 2.9 under a pusher at 0.02 L) at the
+/// paper's H/L = 0.1, so they keep the paper's friction, mu_s = 0.648, mu_d = 0.583.
 pub fn default_coefficients(scene: &Scene) -> Result<(f64, f64)> {
-    if scene.arm() == 0.0 {
-        let mut paper = scene.clone();
-        paper.loading.height = 0.1 * scene.block.length;
-        return coefficients_from_rg(&paper, PAPER_R, PAPER_G);
+    if scene.arm() == 0.0 || !scene.loading.rig.is_top_plate() {
+        let paper = Scene::default();
+        let mu_d = PAPER_G * paper.block.length / (6.0 * paper.loading.height);
+        return Ok((mu_d / PAPER_R, mu_d));
     }
     coefficients_from_rg(scene, PAPER_R, PAPER_G)
 }

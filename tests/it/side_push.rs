@@ -495,3 +495,19 @@ fn dynamic_side_push_refuses_what_it_cannot_run() {
     assert!(run.contains("operator = \"dense\"") && run.contains("the pusher's displacement U_p"), "{run}");
     assert!(run.contains("side push's default (dense)"), "{run}");
 }
+
+#[test]
+fn side_push_defaults_to_the_papers_coefficients_whatever_the_push_height() {
+    // g = 6 mu_d H/L is the top plate's: read through the push height it would set mu_d =
+    // 0.35 L / (6 h), 2.9 under a pusher at 0.02 L. The side push keeps the paper's friction,
+    // that of (r, g) = (0.9, 0.35) at H/L = 0.1: mu_d = 0.35 / 0.6, mu_s = mu_d / 0.9.
+    for h in [0.002, 0.005, 0.015] {
+        let mut s = side(Top::UniformPressure, 0.002);
+        s.loading.push_height = Some(h);
+        let (mu_s, mu_d) = tribofe::studies::slide::default_coefficients(&s).unwrap();
+        assert!(
+            (mu_d - 0.35 / 0.6).abs() < 1e-14 && (mu_s - 0.35 / 0.6 / 0.9).abs() < 1e-14,
+            "{mu_s} {mu_d}"
+        );
+    }
+}
