@@ -4,6 +4,7 @@
 use super::table::{Column, Table};
 use super::{finite, write_atomic};
 use crate::error::Result;
+use crate::studies::convergence::ZoneErrors;
 use crate::studies::stability::{
     CornerStudy, NuStudy, PlateRaw, PlateStudy, Results, ShapeCase, ShapePoint, ThinPoint,
 };
@@ -85,6 +86,19 @@ fn maybe<T>(name: &'static str, unit: &'static str, rows: &[T], get: impl Fn(&T)
     )
 }
 
+/// The errors against the qua9 reference that nu.csv and shape.csv share (units of N/L): the
+/// interior's and the edge zone's largest, then per quantity.
+fn error_columns<T>(rows: &[T], get: impl Fn(&T) -> (f64, f64, &ZoneErrors)) -> [Column; 6] {
+    [
+        ratio("err_interior_max_over_pmean", rows, |x| get(x).0),
+        ratio("err_edge_t_to_10t_over_pmean", rows, |x| get(x).1),
+        ratio("err_interior_p", rows, |x| get(x).2.interior[0]),
+        ratio("err_interior_tau", rows, |x| get(x).2.interior[1]),
+        ratio("err_edge_p", rows, |x| get(x).2.edge[0]),
+        ratio("err_edge_tau", rows, |x| get(x).2.edge[1]),
+    ]
+}
+
 fn count<T>(name: &'static str, rows: &[T], get: impl Fn(&T) -> usize) -> Column {
     Column::int(name, "-", rows.iter().map(|r| get(r) as i64).collect())
 }
@@ -144,16 +158,15 @@ pub fn nu_table(n: &NuStudy) -> Table {
         columns: vec![
             ratio("nu", q, |x| x.nu),
             Column::text("element", "-", q.iter().map(|x| x.element.clone()).collect()),
-            ratio("err_interior_max_over_pmean", q, |x| x.err),
-            ratio("err_edge_t_to_10t_over_pmean", q, |x| x.err_edge_far),
-            ratio("err_interior_p", q, |x| x.errors.interior[0]),
-            ratio("err_interior_tau", q, |x| x.errors.interior[1]),
-            ratio("err_edge_p", q, |x| x.errors.edge[0]),
-            ratio("err_edge_tau", q, |x| x.errors.edge[1]),
+        ]
+        .into_iter()
+        .chain(error_columns(q, |x| (x.err, x.err_edge_far, &x.errors)))
+        .chain([
             ratio("oscillation_over_pmean", q, |x| x.oscillation),
             ratio("p0_over_closed_form", q, |x| x.p0_closed),
             ratio("N_over_L_strain_over_lambda_plus_2G", q, |x| x.modulus_ratio),
-        ],
+        ])
+        .collect(),
         digits: DIGITS,
     }
 }
@@ -168,14 +181,11 @@ pub fn shape_table(s: &[ShapePoint]) -> Table {
             Column::text("element", "-", s.iter().map(|x| x.element.clone()).collect()),
             ratio("aspect_or_distortion_over_h", s, |x| x.param),
             count("elements", s, |x| x.n_elements),
-            ratio("err_interior_max_over_pmean", s, |x| x.err),
-            ratio("err_edge_t_to_10t_over_pmean", s, |x| x.err_edge_far),
-            ratio("err_interior_p", s, |x| x.errors.interior[0]),
-            ratio("err_interior_tau", s, |x| x.errors.interior[1]),
-            ratio("err_edge_p", s, |x| x.errors.edge[0]),
-            ratio("err_edge_tau", s, |x| x.errors.edge[1]),
-            ratio("min_jacobian_rel", s, |x| x.min_jacobian_rel),
-        ],
+        ]
+        .into_iter()
+        .chain(error_columns(s, |x| (x.err, x.err_edge_far, &x.errors)))
+        .chain([ratio("min_jacobian_rel", s, |x| x.min_jacobian_rel)])
+        .collect(),
         digits: DIGITS,
     }
 }
