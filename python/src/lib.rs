@@ -1542,7 +1542,7 @@ fn dynamic_slide<'py>(
         end_at_crossing: end_at_crossing.unwrap_or(ds::DEFAULT_END_AT_CROSSING),
         max_events,
         keep_states,
-        operator: operator.unwrap_or(ds::DEFAULT_OPERATOR),
+        operator: operator.unwrap_or_else(|| ds::default_operator(&scene)),
         ..Default::default()
     };
     // The stepped path (weakening_steps= or the default) unless exact_weakening=True.

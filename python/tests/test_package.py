@@ -410,6 +410,25 @@ def test_side_push_slide_equals_the_command(tribofe_bin, tmp_path):
     assert msg.startswith("invalid operator=: banded") and 'operator="dense"' in msg and "--" not in msg, msg
 
 
+def test_dynamic_side_push_slide_equals_the_command(tribofe_bin, tmp_path):
+    # The thin side-pushed block of tests/it/side_push.rs to X = 3e-5 m, slip weakening.
+    out = tmp_path / "side_push_dyn"
+    scene = ["--length", "0.1", "--thickness", "0.004", "--h", "0.0005", "--rig", "side-push",
+             "--push-height", "0.002", "--push-width", "0.002"]
+    law = ["--law", "slip-weakening", "--mu-s", "0.6", "--mu-d", "0.2", "--dc", "6e-6", "--x-max", "3e-5"]
+    r = run_cli(tribofe_bin, "slide", *scene, "--dynamics", *law, "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    s = tribofe.Scene(length=0.1, thickness=0.004, h=0.0005, rig="side-push", push_height=0.002, push_width=0.002)
+    res = tribofe.dynamics.slide(s, law="slip-weakening", mu_s=0.6, mu_d=0.2, dc=6e-6, x_max=3e-5)
+    for name, table, digits in [("loading", res.loading, 13), ("events", res.events, 13),
+                                ("dyn_events", res.dyn_events, 10)]:
+        assert_table_is_the_csv(name, table, out / f"{name}.csv", digits, res.units[name])
+    # Theory: the push loads the pushed edge first, so the first instability's slipped run
+    # starts at x = -L/2 (the Rust test's finding, here through Python).
+    first = [i for i, v in enumerate(res.dyn_events["instability"]) if v][0]
+    assert res.dyn_events["region_first_over_L"][first] == -0.5
+
+
 def test_precursor_studies_name_the_keyword():
     with pytest.raises(tribofe.InputError, match="t_over_l="):
         tribofe.precursors.thin_layer([0.5])

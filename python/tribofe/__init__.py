@@ -860,7 +860,7 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         0.509 (2.3107e-7 m there), ``h`` (m) the scene's element size refined until the
         cohesive zone spans 3 elements (a given ``h`` that does not is refused), ``cycles`` 1
         ended at the first front crossing (``cycle_end``: ``"crossing"`` or ``"whole-slip"``),
-        ``operator`` ``"banded"`` (or ``"dense"``), ``damping`` (Kelvin-Voigt eta, s) 10 % of
+        ``operator`` ``"banded"`` (``"dense"`` with the side push, which banded cannot border), ``damping`` (Kelvin-Voigt eta, s) 10 % of
         critical at the thickness mode, ``courant`` 0.9 of the stable step, ``weakening_steps``
         20 (held drive under slip weakening only: refused with ``drive_velocity``, which updates
         the coefficient every explicit step), ``exact_weakening`` False (True: the static

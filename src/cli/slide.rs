@@ -111,7 +111,7 @@ pub struct Args {
     /// reference) or `banded` (the block's sparse stiffness in x order, one reused banded LU:
     /// cost per event grows like n, not n^2; equal results to round-off). Default: banded above
     /// 200 interface nodes while (node rows through t)^2 <= nodes / 2, dense otherwise and for
-    /// a mesh file (docs/speed.md); banded with --dynamics. The choice and its reason are printed and written to run.toml.
+    /// a mesh file (docs/speed.md); banded with --dynamics (dense with the side push). The choice and its reason are printed and written to run.toml.
     #[arg(long, value_parser = ["dense", "banded"])]
     pub operator: Option<String>,
     /// Write the whole block's fields for this many states spread evenly over the drive X, one
