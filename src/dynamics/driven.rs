@@ -485,24 +485,10 @@ impl Boundary for PlateAndBase<'_> {
             return (self.e.work_n - wn0) + (self.e.contact - co0) + (self.e.drive - dr0)
                 - (self.e.friction - fr0);
         }
-        // The plate: generalized forces on (V, theta) from the top nodes, and the drive's
-        // reaction F = (sum m + m_p) arm theta'' - sum f_x (U_H has no acceleration).
-        let (mut qv, mut qt, mut fx_sum) = (-self.dr.n_force, 0.0, 0.0);
-        for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
-            let (fx, fy) = (s.force(2 * k), s.force(2 * k + 1));
-            qv += fy;
-            qt += fx * lay.arm + fy * xk;
-            fx_sum += fx;
-        }
-        let acc =
-            [lay.mp_inv[0][0] * qv + lay.mp_inv[0][1] * qt, lay.mp_inv[1][0] * qv + lay.mp_inv[1][1] * qt];
-        let qd_old = *self.qdot;
-        for j in 0..2 {
-            self.qdot[j] += dt * acc[j];
-            self.q[j] += dt * self.qdot[j];
-        }
-        self.f_drive = (lay.m_top + lay.plate_mass) * lay.arm * acc[1] - fx_sum;
-        self.e.work_n -= dt * 0.5 * (qd_old[0] + self.qdot[0]) * self.dr.n_force;
+        // The plate, and the drive's reaction F = (sum m + m_p) arm theta'' - sum f_x (U_H
+        // has no acceleration).
+        let (theta_acc, fx_sum) = self.plate_step(&s, lay.arm);
+        self.f_drive = (lay.m_top + lay.plate_mass) * lay.arm * theta_acc - fx_sum;
         self.e.drive += dt * self.drive_velocity * self.f_drive;
         *self.u_h += dt * self.drive_velocity;
         for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
@@ -522,6 +508,29 @@ fn free_dof(s: &BoundaryStep<'_>, i: usize, ext: f64) -> f64 {
 }
 
 impl PlateAndBase<'_> {
+    /// The rigid plate's (V, theta) over one step under the top nodes' forces and -N, f_x
+    /// acting at `arm` above the block's top (0: the side push's sliding plate), with N's
+    /// work; returns theta'' and sum f_x over the top.
+    fn plate_step(&mut self, s: &BoundaryStep<'_>, arm: f64) -> (f64, f64) {
+        let (lay, dt) = (self.dr.layout, s.dt);
+        let (mut qv, mut qt, mut fx_sum) = (-self.dr.n_force, 0.0, 0.0);
+        for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
+            let (fx, fy) = (s.force(2 * k), s.force(2 * k + 1));
+            qv += fy;
+            qt += fx * arm + fy * xk;
+            fx_sum += fx;
+        }
+        let acc =
+            [lay.mp_inv[0][0] * qv + lay.mp_inv[0][1] * qt, lay.mp_inv[1][0] * qv + lay.mp_inv[1][1] * qt];
+        let qd_old = *self.qdot;
+        for j in 0..2 {
+            self.qdot[j] += dt * acc[j];
+            self.q[j] += dt * self.qdot[j];
+        }
+        self.e.work_n -= dt * 0.5 * (qd_old[0] + self.qdot[0]) * self.dr.n_force;
+        (acc[1], fx_sum)
+    }
+
     /// The side push's boundary in one step (the base done): the pusher (U_p driven at the
     /// drive velocity, or free under its spring k (X - U_p) and the face's forces), the top
     /// (free nodes under the pressure's nodal forces, or the sliding plate: U free, (V,
@@ -550,25 +559,9 @@ impl PlateAndBase<'_> {
         *self.u_h += dt * self.drive_velocity;
         if side.pressure.is_empty() {
             // The sliding plate: U under the top's sum f_x, (V, theta) under -N and no moment.
-            let (mut qv, mut qt, mut fx_sum) = (-n_force, 0.0, 0.0);
-            for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
-                let (fx, fy) = (s.force(2 * k), s.force(2 * k + 1));
-                qv += fy;
-                qt += fy * xk;
-                fx_sum += fx;
-            }
-            let acc = [
-                lay.mp_inv[0][0] * qv + lay.mp_inv[0][1] * qt,
-                lay.mp_inv[1][0] * qv + lay.mp_inv[1][1] * qt,
-            ];
-            let qd_old = *self.qdot;
-            for j in 0..2 {
-                self.qdot[j] += dt * acc[j];
-                self.q[j] += dt * self.qdot[j];
-            }
+            let (_, fx_sum) = self.plate_step(s, 0.0);
             self.free_dot[1] += dt * fx_sum / lay.m_top;
             self.free[1] += dt * self.free_dot[1];
-            self.e.work_n -= dt * 0.5 * (qd_old[0] + self.qdot[0]) * n_force;
             for (&k, &xk) in lay.top.iter().zip(&lay.top_x) {
                 let (ix, iy) = (2 * k, 2 * k + 1);
                 s.v[ix] = self.free_dot[1];
