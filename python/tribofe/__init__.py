@@ -860,10 +860,11 @@ class dynamics:  # noqa: N801 - a namespace, as tribofe::dynamics
         0.509 (2.3107e-7 m there), ``h`` (m) the scene's element size refined until the
         cohesive zone spans 3 elements (a given ``h`` that does not is refused), ``cycles`` 1
         ended at the first front crossing (``cycle_end``: ``"crossing"`` or ``"whole-slip"``),
-        ``operator`` ``"banded"`` (``"dense"`` with the side push, which banded cannot border), ``damping`` (Kelvin-Voigt eta, s) 10 % of
-        critical at the thickness mode, ``courant`` 0.9 of the stable step, ``weakening_steps``
-        20 (held drive under slip weakening only: refused with ``drive_velocity``, which updates
-        the coefficient every explicit step), ``exact_weakening`` False (True: the static
+        ``operator`` ``"banded"`` (``"dense"`` with the side push, which banded cannot
+        border), ``damping`` (Kelvin-Voigt eta, s) 10 % of critical at the thickness mode,
+        ``courant`` 0.9 of the stable step, ``weakening_steps`` 20 (held drive under slip
+        weakening only: refused with ``drive_velocity``, which updates the coefficient every
+        explicit step), ``exact_weakening`` False (True: the static
         loading follows slip weakening exactly, each onset at its fold, ``--exact-weakening``;
         ~10x slower on the paper's scene, docs/speed.md; refused beside ``weakening_steps``), ``event_end`` ``"energy"`` (a held-mode event
         ends at rest; ``"slip"``: once the state handed back is frozen, ``--event-end slip``,

@@ -111,7 +111,8 @@ pub struct Args {
     /// reference) or `banded` (the block's sparse stiffness in x order, one reused banded LU:
     /// cost per event grows like n, not n^2; equal results to round-off). Default: banded above
     /// 200 interface nodes while (node rows through t)^2 <= nodes / 2, dense otherwise and for
-    /// a mesh file (docs/speed.md); banded with --dynamics (dense with the side push). The choice and its reason are printed and written to run.toml.
+    /// a mesh file (docs/speed.md); banded with --dynamics (dense with the side push). The
+    /// choice and its reason are printed and written to run.toml.
     #[arg(long, value_parser = ["dense", "banded"])]
     pub operator: Option<String>,
     /// Write the whole block's fields for this many states spread evenly over the drive X, one
@@ -207,11 +208,6 @@ pub struct Args {
     pub spacetime: Option<String>,
 }
 
-/// Interface nodes of a structured mesh (None for a mesh file: known once it is read).
-fn interface_estimate(scene: &tribofe::scene::Scene) -> Option<usize> {
-    scene.mesh.file.is_none().then(|| scene.estimate_nx() as usize + 1)
-}
-
 /// run.toml's `drive` under side push: X is the pusher's displacement, or the spring's far
 /// end; F the pusher's force (None: the top plate).
 fn drive(scene: &tribofe::scene::Scene) -> Option<(&'static str, toml::Value)> {
@@ -225,7 +221,7 @@ fn drive(scene: &tribofe::scene::Scene) -> Option<(&'static str, toml::Value)> {
 
 /// Why the run is on its operator: given, or the size rule.
 fn operator_reason(a: &Args, scene: &tribofe::scene::Scene) -> String {
-    match (&a.operator, interface_estimate(scene)) {
+    match (&a.operator, tribofe::interface::events::Operator::interface_nodes(scene)) {
         (Some(_), _) => "given".into(),
         (None, _) if !scene.loading.rig.is_top_plate() => "the side push's default (dense)".into(),
         (None, _) if a.dynamics => "the --dynamics default".into(),

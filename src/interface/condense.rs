@@ -117,6 +117,17 @@ pub fn boundary_model(scene: &Scene) -> Result<(SceneModel, Vec<usize>)> {
     Ok((sm, bdofs))
 }
 
+/// Condenses the scene's rig: [`condense`] for the top plate, [`condense_side_push`] for the
+/// side push (for the callers that run both; the others call [`condense`], which refuses the
+/// side push naming what runs it).
+pub fn condense_rig(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {
+    if scene.loading.rig.is_top_plate() {
+        condense(scene, opts)
+    } else {
+        condense_side_push(scene, opts)
+    }
+}
+
 /// Condenses the scene's block and rigid plate (the loading height of `scene` is ignored); the
 /// side-pushed rig is [`condense_side_push`]'s (this refuses it, naming what runs it).
 pub fn condense(scene: &Scene, opts: &SolverOptions) -> Result<Condensed> {

@@ -4,7 +4,7 @@
 use crate::error::{Error, Result};
 use crate::fem::problem::{solve, LoadCase};
 use crate::interface::banded::BandedOperator;
-use crate::interface::condense::{boundary_model, condense, condense_side_push, Condensed};
+use crate::interface::condense::{boundary_model, condense_rig, Condensed};
 use crate::interface::events::{self, run_with, Operator, OperatorRef, Problem, Run};
 use crate::law::Law;
 use crate::linalg::solve::SolverOptions;
@@ -265,11 +265,7 @@ pub fn run(scene: &Scene, o: &SlideOptions, progress: Progress) -> Result<SlideR
         let c = Condensed::of_banded(scene, &op);
         return run_banded(scene, &op, c, clock.elapsed().as_secs_f64(), o, progress);
     }
-    let c = if scene.loading.rig.is_top_plate() {
-        condense(scene, &SolverOptions::default())?
-    } else {
-        condense_side_push(scene, &SolverOptions::default())?
-    };
+    let c = condense_rig(scene, &SolverOptions::default())?;
     let condense_s = clock.elapsed().as_secs_f64();
     run_condensed(scene, c, condense_s, o, progress)
 }

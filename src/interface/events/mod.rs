@@ -118,8 +118,13 @@ impl Operator {
         if !scene.loading.rig.is_top_plate() {
             return Operator::Dense;
         }
-        let n = scene.mesh.file.is_none().then(|| scene.estimate_nx() as usize + 1);
-        Self::for_interface(n, Self::band_rows(scene))
+        Self::for_interface(Self::interface_nodes(scene), Self::band_rows(scene))
+    }
+
+    /// Interface nodes of the scene's structured mesh (None for a mesh file: known once it is
+    /// read).
+    pub fn interface_nodes(scene: &crate::scene::Scene) -> Option<usize> {
+        scene.mesh.file.is_none().then(|| scene.estimate_nx() as usize + 1)
     }
 
     /// Node rows through the block's thickness (element rows times the element's order).

@@ -12,7 +12,7 @@ use crate::fem::constraints::Reduction;
 use crate::fem::material::Material;
 use crate::interface::banded::{BandedOperator, Solving};
 use crate::interface::condense::{
-    boundary_model, condense, condense_side_push, side_push_model, Condensed, SidePushModel, Src,
+    boundary_model, condense_rig, side_push_model, Condensed, SidePushModel, Src,
 };
 use crate::interface::events::Run;
 use crate::interface::events::{self, Operator};
@@ -382,11 +382,7 @@ impl StaticOperator {
             let op = BandedOperator::new(scene, h)?;
             Self { c: Condensed::of_banded(scene, &op), banded: Some(op), s_h: vec![] }
         } else {
-            let c = if scene.loading.rig.is_top_plate() {
-                condense(scene, &SolverOptions::default())?
-            } else {
-                condense_side_push(scene, &SolverOptions::default())?
-            };
+            let c = condense_rig(scene, &SolverOptions::default())?;
             let s_h = c.at_height(h);
             Self { c, banded: None, s_h }
         })
